@@ -1,0 +1,245 @@
+#include "bench/WindBench.hpp"
+
+#include <fmt/format.h>
+
+#include <chrono>
+#include <cmath>
+
+#include "bench/StreamTriad.hpp"
+#include "fluid/ReferenceStages.hpp"
+#include "fluid/SolidMap.hpp"
+#include "io/JsonWriter.hpp"
+
+namespace fw::bench {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+double ms_since(Clock::time_point t) {
+  return std::chrono::duration<double, std::milli>(Clock::now() - t).count();
+}
+
+SolverRun time_solver(host::ComputeContext& cc, const std::array<int, 3>& grid,
+                      fluid::PressureSolverType solver, const WindBenchOptions& opt) {
+  host::WindGrid wind(cc, wind_tunnel_setup(grid[0], grid[1], grid[2], solver, opt.jacobi_iterations));
+  wind.initialise_ambient();
+  for (int s = 0; s < opt.warmup_steps; ++s) wind.step();
+  cc.finish();
+  wind.set_stage_timing(true);
+  SolverRun run;
+  run.solver = fluid::to_string(solver);
+  const auto start = Clock::now();
+  for (int s = 0; s < opt.steps; ++s) {
+    const auto report = wind.step();
+    run.pressure_iterations += report.pressure.iterations;
+    run.relative_residual += report.pressure.relative_residual;
+  }
+  cc.finish();
+  const double total_ms = ms_since(start);
+  run.ms_per_step = total_ms / opt.steps;
+  run.pressure_iterations /= opt.steps;
+  run.relative_residual /= opt.steps;
+  for (const auto& [stage, ms] : wind.stage_ms()) run.stages_ms[stage] = ms / opt.steps;
+  run.max_divergence = wind.max_divergence();
+  const double vmax = wind.max_speed_component();
+  run.divergence_ratio = vmax > 0 ? run.max_divergence * wind.spec().h / vmax : 0.0;
+  run.cells_steps_per_s = double(wind.spec().cell_count()) * opt.steps / (total_ms * 1e-3);
+  return run;
+}
+
+// One step of the CPU reference with the same stages: advect, boundaries, divergence, CG to 1e-3, gradient.
+double time_reference_step(const std::array<int, 3>& grid) {
+  const auto setup = wind_tunnel_setup(grid[0], grid[1], grid[2], fluid::PressureSolverType::cg, 0);
+  const auto& spec = setup.spec;
+  const auto level = fluid::build_fine_pressure_level(spec, setup.solid);
+  fluid::InflowState inflow;
+  for (int a = 0; a < 3; ++a) inflow.ambient[a] = float(setup.ambient[a]);
+  inflow.profile = setup.profile.sample_cell_centres(spec.nz, spec.h);
+  fluid::MacVelocity vel(spec);
+  for (auto& x : vel.u) x = inflow.ambient[0];
+  fluid::reference::enforce_boundaries(spec, level, inflow, vel);
+  std::vector<float> phi;
+  const auto start = Clock::now();
+  vel = fluid::reference::advect_semi_lagrangian(spec, inflow, vel, vel, setup.settings.dt);
+  fluid::reference::enforce_boundaries(spec, level, inflow, vel);
+  const auto b = fluid::reference::divergence_rhs(spec, level, vel);
+  fluid::reference::solve_pressure_cg(spec, level, b, phi, 1e-3, 10000);
+  fluid::reference::subtract_gradient(spec, level, phi, vel);
+  return ms_since(start);
+}
+
+}  // namespace
+
+host::WindGridSetup wind_tunnel_setup(int nx, int ny, int nz, fluid::PressureSolverType solver,
+                                      int jacobi_iterations) {
+  host::WindGridSetup setup;
+  auto& spec = setup.spec;
+  spec.nx = nx;
+  spec.ny = ny;
+  spec.nz = nz;
+  spec.h = 1.0;
+  spec.boundary = {fluid::BoundaryType::inflow, fluid::BoundaryType::outflow, fluid::BoundaryType::slip,
+                   fluid::BoundaryType::slip,   fluid::BoundaryType::slip,    fluid::BoundaryType::slip};
+  setup.settings.dt = 0.05;
+  setup.settings.pressure.solver = solver;
+  setup.settings.pressure.tolerance = 1e-3;
+  setup.settings.pressure.max_iterations = 200;
+  if (jacobi_iterations > 0) setup.settings.pressure.jacobi_iterations = jacobi_iterations;
+  setup.ambient = {10.0, 0.0, 0.0};
+  fluid::SolidMap solids(spec);
+  const double L[3] = {nx * spec.h, ny * spec.h, nz * spec.h};
+  solids.add(fluid::SolidBox{
+      "obstacle", {0.5 * L[0], 0.5 * L[1], 0.5 * L[2]}, {0.125 * L[0], 0.25 * L[1], 0.25 * L[2]}, 0.0});
+  setup.solid = solids.cells();
+  return setup;
+}
+
+double measure_smoother_gb_s(host::ComputeContext& cc, const std::array<int, 3>& grid, bool red_black,
+                             int passes) {
+  fluid::GridSpec spec;
+  spec.nx = grid[0];
+  spec.ny = grid[1];
+  spec.nz = grid[2];
+  spec.h = 1.0;
+  spec.boundary[FW_FACE_EAST] = fluid::BoundaryType::outflow;
+  std::vector<fluid::PressureLevel> fine{fluid::build_fine_pressure_level(spec, {})};
+  host::PressureSolver solver(cc, spec, std::move(fine), fluid::PressureSettings{});
+  cl::Buffer other = cc.buffer(spec.cell_count() * sizeof(float));
+  auto pass = [&](int n) {
+    if (red_black)
+      solver.enqueue_red_black_sweep(0, solver.rhs(), solver.solution(), n & 1);
+    else
+      solver.enqueue_jacobi_sweep(0, solver.rhs(), (n & 1) ? other : solver.solution(),
+                                  (n & 1) ? solver.solution() : other, 1.0f);
+  };
+  pass(0), pass(1);
+  cc.finish();
+  const auto start = Clock::now();
+  for (int n = 0; n < passes; ++n) pass(n);
+  cc.finish();
+  const double seconds = ms_since(start) * 1e-3 / passes;
+  const double bytes = double(spec.cell_count()) * (1 + 4 + 4 + 4);
+  return bytes / seconds * 1e-9;
+}
+
+WindBenchResult run_wind_bench(host::ComputeContext& cc, const WindBenchOptions& opt) {
+  WindBenchResult result;
+  result.device = cc.device().device_name;
+  result.steps = opt.steps;
+  result.triad_gb_s = measure_stream_triad(cc, std::size_t(32) << 20, 10);
+  result.roofline_grid = opt.roofline_grid;
+  result.roofline_smoother_gb_s = measure_smoother_gb_s(cc, opt.roofline_grid, true, 20);
+  result.roofline_jacobi_gb_s = measure_smoother_gb_s(cc, opt.roofline_grid, false, 20);
+  for (const auto& grid : opt.grids) {
+    WindBenchCase c;
+    c.grid = grid;
+    for (auto solver : {fluid::PressureSolverType::cg, fluid::PressureSolverType::multigrid,
+                        fluid::PressureSolverType::jacobi})
+      c.runs.push_back(time_solver(cc, grid, solver, opt));
+    c.smoother_gb_s = measure_smoother_gb_s(cc, grid, true, 20);
+    if (opt.reference && std::size_t(grid[0]) * grid[1] * grid[2] <= (std::size_t(1) << 18))
+      c.reference_ms_per_step = time_reference_step(grid);
+    result.cases.push_back(std::move(c));
+  }
+  return result;
+}
+
+void print_wind_bench_table(const WindBenchResult& r, std::ostream& out) {
+  out << fmt::format("forestwind bench wind on {}: {} timed steps per solver\n", r.device, r.steps);
+  out << fmt::format("STREAM triad (device, same process): {:.1f} GB/s\n", r.triad_gb_s);
+  out << fmt::format(
+      "smoother on {}x{}x{}: red-black pass {:.1f} GB/s ({:.0f}% of triad), Jacobi sweep {:.1f} GB/s "
+      "({:.0f}% of triad)\n\n",
+      r.roofline_grid[0], r.roofline_grid[1], r.roofline_grid[2], r.roofline_smoother_gb_s,
+      100.0 * r.roofline_smoother_gb_s / r.triad_gb_s, r.roofline_jacobi_gb_s,
+      100.0 * r.roofline_jacobi_gb_s / r.triad_gb_s);
+  out << fmt::format("{:<12} {:<10} {:>9} {:>8} {:>8} {:>9} {:>9} {:>8} {:>9} {:>10} {:>10} {:>12}\n", "grid",
+                     "solver", "ms/step", "advect", "bound.", "diverg.", "pressure", "gradient", "p-iters",
+                     "rel.res.", "max|div|", "Mcell*st/s");
+  for (const auto& c : r.cases) {
+    const std::string grid = fmt::format("{}x{}x{}", c.grid[0], c.grid[1], c.grid[2]);
+    const double base = c.runs.front().ms_per_step;
+    for (const auto& run : c.runs) {
+      auto stage = [&](const char* name) {
+        auto it = run.stages_ms.find(name);
+        return it == run.stages_ms.end() ? 0.0 : it->second;
+      };
+      out << fmt::format(
+          "{:<12} {:<10} {:>9.2f} {:>8.2f} {:>8.2f} {:>9.2f} {:>9.2f} {:>8.2f} {:>9.1f} {:>10.2e} "
+          "{:>10.2e} {:>12.1f}   x{:.2f}\n",
+          grid, run.solver, run.ms_per_step, stage("advect"), stage("boundaries"), stage("divergence"),
+          stage("pressure"), stage("gradient"), run.pressure_iterations, run.relative_residual,
+          run.max_divergence, run.cells_steps_per_s * 1e-6, run.ms_per_step / base);
+    }
+    out << fmt::format("{:<12} smoother {:.1f} GB/s ({:.0f}% of triad)", grid, c.smoother_gb_s,
+                       100.0 * c.smoother_gb_s / r.triad_gb_s);
+    if (c.reference_ms_per_step > 0)
+      out << fmt::format("; CPU reference step {:.0f} ms = x{:.1f} the device's cg step",
+                         c.reference_ms_per_step, c.reference_ms_per_step / base);
+    out << "\n";
+  }
+  out << "ratios (x) are to the converging solver (cg) on the same grid\n";
+}
+
+namespace {
+void write_case(io::JsonWriter& json, const WindBenchCase& c, const WindBenchResult& r) {
+  const SolverRun& head = c.runs.front();
+  json.key("grid").begin_array().value(c.grid[0]).value(c.grid[1]).value(c.grid[2]).end_array();
+  json.key("solver").value(head.solver);
+  json.key("ms_per_step").value(head.ms_per_step);
+  json.key("stages_ms").begin_object();
+  for (const auto& [stage, ms] : head.stages_ms) json.key(stage).value(ms);
+  json.end_object();
+  json.key("pressure_iterations").value(head.pressure_iterations);
+  json.key("relative_residual").value(head.relative_residual);
+  json.key("max_divergence").value(head.max_divergence);
+  json.key("divergence_ratio").value(head.divergence_ratio);
+  json.key("cells_steps_per_s").value(head.cells_steps_per_s);
+  json.key("triad_gb_s").value(r.triad_gb_s);
+  json.key("smoother_gb_s").value(c.smoother_gb_s);
+  if (c.reference_ms_per_step > 0) json.key("reference_ms_per_step").value(c.reference_ms_per_step);
+  json.key("solvers").begin_array();
+  for (const auto& run : c.runs) {
+    json.begin_object();
+    json.key("solver").value(run.solver);
+    json.key("ms_per_step").value(run.ms_per_step);
+    json.key("pressure_iterations").value(run.pressure_iterations);
+    json.key("relative_residual").value(run.relative_residual);
+    json.key("max_divergence").value(run.max_divergence);
+    json.key("stages_ms").begin_object();
+    for (const auto& [stage, ms] : run.stages_ms) json.key(stage).value(ms);
+    json.end_object();
+    json.end_object();
+  }
+  json.end_array();
+}
+}  // namespace
+
+std::string wind_bench_json(const WindBenchResult& r) {
+  io::JsonWriter json;
+  json.begin_object();
+  json.key("device").value(r.device);
+  json.key("steps").value(r.steps);
+  // The first case's keys at the top level, so a single --grid gives the flat object DESIGN.md lists.
+  if (!r.cases.empty()) write_case(json, r.cases.front(), r);
+  json.key("roofline").begin_object();
+  json.key("grid")
+      .begin_array()
+      .value(r.roofline_grid[0])
+      .value(r.roofline_grid[1])
+      .value(r.roofline_grid[2])
+      .end_array();
+  json.key("red_black_gb_s").value(r.roofline_smoother_gb_s);
+  json.key("jacobi_gb_s").value(r.roofline_jacobi_gb_s);
+  json.end_object();
+  json.key("cases").begin_array();
+  for (const auto& c : r.cases) {
+    json.begin_object();
+    write_case(json, c, r);
+    json.end_object();
+  }
+  json.end_array();
+  json.end_object();
+  return json.str();
+}
+
+}  // namespace fw::bench

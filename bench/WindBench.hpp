@@ -1,0 +1,76 @@
+// `forestwind bench wind`: the wind-tunnel case, timed on the OpenCL device.
+//
+// The case: cubic cells of 1 m, 10 m/s inflow on the west face, outflow on the east face, free-slip on the
+// others, dt = 0.05 s, and a box obstacle over x 0.4375-0.5625 and y, z 0.375-0.625 of the domain. The
+// pressure uses the converging solver (multigrid-preconditioned CG) to a relative residual of 1e-3;
+// multigrid V-cycles and fixed-count Jacobi (the seed's method) run the same steps for comparison.
+// Baselines measured in the same process: a STREAM triad on the device (roofline), the smoother's
+// bandwidth on a grid too large for cache, and one step of the CPU reference (fluid/ReferenceStages).
+//
+//   WindBenchOptions opt;                 // default grids 128x128x64, 64x64x32, 256x256x16
+//   WindBenchResult r = run_wind_bench(cc, opt);
+//   print_wind_bench_table(r, std::cout);
+#pragma once
+
+#include <array>
+#include <map>
+#include <ostream>
+#include <string>
+#include <vector>
+
+#include "host/ComputeContext.hpp"
+#include "host/WindGrid.hpp"
+
+namespace fw::bench {
+
+struct WindBenchOptions {
+  std::vector<std::array<int, 3>> grids{{128, 128, 64}, {64, 64, 32}, {256, 256, 16}};
+  int steps = 20;         // timed steps per solver
+  int warmup_steps = 10;  // untimed steps first, so the wake has formed
+  int jacobi_iterations = 40;
+  bool reference = true;                            // time one CPU-reference step on grids up to 64^3 cells
+  std::array<int, 3> roofline_grid{256, 256, 128};  // smoother bandwidth, too large for cache
+};
+
+struct SolverRun {
+  std::string solver;  // "cg", "multigrid", "jacobi"
+  double ms_per_step = 0.0;
+  std::map<std::string, double> stages_ms;  // per step
+  double pressure_iterations = 0.0;         // mean per step
+  double relative_residual = 0.0;           // mean per step
+  double max_divergence = 0.0;              // max |div u| after the last projection, 1/s
+  double divergence_ratio = 0.0;            // max|div u| h / max|u|
+  double cells_steps_per_s = 0.0;
+};
+
+struct WindBenchCase {
+  std::array<int, 3> grid{};
+  std::vector<SolverRun> runs;         // converging solver first
+  double smoother_gb_s = 0.0;          // red-black Gauss-Seidel pass on this grid
+  double reference_ms_per_step = 0.0;  // 0 when not measured
+};
+
+struct WindBenchResult {
+  std::string device;
+  double triad_gb_s = 0.0;
+  double roofline_smoother_gb_s = 0.0;  // red-black pass on roofline_grid
+  double roofline_jacobi_gb_s = 0.0;    // Jacobi sweep on roofline_grid
+  std::array<int, 3> roofline_grid{};
+  int steps = 0;
+  std::vector<WindBenchCase> cases;
+};
+
+/// The wind-tunnel case on an nx x ny x nz grid, with the given pressure solver.
+host::WindGridSetup wind_tunnel_setup(int nx, int ny, int nz, fluid::PressureSolverType solver,
+                                      int jacobi_iterations);
+
+WindBenchResult run_wind_bench(host::ComputeContext& cc, const WindBenchOptions& options);
+void print_wind_bench_table(const WindBenchResult& result, std::ostream& out);
+std::string wind_bench_json(const WindBenchResult& result);
+
+/// Bandwidth of the pressure smoother on a grid, GB/s: (red-black colour pass if red_black, else one
+/// Jacobi sweep), counting the bytes each pass streams: mask 1 + b 4 + phi read 4 + phi write 4 per cell.
+double measure_smoother_gb_s(host::ComputeContext& cc, const std::array<int, 3>& grid, bool red_black,
+                             int passes);
+
+}  // namespace fw::bench

@@ -1,0 +1,84 @@
+#include "fluid/GridSpec.hpp"
+
+#include <fmt/format.h>
+
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+
+namespace fw::fluid {
+namespace {
+constexpr const char* kBoundaryNames[] = {"inflow", "outflow", "slip", "no_slip", "periodic"};
+constexpr const char* kFaceNames[] = {"west", "east", "south", "north", "ground", "top"};
+}  // namespace
+
+BoundaryType parse_boundary_type(const std::string& name) {
+  for (int i = 0; i < 5; ++i)
+    if (name == kBoundaryNames[i]) return static_cast<BoundaryType>(i);
+  throw std::invalid_argument(fmt::format(
+      "GridSpec: unknown boundary type '{}'; expected one of inflow, outflow, slip, no_slip, periodic",
+      name));
+}
+
+std::string to_string(BoundaryType type) {
+  const int i = static_cast<int>(type);
+  return (i >= 0 && i < 5) ? kBoundaryNames[i] : fmt::format("<invalid boundary {}>", i);
+}
+
+std::string face_name(int face) {
+  return (face >= 0 && face < 6) ? kFaceNames[face] : "<invalid face>";
+}
+
+void GridSpec::validate() const {
+  if (nx <= 0 || ny <= 0 || nz <= 0)
+    throw std::invalid_argument(
+        fmt::format("GridSpec: dimensions must be positive, got {} x {} x {} cells", nx, ny, nz));
+  if (!(h > 0.0) || !std::isfinite(h))
+    throw std::invalid_argument(fmt::format("GridSpec: cell size must be > 0 m, got {}", h));
+  for (double o : origin)
+    if (!std::isfinite(o)) throw std::invalid_argument("GridSpec: origin must be finite");
+  // Face counts (nx+1)*ny*nz must fit the 32-bit indices the kernels use.
+  const double faces = double(nx + 1) * double(ny + 1) * double(nz + 1);
+  if (faces > double(std::numeric_limits<std::int32_t>::max()))
+    throw std::invalid_argument(
+        fmt::format("GridSpec: {} x {} x {} cells exceed the 2^31 index range of the kernels", nx, ny, nz));
+  for (int f = 0; f < 6; ++f) {
+    const int value = static_cast<int>(boundary[f]);
+    if (value < 0 || value > 4)
+      throw std::invalid_argument(
+          fmt::format("GridSpec: unknown boundary type {} on the {} face", value, face_name(f)));
+  }
+  for (int axis = 0; axis < 3; ++axis) {
+    const bool lo = boundary[2 * axis] == BoundaryType::periodic;
+    const bool hi = boundary[2 * axis + 1] == BoundaryType::periodic;
+    const int n[3] = {nx, ny, nz};
+    if (lo && hi && n[axis] > 1 && n[axis] % 2 != 0)
+      throw std::invalid_argument(
+          fmt::format("GridSpec: a periodic axis needs an even number of cells (red-black smoothing), the "
+                      "{}-{} axis has {}",
+                      face_name(2 * axis), face_name(2 * axis + 1), n[axis]));
+    if (lo != hi)
+      throw std::invalid_argument(fmt::format("GridSpec: the {} face is periodic but the {} face is not",
+                                              face_name(lo ? 2 * axis : 2 * axis + 1),
+                                              face_name(lo ? 2 * axis + 1 : 2 * axis)));
+  }
+}
+
+bool GridSpec::has_dirichlet_pressure() const {
+  for (auto b : boundary)
+    if (b == BoundaryType::outflow) return true;
+  return false;
+}
+
+FwGrid GridSpec::to_device() const {
+  FwGrid g{};
+  g.nx = nx;
+  g.ny = ny;
+  g.nz = nz;
+  for (int f = 0; f < 6; ++f) g.bc[f] = static_cast<fw_int>(boundary[f]);
+  g.h = static_cast<float>(h);
+  for (int a = 0; a < 3; ++a) g.origin[a] = static_cast<float>(origin[a]);
+  return g;
+}
+
+}  // namespace fw::fluid

@@ -1,0 +1,58 @@
+// The wind grid's size, cell size, placement and boundary conditions, validated before anything is
+// allocated.
+//
+//   fw::fluid::GridSpec spec;
+//   spec.nx = 128; spec.ny = 128; spec.nz = 64; spec.h = 1.0;
+//   spec.boundary[FW_FACE_WEST] = BoundaryType::inflow;
+//   spec.validate();                                   // throws std::invalid_argument("GridSpec: ...")
+//
+// Cells are cubic (size h, metres). Face velocities live on a MAC grid, see kernels/shared_types.h.
+#pragma once
+
+#include <array>
+#include <cstddef>
+#include <cstdint>
+#include <string>
+
+#include "kernels/shared_types.h"
+
+namespace fw::fluid {
+
+enum class BoundaryType : int {
+  inflow = FW_BC_INFLOW,
+  outflow = FW_BC_OUTFLOW,
+  slip = FW_BC_SLIP,
+  no_slip = FW_BC_NO_SLIP,
+  periodic = FW_BC_PERIODIC,
+};
+
+/// "inflow", "outflow", "slip", "no_slip" or "periodic". Throws std::invalid_argument listing the choices.
+BoundaryType parse_boundary_type(const std::string& name);
+std::string to_string(BoundaryType type);
+/// "west", "east", "south", "north", "ground", "top" for FW_FACE_*.
+std::string face_name(int face);
+
+struct GridSpec {
+  int nx = 0, ny = 0, nz = 0;             // cells along x, y, z
+  double h = 0.0;                         // cell size, m
+  std::array<double, 3> origin{0, 0, 0};  // minimum corner, m
+  std::array<BoundaryType, 6> boundary{BoundaryType::slip, BoundaryType::slip, BoundaryType::slip,
+                                       BoundaryType::slip, BoundaryType::slip, BoundaryType::slip};
+
+  /// Throws std::invalid_argument("GridSpec: ...") for non-positive dimensions or cell size, a periodic face
+  /// whose opposite face is not periodic, an odd cell count >1 along a periodic axis, an out-of-range
+  /// boundary value, or a cell count over 2^31.
+  void validate() const;
+
+  std::size_t cell_count() const { return std::size_t(nx) * ny * nz; }
+  std::size_t u_count() const { return std::size_t(nx + 1) * ny * nz; }
+  std::size_t v_count() const { return std::size_t(nx) * (ny + 1) * nz; }
+  std::size_t w_count() const { return std::size_t(nx) * ny * (nz + 1); }
+  bool periodic(int axis) const { return boundary[2 * axis] == BoundaryType::periodic; }
+  /// True when some face holds pressure at zero (outflow), which makes the Poisson problem non-singular.
+  bool has_dirichlet_pressure() const;
+
+  FwGrid to_device() const;
+};
+
+}  // namespace fw::fluid

@@ -1,0 +1,549 @@
+#include "fluid/ReferenceStages.hpp"
+
+#include <algorithm>
+#include <bit>
+#include <cmath>
+#include <numbers>
+#include <stdexcept>
+
+namespace fw::fluid::reference {
+namespace {
+
+int dims(const GridSpec& s, int a) {
+  return a == 0 ? s.nx : (a == 1 ? s.ny : s.nz);
+}
+
+std::size_t cell_index(int nx, int ny, int i, int j, int k) {
+  return std::size_t(i) + std::size_t(nx) * (std::size_t(j) + std::size_t(ny) * std::size_t(k));
+}
+
+// Staggering offset of component c along axis a: faces of the own axis sit on integer positions.
+double offset(int c, int a) {
+  return c == a ? 0.0 : 0.5;
+}
+
+// Neighbour value of phi across face f of cell (i,j,k) on a level: wraps on periodic axes, 0 outside.
+double neighbour_phi(const GridSpec& spec, const PressureLevel& L, const std::vector<float>& phi, int i,
+                     int j, int k, int f) {
+  int idx[3] = {i, j, k};
+  const int n[3] = {L.nx, L.ny, L.nz};
+  const int a = f / 2;
+  idx[a] += (f % 2) ? 1 : -1;
+  if (idx[a] < 0 || idx[a] >= n[a]) {
+    if (!spec.periodic(a)) return 0.0;  // Dirichlet ghost (outflow)
+    idx[a] = (idx[a] + n[a]) % n[a];
+  }
+  return phi[cell_index(L.nx, L.ny, idx[0], idx[1], idx[2])];
+}
+
+// Sum of phi over the open faces of a cell.
+double open_neighbour_sum(const GridSpec& spec, const PressureLevel& L, const std::vector<float>& phi, int i,
+                          int j, int k, std::uint8_t m) {
+  double sum = 0.0;
+  for (int f = 0; f < 6; ++f)
+    if (m & (1u << f)) sum += neighbour_phi(spec, L, phi, i, j, k, f);
+  return sum;
+}
+
+int open_count(std::uint8_t m) {
+  return std::popcount(static_cast<unsigned>(m & FW_MASK_OPEN_ALL));
+}
+
+template <typename F>
+void for_each_face(const GridSpec& spec, int c, F&& f) {
+  const int ex = extent(spec, c, 0), ey = extent(spec, c, 1), ez = extent(spec, c, 2);
+  for (int k = 0; k < ez; ++k)
+    for (int j = 0; j < ey; ++j)
+      for (int i = 0; i < ex; ++i) f(i, j, k, face_index(spec, c, i, j, k));
+}
+
+// Is face (i,j,k) of component c open in the pressure mask (its velocity is solved for)? The cell on the
+// low side owns the face through its high bit; the domain's low boundary face belongs to cell 0.
+bool face_open(const GridSpec& spec, const PressureLevel& fine, int c, int i, int j, int k) {
+  int idx[3] = {i, j, k};
+  const int n = dims(spec, c);
+  int bit = 2 * c + 1;
+  if (idx[c] == 0)
+    bit = 2 * c;
+  else
+    idx[c] = std::min(idx[c] - 1, n - 1);
+  return fine.mask[cell_index(spec.nx, spec.ny, idx[0], idx[1], idx[2])] & (1u << bit);
+}
+
+}  // namespace
+
+int extent(const GridSpec& spec, int component, int axis) {
+  return dims(spec, axis) + (component == axis ? 1 : 0);
+}
+
+std::size_t face_index(const GridSpec& spec, int c, int i, int j, int k) {
+  const std::size_t ex = extent(spec, c, 0), ey = extent(spec, c, 1);
+  return std::size_t(i) + ex * (std::size_t(j) + ey * std::size_t(k));
+}
+
+double fetch(const GridSpec& spec, const InflowState& inflow, const std::vector<float>& q, int c, int i,
+             int j, int k) {
+  int idx[3] = {i, j, k};
+  double sign = 1.0;
+  for (int a = 0; a < 3; ++a) {
+    const int ext = extent(spec, c, a);
+    if (idx[a] >= 0 && idx[a] < ext) continue;
+    const bool low = idx[a] < 0;
+    const BoundaryType bc = spec.boundary[2 * a + (low ? 0 : 1)];
+    const int n = dims(spec, a);
+    if (bc == BoundaryType::periodic) {
+      idx[a] = ((idx[a] % n) + n) % n;
+      continue;
+    }
+    if (bc == BoundaryType::inflow) {
+      const int kk = std::clamp(idx[2], 0, spec.nz - 1);
+      return double(inflow.ambient[c]) * double(inflow.profile[kk]);
+    }
+    if (bc == BoundaryType::no_slip && a != c) {
+      idx[a] = low ? (-1 - idx[a]) : (2 * ext - 1 - idx[a]);
+      sign = -sign;
+    }
+    idx[a] = std::clamp(idx[a], 0, ext - 1);
+  }
+  return sign * double(q[face_index(spec, c, idx[0], idx[1], idx[2])]);
+}
+
+double sample(const GridSpec& spec, const InflowState& inflow, const std::vector<float>& q, int c, double X,
+              double Y, double Z) {
+  double P[3] = {X, Y, Z};
+  int i0[3];
+  double fr[3];
+  for (int a = 0; a < 3; ++a) {
+    const int n = dims(spec, a);
+    if (spec.periodic(a)) P[a] -= n * std::floor(P[a] / n);
+    double g = P[a] - offset(c, a);
+    if (!spec.periodic(a)) g = std::clamp(g, -1.0, double(extent(spec, c, a)));
+    const double fl = std::floor(g);
+    i0[a] = int(fl);
+    fr[a] = g - fl;
+  }
+  double value = 0.0;
+  for (int dk = 0; dk < 2; ++dk)
+    for (int dj = 0; dj < 2; ++dj)
+      for (int di = 0; di < 2; ++di) {
+        const double wgt = (di ? fr[0] : 1 - fr[0]) * (dj ? fr[1] : 1 - fr[1]) * (dk ? fr[2] : 1 - fr[2]);
+        if (wgt == 0.0) continue;
+        value += wgt * fetch(spec, inflow, q, c, i0[0] + di, i0[1] + dj, i0[2] + dk);
+      }
+  return value;
+}
+
+void backtrace(const GridSpec& spec, const InflowState& inflow, const MacVelocity& vel, int c, int i, int j,
+               int k, double dt, double& X, double& Y, double& Z) {
+  const double P[3] = {i + offset(c, 0), j + offset(c, 1), k + offset(c, 2)};
+  const double s = dt / spec.h;  // m/s -> cells
+  double V[3], M[3];
+  for (int a = 0; a < 3; ++a) V[a] = sample(spec, inflow, vel.component(a), a, P[0], P[1], P[2]);
+  for (int a = 0; a < 3; ++a) M[a] = P[a] - 0.5 * s * V[a];
+  for (int a = 0; a < 3; ++a) V[a] = sample(spec, inflow, vel.component(a), a, M[0], M[1], M[2]);
+  X = P[0] - s * V[0];
+  Y = P[1] - s * V[1];
+  Z = P[2] - s * V[2];
+}
+
+MacVelocity advect_semi_lagrangian(const GridSpec& spec, const InflowState& inflow, const MacVelocity& vel,
+                                   const MacVelocity& q, double dt) {
+  MacVelocity out(spec);
+  for (int c = 0; c < 3; ++c)
+    for_each_face(spec, c, [&](int i, int j, int k, std::size_t id) {
+      double X, Y, Z;
+      backtrace(spec, inflow, vel, c, i, j, k, dt, X, Y, Z);
+      out.component(c)[id] = float(sample(spec, inflow, q.component(c), c, X, Y, Z));
+    });
+  return out;
+}
+
+MacVelocity advect_maccormack(const GridSpec& spec, const InflowState& inflow, const MacVelocity& vel,
+                              const MacVelocity& q, double dt) {
+  const MacVelocity forward = advect_semi_lagrangian(spec, inflow, vel, q, dt);
+  const MacVelocity back = advect_semi_lagrangian(spec, inflow, vel, forward, -dt);
+  MacVelocity out(spec);
+  for (int c = 0; c < 3; ++c)
+    for_each_face(spec, c, [&](int i, int j, int k, std::size_t id) {
+      double P[3];
+      backtrace(spec, inflow, vel, c, i, j, k, dt, P[0], P[1], P[2]);
+      // Range of the values the forward step interpolated between.
+      double lo = INFINITY, hi = -INFINITY;
+      int i0[3];
+      for (int a = 0; a < 3; ++a) {
+        const int n = dims(spec, a);
+        double p = P[a];
+        if (spec.periodic(a)) p -= n * std::floor(p / n);
+        double g = p - offset(c, a);
+        if (!spec.periodic(a)) g = std::clamp(g, -1.0, double(extent(spec, c, a)));
+        i0[a] = int(std::floor(g));
+      }
+      for (int d = 0; d < 8; ++d) {
+        const double val = fetch(spec, inflow, q.component(c), c, i0[0] + (d & 1), i0[1] + ((d >> 1) & 1),
+                                 i0[2] + ((d >> 2) & 1));
+        lo = std::min(lo, val);
+        hi = std::max(hi, val);
+      }
+      const double fwd = forward.component(c)[id];
+      const double corrected = fwd + 0.5 * (double(q.component(c)[id]) - double(back.component(c)[id]));
+      out.component(c)[id] = float((corrected < lo || corrected > hi) ? fwd : corrected);
+    });
+  return out;
+}
+
+void add_body_force(const GridSpec& spec, MacVelocity& vel, const std::array<double, 3>& g, double dt) {
+  for (int c = 0; c < 3; ++c)
+    for (auto& x : vel.component(c)) x = float(double(x) + dt * g[c]);
+  (void)spec;
+}
+
+void add_gusts(const GridSpec& spec, MacVelocity& vel, const std::vector<FwGust>& gusts, double t,
+               double dt) {
+  const double tm = t + 0.5 * dt;
+  for (int c = 0; c < 3; ++c)
+    for_each_face(spec, c, [&](int i, int j, int k, std::size_t id) {
+      const double x[3] = {spec.origin[0] + spec.h * (i + offset(c, 0)),
+                           spec.origin[1] + spec.h * (j + offset(c, 1)),
+                           spec.origin[2] + spec.h * (k + offset(c, 2))};
+      double add = 0.0;
+      for (const FwGust& g : gusts) {
+        const double tau = tm - g.start;
+        if (!(tau > 0.0 && tau < g.duration)) continue;
+        double r2 = 0.0;
+        for (int a = 0; a < 3; ++a) {
+          const double d = x[a] - (g.center[a] + g.travel[a] * tau);
+          r2 += d * d;
+        }
+        const double rate = g.peak_speed * (std::numbers::pi / g.duration) *
+                            std::sin(2.0 * std::numbers::pi * tau / g.duration) *
+                            std::exp(-r2 / (double(g.radius) * g.radius));
+        add += dt * rate * g.direction[c];
+      }
+      vel.component(c)[id] = float(double(vel.component(c)[id]) + add);
+    });
+}
+
+std::vector<float> vorticity(const GridSpec& spec, const MacVelocity& vel) {
+  const int nx = spec.nx, ny = spec.ny, nz = spec.nz;
+  auto centre = [&](int c, int i, int j, int k) {
+    int hi[3] = {i, j, k};
+    hi[c] += 1;
+    return 0.5 * (double(vel.component(c)[face_index(spec, c, i, j, k)]) +
+                  double(vel.component(c)[face_index(spec, c, hi[0], hi[1], hi[2])]));
+  };
+  // d(component c)/d(axis a) at cell (i,j,k), central where possible.
+  auto deriv = [&](int c, int a, int i, int j, int k) {
+    int p[3] = {i, j, k}, m[3] = {i, j, k};
+    const int n = dims(spec, a);
+    p[a] = std::min(p[a] + 1, n - 1);
+    m[a] = std::max(m[a] - 1, 0);
+    const int span = p[a] - m[a];
+    if (span == 0) return 0.0;
+    return (centre(c, p[0], p[1], p[2]) - centre(c, m[0], m[1], m[2])) / (span * spec.h);
+  };
+  std::vector<float> out(spec.cell_count() * 4);
+  for (int k = 0; k < nz; ++k)
+    for (int j = 0; j < ny; ++j)
+      for (int i = 0; i < nx; ++i) {
+        const double wx = deriv(2, 1, i, j, k) - deriv(1, 2, i, j, k);
+        const double wy = deriv(0, 2, i, j, k) - deriv(2, 0, i, j, k);
+        const double wz = deriv(1, 0, i, j, k) - deriv(0, 1, i, j, k);
+        const std::size_t id = cell_index(nx, ny, i, j, k) * 4;
+        out[id] = float(wx);
+        out[id + 1] = float(wy);
+        out[id + 2] = float(wz);
+        out[id + 3] = float(std::sqrt(wx * wx + wy * wy + wz * wz));
+      }
+  return out;
+}
+
+void add_vorticity_confinement(const GridSpec& spec, MacVelocity& vel, double epsilon, double dt) {
+  const int nx = spec.nx, ny = spec.ny, nz = spec.nz;
+  const std::vector<float> w = vorticity(spec, vel);
+  auto mag = [&](int i, int j, int k) { return double(w[cell_index(nx, ny, i, j, k) * 4 + 3]); };
+  std::vector<double> force(spec.cell_count() * 3);
+  for (int k = 0; k < nz; ++k)
+    for (int j = 0; j < ny; ++j)
+      for (int i = 0; i < nx; ++i) {
+        double eta[3];
+        const int c[3] = {i, j, k};
+        for (int a = 0; a < 3; ++a) {
+          int p[3] = {i, j, k}, m[3] = {i, j, k};
+          p[a] = std::min(c[a] + 1, dims(spec, a) - 1);
+          m[a] = std::max(c[a] - 1, 0);
+          const int span = p[a] - m[a];
+          eta[a] = span ? (mag(p[0], p[1], p[2]) - mag(m[0], m[1], m[2])) / (span * spec.h) : 0.0;
+        }
+        const double len = std::sqrt(eta[0] * eta[0] + eta[1] * eta[1] + eta[2] * eta[2]) + 1e-20;
+        const double N[3] = {eta[0] / len, eta[1] / len, eta[2] / len};
+        const std::size_t id = cell_index(nx, ny, i, j, k);
+        const double W[3] = {w[id * 4], w[id * 4 + 1], w[id * 4 + 2]};
+        const double s = epsilon * spec.h;
+        force[id * 3 + 0] = s * (N[1] * W[2] - N[2] * W[1]);
+        force[id * 3 + 1] = s * (N[2] * W[0] - N[0] * W[2]);
+        force[id * 3 + 2] = s * (N[0] * W[1] - N[1] * W[0]);
+      }
+  for (int c = 0; c < 3; ++c)
+    for_each_face(spec, c, [&](int i, int j, int k, std::size_t id) {
+      int lo[3] = {i, j, k}, hi[3] = {i, j, k};
+      lo[c] = std::max(lo[c] - 1, 0);
+      hi[c] = std::min(hi[c], dims(spec, c) - 1);
+      const double f = 0.5 * (force[cell_index(nx, ny, lo[0], lo[1], lo[2]) * 3 + c] +
+                              force[cell_index(nx, ny, hi[0], hi[1], hi[2]) * 3 + c]);
+      vel.component(c)[id] = float(double(vel.component(c)[id]) + dt * f);
+    });
+}
+
+MacVelocity diffuse(const GridSpec& spec, const InflowState& inflow, const MacVelocity& vel, double nu,
+                    double dt) {
+  MacVelocity out(spec);
+  const double s = nu * dt / (spec.h * spec.h);
+  for (int c = 0; c < 3; ++c)
+    for_each_face(spec, c, [&](int i, int j, int k, std::size_t id) {
+      const auto& q = vel.component(c);
+      const double centre = q[id];
+      const double lap = fetch(spec, inflow, q, c, i - 1, j, k) + fetch(spec, inflow, q, c, i + 1, j, k) +
+                         fetch(spec, inflow, q, c, i, j - 1, k) + fetch(spec, inflow, q, c, i, j + 1, k) +
+                         fetch(spec, inflow, q, c, i, j, k - 1) + fetch(spec, inflow, q, c, i, j, k + 1) -
+                         6.0 * centre;
+      out.component(c)[id] = float(centre + s * lap);
+    });
+  return out;
+}
+
+void enforce_boundaries(const GridSpec& spec, const PressureLevel& fine, const InflowState& inflow,
+                        MacVelocity& vel) {
+  for (int c = 0; c < 3; ++c) {
+    const int n = dims(spec, c);
+    auto& q = vel.component(c);
+    // Loops run k, j, i ascending, so a periodic high face is visited after its low twin.
+    for_each_face(spec, c, [&](int i, int j, int k, std::size_t id) {
+      int idx[3] = {i, j, k};
+      const bool boundary = idx[c] == 0 || idx[c] == n;
+      if (boundary && spec.periodic(c) && idx[c] == n) {
+        idx[c] = 0;
+        q[id] = q[face_index(spec, c, idx[0], idx[1], idx[2])];
+        return;
+      }
+      if (face_open(spec, fine, c, i, j, k)) return;
+      double value = 0.0;
+      if (boundary && !spec.periodic(c)) {
+        const int face = 2 * c + (idx[c] == 0 ? 0 : 1);
+        int cell[3] = {i, j, k};
+        cell[c] = idx[c] == 0 ? 0 : n - 1;
+        const bool fluid_cell =
+            fine.mask[cell_index(spec.nx, spec.ny, cell[0], cell[1], cell[2])] & FW_MASK_FLUID;
+        if (spec.boundary[face] == BoundaryType::inflow && fluid_cell)
+          value = double(inflow.ambient[c]) * double(inflow.profile[std::clamp(k, 0, spec.nz - 1)]);
+      }
+      q[id] = float(value);
+    });
+  }
+}
+
+std::vector<float> divergence_rhs(const GridSpec& spec, const PressureLevel& fine, const MacVelocity& vel) {
+  std::vector<float> b(spec.cell_count(), 0.f);
+  for (int k = 0; k < spec.nz; ++k)
+    for (int j = 0; j < spec.ny; ++j)
+      for (int i = 0; i < spec.nx; ++i) {
+        const std::size_t id = cell_index(spec.nx, spec.ny, i, j, k);
+        if (!(fine.mask[id] & FW_MASK_FLUID)) continue;
+        const double flux =
+            double(vel.u[face_index(spec, 0, i + 1, j, k)]) - vel.u[face_index(spec, 0, i, j, k)] +
+            double(vel.v[face_index(spec, 1, i, j + 1, k)]) - vel.v[face_index(spec, 1, i, j, k)] +
+            double(vel.w[face_index(spec, 2, i, j, k + 1)]) - vel.w[face_index(spec, 2, i, j, k)];
+        b[id] = float(-spec.h * flux);
+      }
+  return b;
+}
+
+double max_divergence(const GridSpec& spec, const PressureLevel& fine, const MacVelocity& vel) {
+  const auto b = divergence_rhs(spec, fine, vel);
+  double m = 0.0;
+  for (float x : b) m = std::max(m, std::abs(double(x)));
+  return m / (spec.h * spec.h);
+}
+
+std::vector<float> apply_operator(const GridSpec& spec, const PressureLevel& L,
+                                  const std::vector<float>& phi) {
+  std::vector<float> out(L.cell_count(), 0.f);
+  for (int k = 0; k < L.nz; ++k)
+    for (int j = 0; j < L.ny; ++j)
+      for (int i = 0; i < L.nx; ++i) {
+        const std::size_t id = cell_index(L.nx, L.ny, i, j, k);
+        const std::uint8_t m = L.mask[id];
+        if (!(m & FW_MASK_FLUID)) continue;
+        out[id] = float(open_count(m) * double(phi[id]) - open_neighbour_sum(spec, L, phi, i, j, k, m));
+      }
+  return out;
+}
+
+std::vector<float> residual(const GridSpec& spec, const PressureLevel& L, const std::vector<float>& b,
+                            const std::vector<float>& phi) {
+  std::vector<float> r(L.cell_count(), 0.f);
+  for (int k = 0; k < L.nz; ++k)
+    for (int j = 0; j < L.ny; ++j)
+      for (int i = 0; i < L.nx; ++i) {
+        const std::size_t id = cell_index(L.nx, L.ny, i, j, k);
+        const std::uint8_t m = L.mask[id];
+        if (!(m & FW_MASK_FLUID)) continue;
+        r[id] = float(double(b[id]) -
+                      (open_count(m) * double(phi[id]) - open_neighbour_sum(spec, L, phi, i, j, k, m)));
+      }
+  return r;
+}
+
+std::vector<float> jacobi_sweep(const GridSpec& spec, const PressureLevel& L, const std::vector<float>& b,
+                                const std::vector<float>& phi, double omega) {
+  std::vector<float> out(L.cell_count(), 0.f);
+  for (int k = 0; k < L.nz; ++k)
+    for (int j = 0; j < L.ny; ++j)
+      for (int i = 0; i < L.nx; ++i) {
+        const std::size_t id = cell_index(L.nx, L.ny, i, j, k);
+        const std::uint8_t m = L.mask[id];
+        const int diag = open_count(m);
+        if (!(m & FW_MASK_FLUID) || diag == 0) continue;
+        const double target = (double(b[id]) + open_neighbour_sum(spec, L, phi, i, j, k, m)) / diag;
+        out[id] = float((1.0 - omega) * phi[id] + omega * target);
+      }
+  return out;
+}
+
+void red_black_sweep(const GridSpec& spec, const PressureLevel& L, const std::vector<float>& b,
+                     std::vector<float>& phi, int colour) {
+  for (int k = 0; k < L.nz; ++k)
+    for (int j = 0; j < L.ny; ++j)
+      for (int i = 0; i < L.nx; ++i) {
+        if (((i + j + k) & 1) != colour) continue;
+        const std::size_t id = cell_index(L.nx, L.ny, i, j, k);
+        const std::uint8_t m = L.mask[id];
+        const int diag = open_count(m);
+        if (!(m & FW_MASK_FLUID) || diag == 0) continue;
+        phi[id] = float((double(b[id]) + open_neighbour_sum(spec, L, phi, i, j, k, m)) / diag);
+      }
+}
+
+std::vector<float> restrict_residual(const GridSpec& spec, const PressureLevel& fine,
+                                     const PressureLevel& coarse, const std::vector<float>& b,
+                                     const std::vector<float>& phi) {
+  const std::vector<float> r = residual(spec, fine, b, phi);
+  std::vector<float> bc(coarse.cell_count(), 0.f);
+  for (int K = 0; K < coarse.nz; ++K)
+    for (int J = 0; J < coarse.ny; ++J)
+      for (int I = 0; I < coarse.nx; ++I) {
+        double sum = 0.0;
+        int children = 0;
+        for (int dk = 0; dk < 2; ++dk)
+          for (int dj = 0; dj < 2; ++dj)
+            for (int di = 0; di < 2; ++di) {
+              const int i = 2 * I + di, j = 2 * J + dj, k = 2 * K + dk;
+              if (i >= fine.nx || j >= fine.ny || k >= fine.nz) continue;
+              ++children;
+              sum += r[cell_index(fine.nx, fine.ny, i, j, k)];
+            }
+        const std::size_t id = cell_index(coarse.nx, coarse.ny, I, J, K);
+        if (coarse.mask[id] & FW_MASK_FLUID) bc[id] = float(4.0 * sum / children);
+      }
+  return bc;
+}
+
+void prolong_add(const PressureLevel& fine, const PressureLevel& coarse, const std::vector<float>& e,
+                 std::vector<float>& phi) {
+  for (int k = 0; k < fine.nz; ++k)
+    for (int j = 0; j < fine.ny; ++j)
+      for (int i = 0; i < fine.nx; ++i) {
+        const std::size_t id = cell_index(fine.nx, fine.ny, i, j, k);
+        if (!(fine.mask[id] & FW_MASK_FLUID)) continue;
+        phi[id] = float(double(phi[id]) + e[cell_index(coarse.nx, coarse.ny, i / 2, j / 2, k / 2)]);
+      }
+}
+
+void subtract_gradient(const GridSpec& spec, const PressureLevel& fine, const std::vector<float>& phi,
+                       MacVelocity& vel) {
+  for (int c = 0; c < 3; ++c) {
+    const int n = dims(spec, c);
+    for_each_face(spec, c, [&](int i, int j, int k, std::size_t id) {
+      if (!face_open(spec, fine, c, i, j, k)) return;
+      int lo[3] = {i, j, k}, hi[3] = {i, j, k};
+      lo[c] -= 1;
+      double phi_lo = 0.0, phi_hi = 0.0;
+      if (lo[c] >= 0) {
+        phi_lo = phi[cell_index(spec.nx, spec.ny, lo[0], lo[1], lo[2])];
+      } else if (spec.periodic(c)) {
+        lo[c] = n - 1;
+        phi_lo = phi[cell_index(spec.nx, spec.ny, lo[0], lo[1], lo[2])];
+      }
+      if (hi[c] < n) {
+        phi_hi = phi[cell_index(spec.nx, spec.ny, hi[0], hi[1], hi[2])];
+      } else if (spec.periodic(c)) {
+        hi[c] = 0;
+        phi_hi = phi[cell_index(spec.nx, spec.ny, hi[0], hi[1], hi[2])];
+      }
+      vel.component(c)[id] = float(double(vel.component(c)[id]) - (phi_hi - phi_lo) / spec.h);
+    });
+  }
+}
+
+int solve_pressure_cg(const GridSpec& spec, const PressureLevel& fine, const std::vector<float>& b_in,
+                      std::vector<float>& phi_out, double tolerance, int max_iterations) {
+  const std::size_t n = fine.cell_count();
+  std::vector<double> b(b_in.begin(), b_in.end());
+  if (!spec.has_dirichlet_pressure()) {
+    double sum = 0.0;
+    std::size_t count = 0;
+    for (std::size_t c = 0; c < n; ++c)
+      if (fine.mask[c] & FW_MASK_FLUID) sum += b[c], ++count;
+    for (std::size_t c = 0; c < n; ++c)
+      if (fine.mask[c] & FW_MASK_FLUID) b[c] -= sum / double(count);
+  }
+  // A in double, through the float operator on a scaled copy would lose digits: apply it directly.
+  auto apply = [&](const std::vector<double>& x, std::vector<double>& y) {
+    for (int k = 0; k < fine.nz; ++k)
+      for (int j = 0; j < fine.ny; ++j)
+        for (int i = 0; i < fine.nx; ++i) {
+          const std::size_t id = cell_index(fine.nx, fine.ny, i, j, k);
+          const std::uint8_t m = fine.mask[id];
+          y[id] = 0.0;
+          if (!(m & FW_MASK_FLUID)) continue;
+          double sum = 0.0;
+          for (int f = 0; f < 6; ++f) {
+            if (!(m & (1u << f))) continue;
+            int idx[3] = {i, j, k};
+            const int nn[3] = {fine.nx, fine.ny, fine.nz};
+            const int a = f / 2;
+            idx[a] += (f % 2) ? 1 : -1;
+            if (idx[a] < 0 || idx[a] >= nn[a]) {
+              if (!spec.periodic(a)) continue;
+              idx[a] = (idx[a] + nn[a]) % nn[a];
+            }
+            sum += x[cell_index(fine.nx, fine.ny, idx[0], idx[1], idx[2])];
+          }
+          y[id] = open_count(m) * x[id] - sum;
+        }
+  };
+  auto dot = [&](const std::vector<double>& a, const std::vector<double>& c) {
+    double s = 0.0;
+    for (std::size_t i = 0; i < n; ++i) s += a[i] * c[i];
+    return s;
+  };
+  std::vector<double> x(n, 0.0), r = b, d = b, q(n);
+  const double bnorm = std::sqrt(dot(b, b));
+  double rr = dot(r, r);
+  int it = 0;
+  if (bnorm > 0.0) {
+    for (; it < max_iterations && std::sqrt(rr) > tolerance * bnorm; ++it) {
+      apply(d, q);
+      const double alpha = rr / dot(d, q);
+      for (std::size_t i = 0; i < n; ++i) x[i] += alpha * d[i], r[i] -= alpha * q[i];
+      const double rr_new = dot(r, r);
+      const double beta = rr_new / rr;
+      rr = rr_new;
+      for (std::size_t i = 0; i < n; ++i) d[i] = r[i] + beta * d[i];
+    }
+  }
+  phi_out.assign(n, 0.f);
+  for (std::size_t i = 0; i < n; ++i) phi_out[i] = float(x[i]);
+  return it;
+}
+
+}  // namespace fw::fluid::reference

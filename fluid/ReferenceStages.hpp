@@ -1,0 +1,136 @@
+// Plain C++ reference of every wind-grid stage: the oracle the OpenCL kernels are tested against.
+//
+// Written for clarity, not speed: loops over (k, j, i), arithmetic in double, storage in float like the
+// device. Each function is one stage of kernels/fluid_*.cl; see those files for the same numerics.
+//
+//   using namespace fw::fluid;
+//   MacVelocity vel(spec);                                          // u, v, w on faces, m/s
+//   auto out = reference::advect_semi_lagrangian(spec, env, vel, vel, dt);
+//   auto b = reference::divergence_rhs(spec, levels[0], vel);     // -h * (net outflow), m^2/s
+//
+// Conventions shared with the kernels:
+//   * Positions are in cell units: world = origin + h * X. Face u(i,j,k) sits at X = (i, j+1/2, k+1/2).
+//   * The pressure unknown is phi = p dt / rho (m^2/s); the projection subtracts grad(phi) from the faces,
+//     and phi solves  A phi = b  with A from fluid/PressureLevels.hpp and b = -h^2 div u = -h * net flux.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "fluid/GridSpec.hpp"
+#include "fluid/PressureLevels.hpp"
+#include "kernels/shared_types.h"
+
+namespace fw::fluid {
+
+/// Face velocities of a MAC grid, m/s. Sizes: u (nx+1)*ny*nz, v nx*(ny+1)*nz, w nx*ny*(nz+1), x-fastest.
+struct MacVelocity {
+  std::vector<float> u, v, w;
+  MacVelocity() = default;
+  explicit MacVelocity(const GridSpec& spec)
+      : u(spec.u_count(), 0.f), v(spec.v_count(), 0.f), w(spec.w_count(), 0.f) {}
+  std::vector<float>& component(int c) { return c == 0 ? u : (c == 1 ? v : w); }
+  const std::vector<float>& component(int c) const { return c == 0 ? u : (c == 1 ? v : w); }
+};
+
+/// What ghost values on inflow faces need: the ambient wind at the reference height and the profile shape.
+struct InflowState {
+  std::array<float, 3> ambient{0, 0, 0};  // m/s at the reference height
+  std::vector<float> profile;             // nz shape factors at cell-centre heights (InflowProfile)
+};
+
+namespace reference {
+
+/// Extent of component c's array along axis a (n_a, plus one along its own axis).
+int extent(const GridSpec& spec, int component, int axis);
+std::size_t face_index(const GridSpec& spec, int component, int i, int j, int k);
+
+/// Value of component c at integer face index (i,j,k), which may lie outside the array: periodic axes
+/// wrap, inflow faces give the ambient profile, no-slip walls mirror tangential components with a sign
+/// flip (zero at the wall), other walls and outflow repeat the edge value.
+double fetch(const GridSpec& spec, const InflowState& inflow, const std::vector<float>& q, int c, int i,
+             int j, int k);
+
+/// Trilinear interpolation of component c at position X (cell units).
+double sample(const GridSpec& spec, const InflowState& inflow, const std::vector<float>& q, int c, double X,
+              double Y, double Z);
+
+/// Back-traced position of face (i,j,k) of component c through `vel` over `dt` (negative dt traces forward),
+/// explicit midpoint (RK2).
+void backtrace(const GridSpec& spec, const InflowState& inflow, const MacVelocity& vel, int c, int i, int j,
+               int k, double dt, double& X, double& Y, double& Z);
+
+/// q advected through vel by semi-Lagrangian RK2 with trilinear interpolation.
+MacVelocity advect_semi_lagrangian(const GridSpec& spec, const InflowState& inflow, const MacVelocity& vel,
+                                   const MacVelocity& q, double dt);
+
+/// Clamped MacCormack: forward SL step, backward SL step, half the round-trip error added back, and the
+/// result replaced by the forward value where it leaves the range of the 8 values it was interpolated from.
+MacVelocity advect_maccormack(const GridSpec& spec, const InflowState& inflow, const MacVelocity& vel,
+                              const MacVelocity& q, double dt);
+
+/// vel += dt * g on every face (m/s^2).
+void add_body_force(const GridSpec& spec, MacVelocity& vel, const std::array<double, 3>& g, double dt);
+
+/// vel += dt * (gust acceleration at t + dt/2) for every gust (see FwGust).
+void add_gusts(const GridSpec& spec, MacVelocity& vel, const std::vector<FwGust>& gusts, double t, double dt);
+
+/// Cell-centred vorticity (1/s): 4 floats a cell (wx, wy, wz, |w|), central differences of cell-centred
+/// velocities with edge cells clamped.
+std::vector<float> vorticity(const GridSpec& spec, const MacVelocity& vel);
+
+/// Vorticity confinement f = epsilon h (N x w), N = grad|w| / |grad|w||, added as dt * f averaged to faces.
+void add_vorticity_confinement(const GridSpec& spec, MacVelocity& vel, double epsilon, double dt);
+
+/// One explicit step of q += dt * nu * laplacian(q), with the ghost rules of fetch().
+MacVelocity diffuse(const GridSpec& spec, const InflowState& inflow, const MacVelocity& vel, double nu,
+                    double dt);
+
+/// Imposes prescribed face velocities: inflow faces get the profile, walls and faces touching a solid get 0,
+/// periodic faces copy the low face to the high one. Faces open to the pressure solve are left alone.
+void enforce_boundaries(const GridSpec& spec, const PressureLevel& fine, const InflowState& inflow,
+                        MacVelocity& vel);
+
+/// b = -h * (net outflow of each fluid cell) = -h^2 div u, m^2/s; 0 in solid cells.
+std::vector<float> divergence_rhs(const GridSpec& spec, const PressureLevel& fine, const MacVelocity& vel);
+
+/// Max over fluid cells of |div u|, 1/s.
+double max_divergence(const GridSpec& spec, const PressureLevel& fine, const MacVelocity& vel);
+
+/// (A phi) on a pressure level. Levels share the domain's boundary types (periodicity) with `spec`.
+std::vector<float> apply_operator(const GridSpec& spec, const PressureLevel& level,
+                                  const std::vector<float>& phi);
+
+/// b - A phi.
+std::vector<float> residual(const GridSpec& spec, const PressureLevel& level, const std::vector<float>& b,
+                            const std::vector<float>& phi);
+
+/// One weighted Jacobi sweep: phi <- (1-omega) phi + omega (b + sum phi_nb) / diag.
+std::vector<float> jacobi_sweep(const GridSpec& spec, const PressureLevel& level, const std::vector<float>& b,
+                                const std::vector<float>& phi, double omega);
+
+/// Gauss-Seidel on the cells of one colour ((i+j+k) % 2 == colour), in place.
+void red_black_sweep(const GridSpec& spec, const PressureLevel& level, const std::vector<float>& b,
+                     std::vector<float>& phi, int colour);
+
+/// Coarse right-hand side: 4 * mean of the fine residual over the coarse cell's children (H^2 = 4 h^2).
+std::vector<float> restrict_residual(const GridSpec& spec, const PressureLevel& fine,
+                                     const PressureLevel& coarse, const std::vector<float>& b,
+                                     const std::vector<float>& phi);
+
+/// phi_fine += e_coarse on every fluid child (piecewise-constant prolongation).
+void prolong_add(const PressureLevel& fine, const PressureLevel& coarse, const std::vector<float>& e_coarse,
+                 std::vector<float>& phi_fine);
+
+/// Subtracts grad(phi) from every face that is open in the pressure mask.
+void subtract_gradient(const GridSpec& spec, const PressureLevel& fine, const std::vector<float>& phi,
+                       MacVelocity& vel);
+
+/// Solves A phi = b by conjugate gradients in double precision to relative residual `tolerance`.
+/// For a singular A (no outflow face) the mean of b over fluid cells is removed first.
+/// Returns the iterations used.
+int solve_pressure_cg(const GridSpec& spec, const PressureLevel& fine, const std::vector<float>& b,
+                      std::vector<float>& phi, double tolerance, int max_iterations);
+
+}  // namespace reference
+}  // namespace fw::fluid

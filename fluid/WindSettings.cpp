@@ -1,0 +1,57 @@
+#include "fluid/WindSettings.hpp"
+
+#include <fmt/format.h>
+
+#include <stdexcept>
+
+namespace fw::fluid {
+
+AdvectionScheme parse_advection_scheme(const std::string& name) {
+  if (name == "semi_lagrangian") return AdvectionScheme::semi_lagrangian;
+  if (name == "maccormack") return AdvectionScheme::maccormack;
+  throw std::invalid_argument(
+      fmt::format("WindSettings: unknown advection '{}'; expected semi_lagrangian or maccormack", name));
+}
+
+PressureSolverType parse_pressure_solver(const std::string& name) {
+  if (name == "jacobi") return PressureSolverType::jacobi;
+  if (name == "multigrid") return PressureSolverType::multigrid;
+  if (name == "cg") return PressureSolverType::cg;
+  throw std::invalid_argument(
+      fmt::format("WindSettings: unknown pressure solver '{}'; expected jacobi, multigrid or cg", name));
+}
+
+std::string to_string(AdvectionScheme scheme) {
+  return scheme == AdvectionScheme::maccormack ? "maccormack" : "semi_lagrangian";
+}
+
+std::string to_string(PressureSolverType solver) {
+  switch (solver) {
+    case PressureSolverType::jacobi:
+      return "jacobi";
+    case PressureSolverType::multigrid:
+      return "multigrid";
+    case PressureSolverType::cg:
+      return "cg";
+  }
+  return "?";
+}
+
+void WindSettings::validate() const {
+  if (cfl <= 0.0 && !(dt > 0.0))
+    throw std::invalid_argument(fmt::format("WindSettings: fixed time step must be > 0 s, got {}", dt));
+  if (cfl > 0.0 && !(max_dt > 0.0))
+    throw std::invalid_argument(fmt::format("WindSettings: max_dt must be > 0 s, got {}", max_dt));
+  if (viscosity < 0.0)
+    throw std::invalid_argument(fmt::format("WindSettings: viscosity must be >= 0 m^2/s, got {}", viscosity));
+  if (vorticity_confinement < 0.0)
+    throw std::invalid_argument(
+        fmt::format("WindSettings: vorticity_confinement must be >= 0, got {}", vorticity_confinement));
+  if (!(pressure.tolerance > 0.0))
+    throw std::invalid_argument(
+        fmt::format("WindSettings: pressure tolerance must be > 0, got {}", pressure.tolerance));
+  if (pressure.max_iterations <= 0 || pressure.jacobi_iterations <= 0 || pressure.smoothing_sweeps <= 0)
+    throw std::invalid_argument("WindSettings: pressure iteration counts must be positive");
+}
+
+}  // namespace fw::fluid

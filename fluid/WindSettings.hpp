@@ -1,0 +1,40 @@
+// How the wind grid is stepped: advection scheme, forces, pressure solver, time step.
+#pragma once
+
+#include <array>
+#include <string>
+
+namespace fw::fluid {
+
+enum class AdvectionScheme { semi_lagrangian, maccormack };
+enum class PressureSolverType { jacobi, multigrid, cg };
+
+AdvectionScheme parse_advection_scheme(const std::string& name);    // "semi_lagrangian" | "maccormack"
+PressureSolverType parse_pressure_solver(const std::string& name);  // "jacobi" | "multigrid" | "cg"
+std::string to_string(AdvectionScheme scheme);
+std::string to_string(PressureSolverType solver);
+
+struct PressureSettings {
+  PressureSolverType solver = PressureSolverType::cg;  // cg: conjugate gradients, multigrid-preconditioned
+  double tolerance = 1e-4;     // relative residual ||b - A p|| / ||b|| (multigrid, cg)
+  int max_iterations = 100;    // V-cycles (multigrid) or CG iterations (cg)
+  int jacobi_iterations = 40;  // fixed count (jacobi)
+  int smoothing_sweeps = 2;    // red-black Gauss-Seidel sweeps before and after each coarse correction
+};
+
+struct WindSettings {
+  AdvectionScheme advection = AdvectionScheme::semi_lagrangian;
+  PressureSettings pressure;
+  double vorticity_confinement = 0.0;         // epsilon, dimensionless (0: off)
+  double viscosity = 0.0;                     // kinematic, m^2/s (0: off; air is 1.5e-5)
+  std::array<double, 3> body_force{0, 0, 0};  // uniform acceleration, m/s^2
+  double dt = 0.05;                           // fixed time step, s (used when cfl <= 0)
+  double cfl = 0.0;                           // > 0: dt = cfl * h / max|u| each step, capped at max_dt
+  double max_dt = 1.0;                        // s
+
+  /// Throws std::invalid_argument("WindSettings: ...") for a non-positive dt (fixed mode), a negative
+  /// viscosity, tolerance or confinement, or non-positive iteration counts.
+  void validate() const;
+};
+
+}  // namespace fw::fluid

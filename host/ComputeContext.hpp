@@ -1,0 +1,88 @@
+// One OpenCL device, its context and its in-order queue; builds the programs of kernels/ and launches
+// kernels with errors that name the kernel.
+//
+//   ComputeContext cc(select_device(device_filter_from_env(cli_filter)), /*profiling=*/true);
+//   cl::Program prog = cc.build("fluid_advect.cl");
+//   Kernel advect(prog, "advect_component");
+//   advect.set_args(grid, u, v, w, out).enqueue(cc, cc.rows(nx + 1, ny, nz));
+//
+// Kernels that sweep the grid give each work-item a run of `row_chunk()` consecutive cells along x. On a
+// CPU (PoCL) that is the whole x-row, which streams memory best; on a GPU it is one cell, for coalescing.
+// The chunk reaches the kernels as the macro FW_ROW_CHUNK.
+#pragma once
+
+#include <cstddef>
+#include <memory>
+#include <string>
+
+#include "host/Device.hpp"
+#include "host/Profiler.hpp"
+#include "host/opencl.hpp"
+
+namespace fw::host {
+
+class ComputeContext {
+ public:
+  ComputeContext(DeviceInfo device, bool profiling);
+
+  const DeviceInfo& device() const { return device_; }
+  cl::Context& context() { return context_; }
+  cl::CommandQueue& queue() { return queue_; }
+  bool is_cpu() const { return device_.type == "CPU"; }
+  int row_chunk() const { return row_chunk_; }
+  bool profiling() const { return profiler_ != nullptr; }
+  Profiler* profiler() { return profiler_.get(); }
+
+  /// Builds kernels/<file> (with its includes). Throws KernelBuildError with the file and the log.
+  cl::Program build(const std::string& file, const std::string& extra_options = "");
+
+  /// Global range for a row-sweeping kernel over an array of extent_x * ny * nz values.
+  cl::NDRange rows(int extent_x, int ny, int nz) const;
+
+  /// Number of work-items a flat (1D) kernel over n values uses, and the values each handles.
+  std::size_t flat_items(std::size_t n) const;
+
+  cl::Buffer buffer(std::size_t bytes, cl_mem_flags flags = CL_MEM_READ_WRITE);
+  void finish() { queue_.finish(); }
+
+ private:
+  DeviceInfo device_;
+  cl::Context context_;
+  cl::CommandQueue queue_;
+  std::unique_ptr<Profiler> profiler_;
+  int row_chunk_;
+};
+
+/// A kernel that knows its name, so failures say which one.
+class Kernel {
+ public:
+  Kernel() = default;
+  Kernel(const cl::Program& program, const std::string& name);
+
+  const std::string& name() const { return name_; }
+
+  template <typename... Args>
+  Kernel& set_args(const Args&... args) {
+    cl_uint index = 0;
+    (set_arg(index++, args), ...);
+    return *this;
+  }
+
+  template <typename T>
+  void set_arg(cl_uint index, const T& value) {
+    try {
+      kernel_.setArg(index, value);
+    } catch (const cl::Error& e) {
+      throw_arg_error(index, e.err());
+    }
+  }
+
+  void enqueue(ComputeContext& cc, const cl::NDRange& global, const cl::NDRange& local = cl::NullRange);
+
+ private:
+  [[noreturn]] void throw_arg_error(cl_uint index, int status) const;
+  cl::Kernel kernel_;
+  std::string name_;
+};
+
+}  // namespace fw::host

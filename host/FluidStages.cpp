@@ -1,0 +1,121 @@
+#include "host/FluidStages.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace fw::host {
+
+FluidStages::FluidStages(ComputeContext& cc, const fluid::GridSpec& spec)
+    : cc_(cc), spec_(spec), grid_(spec.to_device()) {
+  std::size_t most = 0;
+  for (int c = 0; c < 3; ++c) {
+    const auto r = component_rows(c);
+    most = std::max(most, r[0] * r[1] * r[2]);
+  }
+  partial_host_.resize(most);
+  partial_ = cc_.buffer(most * sizeof(float));
+  std::vector<float> flat(static_cast<std::size_t>(spec.nz), 1.0f);
+  profile_ = cc_.buffer(flat.size() * sizeof(float));
+  cc_.queue().enqueueWriteBuffer(profile_, CL_TRUE, 0, flat.size() * sizeof(float), flat.data());
+
+  cl::Program advect = cc_.build("fluid_advect.cl");
+  advect_ = Kernel(advect, "advect_component");
+  maccormack_ = Kernel(advect, "maccormack_correct");
+  cl::Program forces = cc_.build("fluid_forces.cl");
+  forces_ = Kernel(forces, "apply_forces");
+  vorticity_ = Kernel(forces, "vorticity");
+  confinement_ = Kernel(forces, "vorticity_confinement");
+  diffuse_ = Kernel(forces, "diffuse");
+  boundaries_ = Kernel(cc_.build("fluid_boundaries.cl"), "enforce_boundaries");
+  cl::Program project = cc_.build("fluid_project.cl");
+  divergence_ = Kernel(project, "divergence_rhs");
+  max_div_ = Kernel(project, "max_divergence");
+  gradient_ = Kernel(project, "subtract_gradient");
+  max_abs_ = Kernel(project, "max_abs");
+}
+
+DeviceVelocity FluidStages::allocate_velocity() {
+  DeviceVelocity vel;
+  vel.u = cc_.buffer(spec_.u_count() * sizeof(float));
+  vel.v = cc_.buffer(spec_.v_count() * sizeof(float));
+  vel.w = cc_.buffer(spec_.w_count() * sizeof(float));
+  cc_.queue().enqueueFillBuffer(vel.u, 0.0f, 0, spec_.u_count() * sizeof(float));
+  cc_.queue().enqueueFillBuffer(vel.v, 0.0f, 0, spec_.v_count() * sizeof(float));
+  cc_.queue().enqueueFillBuffer(vel.w, 0.0f, 0, spec_.w_count() * sizeof(float));
+  return vel;
+}
+
+cl::NDRange FluidStages::component_rows(int c) const {
+  return cc_.rows(spec_.nx + (c == 0), spec_.ny + (c == 1), spec_.nz + (c == 2));
+}
+
+void FluidStages::enqueue_advect(int c, float dt, DeviceVelocity& vel, cl::Buffer& q, cl::Buffer& out) {
+  advect_.set_args(grid_, step_, profile_, c, dt, vel.u, vel.v, vel.w, q, out)
+      .enqueue(cc_, component_rows(c));
+}
+
+void FluidStages::enqueue_maccormack_correct(int c, DeviceVelocity& vel, cl::Buffer& q, cl::Buffer& forward,
+                                             cl::Buffer& back, cl::Buffer& out) {
+  maccormack_.set_args(grid_, step_, profile_, c, vel.u, vel.v, vel.w, q, forward, back, out)
+      .enqueue(cc_, component_rows(c));
+}
+
+void FluidStages::enqueue_apply_forces(int c, float body_acceleration, cl::Buffer& gusts, int gust_count,
+                                       cl::Buffer& q) {
+  forces_.set_args(grid_, step_, c, body_acceleration, gusts, gust_count, q).enqueue(cc_, component_rows(c));
+}
+
+void FluidStages::enqueue_vorticity(DeviceVelocity& vel, cl::Buffer& omega) {
+  vorticity_.set_args(grid_, vel.u, vel.v, vel.w, omega).enqueue(cc_, cc_.rows(spec_.nx, spec_.ny, spec_.nz));
+}
+
+void FluidStages::enqueue_vorticity_confinement(int c, float epsilon, cl::Buffer& omega, cl::Buffer& q) {
+  confinement_.set_args(grid_, step_, c, epsilon, omega, q).enqueue(cc_, component_rows(c));
+}
+
+void FluidStages::enqueue_diffuse(int c, float nu_dt_over_h2, cl::Buffer& q, cl::Buffer& out) {
+  diffuse_.set_args(grid_, step_, profile_, c, nu_dt_over_h2, q, out).enqueue(cc_, component_rows(c));
+}
+
+void FluidStages::enqueue_enforce_boundaries(int c, cl::Buffer& mask, cl::Buffer& q) {
+  boundaries_.set_args(grid_, step_, profile_, c, mask, q).enqueue(cc_, component_rows(c));
+}
+
+void FluidStages::enqueue_divergence_rhs(cl::Buffer& mask, DeviceVelocity& vel, cl::Buffer& b) {
+  divergence_.set_args(grid_, mask, vel.u, vel.v, vel.w, b)
+      .enqueue(cc_, cc_.rows(spec_.nx, spec_.ny, spec_.nz));
+}
+
+void FluidStages::enqueue_subtract_gradient(int c, cl::Buffer& mask, cl::Buffer& phi, cl::Buffer& q) {
+  gradient_.set_args(grid_, c, mask, phi, q).enqueue(cc_, component_rows(c));
+}
+
+double FluidStages::max_partials(std::size_t count) {
+  cc_.queue().enqueueReadBuffer(partial_, CL_TRUE, 0, count * sizeof(float), partial_host_.data());
+  double m = 0.0;
+  for (std::size_t i = 0; i < count; ++i) {
+    if (std::isnan(partial_host_[i])) return NAN;
+    m = std::max(m, double(partial_host_[i]));
+  }
+  return m;
+}
+
+double FluidStages::max_divergence(cl::Buffer& mask, DeviceVelocity& vel) {
+  const auto r = cc_.rows(spec_.nx, spec_.ny, spec_.nz);
+  max_div_.set_args(grid_, mask, vel.u, vel.v, vel.w, partial_).enqueue(cc_, r);
+  return max_partials(r[0] * r[1] * r[2]);
+}
+
+double FluidStages::max_speed_component(DeviceVelocity& vel) {
+  double m = 0.0;
+  for (int c = 0; c < 3; ++c) {
+    const auto r = component_rows(c);
+    max_abs_.set_args(int(spec_.nx + (c == 0)), vel.component(c), partial_).enqueue(cc_, r);
+    const double mc = max_partials(r[0] * r[1] * r[2]);
+    if (std::isnan(mc)) return NAN;
+    m = std::max(m, mc);
+  }
+  return m;
+}
+
+}  // namespace fw::host

@@ -1,0 +1,69 @@
+// The wind grid's kernels, one enqueue_<stage>() each: advection, forces, boundaries, and the ends of the
+// projection. Owns no field buffers; host/WindGrid wires them together.
+//
+//   FluidStages stages(cc, spec);
+//   stages.enqueue_advect(0, dt, vel, vel.u, out.u);      // one component at a time
+//   stages.enqueue_divergence_rhs(mask, vel, b);
+//
+// Numerics and ghost rules: kernels/common.cl and fluid/ReferenceStages.hpp (the CPU oracle).
+#pragma once
+
+#include <vector>
+
+#include "fluid/GridSpec.hpp"
+#include "host/ComputeContext.hpp"
+#include "kernels/shared_types.h"
+
+namespace fw::host {
+
+/// Face velocity buffers on the device: u (nx+1)*ny*nz, v nx*(ny+1)*nz, w nx*ny*(nz+1) floats, m/s.
+struct DeviceVelocity {
+  cl::Buffer u, v, w;
+  cl::Buffer& component(int c) { return c == 0 ? u : (c == 1 ? v : w); }
+};
+
+class FluidStages {
+ public:
+  FluidStages(ComputeContext& cc, const fluid::GridSpec& spec);
+
+  /// What each step passes: dt, time and the ambient wind (FwStep), and the inflow profile (nz floats).
+  void set_step(const FwStep& step) { step_ = step; }
+  void set_profile(cl::Buffer profile) { profile_ = std::move(profile); }
+  const FwStep& step() const { return step_; }
+
+  DeviceVelocity allocate_velocity();
+  cl::NDRange component_rows(int c) const;
+
+  void enqueue_advect(int c, float dt, DeviceVelocity& vel, cl::Buffer& q, cl::Buffer& out);
+  void enqueue_maccormack_correct(int c, DeviceVelocity& vel, cl::Buffer& q, cl::Buffer& forward,
+                                  cl::Buffer& back, cl::Buffer& out);
+  void enqueue_apply_forces(int c, float body_acceleration, cl::Buffer& gusts, int gust_count, cl::Buffer& q);
+  void enqueue_vorticity(DeviceVelocity& vel, cl::Buffer& omega);
+  void enqueue_vorticity_confinement(int c, float epsilon, cl::Buffer& omega, cl::Buffer& q);
+  void enqueue_diffuse(int c, float nu_dt_over_h2, cl::Buffer& q, cl::Buffer& out);
+  void enqueue_enforce_boundaries(int c, cl::Buffer& mask, cl::Buffer& q);
+  void enqueue_divergence_rhs(cl::Buffer& mask, DeviceVelocity& vel, cl::Buffer& b);
+  void enqueue_subtract_gradient(int c, cl::Buffer& mask, cl::Buffer& phi, cl::Buffer& q);
+
+  /// Max over fluid cells of |div u|, 1/s (blocks).
+  double max_divergence(cl::Buffer& mask, DeviceVelocity& vel);
+  /// Max |component| over all faces of the three components, m/s; NaN if any face is NaN (blocks).
+  double max_speed_component(DeviceVelocity& vel);
+
+  /// Floats the reductions need for their per-work-item partials.
+  std::size_t partial_count() const { return partial_host_.size(); }
+
+ private:
+  double max_partials(std::size_t count);
+
+  ComputeContext& cc_;
+  fluid::GridSpec spec_;
+  FwGrid grid_;
+  FwStep step_{};
+  cl::Buffer profile_, partial_;
+  std::vector<float> partial_host_;
+  Kernel advect_, maccormack_, forces_, vorticity_, confinement_, diffuse_, boundaries_, divergence_,
+      max_div_, gradient_, max_abs_;
+};
+
+}  // namespace fw::host

@@ -1,0 +1,253 @@
+#include "host/PressureSolver.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+
+namespace fw::host {
+namespace {
+
+FwLevel level_dims(const fluid::PressureLevel& L, const fluid::GridSpec& spec) {
+  FwLevel d{};
+  d.nx = L.nx;
+  d.ny = L.ny;
+  d.nz = L.nz;
+  d.periodic = (spec.periodic(0) ? 1 : 0) | (spec.periodic(1) ? 2 : 0) | (spec.periodic(2) ? 4 : 0);
+  return d;
+}
+
+}  // namespace
+
+std::size_t PressureSolver::device_bytes(const std::vector<fluid::PressureLevel>& levels,
+                                         std::size_t partial_values) {
+  std::size_t bytes = 0;
+  for (const auto& L : levels) bytes += L.cell_count() * (1 + 2 * sizeof(float));  // mask, b, phi
+  bytes += levels.front().cell_count() * 5 * sizeof(float);                        // r, z, d, q, scratch
+  return bytes + partial_values * sizeof(float);
+}
+
+PressureSolver::PressureSolver(ComputeContext& cc, const fluid::GridSpec& spec,
+                               std::vector<fluid::PressureLevel> levels,
+                               const fluid::PressureSettings& settings)
+    : cc_(cc), spec_(spec), settings_(settings), host_levels_(std::move(levels)) {
+  if (host_levels_.empty()) throw std::invalid_argument("PressureSolver: no pressure levels");
+  const std::size_t n = host_levels_[0].cell_count();
+  for (const auto& L : host_levels_) {
+    DeviceLevel d;
+    d.dims = level_dims(L, spec_);
+    d.mask = cc_.buffer(L.cell_count());
+    d.b = cc_.buffer(L.cell_count() * sizeof(float));
+    d.phi = cc_.buffer(L.cell_count() * sizeof(float));
+    cc_.queue().enqueueWriteBuffer(d.mask, CL_TRUE, 0, L.cell_count(), L.mask.data());
+    cc_.queue().enqueueFillBuffer(d.b, 0.0f, 0, L.cell_count() * sizeof(float));
+    cc_.queue().enqueueFillBuffer(d.phi, 0.0f, 0, L.cell_count() * sizeof(float));
+    levels_.push_back(std::move(d));
+  }
+  for (auto m : host_levels_[0].mask)
+    if (m & FW_MASK_FLUID) ++fluid_cells_;
+  for (cl::Buffer* buf : {&r_, &z_, &d_, &q_, &scratch_}) {
+    *buf = cc_.buffer(n * sizeof(float));
+    cc_.queue().enqueueFillBuffer(*buf, 0.0f, 0, n * sizeof(float));
+  }
+  partial_host_.resize(items(0));
+  partial_ = cc_.buffer(partial_host_.size() * sizeof(float));
+
+  cl::Program program = cc_.build("fluid_pressure.cl");
+  jacobi_ = Kernel(program, "jacobi_sweep");
+  red_black_ = Kernel(program, "red_black_sweep");
+  residual_ = Kernel(program, "residual");
+  apply_dot_ = Kernel(program, "apply_operator_dot");
+  restrict_ = Kernel(program, "restrict_residual");
+  prolong_ = Kernel(program, "prolong_add");
+  cg_update_ = Kernel(program, "cg_update");
+  cg_direction_ = Kernel(program, "cg_direction");
+  dot_ = Kernel(program, "dot_product");
+  add_ = Kernel(program, "add_on_fluid");
+  sum_ = Kernel(program, "sum_on_fluid");
+}
+
+std::size_t PressureSolver::items(int level) const {
+  const auto& L = host_levels_[level];
+  const auto r = cc_.rows(L.nx, L.ny, L.nz);
+  return r[0] * r[1] * r[2];
+}
+
+double PressureSolver::sum_partials(std::size_t count) {
+  cc_.queue().enqueueReadBuffer(partial_, CL_TRUE, 0, count * sizeof(float), partial_host_.data());
+  double sum = 0.0;
+  for (std::size_t i = 0; i < count; ++i) sum += partial_host_[i];
+  return sum;
+}
+
+void PressureSolver::enqueue_jacobi_sweep(int level, cl::Buffer& b, cl::Buffer& phi, cl::Buffer& phi_out,
+                                          float omega) {
+  auto& L = levels_[level];
+  jacobi_.set_args(L.dims, L.mask, b, phi, phi_out, omega)
+      .enqueue(cc_, cc_.rows(L.dims.nx, L.dims.ny, L.dims.nz));
+}
+
+void PressureSolver::enqueue_red_black_sweep(int level, cl::Buffer& b, cl::Buffer& phi, int colour) {
+  auto& L = levels_[level];
+  red_black_.set_args(L.dims, L.mask, b, phi, colour).enqueue(cc_, cc_.rows(L.dims.nx, L.dims.ny, L.dims.nz));
+}
+
+double PressureSolver::residual_norm2(int level, cl::Buffer& b, cl::Buffer& phi, cl::Buffer& r) {
+  auto& L = levels_[level];
+  residual_.set_args(L.dims, L.mask, b, phi, r, partial_)
+      .enqueue(cc_, cc_.rows(L.dims.nx, L.dims.ny, L.dims.nz));
+  return sum_partials(items(level));
+}
+
+void PressureSolver::enqueue_restrict_residual(int fine_level, cl::Buffer& b, cl::Buffer& phi) {
+  auto& F = levels_[fine_level];
+  auto& C = levels_[fine_level + 1];
+  restrict_.set_args(F.dims, C.dims, F.mask, C.mask, b, phi, C.b, C.phi)
+      .enqueue(cc_, cc_.rows(C.dims.nx, C.dims.ny, C.dims.nz));
+}
+
+void PressureSolver::enqueue_prolong_add(int fine_level, cl::Buffer& phi) {
+  auto& F = levels_[fine_level];
+  auto& C = levels_[fine_level + 1];
+  prolong_.set_args(F.dims, C.dims, F.mask, C.phi, phi)
+      .enqueue(cc_, cc_.rows(F.dims.nx, F.dims.ny, F.dims.nz));
+}
+
+void PressureSolver::vcycle(cl::Buffer& b, cl::Buffer& phi) {
+  vcycle_level(0, b, phi);
+}
+
+void PressureSolver::vcycle_level(int l, cl::Buffer& b, cl::Buffer& phi) {
+  const int last = level_count() - 1;
+  if (l == last) {
+    // Coarsest level: enough symmetric sweeps to carry information across it.
+    const auto& L = host_levels_[l];
+    const int sweeps = std::max(4, std::max({L.nx, L.ny, L.nz}));
+    for (int s = 0; s < sweeps; ++s)
+      enqueue_red_black_sweep(l, b, phi, 0), enqueue_red_black_sweep(l, b, phi, 1);
+    for (int s = 0; s < sweeps; ++s)
+      enqueue_red_black_sweep(l, b, phi, 1), enqueue_red_black_sweep(l, b, phi, 0);
+    return;
+  }
+  for (int s = 0; s < settings_.smoothing_sweeps; ++s)
+    enqueue_red_black_sweep(l, b, phi, 0), enqueue_red_black_sweep(l, b, phi, 1);
+  enqueue_restrict_residual(l, b, phi);
+  vcycle_level(l + 1, levels_[l + 1].b, levels_[l + 1].phi);
+  enqueue_prolong_add(l, phi);
+  // Reverse colour order after the correction keeps the cycle symmetric.
+  for (int s = 0; s < settings_.smoothing_sweeps; ++s)
+    enqueue_red_black_sweep(l, b, phi, 1), enqueue_red_black_sweep(l, b, phi, 0);
+}
+
+void PressureSolver::remove_mean(cl::Buffer& b) {
+  auto& L = levels_[0];
+  const auto range = cc_.rows(L.dims.nx, L.dims.ny, L.dims.nz);
+  sum_.set_args(L.dims, L.mask, b, partial_).enqueue(cc_, range);
+  const double mean = fluid_cells_ ? sum_partials(items(0)) / double(fluid_cells_) : 0.0;
+  add_.set_args(L.dims, L.mask, static_cast<float>(-mean), b).enqueue(cc_, range);
+}
+
+PressureSolveStatus PressureSolver::solve() {
+  if (!spec_.has_dirichlet_pressure()) remove_mean(levels_[0].b);
+  switch (settings_.solver) {
+    case fluid::PressureSolverType::jacobi:
+      return solve_jacobi();
+    case fluid::PressureSolverType::multigrid:
+      return solve_multigrid();
+    case fluid::PressureSolverType::cg:
+      return solve_cg();
+  }
+  throw std::logic_error("PressureSolver: unknown solver");
+}
+
+PressureSolveStatus PressureSolver::solve_jacobi() {
+  auto& L = levels_[0];
+  PressureSolveStatus st;
+  st.solver = "jacobi";
+  const auto range = cc_.rows(L.dims.nx, L.dims.ny, L.dims.nz);
+  dot_.set_args(L.dims, L.b, L.b, partial_).enqueue(cc_, range);
+  const double bnorm = std::sqrt(sum_partials(items(0)));
+  // Ping-pong between phi and scratch; an even count of sweeps ends in phi.
+  const int sweeps = settings_.jacobi_iterations + (settings_.jacobi_iterations % 2);
+  for (int s = 0; s < sweeps; s += 2) {
+    enqueue_jacobi_sweep(0, L.b, L.phi, scratch_, 1.0f);
+    enqueue_jacobi_sweep(0, L.b, scratch_, L.phi, 1.0f);
+  }
+  st.iterations = sweeps;
+  st.relative_residual = bnorm > 0 ? std::sqrt(residual_norm2(0, L.b, L.phi, r_)) / bnorm : 0.0;
+  st.converged = true;
+  return st;
+}
+
+PressureSolveStatus PressureSolver::solve_multigrid() {
+  auto& L = levels_[0];
+  PressureSolveStatus st;
+  st.solver = "multigrid";
+  const auto range = cc_.rows(L.dims.nx, L.dims.ny, L.dims.nz);
+  dot_.set_args(L.dims, L.b, L.b, partial_).enqueue(cc_, range);
+  const double bnorm = std::sqrt(sum_partials(items(0)));
+  if (bnorm == 0.0) {
+    cc_.queue().enqueueFillBuffer(L.phi, 0.0f, 0, host_levels_[0].cell_count() * sizeof(float));
+    st.converged = true;
+    return st;
+  }
+  double rel = std::sqrt(residual_norm2(0, L.b, L.phi, r_)) / bnorm;
+  st.initial_residual = rel;
+  while (rel > settings_.tolerance && st.iterations < settings_.max_iterations) {
+    vcycle(L.b, L.phi);
+    ++st.iterations;
+    rel = std::sqrt(residual_norm2(0, L.b, L.phi, r_)) / bnorm;
+  }
+  st.relative_residual = rel;
+  st.converged = rel <= settings_.tolerance;
+  return st;
+}
+
+PressureSolveStatus PressureSolver::solve_cg() {
+  auto& L = levels_[0];
+  PressureSolveStatus st;
+  st.solver = "cg";
+  const std::size_t bytes = host_levels_[0].cell_count() * sizeof(float);
+  const auto range = cc_.rows(L.dims.nx, L.dims.ny, L.dims.nz);
+  const std::size_t n_items = items(0);
+
+  dot_.set_args(L.dims, L.b, L.b, partial_).enqueue(cc_, range);
+  const double bnorm = std::sqrt(sum_partials(n_items));
+  if (bnorm == 0.0) {
+    cc_.queue().enqueueFillBuffer(L.phi, 0.0f, 0, bytes);
+    st.converged = true;
+    return st;
+  }
+  double rr = residual_norm2(0, L.b, L.phi, r_);
+  st.initial_residual = std::sqrt(rr) / bnorm;
+  const double target = settings_.tolerance * bnorm;
+  if (std::sqrt(rr) > target) {
+    cc_.queue().enqueueFillBuffer(z_, 0.0f, 0, bytes);
+    vcycle(r_, z_);
+    dot_.set_args(L.dims, r_, z_, partial_).enqueue(cc_, range);
+    double rho = sum_partials(n_items);
+    cc_.queue().enqueueCopyBuffer(z_, d_, 0, 0, bytes);
+    while (st.iterations < settings_.max_iterations) {
+      apply_dot_.set_args(L.dims, L.mask, d_, q_, partial_).enqueue(cc_, range);
+      const double dq = sum_partials(n_items);
+      if (!(dq > 0.0)) break;  // breakdown: direction has no energy left (or NaN)
+      const float alpha = static_cast<float>(rho / dq);
+      cg_update_.set_args(L.dims, alpha, d_, q_, L.phi, r_, partial_).enqueue(cc_, range);
+      rr = sum_partials(n_items);
+      ++st.iterations;
+      if (std::sqrt(rr) <= target || !std::isfinite(rr)) break;
+      cc_.queue().enqueueFillBuffer(z_, 0.0f, 0, bytes);
+      vcycle(r_, z_);
+      dot_.set_args(L.dims, r_, z_, partial_).enqueue(cc_, range);
+      const double rho_new = sum_partials(n_items);
+      const float beta = static_cast<float>(rho_new / rho);
+      rho = rho_new;
+      cg_direction_.set_args(L.dims, beta, z_, d_).enqueue(cc_, range);
+    }
+  }
+  // The recursively updated residual drifts in float: report the true one.
+  st.relative_residual = std::sqrt(residual_norm2(0, L.b, L.phi, r_)) / bnorm;
+  st.converged = st.relative_residual <= settings_.tolerance;
+  return st;
+}
+
+}  // namespace fw::host

@@ -1,0 +1,92 @@
+// Pressure projection on the device: solves A phi = b on the MAC grid's cells.
+//
+//   PressureSolver solver(cc, spec, fluid::build_pressure_levels(spec, solid), settings.pressure);
+//   // ... fill solver.rhs() (e.g. FluidStages::enqueue_divergence_rhs) ...
+//   PressureSolveStatus st = solver.solve();       // warm-starts from the last solution
+//   // st.iterations, st.relative_residual = ||b - A phi|| / ||b||, recomputed at the end
+//
+// Solvers (fluid::PressureSolverType):
+//   jacobi     fixed iteration count (the seed's method, kept as a baseline);
+//   multigrid  geometric multigrid V-cycles until the relative residual is below the tolerance;
+//   cg         conjugate gradients preconditioned by one V-cycle, same stopping rule (the default).
+// The V-cycle smooths with red-black Gauss-Seidel (symmetric order, so it is a valid CG preconditioner),
+// restricts the residual by averaging, and prolongs piecewise-constant. When no face is an outflow the
+// operator is singular, and the mean of b over fluid cells is removed before solving.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "fluid/GridSpec.hpp"
+#include "fluid/PressureLevels.hpp"
+#include "fluid/WindSettings.hpp"
+#include "host/ComputeContext.hpp"
+
+namespace fw::host {
+
+struct PressureSolveStatus {
+  std::string solver;              // "jacobi", "multigrid" or "cg"
+  int iterations = 0;              // Jacobi sweeps, V-cycles or CG iterations
+  double initial_residual = 0.0;   // ||b - A phi0|| / ||b|| with the warm start phi0
+  double relative_residual = 0.0;  // ||b - A phi|| / ||b||, recomputed from phi after the solve
+  bool converged = false;          // relative_residual <= tolerance (always true for jacobi)
+};
+
+class PressureSolver {
+ public:
+  PressureSolver(ComputeContext& cc, const fluid::GridSpec& spec, std::vector<fluid::PressureLevel> levels,
+                 const fluid::PressureSettings& settings);
+
+  /// Device bytes this solver allocates for `levels` (for the memory estimate made before allocating).
+  static std::size_t device_bytes(const std::vector<fluid::PressureLevel>& levels,
+                                  std::size_t partial_values);
+
+  PressureSolveStatus solve();
+
+  cl::Buffer& rhs() { return levels_[0].b; }         // b, level 0, m^2/s
+  cl::Buffer& solution() { return levels_[0].phi; }  // phi = p dt / rho, m^2/s
+  cl::Buffer& mask() { return levels_[0].mask; }
+  const fluid::PressureSettings& settings() const { return settings_; }
+  void set_settings(const fluid::PressureSettings& s) { settings_ = s; }
+  int level_count() const { return static_cast<int>(levels_.size()); }
+  const fluid::PressureLevel& level(int l) const { return host_levels_[l]; }
+
+  // One stage each, exposed for the kernel tests. `level` indexes the hierarchy (0 = fine grid).
+  void enqueue_jacobi_sweep(int level, cl::Buffer& b, cl::Buffer& phi, cl::Buffer& phi_out, float omega);
+  void enqueue_red_black_sweep(int level, cl::Buffer& b, cl::Buffer& phi, int colour);
+  /// r = b - A phi and returns ||r||^2 (blocks).
+  double residual_norm2(int level, cl::Buffer& b, cl::Buffer& phi, cl::Buffer& r);
+  void enqueue_restrict_residual(int fine_level, cl::Buffer& b, cl::Buffer& phi);
+  void enqueue_prolong_add(int fine_level, cl::Buffer& phi);
+  /// One V-cycle on level 0 for A phi = b, starting from phi's content.
+  void vcycle(cl::Buffer& b, cl::Buffer& phi);
+  cl::Buffer& level_rhs(int level) { return levels_[level].b; }
+  cl::Buffer& level_solution(int level) { return levels_[level].phi; }
+
+ private:
+  struct DeviceLevel {
+    FwLevel dims{};
+    cl::Buffer mask, b, phi;
+  };
+
+  void vcycle_level(int l, cl::Buffer& b, cl::Buffer& phi);
+  double sum_partials(std::size_t count);
+  std::size_t items(int level) const;
+  void remove_mean(cl::Buffer& b);
+  PressureSolveStatus solve_jacobi();
+  PressureSolveStatus solve_multigrid();
+  PressureSolveStatus solve_cg();
+
+  ComputeContext& cc_;
+  fluid::GridSpec spec_;
+  fluid::PressureSettings settings_;
+  std::vector<fluid::PressureLevel> host_levels_;
+  std::vector<DeviceLevel> levels_;
+  cl::Buffer r_, z_, d_, q_, scratch_, partial_;
+  std::vector<float> partial_host_;
+  std::size_t fluid_cells_ = 0;
+  Kernel jacobi_, red_black_, residual_, apply_dot_, restrict_, prolong_, cg_update_, cg_direction_, dot_,
+      add_, sum_;
+};
+
+}  // namespace fw::host

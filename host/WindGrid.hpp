@@ -1,0 +1,112 @@
+// The wind grid on an OpenCL device: owns the fields and steps them (advect, forces, project).
+//
+//   fw::host::WindGridSetup setup;
+//   setup.spec = spec;                        // dims, cell size, boundaries (validated here)
+//   setup.settings.pressure.tolerance = 1e-3;
+//   setup.ambient = {10, 0, 0};               // m/s at the profile's reference height
+//   fw::host::WindGrid wind(cc, setup);       // throws std::invalid_argument before allocating anything
+//   wind.initialise_ambient();                // start from the inflow profile everywhere, projected
+//   for (int n = 0; n < 100; ++n) {
+//     fw::host::WindStepReport r = wind.step();   // r.pressure.iterations, r.pressure.relative_residual
+//   }
+//
+// A step: (dt from the CFL number if set) -> advect (semi-Lagrangian RK2, or clamped MacCormack) ->
+// body force and gusts -> vorticity confinement -> viscosity (explicit, sub-stepped) -> prescribed faces
+// -> divergence -> pressure solve -> subtract the gradient. Everything stays on the device; only the
+// scalars of reductions (residual norms, max speed for the CFL step) come back.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <map>
+#include <string>
+#include <vector>
+
+#include "fluid/GridSpec.hpp"
+#include "fluid/InflowProfile.hpp"
+#include "fluid/ReferenceStages.hpp"
+#include "fluid/WindSettings.hpp"
+#include "host/FluidStages.hpp"
+#include "host/PressureSolver.hpp"
+
+namespace fw::host {
+
+struct WindGridSetup {
+  fluid::GridSpec spec;
+  fluid::WindSettings settings;
+  fluid::InflowProfile profile;
+  std::vector<std::uint8_t> solid;         // one byte a cell, non-zero = solid; empty = no solids
+  std::vector<FwGust> gusts;               // travelling gust balls
+  std::array<double, 3> ambient{0, 0, 0};  // ambient wind at the reference height, m/s
+};
+
+struct WindStepReport {
+  long step = 0;      // index of the step just taken (1-based)
+  double time = 0.0;  // simulated time after the step, s
+  double dt = 0.0;    // s
+  PressureSolveStatus pressure;
+  int viscous_substeps = 0;
+};
+
+class WindGrid {
+ public:
+  /// Validates setup (GridSpec, WindSettings, InflowProfile, sizes) and the device memory estimate, then
+  /// allocates. Throws std::invalid_argument naming the problem before any allocation.
+  WindGrid(ComputeContext& cc, WindGridSetup setup);
+
+  /// Bytes of device memory a grid needs (fields, temporaries, pressure hierarchy).
+  static std::size_t estimate_device_bytes(const fluid::GridSpec& spec, const fluid::WindSettings& settings,
+                                           int row_chunk);
+  /// Throws std::invalid_argument when `bytes` exceed the device's global memory.
+  static void check_fits_device(const fluid::GridSpec& spec, std::size_t bytes, const DeviceInfo& device);
+
+  void set_ambient(const std::array<double, 3>& ambient_m_s);
+  /// Every face set to the ambient profile, then boundaries and one projection.
+  void initialise_ambient();
+  WindStepReport step();
+
+  double time() const { return time_; }
+  long steps() const { return steps_; }
+  const fluid::GridSpec& spec() const { return setup_.spec; }
+  const WindGridSetup& setup() const { return setup_; }
+  fluid::InflowState inflow_state() const;
+
+  fluid::MacVelocity download_velocity();
+  void upload_velocity(const fluid::MacVelocity& vel);
+  /// Kinematic pressure p / rho = phi / dt at cell centres, m^2/s^2 (0 in solids).
+  std::vector<float> download_pressure();
+  /// Max over fluid cells of |div u|, 1/s.
+  double max_divergence() { return stages_.max_divergence(pressure_.mask(), vel_); }
+  double max_speed_component() { return stages_.max_speed_component(vel_); }
+  /// Projects the current velocity (divergence -> solve -> gradient) and returns the solve's status.
+  PressureSolveStatus project();
+
+  /// When on, each stage ends with a queue finish and its wall time is added to stage_ms() (for benchmarks).
+  void set_stage_timing(bool on) { stage_timing_ = on; }
+  const std::map<std::string, double>& stage_ms() const { return stage_ms_; }
+  void reset_stage_ms() { stage_ms_.clear(); }
+
+  FluidStages& stages() { return stages_; }
+  PressureSolver& pressure() { return pressure_; }
+  DeviceVelocity& velocity() { return vel_; }
+
+ private:
+  template <typename F>
+  void timed(const char* stage, F&& work);
+  void advect(float dt);
+  void apply_forces(float dt);
+  void enforce_boundaries();
+
+  ComputeContext& cc_;
+  WindGridSetup setup_;
+  FluidStages stages_;
+  PressureSolver pressure_;
+  DeviceVelocity vel_, tmp_, back_;
+  cl::Buffer omega_, gusts_, profile_;
+  double time_ = 0.0, last_dt_ = 0.0;
+  long steps_ = 0;
+  bool stage_timing_ = false;
+  std::map<std::string, double> stage_ms_;
+};
+
+}  // namespace fw::host

@@ -1,0 +1,45 @@
+#include <fmt/format.h>
+
+#include <iostream>
+#include <stdexcept>
+
+#include "bench/WindBench.hpp"
+#include "host/ComputeContext.hpp"
+#include "host/Device.hpp"
+#include "host/cli/Commands.hpp"
+
+namespace fw::cli {
+
+std::array<int, 3> parse_grid(const std::string& text) {
+  std::array<int, 3> g{};
+  char x1 = 0, x2 = 0;
+  int consumed = 0;
+  if (std::sscanf(text.c_str(), "%d%c%d%c%d%n", &g[0], &x1, &g[1], &x2, &g[2], &consumed) != 5 ||
+      consumed != static_cast<int>(text.size()) || (x1 != 'x' && x1 != 'X') || (x2 != 'x' && x2 != 'X') ||
+      g[0] <= 0 || g[1] <= 0 || g[2] <= 0)
+    throw std::invalid_argument(
+        fmt::format("--grid: expected NXxNYxNZ with positive integers, got '{}'", text));
+  return g;
+}
+
+int run_bench(const BenchOptions& options, const GlobalOptions& global) {
+  host::ComputeContext cc(host::select_device(host::device_filter_from_env(global.device_filter)),
+                          global.profile);
+  if (options.what != "wind")
+    throw std::invalid_argument(
+        fmt::format("bench {}: not available in this build (only 'wind')", options.what));
+  bench::WindBenchOptions opt;
+  if (!options.grids.empty()) opt.grids = options.grids;
+  if (options.steps > 0) opt.steps = options.steps;
+  if (!options.json)
+    std::cerr << "running the wind-tunnel benchmark on " << cc.device().device_name << " ...\n";
+  const auto result = bench::run_wind_bench(cc, opt);
+  if (options.json)
+    std::cout << bench::wind_bench_json(result) << "\n";
+  else
+    bench::print_wind_bench_table(result, std::cout);
+  if (cc.profiling()) cc.profiler()->print(options.json ? std::cerr : std::cout);
+  return 0;
+}
+
+}  // namespace fw::cli

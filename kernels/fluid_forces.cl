@@ -1,0 +1,122 @@
+/* External forces on the face velocities: uniform body force, travelling gusts, vorticity confinement and
+ * explicit viscous diffusion. Reference: fluid/ReferenceStages.cpp add_body_force, add_gusts,
+ * vorticity, add_vorticity_confinement, diffuse. */
+#include "common.cl"
+
+/* q (component c) += dt * (body acceleration + sum of gust accelerations at t + dt/2). */
+__kernel void apply_forces(const FwGrid g, const FwStep s, const int c, const float body_acceleration,
+                           __global const FwGust* gusts, const int gust_count, __global float* q) {
+  const int j = get_global_id(1), k = get_global_id(2);
+  const int ex = face_extent(&g, c, 0);
+  const float tm = s.time + 0.5f * s.dt;
+  const float y = g.origin[1] + g.h * (j + face_offset(c, 1));
+  const float z = g.origin[2] + g.h * (k + face_offset(c, 2));
+  for (int i = FW_ROW_BEGIN; i < FW_ROW_END(ex); ++i) {
+    const float x = g.origin[0] + g.h * (i + face_offset(c, 0));
+    float add = s.dt * body_acceleration;
+    for (int n = 0; n < gust_count; ++n) {
+      const FwGust G = gusts[n];
+      const float tau = tm - G.start;
+      if (!(tau > 0.0f && tau < G.duration)) continue;
+      const float dx = x - (G.center[0] + G.travel[0] * tau);
+      const float dy = y - (G.center[1] + G.travel[1] * tau);
+      const float dz = z - (G.center[2] + G.travel[2] * tau);
+      const float r2 = dx * dx + dy * dy + dz * dz;
+      const float rate = G.peak_speed * (M_PI_F / G.duration) * sin(2.0f * M_PI_F * tau / G.duration) *
+                         exp(-r2 / (G.radius * G.radius));
+      add += s.dt * rate * G.direction[c];
+    }
+    q[face_index(&g, c, i, j, k)] += add;
+  }
+}
+
+/* Cell-centred velocity component c. */
+inline float centre_velocity(const FwGrid* g, __global const float* q, int c, int i, int j, int k) {
+  int hi[3] = {i, j, k};
+  hi[c] += 1;
+  return 0.5f * (q[face_index(g, c, i, j, k)] + q[face_index(g, c, hi[0], hi[1], hi[2])]);
+}
+
+/* d(component c)/d(axis a) at a cell: central difference, one-sided at the domain's edge. */
+inline float centre_derivative(const FwGrid* g, __global const float* q, int c, int a, int i, int j, int k) {
+  int p[3] = {i, j, k}, m[3] = {i, j, k};
+  p[a] = min(p[a] + 1, axis_cells(g, a) - 1);
+  m[a] = max(m[a] - 1, 0);
+  const int span = p[a] - m[a];
+  if (span == 0) return 0.0f;
+  return (centre_velocity(g, q, c, p[0], p[1], p[2]) - centre_velocity(g, q, c, m[0], m[1], m[2])) /
+         (span * g->h);
+}
+
+/* omega: 4 floats a cell (wx, wy, wz, |w|), 1/s. */
+__kernel void vorticity(const FwGrid g, __global const float* u, __global const float* v,
+                        __global const float* w, __global float* omega) {
+  const int j = get_global_id(1), k = get_global_id(2);
+  for (int i = FW_ROW_BEGIN; i < FW_ROW_END(g.nx); ++i) {
+    const float wx = centre_derivative(&g, w, 2, 1, i, j, k) - centre_derivative(&g, v, 1, 2, i, j, k);
+    const float wy = centre_derivative(&g, u, 0, 2, i, j, k) - centre_derivative(&g, w, 2, 0, i, j, k);
+    const float wz = centre_derivative(&g, v, 1, 0, i, j, k) - centre_derivative(&g, u, 0, 1, i, j, k);
+    const int id = 4 * cell_index(&g, i, j, k);
+    omega[id] = wx;
+    omega[id + 1] = wy;
+    omega[id + 2] = wz;
+    omega[id + 3] = sqrt(wx * wx + wy * wy + wz * wz);
+  }
+}
+
+/* Component c of the confinement force epsilon h (N x omega) at a cell. */
+inline float confinement_force(const FwGrid* g, __global const float* omega, float epsilon, int c, int i,
+                               int j, int k) {
+  float eta[3];
+  const int at[3] = {i, j, k};
+  for (int a = 0; a < 3; ++a) {
+    int p[3] = {i, j, k}, m[3] = {i, j, k};
+    p[a] = min(at[a] + 1, axis_cells(g, a) - 1);
+    m[a] = max(at[a] - 1, 0);
+    const int span = p[a] - m[a];
+    eta[a] = span ? (omega[4 * cell_index(g, p[0], p[1], p[2]) + 3] -
+                     omega[4 * cell_index(g, m[0], m[1], m[2]) + 3]) /
+                        (span * g->h)
+                  : 0.0f;
+  }
+  const float len = sqrt(eta[0] * eta[0] + eta[1] * eta[1] + eta[2] * eta[2]) + 1e-20f;
+  const float N[3] = {eta[0] / len, eta[1] / len, eta[2] / len};
+  const int id = 4 * cell_index(g, i, j, k);
+  const float W[3] = {omega[id], omega[id + 1], omega[id + 2]};
+  const float scale = epsilon * g->h;
+  if (c == 0) return scale * (N[1] * W[2] - N[2] * W[1]);
+  if (c == 1) return scale * (N[2] * W[0] - N[0] * W[2]);
+  return scale * (N[0] * W[1] - N[1] * W[0]);
+}
+
+/* q (component c) += dt * confinement force averaged from the two cells beside the face. */
+__kernel void vorticity_confinement(const FwGrid g, const FwStep s, const int c, const float epsilon,
+                                    __global const float* omega, __global float* q) {
+  const int j = get_global_id(1), k = get_global_id(2);
+  const int ex = face_extent(&g, c, 0);
+  const int n = axis_cells(&g, c);
+  for (int i = FW_ROW_BEGIN; i < FW_ROW_END(ex); ++i) {
+    int lo[3] = {i, j, k}, hi[3] = {i, j, k};
+    lo[c] = max(lo[c] - 1, 0);
+    hi[c] = min(hi[c], n - 1);
+    const float f = 0.5f * (confinement_force(&g, omega, epsilon, c, lo[0], lo[1], lo[2]) +
+                            confinement_force(&g, omega, epsilon, c, hi[0], hi[1], hi[2]));
+    q[face_index(&g, c, i, j, k)] += s.dt * f;
+  }
+}
+
+/* out = q + nu dt / h^2 * (sum of the six neighbours - 6 q), neighbours through fetch_face's ghost rules. */
+__kernel void diffuse(const FwGrid g, const FwStep s, __global const float* profile, const int c,
+                      const float nu_dt_over_h2, __global const float* q, __global float* out) {
+  const int j = get_global_id(1), k = get_global_id(2);
+  const int ex = face_extent(&g, c, 0);
+  for (int i = FW_ROW_BEGIN; i < FW_ROW_END(ex); ++i) {
+    const float centre = q[face_index(&g, c, i, j, k)];
+    const float lap =
+        fetch_face(q, c, i - 1, j, k, &g, &s, profile) + fetch_face(q, c, i + 1, j, k, &g, &s, profile) +
+        fetch_face(q, c, i, j - 1, k, &g, &s, profile) + fetch_face(q, c, i, j + 1, k, &g, &s, profile) +
+        fetch_face(q, c, i, j, k - 1, &g, &s, profile) + fetch_face(q, c, i, j, k + 1, &g, &s, profile) -
+        6.0f * centre;
+    out[face_index(&g, c, i, j, k)] = centre + nu_dt_over_h2 * lap;
+  }
+}

@@ -1,0 +1,188 @@
+/* The pressure Poisson equation A phi = b on one level of the multigrid hierarchy: smoothers, residuals,
+ * grid transfers and the vector operations of conjugate gradients.
+ *
+ * (A phi)_c = popcount(open) phi_c - sum over open faces of phi_neighbour, with phi = 0 across outflow
+ * faces and wrap-around on periodic axes (see fluid/PressureLevels.hpp). Reductions write one partial
+ * value per work-item; the host adds them in double precision, in a fixed order (deterministic).
+ * Reference: fluid/ReferenceStages.cpp apply_operator, residual, jacobi_sweep, red_black_sweep,
+ * restrict_residual, prolong_add.
+ */
+#include "common.cl"
+
+inline int level_index(const FwLevel* L, int i, int j, int k) {
+  return i + L->nx * (j + L->ny * k);
+}
+
+/* Sum of phi over the open faces of cell (i,j,k) (index id, mask m). */
+inline float open_neighbour_sum(const FwLevel* L, __global const float* phi, int i, int j, int k, int id,
+                                uchar m) {
+  const int sy = L->nx, sz = L->nx * L->ny;
+  float sum = 0.0f;
+  if (m & 1) sum += i > 0 ? phi[id - 1] : ((L->periodic & 1) ? phi[id + (L->nx - 1)] : 0.0f);
+  if (m & 2) sum += i < L->nx - 1 ? phi[id + 1] : ((L->periodic & 1) ? phi[id - (L->nx - 1)] : 0.0f);
+  if (m & 4) sum += j > 0 ? phi[id - sy] : ((L->periodic & 2) ? phi[id + sy * (L->ny - 1)] : 0.0f);
+  if (m & 8) sum += j < L->ny - 1 ? phi[id + sy] : ((L->periodic & 2) ? phi[id - sy * (L->ny - 1)] : 0.0f);
+  if (m & 16) sum += k > 0 ? phi[id - sz] : ((L->periodic & 4) ? phi[id + sz * (L->nz - 1)] : 0.0f);
+  if (m & 32) sum += k < L->nz - 1 ? phi[id + sz] : ((L->periodic & 4) ? phi[id - sz * (L->nz - 1)] : 0.0f);
+  return sum;
+}
+
+inline float diagonal(uchar m) {
+  return (float)popcount((uint)(m & FW_MASK_OPEN_ALL));
+}
+
+/* phi_out = (1 - omega) phi + omega (b + sum phi_nb) / diag. */
+__kernel void jacobi_sweep(const FwLevel L, __global const uchar* mask, __global const float* b,
+                           __global const float* phi, __global float* phi_out, const float omega) {
+  const int j = get_global_id(1), k = get_global_id(2);
+  for (int i = FW_ROW_BEGIN; i < FW_ROW_END(L.nx); ++i) {
+    const int id = level_index(&L, i, j, k);
+    const uchar m = mask[id];
+    const float d = diagonal(m);
+    float out = 0.0f;
+    if ((m & FW_MASK_FLUID) && d > 0.0f)
+      out = (1.0f - omega) * phi[id] + omega * (b[id] + open_neighbour_sum(&L, phi, i, j, k, id, m)) / d;
+    phi_out[id] = out;
+  }
+}
+
+/* Gauss-Seidel on the cells with (i + j + k) % 2 == colour, in place. */
+__kernel void red_black_sweep(const FwLevel L, __global const uchar* mask, __global const float* b,
+                              __global float* phi, const int colour) {
+  const int j = get_global_id(1), k = get_global_id(2);
+  const int begin = FW_ROW_BEGIN;
+  for (int i = begin + ((begin + j + k + colour) & 1); i < FW_ROW_END(L.nx); i += 2) {
+    const int id = level_index(&L, i, j, k);
+    const uchar m = mask[id];
+    const float d = diagonal(m);
+    if ((m & FW_MASK_FLUID) && d > 0.0f) phi[id] = (b[id] + open_neighbour_sum(&L, phi, i, j, k, id, m)) / d;
+  }
+}
+
+/* r = b - A phi; partial[item] = sum of r^2 over the item's cells. */
+__kernel void residual(const FwLevel L, __global const uchar* mask, __global const float* b,
+                       __global const float* phi, __global float* r, __global float* partial) {
+  const int j = get_global_id(1), k = get_global_id(2);
+  float sum = 0.0f;
+  for (int i = FW_ROW_BEGIN; i < FW_ROW_END(L.nx); ++i) {
+    const int id = level_index(&L, i, j, k);
+    const uchar m = mask[id];
+    float res = 0.0f;
+    if (m & FW_MASK_FLUID)
+      res = b[id] - (diagonal(m) * phi[id] - open_neighbour_sum(&L, phi, i, j, k, id, m));
+    r[id] = res;
+    sum += res * res;
+  }
+  partial[row_item_index()] = sum;
+}
+
+/* q = A d; partial[item] = sum of d q. */
+__kernel void apply_operator_dot(const FwLevel L, __global const uchar* mask, __global const float* d,
+                                 __global float* q, __global float* partial) {
+  const int j = get_global_id(1), k = get_global_id(2);
+  float sum = 0.0f;
+  for (int i = FW_ROW_BEGIN; i < FW_ROW_END(L.nx); ++i) {
+    const int id = level_index(&L, i, j, k);
+    const uchar m = mask[id];
+    float out = 0.0f;
+    if (m & FW_MASK_FLUID) out = diagonal(m) * d[id] - open_neighbour_sum(&L, d, i, j, k, id, m);
+    q[id] = out;
+    sum += d[id] * out;
+  }
+  partial[row_item_index()] = sum;
+}
+
+/* Coarse right-hand side: 4 * mean of the fine residual over each coarse cell's children (the coarse
+ * operator has unit couplings at spacing 2h); the coarse solution starts at 0. Rows over the coarse level. */
+__kernel void restrict_residual(const FwLevel F, const FwLevel C, __global const uchar* fine_mask,
+                                __global const uchar* coarse_mask, __global const float* b,
+                                __global const float* phi, __global float* coarse_b,
+                                __global float* coarse_phi) {
+  const int J = get_global_id(1), K = get_global_id(2);
+  for (int I = FW_ROW_BEGIN; I < FW_ROW_END(C.nx); ++I) {
+    float sum = 0.0f;
+    int children = 0;
+    for (int dk = 0; dk < 2; ++dk)
+      for (int dj = 0; dj < 2; ++dj)
+        for (int di = 0; di < 2; ++di) {
+          const int i = 2 * I + di, j = 2 * J + dj, k = 2 * K + dk;
+          if (i >= F.nx || j >= F.ny || k >= F.nz) continue;
+          ++children;
+          const int id = level_index(&F, i, j, k);
+          const uchar m = fine_mask[id];
+          if (m & FW_MASK_FLUID)
+            sum += b[id] - (diagonal(m) * phi[id] - open_neighbour_sum(&F, phi, i, j, k, id, m));
+        }
+    const int cid = level_index(&C, I, J, K);
+    coarse_b[cid] = (coarse_mask[cid] & FW_MASK_FLUID) ? 4.0f * sum / (float)children : 0.0f;
+    coarse_phi[cid] = 0.0f;
+  }
+}
+
+/* phi += e_coarse on every fluid cell (piecewise-constant prolongation). Rows over the fine level. */
+__kernel void prolong_add(const FwLevel F, const FwLevel C, __global const uchar* fine_mask,
+                          __global const float* coarse_e, __global float* phi) {
+  const int j = get_global_id(1), k = get_global_id(2);
+  for (int i = FW_ROW_BEGIN; i < FW_ROW_END(F.nx); ++i) {
+    const int id = level_index(&F, i, j, k);
+    if (fine_mask[id] & FW_MASK_FLUID) phi[id] += coarse_e[level_index(&C, i / 2, j / 2, k / 2)];
+  }
+}
+
+/* x += alpha d; r -= alpha q; partial[item] = sum of r^2. */
+__kernel void cg_update(const FwLevel L, const float alpha, __global const float* d, __global const float* q,
+                        __global float* x, __global float* r, __global float* partial) {
+  const int j = get_global_id(1), k = get_global_id(2);
+  float sum = 0.0f;
+  for (int i = FW_ROW_BEGIN; i < FW_ROW_END(L.nx); ++i) {
+    const int id = level_index(&L, i, j, k);
+    x[id] += alpha * d[id];
+    const float res = r[id] - alpha * q[id];
+    r[id] = res;
+    sum += res * res;
+  }
+  partial[row_item_index()] = sum;
+}
+
+/* d = z + beta d. */
+__kernel void cg_direction(const FwLevel L, const float beta, __global const float* z, __global float* d) {
+  const int j = get_global_id(1), k = get_global_id(2);
+  for (int i = FW_ROW_BEGIN; i < FW_ROW_END(L.nx); ++i) {
+    const int id = level_index(&L, i, j, k);
+    d[id] = z[id] + beta * d[id];
+  }
+}
+
+/* partial[item] = sum of a b. */
+__kernel void dot_product(const FwLevel L, __global const float* a, __global const float* b,
+                          __global float* partial) {
+  const int j = get_global_id(1), k = get_global_id(2);
+  float sum = 0.0f;
+  for (int i = FW_ROW_BEGIN; i < FW_ROW_END(L.nx); ++i) {
+    const int id = level_index(&L, i, j, k);
+    sum += a[id] * b[id];
+  }
+  partial[row_item_index()] = sum;
+}
+
+/* x += value on fluid cells (removes the mean of b when A is singular). */
+__kernel void add_on_fluid(const FwLevel L, __global const uchar* mask, const float value,
+                           __global float* x) {
+  const int j = get_global_id(1), k = get_global_id(2);
+  for (int i = FW_ROW_BEGIN; i < FW_ROW_END(L.nx); ++i) {
+    const int id = level_index(&L, i, j, k);
+    if (mask[id] & FW_MASK_FLUID) x[id] += value;
+  }
+}
+
+/* partial[item] = sum of x over fluid cells. */
+__kernel void sum_on_fluid(const FwLevel L, __global const uchar* mask, __global const float* x,
+                           __global float* partial) {
+  const int j = get_global_id(1), k = get_global_id(2);
+  float sum = 0.0f;
+  for (int i = FW_ROW_BEGIN; i < FW_ROW_END(L.nx); ++i) {
+    const int id = level_index(&L, i, j, k);
+    if (mask[id] & FW_MASK_FLUID) sum += x[id];
+  }
+  partial[row_item_index()] = sum;
+}

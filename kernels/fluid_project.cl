@@ -1,0 +1,65 @@
+/* The two ends of the pressure projection: the Poisson right-hand side from the velocity divergence, and
+ * the subtraction of the pressure gradient. Reference: fluid/ReferenceStages.cpp divergence_rhs,
+ * subtract_gradient, max_divergence. */
+#include "common.cl"
+
+inline float net_outflow(const FwGrid* g, __global const float* u, __global const float* v,
+                         __global const float* w, int i, int j, int k) {
+  return (u[face_index(g, 0, i + 1, j, k)] - u[face_index(g, 0, i, j, k)]) +
+         (v[face_index(g, 1, i, j + 1, k)] - v[face_index(g, 1, i, j, k)]) +
+         (w[face_index(g, 2, i, j, k + 1)] - w[face_index(g, 2, i, j, k)]);
+}
+
+/* b = -h * net outflow (= -h^2 div u), m^2/s, in fluid cells; 0 elsewhere. */
+__kernel void divergence_rhs(const FwGrid g, __global const uchar* mask, __global const float* u,
+                             __global const float* v, __global const float* w, __global float* b) {
+  const int j = get_global_id(1), k = get_global_id(2);
+  for (int i = FW_ROW_BEGIN; i < FW_ROW_END(g.nx); ++i) {
+    const int id = cell_index(&g, i, j, k);
+    b[id] = (mask[id] & FW_MASK_FLUID) ? -g.h * net_outflow(&g, u, v, w, i, j, k) : 0.0f;
+  }
+}
+
+/* partial[item] = max over this work-item's fluid cells of |div u|, 1/s. */
+__kernel void max_divergence(const FwGrid g, __global const uchar* mask, __global const float* u,
+                             __global const float* v, __global const float* w, __global float* partial) {
+  const int j = get_global_id(1), k = get_global_id(2);
+  float m = 0.0f;
+  for (int i = FW_ROW_BEGIN; i < FW_ROW_END(g.nx); ++i)
+    if (mask[cell_index(&g, i, j, k)] & FW_MASK_FLUID)
+      m = fmax(m, fabs(net_outflow(&g, u, v, w, i, j, k)) / g.h);
+  partial[row_item_index()] = m;
+}
+
+/* q (component c) -= (phi_high - phi_low) / h on faces open in the mask. Outside the domain phi is the
+ * outflow ghost's 0, or wraps on a periodic axis. */
+__kernel void subtract_gradient(const FwGrid g, const int c, __global const uchar* mask,
+                                __global const float* phi, __global float* q) {
+  const int j = get_global_id(1), k = get_global_id(2);
+  const int ex = face_extent(&g, c, 0);
+  const int n = axis_cells(&g, c);
+  const int periodic = g.bc[2 * c] == FW_BC_PERIODIC;
+  for (int i = FW_ROW_BEGIN; i < FW_ROW_END(ex); ++i) {
+    if (!face_open(&g, mask, c, i, j, k)) continue;
+    int lo[3] = {i, j, k}, hi[3] = {i, j, k};
+    lo[c] -= 1;
+    float phi_lo = 0.0f, phi_hi = 0.0f;
+    if (lo[c] < 0 && periodic) lo[c] = n - 1;
+    if (lo[c] >= 0) phi_lo = phi[cell_index(&g, lo[0], lo[1], lo[2])];
+    if (hi[c] >= n && periodic) hi[c] = 0;
+    if (hi[c] < n) phi_hi = phi[cell_index(&g, hi[0], hi[1], hi[2])];
+    q[face_index(&g, c, i, j, k)] -= (phi_hi - phi_lo) / g.h;
+  }
+}
+
+/* partial[item] = max |q| over this work-item's run of an extent_x * ny * nz array (NaN propagates). */
+__kernel void max_abs(const int extent_x, __global const float* q, __global float* partial) {
+  const int j = get_global_id(1), k = get_global_id(2);
+  const int ny = get_global_size(1);
+  float m = 0.0f;
+  for (int i = FW_ROW_BEGIN; i < FW_ROW_END(extent_x); ++i) {
+    const float a = fabs(q[i + extent_x * (j + ny * k)]);
+    m = (a > m || isnan(a)) ? a : m;
+  }
+  partial[row_item_index()] = m;
+}

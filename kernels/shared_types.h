@@ -1,0 +1,78 @@
+/* Plain structs and constants shared by the host (C++) and the kernels (OpenCL C 1.2).
+ *
+ * Every struct holds only 32-bit scalars and fixed arrays of them, so C++ and OpenCL C lay them out
+ * identically; tests/kernels/shared_types_test.cpp checks sizeof and offsetof on both sides.
+ * No float3/float4 here: their alignment differs between the two languages.
+ */
+#ifndef FORESTWIND_SHARED_TYPES_H
+#define FORESTWIND_SHARED_TYPES_H
+
+#ifdef __OPENCL_VERSION__
+typedef int fw_int;
+typedef uint fw_uint;
+#else
+#include <cstdint>
+typedef std::int32_t fw_int;
+typedef std::uint32_t fw_uint;
+#endif
+
+/* Boundary condition of one domain face. */
+#define FW_BC_INFLOW 0   /* velocity prescribed by the ambient wind profile */
+#define FW_BC_OUTFLOW 1  /* open: pressure 0 in the ghost cell, zero-gradient velocity */
+#define FW_BC_SLIP 2     /* free-slip wall: no normal flow, zero tangential stress */
+#define FW_BC_NO_SLIP 3  /* wall: no normal flow, zero tangential velocity */
+#define FW_BC_PERIODIC 4 /* wraps to the opposite face; both faces of the axis must be periodic */
+
+/* Domain faces, in the order of FwGrid.bc. */
+#define FW_FACE_WEST 0   /* -x */
+#define FW_FACE_EAST 1   /* +x */
+#define FW_FACE_SOUTH 2  /* -y */
+#define FW_FACE_NORTH 3  /* +y */
+#define FW_FACE_GROUND 4 /* -z */
+#define FW_FACE_TOP 5    /* +z */
+
+/* Per-cell pressure mask (one byte a cell). Bit f (f = face index above) is set when the cell's face f is
+ * "open" for the pressure equation: it couples to a fluid neighbour (or, through a periodic boundary, to
+ * the cell on the other side) or to a Dirichlet ghost p = 0 (outflow). Closed faces (walls, inflow, solids)
+ * carry a prescribed velocity and do not appear in the Poisson operator. */
+#define FW_MASK_OPEN_ALL 63
+#define FW_MASK_FLUID 64
+
+/* The wind grid: a MAC grid of nx*ny*nz cubic cells of size h.
+ * Storage is x-fastest. u lives on x-faces ((nx+1)*ny*nz values), v on y-faces (nx*(ny+1)*nz),
+ * w on z-faces (nx*ny*(nz+1)); pressure and masks at cell centres (nx*ny*nz). */
+typedef struct FwGrid {
+  fw_int nx, ny, nz; /* cells */
+  fw_int bc[6];      /* FW_BC_* per face, indexed by FW_FACE_* */
+  float h;           /* cell size, m */
+  float origin[3];   /* world position of the domain's minimum corner, m */
+} FwGrid;
+
+/* One level of the pressure hierarchy (the fine grid is level 0). periodic: bit a set when axis a
+ * (0 x, 1 y, 2 z) wraps around. */
+typedef struct FwLevel {
+  fw_int nx, ny, nz;
+  fw_int periodic;
+} FwLevel;
+
+/* What changes from step to step, passed by value to the kernels that need it. */
+typedef struct FwStep {
+  float dt;         /* s */
+  float time;       /* simulated time at the start of the step, s */
+  float ambient[3]; /* ambient wind at the reference height, m/s (vector, x east, y north, z up) */
+} FwStep;
+
+/* A gust: a Gaussian ball of extra velocity with a 1-cos envelope in time, travelling at a constant
+ * velocity. A parcel moving with the ball sees its velocity rise by peak_speed * 0.5 * (1 - cos(2 pi tau/T))
+ * * exp(-(r/radius)^2) along `direction` and fall back to zero at tau = T. */
+typedef struct FwGust {
+  float start;        /* s */
+  float duration;     /* T, s */
+  float peak_speed;   /* m/s */
+  float radius;       /* Gaussian e-folding radius, m */
+  float center[3];    /* world position at `start`, m */
+  float travel[3];    /* velocity of the ball's centre, m/s */
+  float direction[3]; /* unit vector of the added velocity */
+} FwGust;
+
+#endif

@@ -1,0 +1,279 @@
+#include "fluid/Heightmap.hpp"
+
+#include <fmt/format.h>
+#include <catch2/catch.hpp>
+
+#include <cstdint>
+#include <filesystem>
+#include <fstream>
+#include <limits>
+#include <random>
+#include <stdexcept>
+#include <string>
+#include <string_view>
+#include <vector>
+
+using fw::fluid::Heightmap;
+
+namespace {
+
+// A fresh folder under the system temp directory, removed with everything in it at scope exit.
+class TempDir {
+ public:
+  TempDir() {
+    std::random_device random;
+    const std::uint64_t tag = (std::uint64_t(random()) << 32) ^ random();
+    path_ = std::filesystem::temp_directory_path() / fmt::format("fw_heightmap_test_{:016x}", tag);
+    std::filesystem::create_directories(path_);
+  }
+  ~TempDir() {
+    std::error_code ignored;
+    std::filesystem::remove_all(path_, ignored);
+  }
+  TempDir(const TempDir&) = delete;
+  TempDir& operator=(const TempDir&) = delete;
+
+  /// Writes content byte for byte and returns the file's path.
+  std::string write(const std::string& name, std::string_view content) const {
+    const auto file = path_ / name;
+    std::ofstream out(file, std::ios::binary);
+    out.write(content.data(), std::streamsize(content.size()));
+    return file.string();
+  }
+
+ private:
+  std::filesystem::path path_;
+};
+
+std::string bytes(std::initializer_list<int> values) {
+  std::string out;
+  for (int v : values) out += static_cast<char>(v);
+  return out;
+}
+
+// The message of the std::runtime_error that reading the file throws, or "" when it reads fine.
+std::string read_error(const std::string& path) {
+  try {
+    Heightmap::read(path, 2.0, 8.0);
+  } catch (const std::runtime_error& e) {
+    return e.what();
+  }
+  return "";
+}
+
+// A 3 x 2 image, north row first: heights 0, 4, 8 m along the north edge, flat 0 along the south.
+constexpr std::string_view kP2 =
+    "P2\n"
+    "# north row first\n"
+    "3 2\n"
+    "10\n"
+    "0 5 10\n"
+    "0 0 0\n";
+
+void check_p2_heights(const Heightmap& map) {
+  REQUIRE(map.columns() == 3);
+  REQUIRE(map.rows() == 2);
+  CHECK(map.cell_size() == 2.0);
+  CHECK(map.sw_centre()[0] == 1.0);
+  CHECK(map.sw_centre()[1] == 1.0);
+  // Row 0 is south.
+  CHECK(map.sample(0, 0) == 0.0);
+  CHECK(map.sample(2, 0) == 0.0);
+  CHECK(map.sample(1, 1) == Approx(4.0));
+  CHECK(map.sample(2, 1) == Approx(8.0));
+  CHECK(map.max_height() == Approx(8.0));
+  // Pixel centres at x = 1, 3, 5 and y = 1 (south), 3 (north).
+  CHECK(map.height_at(5.0, 3.0) == Approx(8.0));
+  CHECK(map.height_at(4.0, 3.0) == Approx(6.0));
+  CHECK(map.height_at(4.0, 2.0) == Approx(3.0));
+  CHECK(map.height_at(5.0, 1.0) == Approx(0.0));
+}
+
+}  // namespace
+
+TEST_CASE("Heightmap: bilinear interpolation gives the mean of the four samples at their midpoint") {
+  // 2 x 2 samples 4 m apart, south-west centre at (12, 22); rows south to north.
+  const Heightmap map(2, 2, 4.0, {12.0, 22.0}, {1.0, 5.0, 3.0, 0.0});
+  CHECK(map.height_at(14.0, 24.0) == Approx((1.0 + 5.0 + 3.0 + 0.0) / 4.0));
+  CHECK(map.height_at(12.0, 22.0) == Approx(1.0));
+  CHECK(map.height_at(14.0, 22.0) == Approx(3.0));  // midway along the south edge
+  CHECK(map.height_at(13.0, 22.0) == Approx(2.0));  // a quarter of the way
+  CHECK(map.height_at(16.0, 24.0) == Approx(2.5));  // midway along the east edge
+}
+
+TEST_CASE("Heightmap: outside the sample centres the nearest edge value holds") {
+  const Heightmap map(2, 2, 4.0, {12.0, 22.0}, {1.0, 5.0, 3.0, 0.0});
+  CHECK(map.height_at(0.0, 0.0) == Approx(1.0));
+  CHECK(map.height_at(100.0, 22.0) == Approx(5.0));
+  CHECK(map.height_at(100.0, 100.0) == Approx(0.0));
+  CHECK(map.height_at(12.0, 100.0) == Approx(3.0));
+  CHECK(map.height_at(-1e300, 24.0) == Approx(2.0));  // midway between 1 (south) and 3 (north)
+}
+
+TEST_CASE("Heightmap: a single sample is flat everywhere") {
+  const Heightmap map(1, 1, 1.0, {0.5, 0.5}, {7.0});
+  CHECK(map.height_at(-3.0, 40.0) == 7.0);
+  CHECK(map.height_at(0.5, 0.5) == 7.0);
+}
+
+TEST_CASE("Heightmap: the in-memory constructor rejects inconsistent samples") {
+  CHECK_THROWS_AS(Heightmap(2, 2, 1.0, {0, 0}, {1.0, 2.0, 3.0}), std::invalid_argument);
+  CHECK_THROWS_AS(Heightmap(0, 2, 1.0, {0, 0}, {}), std::invalid_argument);
+  CHECK_THROWS_AS(Heightmap(1, 1, 0.0, {0, 0}, {1.0}), std::invalid_argument);
+  CHECK_THROWS_AS(Heightmap(1, 1, 1.0, {0, 0}, {std::numeric_limits<double>::infinity()}),
+                  std::invalid_argument);
+}
+
+TEST_CASE("Heightmap: a P2 PGM maps pixel values to heights with the first row at the north edge") {
+  TempDir dir;
+  check_p2_heights(Heightmap::read(dir.write("hills.pgm", kP2), 2.0, 8.0));
+}
+
+TEST_CASE("Heightmap: P5 PGMs, 8-bit and 16-bit big-endian, read the same heights as the P2 file") {
+  TempDir dir;
+  SECTION("8-bit") {
+    const std::string data = "P5\n3 2\n10\n" + bytes({0, 5, 10, 0, 0, 0});
+    check_p2_heights(Heightmap::read(dir.write("hills8.pgm", data), 2.0, 8.0));
+  }
+  SECTION("16-bit, with a header comment") {
+    // 500 = 0x01F4, 1000 = 0x03E8 of maxval 1000.
+    const std::string data =
+        "P5 # 16 bit\n3 2 1000\n" + bytes({0, 0, 0x01, 0xF4, 0x03, 0xE8, 0, 0, 0, 0, 0, 0});
+    check_p2_heights(Heightmap::read(dir.write("hills16.pgm", data), 2.0, 8.0));
+  }
+}
+
+TEST_CASE("Heightmap: an ESRI grid is placed by its header, rows north to south, NODATA as height 0") {
+  TempDir dir;
+  const std::string path = dir.write("hills.asc",
+                                     "ncols 2\n"
+                                     "nrows 2\n"
+                                     "xllcorner 10\n"
+                                     "yllcorner 20\n"
+                                     "cellsize 4\n"
+                                     "NODATA_value -9999\n"
+                                     "3 -9999\n"
+                                     "1 5\n");
+  // cell_size and max_height are ignored for ESRI grids.
+  const Heightmap map = Heightmap::read(path, 1.0, 1000.0);
+  REQUIRE(map.columns() == 2);
+  REQUIRE(map.rows() == 2);
+  CHECK(map.cell_size() == 4.0);
+  CHECK(map.sw_centre()[0] == 12.0);  // corner + half a cell
+  CHECK(map.sw_centre()[1] == 22.0);
+  CHECK(map.sample(0, 0) == 1.0);
+  CHECK(map.sample(1, 0) == 5.0);
+  CHECK(map.sample(0, 1) == 3.0);
+  CHECK(map.sample(1, 1) == 0.0);  // NODATA
+  CHECK(map.height_at(14.0, 24.0) == Approx(2.25));
+}
+
+TEST_CASE("Heightmap: ESRI keys are case-insensitive and xllcenter/yllcenter give the sample centre") {
+  TempDir dir;
+  const std::string path = dir.write("centre.asc",
+                                     "NCOLS 3\n"
+                                     "NRows 1\n"
+                                     "XLLCENTER -5.5\n"
+                                     "yllCenter 2\n"
+                                     "CellSize 0.5\n"
+                                     "1.5 2.5 +3.5e0\n");
+  const Heightmap map = Heightmap::read(path, 1.0, 1.0);
+  CHECK(map.sw_centre()[0] == -5.5);
+  CHECK(map.sw_centre()[1] == 2.0);
+  CHECK(map.height_at(-5.25, 2.0) == Approx(2.0));
+  CHECK(map.height_at(-4.5, 9.0) == Approx(3.5));
+}
+
+TEST_CASE("Heightmap: the format comes from the content, not the extension") {
+  TempDir dir;
+  check_p2_heights(Heightmap::read(dir.write("looks_like.asc", kP2), 2.0, 8.0));
+  const Heightmap esri = Heightmap::read(
+      dir.write("looks_like.pgm", "ncols 1\nnrows 1\nxllcorner 0\nyllcorner 0\ncellsize 3\n42\n"), 2.0, 8.0);
+  CHECK(esri.cell_size() == 3.0);
+  CHECK(esri.height_at(0.0, 0.0) == 42.0);
+}
+
+TEST_CASE("Heightmap: each malformed text file gives an error naming the file and the line") {
+  struct Case {
+    const char* name;
+    const char* content;
+    int line;              // 1-based line the message must name
+    const char* expected;  // a part of the message
+  };
+  const std::vector<Case> cases{
+      {"bad_cellsize.asc", "ncols 2\nnrows 2\nxllcorner 0\nyllcorner 0\ncellsize abc\n1 2\n3 4\n", 5,
+       "cellsize: expected a positive number, got 'abc'"},
+      {"negative_cellsize.asc", "ncols 2\nnrows 2\nxllcorner 0\nyllcorner 0\ncellsize -4\n1 2\n3 4\n", 5,
+       "cellsize: expected a positive number"},
+      {"zero_ncols.asc", "ncols 0\nnrows 2\nxllcorner 0\nyllcorner 0\ncellsize 1\n1 2\n", 1,
+       "ncols: expected a positive integer, got '0'"},
+      {"bad_xll.asc", "ncols 1\nnrows 1\nxllcorner east\nyllcorner 0\ncellsize 1\n1\n", 3,
+       "xllcorner: expected a finite number, got 'east'"},
+      {"bad_value.asc", "ncols 2\nnrows 2\nxllcorner 0\nyllcorner 0\ncellsize 1\n1 2\n3 x\n", 7,
+       "row 2, column 2: expected a height in metres, got 'x'"},
+      {"short.asc", "ncols 2\nnrows 2\nxllcorner 0\nyllcorner 0\ncellsize 1\n1 2\n3\n\n", 7,
+       "truncated data"},
+      {"long.asc", "ncols 2\nnrows 2\nxllcorner 0\nyllcorner 0\ncellsize 1\n1 2\n3 4\n\n5\n", 9,
+       "wrong number of values"},
+      {"no_cellsize.asc", "ncols 2\nnrows 2\nxllcorner 0\nyllcorner 0\n1 2\n3 4\n", 5, "cellsize"},
+      {"unknown_key.asc", "ncols 1\nnrows 1\nxllcorner 0\nyllcorner 0\ncellsize 1\nfoo 3\n1\n", 6,
+       "expected an ESRI header key"},
+      {"both_corner_and_centre.asc",
+       "ncols 1\nnrows 1\nxllcorner 0\nxllcenter 0\nyllcorner 0\ncellsize 1\n1\n", 4,
+       "either xllcorner or xllcenter"},
+      {"duplicate.asc", "ncols 1\nnrows 1\nnrows 1\nxllcorner 0\nyllcorner 0\ncellsize 1\n1\n", 3,
+       "duplicate"},
+      {"no_value.asc", "ncols 1\nnrows\n1\nxllcorner 0\nyllcorner 0\ncellsize 1\n1\n", 2,
+       "nrows: expected a value on the same line"},
+      {"big_maxval.pgm", "P2\n# made by hand\n2 2\n70000\n1 2\n3 4\n", 4,
+       "maxval: expected an integer in 1..65535"},
+      {"zero_maxval.pgm", "P2\n2 2\n0\n0 0\n0 0\n", 3, "maxval"},
+      {"bad_width.pgm", "P2\n-2 2\n255\n", 2, "width: expected a positive integer, got '-2'"},
+      {"header_ends.pgm", "P2\n2 2\n", 2, "maxval: expected an integer in 1..65535, got end of file"},
+      {"pixel_too_big.pgm", "P2\n2 2\n255\n1 2\n3 256\n", 5,
+       "pixel value: expected an integer in 0..255, got '256'"},
+      {"pixel_not_a_number.pgm", "P2\n2 2\n255\n# comment\n1 2\n3 4.5\n", 6, "pixel value"},
+      {"short.pgm", "P2\n2 2\n255\n1 2\n3\n", 5, "truncated data"},
+      {"long.pgm", "P2\n2 2\n255\n1 2\n3 4\n\n5\n", 7, "wrong number of values"},
+      {"unknown.txt", "hello world\n", 1, "expected a PGM (P2/P5) or ESRI ASCII grid, got 'hello'"},
+      {"colour.ppm", "\nP6\n2 2\n255\n", 2, "expected a PGM (P2/P5) or ESRI ASCII grid, got 'P6'"},
+      {"empty.pgm", "", 1, "expected a PGM (P2/P5) or ESRI ASCII grid"},
+  };
+  TempDir dir;
+  for (const Case& c : cases) {
+    const std::string message = read_error(dir.write(c.name, c.content));
+    INFO(c.name << ": " << message);
+    CHECK_THAT(message, Catch::Contains(fmt::format("{}:{}: ", c.name, c.line)));
+    CHECK_THAT(message, Catch::Contains(c.expected));
+  }
+}
+
+TEST_CASE("Heightmap: malformed P5 pixel data gives an error naming the file and the binary data") {
+  struct Case {
+    const char* name;
+    std::string content;
+    const char* expected;
+  };
+  const std::vector<Case> cases{
+      {"short8.pgm", "P5\n2 2\n255\n" + bytes({1, 2, 3}), "truncated"},
+      {"short16.pgm", "P5\n2 2\n1000\n" + bytes({0, 1, 0, 2, 0, 3, 0}), "truncated"},
+      {"long8.pgm", "P5\n2 2\n255\n" + bytes({1, 2, 3, 4, 5}), "wrong number of values"},
+      {"too_big.pgm", "P5\n2 2\n100\n" + bytes({1, 2, 200, 4}), "expected a value in 0..100, got 200"},
+  };
+  TempDir dir;
+  for (const Case& c : cases) {
+    const std::string message = read_error(dir.write(c.name, c.content));
+    INFO(c.name << ": " << message);
+    CHECK_THAT(message, Catch::Contains(fmt::format("{}: binary data: ", c.name)));
+    CHECK_THAT(message, Catch::Contains(c.expected));
+  }
+}
+
+TEST_CASE("Heightmap: a missing file or a bad PGM scale gives an error naming the file") {
+  TempDir dir;
+  CHECK_THAT(read_error(dir.write("gone.pgm", "") + ".missing"),
+             Catch::Contains("gone.pgm.missing: cannot open"));
+  const std::string path = dir.write("hills.pgm", kP2);
+  CHECK_THROWS_WITH(Heightmap::read(path, 0.0, 8.0), Catch::Contains("hills.pgm: cell_size"));
+  CHECK_THROWS_WITH(Heightmap::read(path, 2.0, -1.0), Catch::Contains("hills.pgm: max_height"));
+}
