@@ -38,7 +38,8 @@ void GridSpec::validate() const {
   for (double o : origin)
     if (!std::isfinite(o)) throw std::invalid_argument("GridSpec: origin must be finite");
   // Face counts (nx+1)*ny*nz must fit the 32-bit indices the kernels use.
-  const double faces = double(nx + 1) * double(ny + 1) * double(nz + 1);
+  // In double from the start: nx + 1 in int would overflow for nx = INT_MAX.
+  const double faces = (double(nx) + 1.0) * (double(ny) + 1.0) * (double(nz) + 1.0);
   if (faces > double(std::numeric_limits<std::int32_t>::max()))
     throw std::invalid_argument(
         fmt::format("GridSpec: {} x {} x {} cells exceed the 2^31 index range of the kernels", nx, ny, nz));

@@ -4,6 +4,9 @@
 #include <cmath>
 
 namespace fw::host {
+namespace {
+constexpr int kPad = 2;  // FW_PAD in kernels/common.cl
+}  // namespace
 
 FluidStages::FluidStages(ComputeContext& cc, const fluid::GridSpec& spec)
     : cc_(cc), spec_(spec), grid_(spec.to_device()) {
@@ -18,6 +21,7 @@ FluidStages::FluidStages(ComputeContext& cc, const fluid::GridSpec& spec)
   profile_ = cc_.buffer(flat.size() * sizeof(float));
   cc_.queue().enqueueWriteBuffer(profile_, CL_TRUE, 0, flat.size() * sizeof(float), flat.data());
 
+  pad_ = Kernel(cc_.build("fluid_ghosts.cl"), "pad_component");
   cl::Program advect = cc_.build("fluid_advect.cl");
   advect_ = Kernel(advect, "advect_component");
   maccormack_ = Kernel(advect, "maccormack_correct");
@@ -49,15 +53,37 @@ cl::NDRange FluidStages::component_rows(int c) const {
   return cc_.rows(spec_.nx + (c == 0), spec_.ny + (c == 1), spec_.nz + (c == 2));
 }
 
-void FluidStages::enqueue_advect(int c, float dt, DeviceVelocity& vel, cl::Buffer& q, cl::Buffer& out) {
-  advect_.set_args(grid_, step_, profile_, c, dt, vel.u, vel.v, vel.w, q, out)
-      .enqueue(cc_, component_rows(c));
+std::size_t FluidStages::padded_count(int c) const {
+  return std::size_t(spec_.nx + (c == 0) + 2 * kPad) * (spec_.ny + (c == 1) + 2 * kPad) *
+         (spec_.nz + (c == 2) + 2 * kPad);
 }
 
-void FluidStages::enqueue_maccormack_correct(int c, DeviceVelocity& vel, cl::Buffer& q, cl::Buffer& forward,
+DeviceVelocity FluidStages::allocate_padded_velocity() {
+  DeviceVelocity vel;
+  for (int c = 0; c < 3; ++c) {
+    vel.component(c) = cc_.buffer(padded_count(c) * sizeof(float));
+    cc_.queue().enqueueFillBuffer(vel.component(c), 0.0f, 0, padded_count(c) * sizeof(float));
+  }
+  return vel;
+}
+
+void FluidStages::enqueue_pad(int c, cl::Buffer& q, cl::Buffer& padded) {
+  pad_.set_args(grid_, step_, profile_, c, q, padded)
+      .enqueue(cc_, cc_.rows(spec_.nx + (c == 0) + 2 * kPad, spec_.ny + (c == 1) + 2 * kPad,
+                             spec_.nz + (c == 2) + 2 * kPad));
+}
+
+void FluidStages::enqueue_pad(DeviceVelocity& vel, DeviceVelocity& padded) {
+  for (int c = 0; c < 3; ++c) enqueue_pad(c, vel.component(c), padded.component(c));
+}
+
+void FluidStages::enqueue_advect(int c, float dt, DeviceVelocity& pv, cl::Buffer& pq, cl::Buffer& out) {
+  advect_.set_args(grid_, c, dt, pv.u, pv.v, pv.w, pq, out).enqueue(cc_, component_rows(c));
+}
+
+void FluidStages::enqueue_maccormack_correct(int c, DeviceVelocity& pv, cl::Buffer& pq, cl::Buffer& forward,
                                              cl::Buffer& back, cl::Buffer& out) {
-  maccormack_.set_args(grid_, step_, profile_, c, vel.u, vel.v, vel.w, q, forward, back, out)
-      .enqueue(cc_, component_rows(c));
+  maccormack_.set_args(grid_, c, step_.dt, pv.u, pv.v, pv.w, pq, forward, back, out).enqueue(cc_, component_rows(c));
 }
 
 void FluidStages::enqueue_apply_forces(int c, float body_acceleration, cl::Buffer& gusts, int gust_count,

@@ -2,7 +2,8 @@
 // projection. Owns no field buffers; host/WindGrid wires them together.
 //
 //   FluidStages stages(cc, spec);
-//   stages.enqueue_advect(0, dt, vel, vel.u, out.u);      // one component at a time
+//   stages.enqueue_pad(vel, padded);                      // ghost layers for interpolation
+//   stages.enqueue_advect(0, dt, padded, padded.u, out.u); // one component at a time
 //   stages.enqueue_divergence_rhs(mask, vel, b);
 //
 // Numerics and ghost rules: kernels/common.cl and fluid/ReferenceStages.hpp (the CPU oracle).
@@ -33,9 +34,15 @@ class FluidStages {
 
   DeviceVelocity allocate_velocity();
   cl::NDRange component_rows(int c) const;
+  std::size_t padded_count(int c) const;
 
-  void enqueue_advect(int c, float dt, DeviceVelocity& vel, cl::Buffer& q, cl::Buffer& out);
-  void enqueue_maccormack_correct(int c, DeviceVelocity& vel, cl::Buffer& q, cl::Buffer& forward,
+  /// Padded copies (FW_PAD ghost layers, filled by the boundary rules) are what advection reads.
+  DeviceVelocity allocate_padded_velocity();
+  void enqueue_pad(int c, cl::Buffer& q, cl::Buffer& padded);
+  void enqueue_pad(DeviceVelocity& vel, DeviceVelocity& padded);
+  /// out = padded_q (component c) back-traced through padded_vel over dt (negative: forward).
+  void enqueue_advect(int c, float dt, DeviceVelocity& padded_vel, cl::Buffer& padded_q, cl::Buffer& out);
+  void enqueue_maccormack_correct(int c, DeviceVelocity& padded_vel, cl::Buffer& padded_q, cl::Buffer& forward,
                                   cl::Buffer& back, cl::Buffer& out);
   void enqueue_apply_forces(int c, float body_acceleration, cl::Buffer& gusts, int gust_count, cl::Buffer& q);
   void enqueue_vorticity(DeviceVelocity& vel, cl::Buffer& omega);
@@ -62,7 +69,7 @@ class FluidStages {
   FwStep step_{};
   cl::Buffer profile_, partial_;
   std::vector<float> partial_host_;
-  Kernel advect_, maccormack_, forces_, vorticity_, confinement_, diffuse_, boundaries_, divergence_,
+  Kernel pad_, advect_, maccormack_, forces_, vorticity_, confinement_, diffuse_, boundaries_, divergence_,
       max_div_, gradient_, max_abs_;
 };
 

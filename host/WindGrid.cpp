@@ -36,8 +36,9 @@ int viscous_substeps(double nu, double dt, double h) {
 std::size_t WindGrid::estimate_device_bytes(const fluid::GridSpec& spec, const fluid::WindSettings& settings,
                                             int row_chunk) {
   const std::size_t faces = spec.u_count() + spec.v_count() + spec.w_count();
-  const int velocity_sets = settings.advection == fluid::AdvectionScheme::maccormack ? 3 : 2;
-  std::size_t bytes = velocity_sets * faces * sizeof(float);
+  const bool maccormack = settings.advection == fluid::AdvectionScheme::maccormack;
+  const std::size_t padded = std::size_t(spec.nx + 5) * (spec.ny + 5) * (spec.nz + 5) * 3;
+  std::size_t bytes = ((maccormack ? 3 : 2) * faces + (maccormack ? 2 : 1) * padded) * sizeof(float);
   if (settings.vorticity_confinement > 0.0) bytes += spec.cell_count() * 4 * sizeof(float);
   // Pressure hierarchy: about 1/7 extra for the coarse levels of a 3D grid.
   const std::size_t cells = spec.cell_count();
@@ -69,7 +70,11 @@ WindGrid::WindGrid(ComputeContext& cc, WindGridSetup setup)
                 setup_.settings.pressure) {
   vel_ = stages_.allocate_velocity();
   tmp_ = stages_.allocate_velocity();
-  if (setup_.settings.advection == fluid::AdvectionScheme::maccormack) back_ = stages_.allocate_velocity();
+  padded_ = stages_.allocate_padded_velocity();
+  if (setup_.settings.advection == fluid::AdvectionScheme::maccormack) {
+    back_ = stages_.allocate_velocity();
+    padded_forward_ = stages_.allocate_padded_velocity();
+  }
   if (setup_.settings.vorticity_confinement > 0.0)
     omega_ = cc_.buffer(setup_.spec.cell_count() * 4 * sizeof(float));
   if (!setup_.gusts.empty()) {
@@ -133,16 +138,18 @@ void WindGrid::initialise_ambient() {
 }
 
 void WindGrid::advect(float dt) {
+  stages_.enqueue_pad(vel_, padded_);
+  for (int c = 0; c < 3; ++c) stages_.enqueue_advect(c, dt, padded_, padded_.component(c), tmp_.component(c));
   if (setup_.settings.advection == fluid::AdvectionScheme::semi_lagrangian) {
-    for (int c = 0; c < 3; ++c) stages_.enqueue_advect(c, dt, vel_, vel_.component(c), tmp_.component(c));
     std::swap(vel_, tmp_);
     return;
   }
-  // MacCormack: forward into tmp, backward (from tmp) into back, corrected in place in back.
-  for (int c = 0; c < 3; ++c) stages_.enqueue_advect(c, dt, vel_, vel_.component(c), tmp_.component(c));
-  for (int c = 0; c < 3; ++c) stages_.enqueue_advect(c, -dt, vel_, tmp_.component(c), back_.component(c));
+  // MacCormack: forward into tmp, backward (from tmp's padded copy) into back, corrected in place in back.
+  stages_.enqueue_pad(tmp_, padded_forward_);
   for (int c = 0; c < 3; ++c)
-    stages_.enqueue_maccormack_correct(c, vel_, vel_.component(c), tmp_.component(c), back_.component(c),
+    stages_.enqueue_advect(c, -dt, padded_, padded_forward_.component(c), back_.component(c));
+  for (int c = 0; c < 3; ++c)
+    stages_.enqueue_maccormack_correct(c, padded_, padded_.component(c), tmp_.component(c), back_.component(c),
                                        back_.component(c));
   std::swap(vel_, back_);
 }

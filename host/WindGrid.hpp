@@ -101,7 +101,7 @@ class WindGrid {
   WindGridSetup setup_;
   FluidStages stages_;
   PressureSolver pressure_;
-  DeviceVelocity vel_, tmp_, back_;
+  DeviceVelocity vel_, tmp_, back_, padded_, padded_forward_;
   cl::Buffer omega_, gusts_, profile_;
   double time_ = 0.0, last_dt_ = 0.0;
   long steps_ = 0;

@@ -166,3 +166,45 @@ inline int face_open(const FwGrid* g, __global const uchar* mask, int c, int i, 
 #else
 #define FW_FLAT_FOR(idx, n) for (size_t idx = get_global_id(0); idx < (size_t)(n); idx += get_global_size(0))
 #endif
+
+/* Padded copies of a velocity component carry FW_PAD ghost layers on every side, filled by fetch_face's
+ * rules (kernels/fluid_ghosts.cl), so that interpolation needs no boundary logic in its inner loop. */
+#define FW_PAD 2
+
+inline int padded_extent(const FwGrid* g, int c, int a) { return face_extent(g, c, a) + 2 * FW_PAD; }
+
+inline int padded_index(const FwGrid* g, int c, int i, int j, int k) {
+  return (i + FW_PAD) + padded_extent(g, c, 0) * ((j + FW_PAD) + padded_extent(g, c, 1) * (k + FW_PAD));
+}
+
+/* Trilinear interpolation of component c at (X, Y, Z) from its padded copy qp. Same value as sample_face
+ * on the unpadded array, without branches. */
+inline float sample_padded(__global const float* qp, int c, float X, float Y, float Z, const FwGrid* g) {
+  int i0, j0, k0;
+  float fx, fy, fz;
+  face_coordinate(g, c, 0, X, &i0, &fx);
+  face_coordinate(g, c, 1, Y, &j0, &fy);
+  face_coordinate(g, c, 2, Z, &k0, &fz);
+  const int sy = padded_extent(g, c, 0);
+  const int sz = sy * padded_extent(g, c, 1);
+  const int base = (i0 + FW_PAD) + sy * (j0 + FW_PAD) + sz * (k0 + FW_PAD);
+  const float x00 = mix(qp[base], qp[base + 1], fx);
+  const float x10 = mix(qp[base + sy], qp[base + sy + 1], fx);
+  const float x01 = mix(qp[base + sz], qp[base + sz + 1], fx);
+  const float x11 = mix(qp[base + sz + sy], qp[base + sz + sy + 1], fx);
+  return mix(mix(x00, x10, fy), mix(x01, x11, fy), fz);
+}
+
+/* Back-traced position of face (i,j,k) of component c through the padded velocity (up, vp, wp) over dt
+ * (explicit midpoint; negative dt traces forward). */
+inline float3 backtrace_padded(int c, int i, int j, int k, float dt, __global const float* up,
+                               __global const float* vp, __global const float* wp, const FwGrid* g) {
+  const float3 P = (float3)(i + face_offset(c, 0), j + face_offset(c, 1), k + face_offset(c, 2));
+  const float scale = dt / g->h; /* m/s -> cells */
+  const float3 V = (float3)(sample_padded(up, 0, P.x, P.y, P.z, g), sample_padded(vp, 1, P.x, P.y, P.z, g),
+                            sample_padded(wp, 2, P.x, P.y, P.z, g));
+  const float3 M = P - 0.5f * scale * V;
+  const float3 W = (float3)(sample_padded(up, 0, M.x, M.y, M.z, g), sample_padded(vp, 1, M.x, M.y, M.z, g),
+                            sample_padded(wp, 2, M.x, M.y, M.z, g));
+  return P - scale * W;
+}

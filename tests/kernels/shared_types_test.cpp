@@ -1,1 +1,121 @@
+#include <fmt/format.h>
 #include <catch2/catch.hpp>
+
+#include <cstddef>
+#include <string>
+#include <vector>
+
+#include "host/KernelSources.hpp"
+#include "host/opencl.hpp"
+#include "kernels/shared_types.h"
+#include "tests/support/TestDevice.hpp"
+
+namespace {
+
+// Every struct of kernels/shared_types.h and every field of it. The same list produces the host values
+// (sizeof, offsetof) and the OpenCL C that measures them on the device.
+#define FW_SHARED_STRUCTS(X) \
+  X(FwGrid);                 \
+  X(FwLevel);                \
+  X(FwStep);                 \
+  X(FwGust)
+#define FW_SHARED_FIELDS(X) \
+  X(FwGrid, nx);            \
+  X(FwGrid, ny);            \
+  X(FwGrid, nz);            \
+  X(FwGrid, bc);            \
+  X(FwGrid, h);             \
+  X(FwGrid, origin);        \
+  X(FwLevel, nx);           \
+  X(FwLevel, ny);           \
+  X(FwLevel, nz);           \
+  X(FwLevel, periodic);     \
+  X(FwStep, dt);            \
+  X(FwStep, time);          \
+  X(FwStep, ambient);       \
+  X(FwGust, start);         \
+  X(FwGust, duration);      \
+  X(FwGust, peak_speed);    \
+  X(FwGust, radius);        \
+  X(FwGust, center);        \
+  X(FwGust, travel);        \
+  X(FwGust, direction)
+
+struct LayoutEntry {
+  std::string what;    // "sizeof(FwGrid)" or "offsetof(FwGrid, bc)"
+  unsigned value;      // bytes, on the host
+  std::string device;  // OpenCL C expression of the same quantity
+};
+
+std::vector<LayoutEntry> host_layout() {
+  std::vector<LayoutEntry> entries;
+#define FW_SIZE_ENTRY(T) entries.push_back({"sizeof(" #T ")", unsigned(sizeof(T)), "(uint)sizeof(" #T ")"})
+#define FW_OFFSET_ENTRY(T, f)                                              \
+  entries.push_back({"offsetof(" #T ", " #f ")", unsigned(offsetof(T, f)), \
+                     "(uint)((__private char*)&v_" #T "." #f " - (__private char*)&v_" #T ")"})
+  FW_SHARED_STRUCTS(FW_SIZE_ENTRY);
+  FW_SHARED_FIELDS(FW_OFFSET_ENTRY);
+#undef FW_SIZE_ENTRY
+#undef FW_OFFSET_ENTRY
+  return entries;
+}
+
+// The header's text followed by a kernel that writes every entry's device value into out[].
+std::string layout_kernel_source(const std::vector<LayoutEntry>& entries) {
+  std::string source = fw::host::kernel_source("shared_types.h");
+  source += "\n#line 1 \"shared_types_test_kernel\"\n";
+  source += "kernel void shared_types_layout(global uint* out) {\n";
+#define FW_PRIVATE_INSTANCE(T) source += "  " #T " v_" #T ";\n"
+  FW_SHARED_STRUCTS(FW_PRIVATE_INSTANCE);
+#undef FW_PRIVATE_INSTANCE
+  for (std::size_t n = 0; n < entries.size(); ++n)
+    source += fmt::format("  out[{}] = {};\n", n, entries[n].device);
+  source += "}\n";
+  return source;
+}
+
+}  // namespace
+
+TEST_CASE("shared_types: host structs are packed 32-bit fields without padding") {
+  // Field counts: FwGrid 3 + 6 + 1 + 3, FwLevel 4, FwStep 2 + 3, FwGust 4 + 3 * 3.
+  CHECK(sizeof(FwGrid) == 13 * 4);
+  CHECK(sizeof(FwLevel) == 4 * 4);
+  CHECK(sizeof(FwStep) == 5 * 4);
+  CHECK(sizeof(FwGust) == 13 * 4);
+  CHECK(alignof(FwGrid) == 4);
+  CHECK(alignof(FwGust) == 4);
+  CHECK(offsetof(FwGrid, bc) == 12);
+  CHECK(offsetof(FwGrid, h) == 36);
+  CHECK(offsetof(FwGrid, origin) == 40);
+  CHECK(offsetof(FwGust, direction) == 40);
+}
+
+TEST_CASE("shared_types: OpenCL C and the host agree on sizeof and offsetof of every struct and field") {
+  auto* cc = fw::test::device_or_skip();
+  if (!cc) return;
+  const auto entries = host_layout();
+  REQUIRE(entries.size() == 4 + 20);
+  const std::string source = layout_kernel_source(entries);
+  INFO(source);
+
+  cl::Program program(cc->context(), source);
+  try {
+    program.build({cc->device().device}, "-cl-std=CL1.2");
+  } catch (const cl::BuildError& e) {
+    std::string log;
+    for (const auto& [device, text] : e.getBuildLog()) log += text;
+    FAIL("the layout kernel does not compile:\n" << log);
+  }
+  cl::Kernel kernel(program, "shared_types_layout");
+  const std::size_t bytes = entries.size() * sizeof(cl_uint);
+  cl::Buffer out(cc->context(), CL_MEM_WRITE_ONLY, bytes);
+  kernel.setArg(0, out);
+  cc->queue().enqueueNDRangeKernel(kernel, cl::NullRange, cl::NDRange(1));
+  std::vector<cl_uint> device(entries.size(), 0xFFFFFFFFu);
+  cc->queue().enqueueReadBuffer(out, CL_TRUE, 0, bytes, device.data());
+
+  for (std::size_t n = 0; n < entries.size(); ++n) {
+    INFO(entries[n].what << ": host " << entries[n].value << ", device " << device[n]);
+    CHECK(device[n] == entries[n].value);
+  }
+}

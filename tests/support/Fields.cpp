@@ -1,0 +1,110 @@
+#include "tests/support/Fields.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "fluid/SolidMap.hpp"
+
+namespace fw::test {
+
+fluid::GridSpec mixed_boundary_spec() {
+  fluid::GridSpec spec;
+  spec.nx = 24;
+  spec.ny = 16;
+  spec.nz = 12;
+  spec.h = 2.0;
+  spec.origin = {-10.0, 5.0, 0.0};
+  using B = fluid::BoundaryType;
+  spec.boundary = {B::inflow, B::outflow, B::periodic, B::periodic, B::no_slip, B::slip};
+  return spec;
+}
+
+std::vector<std::uint8_t> box_solid(const fluid::GridSpec& spec) {
+  fluid::SolidMap solids(spec);
+  const double L[3] = {spec.nx * spec.h, spec.ny * spec.h, spec.nz * spec.h};
+  solids.add(fluid::SolidBox{"test box",
+                             {spec.origin[0] + 0.45 * L[0], spec.origin[1] + 0.5 * L[1], spec.origin[2] + 0.3 * L[2]},
+                             {0.2 * L[0], 0.25 * L[1], 0.3 * L[2]},
+                             20.0});
+  return solids.cells();
+}
+
+fluid::InflowState test_inflow(const fluid::GridSpec& spec) {
+  fluid::InflowProfile profile;
+  profile.type = fluid::InflowProfile::Type::log;
+  profile.reference_height = 10.0;
+  profile.roughness_length = 0.5;
+  fluid::InflowState inflow;
+  inflow.ambient = {7.0f, 3.0f, 0.0f};
+  inflow.profile = profile.sample_cell_centres(spec.nz, spec.h);
+  return inflow;
+}
+
+std::vector<float> random_cells(std::size_t n, double amplitude, std::uint32_t seed) {
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<float> dist(float(-amplitude), float(amplitude));
+  std::vector<float> out(n);
+  for (auto& x : out) x = dist(rng);
+  return out;
+}
+
+fluid::MacVelocity random_velocity(const fluid::GridSpec& spec, double amplitude, std::uint32_t seed) {
+  fluid::MacVelocity vel;
+  vel.u = random_cells(spec.u_count(), amplitude, seed);
+  vel.v = random_cells(spec.v_count(), amplitude, seed + 1);
+  vel.w = random_cells(spec.w_count(), amplitude, seed + 2);
+  return vel;
+}
+
+void upload(host::ComputeContext& cc, const std::vector<float>& host, cl::Buffer& device) {
+  cc.queue().enqueueWriteBuffer(device, CL_TRUE, 0, host.size() * sizeof(float), host.data());
+}
+
+std::vector<float> download(host::ComputeContext& cc, cl::Buffer& device, std::size_t n) {
+  std::vector<float> out(n);
+  cc.queue().enqueueReadBuffer(device, CL_TRUE, 0, n * sizeof(float), out.data());
+  return out;
+}
+
+void upload(host::ComputeContext& cc, const fluid::MacVelocity& host, host::DeviceVelocity& device) {
+  for (int c = 0; c < 3; ++c) upload(cc, host.component(c), device.component(c));
+}
+
+fluid::MacVelocity download(host::ComputeContext& cc, host::DeviceVelocity& device, const fluid::GridSpec& spec) {
+  fluid::MacVelocity out(spec);
+  for (int c = 0; c < 3; ++c) out.component(c) = download(cc, device.component(c), out.component(c).size());
+  return out;
+}
+
+cl::Buffer upload_profile(host::ComputeContext& cc, const fluid::InflowState& inflow) {
+  cl::Buffer buf = cc.buffer(inflow.profile.size() * sizeof(float));
+  upload(cc, inflow.profile, buf);
+  return buf;
+}
+
+double relative_error(const std::vector<float>& a, const std::vector<float>& b, double floor) {
+  double scale = floor, diff = 0.0;
+  for (std::size_t i = 0; i < b.size(); ++i) {
+    scale = std::max(scale, std::abs(double(b[i])));
+    const double d = std::abs(double(a[i]) - double(b[i]));
+    diff = std::isnan(d) ? INFINITY : std::max(diff, d);
+  }
+  return diff / scale;
+}
+
+double relative_error(const fluid::MacVelocity& a, const fluid::MacVelocity& b) {
+  double e = 0.0;
+  for (int c = 0; c < 3; ++c) e = std::max(e, relative_error(a.component(c), b.component(c)));
+  return e;
+}
+
+double mismatch_fraction(const std::vector<float>& a, const std::vector<float>& b, double tolerance) {
+  double scale = 0.0;
+  for (float x : b) scale = std::max(scale, std::abs(double(x)));
+  std::size_t bad = 0;
+  for (std::size_t i = 0; i < b.size(); ++i)
+    if (!(std::abs(double(a[i]) - double(b[i])) <= tolerance * scale)) ++bad;
+  return double(bad) / double(b.size());
+}
+
+}  // namespace fw::test

@@ -1,0 +1,42 @@
+// Helpers for tests that compare device fields with the CPU reference.
+#pragma once
+
+#include <cstdint>
+#include <random>
+#include <vector>
+
+#include "fluid/GridSpec.hpp"
+#include "fluid/InflowProfile.hpp"
+#include "fluid/ReferenceStages.hpp"
+#include "host/ComputeContext.hpp"
+#include "host/FluidStages.hpp"
+
+namespace fw::test {
+
+/// A small grid that exercises every boundary type: inflow west, outflow east, periodic south/north,
+/// no-slip ground, slip top; 24 x 16 x 12 cells of 2 m.
+fluid::GridSpec mixed_boundary_spec();
+
+/// Solid box in the middle of `spec` (about a fifth of each dimension).
+std::vector<std::uint8_t> box_solid(const fluid::GridSpec& spec);
+
+/// Ambient (7, 3, 0) m/s with a log profile (z0 = 0.5 m, reference 10 m).
+fluid::InflowState test_inflow(const fluid::GridSpec& spec);
+
+/// Uniform random face velocities in [-amplitude, amplitude] m/s.
+fluid::MacVelocity random_velocity(const fluid::GridSpec& spec, double amplitude, std::uint32_t seed);
+std::vector<float> random_cells(std::size_t n, double amplitude, std::uint32_t seed);
+
+void upload(host::ComputeContext& cc, const std::vector<float>& host, cl::Buffer& device);
+std::vector<float> download(host::ComputeContext& cc, cl::Buffer& device, std::size_t n);
+void upload(host::ComputeContext& cc, const fluid::MacVelocity& host, host::DeviceVelocity& device);
+fluid::MacVelocity download(host::ComputeContext& cc, host::DeviceVelocity& device, const fluid::GridSpec& spec);
+cl::Buffer upload_profile(host::ComputeContext& cc, const fluid::InflowState& inflow);
+
+/// max |a - b| / max(max |b|, floor): the relative error of a against reference b.
+double relative_error(const std::vector<float>& a, const std::vector<float>& b, double floor = 1e-30);
+double relative_error(const fluid::MacVelocity& a, const fluid::MacVelocity& b);
+/// Fraction of entries with |a - b| > tolerance * max|b|.
+double mismatch_fraction(const std::vector<float>& a, const std::vector<float>& b, double tolerance);
+
+}  // namespace fw::test
