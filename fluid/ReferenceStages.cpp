@@ -425,7 +425,7 @@ void red_black_sweep(const GridSpec& spec, const PressureLevel& L, const std::ve
 
 std::vector<float> restrict_residual(const GridSpec& spec, const PressureLevel& fine,
                                      const PressureLevel& coarse, const std::vector<float>& b,
-                                     const std::vector<float>& phi) {
+                                     const std::vector<float>& phi, double scale) {
   const std::vector<float> r = residual(spec, fine, b, phi);
   std::vector<float> bc(coarse.cell_count(), 0.f);
   for (int K = 0; K < coarse.nz; ++K)
@@ -442,7 +442,7 @@ std::vector<float> restrict_residual(const GridSpec& spec, const PressureLevel& 
               sum += r[cell_index(fine.nx, fine.ny, i, j, k)];
             }
         const std::size_t id = cell_index(coarse.nx, coarse.ny, I, J, K);
-        if (coarse.mask[id] & FW_MASK_FLUID) bc[id] = float(4.0 * sum / children);
+        if (coarse.mask[id] & FW_MASK_FLUID) bc[id] = float(scale * sum / children);
       }
   return bc;
 }

@@ -113,10 +113,12 @@ std::vector<float> jacobi_sweep(const GridSpec& spec, const PressureLevel& level
 void red_black_sweep(const GridSpec& spec, const PressureLevel& level, const std::vector<float>& b,
                      std::vector<float>& phi, int colour);
 
-/// Coarse right-hand side: 4 * mean of the fine residual over the coarse cell's children (H^2 = 4 h^2).
+/// Coarse right-hand side: scale * mean of the fine residual over the coarse cell's children. scale = 4
+/// matches the rediscretised coarse equation (H^2 = 4 h^2), scale = 2 the Galerkin operator P^T A P of
+/// piecewise-constant prolongation.
 std::vector<float> restrict_residual(const GridSpec& spec, const PressureLevel& fine,
                                      const PressureLevel& coarse, const std::vector<float>& b,
-                                     const std::vector<float>& phi);
+                                     const std::vector<float>& phi, double scale);
 
 /// phi_fine += e_coarse on every fluid child (piecewise-constant prolongation).
 void prolong_add(const PressureLevel& fine, const PressureLevel& coarse, const std::vector<float>& e_coarse,

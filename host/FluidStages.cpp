@@ -6,6 +6,8 @@
 namespace fw::host {
 namespace {
 constexpr int kPad = 2;  // FW_PAD in kernels/common.cl
+// Advection is compute-bound: one face per work-item lets PoCL vectorise it across work-items.
+constexpr int kAdvectChunk = 1;
 }  // namespace
 
 FluidStages::FluidStages(ComputeContext& cc, const fluid::GridSpec& spec)
@@ -22,9 +24,12 @@ FluidStages::FluidStages(ComputeContext& cc, const fluid::GridSpec& spec)
   cc_.queue().enqueueWriteBuffer(profile_, CL_TRUE, 0, flat.size() * sizeof(float), flat.data());
 
   pad_ = Kernel(cc_.build("fluid_ghosts.cl"), "pad_component");
-  cl::Program advect = cc_.build("fluid_advect.cl");
-  advect_ = Kernel(advect, "advect_component");
-  maccormack_ = Kernel(advect, "maccormack_correct");
+  cl::Program advect = cc_.build("fluid_advect.cl", "", kAdvectChunk);
+  for (int c = 0; c < 3; ++c) {
+    const char* axis[] = {"u", "v", "w"};
+    advect_[c] = Kernel(advect, std::string("advect_") + axis[c]);
+    maccormack_[c] = Kernel(advect, std::string("maccormack_correct_") + axis[c]);
+  }
   cl::Program forces = cc_.build("fluid_forces.cl");
   forces_ = Kernel(forces, "apply_forces");
   vorticity_ = Kernel(forces, "vorticity");
@@ -58,6 +63,10 @@ std::size_t FluidStages::padded_count(int c) const {
          (spec_.nz + (c == 2) + 2 * kPad);
 }
 
+cl::NDRange FluidStages::advect_rows(int c) const {
+  return cc_.rows(spec_.nx + (c == 0), spec_.ny + (c == 1), spec_.nz + (c == 2), kAdvectChunk);
+}
+
 DeviceVelocity FluidStages::allocate_padded_velocity() {
   DeviceVelocity vel;
   for (int c = 0; c < 3; ++c) {
@@ -78,12 +87,16 @@ void FluidStages::enqueue_pad(DeviceVelocity& vel, DeviceVelocity& padded) {
 }
 
 void FluidStages::enqueue_advect(int c, float dt, DeviceVelocity& pv, cl::Buffer& pq, cl::Buffer& out) {
-  advect_.set_args(grid_, c, dt, pv.u, pv.v, pv.w, pq, out).enqueue(cc_, component_rows(c));
+  advect_[c]
+      .set_args(grid_, dt, pv.u, pv.v, pv.w, pq, out)
+      .enqueue(cc_, advect_rows(c), cc_.row_group(kAdvectChunk));
 }
 
 void FluidStages::enqueue_maccormack_correct(int c, DeviceVelocity& pv, cl::Buffer& pq, cl::Buffer& forward,
                                              cl::Buffer& back, cl::Buffer& out) {
-  maccormack_.set_args(grid_, c, step_.dt, pv.u, pv.v, pv.w, pq, forward, back, out).enqueue(cc_, component_rows(c));
+  maccormack_[c]
+      .set_args(grid_, step_.dt, pv.u, pv.v, pv.w, pq, forward, back, out)
+      .enqueue(cc_, advect_rows(c), cc_.row_group(kAdvectChunk));
 }
 
 void FluidStages::enqueue_apply_forces(int c, float body_acceleration, cl::Buffer& gusts, int gust_count,

@@ -35,6 +35,7 @@ class FluidStages {
   DeviceVelocity allocate_velocity();
   cl::NDRange component_rows(int c) const;
   std::size_t padded_count(int c) const;
+  cl::NDRange advect_rows(int c) const;
 
   /// Padded copies (FW_PAD ghost layers, filled by the boundary rules) are what advection reads.
   DeviceVelocity allocate_padded_velocity();
@@ -42,8 +43,8 @@ class FluidStages {
   void enqueue_pad(DeviceVelocity& vel, DeviceVelocity& padded);
   /// out = padded_q (component c) back-traced through padded_vel over dt (negative: forward).
   void enqueue_advect(int c, float dt, DeviceVelocity& padded_vel, cl::Buffer& padded_q, cl::Buffer& out);
-  void enqueue_maccormack_correct(int c, DeviceVelocity& padded_vel, cl::Buffer& padded_q, cl::Buffer& forward,
-                                  cl::Buffer& back, cl::Buffer& out);
+  void enqueue_maccormack_correct(int c, DeviceVelocity& padded_vel, cl::Buffer& padded_q,
+                                  cl::Buffer& forward, cl::Buffer& back, cl::Buffer& out);
   void enqueue_apply_forces(int c, float body_acceleration, cl::Buffer& gusts, int gust_count, cl::Buffer& q);
   void enqueue_vorticity(DeviceVelocity& vel, cl::Buffer& omega);
   void enqueue_vorticity_confinement(int c, float epsilon, cl::Buffer& omega, cl::Buffer& q);
@@ -69,8 +70,8 @@ class FluidStages {
   FwStep step_{};
   cl::Buffer profile_, partial_;
   std::vector<float> partial_host_;
-  Kernel pad_, advect_, maccormack_, forces_, vorticity_, confinement_, diffuse_, boundaries_, divergence_,
-      max_div_, gradient_, max_abs_;
+  Kernel pad_, advect_[3], maccormack_[3], forces_, vorticity_, confinement_, diffuse_, boundaries_,
+      divergence_, max_div_, gradient_, max_abs_;
 };
 
 }  // namespace fw::host

@@ -56,7 +56,9 @@ class PressureSolver {
   void enqueue_red_black_sweep(int level, cl::Buffer& b, cl::Buffer& phi, int colour);
   /// r = b - A phi and returns ||r||^2 (blocks).
   double residual_norm2(int level, cl::Buffer& b, cl::Buffer& phi, cl::Buffer& r);
+  /// Coarse rhs = correction_scale() * mean of the children's residual; coarse solution zeroed.
   void enqueue_restrict_residual(int fine_level, cl::Buffer& b, cl::Buffer& phi);
+  float correction_scale() const;
   void enqueue_prolong_add(int fine_level, cl::Buffer& phi);
   /// One V-cycle on level 0 for A phi = b, starting from phi's content.
   void vcycle(cl::Buffer& b, cl::Buffer& phi);

@@ -149,8 +149,8 @@ void WindGrid::advect(float dt) {
   for (int c = 0; c < 3; ++c)
     stages_.enqueue_advect(c, -dt, padded_, padded_forward_.component(c), back_.component(c));
   for (int c = 0; c < 3; ++c)
-    stages_.enqueue_maccormack_correct(c, padded_, padded_.component(c), tmp_.component(c), back_.component(c),
-                                       back_.component(c));
+    stages_.enqueue_maccormack_correct(c, padded_, padded_.component(c), tmp_.component(c),
+                                       back_.component(c), back_.component(c));
   std::swap(vel_, back_);
 }
 

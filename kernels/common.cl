@@ -9,6 +9,9 @@
  */
 #include "shared_types.h"
 
+/* Helpers must inline: PoCL otherwise keeps large ones as calls, which blocks vectorisation. */
+#define FW_INLINE inline __attribute__((always_inline))
+
 #ifndef FW_ROW_CHUNK
 #define FW_ROW_CHUNK 1
 #endif
@@ -18,38 +21,38 @@
 #define FW_ROW_END(extent_x) min(FW_ROW_BEGIN + FW_ROW_CHUNK, (extent_x))
 
 /* Index of this work-item among all work-items, for per-item partial sums. */
-inline int row_item_index(void) {
+FW_INLINE int row_item_index(void) {
   return (int)get_global_id(0) +
          (int)get_global_size(0) * ((int)get_global_id(1) + (int)get_global_size(1) * (int)get_global_id(2));
 }
 
-inline int axis_cells(const FwGrid* g, int a) {
+FW_INLINE int axis_cells(const FwGrid* g, int a) {
   return a == 0 ? g->nx : (a == 1 ? g->ny : g->nz);
 }
 
-inline int face_extent(const FwGrid* g, int c, int a) {
+FW_INLINE int face_extent(const FwGrid* g, int c, int a) {
   return axis_cells(g, a) + (c == a ? 1 : 0);
 }
 
-inline int face_index(const FwGrid* g, int c, int i, int j, int k) {
+FW_INLINE int face_index(const FwGrid* g, int c, int i, int j, int k) {
   const int ex = g->nx + (c == 0 ? 1 : 0);
   const int ey = g->ny + (c == 1 ? 1 : 0);
   return i + ex * (j + ey * k);
 }
 
-inline int cell_index(const FwGrid* g, int i, int j, int k) {
+FW_INLINE int cell_index(const FwGrid* g, int i, int j, int k) {
   return i + g->nx * (j + g->ny * k);
 }
 
-inline float face_offset(int c, int a) {
+FW_INLINE float face_offset(int c, int a) {
   return c == a ? 0.0f : 0.5f;
 }
 
 /* Value of component c at face index (i,j,k), which may lie outside the array. Periodic axes wrap; an inflow
  * face gives the ambient profile; a no-slip wall mirrors tangential components with a flipped sign (zero at
  * the wall); other walls and outflow repeat the edge value. Mirrors fluid/ReferenceStages.cpp fetch(). */
-inline float fetch_face(__global const float* q, int c, int i, int j, int k, const FwGrid* g, const FwStep* s,
-                        __global const float* profile) {
+FW_INLINE float fetch_face(__global const float* q, int c, int i, int j, int k, const FwGrid* g,
+                           const FwStep* s, __global const float* profile) {
   int idx[3] = {i, j, k};
   float sign = 1.0f;
   for (int a = 0; a < 3; ++a) {
@@ -73,20 +76,26 @@ inline float fetch_face(__global const float* q, int c, int i, int j, int k, con
 }
 
 /* Grid coordinate of position p along axis a for component c: lower corner index and fraction. */
-inline void face_coordinate(const FwGrid* g, int c, int a, float p, int* i0, float* fraction) {
+FW_INLINE void face_coordinate(const FwGrid* g, int c, int a, float p, int* i0, float* fraction) {
   const int n = axis_cells(g, a);
   const int periodic = g->bc[2 * a] == FW_BC_PERIODIC;
-  if (periodic) p -= n * floor(p / n);
+  if (periodic) {
+    /* Back-traces move less than one period: a compare beats floor and a division here. */
+    if (p < 0.0f) p += n;
+    if (p >= n) p -= n;
+    p = clamp(p, 0.0f, (float)n);
+  }
   float q = p - face_offset(c, a);
   if (!periodic) q = clamp(q, -1.0f, (float)face_extent(g, c, a));
-  const float fl = floor(q);
-  *i0 = (int)fl;
-  *fraction = q - fl;
+  /* q >= -1 here, so truncation of q + 4 is floor(q) + 4 (truncation vectorises, floor is a call). */
+  const int fl = (int)(q + 4.0f) - 4;
+  *i0 = fl;
+  *fraction = q - (float)fl;
 }
 
 /* Trilinear interpolation of component c at (X, Y, Z) in cell units. */
-inline float sample_face(__global const float* q, int c, float X, float Y, float Z, const FwGrid* g,
-                         const FwStep* s, __global const float* profile) {
+FW_INLINE float sample_face(__global const float* q, int c, float X, float Y, float Z, const FwGrid* g,
+                            const FwStep* s, __global const float* profile) {
   int i0, j0, k0;
   float fx, fy, fz;
   face_coordinate(g, c, 0, X, &i0, &fx);
@@ -127,9 +136,9 @@ inline float sample_face(__global const float* q, int c, float X, float Y, float
 
 /* Back-traced position of face (i,j,k) of component c through (u, v, w) over dt (explicit midpoint).
  * dt may be negative (forward trace, used by MacCormack). */
-inline float3 backtrace_face(int c, int i, int j, int k, float dt, __global const float* u,
-                             __global const float* v, __global const float* w, const FwGrid* g,
-                             const FwStep* s, __global const float* profile) {
+FW_INLINE float3 backtrace_face(int c, int i, int j, int k, float dt, __global const float* u,
+                                __global const float* v, __global const float* w, const FwGrid* g,
+                                const FwStep* s, __global const float* profile) {
   const float3 P = (float3)(i + face_offset(c, 0), j + face_offset(c, 1), k + face_offset(c, 2));
   const float scale = dt / g->h; /* m/s -> cells */
   float3 V = (float3)(sample_face(u, 0, P.x, P.y, P.z, g, s, profile),
@@ -144,7 +153,7 @@ inline float3 backtrace_face(int c, int i, int j, int k, float dt, __global cons
 
 /* Is face (i,j,k) of component c open in the pressure mask? The cell on the low side owns the face through
  * its high bit; the domain's low boundary face belongs to cell 0 through its low bit. */
-inline int face_open(const FwGrid* g, __global const uchar* mask, int c, int i, int j, int k) {
+FW_INLINE int face_open(const FwGrid* g, __global const uchar* mask, int c, int i, int j, int k) {
   int idx[3] = {i, j, k};
   const int n = axis_cells(g, c);
   int bit = 2 * c + 1;
@@ -171,15 +180,17 @@ inline int face_open(const FwGrid* g, __global const uchar* mask, int c, int i, 
  * rules (kernels/fluid_ghosts.cl), so that interpolation needs no boundary logic in its inner loop. */
 #define FW_PAD 2
 
-inline int padded_extent(const FwGrid* g, int c, int a) { return face_extent(g, c, a) + 2 * FW_PAD; }
+FW_INLINE int padded_extent(const FwGrid* g, int c, int a) {
+  return face_extent(g, c, a) + 2 * FW_PAD;
+}
 
-inline int padded_index(const FwGrid* g, int c, int i, int j, int k) {
+FW_INLINE int padded_index(const FwGrid* g, int c, int i, int j, int k) {
   return (i + FW_PAD) + padded_extent(g, c, 0) * ((j + FW_PAD) + padded_extent(g, c, 1) * (k + FW_PAD));
 }
 
 /* Trilinear interpolation of component c at (X, Y, Z) from its padded copy qp. Same value as sample_face
  * on the unpadded array, without branches. */
-inline float sample_padded(__global const float* qp, int c, float X, float Y, float Z, const FwGrid* g) {
+FW_INLINE float sample_padded(__global const float* qp, int c, float X, float Y, float Z, const FwGrid* g) {
   int i0, j0, k0;
   float fx, fy, fz;
   face_coordinate(g, c, 0, X, &i0, &fx);
@@ -188,17 +199,22 @@ inline float sample_padded(__global const float* qp, int c, float X, float Y, fl
   const int sy = padded_extent(g, c, 0);
   const int sz = sy * padded_extent(g, c, 1);
   const int base = (i0 + FW_PAD) + sy * (j0 + FW_PAD) + sz * (k0 + FW_PAD);
-  const float x00 = mix(qp[base], qp[base + 1], fx);
-  const float x10 = mix(qp[base + sy], qp[base + sy + 1], fx);
-  const float x01 = mix(qp[base + sz], qp[base + sz + 1], fx);
-  const float x11 = mix(qp[base + sz + sy], qp[base + sz + sy + 1], fx);
-  return mix(mix(x00, x10, fy), mix(x01, x11, fy), fz);
+  const float v000 = qp[base], v100 = qp[base + 1], v010 = qp[base + sy], v110 = qp[base + sy + 1];
+  const float v001 = qp[base + sz], v101 = qp[base + sz + 1], v011 = qp[base + sz + sy],
+              v111 = qp[base + sz + sy + 1];
+  const float x00 = v000 + fx * (v100 - v000);
+  const float x10 = v010 + fx * (v110 - v010);
+  const float x01 = v001 + fx * (v101 - v001);
+  const float x11 = v011 + fx * (v111 - v011);
+  const float y0 = x00 + fy * (x10 - x00);
+  const float y1 = x01 + fy * (x11 - x01);
+  return y0 + fz * (y1 - y0);
 }
 
 /* Back-traced position of face (i,j,k) of component c through the padded velocity (up, vp, wp) over dt
  * (explicit midpoint; negative dt traces forward). */
-inline float3 backtrace_padded(int c, int i, int j, int k, float dt, __global const float* up,
-                               __global const float* vp, __global const float* wp, const FwGrid* g) {
+FW_INLINE float3 backtrace_padded(int c, int i, int j, int k, float dt, __global const float* up,
+                                  __global const float* vp, __global const float* wp, const FwGrid* g) {
   const float3 P = (float3)(i + face_offset(c, 0), j + face_offset(c, 1), k + face_offset(c, 2));
   const float scale = dt / g->h; /* m/s -> cells */
   const float3 V = (float3)(sample_padded(up, 0, P.x, P.y, P.z, g), sample_padded(vp, 1, P.x, P.y, P.z, g),

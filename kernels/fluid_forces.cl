@@ -31,14 +31,15 @@ __kernel void apply_forces(const FwGrid g, const FwStep s, const int c, const fl
 }
 
 /* Cell-centred velocity component c. */
-inline float centre_velocity(const FwGrid* g, __global const float* q, int c, int i, int j, int k) {
+FW_INLINE float centre_velocity(const FwGrid* g, __global const float* q, int c, int i, int j, int k) {
   int hi[3] = {i, j, k};
   hi[c] += 1;
   return 0.5f * (q[face_index(g, c, i, j, k)] + q[face_index(g, c, hi[0], hi[1], hi[2])]);
 }
 
 /* d(component c)/d(axis a) at a cell: central difference, one-sided at the domain's edge. */
-inline float centre_derivative(const FwGrid* g, __global const float* q, int c, int a, int i, int j, int k) {
+FW_INLINE float centre_derivative(const FwGrid* g, __global const float* q, int c, int a, int i, int j,
+                                  int k) {
   int p[3] = {i, j, k}, m[3] = {i, j, k};
   p[a] = min(p[a] + 1, axis_cells(g, a) - 1);
   m[a] = max(m[a] - 1, 0);
@@ -65,8 +66,8 @@ __kernel void vorticity(const FwGrid g, __global const float* u, __global const 
 }
 
 /* Component c of the confinement force epsilon h (N x omega) at a cell. */
-inline float confinement_force(const FwGrid* g, __global const float* omega, float epsilon, int c, int i,
-                               int j, int k) {
+FW_INLINE float confinement_force(const FwGrid* g, __global const float* omega, float epsilon, int c, int i,
+                                  int j, int k) {
   float eta[3];
   const int at[3] = {i, j, k};
   for (int a = 0; a < 3; ++a) {

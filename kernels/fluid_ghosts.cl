@@ -12,7 +12,7 @@ __kernel void pad_component(const FwGrid g, const FwStep s, __global const float
   for (int ip = FW_ROW_BEGIN; ip < FW_ROW_END(px); ++ip) {
     const int i = ip - FW_PAD;
     const float value = (inside_jk && i >= 0 && i < ex) ? q[face_index(&g, c, i, j, k)]
-                                                         : fetch_face(q, c, i, j, k, &g, &s, profile);
+                                                        : fetch_face(q, c, i, j, k, &g, &s, profile);
     padded[padded_index(&g, c, i, j, k)] = value;
   }
 }

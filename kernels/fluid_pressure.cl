@@ -9,13 +9,13 @@
  */
 #include "common.cl"
 
-inline int level_index(const FwLevel* L, int i, int j, int k) {
+FW_INLINE int level_index(const FwLevel* L, int i, int j, int k) {
   return i + L->nx * (j + L->ny * k);
 }
 
 /* Sum of phi over the open faces of cell (i,j,k) (index id, mask m). */
-inline float open_neighbour_sum(const FwLevel* L, __global const float* phi, int i, int j, int k, int id,
-                                uchar m) {
+FW_INLINE float open_neighbour_sum(const FwLevel* L, __global const float* phi, int i, int j, int k, int id,
+                                   uchar m) {
   const int sy = L->nx, sz = L->nx * L->ny;
   float sum = 0.0f;
   if (m & 1) sum += i > 0 ? phi[id - 1] : ((L->periodic & 1) ? phi[id + (L->nx - 1)] : 0.0f);
@@ -27,7 +27,7 @@ inline float open_neighbour_sum(const FwLevel* L, __global const float* phi, int
   return sum;
 }
 
-inline float diagonal(uchar m) {
+FW_INLINE float diagonal(uchar m) {
   return (float)popcount((uint)(m & FW_MASK_OPEN_ALL));
 }
 
@@ -92,12 +92,13 @@ __kernel void apply_operator_dot(const FwLevel L, __global const uchar* mask, __
   partial[row_item_index()] = sum;
 }
 
-/* Coarse right-hand side: 4 * mean of the fine residual over each coarse cell's children (the coarse
- * operator has unit couplings at spacing 2h); the coarse solution starts at 0. Rows over the coarse level. */
+/* Coarse right-hand side: scale * mean of the fine residual over each coarse cell's children; the coarse
+ * solution starts at 0. The coarse operator has unit couplings at spacing 2h, so scale = 4 is the
+ * rediscretised equation and scale = 2 the Galerkin one (see PressureSolver). Rows over the coarse level. */
 __kernel void restrict_residual(const FwLevel F, const FwLevel C, __global const uchar* fine_mask,
                                 __global const uchar* coarse_mask, __global const float* b,
                                 __global const float* phi, __global float* coarse_b,
-                                __global float* coarse_phi) {
+                                __global float* coarse_phi, const float scale) {
   const int J = get_global_id(1), K = get_global_id(2);
   for (int I = FW_ROW_BEGIN; I < FW_ROW_END(C.nx); ++I) {
     float sum = 0.0f;
@@ -114,7 +115,7 @@ __kernel void restrict_residual(const FwLevel F, const FwLevel C, __global const
             sum += b[id] - (diagonal(m) * phi[id] - open_neighbour_sum(&F, phi, i, j, k, id, m));
         }
     const int cid = level_index(&C, I, J, K);
-    coarse_b[cid] = (coarse_mask[cid] & FW_MASK_FLUID) ? 4.0f * sum / (float)children : 0.0f;
+    coarse_b[cid] = (coarse_mask[cid] & FW_MASK_FLUID) ? scale * sum / (float)children : 0.0f;
     coarse_phi[cid] = 0.0f;
   }
 }

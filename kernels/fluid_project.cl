@@ -3,8 +3,8 @@
  * subtract_gradient, max_divergence. */
 #include "common.cl"
 
-inline float net_outflow(const FwGrid* g, __global const float* u, __global const float* v,
-                         __global const float* w, int i, int j, int k) {
+FW_INLINE float net_outflow(const FwGrid* g, __global const float* u, __global const float* v,
+                            __global const float* w, int i, int j, int k) {
   return (u[face_index(g, 0, i + 1, j, k)] - u[face_index(g, 0, i, j, k)]) +
          (v[face_index(g, 1, i, j + 1, k)] - v[face_index(g, 1, i, j, k)]) +
          (w[face_index(g, 2, i, j, k + 1)] - w[face_index(g, 2, i, j, k)]);

@@ -59,7 +59,8 @@ TEST_CASE("ghosts: the padded copy holds the reference's ghost value at every in
     std::size_t n = 0;
     for (int k = -pad; k < ez + pad; ++k)
       for (int j = -pad; j < ey + pad; ++j)
-        for (int i = -pad; i < ex + pad; ++i) expected[n++] = float(ref::fetch(f.spec, f.inflow, vel.component(c), c, i, j, k));
+        for (int i = -pad; i < ex + pad; ++i)
+          expected[n++] = float(ref::fetch(f.spec, f.inflow, vel.component(c), c, i, j, k));
     CHECK(test::relative_error(device, expected) < 1e-6);  // copies and one product (inflow profile)
   }
 }
@@ -85,13 +86,15 @@ TEST_CASE("advect: clamped MacCormack kernels match the CPU reference on random 
   if (!cc) return;
   StageFixture f(*cc);
   const auto vel = test::random_velocity(f.spec, 8.0, 21);
-  auto dvel = f.stages.allocate_velocity(), fwd = f.stages.allocate_velocity(), back = f.stages.allocate_velocity();
+  auto dvel = f.stages.allocate_velocity(), fwd = f.stages.allocate_velocity(),
+       back = f.stages.allocate_velocity();
   auto padded = f.stages.allocate_padded_velocity(), padded_fwd = f.stages.allocate_padded_velocity();
   test::upload(*cc, vel, dvel);
   f.stages.enqueue_pad(dvel, padded);
   for (int c = 0; c < 3; ++c) f.stages.enqueue_advect(c, 0.4f, padded, padded.component(c), fwd.component(c));
   f.stages.enqueue_pad(fwd, padded_fwd);
-  for (int c = 0; c < 3; ++c) f.stages.enqueue_advect(c, -0.4f, padded, padded_fwd.component(c), back.component(c));
+  for (int c = 0; c < 3; ++c)
+    f.stages.enqueue_advect(c, -0.4f, padded, padded_fwd.component(c), back.component(c));
   for (int c = 0; c < 3; ++c)
     f.stages.enqueue_maccormack_correct(c, padded, padded.component(c), fwd.component(c), back.component(c),
                                         back.component(c));

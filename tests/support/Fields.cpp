@@ -22,10 +22,11 @@ fluid::GridSpec mixed_boundary_spec() {
 std::vector<std::uint8_t> box_solid(const fluid::GridSpec& spec) {
   fluid::SolidMap solids(spec);
   const double L[3] = {spec.nx * spec.h, spec.ny * spec.h, spec.nz * spec.h};
-  solids.add(fluid::SolidBox{"test box",
-                             {spec.origin[0] + 0.45 * L[0], spec.origin[1] + 0.5 * L[1], spec.origin[2] + 0.3 * L[2]},
-                             {0.2 * L[0], 0.25 * L[1], 0.3 * L[2]},
-                             20.0});
+  solids.add(fluid::SolidBox{
+      "test box",
+      {spec.origin[0] + 0.45 * L[0], spec.origin[1] + 0.5 * L[1], spec.origin[2] + 0.3 * L[2]},
+      {0.2 * L[0], 0.25 * L[1], 0.3 * L[2]},
+      20.0});
   return solids.cells();
 }
 
@@ -70,7 +71,8 @@ void upload(host::ComputeContext& cc, const fluid::MacVelocity& host, host::Devi
   for (int c = 0; c < 3; ++c) upload(cc, host.component(c), device.component(c));
 }
 
-fluid::MacVelocity download(host::ComputeContext& cc, host::DeviceVelocity& device, const fluid::GridSpec& spec) {
+fluid::MacVelocity download(host::ComputeContext& cc, host::DeviceVelocity& device,
+                            const fluid::GridSpec& spec) {
   fluid::MacVelocity out(spec);
   for (int c = 0; c < 3; ++c) out.component(c) = download(cc, device.component(c), out.component(c).size());
   return out;

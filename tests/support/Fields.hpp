@@ -30,7 +30,8 @@ std::vector<float> random_cells(std::size_t n, double amplitude, std::uint32_t s
 void upload(host::ComputeContext& cc, const std::vector<float>& host, cl::Buffer& device);
 std::vector<float> download(host::ComputeContext& cc, cl::Buffer& device, std::size_t n);
 void upload(host::ComputeContext& cc, const fluid::MacVelocity& host, host::DeviceVelocity& device);
-fluid::MacVelocity download(host::ComputeContext& cc, host::DeviceVelocity& device, const fluid::GridSpec& spec);
+fluid::MacVelocity download(host::ComputeContext& cc, host::DeviceVelocity& device,
+                            const fluid::GridSpec& spec);
 cl::Buffer upload_profile(host::ComputeContext& cc, const fluid::InflowState& inflow);
 
 /// max |a - b| / max(max |b|, floor): the relative error of a against reference b.
