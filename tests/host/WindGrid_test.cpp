@@ -1,1 +1,207 @@
+// The wind grid as a whole on the device: input validation, conservation, obstacles, time step, determinism.
 #include <catch2/catch.hpp>
+
+#include <chrono>
+#include <cmath>
+#include <limits>
+
+#include "fluid/ReferenceStages.hpp"
+#include "fluid/SolidMap.hpp"
+#include "host/WindGrid.hpp"
+#include "tests/support/TestDevice.hpp"
+
+using namespace fw;
+namespace ref = fw::fluid::reference;
+using B = fluid::BoundaryType;
+
+namespace {
+
+host::WindGridSetup channel(int nx, int ny, int nz, double h) {
+  host::WindGridSetup setup;
+  setup.spec.nx = nx;
+  setup.spec.ny = ny;
+  setup.spec.nz = nz;
+  setup.spec.h = h;
+  setup.spec.boundary = {B::inflow, B::outflow, B::periodic, B::periodic, B::periodic, B::periodic};
+  setup.settings.dt = 0.1;
+  setup.settings.pressure.tolerance = 1e-4;
+  setup.ambient = {5.0, 0.0, 0.0};
+  return setup;
+}
+
+double seconds_since(std::chrono::steady_clock::time_point t) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
+}
+
+}  // namespace
+
+TEST_CASE("WindGrid: bad dimensions, cell size and boundary types throw before anything is allocated") {
+  auto* cc = test::device_or_skip();
+  if (!cc) return;
+  auto expect_error = [&](host::WindGridSetup setup, const std::string& fragment) {
+    try {
+      host::WindGrid wind(*cc, setup);
+      FAIL("no exception for a setup that should fail with '" << fragment << "'");
+    } catch (const std::invalid_argument& e) {
+      INFO(e.what());
+      CHECK(std::string(e.what()).find(fragment) != std::string::npos);
+    }
+  };
+  auto setup = channel(16, 8, 8, 1.0);
+  setup.spec.nx = 0;
+  expect_error(setup, "dimensions must be positive");
+  setup = channel(16, 8, 8, 1.0);
+  setup.spec.nz = -4;
+  expect_error(setup, "dimensions must be positive");
+  setup = channel(16, 8, 8, 0.0);
+  expect_error(setup, "cell size must be > 0");
+  setup = channel(16, 8, 8, -2.0);
+  expect_error(setup, "cell size must be > 0");
+  setup = channel(16, 8, 8, 1.0);
+  setup.spec.boundary[FW_FACE_TOP] = static_cast<B>(7);
+  expect_error(setup, "unknown boundary type");
+  CHECK_THROWS_WITH(fluid::parse_boundary_type("wall"), Catch::Contains("unknown boundary type 'wall'"));
+}
+
+TEST_CASE("WindGrid: a grid larger than the device memory is refused from an estimate, without allocating") {
+  auto* cc = test::device_or_skip();
+  if (!cc) return;
+  // 1200^3 cells (1.7e9) fit the 32-bit indices but need ~100 GB: far beyond any device here.
+  auto setup = channel(1200, 1200, 1200, 1.0);
+  const auto bytes = host::WindGrid::estimate_device_bytes(setup.spec, setup.settings, cc->row_chunk());
+  REQUIRE(bytes > cc->device().global_memory_bytes);
+  const auto start = std::chrono::steady_clock::now();
+  CHECK_THROWS_WITH(host::WindGrid(*cc, setup), Catch::Contains("device memory"));
+  // Allocating and filling even one of its buffers would take seconds: the refusal must be immediate.
+  CHECK(seconds_since(start) < 1.0);
+}
+
+TEST_CASE("WindGrid: uniform inflow through an empty periodic-sided channel stays uniform over 100 steps") {
+  auto* cc = test::device_or_skip();
+  if (!cc) return;
+  host::WindGrid wind(*cc, channel(24, 8, 8, 2.0));
+  wind.initialise_ambient();
+  for (int n = 0; n < 100; ++n) wind.step();
+  const auto vel = wind.download_velocity();
+  double worst = 0.0;  // relative to the 5 m/s inflow
+  for (float u : vel.u) worst = std::max(worst, std::abs(u - 5.0) / 5.0);
+  for (float v : vel.v) worst = std::max(worst, std::abs(v) / 5.0);
+  for (float w : vel.w) worst = std::max(worst, std::abs(w) / 5.0);
+  CHECK(worst < 1e-5);
+  CHECK(wind.time() == Approx(10.0));
+}
+
+TEST_CASE("WindGrid: no flow passes through solid faces, and the flow goes around a box") {
+  auto* cc = test::device_or_skip();
+  if (!cc) return;
+  host::WindGridSetup setup;
+  auto& spec = setup.spec;
+  spec.nx = 48;
+  spec.ny = 24;
+  spec.nz = 16;
+  spec.h = 1.0;
+  spec.boundary = {B::inflow, B::outflow, B::slip, B::slip, B::slip, B::slip};
+  setup.settings.dt = 0.1;
+  setup.settings.pressure.tolerance = 1e-5;
+  setup.ambient = {4.0, 0.0, 0.0};
+  fluid::SolidMap solids(spec);
+  solids.add(fluid::SolidBox{"block", {18.0, 12.0, 8.0}, {4.0, 8.0, 8.0}, 0.0});  // x 16-20, y 8-16, z 4-12
+  setup.solid = solids.cells();
+  host::WindGrid wind(*cc, setup);
+  wind.initialise_ambient();
+  for (int n = 0; n < 60; ++n) wind.step();
+  const auto vel = wind.download_velocity();
+
+  // Every face of a solid cell carries exactly zero velocity.
+  std::size_t solid_faces = 0;
+  double leak = 0.0;
+  for (int k = 0; k < spec.nz; ++k)
+    for (int j = 0; j < spec.ny; ++j)
+      for (int i = 0; i < spec.nx; ++i) {
+        if (!solids.solid(i, j, k)) continue;
+        for (int c = 0; c < 3; ++c)
+          for (int side = 0; side < 2; ++side) {
+            int idx[3] = {i, j, k};
+            idx[c] += side;
+            leak = std::max(
+                leak, std::abs(double(vel.component(c)[ref::face_index(spec, c, idx[0], idx[1], idx[2])])));
+            ++solid_faces;
+          }
+      }
+  CHECK(solid_faces == 4 * 8 * 8 * 6);
+  CHECK(leak == 0.0);
+
+  // Mass is conserved through every cross-section: the flux through x = 18 (inside the block's span)
+  // equals the inflow flux, so the air that the block stops goes around it.
+  auto flux_at = [&](int i) {
+    double sum = 0.0;
+    for (int k = 0; k < spec.nz; ++k)
+      for (int j = 0; j < spec.ny; ++j) sum += vel.u[ref::face_index(spec, 0, i, j, k)];
+    return sum * spec.h * spec.h;
+  };
+  const double inflow = flux_at(0);
+  CHECK(inflow == Approx(4.0 * 24 * 16).epsilon(1e-6));
+  CHECK(flux_at(18) == Approx(inflow).epsilon(1e-4));  // solver tolerance 1e-5 plus float sums
+  // Around: faster than the inflow beside and above the block, slower in its wake.
+  CHECK(vel.u[ref::face_index(spec, 0, 18, 4, 8)] > 4.4);    // beside (y 4.5)
+  CHECK(vel.u[ref::face_index(spec, 0, 18, 12, 14)] > 4.4);  // above (z 14.5)
+  CHECK(vel.u[ref::face_index(spec, 0, 22, 12, 8)] < 2.0);   // 2 m behind the lee face
+  // And it is divergence-free.
+  const auto levels = fluid::build_fine_pressure_level(spec, setup.solid);
+  CHECK(ref::max_divergence(spec, levels, vel) * spec.h / 4.0 < 1e-4);
+}
+
+TEST_CASE("WindGrid: the CFL time step is cfl * h / max|u|, capped at max_dt") {
+  auto* cc = test::device_or_skip();
+  if (!cc) return;
+  auto setup = channel(16, 8, 8, 2.0);
+  setup.settings.cfl = 0.5;
+  setup.settings.max_dt = 10.0;
+  host::WindGrid wind(*cc, setup);
+  wind.initialise_ambient();
+  CHECK(wind.step().dt == Approx(0.5 * 2.0 / 5.0).epsilon(1e-6));
+  setup.settings.max_dt = 0.1;
+  host::WindGrid capped(*cc, setup);
+  capped.initialise_ambient();
+  CHECK(capped.step().dt == Approx(0.1));
+}
+
+TEST_CASE("WindGrid: a NaN in the field stops the CFL step with a message naming the step") {
+  auto* cc = test::device_or_skip();
+  if (!cc) return;
+  auto setup = channel(16, 8, 8, 2.0);
+  setup.settings.cfl = 0.5;
+  host::WindGrid wind(*cc, setup);
+  wind.initialise_ambient();
+  wind.step();
+  auto vel = wind.download_velocity();
+  vel.v[10] = std::numeric_limits<float>::quiet_NaN();
+  wind.upload_velocity(vel);
+  CHECK_THROWS_WITH(wind.step(), Catch::Contains("step 2"));
+}
+
+TEST_CASE("WindGrid: the same setup run twice gives bit-identical fields") {
+  auto* cc = test::device_or_skip();
+  if (!cc) return;
+  auto setup = channel(24, 16, 8, 1.0);
+  setup.spec.boundary = {B::inflow, B::outflow, B::slip, B::slip, B::no_slip, B::slip};
+  setup.settings.advection = fluid::AdvectionScheme::maccormack;
+  setup.settings.vorticity_confinement = 0.2;
+  setup.gusts.push_back(
+      FwGust{0.2f, 2.0f, 3.0f, 4.0f, {6.0f, 8.0f, 4.0f}, {5.0f, 0.0f, 0.0f}, {0.0f, 1.0f, 0.0f}});
+  fluid::SolidMap solids(setup.spec);
+  solids.add(fluid::SolidCylinder{"post", {10.0, 8.0, 0.0}, 2.5, 6.0});
+  setup.solid = solids.cells();
+  auto run = [&] {
+    host::WindGrid wind(*cc, setup);
+    wind.initialise_ambient();
+    for (int n = 0; n < 20; ++n) wind.step();
+    return wind.download_velocity();
+  };
+  const auto a = run(), b = run();
+  for (int c = 0; c < 3; ++c) CHECK(a.component(c) == b.component(c));
+  // The gust and the post made the field non-trivial.
+  double vmax = 0.0;
+  for (float v : a.v) vmax = std::max(vmax, double(std::abs(v)));
+  CHECK(vmax > 0.5);
+}
