@@ -151,17 +151,30 @@ FW_INLINE float3 backtrace_face(int c, int i, int j, int k, float dt, __global c
   return P - scale * V;
 }
 
+/* Index along its own axis of face (i,j,k) of component c. */
+FW_INLINE int own_index(int c, int i, int j, int k) {
+  return c == 0 ? i : (c == 1 ? j : k);
+}
+
+/* Stride of the cell array along axis c. */
+FW_INLINE int cell_stride(const FwGrid* g, int c) {
+  return c == 0 ? 1 : (c == 1 ? g->nx : g->nx * g->ny);
+}
+
+/* Index of the cell at face (i,j,k) of component c, clamped into the grid along c: the cell above the face,
+ * or for the domain's high boundary face the cell below it. */
+FW_INLINE int face_cell(const FwGrid* g, int c, int i, int j, int k) {
+  return cell_index(g, min(i, g->nx - 1), min(j, g->ny - 1), min(k, g->nz - 1));
+}
+
 /* Is face (i,j,k) of component c open in the pressure mask? The cell on the low side owns the face through
  * its high bit; the domain's low boundary face belongs to cell 0 through its low bit. */
 FW_INLINE int face_open(const FwGrid* g, __global const uchar* mask, int c, int i, int j, int k) {
-  int idx[3] = {i, j, k};
+  const int own = own_index(c, i, j, k);
   const int n = axis_cells(g, c);
-  int bit = 2 * c + 1;
-  if (idx[c] == 0)
-    bit = 2 * c;
-  else
-    idx[c] = min(idx[c] - 1, n - 1);
-  return (mask[cell_index(g, idx[0], idx[1], idx[2])] >> bit) & 1;
+  if (own == 0) return (mask[face_cell(g, c, i, j, k)] >> (2 * c)) & 1;
+  const int owner = own == n ? face_cell(g, c, i, j, k) : face_cell(g, c, i, j, k) - cell_stride(g, c);
+  return (mask[owner] >> (2 * c + 1)) & 1;
 }
 
 /* Flat loops over n values: contiguous blocks per work-item on CPUs, a grid-stride loop on GPUs. */
@@ -211,15 +224,32 @@ FW_INLINE float sample_padded(__global const float* qp, int c, float X, float Y,
   return y0 + fz * (y1 - y0);
 }
 
+/* Stride of component a's padded copy along axis `axis`. */
+FW_INLINE int padded_stride(const FwGrid* g, int a, int axis) {
+  return axis == 0 ? 1
+                   : (axis == 1 ? padded_extent(g, a, 0) : padded_extent(g, a, 0) * padded_extent(g, a, 1));
+}
+
+/* Component a (a != c) at face (i,j,k) of component c: the mean of its four nearest faces, which is what
+ * trilinear interpolation gives at that point (fractions of one half on axes a and c, zero on the third). */
+FW_INLINE float cross_component_at_face(const FwGrid* g, __global const float* ap, int a, int c, int i, int j,
+                                        int k) {
+  const int base = padded_index(g, a, i, j, k);
+  const int step_c = padded_stride(g, a, c), step_a = padded_stride(g, a, a);
+  return 0.25f * ((ap[base - step_c] + ap[base]) + (ap[base - step_c + step_a] + ap[base + step_a]));
+}
+
 /* Back-traced position of face (i,j,k) of component c through the padded velocity (up, vp, wp) over dt
- * (explicit midpoint; negative dt traces forward). */
+ * (explicit midpoint; negative dt traces forward). The first stage reads the velocity at the face itself,
+ * which needs no interpolation weights. */
 FW_INLINE float3 backtrace_padded(int c, int i, int j, int k, float dt, __global const float* up,
                                   __global const float* vp, __global const float* wp, const FwGrid* g) {
   const float3 P = (float3)(i + face_offset(c, 0), j + face_offset(c, 1), k + face_offset(c, 2));
   const float scale = dt / g->h; /* m/s -> cells */
-  const float3 V = (float3)(sample_padded(up, 0, P.x, P.y, P.z, g), sample_padded(vp, 1, P.x, P.y, P.z, g),
-                            sample_padded(wp, 2, P.x, P.y, P.z, g));
-  const float3 M = P - 0.5f * scale * V;
+  const float Vu = c == 0 ? up[padded_index(g, 0, i, j, k)] : cross_component_at_face(g, up, 0, c, i, j, k);
+  const float Vv = c == 1 ? vp[padded_index(g, 1, i, j, k)] : cross_component_at_face(g, vp, 1, c, i, j, k);
+  const float Vw = c == 2 ? wp[padded_index(g, 2, i, j, k)] : cross_component_at_face(g, wp, 2, c, i, j, k);
+  const float3 M = P - 0.5f * scale * (float3)(Vu, Vv, Vw);
   const float3 W = (float3)(sample_padded(up, 0, M.x, M.y, M.z, g), sample_padded(vp, 1, M.x, M.y, M.z, g),
                             sample_padded(wp, 2, M.x, M.y, M.z, g));
   return P - scale * W;

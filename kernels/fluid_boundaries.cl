@@ -11,23 +11,22 @@ __kernel void enforce_boundaries(const FwGrid g, const FwStep s, __global const 
   const int ex = face_extent(&g, c, 0);
   const int n = axis_cells(&g, c);
   const int periodic = g.bc[2 * c] == FW_BC_PERIODIC;
+  const float inflow_value = s.ambient[c] * profile[min(k, g.nz - 1)];
   for (int i = FW_ROW_BEGIN; i < FW_ROW_END(ex); ++i) {
-    int idx[3] = {i, j, k};
+    const int own = own_index(c, i, j, k);
     const int id = face_index(&g, c, i, j, k);
-    if (periodic && idx[c] == n) {
-      idx[c] = 0;
-      const int low_open = face_open(&g, mask, c, idx[0], idx[1], idx[2]);
-      q[id] = low_open ? q[face_index(&g, c, idx[0], idx[1], idx[2])] : 0.0f;
+    if (periodic && own == n) {
+      /* The low twin: same (i,j,k) with the own index 0. */
+      const int li = c == 0 ? 0 : i, lj = c == 1 ? 0 : j, lk = c == 2 ? 0 : k;
+      q[id] = face_open(&g, mask, c, li, lj, lk) ? q[face_index(&g, c, li, lj, lk)] : 0.0f;
       continue;
     }
     if (face_open(&g, mask, c, i, j, k)) continue;
     float value = 0.0f;
-    if ((idx[c] == 0 || idx[c] == n) && !periodic) {
-      const int face = 2 * c + (idx[c] == 0 ? 0 : 1);
-      int cell[3] = {i, j, k};
-      cell[c] = idx[c] == 0 ? 0 : n - 1;
-      const int fluid = mask[cell_index(&g, cell[0], cell[1], cell[2])] & FW_MASK_FLUID;
-      if (g.bc[face] == FW_BC_INFLOW && fluid) value = s.ambient[c] * profile[clamp(k, 0, g.nz - 1)];
+    if ((own == 0 || own == n) && !periodic) {
+      const int face = 2 * c + (own == 0 ? 0 : 1);
+      const int fluid = mask[face_cell(&g, c, i, j, k)] & FW_MASK_FLUID;
+      if (g.bc[face] == FW_BC_INFLOW && fluid) value = inflow_value;
     }
     q[id] = value;
   }

@@ -38,16 +38,23 @@ __kernel void subtract_gradient(const FwGrid g, const int c, __global const ucha
   const int j = get_global_id(1), k = get_global_id(2);
   const int ex = face_extent(&g, c, 0);
   const int n = axis_cells(&g, c);
+  const int sc = cell_stride(&g, c);
   const int periodic = g.bc[2 * c] == FW_BC_PERIODIC;
   for (int i = FW_ROW_BEGIN; i < FW_ROW_END(ex); ++i) {
     if (!face_open(&g, mask, c, i, j, k)) continue;
-    int lo[3] = {i, j, k}, hi[3] = {i, j, k};
-    lo[c] -= 1;
-    float phi_lo = 0.0f, phi_hi = 0.0f;
-    if (lo[c] < 0 && periodic) lo[c] = n - 1;
-    if (lo[c] >= 0) phi_lo = phi[cell_index(&g, lo[0], lo[1], lo[2])];
-    if (hi[c] >= n && periodic) hi[c] = 0;
-    if (hi[c] < n) phi_hi = phi[cell_index(&g, hi[0], hi[1], hi[2])];
+    const int own = own_index(c, i, j, k);
+    const int cell = face_cell(&g, c, i, j, k);
+    float phi_lo, phi_hi;
+    if (own == 0) {
+      phi_hi = phi[cell];
+      phi_lo = periodic ? phi[cell + (n - 1) * sc] : 0.0f;
+    } else if (own == n) {
+      phi_lo = phi[cell];
+      phi_hi = periodic ? phi[cell - (n - 1) * sc] : 0.0f;
+    } else {
+      phi_hi = phi[cell];
+      phi_lo = phi[cell - sc];
+    }
     q[face_index(&g, c, i, j, k)] -= (phi_hi - phi_lo) / g.h;
   }
 }

@@ -57,6 +57,24 @@ fluid::MacVelocity random_velocity(const fluid::GridSpec& spec, double amplitude
   return vel;
 }
 
+void match_periodic_faces(const fluid::GridSpec& spec, fluid::MacVelocity& vel) {
+  for (int c = 0; c < 3; ++c) {
+    if (!spec.periodic(c)) continue;
+    const int ex = fluid::reference::extent(spec, c, 0), ey = fluid::reference::extent(spec, c, 1),
+              ez = fluid::reference::extent(spec, c, 2);
+    const int n = c == 0 ? spec.nx : (c == 1 ? spec.ny : spec.nz);
+    for (int k = 0; k < ez; ++k)
+      for (int j = 0; j < ey; ++j)
+        for (int i = 0; i < ex; ++i) {
+          int idx[3] = {i, j, k};
+          if (idx[c] != n) continue;
+          idx[c] = 0;
+          vel.component(c)[fluid::reference::face_index(spec, c, i, j, k)] =
+              vel.component(c)[fluid::reference::face_index(spec, c, idx[0], idx[1], idx[2])];
+        }
+  }
+}
+
 void upload(host::ComputeContext& cc, const std::vector<float>& host, cl::Buffer& device) {
   cc.queue().enqueueWriteBuffer(device, CL_TRUE, 0, host.size() * sizeof(float), host.data());
 }

@@ -25,6 +25,9 @@ fluid::InflowState test_inflow(const fluid::GridSpec& spec);
 
 /// Uniform random face velocities in [-amplitude, amplitude] m/s.
 fluid::MacVelocity random_velocity(const fluid::GridSpec& spec, double amplitude, std::uint32_t seed);
+/// Copies the low face of every periodic axis onto its high twin (the solver keeps them equal; advection's
+/// first RK2 stage reads the high face directly while interpolation wraps to the low one).
+void match_periodic_faces(const fluid::GridSpec& spec, fluid::MacVelocity& vel);
 std::vector<float> random_cells(std::size_t n, double amplitude, std::uint32_t seed);
 
 void upload(host::ComputeContext& cc, const std::vector<float>& host, cl::Buffer& device);
