@@ -8,6 +8,7 @@ namespace fw::fluid {
 
 enum class AdvectionScheme { semi_lagrangian, maccormack };
 enum class PressureSolverType { jacobi, multigrid, cg };
+enum class MultigridSmoother { jacobi, red_black };
 
 AdvectionScheme parse_advection_scheme(const std::string& name);    // "semi_lagrangian" | "maccormack"
 PressureSolverType parse_pressure_solver(const std::string& name);  // "jacobi" | "multigrid" | "cg"
@@ -19,7 +20,8 @@ struct PressureSettings {
   double tolerance = 1e-4;     // relative residual ||b - A p|| / ||b|| (multigrid, cg)
   int max_iterations = 100;    // V-cycles (multigrid) or CG iterations (cg)
   int jacobi_iterations = 40;  // fixed count (jacobi)
-  int smoothing_sweeps = 2;    // red-black Gauss-Seidel sweeps before and after each coarse correction
+  MultigridSmoother smoother = MultigridSmoother::red_black;
+  int smoothing_sweeps = 2;  // sweeps before and after each coarse correction (pairs, for Jacobi)
 };
 
 struct WindSettings {

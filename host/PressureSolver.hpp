@@ -9,7 +9,8 @@
 //   jacobi     fixed iteration count (the seed's method, kept as a baseline);
 //   multigrid  geometric multigrid V-cycles until the relative residual is below the tolerance;
 //   cg         conjugate gradients preconditioned by one V-cycle, same stopping rule (the default).
-// The V-cycle smooths with red-black Gauss-Seidel (symmetric order, so it is a valid CG preconditioner),
+// The V-cycle smooths with damped Jacobi or red-black Gauss-Seidel (both symmetric, so it is a valid CG
+// preconditioner),
 // restricts the residual by averaging, and prolongs piecewise-constant. When no face is an outflow the
 // operator is singular, and the mean of b over fluid cells is removed before solving.
 #pragma once
@@ -68,10 +69,11 @@ class PressureSolver {
  private:
   struct DeviceLevel {
     FwLevel dims{};
-    cl::Buffer mask, b, phi;
+    cl::Buffer mask, b, phi, scratch;
   };
 
   void vcycle_level(int l, cl::Buffer& b, cl::Buffer& phi);
+  void smooth(int l, cl::Buffer& b, cl::Buffer& phi, int sweeps, bool after_correction);
   double sum_partials(std::size_t count);
   std::size_t items(int level) const;
   void remove_mean(cl::Buffer& b);

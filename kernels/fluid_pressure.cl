@@ -27,23 +27,65 @@ FW_INLINE float open_neighbour_sum(const FwLevel* L, __global const float* phi, 
   return sum;
 }
 
+/* Sum over open faces for a cell whose six neighbours all lie inside the level: the loads are
+ * unconditional and the mask only selects, so the compiler can vectorise. Same order as above. */
+FW_INLINE float interior_neighbour_sum(const FwLevel* L, __global const float* phi, int id, uchar m) {
+  const int sy = L->nx, sz = L->nx * L->ny;
+  const float xm = phi[id - 1], xp = phi[id + 1], ym = phi[id - sy], yp = phi[id + sy], zm = phi[id - sz],
+              zp = phi[id + sz];
+  return ((m & 1) ? xm : 0.0f) + ((m & 2) ? xp : 0.0f) + ((m & 4) ? ym : 0.0f) + ((m & 8) ? yp : 0.0f) +
+         ((m & 16) ? zm : 0.0f) + ((m & 32) ? zp : 0.0f);
+}
+
+/* Either sum, by where the cell is. */
+FW_INLINE float neighbour_sum(const FwLevel* L, __global const float* phi, int i, int j, int k, int id,
+                              uchar m) {
+  if (i > 0 && i < L->nx - 1 && j > 0 && j < L->ny - 1 && k > 0 && k < L->nz - 1)
+    return interior_neighbour_sum(L, phi, id, m);
+  return open_neighbour_sum(L, phi, i, j, k, id, m);
+}
+
+/* Splits this work-item's run of row (j, k) into [begin, lo) and [hi, end), whose cells may touch the
+ * level's edge, and [lo, hi), whose cells have all six neighbours inside (empty for an edge row). */
+FW_INLINE void interior_span(const FwLevel* L, int j, int k, int begin, int end, int* lo, int* hi) {
+  const int interior_row = j > 0 && j < L->ny - 1 && k > 0 && k < L->nz - 1;
+  *lo = interior_row ? clamp(1, begin, end) : end;
+  *hi = interior_row ? clamp(L->nx - 1, *lo, end) : end;
+}
+
 FW_INLINE float diagonal(uchar m) {
   return (float)popcount((uint)(m & FW_MASK_OPEN_ALL));
 }
 
 /* phi_out = (1 - omega) phi + omega (b + sum phi_nb) / diag. */
+/* Jacobi update of one cell with the general (edge-aware) neighbour sum. */
+FW_INLINE float jacobi_cell(const FwLevel* L, __global const uchar* mask, __global const float* b,
+                            __global const float* phi, float omega, int i, int j, int k) {
+  const int id = level_index(L, i, j, k);
+  const uchar m = mask[id];
+  const float d = diagonal(m);
+  if (!(m & FW_MASK_FLUID) || d == 0.0f) return 0.0f;
+  return (1.0f - omega) * phi[id] + omega * (b[id] + open_neighbour_sum(L, phi, i, j, k, id, m)) / d;
+}
+
 __kernel void jacobi_sweep(const FwLevel L, __global const uchar* mask, __global const float* b,
                            __global const float* phi, __global float* phi_out, const float omega) {
   const int j = get_global_id(1), k = get_global_id(2);
-  for (int i = FW_ROW_BEGIN; i < FW_ROW_END(L.nx); ++i) {
+  const int begin = FW_ROW_BEGIN, end = FW_ROW_END(L.nx);
+  int lo, hi;
+  interior_span(&L, j, k, begin, end, &lo, &hi);
+  for (int i = begin; i < lo; ++i)
+    phi_out[level_index(&L, i, j, k)] = jacobi_cell(&L, mask, b, phi, omega, i, j, k);
+  /* Interior run: branch-free (selects only), so it vectorises. */
+  for (int i = lo; i < hi; ++i) {
     const int id = level_index(&L, i, j, k);
     const uchar m = mask[id];
     const float d = diagonal(m);
-    float out = 0.0f;
-    if ((m & FW_MASK_FLUID) && d > 0.0f)
-      out = (1.0f - omega) * phi[id] + omega * (b[id] + open_neighbour_sum(&L, phi, i, j, k, id, m)) / d;
-    phi_out[id] = out;
+    const float out = (1.0f - omega) * phi[id] + omega * (b[id] + interior_neighbour_sum(&L, phi, id, m)) / d;
+    phi_out[id] = ((m & FW_MASK_FLUID) && d > 0.0f) ? out : 0.0f;
   }
+  for (int i = hi; i < end; ++i)
+    phi_out[level_index(&L, i, j, k)] = jacobi_cell(&L, mask, b, phi, omega, i, j, k);
 }
 
 /* Gauss-Seidel on the cells with (i + j + k) % 2 == colour, in place. */
@@ -55,7 +97,7 @@ __kernel void red_black_sweep(const FwLevel L, __global const uchar* mask, __glo
     const int id = level_index(&L, i, j, k);
     const uchar m = mask[id];
     const float d = diagonal(m);
-    if ((m & FW_MASK_FLUID) && d > 0.0f) phi[id] = (b[id] + open_neighbour_sum(&L, phi, i, j, k, id, m)) / d;
+    if ((m & FW_MASK_FLUID) && d > 0.0f) phi[id] = (b[id] + neighbour_sum(&L, phi, i, j, k, id, m)) / d;
   }
 }
 
@@ -68,8 +110,7 @@ __kernel void residual(const FwLevel L, __global const uchar* mask, __global con
     const int id = level_index(&L, i, j, k);
     const uchar m = mask[id];
     float res = 0.0f;
-    if (m & FW_MASK_FLUID)
-      res = b[id] - (diagonal(m) * phi[id] - open_neighbour_sum(&L, phi, i, j, k, id, m));
+    if (m & FW_MASK_FLUID) res = b[id] - (diagonal(m) * phi[id] - neighbour_sum(&L, phi, i, j, k, id, m));
     r[id] = res;
     sum += res * res;
   }
@@ -85,7 +126,7 @@ __kernel void apply_operator_dot(const FwLevel L, __global const uchar* mask, __
     const int id = level_index(&L, i, j, k);
     const uchar m = mask[id];
     float out = 0.0f;
-    if (m & FW_MASK_FLUID) out = diagonal(m) * d[id] - open_neighbour_sum(&L, d, i, j, k, id, m);
+    if (m & FW_MASK_FLUID) out = diagonal(m) * d[id] - neighbour_sum(&L, d, i, j, k, id, m);
     q[id] = out;
     sum += d[id] * out;
   }
@@ -112,7 +153,7 @@ __kernel void restrict_residual(const FwLevel F, const FwLevel C, __global const
           const int id = level_index(&F, i, j, k);
           const uchar m = fine_mask[id];
           if (m & FW_MASK_FLUID)
-            sum += b[id] - (diagonal(m) * phi[id] - open_neighbour_sum(&F, phi, i, j, k, id, m));
+            sum += b[id] - (diagonal(m) * phi[id] - neighbour_sum(&F, phi, i, j, k, id, m));
         }
     const int cid = level_index(&C, I, J, K);
     coarse_b[cid] = (coarse_mask[cid] & FW_MASK_FLUID) ? scale * sum / (float)children : 0.0f;
