@@ -6,8 +6,8 @@
 namespace fw::host {
 namespace {
 constexpr int kPad = 2;  // FW_PAD in kernels/common.cl
-// Advection is compute-bound: one face per work-item lets PoCL vectorise it across work-items.
-constexpr int kAdvectChunk = 1;
+// Advection is compute-bound: each work-item advects FW_LANES = 8 faces in float8 (kernels/fluid_advect.cl).
+constexpr int kAdvectLanes = 8;
 }  // namespace
 
 FluidStages::FluidStages(ComputeContext& cc, const fluid::GridSpec& spec)
@@ -24,7 +24,7 @@ FluidStages::FluidStages(ComputeContext& cc, const fluid::GridSpec& spec)
   cc_.queue().enqueueWriteBuffer(profile_, CL_TRUE, 0, flat.size() * sizeof(float), flat.data());
 
   pad_ = Kernel(cc_.build("fluid_ghosts.cl"), "pad_component");
-  cl::Program advect = cc_.build("fluid_advect.cl", "", kAdvectChunk);
+  cl::Program advect = cc_.build("fluid_advect.cl");
   for (int c = 0; c < 3; ++c) {
     const char* axis[] = {"u", "v", "w"};
     advect_[c] = Kernel(advect, std::string("advect_") + axis[c]);
@@ -64,7 +64,9 @@ std::size_t FluidStages::padded_count(int c) const {
 }
 
 cl::NDRange FluidStages::advect_rows(int c) const {
-  return cc_.rows(spec_.nx + (c == 0), spec_.ny + (c == 1), spec_.nz + (c == 2), kAdvectChunk);
+  const int ex = spec_.nx + (c == 0);
+  return cl::NDRange(std::size_t((ex + kAdvectLanes - 1) / kAdvectLanes), std::size_t(spec_.ny + (c == 1)),
+                     std::size_t(spec_.nz + (c == 2)));
 }
 
 DeviceVelocity FluidStages::allocate_padded_velocity() {
@@ -87,16 +89,14 @@ void FluidStages::enqueue_pad(DeviceVelocity& vel, DeviceVelocity& padded) {
 }
 
 void FluidStages::enqueue_advect(int c, float dt, DeviceVelocity& pv, cl::Buffer& pq, cl::Buffer& out) {
-  advect_[c]
-      .set_args(grid_, dt, pv.u, pv.v, pv.w, pq, out)
-      .enqueue(cc_, advect_rows(c), cc_.row_group(kAdvectChunk));
+  advect_[c].set_args(grid_, dt, pv.u, pv.v, pv.w, pq, out).enqueue(cc_, advect_rows(c));
 }
 
 void FluidStages::enqueue_maccormack_correct(int c, DeviceVelocity& pv, cl::Buffer& pq, cl::Buffer& forward,
                                              cl::Buffer& back, cl::Buffer& out) {
   maccormack_[c]
       .set_args(grid_, step_.dt, pv.u, pv.v, pv.w, pq, forward, back, out)
-      .enqueue(cc_, advect_rows(c), cc_.row_group(kAdvectChunk));
+      .enqueue(cc_, advect_rows(c));
 }
 
 void FluidStages::enqueue_apply_forces(int c, float body_acceleration, cl::Buffer& gusts, int gust_count,

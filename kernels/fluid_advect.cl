@@ -1,77 +1,193 @@
 /* Advection of the face velocities: semi-Lagrangian RK2 with trilinear interpolation, and the correction
- * pass of clamped MacCormack. Every input is a padded copy (kernels/fluid_ghosts.cl), so the inner loop has
- * no boundary logic. Reference: fluid/ReferenceStages.cpp advect_semi_lagrangian, advect_maccormack. */
+ * pass of clamped MacCormack. Reference: fluid/ReferenceStages.cpp advect_semi_lagrangian, advect_maccormack.
+ *
+ * Every input is a padded copy (kernels/fluid_ghosts.cl), so interpolation has no boundary logic. Each
+ * work-item advects FW_LANES consecutive faces of one x-row at once in float8 arithmetic: the coordinate and
+ * weight computations run as SIMD on CPUs, and only the loads of the interpolation corners stay scalar
+ * (gathers). Global range: (ceil(extent_x / FW_LANES), extent_y, extent_z) of the component's faces.
+ */
 #include "common.cl"
 
-/* One face of component c: qp sampled at the face's back-traced position. */
-FW_INLINE float advect_face(const FwGrid* g, const int c, const float dt, int i, int j, int k,
-                            __global const float* up, __global const float* vp, __global const float* wp,
-                            __global const float* qp) {
-  const float3 B = backtrace_padded(c, i, j, k, dt, up, vp, wp, g);
-  return sample_padded(qp, c, B.x, B.y, B.z, g);
+#define FW_LANES 8
+typedef float8 lanef;
+typedef int8 lanei;
+
+FW_INLINE lanef gather(__global const float* q, lanei at) {
+  return (lanef)(q[at.s0], q[at.s1], q[at.s2], q[at.s3], q[at.s4], q[at.s5], q[at.s6], q[at.s7]);
 }
 
-/* MacCormack's value at one face: forward + (q - back) / 2, unless that leaves the range of the eight
- * values of q the forward step interpolated between, where it is the forward value (no new extrema). */
-FW_INLINE float maccormack_face(const FwGrid* g, const int c, const float dt, int i, int j, int k,
-                                __global const float* up, __global const float* vp, __global const float* wp,
-                                __global const float* qp, float fwd, float back) {
-  const float3 B = backtrace_padded(c, i, j, k, dt, up, vp, wp, g);
-  int i0, j0, k0;
-  float fx, fy, fz;
-  face_coordinate(g, c, 0, B.x, &i0, &fx);
-  face_coordinate(g, c, 1, B.y, &j0, &fy);
-  face_coordinate(g, c, 2, B.z, &k0, &fz);
+/* Lower interpolation index and fraction along axis a of component c, for positions p (cell units). Same
+ * rules as face_coordinate in common.cl. */
+FW_INLINE void lane_coordinate(const FwGrid* g, int c, int a, lanef p, lanei* i0, lanef* fraction) {
+  const float n = (float)axis_cells(g, a);
+  lanef q;
+  if (g->bc[2 * a] == FW_BC_PERIODIC) {
+    p = select(p, p + n, p < 0.0f);
+    p = select(p, p - n, p >= n);
+    q = clamp(p, 0.0f, n) - face_offset(c, a);
+  } else {
+    q = clamp(p - face_offset(c, a), -1.0f, (float)face_extent(g, c, a));
+  }
+  /* q >= -1, so truncating q + 4 gives floor(q) + 4. */
+  const lanei fl = convert_int8(q + 4.0f) - 4;
+  *i0 = fl;
+  *fraction = q - convert_float8(fl);
+}
+
+/* Trilinear interpolation of component c's padded copy qp at positions (X, Y, Z). */
+FW_INLINE lanef sample_lanes(__global const float* qp, int c, lanef X, lanef Y, lanef Z, const FwGrid* g) {
+  lanei i0, j0, k0;
+  lanef fx, fy, fz;
+  lane_coordinate(g, c, 0, X, &i0, &fx);
+  lane_coordinate(g, c, 1, Y, &j0, &fy);
+  lane_coordinate(g, c, 2, Z, &k0, &fz);
   const int sy = padded_extent(g, c, 0);
   const int sz = sy * padded_extent(g, c, 1);
-  const int base = (i0 + FW_PAD) + sy * (j0 + FW_PAD) + sz * (k0 + FW_PAD);
-  const float lo =
-      fmin(fmin(fmin(qp[base], qp[base + 1]), fmin(qp[base + sy], qp[base + sy + 1])),
-           fmin(fmin(qp[base + sz], qp[base + sz + 1]), fmin(qp[base + sz + sy], qp[base + sz + sy + 1])));
-  const float hi =
-      fmax(fmax(fmax(qp[base], qp[base + 1]), fmax(qp[base + sy], qp[base + sy + 1])),
-           fmax(fmax(qp[base + sz], qp[base + sz + 1]), fmax(qp[base + sz + sy], qp[base + sz + sy + 1])));
-  const float corrected = fwd + 0.5f * (qp[padded_index(g, c, i, j, k)] - back);
-  return (corrected < lo || corrected > hi) ? fwd : corrected;
+  const lanei base = (i0 + FW_PAD) + sy * (j0 + FW_PAD) + sz * (k0 + FW_PAD);
+  const lanef v000 = gather(qp, base), v100 = gather(qp, base + 1);
+  const lanef v010 = gather(qp, base + sy), v110 = gather(qp, base + sy + 1);
+  const lanef v001 = gather(qp, base + sz), v101 = gather(qp, base + sz + 1);
+  const lanef v011 = gather(qp, base + sz + sy), v111 = gather(qp, base + sz + sy + 1);
+  const lanef x00 = v000 + fx * (v100 - v000);
+  const lanef x10 = v010 + fx * (v110 - v010);
+  const lanef x01 = v001 + fx * (v101 - v001);
+  const lanef x11 = v011 + fx * (v111 - v011);
+  const lanef y0 = x00 + fy * (x10 - x00);
+  const lanef y1 = x01 + fy * (x11 - x01);
+  return y0 + fz * (y1 - y0);
 }
 
-/* The kernels below exist once per component so that c is a constant the compiler folds away. With one
- * face per work-item (FW_ROW_CHUNK == 1, the host's choice for this file) the body is straight-line code,
- * which PoCL vectorises across work-items. Global range: rows over the component's faces. */
-#if FW_ROW_CHUNK == 1
-#define FW_FOR_FACE(i, extent)         \
-  const int i = (int)get_global_id(0); \
-  if (i < (extent))
-#else
-#define FW_FOR_FACE(i, extent) for (int i = FW_ROW_BEGIN; i < FW_ROW_END(extent); ++i)
-#endif
+/* Stride of component a's padded copy along axis `axis`. */
+FW_INLINE int padded_stride(const FwGrid* g, int a, int axis) {
+  return axis == 0 ? 1
+                   : (axis == 1 ? padded_extent(g, a, 0) : padded_extent(g, a, 0) * padded_extent(g, a, 1));
+}
 
-/* out = qp sampled at the back-traced position of each face, tracing through the padded velocity
- * (up, vp, wp) over dt seconds (negative dt traces forward). */
-#define FW_ADVECT_KERNEL(name, c)                                                                        \
-  __kernel void name(const FwGrid g, const float dt, __global const float* up, __global const float* vp, \
-                     __global const float* wp, __global const float* qp, __global float* out) {          \
-    const int j = get_global_id(1), k = get_global_id(2);                                                \
-    FW_FOR_FACE(i, face_extent(&g, c, 0)) {                                                              \
-      out[face_index(&g, c, i, j, k)] = advect_face(&g, c, dt, i, j, k, up, vp, wp, qp);                 \
-    }                                                                                                    \
+/* Component a (a != c) at the faces `at` (padded indices of component a at the same (i,j,k)) of component c:
+ * the mean of its four nearest faces, which is trilinear interpolation at that point (fractions of one half
+ * on axes a and c, zero on the third). */
+FW_INLINE lanef cross_component(const FwGrid* g, __global const float* ap, int a, int c, lanei at) {
+  const int step_c = padded_stride(g, a, c), step_a = padded_stride(g, a, a);
+  return 0.25f * ((gather(ap, at - step_c) + gather(ap, at)) +
+                  (gather(ap, at - step_c + step_a) + gather(ap, at + step_a)));
+}
+
+/* The lanes of one work-item: faces i = i0 .. i0 + 7 of row (j, k), clamped to the row (tail lanes repeat the
+ * last face and are not stored). Returns the padded index of component a at those faces. */
+FW_INLINE lanei lane_padded_index(const FwGrid* g, int a, lanei i, int j, int k) {
+  return (i + FW_PAD) + padded_extent(g, a, 0) * ((j + FW_PAD) + padded_extent(g, a, 1) * (k + FW_PAD));
+}
+
+/* Back-traced positions of faces (i, j, k) of component c through the padded velocity over dt (explicit
+ * midpoint; negative dt traces forward). The first stage reads the velocity at the faces themselves. */
+FW_INLINE void backtrace_lanes(const FwGrid* g, int c, lanei i, int j, int k, float dt,
+                               __global const float* up, __global const float* vp, __global const float* wp,
+                               lanef* X, lanef* Y, lanef* Z) {
+  const lanef Px = convert_float8(i) + face_offset(c, 0);
+  const lanef Py = (lanef)((float)j + face_offset(c, 1));
+  const lanef Pz = (lanef)((float)k + face_offset(c, 2));
+  const float scale = dt / g->h; /* m/s -> cells */
+  const lanef Vu = c == 0 ? gather(up, lane_padded_index(g, 0, i, j, k))
+                          : cross_component(g, up, 0, c, lane_padded_index(g, 0, i, j, k));
+  const lanef Vv = c == 1 ? gather(vp, lane_padded_index(g, 1, i, j, k))
+                          : cross_component(g, vp, 1, c, lane_padded_index(g, 1, i, j, k));
+  const lanef Vw = c == 2 ? gather(wp, lane_padded_index(g, 2, i, j, k))
+                          : cross_component(g, wp, 2, c, lane_padded_index(g, 2, i, j, k));
+  const lanef Mx = Px - 0.5f * scale * Vu, My = Py - 0.5f * scale * Vv, Mz = Pz - 0.5f * scale * Vw;
+  *X = Px - scale * sample_lanes(up, 0, Mx, My, Mz, g);
+  *Y = Py - scale * sample_lanes(vp, 1, Mx, My, Mz, g);
+  *Z = Pz - scale * sample_lanes(wp, 2, Mx, My, Mz, g);
+}
+
+/* Writes the lanes that lie inside the row. */
+FW_INLINE void store_lanes(__global float* out, int first, int valid, lanef value) {
+  if (valid == FW_LANES) {
+    vstore8(value, 0, out + first);
+    return;
   }
+  const float lanes[FW_LANES] = {value.s0, value.s1, value.s2, value.s3,
+                                 value.s4, value.s5, value.s6, value.s7};
+  for (int l = 0; l < valid; ++l) out[first + l] = lanes[l];
+}
 
-/* out = MacCormack's corrected value; qp is q's padded copy, out may alias back. */
-#define FW_MACCORMACK_KERNEL(name, c)                                                                    \
-  __kernel void name(const FwGrid g, const float dt, __global const float* up, __global const float* vp, \
-                     __global const float* wp, __global const float* qp, __global const float* forward,  \
-                     __global const float* back, __global float* out) {                                  \
-    const int j = get_global_id(1), k = get_global_id(2);                                                \
-    FW_FOR_FACE(i, face_extent(&g, c, 0)) {                                                              \
-      const int id = face_index(&g, c, i, j, k);                                                         \
-      out[id] = maccormack_face(&g, c, dt, i, j, k, up, vp, wp, qp, forward[id], back[id]);              \
-    }                                                                                                    \
-  }
+/* This work-item's faces: first index, count inside the row, and the clamped lane indices. */
+#define FW_LANE_SETUP(c)                                \
+  const int j = get_global_id(1), k = get_global_id(2); \
+  const int ex = face_extent(&g, c, 0);                 \
+  const int i0 = (int)get_global_id(0) * FW_LANES;      \
+  if (i0 >= ex) return;                                 \
+  const int valid = min(FW_LANES, ex - i0);             \
+  const lanei i = min((lanei)(i0) + (lanei)(0, 1, 2, 3, 4, 5, 6, 7), (lanei)(ex - 1));
 
-FW_ADVECT_KERNEL(advect_u, 0)
-FW_ADVECT_KERNEL(advect_v, 1)
-FW_ADVECT_KERNEL(advect_w, 2)
-FW_MACCORMACK_KERNEL(maccormack_correct_u, 0)
-FW_MACCORMACK_KERNEL(maccormack_correct_v, 1)
-FW_MACCORMACK_KERNEL(maccormack_correct_w, 2)
+/* out = qp sampled at the back-traced position of each face (c is a literal in each kernel below, so the
+ * compiler folds the component logic away). */
+FW_INLINE void advect_lanes(const FwGrid g, const int c, const float dt, __global const float* up,
+                            __global const float* vp, __global const float* wp, __global const float* qp,
+                            __global float* out) {
+  FW_LANE_SETUP(c)
+  lanef X, Y, Z;
+  backtrace_lanes(&g, c, i, j, k, dt, up, vp, wp, &X, &Y, &Z);
+  store_lanes(out, face_index(&g, c, i0, j, k), valid, sample_lanes(qp, c, X, Y, Z, &g));
+}
+
+/* out = forward + (q - back) / 2, unless that leaves the range of the eight values of q the forward step
+ * interpolated between, where out = forward (no new extrema). qp is q's padded copy; out may alias back. */
+FW_INLINE void maccormack_lanes(const FwGrid g, const int c, const float dt, __global const float* up,
+                                __global const float* vp, __global const float* wp, __global const float* qp,
+                                __global const float* forward, __global const float* back,
+                                __global float* out) {
+  FW_LANE_SETUP(c)
+  lanef X, Y, Z;
+  backtrace_lanes(&g, c, i, j, k, dt, up, vp, wp, &X, &Y, &Z);
+  lanei a0, b0, c0;
+  lanef fx, fy, fz;
+  lane_coordinate(&g, c, 0, X, &a0, &fx);
+  lane_coordinate(&g, c, 1, Y, &b0, &fy);
+  lane_coordinate(&g, c, 2, Z, &c0, &fz);
+  const int sy = padded_extent(&g, c, 0);
+  const int sz = sy * padded_extent(&g, c, 1);
+  const lanei base = (a0 + FW_PAD) + sy * (b0 + FW_PAD) + sz * (c0 + FW_PAD);
+  const lanef v000 = gather(qp, base), v100 = gather(qp, base + 1);
+  const lanef v010 = gather(qp, base + sy), v110 = gather(qp, base + sy + 1);
+  const lanef v001 = gather(qp, base + sz), v101 = gather(qp, base + sz + 1);
+  const lanef v011 = gather(qp, base + sz + sy), v111 = gather(qp, base + sz + sy + 1);
+  const lanef lo = fmin(fmin(fmin(v000, v100), fmin(v010, v110)), fmin(fmin(v001, v101), fmin(v011, v111)));
+  const lanef hi = fmax(fmax(fmax(v000, v100), fmax(v010, v110)), fmax(fmax(v001, v101), fmax(v011, v111)));
+  const int first = face_index(&g, c, i0, j, k);
+  const lanef fwd = gather(forward, (lanei)(first) + (i - (lanei)(i0)));
+  const lanef bwd = gather(back, (lanei)(first) + (i - (lanei)(i0)));
+  const lanef q = gather(qp, lane_padded_index(&g, c, i, j, k));
+  const lanef corrected = fwd + 0.5f * (q - bwd);
+  store_lanes(out, first, valid, select(corrected, fwd, (corrected < lo) | (corrected > hi)));
+}
+
+__kernel void advect_u(const FwGrid g, const float dt, __global const float* up, __global const float* vp,
+                       __global const float* wp, __global const float* qp, __global float* out) {
+  advect_lanes(g, 0, dt, up, vp, wp, qp, out);
+}
+__kernel void advect_v(const FwGrid g, const float dt, __global const float* up, __global const float* vp,
+                       __global const float* wp, __global const float* qp, __global float* out) {
+  advect_lanes(g, 1, dt, up, vp, wp, qp, out);
+}
+__kernel void advect_w(const FwGrid g, const float dt, __global const float* up, __global const float* vp,
+                       __global const float* wp, __global const float* qp, __global float* out) {
+  advect_lanes(g, 2, dt, up, vp, wp, qp, out);
+}
+__kernel void maccormack_correct_u(const FwGrid g, const float dt, __global const float* up,
+                                   __global const float* vp, __global const float* wp,
+                                   __global const float* qp, __global const float* forward,
+                                   __global const float* back, __global float* out) {
+  maccormack_lanes(g, 0, dt, up, vp, wp, qp, forward, back, out);
+}
+__kernel void maccormack_correct_v(const FwGrid g, const float dt, __global const float* up,
+                                   __global const float* vp, __global const float* wp,
+                                   __global const float* qp, __global const float* forward,
+                                   __global const float* back, __global float* out) {
+  maccormack_lanes(g, 1, dt, up, vp, wp, qp, forward, back, out);
+}
+__kernel void maccormack_correct_w(const FwGrid g, const float dt, __global const float* up,
+                                   __global const float* vp, __global const float* wp,
+                                   __global const float* qp, __global const float* forward,
+                                   __global const float* back, __global float* out) {
+  maccormack_lanes(g, 2, dt, up, vp, wp, qp, forward, back, out);
+}
