@@ -102,31 +102,77 @@ __kernel void red_black_sweep(const FwLevel L, __global const uchar* mask, __glo
 }
 
 /* r = b - A phi; partial[item] = sum of r^2 over the item's cells. */
+/* Residual of one cell with the general (edge-aware) neighbour sum. */
+FW_INLINE float residual_cell(const FwLevel* L, __global const uchar* mask, __global const float* b,
+                              __global const float* phi, int i, int j, int k) {
+  const int id = level_index(L, i, j, k);
+  const uchar m = mask[id];
+  if (!(m & FW_MASK_FLUID)) return 0.0f;
+  return b[id] - (diagonal(m) * phi[id] - open_neighbour_sum(L, phi, i, j, k, id, m));
+}
+
+/* r = b - A phi; partial[item] = sum of r^2 over the item's cells. */
 __kernel void residual(const FwLevel L, __global const uchar* mask, __global const float* b,
                        __global const float* phi, __global float* r, __global float* partial) {
   const int j = get_global_id(1), k = get_global_id(2);
+  const int begin = FW_ROW_BEGIN, end = FW_ROW_END(L.nx);
+  int lo, hi;
+  interior_span(&L, j, k, begin, end, &lo, &hi);
   float sum = 0.0f;
-  for (int i = FW_ROW_BEGIN; i < FW_ROW_END(L.nx); ++i) {
+  for (int i = begin; i < lo; ++i) {
+    const float res = residual_cell(&L, mask, b, phi, i, j, k);
+    r[level_index(&L, i, j, k)] = res;
+    sum += res * res;
+  }
+  for (int i = lo; i < hi; ++i) { /* branch-free interior run */
     const int id = level_index(&L, i, j, k);
     const uchar m = mask[id];
-    float res = 0.0f;
-    if (m & FW_MASK_FLUID) res = b[id] - (diagonal(m) * phi[id] - neighbour_sum(&L, phi, i, j, k, id, m));
-    r[id] = res;
+    const float res = b[id] - (diagonal(m) * phi[id] - interior_neighbour_sum(&L, phi, id, m));
+    const float kept = (m & FW_MASK_FLUID) ? res : 0.0f;
+    r[id] = kept;
+    sum += kept * kept;
+  }
+  for (int i = hi; i < end; ++i) {
+    const float res = residual_cell(&L, mask, b, phi, i, j, k);
+    r[level_index(&L, i, j, k)] = res;
     sum += res * res;
   }
   partial[row_item_index()] = sum;
+}
+
+/* (A d) of one cell with the general neighbour sum. */
+FW_INLINE float operator_cell(const FwLevel* L, __global const uchar* mask, __global const float* d, int i,
+                              int j, int k) {
+  const int id = level_index(L, i, j, k);
+  const uchar m = mask[id];
+  if (!(m & FW_MASK_FLUID)) return 0.0f;
+  return diagonal(m) * d[id] - open_neighbour_sum(L, d, i, j, k, id, m);
 }
 
 /* q = A d; partial[item] = sum of d q. */
 __kernel void apply_operator_dot(const FwLevel L, __global const uchar* mask, __global const float* d,
                                  __global float* q, __global float* partial) {
   const int j = get_global_id(1), k = get_global_id(2);
+  const int begin = FW_ROW_BEGIN, end = FW_ROW_END(L.nx);
+  int lo, hi;
+  interior_span(&L, j, k, begin, end, &lo, &hi);
   float sum = 0.0f;
-  for (int i = FW_ROW_BEGIN; i < FW_ROW_END(L.nx); ++i) {
+  for (int i = begin; i < lo; ++i) {
+    const int id = level_index(&L, i, j, k);
+    const float out = operator_cell(&L, mask, d, i, j, k);
+    q[id] = out;
+    sum += d[id] * out;
+  }
+  for (int i = lo; i < hi; ++i) { /* branch-free interior run */
     const int id = level_index(&L, i, j, k);
     const uchar m = mask[id];
-    float out = 0.0f;
-    if (m & FW_MASK_FLUID) out = diagonal(m) * d[id] - neighbour_sum(&L, d, i, j, k, id, m);
+    const float out = (m & FW_MASK_FLUID) ? diagonal(m) * d[id] - interior_neighbour_sum(&L, d, id, m) : 0.0f;
+    q[id] = out;
+    sum += d[id] * out;
+  }
+  for (int i = hi; i < end; ++i) {
+    const int id = level_index(&L, i, j, k);
+    const float out = operator_cell(&L, mask, d, i, j, k);
     q[id] = out;
     sum += d[id] * out;
   }
