@@ -135,7 +135,8 @@ void PressureSolver::vcycle(cl::Buffer& b, cl::Buffer& phi) {
 
 void PressureSolver::smooth(int l, cl::Buffer& b, cl::Buffer& phi, int sweeps, bool after_correction) {
   if (settings_.smoother == fluid::MultigridSmoother::jacobi) {
-    // Damped Jacobi in pairs (phi -> scratch -> phi); the same before and after, so the cycle is symmetric.
+    // Damped Jacobi in pairs (phi -> scratch -> phi, so an odd count rounds up); the same before and after
+    // the correction, so the cycle is symmetric.
     for (int s = 0; s < sweeps; s += 2) {
       enqueue_jacobi_sweep(l, b, phi, levels_[l].scratch, kJacobiDamping);
       enqueue_jacobi_sweep(l, b, levels_[l].scratch, phi, kJacobiDamping);
@@ -154,8 +155,8 @@ void PressureSolver::vcycle_level(int l, cl::Buffer& b, cl::Buffer& phi) {
     // Coarsest level: enough symmetric sweeps to carry information across it.
     const auto& L = host_levels_[l];
     const int sweeps = std::max(4, std::max({L.nx, L.ny, L.nz}));
-    smooth(l, b, phi, 2 * sweeps, false);
-    smooth(l, b, phi, 2 * sweeps, true);
+    smooth(l, b, phi, sweeps, false);
+    smooth(l, b, phi, sweeps, true);
     return;
   }
   smooth(l, b, phi, settings_.smoothing_sweeps, false);
