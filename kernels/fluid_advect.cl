@@ -16,8 +16,9 @@ FW_INLINE lanef gather(__global const float* q, lanei at) {
   return (lanef)(q[at.s0], q[at.s1], q[at.s2], q[at.s3], q[at.s4], q[at.s5], q[at.s6], q[at.s7]);
 }
 
-/* Lower interpolation index and fraction along axis a of component c, for positions p (cell units). Same
- * rules as face_coordinate in common.cl. */
+/* Lower interpolation index and fraction along axis a of component c, for positions p (cell units):
+ * periodic axes wrap p into [0, n) (a back-trace moves less than one period), other axes clamp to the ghost
+ * layer; the same rules as fluid/ReferenceStages.cpp sample(). */
 FW_INLINE void lane_coordinate(const FwGrid* g, int c, int a, lanef p, lanei* i0, lanef* fraction) {
   const float n = (float)axis_cells(g, a);
   lanef q;

@@ -3,6 +3,8 @@
 #include <fmt/format.h>
 #include <catch2/catch.hpp>
 
+#include "tests/support/TempDir.hpp"
+
 #include <cstdint>
 #include <filesystem>
 #include <fstream>
@@ -17,33 +19,7 @@ using fw::fluid::Heightmap;
 
 namespace {
 
-// A fresh folder under the system temp directory, removed with everything in it at scope exit.
-class TempDir {
- public:
-  TempDir() {
-    std::random_device random;
-    const std::uint64_t tag = (std::uint64_t(random()) << 32) ^ random();
-    path_ = std::filesystem::temp_directory_path() / fmt::format("fw_heightmap_test_{:016x}", tag);
-    std::filesystem::create_directories(path_);
-  }
-  ~TempDir() {
-    std::error_code ignored;
-    std::filesystem::remove_all(path_, ignored);
-  }
-  TempDir(const TempDir&) = delete;
-  TempDir& operator=(const TempDir&) = delete;
-
-  /// Writes content byte for byte and returns the file's path.
-  std::string write(const std::string& name, std::string_view content) const {
-    const auto file = path_ / name;
-    std::ofstream out(file, std::ios::binary);
-    out.write(content.data(), std::streamsize(content.size()));
-    return file.string();
-  }
-
- private:
-  std::filesystem::path path_;
-};
+using fw::test::TempDir;
 
 std::string bytes(std::initializer_list<int> values) {
   std::string out;

@@ -3,6 +3,8 @@
 #include <fmt/format.h>
 #include <catch2/catch.hpp>
 
+#include "tests/support/TempDir.hpp"
+
 #include <cmath>
 #include <cstdint>
 #include <filesystem>
@@ -23,6 +25,8 @@ using fw::fluid::SolidSphere;
 
 namespace {
 
+using fw::test::TempDir;
+
 GridSpec grid(int nx, int ny, int nz, double h_m, std::array<double, 3> origin_m = {0, 0, 0}) {
   GridSpec spec;
   spec.nx = nx;
@@ -32,33 +36,6 @@ GridSpec grid(int nx, int ny, int nz, double h_m, std::array<double, 3> origin_m
   spec.origin = origin_m;
   return spec;
 }
-
-// A fresh folder under the system temp directory, removed with everything in it at scope exit.
-class TempDir {
- public:
-  TempDir() {
-    std::random_device random;
-    const std::uint64_t tag = (std::uint64_t(random()) << 32) ^ random();
-    path_ = std::filesystem::temp_directory_path() / fmt::format("fw_solidmap_test_{:016x}", tag);
-    std::filesystem::create_directories(path_);
-  }
-  ~TempDir() {
-    std::error_code ignored;
-    std::filesystem::remove_all(path_, ignored);
-  }
-  TempDir(const TempDir&) = delete;
-  TempDir& operator=(const TempDir&) = delete;
-
-  std::string write(const std::string& name, std::string_view content) const {
-    const auto file = path_ / name;
-    std::ofstream out(file, std::ios::binary);
-    out.write(content.data(), std::streamsize(content.size()));
-    return file.string();
-  }
-
- private:
-  std::filesystem::path path_;
-};
 
 std::string bytes(std::initializer_list<int> values) {
   std::string out;

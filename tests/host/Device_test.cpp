@@ -2,6 +2,8 @@
 
 #include <catch2/catch.hpp>
 
+#include "tests/support/ScopedEnv.hpp"
+
 #include <algorithm>
 #include <cctype>
 #include <cstdlib>
@@ -15,6 +17,8 @@ using fw::host::DeviceInfo;
 
 namespace {
 
+using fw::test::ScopedEnv;
+
 // Every device, or an empty list when there is none and the test runs outside CI (it then warns).
 // Under CI (the environment variable CI is set) a missing device fails the test.
 std::vector<DeviceInfo> devices_or_skip() {
@@ -26,28 +30,6 @@ std::vector<DeviceInfo> devices_or_skip() {
   }
   return {};
 }
-
-// Sets (or, with nullopt, unsets) an environment variable and restores its previous state at scope exit.
-class ScopedEnv {
- public:
-  ScopedEnv(std::string name, const std::optional<std::string>& value) : name_(std::move(name)) {
-    if (const char* old = std::getenv(name_.c_str())) old_ = std::string(old);
-    set(value);
-  }
-  ~ScopedEnv() { set(old_); }
-  ScopedEnv(const ScopedEnv&) = delete;
-  ScopedEnv& operator=(const ScopedEnv&) = delete;
-
- private:
-  void set(const std::optional<std::string>& value) {
-    if (value)
-      ::setenv(name_.c_str(), value->c_str(), 1);
-    else
-      ::unsetenv(name_.c_str());
-  }
-  std::string name_;
-  std::optional<std::string> old_;
-};
 
 std::string upper(std::string s) {
   std::transform(s.begin(), s.end(), s.begin(), [](unsigned char c) { return char(std::toupper(c)); });

@@ -3,6 +3,9 @@
 #include <fmt/format.h>
 #include <catch2/catch.hpp>
 
+#include "tests/support/ScopedEnv.hpp"
+#include "tests/support/TempDir.hpp"
+
 #include <algorithm>
 #include <cstdint>
 #include <cstdlib>
@@ -20,53 +23,8 @@
 
 namespace {
 
-// A fresh folder under the system temp directory, removed with everything in it at scope exit.
-class TempDir {
- public:
-  TempDir() {
-    std::random_device random;
-    const std::uint64_t tag = (std::uint64_t(random()) << 32) ^ random();
-    path_ = std::filesystem::temp_directory_path() / fmt::format("fw_kernel_sources_test_{:016x}", tag);
-    std::filesystem::create_directories(path_);
-  }
-  ~TempDir() {
-    std::error_code ignored;
-    std::filesystem::remove_all(path_, ignored);
-  }
-  TempDir(const TempDir&) = delete;
-  TempDir& operator=(const TempDir&) = delete;
-
-  void write(const std::string& name, std::string_view content) const {
-    std::ofstream out(path_ / name, std::ios::binary);
-    out.write(content.data(), std::streamsize(content.size()));
-  }
-  std::string path() const { return path_.string(); }
-
- private:
-  std::filesystem::path path_;
-};
-
-// Sets (or, with nullopt, unsets) an environment variable and restores its previous state at scope exit.
-class ScopedEnv {
- public:
-  ScopedEnv(std::string name, const std::optional<std::string>& value) : name_(std::move(name)) {
-    if (const char* old = std::getenv(name_.c_str())) old_ = std::string(old);
-    set(value);
-  }
-  ~ScopedEnv() { set(old_); }
-  ScopedEnv(const ScopedEnv&) = delete;
-  ScopedEnv& operator=(const ScopedEnv&) = delete;
-
- private:
-  void set(const std::optional<std::string>& value) {
-    if (value)
-      ::setenv(name_.c_str(), value->c_str(), 1);
-    else
-      ::unsetenv(name_.c_str());
-  }
-  std::string name_;
-  std::optional<std::string> old_;
-};
+using fw::test::ScopedEnv;
+using fw::test::TempDir;
 
 // kernels/ of the source tree this test was compiled from.
 std::filesystem::path source_kernel_dir() {
