@@ -191,10 +191,9 @@ MacVelocity advect_maccormack(const GridSpec& spec, const InflowState& inflow, c
   return out;
 }
 
-void add_body_force(const GridSpec& spec, MacVelocity& vel, const std::array<double, 3>& g, double dt) {
+void add_body_force(MacVelocity& vel, const std::array<double, 3>& g, double dt) {
   for (int c = 0; c < 3; ++c)
     for (auto& x : vel.component(c)) x = float(double(x) + dt * g[c]);
-  (void)spec;
 }
 
 void add_gusts(const GridSpec& spec, MacVelocity& vel, const std::vector<FwGust>& gusts, double t,

@@ -70,7 +70,7 @@ MacVelocity advect_maccormack(const GridSpec& spec, const InflowState& inflow, c
                               const MacVelocity& q, double dt);
 
 /// vel += dt * g on every face (m/s^2).
-void add_body_force(const GridSpec& spec, MacVelocity& vel, const std::array<double, 3>& g, double dt);
+void add_body_force(MacVelocity& vel, const std::array<double, 3>& g, double dt);
 
 /// vel += dt * (gust acceleration at t + dt/2) for every gust (see FwGust).
 void add_gusts(const GridSpec& spec, MacVelocity& vel, const std::vector<FwGust>& gusts, double t, double dt);

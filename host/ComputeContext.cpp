@@ -6,9 +6,6 @@
 #include "host/KernelSources.hpp"
 
 namespace fw::host {
-namespace {
-constexpr std::size_t kCpuCellGroup = 32;
-}  // namespace
 
 ComputeContext::ComputeContext(DeviceInfo device, bool profiling) : device_(std::move(device)) {
   try {
@@ -22,11 +19,10 @@ ComputeContext::ComputeContext(DeviceInfo device, bool profiling) : device_(std:
   row_chunk_ = is_cpu() ? (1 << 20) : 1;
 }
 
-cl::Program ComputeContext::build(const std::string& file, const std::string& extra_options, int row_chunk) {
-  const int chunk = row_chunk > 0 ? row_chunk : row_chunk_;
+cl::Program ComputeContext::build(const std::string& file, const std::string& extra_options) {
   const std::string source = kernel_source(file);
   cl::Program program(context_, source);
-  const std::string options = fmt::format("-cl-std=CL1.2 -DFW_ROW_CHUNK={} -DFW_CPU_LAYOUT={} {}", chunk,
+  const std::string options = fmt::format("-cl-std=CL1.2 -DFW_ROW_CHUNK={} -DFW_CPU_LAYOUT={} {}", row_chunk_,
                                           is_cpu() ? 1 : 0, extra_options);
   try {
     program.build({device_.device}, options.c_str());
@@ -45,19 +41,10 @@ cl::Program ComputeContext::build(const std::string& file, const std::string& ex
   return program;
 }
 
-cl::NDRange ComputeContext::rows(int extent_x, int ny, int nz, int row_chunk) const {
-  const int chunk = row_chunk > 0 ? row_chunk : row_chunk_;
-  int items_x = (extent_x + chunk - 1) / chunk;
-  const auto group = row_group(row_chunk);
-  if (group.dimensions() > 0) items_x = (items_x + int(group[0]) - 1) / int(group[0]) * int(group[0]);
+cl::NDRange ComputeContext::rows(int extent_x, int ny, int nz) const {
+  const int items_x = (extent_x + row_chunk_ - 1) / row_chunk_;
   return cl::NDRange(static_cast<std::size_t>(items_x), static_cast<std::size_t>(ny),
                      static_cast<std::size_t>(nz));
-}
-
-cl::NDRange ComputeContext::row_group(int row_chunk) const {
-  // One cell per work-item on a CPU: groups along x that PoCL can vectorise; the kernels guard i < extent.
-  if (is_cpu() && row_chunk == 1) return cl::NDRange(kCpuCellGroup, 1, 1);
-  return cl::NullRange;
 }
 
 std::size_t ComputeContext::flat_items(std::size_t n) const {

@@ -34,14 +34,10 @@ class ComputeContext {
   Profiler* profiler() { return profiler_.get(); }
 
   /// Builds kernels/<file> (with its includes). Throws KernelBuildError with the file and the log.
-  /// `row_chunk` > 0 overrides the cells per work-item for this program (1: one cell per work-item, which
-  /// lets PoCL vectorise compute-heavy kernels across work-items).
-  cl::Program build(const std::string& file, const std::string& extra_options = "", int row_chunk = 0);
+  cl::Program build(const std::string& file, const std::string& extra_options = "");
 
   /// Global range for a row-sweeping kernel over an array of extent_x * ny * nz values.
-  cl::NDRange rows(int extent_x, int ny, int nz, int row_chunk = 0) const;
-  /// Work-group size to pair with rows(..., row_chunk) (NullRange: let the driver choose).
-  cl::NDRange row_group(int row_chunk = 0) const;
+  cl::NDRange rows(int extent_x, int ny, int nz) const;
 
   /// Number of work-items a flat (1D) kernel over n values uses, and the values each handles.
   std::size_t flat_items(std::size_t n) const;

@@ -154,7 +154,7 @@ void WindGrid::advect(float dt) {
   std::swap(vel_, back_);
 }
 
-void WindGrid::apply_forces(float dt) {
+void WindGrid::apply_forces() {
   const auto& st = setup_.settings;
   const bool body = st.body_force[0] != 0.0 || st.body_force[1] != 0.0 || st.body_force[2] != 0.0;
   if (body || !setup_.gusts.empty())
@@ -167,7 +167,6 @@ void WindGrid::apply_forces(float dt) {
       stages_.enqueue_vorticity_confinement(c, static_cast<float>(st.vorticity_confinement), omega_,
                                             vel_.component(c));
   }
-  (void)dt;
 }
 
 void WindGrid::enforce_boundaries() {
@@ -202,7 +201,7 @@ WindStepReport WindGrid::step() {
 
   WindStepReport report;
   timed("advect", [&] { advect(static_cast<float>(dt)); });
-  timed("forces", [&] { apply_forces(static_cast<float>(dt)); });
+  timed("forces", [&] { apply_forces(); });
   report.viscous_substeps = viscous_substeps(st.viscosity, dt, spec.h);
   if (report.viscous_substeps > 0) {
     timed("viscosity", [&] {

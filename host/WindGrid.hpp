@@ -94,7 +94,7 @@ class WindGrid {
   template <typename F>
   void timed(const char* stage, F&& work);
   void advect(float dt);
-  void apply_forces(float dt);
+  void apply_forces();
   void enforce_boundaries();
 
   ComputeContext& cc_;
