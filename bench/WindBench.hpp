@@ -68,8 +68,9 @@ WindBenchResult run_wind_bench(host::ComputeContext& cc, const WindBenchOptions&
 void print_wind_bench_table(const WindBenchResult& result, std::ostream& out);
 std::string wind_bench_json(const WindBenchResult& result);
 
-/// Bandwidth of the pressure smoother on a grid, GB/s: (red-black colour pass if red_black, else one
-/// Jacobi sweep), counting the bytes each pass streams: mask 1 + b 4 + phi read 4 + phi write 4 per cell.
+/// Bandwidth of the pressure smoother on a grid, GB/s: the best of `passes` timed passes (a red-black colour
+/// pass if red_black, else one Jacobi sweep), counting the bytes each pass streams: mask 1 + b 4 + phi read
+/// 4 + phi write 4 per cell.
 double measure_smoother_gb_s(host::ComputeContext& cc, const std::array<int, 3>& grid, bool red_black,
                              int passes);
 
