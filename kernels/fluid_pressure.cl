@@ -179,13 +179,13 @@ __kernel void apply_operator_dot(const FwLevel L, __global const uchar* mask, __
   partial[row_item_index()] = sum;
 }
 
-/* Coarse right-hand side: scale * mean of the fine residual over each coarse cell's children; the coarse
- * solution starts at 0. The coarse operator has unit couplings at spacing 2h, so scale = 4 is the
- * rediscretised equation and scale = 2 the Galerkin one (see PressureSolver). Rows over the coarse level. */
-__kernel void restrict_residual(const FwLevel F, const FwLevel C, __global const uchar* fine_mask,
-                                __global const uchar* coarse_mask, __global const float* b,
-                                __global const float* phi, __global float* coarse_b,
-                                __global float* coarse_phi, const float scale) {
+/* Coarse right-hand side: scale * mean of the fine residual r (from the residual kernel) over each coarse
+ * cell's children; the coarse solution starts at 0. The coarse operator has unit couplings at spacing 2h,
+ * so scale = 4 is the rediscretised equation and scale = 2 the Galerkin one (see PressureSolver).
+ * Rows over the coarse level. */
+__kernel void restrict_residual(const FwLevel F, const FwLevel C, __global const uchar* coarse_mask,
+                                __global const float* r, __global float* coarse_b, __global float* coarse_phi,
+                                const float scale) {
   const int J = get_global_id(1), K = get_global_id(2);
   for (int I = FW_ROW_BEGIN; I < FW_ROW_END(C.nx); ++I) {
     float sum = 0.0f;
@@ -196,10 +196,7 @@ __kernel void restrict_residual(const FwLevel F, const FwLevel C, __global const
           const int i = 2 * I + di, j = 2 * J + dj, k = 2 * K + dk;
           if (i >= F.nx || j >= F.ny || k >= F.nz) continue;
           ++children;
-          const int id = level_index(&F, i, j, k);
-          const uchar m = fine_mask[id];
-          if (m & FW_MASK_FLUID)
-            sum += b[id] - (diagonal(m) * phi[id] - neighbour_sum(&F, phi, i, j, k, id, m));
+          sum += r[level_index(&F, i, j, k)];
         }
     const int cid = level_index(&C, I, J, K);
     coarse_b[cid] = (coarse_mask[cid] & FW_MASK_FLUID) ? scale * sum / (float)children : 0.0f;
