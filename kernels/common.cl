@@ -101,6 +101,22 @@ FW_INLINE int face_open(const FwGrid* g, __global const uchar* mask, int c, int 
   return (mask[owner] >> (2 * c + 1)) & 1;
 }
 
+/* Splits this work-item's run [begin, end) of face row (j, k) of component c into edge faces and a run
+ * [lo, hi) of interior faces: faces with a fluid-or-solid cell on both sides inside the domain, so that
+ * the face is owned by the cell below it along c and needs no boundary logic. */
+FW_INLINE void interior_face_span(const FwGrid* g, int c, int j, int k, int begin, int end, int* lo,
+                                  int* hi) {
+  int first = 0, last = end; /* interior range of i for this row, before clipping to [begin, end) */
+  if (c == 0) {
+    first = 1;
+    last = g->nx; /* faces 1 .. nx-1 */
+  } else if ((c == 1 && (j == 0 || j == g->ny)) || (c == 2 && (k == 0 || k == g->nz))) {
+    first = last = end; /* a boundary row: everything goes the general way */
+  }
+  *lo = clamp(first, begin, end);
+  *hi = clamp(last, *lo, end);
+}
+
 /* Flat loops over n values: contiguous blocks per work-item on CPUs, a grid-stride loop on GPUs. */
 #if FW_CPU_LAYOUT
 #define FW_FLAT_FOR(idx, n)                                         \

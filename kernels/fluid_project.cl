@@ -33,30 +33,43 @@ __kernel void max_divergence(const FwGrid g, __global const uchar* mask, __globa
 
 /* q (component c) -= (phi_high - phi_low) / h on faces open in the mask. Outside the domain phi is the
  * outflow ghost's 0, or wraps on a periodic axis. */
+/* Gradient correction of one face with the general (boundary-aware) rules. */
+FW_INLINE float gradient_face(const FwGrid* g, int c, __global const uchar* mask, __global const float* phi,
+                              int i, int j, int k) {
+  if (!face_open(g, mask, c, i, j, k)) return 0.0f;
+  const int n = axis_cells(g, c);
+  const int sc = cell_stride(g, c);
+  const int periodic = g->bc[2 * c] == FW_BC_PERIODIC;
+  const int own = own_index(c, i, j, k);
+  const int cell = face_cell(g, c, i, j, k);
+  float phi_lo, phi_hi;
+  if (own == 0) {
+    phi_hi = phi[cell];
+    phi_lo = periodic ? phi[cell + (n - 1) * sc] : 0.0f;
+  } else if (own == n) {
+    phi_lo = phi[cell];
+    phi_hi = periodic ? phi[cell - (n - 1) * sc] : 0.0f;
+  } else {
+    phi_hi = phi[cell];
+    phi_lo = phi[cell - sc];
+  }
+  return (phi_hi - phi_lo) / g->h;
+}
+
 __kernel void subtract_gradient(const FwGrid g, const int c, __global const uchar* mask,
                                 __global const float* phi, __global float* q) {
   const int j = get_global_id(1), k = get_global_id(2);
-  const int ex = face_extent(&g, c, 0);
-  const int n = axis_cells(&g, c);
-  const int sc = cell_stride(&g, c);
-  const int periodic = g.bc[2 * c] == FW_BC_PERIODIC;
-  for (int i = FW_ROW_BEGIN; i < FW_ROW_END(ex); ++i) {
-    if (!face_open(&g, mask, c, i, j, k)) continue;
-    const int own = own_index(c, i, j, k);
-    const int cell = face_cell(&g, c, i, j, k);
-    float phi_lo, phi_hi;
-    if (own == 0) {
-      phi_hi = phi[cell];
-      phi_lo = periodic ? phi[cell + (n - 1) * sc] : 0.0f;
-    } else if (own == n) {
-      phi_lo = phi[cell];
-      phi_hi = periodic ? phi[cell - (n - 1) * sc] : 0.0f;
-    } else {
-      phi_hi = phi[cell];
-      phi_lo = phi[cell - sc];
-    }
-    q[face_index(&g, c, i, j, k)] -= (phi_hi - phi_lo) / g.h;
+  const int begin = FW_ROW_BEGIN, end = FW_ROW_END(face_extent(&g, c, 0));
+  const int sc = cell_stride(&g, c), bit = 2 * c + 1;
+  int lo, hi;
+  interior_face_span(&g, c, j, k, begin, end, &lo, &hi);
+  for (int i = begin; i < lo; ++i) q[face_index(&g, c, i, j, k)] -= gradient_face(&g, c, mask, phi, i, j, k);
+  for (int i = lo; i < hi; ++i) { /* interior: branch-free, vectorises */
+    const int cell = cell_index(&g, i, j, k);
+    const float step = (phi[cell] - phi[cell - sc]) / g.h;
+    q[face_index(&g, c, i, j, k)] -= ((mask[cell - sc] >> bit) & 1) ? step : 0.0f;
   }
+  for (int i = hi; i < end; ++i) q[face_index(&g, c, i, j, k)] -= gradient_face(&g, c, mask, phi, i, j, k);
 }
 
 /* partial[item] = max |q| over this work-item's run of an extent_x * ny * nz array (NaN propagates). */
