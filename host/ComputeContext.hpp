@@ -2,13 +2,14 @@
 // kernels with errors that name the kernel.
 //
 //   ComputeContext cc(select_device(device_filter_from_env(cli_filter)), /*profiling=*/true);
-//   cl::Program prog = cc.build("fluid_advect.cl");
-//   Kernel advect(prog, "advect_component");
-//   advect.set_args(grid, u, v, w, out).enqueue(cc, cc.rows(nx + 1, ny, nz));
+//   cl::Program prog = cc.build("fluid_project.cl");
+//   Kernel divergence(prog, "divergence_rhs");
+//   divergence.set_args(grid, mask, u, v, w, b).enqueue(cc, cc.rows(nx, ny, nz));
 //
 // Kernels that sweep the grid give each work-item a run of `row_chunk()` consecutive cells along x. On a
 // CPU (PoCL) that is the whole x-row, which streams memory best; on a GPU it is one cell, for coalescing.
-// The chunk reaches the kernels as the macro FW_ROW_CHUNK.
+// The chunk reaches the kernels as the macro FW_ROW_CHUNK. (Advection sets its own range: 8 faces per
+// work-item in float8, see host/FluidStages.)
 #pragma once
 
 #include <cstddef>
