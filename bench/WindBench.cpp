@@ -106,7 +106,8 @@ double measure_smoother_gb_s(host::ComputeContext& cc, const std::array<int, 3>&
   cl::Buffer other = cc.buffer(spec.cell_count() * sizeof(float));
   auto pass = [&](int n) {
     if (red_black)
-      solver.enqueue_red_black_sweep(0, solver.rhs(), solver.solution(), n & 1);
+      solver.enqueue_red_black_pass(0, solver.rhs(), (n & 1) ? other : solver.solution(),
+                                    (n & 1) ? solver.solution() : other, n & 1);
     else
       solver.enqueue_jacobi_sweep(0, solver.rhs(), (n & 1) ? other : solver.solution(),
                                   (n & 1) ? solver.solution() : other, 1.0f);

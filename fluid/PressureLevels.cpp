@@ -57,7 +57,7 @@ bool can_coarsen(const PressureLevel& level, const GridSpec& spec) {
   for (int a = 0; a < 3; ++a) {
     if (n[a] > 1) any_long = true;
     if (spec.periodic(a) && n[a] > 1 && (n[a] % 2) != 0) return false;
-    // A periodic axis halved to an odd count > 1 would race in the next level's smoother.
+    // A periodic axis halved to an odd count > 1 would break the red-black colouring across the seam.
     const int coarse = (n[a] + 1) / 2;
     if (spec.periodic(a) && coarse > 1 && (coarse % 2) != 0) return false;
   }

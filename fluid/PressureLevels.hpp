@@ -8,8 +8,8 @@
 //
 // Coarsening halves every axis longer than one cell (rounding up). A coarse cell is fluid if any of its
 // children is; its face is open if a fluid child on that side has the face open. Coarsening stops at a
-// level where a periodic axis would get an odd cell count above 1 (the red-black smoother needs an even
-// count to stay race-free), or once the level has at most `coarsest_cells` cells.
+// level where a periodic axis would get an odd cell count above 1 (an even count keeps the red-black
+// colouring a true two-colouring across the seam), or once the level has at most `coarsest_cells` cells.
 #pragma once
 
 #include <cstdint>

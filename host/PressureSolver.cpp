@@ -63,7 +63,7 @@ PressureSolver::PressureSolver(ComputeContext& cc, const fluid::GridSpec& spec,
 
   cl::Program program = cc_.build("fluid_pressure.cl", kPressureBuildOptions);
   jacobi_ = Kernel(program, "jacobi_sweep");
-  red_black_ = Kernel(program, "red_black_sweep");
+  red_black_ = Kernel(program, "red_black_pass");
   residual_ = Kernel(program, "residual");
   apply_dot_ = Kernel(program, "apply_operator_dot");
   restrict_ = Kernel(program, "restrict_residual");
@@ -103,9 +103,11 @@ void PressureSolver::enqueue_jacobi_sweep(int level, cl::Buffer& b, cl::Buffer& 
       .enqueue(cc_, cc_.rows(L.dims.nx, L.dims.ny, L.dims.nz));
 }
 
-void PressureSolver::enqueue_red_black_sweep(int level, cl::Buffer& b, cl::Buffer& phi, int colour) {
+void PressureSolver::enqueue_red_black_pass(int level, cl::Buffer& b, cl::Buffer& phi, cl::Buffer& phi_out,
+                                            int colour) {
   auto& L = levels_[level];
-  red_black_.set_args(L.dims, L.mask, b, phi, colour).enqueue(cc_, cc_.rows(L.dims.nx, L.dims.ny, L.dims.nz));
+  red_black_.set_args(L.dims, L.mask, b, phi, phi_out, colour)
+      .enqueue(cc_, cc_.rows(L.dims.nx, L.dims.ny, L.dims.nz));
 }
 
 double PressureSolver::residual_norm2(int level, cl::Buffer& b, cl::Buffer& phi, cl::Buffer& r) {
@@ -147,10 +149,13 @@ void PressureSolver::smooth(int l, cl::Buffer& b, cl::Buffer& phi, int sweeps, b
     }
     return;
   }
-  // Red-black Gauss-Seidel; reversing the colour order after the correction keeps the cycle symmetric.
+  // Red-black Gauss-Seidel, one colour per pass (phi -> scratch -> phi); reversing the colour order after
+  // the correction keeps the cycle symmetric.
   const int first = after_correction ? 1 : 0;
-  for (int s = 0; s < sweeps; ++s)
-    enqueue_red_black_sweep(l, b, phi, first), enqueue_red_black_sweep(l, b, phi, 1 - first);
+  for (int s = 0; s < sweeps; ++s) {
+    enqueue_red_black_pass(l, b, phi, levels_[l].scratch, first);
+    enqueue_red_black_pass(l, b, levels_[l].scratch, phi, 1 - first);
+  }
 }
 
 void PressureSolver::vcycle_level(int l, cl::Buffer& b, cl::Buffer& phi) {

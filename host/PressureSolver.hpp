@@ -54,7 +54,8 @@ class PressureSolver {
 
   // One stage each, exposed for the kernel tests. `level` indexes the hierarchy (0 = fine grid).
   void enqueue_jacobi_sweep(int level, cl::Buffer& b, cl::Buffer& phi, cl::Buffer& phi_out, float omega);
-  void enqueue_red_black_sweep(int level, cl::Buffer& b, cl::Buffer& phi, int colour);
+  /// One colour of red-black Gauss-Seidel, out of place: phi_out = phi with the colour's cells updated.
+  void enqueue_red_black_pass(int level, cl::Buffer& b, cl::Buffer& phi, cl::Buffer& phi_out, int colour);
   /// r = b - A phi and returns ||r||^2 (blocks).
   double residual_norm2(int level, cl::Buffer& b, cl::Buffer& phi, cl::Buffer& r);
   /// Coarse rhs = correction_scale() * mean of the children's residual; coarse solution zeroed.

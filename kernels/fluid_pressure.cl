@@ -4,7 +4,7 @@
  * (A phi)_c = popcount(open) phi_c - sum over open faces of phi_neighbour, with phi = 0 across outflow
  * faces and wrap-around on periodic axes (see fluid/PressureLevels.hpp). Reductions write one partial
  * value per work-item; the host adds them in double precision, in a fixed order (deterministic).
- * Reference: fluid/ReferenceStages.cpp apply_operator, residual, jacobi_sweep, red_black_sweep,
+ * Reference: fluid/ReferenceStages.cpp apply_operator, residual, jacobi_sweep, red_black_sweep (as passes),
  * restrict_residual, prolong_add.
  */
 #include "common.cl"
@@ -88,20 +88,39 @@ __kernel void jacobi_sweep(const FwLevel L, __global const uchar* mask, __global
     phi_out[level_index(&L, i, j, k)] = jacobi_cell(&L, mask, b, phi, omega, i, j, k);
 }
 
-/* Gauss-Seidel on the cells with (i + j + k) % 2 == colour, in place. */
-__kernel void red_black_sweep(const FwLevel L, __global const uchar* mask, __global const float* b,
-                              __global float* phi, const int colour) {
+/* One colour of red-black Gauss-Seidel, out of place: cells with (i + j + k) % 2 == colour get the
+ * Gauss-Seidel value computed from phi (their neighbours all have the other colour, so this equals the
+ * in-place update), every other cell is copied. Writing each cell once to a second buffer keeps the loop
+ * free of dependences, so it streams and vectorises like a Jacobi sweep. */
+FW_INLINE float red_black_cell(const FwLevel* L, __global const uchar* mask, __global const float* b,
+                               __global const float* phi, int colour, int i, int j, int k) {
+  const int id = level_index(L, i, j, k);
+  const uchar m = mask[id];
+  const float d = diagonal(m);
+  if (((i + j + k) & 1) != colour || !(m & FW_MASK_FLUID) || d == 0.0f) return phi[id];
+  return (b[id] + open_neighbour_sum(L, phi, i, j, k, id, m)) / d;
+}
+
+__kernel void red_black_pass(const FwLevel L, __global const uchar* mask, __global const float* b,
+                             __global const float* phi, __global float* phi_out, const int colour) {
   const int j = get_global_id(1), k = get_global_id(2);
-  const int begin = FW_ROW_BEGIN;
-  for (int i = begin + ((begin + j + k + colour) & 1); i < FW_ROW_END(L.nx); i += 2) {
+  const int begin = FW_ROW_BEGIN, end = FW_ROW_END(L.nx);
+  int lo, hi;
+  interior_span(&L, j, k, begin, end, &lo, &hi);
+  for (int i = begin; i < lo; ++i)
+    phi_out[level_index(&L, i, j, k)] = red_black_cell(&L, mask, b, phi, colour, i, j, k);
+  for (int i = lo; i < hi; ++i) { /* interior: branch-free */
     const int id = level_index(&L, i, j, k);
     const uchar m = mask[id];
     const float d = diagonal(m);
-    if ((m & FW_MASK_FLUID) && d > 0.0f) phi[id] = (b[id] + neighbour_sum(&L, phi, i, j, k, id, m)) / d;
+    const float updated = (b[id] + interior_neighbour_sum(&L, phi, id, m)) / d;
+    const int active = ((i + j + k) & 1) == colour && (m & FW_MASK_FLUID) && d > 0.0f;
+    phi_out[id] = active ? updated : phi[id];
   }
+  for (int i = hi; i < end; ++i)
+    phi_out[level_index(&L, i, j, k)] = red_black_cell(&L, mask, b, phi, colour, i, j, k);
 }
 
-/* r = b - A phi; partial[item] = sum of r^2 over the item's cells. */
 /* Residual of one cell with the general (edge-aware) neighbour sum. */
 FW_INLINE float residual_cell(const FwLevel* L, __global const uchar* mask, __global const float* b,
                               __global const float* phi, int i, int j, int k) {

@@ -60,8 +60,8 @@ TEST_CASE("pressure kernels: Jacobi, red-black, residual, restriction and prolon
                              ref::jacobi_sweep(f.spec, f.levels[0], b, phi, 0.8)) < kKernelTolerance);
 
   reset();
-  f.solver.enqueue_red_black_sweep(0, db, dphi, 0);
-  f.solver.enqueue_red_black_sweep(0, db, dphi, 1);
+  f.solver.enqueue_red_black_pass(0, db, dphi, dout, 0);
+  f.solver.enqueue_red_black_pass(0, db, dout, dphi, 1);
   auto expected = phi;
   ref::red_black_sweep(f.spec, f.levels[0], b, expected, 0);
   ref::red_black_sweep(f.spec, f.levels[0], b, expected, 1);
