@@ -1,0 +1,224 @@
+#include "trees/TreeFile.hpp"
+
+#include <fmt/format.h>
+
+#include <array>
+#include <cerrno>
+#include <charconv>
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <stdexcept>
+#include <unordered_map>
+#include <vector>
+
+namespace fw::trees {
+
+namespace detail {
+
+std::string read_text_file(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw std::runtime_error(fmt::format("{}: cannot open: {}", path, std::strerror(errno)));
+  std::string data((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  if (in.bad()) throw std::runtime_error(fmt::format("{}: read error", path));
+  return data;
+}
+
+std::optional<double> parse_number(std::string_view text) {
+  if (!text.empty() && text.front() == '+') text.remove_prefix(1);
+  if (text.empty() || text.front() == '+') return std::nullopt;
+  double value = 0.0;
+  const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), value);
+  if (ec != std::errc() || end != text.data() + text.size() || !std::isfinite(value)) return std::nullopt;
+  return value;
+}
+
+std::optional<long long> parse_integer(std::string_view text) {
+  if (!text.empty() && text.front() == '+') text.remove_prefix(1);
+  if (text.empty() || text.front() == '+') return std::nullopt;
+  long long value = 0;
+  const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), value);
+  if (ec != std::errc() || end != text.data() + text.size()) return std::nullopt;
+  return value;
+}
+
+std::string printable(std::string_view text) {
+  constexpr std::size_t kMax = 40;
+  std::string out;
+  for (std::size_t k = 0; k < text.size() && k < kMax; ++k) {
+    const auto c = static_cast<unsigned char>(text[k]);
+    if (c >= 0x20 && c < 0x7f && c != '\'' && c != '\\')
+      out += char(c);
+    else
+      out += fmt::format("\\x{:02x}", c);
+  }
+  if (text.size() > kMax) out += "...";
+  return out;
+}
+
+}  // namespace detail
+
+namespace {
+
+using detail::printable;
+
+constexpr std::array<const char*, 6> kColumns = {"id", "parent", "x", "y", "z", "radius"};
+constexpr const char* kLayout = "6 fields: id parent x y z radius";
+
+// One node line as read: its line number and its six tokens.
+struct NodeLine {
+  int line = 0;
+  std::array<std::string_view, 6> tokens;
+};
+
+bool is_blank(char c) {
+  return c == ' ' || c == '\t' || c == '\r' || c == '\v' || c == '\f';
+}
+
+[[noreturn]] void fail(const std::string& path, int line, std::string_view key, std::string_view expected,
+                       std::string_view got_quoted) {
+  throw std::runtime_error(fmt::format("{}:{}: {}: {}, got {}", path, line, key, expected, got_quoted));
+}
+
+std::string quoted(std::string_view token) {
+  return fmt::format("'{}'", printable(token));
+}
+
+}  // namespace
+
+Skeleton read_tree_file(const std::string& path) {
+  const std::string data = detail::read_text_file(path);
+
+  // Split into node lines of exactly six tokens.
+  std::vector<NodeLine> lines;
+  int line_number = 0;
+  for (std::size_t pos = 0; pos < data.size();) {
+    ++line_number;
+    std::size_t end = data.find('\n', pos);
+    if (end == std::string::npos) end = data.size();
+    std::string_view text(data.data() + pos, end - pos);
+    pos = end + 1;
+    if (const auto hash = text.find('#'); hash != std::string_view::npos) text = text.substr(0, hash);
+
+    NodeLine node{line_number, {}};
+    std::size_t count = 0;
+    for (std::size_t k = 0; k < text.size();) {
+      if (is_blank(text[k])) {
+        ++k;
+        continue;
+      }
+      std::size_t stop = k;
+      while (stop < text.size() && !is_blank(text[stop])) ++stop;
+      const std::string_view token = text.substr(k, stop - k);
+      if (count == kColumns.size())
+        fail(path, line_number, kColumns.back(),
+             fmt::format("expected end of line after the radius ({})", kLayout), quoted(token));
+      node.tokens[count++] = token;
+      k = stop;
+    }
+    if (count == 0) continue;
+    if (count < kColumns.size())
+      fail(path, line_number, kColumns[count], fmt::format("expected a value ({})", kLayout), "end of line");
+    lines.push_back(node);
+  }
+  if (lines.empty())
+    fail(path, std::max(line_number, 1), "id", fmt::format("expected at least one node line ({})", kLayout),
+         "end of file");
+
+  // Numbers, and ids that are unique and cover 0..n-1.
+  const long long n = static_cast<long long>(lines.size());
+  std::vector<SkeletonNode> nodes(lines.size());
+  std::vector<const NodeLine*> source(lines.size(), nullptr);  // node id -> its line
+  std::unordered_map<long long, int> seen;                     // id -> line number
+  std::vector<long long> ids(lines.size());
+  for (std::size_t k = 0; k < lines.size(); ++k) {
+    const NodeLine& node = lines[k];
+    const auto id = detail::parse_integer(node.tokens[0]);
+    if (!id) fail(path, node.line, "id", "expected an integer node id", quoted(node.tokens[0]));
+    if (const auto [it, inserted] = seen.emplace(*id, node.line); !inserted)
+      fail(path, node.line, "id",
+           fmt::format("expected a unique id (id {} is already on line {})", *id, it->second),
+           quoted(node.tokens[0]));
+    const auto parent = detail::parse_integer(node.tokens[1]);
+    if (!parent)
+      fail(path, node.line, "parent", "expected an integer: -1 (root) or a node id", quoted(node.tokens[1]));
+    double values[4];
+    for (int c = 0; c < 4; ++c) {
+      const auto value = detail::parse_number(node.tokens[std::size_t(c) + 2]);
+      if (!value)
+        fail(path, node.line, kColumns[std::size_t(c) + 2],
+             c < 3 ? "expected a finite number in metres" : "expected a positive number in metres",
+             quoted(node.tokens[std::size_t(c) + 2]));
+      values[c] = *value;
+    }
+    ids[k] = *id;
+    SkeletonNode& out = nodes[k];
+    // A parent outside -1..n-1 is left for Skeleton to report; clamp it so that it fits in an int.
+    out.parent = *parent < -1 ? -2 : *parent >= n ? int(n) : int(*parent);
+    out.position = Eigen::Vector3d(values[0], values[1], values[2]);
+    out.radius = values[3];
+  }
+  for (std::size_t k = 0; k < lines.size(); ++k) {
+    if (ids[k] < 0 || ids[k] >= n)
+      fail(path, lines[k].line, "id",
+           fmt::format("expected an id in 0..{} (ids number the file's {} nodes from 0)", n - 1, n),
+           quoted(lines[k].tokens[0]));
+    source[std::size_t(ids[k])] = &lines[k];
+  }
+  // Reorder by id: unique ids in 0..n-1 are a permutation.
+  std::vector<SkeletonNode> by_id(lines.size());
+  for (std::size_t k = 0; k < lines.size(); ++k) by_id[std::size_t(ids[k])] = nodes[k];
+
+  try {
+    return Skeleton::from_nodes(std::move(by_id));
+  } catch (const SkeletonError& error) {
+    if (error.node() < 0 || error.node() >= int(n))
+      throw std::runtime_error(fmt::format("{}: {}, got {}", path, error.expected(), error.got()));
+    const NodeLine& node = *source[std::size_t(error.node())];
+    switch (error.field()) {
+      case SkeletonError::Field::parent:
+        fail(path, node.line, "parent", error.expected(), quoted(node.tokens[1]));
+      case SkeletonError::Field::radius:
+        fail(path, node.line, "radius", error.expected(), quoted(node.tokens[5]));
+      case SkeletonError::Field::position:
+      case SkeletonError::Field::nodes:
+        break;
+    }
+    fail(path, node.line, "x y z", error.expected(),
+         fmt::format("'{} {} {}'", printable(node.tokens[2]), printable(node.tokens[3]),
+                     printable(node.tokens[4])));
+  }
+}
+
+void write_tree_file(const Skeleton& skeleton, const std::string& path) {
+  const std::string temporary = path + ".tmp";
+  std::string text = fmt::format(
+      "# forestwind skeleton: {} nodes\n# id parent x y z radius (metres; parent -1 is the root)\n",
+      skeleton.size());
+  for (int i = 0; i < skeleton.size(); ++i) {
+    const SkeletonNode& node = skeleton.node(i);
+    text += fmt::format("{} {} {:.17g} {:.17g} {:.17g} {:.17g}\n", i, node.parent, node.position.x(),
+                        node.position.y(), node.position.z(), node.radius);
+  }
+  {
+    std::ofstream out(temporary, std::ios::binary | std::ios::trunc);
+    if (!out) throw std::runtime_error(fmt::format("{}: cannot write: {}", temporary, std::strerror(errno)));
+    out.write(text.data(), std::streamsize(text.size()));
+    out.close();
+    if (!out) {
+      std::remove(temporary.c_str());
+      throw std::runtime_error(fmt::format("{}: write error", temporary));
+    }
+  }
+  std::error_code error;
+  std::filesystem::rename(temporary, path, error);
+  if (error) {
+    std::remove(temporary.c_str());
+    throw std::runtime_error(fmt::format("{}: cannot rename {} to it: {}", path, temporary, error.message()));
+  }
+}
+
+}  // namespace fw::trees
