@@ -26,12 +26,46 @@ int main(int argc, char** argv) {
 
   cli::BenchOptions bench;
   std::vector<std::string> grids;
-  auto* bench_cmd = app.add_subcommand("bench", "benchmarks: wind (the wind-tunnel case)");
-  bench_cmd->add_option("what", bench.what, "which benchmark")->required()->check(CLI::IsMember({"wind"}));
+  auto* bench_cmd =
+      app.add_subcommand("bench", "benchmarks: wind (the wind-tunnel case), trees (modal analysis)");
+  bench_cmd->add_option("what", bench.what, "which benchmark")
+      ->required()
+      ->check(CLI::IsMember({"wind", "trees"}));
   bench_cmd->add_option("--grid", grids,
                         "grid size NXxNYxNZ (repeatable; default 128x128x64, 64x64x32, 256x256x16)");
   bench_cmd->add_option("--steps", bench.steps, "timed steps per solver")->check(CLI::PositiveNumber);
   bench_cmd->add_flag("--json", bench.json, "one JSON object on stdout");
+
+  auto* tree = app.add_subcommand("tree", "tree species: generate skeletons, compute vibration modes");
+  tree->require_subcommand(1);
+  cli::TreeGenerateOptions generate;
+  auto* tree_generate = tree->add_subcommand("generate", "write a stochastic L-system tree as a .tree file");
+  tree_generate->add_option("--preset", generate.preset, "broadleaf | conifer | palm | weeping")
+      ->required()
+      ->check(CLI::IsMember({"broadleaf", "conifer", "palm", "weeping"}));
+  tree_generate->add_option("--height", generate.height, "tree height, m (default: the preset's)")
+      ->check(CLI::PositiveNumber);
+  tree_generate->add_option("--seed", generate.seed, "random seed (default 1)");
+  tree_generate
+      ->add_option("--max-element-length", generate.max_element_length,
+                   "longest FEM element, m (default: the preset's, about height/40)")
+      ->check(CLI::PositiveNumber);
+  tree_generate->add_option("-o,--output", generate.output, "FILE.tree")->required();
+
+  cli::TreeModesOptions modes;
+  auto* tree_modes =
+      tree->add_subcommand("modes", "the lowest vibration modes of a .tree file or TreeQSM table");
+  tree_modes->add_option("file", modes.file, "FILE.tree, or a TreeQSM cylinder table (.txt)")->required();
+  tree_modes->add_option("--modes", modes.modes, "number of modes (default 20)")->check(CLI::PositiveNumber);
+  tree_modes->add_option("--youngs-modulus", modes.youngs_modulus, "E, Pa (default 1e10)")
+      ->check(CLI::PositiveNumber);
+  tree_modes->add_option("--shear-modulus", modes.shear_modulus, "G, Pa (default 3.85e9)")
+      ->check(CLI::PositiveNumber);
+  tree_modes->add_option("--density", modes.density, "rho, kg/m^3 (default 900)")->check(CLI::PositiveNumber);
+  tree_modes->add_option("--damping-ratio", modes.damping_ratio, "zeta of every mode (default 0.05)")
+      ->check(CLI::NonNegativeNumber);
+  tree_modes->add_flag("--json", modes.json, "one JSON object on stdout");
+  tree_modes->add_option("-o,--output", modes.output_dir, "folder for skeleton.vtp and modes.vtp");
 
   try {
     app.parse(argc, argv);
@@ -42,6 +76,8 @@ int main(int argc, char** argv) {
 
   try {
     if (devices->parsed()) return cli::run_devices(devices_json);
+    if (tree_generate->parsed()) return cli::run_tree_generate(generate);
+    if (tree_modes->parsed()) return cli::run_tree_modes(modes);
     if (bench_cmd->parsed()) {
       for (const auto& g : grids) bench.grids.push_back(cli::parse_grid(g));
       return cli::run_bench(bench, global);

@@ -66,8 +66,7 @@ int BeamModel::free_dof_of(int node, int local) const {
   if (local < 0 || local > 5) {
     throw std::out_of_range(fmt::format("BeamModel: local DOF {} outside 0..5", local));
   }
-  if (node == root_) return -1;
-  return 6 * (node < root_ ? node : node - 1) + local;
+  return free_dof_index(root_, node, local);
 }
 
 }  // namespace fw::trees

@@ -43,6 +43,12 @@ class BeamModel {
   /// Index of DOF `local` (0..5 = ux uy uz rx ry rz) of `node` in the free system, -1 for the root's DOFs.
   /// Throws std::out_of_range for a node outside 0..n-1 or local outside 0..5.
   int free_dof_of(int node, int local) const;
+  /// The same numbering without a model: the free DOF of (node, local) in a skeleton whose root is `root`,
+  /// -1 for the root's own DOFs. No range checks.
+  static int free_dof_index(int root, int node, int local) {
+    if (node == root) return -1;
+    return 6 * (node < root ? node : node - 1) + local;
+  }
 
   /// Stored entries of stiffness(); mass() has the same pattern. Every element couples the full 6x6 blocks
   /// of its free nodes, so this is 36 (n - 1) + 72 * (elements between two non-root nodes).

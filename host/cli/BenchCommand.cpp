@@ -3,6 +3,7 @@
 #include <iostream>
 #include <stdexcept>
 
+#include "bench/TreeBench.hpp"
 #include "bench/WindBench.hpp"
 #include "host/ComputeContext.hpp"
 #include "host/Device.hpp"
@@ -23,11 +24,21 @@ std::array<int, 3> parse_grid(const std::string& text) {
 }
 
 int run_bench(const BenchOptions& options, const GlobalOptions& global) {
+  if (options.what == "trees") {
+    // Precomputation on the host: no OpenCL device involved.
+    if (!options.json) std::cerr << "running the tree modal-analysis benchmark ...\n";
+    const auto result = bench::run_tree_bench(bench::TreeBenchOptions{});
+    if (options.json)
+      std::cout << bench::tree_bench_json(result) << "\n";
+    else
+      bench::print_tree_bench_table(result, std::cout);
+    return 0;
+  }
   host::ComputeContext cc(host::select_device(host::device_filter_from_env(global.device_filter)),
                           global.profile);
   if (options.what != "wind")
     throw std::invalid_argument(
-        fmt::format("bench {}: not available in this build (only 'wind')", options.what));
+        fmt::format("bench {}: not available in this build (only 'wind' and 'trees')", options.what));
   bench::WindBenchOptions opt;
   if (!options.grids.empty()) opt.grids = options.grids;
   if (options.steps > 0) opt.steps = options.steps;

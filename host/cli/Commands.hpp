@@ -3,6 +3,7 @@
 #pragma once
 
 #include <array>
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -23,6 +24,29 @@ struct BenchOptions {
 };
 
 int run_bench(const BenchOptions& options, const GlobalOptions& global);
+
+struct TreeGenerateOptions {
+  std::string preset;   // broadleaf | conifer | palm | weeping
+  double height = 0.0;  // m; 0: the preset's default
+  std::uint64_t seed = 1;
+  double max_element_length = 0.0;  // m; 0: the preset's default
+  std::string output;               // FILE.tree
+};
+
+int run_tree_generate(const TreeGenerateOptions& options);
+
+struct TreeModesOptions {
+  std::string file;  // FILE.tree, or a TreeQSM cylinder table
+  int modes = 20;
+  double youngs_modulus = 1.0e10;  // Pa
+  double shear_modulus = 3.85e9;   // Pa
+  double density = 900.0;          // kg/m^3
+  double damping_ratio = 0.05;
+  bool json = false;
+  std::string output_dir;  // -o: skeleton.vtp and modes.vtp
+};
+
+int run_tree_modes(const TreeModesOptions& options);
 
 /// Parses "NXxNYxNZ" (e.g. "128x128x64"). Throws std::invalid_argument naming the text.
 std::array<int, 3> parse_grid(const std::string& text);

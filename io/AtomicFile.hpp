@@ -1,0 +1,38 @@
+// A file that appears under its final name only once it is complete: it is written under a temporary name in
+// the same folder and renamed into place by commit(). Readers (ParaView watching a folder, a crash midway)
+// therefore never see a half-written file.
+//
+//   fw::io::AtomicFile file("out/modes.vtp");
+//   writer->SetFileName(file.temporary_path().c_str());   // any writer that takes a path
+//   writer->Write();
+//   file.commit();                                        // rename(temporary, final); throws on failure
+//
+// If commit() is never called (an exception on the way), the destructor removes the temporary file.
+#pragma once
+
+#include <filesystem>
+
+namespace fw::io {
+
+class AtomicFile {
+ public:
+  /// target: the final path. The temporary is "<target>.tmp-<pid>" next to it. The parent folder must exist.
+  explicit AtomicFile(std::filesystem::path target);
+  ~AtomicFile();
+  AtomicFile(const AtomicFile&) = delete;
+  AtomicFile& operator=(const AtomicFile&) = delete;
+
+  const std::filesystem::path& temporary_path() const { return temporary_; }
+  const std::filesystem::path& target_path() const { return target_; }
+
+  /// Renames the temporary onto the target (replacing it). Throws std::runtime_error("AtomicFile: ...")
+  /// naming both paths if the temporary is missing or the rename fails.
+  void commit();
+
+ private:
+  std::filesystem::path target_;
+  std::filesystem::path temporary_;
+  bool committed_ = false;
+};
+
+}  // namespace fw::io

@@ -1,0 +1,171 @@
+#include "trees/BasisCache.hpp"
+
+#include <catch2/catch.hpp>
+
+#include "tests/support/ScopedEnv.hpp"
+#include "tests/support/TempDir.hpp"
+
+#include <filesystem>
+#include <fstream>
+#include <string>
+#include <vector>
+
+using fw::test::TempDir;
+using fw::trees::BasisCache;
+using fw::trees::CacheOutcome;
+using fw::trees::Skeleton;
+using fw::trees::SkeletonNode;
+using fw::trees::SpeciesBasis;
+using fw::trees::SpeciesSettings;
+
+namespace {
+
+// A leaning trunk of 12 nodes with a side branch of 5.
+Skeleton cached_tree() {
+  std::vector<SkeletonNode> nodes{{-1, {0.0, 0.0, 0.0}, 0.1}};
+  for (int k = 1; k <= 11; ++k) nodes.push_back({k - 1, {0.03 * k, 0.0, 0.5 * k}, 0.1 - 0.007 * k});
+  for (int k = 1; k <= 5; ++k)
+    nodes.push_back({k == 1 ? 5 : 11 + k - 1, {0.15 + 0.3 * k, 0.1 * k, 2.5 + 0.1 * k}, 0.03});
+  return Skeleton::from_nodes(std::move(nodes));
+}
+
+SpeciesSettings cached_settings() {
+  SpeciesSettings settings;
+  settings.modal.mode_count = 6;
+  settings.wind.samples = 2;
+  return settings;
+}
+
+void check_same(const SpeciesBasis& a, const SpeciesBasis& b) {
+  CHECK(a.modes().omega() == b.modes().omega());
+  CHECK(a.modes().shapes() == b.modes().shapes());
+  CHECK(a.modes().damping_coefficients() == b.modes().damping_coefficients());
+  CHECK(a.wind().projection_matrix() == b.wind().projection_matrix());
+  CHECK(a.wind().sample_points() == b.wind().sample_points());
+  CHECK(a.node_shapes() == b.node_shapes());
+}
+
+std::vector<char> read_bytes(const std::filesystem::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+}
+
+void write_bytes(const std::filesystem::path& path, const std::vector<char>& bytes) {
+  std::ofstream out(path, std::ios::binary | std::ios::trunc);
+  out.write(bytes.data(), std::streamsize(bytes.size()));
+}
+
+}  // namespace
+
+TEST_CASE("BasisCache: a stored basis loads back bit for bit") {
+  TempDir dir("fw_cache");
+  const BasisCache cache(dir.path());
+  const Skeleton tree = cached_tree();
+  CacheOutcome outcome{};
+  const SpeciesBasis first = cache.load_or_compute(tree, cached_settings(), &outcome);
+  CHECK(outcome == CacheOutcome::miss);
+  CHECK(std::filesystem::exists(cache.entry_path(BasisCache::key(tree, cached_settings()))));
+  const SpeciesBasis second = cache.load_or_compute(tree, cached_settings(), &outcome);
+  CHECK(outcome == CacheOutcome::hit);
+  check_same(first, second);
+  CHECK(second.modes().status().converged == first.modes().status().converged);
+  CHECK(second.modes().status().method == first.modes().status().method);
+  // Only the entry is left in the folder: no temporaries.
+  int files = 0;
+  for (const auto& entry : std::filesystem::directory_iterator(dir.path())) {
+    ++files;
+    CHECK(entry.path().extension() == ".fwbasis");
+  }
+  CHECK(files == 1);
+}
+
+TEST_CASE("BasisCache: the key changes with the skeleton, the material and every setting") {
+  const Skeleton tree = cached_tree();
+  const SpeciesSettings base = cached_settings();
+  const auto key = BasisCache::key(tree, base);
+  CHECK(BasisCache::key(tree, base) == key);
+
+  std::vector<SkeletonNode> moved = tree.nodes();
+  moved[7].radius *= 1.0 + 1e-12;
+  CHECK(BasisCache::key(Skeleton::from_nodes(moved), base) != key);
+
+  auto changed = base;
+  changed.material.density = 901.0;
+  CHECK(BasisCache::key(tree, changed) != key);
+  changed = base;
+  changed.modal.mode_count = 7;
+  CHECK(BasisCache::key(tree, changed) != key);
+  changed = base;
+  changed.modal.damping = fw::trees::Damping::modal_ratio(0.03);
+  CHECK(BasisCache::key(tree, changed) != key);
+  changed = base;
+  changed.wind.branch_normal_drag = true;
+  CHECK(BasisCache::key(tree, changed) != key);
+  changed = base;
+  changed.wind.samples = 3;
+  CHECK(BasisCache::key(tree, changed) != key);
+}
+
+TEST_CASE("BasisCache: a corrupted entry is detected and recomputed") {
+  TempDir dir("fw_cache");
+  const BasisCache cache(dir.path());
+  const Skeleton tree = cached_tree();
+  const SpeciesBasis fresh = cache.load_or_compute(tree, cached_settings());
+  const auto path = cache.entry_path(BasisCache::key(tree, cached_settings()));
+  const std::vector<char> good = read_bytes(path);
+  REQUIRE(good.size() > 200);
+
+  SECTION("a flipped byte in the mode shapes") {
+    std::vector<char> bad = good;
+    bad[good.size() / 2] ^= 0x10;
+    write_bytes(path, bad);
+  }
+  SECTION("a truncated file") {
+    write_bytes(path, std::vector<char>(good.begin(), good.begin() + std::ptrdiff_t(good.size() / 3)));
+  }
+  SECTION("an empty file") {
+    write_bytes(path, {});
+  }
+  SECTION("another species' entry under this key") {
+    auto other = cached_settings();
+    other.modal.mode_count = 5;
+    cache.load_or_compute(tree, other);
+    std::filesystem::copy_file(cache.entry_path(BasisCache::key(tree, other)), path,
+                               std::filesystem::copy_options::overwrite_existing);
+  }
+
+  std::string why;
+  CHECK_FALSE(cache.load(tree, cached_settings(), &why).has_value());
+  CHECK(why.find(path.string()) == 0);
+  CacheOutcome outcome{};
+  const SpeciesBasis recomputed = cache.load_or_compute(tree, cached_settings(), &outcome);
+  CHECK(outcome == CacheOutcome::corrupt_recomputed);
+  check_same(fresh, recomputed);
+  // The entry was rewritten and is good again.
+  CHECK(read_bytes(path) == good);
+  cache.load_or_compute(tree, cached_settings(), &outcome);
+  CHECK(outcome == CacheOutcome::hit);
+}
+
+TEST_CASE("BasisCache: the default folder follows FORESTWIND_CACHE_DIR, then XDG_CACHE_HOME") {
+  {
+    fw::test::ScopedEnv cache_dir("FORESTWIND_CACHE_DIR", "/tmp/fw-cache-here");
+    CHECK(BasisCache::default_directory() == std::filesystem::path("/tmp/fw-cache-here"));
+  }
+  fw::test::ScopedEnv cache_dir("FORESTWIND_CACHE_DIR", "");
+  fw::test::ScopedEnv xdg("XDG_CACHE_HOME", "/tmp/xdg");
+  CHECK(BasisCache::default_directory() == std::filesystem::path("/tmp/xdg/forestwind"));
+}
+
+TEST_CASE("BasisCache: a cache folder that cannot be created is reported, the basis still returned") {
+  TempDir dir("fw_cache");
+  const std::string blocker = dir.write("file", "not a folder");
+  const BasisCache cache(std::filesystem::path(blocker) / "cache");
+  CacheOutcome outcome{};
+  std::string store_error;
+  const SpeciesBasis species =
+      cache.load_or_compute(cached_tree(), cached_settings(), &outcome, &store_error);
+  CHECK(outcome == CacheOutcome::miss);
+  CHECK(store_error.find("BasisCache: cannot create the cache folder") == 0);
+  CHECK(species.modes().mode_count() == 6);
+}

@@ -1,0 +1,286 @@
+#include "trees/BasisCache.hpp"
+
+#include <fmt/format.h>
+#include <unistd.h>
+
+#include <cstdlib>
+#include <cstring>
+#include <fstream>
+#include <iterator>
+#include <span>
+#include <stdexcept>
+#include <system_error>
+#include <vector>
+
+namespace fw::trees {
+
+namespace {
+
+constexpr char kMagic[8] = {'F', 'W', 'B', 'A', 'S', 'I', 'S', '\0'};
+
+// 64-bit FNV-1a: simple, stable across platforms and plenty for a per-machine cache key and checksum.
+class Fnv1a {
+ public:
+  void bytes(const void* data, std::size_t size) {
+    const auto* p = static_cast<const unsigned char*>(data);
+    for (std::size_t i = 0; i < size; ++i) {
+      hash_ ^= p[i];
+      hash_ *= 0x100000001b3ULL;
+    }
+  }
+  template <typename T>
+  void value(const T& v) {
+    bytes(&v, sizeof v);
+  }
+  std::uint64_t digest() const { return hash_; }
+
+ private:
+  std::uint64_t hash_ = 0xcbf29ce484222325ULL;
+};
+
+// Appends plain values to a byte buffer.
+class Writer {
+ public:
+  template <typename T>
+  void value(const T& v) {
+    const auto* p = reinterpret_cast<const char*>(&v);
+    buffer_.insert(buffer_.end(), p, p + sizeof v);
+  }
+  void doubles(const double* data, std::size_t count) {
+    const auto* p = reinterpret_cast<const char*>(data);
+    buffer_.insert(buffer_.end(), p, p + count * sizeof(double));
+  }
+  void text(const std::string& s) {
+    value(std::uint32_t(s.size()));
+    buffer_.insert(buffer_.end(), s.begin(), s.end());
+  }
+  std::vector<char>& buffer() { return buffer_; }
+
+ private:
+  std::vector<char> buffer_;
+};
+
+// Reads plain values from a byte buffer; every read checks the remaining length.
+class Reader {
+ public:
+  explicit Reader(std::span<const char> bytes) : bytes_(bytes) {}
+  template <typename T>
+  T value() {
+    T v;
+    take(&v, sizeof v);
+    return v;
+  }
+  void doubles(double* data, std::size_t count) { take(data, count * sizeof(double)); }
+  std::string text() {
+    const auto size = value<std::uint32_t>();
+    if (size > bytes_.size() - offset_) throw std::runtime_error("truncated text");
+    std::string s(bytes_.data() + offset_, size);
+    offset_ += size;
+    return s;
+  }
+  std::size_t offset() const { return offset_; }
+
+ private:
+  void take(void* out, std::size_t size) {
+    if (size > bytes_.size() - offset_) throw std::runtime_error("the entry is truncated");
+    std::memcpy(out, bytes_.data() + offset_, size);
+    offset_ += size;
+  }
+  std::span<const char> bytes_;
+  std::size_t offset_ = 0;
+};
+
+}  // namespace
+
+const char* to_string(CacheOutcome outcome) {
+  switch (outcome) {
+    case CacheOutcome::hit:
+      return "hit";
+    case CacheOutcome::miss:
+      return "miss";
+    case CacheOutcome::corrupt_recomputed:
+      return "corrupt_recomputed";
+  }
+  return "?";
+}
+
+BasisCache::BasisCache(std::filesystem::path directory) : directory_(std::move(directory)) {}
+
+std::filesystem::path BasisCache::default_directory() {
+  if (const char* dir = std::getenv("FORESTWIND_CACHE_DIR"); dir && *dir) return dir;
+  if (const char* xdg = std::getenv("XDG_CACHE_HOME"); xdg && *xdg) {
+    return std::filesystem::path(xdg) / "forestwind";
+  }
+  if (const char* home = std::getenv("HOME"); home && *home) {
+    return std::filesystem::path(home) / ".cache" / "forestwind";
+  }
+  return ".forestwind-cache";
+}
+
+std::uint64_t BasisCache::key(const Skeleton& skeleton, const SpeciesSettings& settings) {
+  settings.validate();
+  Fnv1a hash;
+  hash.value(kFormatVersion);
+  hash.value(std::int32_t(skeleton.size()));
+  for (const SkeletonNode& node : skeleton.nodes()) {
+    hash.value(std::int32_t(node.parent));
+    hash.value(node.position.x());
+    hash.value(node.position.y());
+    hash.value(node.position.z());
+    hash.value(node.radius);
+  }
+  hash.value(settings.material.youngs_modulus);
+  hash.value(settings.material.shear_modulus);
+  hash.value(settings.material.density);
+  const ModalSettings& modal = settings.modal;
+  hash.value(std::int32_t(modal.mode_count));
+  hash.value(modal.tolerance);
+  hash.value(std::int32_t(modal.max_iterations));
+  hash.value(std::int32_t(modal.lanczos_vectors));
+  hash.value(std::int32_t(modal.damping.model));
+  hash.value(std::int32_t(modal.damping.ratios.size()));
+  for (double zeta : modal.damping.ratios) hash.value(zeta);
+  hash.value(modal.damping.alpha);
+  hash.value(modal.damping.beta);
+  hash.value(settings.wind.drag_factor);
+  hash.value(std::int32_t(settings.wind.branch_normal_drag ? 1 : 0));
+  hash.value(std::int32_t(settings.wind.samples));
+  return hash.digest();
+}
+
+std::filesystem::path BasisCache::entry_path(std::uint64_t key) const {
+  return directory_ / fmt::format("{:016x}.fwbasis", key);
+}
+
+std::optional<SpeciesBasis> BasisCache::load(const Skeleton& skeleton, const SpeciesSettings& settings,
+                                             std::string* why_not) const {
+  if (why_not) why_not->clear();
+  const std::uint64_t expected_key = key(skeleton, settings);
+  const auto path = entry_path(expected_key);
+  std::ifstream in(path, std::ios::binary);
+  if (!in) return std::nullopt;
+  const std::vector<char> bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+
+  try {
+    if (bytes.size() < sizeof kMagic + sizeof(std::uint64_t))
+      throw std::runtime_error("the entry is truncated");
+    const std::size_t body = bytes.size() - sizeof(std::uint64_t);
+    Fnv1a checksum;
+    checksum.bytes(bytes.data(), body);
+    std::uint64_t stored_checksum;
+    std::memcpy(&stored_checksum, bytes.data() + body, sizeof stored_checksum);
+    if (stored_checksum != checksum.digest()) throw std::runtime_error("the checksum does not match");
+
+    Reader reader(std::span<const char>(bytes.data(), body));
+    char magic[sizeof kMagic];
+    for (char& c : magic) c = reader.value<char>();
+    if (std::memcmp(magic, kMagic, sizeof kMagic) != 0) throw std::runtime_error("not a forestwind basis");
+    if (reader.value<std::uint32_t>() != kFormatVersion) throw std::runtime_error("another format version");
+    if (reader.value<std::uint64_t>() != expected_key) throw std::runtime_error("the key does not match");
+    const int nodes = reader.value<std::int32_t>();
+    const int dofs = reader.value<std::int32_t>();
+    const int modes = reader.value<std::int32_t>();
+    const int samples = reader.value<std::int32_t>();
+    if (nodes != skeleton.size() || dofs != 6 * (nodes - 1) || modes != settings.modal.mode_count ||
+        samples != settings.wind.samples) {
+      throw std::runtime_error("the sizes do not match the species");
+    }
+    ModalStatus status;
+    status.requested = modes;
+    status.converged = reader.value<std::int32_t>();
+    status.iterations = reader.value<std::int32_t>();
+    status.operations = reader.value<std::int32_t>();
+    status.max_residual = reader.value<double>();
+    status.method = reader.text();
+
+    Eigen::VectorXd omega(modes);
+    reader.doubles(omega.data(), std::size_t(modes));
+    Eigen::MatrixXd shapes(dofs, modes);
+    reader.doubles(shapes.data(), std::size_t(dofs) * std::size_t(modes));
+    Eigen::MatrixXd projection(3 * samples, modes);
+    reader.doubles(projection.data(), std::size_t(3 * samples) * std::size_t(modes));
+    Eigen::MatrixX3d sample_points(samples, 3);
+    reader.doubles(sample_points.data(), std::size_t(samples) * 3);
+    if (reader.offset() != body) throw std::runtime_error("the entry has trailing bytes");
+
+    ModalBasis modal = ModalBasis::from_values(std::move(omega), std::move(shapes), settings.modal.damping,
+                                               std::move(status));
+    WindBasis wind = WindBasis::from_values(std::move(projection), std::move(sample_points), settings.wind);
+    return SpeciesBasis::from_parts(skeleton, settings, std::move(modal), std::move(wind));
+  } catch (const std::exception& e) {
+    if (why_not) *why_not = fmt::format("{}: {}", path.string(), e.what());
+    return std::nullopt;
+  }
+}
+
+void BasisCache::store(const SpeciesBasis& species) const {
+  const std::uint64_t entry_key = key(species.skeleton(), species.settings());
+  const ModalBasis& modal = species.modes();
+  const WindBasis& wind = species.wind();
+  Writer writer;
+  for (char c : kMagic) writer.value(c);
+  writer.value(kFormatVersion);
+  writer.value(entry_key);
+  writer.value(std::int32_t(species.skeleton().size()));
+  writer.value(std::int32_t(modal.dof_count()));
+  writer.value(std::int32_t(modal.mode_count()));
+  writer.value(std::int32_t(wind.sample_count()));
+  writer.value(std::int32_t(modal.status().converged));
+  writer.value(std::int32_t(modal.status().iterations));
+  writer.value(std::int32_t(modal.status().operations));
+  writer.value(modal.status().max_residual);
+  writer.text(modal.status().method);
+  writer.doubles(modal.omega().data(), std::size_t(modal.omega().size()));
+  writer.doubles(modal.shapes().data(), std::size_t(modal.shapes().size()));
+  writer.doubles(wind.projection_matrix().data(), std::size_t(wind.projection_matrix().size()));
+  writer.doubles(wind.sample_points().data(), std::size_t(wind.sample_points().size()));
+  Fnv1a checksum;
+  checksum.bytes(writer.buffer().data(), writer.buffer().size());
+  writer.value(checksum.digest());
+
+  const auto path = entry_path(entry_key);
+  std::error_code error;
+  std::filesystem::create_directories(directory_, error);
+  if (error) {
+    throw std::runtime_error(fmt::format("BasisCache: cannot create the cache folder {}: {}",
+                                         directory_.string(), error.message()));
+  }
+  auto temporary = path;
+  temporary += fmt::format(".tmp-{}", static_cast<long>(::getpid()));
+  {
+    std::ofstream out(temporary, std::ios::binary | std::ios::trunc);
+    out.write(writer.buffer().data(), std::streamsize(writer.buffer().size()));
+    out.close();
+    if (!out) {
+      std::filesystem::remove(temporary, error);
+      throw std::runtime_error(fmt::format("BasisCache: cannot write {}", temporary.string()));
+    }
+  }
+  std::filesystem::rename(temporary, path, error);
+  if (error) {
+    std::error_code ignored;
+    std::filesystem::remove(temporary, ignored);
+    throw std::runtime_error(fmt::format("BasisCache: cannot rename {} to {}: {}", temporary.string(),
+                                         path.string(), error.message()));
+  }
+}
+
+SpeciesBasis BasisCache::load_or_compute(const Skeleton& skeleton, const SpeciesSettings& settings,
+                                         CacheOutcome* outcome, std::string* store_error) const {
+  if (store_error) store_error->clear();
+  std::string why_not;
+  if (auto cached = load(skeleton, settings, &why_not)) {
+    if (outcome) *outcome = CacheOutcome::hit;
+    return std::move(*cached);
+  }
+  if (outcome) *outcome = why_not.empty() ? CacheOutcome::miss : CacheOutcome::corrupt_recomputed;
+  SpeciesBasis species = SpeciesBasis::compute(skeleton, settings);
+  try {
+    store(species);
+  } catch (const std::runtime_error& e) {
+    if (store_error) *store_error = e.what();
+  }
+  return species;
+}
+
+}  // namespace fw::trees

@@ -1,0 +1,76 @@
+// Everything the simulator needs to know about one tree species, computed once before a run: the skeleton,
+// its lowest vibration modes and the wind projection basis (DESIGN.md, "Data flow").
+//
+//   fw::trees::SpeciesSettings settings;
+//   settings.material = {1.0e10, 3.85e9, 900.0};
+//   settings.modal.mode_count = 20;
+//   settings.wind.samples = 3;
+//   auto species = fw::trees::SpeciesBasis::compute(skeleton, settings);   // assembly + Spectra + p_i
+//   species.modes().frequencies_hz();
+//   species.wind().projection_matrix();          // (3 S) x m
+//   species.node_shapes();                       // (3 n) x m: nodal translations, for u = Phi q on a device
+//   auto instance = species.scaled(1.1);         // one basis serves a whole stand of similar trees
+//
+// The expensive part (the eigenproblem) is cached on disk by trees/BasisCache.hpp.
+#pragma once
+
+#include <Eigen/Core>
+
+#include "trees/Material.hpp"
+#include "trees/ModalBasis.hpp"
+#include "trees/Skeleton.hpp"
+#include "trees/WindBasis.hpp"
+
+namespace fw::trees {
+
+struct SpeciesSettings {
+  Material material{1.0e10, 3.85e9, 900.0};  ///< E, G (Pa), rho (kg/m^3): Diener's wood, G = E / 2.6
+  ModalSettings modal;                       ///< how many modes, damping, solver tolerances
+  WindBasisSettings wind;                    ///< drag factor, branch-normal drag, wind samples
+
+  /// Throws std::invalid_argument naming the part (Material, ModalSettings, Damping, WindBasisSettings).
+  void validate() const;
+};
+
+/// How long the parts of SpeciesBasis::compute took, s.
+struct SpeciesTimings {
+  double assembly = 0.0;  ///< BeamModel: element matrices and sparse assembly
+  double modes = 0.0;     ///< ModalBasis: factorisation and Lanczos
+  double wind = 0.0;      ///< WindBasis
+};
+
+class SpeciesBasis {
+ public:
+  /// Assembles the FEM model, solves for the modes and projects the wind. Throws what BeamModel, ModalBasis
+  /// (ModalError when the modes do not converge) and WindBasis throw.
+  static SpeciesBasis compute(Skeleton skeleton, const SpeciesSettings& settings);
+
+  /// Rebuilds a species from its parts (the disk cache). Throws std::invalid_argument("SpeciesBasis: ...")
+  /// when the parts do not fit together (DOFs against the skeleton, mode counts, sample counts).
+  static SpeciesBasis from_parts(Skeleton skeleton, SpeciesSettings settings, ModalBasis modes,
+                                 WindBasis wind);
+
+  const Skeleton& skeleton() const { return skeleton_; }
+  const SpeciesSettings& settings() const { return settings_; }
+  const ModalBasis& modes() const { return modes_; }
+  const WindBasis& wind() const { return wind_; }
+  const SpeciesTimings& timings() const { return timings_; }
+
+  /// Nodal translations of every mode, (3 n) x m, m per unit modal coordinate: rows 3k..3k+2 are node k's
+  /// x, y, z; the root's rows are zero. The skeleton displacement is node_shapes() * q.
+  const Eigen::MatrixXd& node_shapes() const { return node_shapes_; }
+
+  /// The species grown by s about its root origin (Skeleton::transformed(I, 0, s)), with modes and wind basis
+  /// transformed by the similarity laws instead of recomputed.
+  SpeciesBasis scaled(double s) const;
+
+ private:
+  Skeleton skeleton_;
+  SpeciesSettings settings_;
+  ModalBasis modes_;
+  WindBasis wind_;
+  Eigen::MatrixXd node_shapes_;
+  SpeciesTimings timings_;
+};
+
+}  // namespace fw::trees

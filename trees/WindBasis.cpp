@@ -1,0 +1,247 @@
+#include "trees/WindBasis.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+#include <utility>
+#include <vector>
+
+#include <fmt/format.h>
+
+#include "trees/BeamElement.hpp"
+#include "trees/BeamModel.hpp"
+#include "trees/Skeleton.hpp"
+
+namespace fw::trees {
+
+namespace {
+
+// Antiderivatives in t = s / L of the shape functions, without the factor L from ds = L dt.
+struct ShapeAntiderivatives {
+  double l1, l2, h1, h2, h3, h4;  // h2, h4 without their factor L
+};
+
+ShapeAntiderivatives antiderivatives(double t) {
+  const double t2 = t * t;
+  const double t3 = t2 * t;
+  const double t4 = t3 * t;
+  return {t - 0.5 * t2,      0.5 * t2,
+          t - t3 + 0.5 * t4, 0.5 * t2 - 2.0 * t3 / 3.0 + 0.25 * t4,
+          t3 - 0.5 * t4,     0.25 * t4 - t3 / 3.0};
+}
+
+}  // namespace
+
+Eigen::Matrix<double, 3, 12> integrated_shape_functions(double length, double s0, double s1) {
+  if (!std::isfinite(length) || !(length > 0.0)) {
+    throw std::invalid_argument(
+        fmt::format("WindBasis: element length must be finite and positive, got {}", length));
+  }
+  if (!(s0 >= 0.0) || !(s0 <= s1) || !(s1 <= length)) {
+    throw std::invalid_argument(fmt::format(
+        "WindBasis: integration range must satisfy 0 <= s0 <= s1 <= L = {}, got [{}, {}]", length, s0, s1));
+  }
+  const double L = length;
+  const ShapeAntiderivatives a = antiderivatives(s0 / L);
+  const ShapeAntiderivatives b = antiderivatives(s1 / L);
+  const double l1 = L * (b.l1 - a.l1);
+  const double l2 = L * (b.l2 - a.l2);
+  const double h1 = L * (b.h1 - a.h1);
+  const double h2 = L * L * (b.h2 - a.h2);
+  const double h3 = L * (b.h3 - a.h3);
+  const double h4 = L * L * (b.h4 - a.h4);
+
+  Eigen::Matrix<double, 3, 12> n = Eigen::Matrix<double, 3, 12>::Zero();
+  n(0, 0) = l1;  // ux_a
+  n(0, 6) = l2;  // ux_b
+  // x-y plane: rz = +uy'.
+  n(1, 1) = h1;
+  n(1, 5) = h2;
+  n(1, 7) = h3;
+  n(1, 11) = h4;
+  // x-z plane: ry = -uz', so the slope functions enter with a minus sign.
+  n(2, 2) = h1;
+  n(2, 4) = -h2;
+  n(2, 8) = h3;
+  n(2, 10) = -h4;
+  return n;
+}
+
+void WindBasisSettings::validate() const {
+  if (!std::isfinite(drag_factor) || !(drag_factor >= 0.0)) {
+    throw std::invalid_argument(fmt::format(
+        "WindBasisSettings: drag_factor (C = 1/2 rho_air C_D, kg/m^3) must be finite and >= 0, got {}",
+        drag_factor));
+  }
+  if (samples < 1) {
+    throw std::invalid_argument(fmt::format("WindBasisSettings: samples must be >= 1, got {}", samples));
+  }
+}
+
+WindBasis WindBasis::compute(const Skeleton& skeleton, const BeamModel& model, const Eigen::MatrixXd& shapes,
+                             const WindBasisSettings& settings) {
+  settings.validate();
+  if (model.node_count() != skeleton.size()) {
+    throw std::invalid_argument(fmt::format("WindBasis: the model has {} nodes but the skeleton has {}",
+                                            model.node_count(), skeleton.size()));
+  }
+  if (shapes.rows() != model.dof_count()) {
+    throw std::invalid_argument(fmt::format("WindBasis: shapes must have model.dof_count() = {} rows, got {}",
+                                            model.dof_count(), shapes.rows()));
+  }
+  if (!shapes.allFinite()) throw std::invalid_argument("WindBasis: shapes contain non-finite values");
+
+  const int bands = settings.samples;
+  const Eigen::Index modes = shapes.cols();
+  const double z_root = skeleton.node(skeleton.root()).position.z();
+  double z_top = z_root;
+  for (const auto& node : skeleton.nodes()) z_top = std::max(z_top, node.position.z());
+  const double height = z_top - z_root;
+  // A flat tree (no node above the root) cannot be split by height: everything goes to band 0.
+  const bool split = bands > 1 && height > 0.0;
+
+  WindBasis basis;
+  basis.settings_ = settings;
+  basis.projection_ = Eigen::MatrixXd::Zero(3 * bands, modes);
+  Eigen::VectorXd weight = Eigen::VectorXd::Zero(bands);                // int D ds per band, m^2
+  Eigen::MatrixX3d moment = Eigen::MatrixX3d::Zero(bands, 3);           // int D x ds per band, m^3
+  Eigen::Matrix<double, 12, Eigen::Dynamic> element_shapes(12, modes);  // phi^e, global frame
+  std::vector<double> cuts;
+
+  for (const auto& [parent, child] : skeleton.elements()) {
+    const SkeletonNode& a = skeleton.node(parent);
+    const SkeletonNode& b = skeleton.node(child);
+    const double length = (b.position - a.position).norm();
+    const double diameter = a.radius + b.radius;  // 2 * mean radius
+    const Eigen::Matrix3d frame = element_frame(a.position, b.position);
+
+    // Everything that does not depend on the piece: C D_e [P_e] R_e^T (3x3, local to global).
+    Eigen::Matrix3d to_global = settings.drag_factor * diameter * frame.transpose();
+    if (settings.branch_normal_drag) {
+      const Eigen::Vector3d axis = frame.row(0).transpose();
+      to_global = (Eigen::Matrix3d::Identity() - axis * axis.transpose()) * to_global;
+    }
+
+    for (int local = 0; local < 6; ++local) {
+      const int dof_a = model.free_dof_of(parent, local);
+      const int dof_b = model.free_dof_of(child, local);
+      if (dof_a >= 0) {
+        element_shapes.row(local) = shapes.row(dof_a);
+      } else {
+        element_shapes.row(local).setZero();  // clamped root
+      }
+      if (dof_b >= 0) {
+        element_shapes.row(6 + local) = shapes.row(dof_b);
+      } else {
+        element_shapes.row(6 + local).setZero();
+      }
+    }
+
+    // Pieces of the element between band borders, as fractions t of its length.
+    cuts.assign({0.0, 1.0});
+    const double za = a.position.z();
+    const double zb = b.position.z();
+    if (split) {
+      for (int k = 1; k < bands; ++k) {
+        const double border = z_root + height * k / bands;
+        if ((border - za) * (border - zb) < 0.0) cuts.push_back((border - za) / (zb - za));
+      }
+      std::sort(cuts.begin(), cuts.end());
+    }
+
+    for (std::size_t piece = 0; piece + 1 < cuts.size(); ++piece) {
+      const double t0 = cuts[piece];
+      const double t1 = cuts[piece + 1];
+      if (!(t1 > t0)) continue;
+      const double tm = 0.5 * (t0 + t1);
+      const Eigen::Vector3d middle = a.position + tm * (b.position - a.position);
+      int band = 0;
+      if (split) {
+        // Decided at the piece's middle, which lies strictly inside one band; parts below the root go to 0.
+        band = std::clamp(int(std::floor((middle.z() - z_root) / height * bands)), 0, bands - 1);
+      }
+
+      const Eigen::Matrix<double, 3, 12> integral =
+          integrated_shape_functions(length, t0 * length, t1 * length);
+      // integral * T_e, T_e = diag(R, R, R, R): maps global nodal DOFs to the integrated local displacement.
+      Eigen::Matrix<double, 3, 12> global;
+      for (int block = 0; block < 4; ++block) {
+        global.middleCols<3>(3 * block) = to_global * integral.middleCols<3>(3 * block) * frame;
+      }
+      basis.projection_.middleRows<3>(3 * band) += global * element_shapes;
+
+      const double w = diameter * (t1 - t0) * length;
+      weight(band) += w;
+      moment.row(band) += w * middle.transpose();  // exact: D is constant and x linear along the piece
+    }
+  }
+
+  const double total_weight = weight.sum();
+  const Eigen::RowVector3d centroid = moment.colwise().sum() / total_weight;
+  basis.sample_points_.resize(bands, 3);
+  for (int band = 0; band < bands; ++band) {
+    basis.sample_points_.row(band) =
+        weight(band) > 0.0 ? Eigen::RowVector3d(moment.row(band) / weight(band)) : centroid;
+  }
+  return basis;
+}
+
+WindBasis WindBasis::from_values(Eigen::MatrixXd projection, Eigen::MatrixX3d sample_points,
+                                 WindBasisSettings settings) {
+  settings.validate();
+  if (sample_points.rows() != settings.samples) {
+    throw std::invalid_argument(
+        fmt::format("WindBasis: sample_points must have settings.samples = {} rows, got {}", settings.samples,
+                    sample_points.rows()));
+  }
+  if (projection.rows() != 3 * Eigen::Index(settings.samples)) {
+    throw std::invalid_argument(fmt::format("WindBasis: projection must have 3 * samples = {} rows, got {}",
+                                            3 * settings.samples, projection.rows()));
+  }
+  if (!projection.allFinite())
+    throw std::invalid_argument("WindBasis: projection contains non-finite values");
+  if (!sample_points.allFinite()) {
+    throw std::invalid_argument("WindBasis: sample_points contain non-finite values");
+  }
+  WindBasis basis;
+  basis.projection_ = std::move(projection);
+  basis.sample_points_ = std::move(sample_points);
+  basis.settings_ = settings;
+  return basis;
+}
+
+Eigen::Vector3d WindBasis::projection(int sample, int mode) const {
+  if (sample < 0 || sample >= sample_count()) {
+    throw std::out_of_range(fmt::format("WindBasis: sample {} outside 0..{}", sample, sample_count() - 1));
+  }
+  if (mode < 0 || mode >= mode_count()) {
+    throw std::out_of_range(fmt::format("WindBasis: mode {} outside 0..{}", mode, mode_count() - 1));
+  }
+  return projection_.block<3, 1>(3 * sample, mode);
+}
+
+Eigen::VectorXd WindBasis::modal_forces(const Eigen::MatrixX3d& wind) const {
+  if (wind.rows() != sample_count()) {
+    throw std::invalid_argument(fmt::format("WindBasis: wind must have one row per sample ({}), got {} rows",
+                                            sample_count(), wind.rows()));
+  }
+  // Stack |v_s| v_s into one 3S vector; then f = P^T w is a single product.
+  Eigen::VectorXd stacked(3 * wind.rows());
+  for (Eigen::Index s = 0; s < wind.rows(); ++s) {
+    stacked.segment<3>(3 * s) = wind.row(s).norm() * wind.row(s).transpose();
+  }
+  return projection_.transpose() * stacked;
+}
+
+WindBasis WindBasis::scaled(double s) const {
+  if (!std::isfinite(s) || !(s > 0.0)) {
+    throw std::invalid_argument(fmt::format("WindBasis: scale must be finite and positive, got {}", s));
+  }
+  WindBasis basis;
+  basis.projection_ = std::sqrt(s) * projection_;
+  basis.sample_points_ = s * sample_points_;
+  basis.settings_ = settings_;
+  return basis;
+}
+
+}  // namespace fw::trees
