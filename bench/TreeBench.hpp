@@ -21,7 +21,7 @@ namespace fw::bench {
 struct TreeBenchOptions {
   std::vector<int> target_nodes{300, 1000, 3437, 10000, 30000};
   int modes = 25;
-  int dense_max_dofs = 2000;  // dense baseline only up to this many DOFs: O(n^3) time (88 s at 6,000)
+  int dense_max_dofs = 2500;  // dense baseline only up to this many DOFs: O(n^3) time (88 s at 6,000)
   std::string preset = "broadleaf";
   double height = 15.0;  // m
   unsigned seed = 1;
