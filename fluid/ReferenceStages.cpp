@@ -293,6 +293,37 @@ void add_vorticity_confinement(const GridSpec& spec, MacVelocity& vel, double ep
     });
 }
 
+MacVelocity canopy_drag(const GridSpec& spec, const MacVelocity& vel, const std::vector<float>& drag_density,
+                        double dt) {
+  if (drag_density.size() != spec.cell_count())
+    throw std::invalid_argument("canopy_drag: the drag density needs one value a cell");
+  MacVelocity out(spec);
+  for (int c = 0; c < 3; ++c)
+    for_each_face(spec, c, [&](int i, int j, int k, std::size_t id) {
+      int lo[3] = {i, j, k}, hi[3] = {i, j, k};
+      lo[c] = std::max(lo[c] - 1, 0);
+      hi[c] = std::min(hi[c], dims(spec, c) - 1);
+      const double kf = 0.5 * (double(drag_density[cell_index(spec.nx, spec.ny, lo[0], lo[1], lo[2])]) +
+                               drag_density[cell_index(spec.nx, spec.ny, hi[0], hi[1], hi[2])]);
+      const double q = vel.component(c)[id];
+      double speed2 = q * q;
+      for (int d = 0; d < 3; ++d) {
+        if (d == c) continue;
+        // Component d at the face: the mean of the d-faces below and above both neighbouring cells.
+        double m = 0.0;
+        for (const int* cell : {lo, hi})
+          for (int side = 0; side < 2; ++side) {
+            int f[3] = {cell[0], cell[1], cell[2]};
+            f[d] += side;
+            m += vel.component(d)[face_index(spec, d, f[0], f[1], f[2])];
+          }
+        speed2 += 0.0625 * m * m;
+      }
+      out.component(c)[id] = float(q / (1.0 + dt * kf * std::sqrt(speed2)));
+    });
+  return out;
+}
+
 MacVelocity diffuse(const GridSpec& spec, const InflowState& inflow, const MacVelocity& vel, double nu,
                     double dt) {
   MacVelocity out(spec);

@@ -35,6 +35,7 @@ FluidStages::FluidStages(ComputeContext& cc, const fluid::GridSpec& spec)
   vorticity_ = Kernel(forces, "vorticity");
   confinement_ = Kernel(forces, "vorticity_confinement");
   diffuse_ = Kernel(forces, "diffuse");
+  canopy_drag_ = Kernel(forces, "apply_canopy_drag");
   boundaries_ = Kernel(cc_.build("fluid_boundaries.cl"), "enforce_boundaries");
   cl::Program project = cc_.build("fluid_project.cl");
   divergence_ = Kernel(project, "divergence_rhs");
@@ -114,6 +115,11 @@ void FluidStages::enqueue_vorticity_confinement(int c, float epsilon, cl::Buffer
 
 void FluidStages::enqueue_diffuse(int c, float nu_dt_over_h2, cl::Buffer& q, cl::Buffer& out) {
   diffuse_.set_args(grid_, step_, profile_, c, nu_dt_over_h2, q, out).enqueue(cc_, component_rows(c));
+}
+
+void FluidStages::enqueue_canopy_drag(int c, cl::Buffer& drag_density, DeviceVelocity& vel, cl::Buffer& out) {
+  canopy_drag_.set_args(grid_, step_, c, drag_density, vel.u, vel.v, vel.w, out)
+      .enqueue(cc_, component_rows(c));
 }
 
 void FluidStages::enqueue_enforce_boundaries(int c, cl::Buffer& mask, cl::Buffer& q) {

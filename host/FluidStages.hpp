@@ -49,6 +49,9 @@ class FluidStages {
   void enqueue_vorticity(DeviceVelocity& vel, cl::Buffer& omega);
   void enqueue_vorticity_confinement(int c, float epsilon, cl::Buffer& omega, cl::Buffer& q);
   void enqueue_diffuse(int c, float nu_dt_over_h2, cl::Buffer& q, cl::Buffer& out);
+  /// out = component c of vel after implicit canopy drag over step().dt: q / (1 + dt k |u|), k the drag
+  /// density (1/m, one float a cell). Reads all three components, so `out` must not alias any of them.
+  void enqueue_canopy_drag(int c, cl::Buffer& drag_density, DeviceVelocity& vel, cl::Buffer& out);
   void enqueue_enforce_boundaries(int c, cl::Buffer& mask, cl::Buffer& q);
   void enqueue_divergence_rhs(cl::Buffer& mask, DeviceVelocity& vel, cl::Buffer& b);
   void enqueue_subtract_gradient(int c, cl::Buffer& mask, cl::Buffer& phi, cl::Buffer& q);
@@ -71,7 +74,7 @@ class FluidStages {
   cl::Buffer profile_, partial_;
   std::vector<float> partial_host_;
   Kernel pad_, advect_[3], maccormack_[3], forces_, vorticity_, confinement_, diffuse_, boundaries_,
-      divergence_, max_div_, gradient_, max_abs_;
+      divergence_, max_div_, gradient_, max_abs_, canopy_drag_;
 };
 
 }  // namespace fw::host

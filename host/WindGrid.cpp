@@ -169,6 +169,35 @@ void WindGrid::apply_forces() {
   }
 }
 
+void WindGrid::set_canopy(std::vector<float> drag_density) {
+  bool any = false;
+  if (!drag_density.empty()) {
+    if (drag_density.size() != setup_.spec.cell_count())
+      throw std::invalid_argument(fmt::format("WindGrid: canopy drag density has {} cells, the grid {}",
+                                              drag_density.size(), setup_.spec.cell_count()));
+    for (float k : drag_density) {
+      if (!std::isfinite(k) || k < 0.0f)
+        throw std::invalid_argument(
+            fmt::format("WindGrid: canopy drag density must be finite and >= 0, got {}", k));
+      any = any || k > 0.0f;
+    }
+  }
+  canopy_on_ = any;
+  if (!any) {
+    canopy_ = cl::Buffer();
+    return;
+  }
+  canopy_ = cc_.buffer(drag_density.size() * sizeof(float));
+  cc_.queue().enqueueWriteBuffer(canopy_, CL_TRUE, 0, drag_density.size() * sizeof(float),
+                                 drag_density.data());
+}
+
+void WindGrid::apply_canopy_drag() {
+  // Out of place: each component's |u| needs the other two before the drag touched them.
+  for (int c = 0; c < 3; ++c) stages_.enqueue_canopy_drag(c, canopy_, vel_, tmp_.component(c));
+  std::swap(vel_, tmp_);
+}
+
 void WindGrid::enforce_boundaries() {
   for (int c = 0; c < 3; ++c) stages_.enqueue_enforce_boundaries(c, pressure_.mask(), vel_.component(c));
 }
@@ -202,6 +231,7 @@ WindStepReport WindGrid::step() {
   WindStepReport report;
   timed("advect", [&] { advect(static_cast<float>(dt)); });
   timed("forces", [&] { apply_forces(); });
+  if (canopy_on_) timed("canopy", [&] { apply_canopy_drag(); });
   report.viscous_substeps = viscous_substeps(st.viscosity, dt, spec.h);
   if (report.viscous_substeps > 0) {
     timed("viscosity", [&] {

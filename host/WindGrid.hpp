@@ -11,9 +11,9 @@
 //   }
 //
 // A step: (dt from the CFL number if set) -> advect (semi-Lagrangian RK2, or clamped MacCormack) ->
-// body force and gusts -> vorticity confinement -> viscosity (explicit, sub-stepped) -> prescribed faces
-// -> divergence -> pressure solve -> subtract the gradient. Everything stays on the device; only the
-// scalars of reductions (residual norms, max speed for the CFL step) come back.
+// body force and gusts -> vorticity confinement -> canopy drag (set_canopy) -> viscosity (explicit,
+// sub-stepped) -> prescribed faces -> divergence -> pressure solve -> subtract the gradient. Everything stays
+// on the device; only the scalars of reductions (residual norms, max speed for the CFL step) come back.
 #pragma once
 
 #include <array>
@@ -81,6 +81,13 @@ class WindGrid {
   /// Projects the current velocity (divergence -> solve -> gradient) and returns the solve's status.
   PressureSolveStatus project();
 
+  /// Canopy drag F = -k |u| u from the drag density k = sum Cd a (1/m, one float a cell, x-fastest; see
+  /// fluid/CanopyField), applied implicitly right after the body forces (stage "canopy"). Uploaded once; an
+  /// empty or all-zero field turns the drag off, and the step is then exactly the one without a canopy.
+  /// Throws std::invalid_argument for a wrong size or a negative or non-finite value.
+  void set_canopy(std::vector<float> drag_density);
+  bool canopy_enabled() const { return canopy_on_; }
+
   /// When on, each stage ends with a queue finish and its wall time is added to stage_ms() (for benchmarks).
   void set_stage_timing(bool on) { stage_timing_ = on; }
   const std::map<std::string, double>& stage_ms() const { return stage_ms_; }
@@ -96,6 +103,7 @@ class WindGrid {
   void advect(float dt);
   void apply_forces();
   void enforce_boundaries();
+  void apply_canopy_drag();
 
   ComputeContext& cc_;
   WindGridSetup setup_;
@@ -105,6 +113,8 @@ class WindGrid {
   cl::Buffer omega_, gusts_, profile_;
   double time_ = 0.0, last_dt_ = 0.0;
   long steps_ = 0;
+  cl::Buffer canopy_;  // drag density, one float a cell; valid while canopy_on_
+  bool canopy_on_ = false;
   bool stage_timing_ = false;
   std::map<std::string, double> stage_ms_;
 };

@@ -75,4 +75,37 @@ typedef struct FwGust {
   float direction[3]; /* unit vector of the added velocity */
 } FwGust;
 
+/* --- Trees (DESIGN.md, "Numerics: Trees: Instances"; Diener 2008, figure 5) --------------------------------
+ * Per-species arrays are packed back to back (trees/Forest.hpp, ForestPacking); the offsets below index them.
+ * Flat per-instance arrays (modal state and forces, displacements, sampled wind) hold each instance's block
+ * at the instance's own offsets. */
+
+/* Most wind samples (height bands) a species may have: the wind load kernel keeps one instance's sampled
+ * loads in private memory. */
+#define FW_MAX_TREE_SAMPLES 16
+
+/* One species: sizes and where its constants start in the packed arrays. */
+typedef struct FwSpecies {
+  fw_int node_count;          /* n, skeleton nodes */
+  fw_int mode_count;          /* m */
+  fw_int sample_count;        /* S, wind samples, 1..FW_MAX_TREE_SAMPLES */
+  fw_int shape_offset;        /* node shapes, floats: (3n x m) row-major, [(3 node + axis) m + mode] */
+  fw_int projection_offset;   /* projections, floats: mode-major, [mode 3S + 3 sample + axis], kg^1/2/m */
+  fw_int sample_point_offset; /* sample points, floats: [3 sample + axis], m, skeleton frame */
+  fw_int modal_offset;        /* omega (rad/s) and damping ratio zeta, one float each per mode */
+} FwSpecies;
+
+/* One tree instance: world position x + scale R(yaw) p of a skeleton point p; R turns counter-clockwise
+ * about +z seen from above. */
+typedef struct FwTreeInstance {
+  fw_int species;       /* index into the species table */
+  fw_int mode_offset;   /* first of its m entries in the flat modal state and forces */
+  fw_int node_offset;   /* first of its n nodes in the flat displacements */
+  fw_int sample_offset; /* first of its S samples in the flat sampled wind */
+  float position[3];    /* world position of the skeleton origin (the root), m */
+  float cos_yaw;        /* cos and sin of the yaw angle */
+  float sin_yaw;
+  float scale;          /* s > 0: lengths times s, frequencies over s */
+} FwTreeInstance;
+
 #endif

@@ -40,6 +40,26 @@ namespace {
   X(FwGust, center);        \
   X(FwGust, travel);        \
   X(FwGust, direction)
+// The trees' structs (packed by trees/Forest.hpp), kept in their own lists.
+#define FW_TREE_STRUCTS(X) \
+  X(FwSpecies);            \
+  X(FwTreeInstance)
+#define FW_TREE_FIELDS(X)            \
+  X(FwSpecies, node_count);          \
+  X(FwSpecies, mode_count);          \
+  X(FwSpecies, sample_count);        \
+  X(FwSpecies, shape_offset);        \
+  X(FwSpecies, projection_offset);   \
+  X(FwSpecies, sample_point_offset); \
+  X(FwSpecies, modal_offset);        \
+  X(FwTreeInstance, species);        \
+  X(FwTreeInstance, mode_offset);    \
+  X(FwTreeInstance, node_offset);    \
+  X(FwTreeInstance, sample_offset);  \
+  X(FwTreeInstance, position);       \
+  X(FwTreeInstance, cos_yaw);        \
+  X(FwTreeInstance, sin_yaw);        \
+  X(FwTreeInstance, scale)
 
 struct LayoutEntry {
   std::string what;    // "sizeof(FwGrid)" or "offsetof(FwGrid, bc)"
@@ -55,6 +75,8 @@ std::vector<LayoutEntry> host_layout() {
                      "(uint)((__private char*)&v_" #T "." #f " - (__private char*)&v_" #T ")"})
   FW_SHARED_STRUCTS(FW_SIZE_ENTRY);
   FW_SHARED_FIELDS(FW_OFFSET_ENTRY);
+  FW_TREE_STRUCTS(FW_SIZE_ENTRY);
+  FW_TREE_FIELDS(FW_OFFSET_ENTRY);
 #undef FW_SIZE_ENTRY
 #undef FW_OFFSET_ENTRY
   return entries;
@@ -67,6 +89,7 @@ std::string layout_kernel_source(const std::vector<LayoutEntry>& entries) {
   source += "kernel void shared_types_layout(global uint* out) {\n";
 #define FW_PRIVATE_INSTANCE(T) source += "  " #T " v_" #T ";\n"
   FW_SHARED_STRUCTS(FW_PRIVATE_INSTANCE);
+  FW_TREE_STRUCTS(FW_PRIVATE_INSTANCE);
 #undef FW_PRIVATE_INSTANCE
   for (std::size_t n = 0; n < entries.size(); ++n)
     source += fmt::format("  out[{}] = {};\n", n, entries[n].device);
@@ -90,11 +113,23 @@ TEST_CASE("shared_types: host structs are packed 32-bit fields without padding")
   CHECK(offsetof(FwGust, direction) == 40);
 }
 
+TEST_CASE("shared_types: tree structs are packed 32-bit fields without padding", "[forest]") {
+  // FwSpecies 7 ints; FwTreeInstance 4 ints + 3 floats of position + cos, sin, scale.
+  CHECK(sizeof(FwSpecies) == 7 * 4);
+  CHECK(sizeof(FwTreeInstance) == 10 * 4);
+  CHECK(alignof(FwSpecies) == 4);
+  CHECK(alignof(FwTreeInstance) == 4);
+  CHECK(offsetof(FwSpecies, modal_offset) == 24);
+  CHECK(offsetof(FwTreeInstance, position) == 16);
+  CHECK(offsetof(FwTreeInstance, cos_yaw) == 28);
+  CHECK(offsetof(FwTreeInstance, scale) == 36);
+}
+
 TEST_CASE("shared_types: OpenCL C and the host agree on sizeof and offsetof of every struct and field") {
   auto* cc = fw::test::device_or_skip();
   if (!cc) return;
   const auto entries = host_layout();
-  REQUIRE(entries.size() == 4 + 20);
+  REQUIRE(entries.size() == 4 + 20 + 2 + 15);
   const std::string source = layout_kernel_source(entries);
   INFO(source);
 

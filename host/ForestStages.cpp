@@ -1,0 +1,139 @@
+#include "host/ForestStages.hpp"
+
+#include <fmt/format.h>
+
+#include <cmath>
+#include <stdexcept>
+
+namespace fw::host {
+namespace {
+
+template <typename T>
+cl::Buffer upload_array(ComputeContext& cc, const std::vector<T>& values, cl_mem_flags flags) {
+  cl::Buffer buffer = cc.buffer(values.size() * sizeof(T), flags);
+  if (!values.empty())
+    cc.queue().enqueueWriteBuffer(buffer, CL_TRUE, 0, values.size() * sizeof(T), values.data());
+  return buffer;
+}
+
+cl::Buffer zeroed(ComputeContext& cc, std::size_t floats) {
+  cl::Buffer buffer = cc.buffer(floats * sizeof(float));
+  if (floats > 0) cc.queue().enqueueFillBuffer(buffer, 0.0f, 0, floats * sizeof(float));
+  return buffer;
+}
+
+}  // namespace
+
+ForestStages::ForestStages(ComputeContext& cc, const fluid::GridSpec& spec, const trees::Forest& forest)
+    : cc_(cc) {
+  try {
+    spec.validate();
+  } catch (const std::invalid_argument& e) {
+    throw std::invalid_argument(std::string("ForestStages: ") + e.what());
+  }
+  grid_ = spec.to_device();
+  const trees::ForestPacking p = forest.pack();
+  instance_count_ = int(p.instances.size());
+  total_modes_ = p.total_modes;
+  total_nodes_ = p.total_nodes;
+  total_samples_ = p.total_samples;
+
+  constexpr cl_mem_flags ro = CL_MEM_READ_ONLY;
+  species_ = upload_array(cc_, p.species, ro);
+  instances_ = upload_array(cc_, p.instances, ro);
+  node_shapes_ = upload_array(cc_, p.node_shapes, ro);
+  projections_ = upload_array(cc_, p.projections, ro);
+  sample_points_ = upload_array(cc_, p.sample_points, ro);
+  omega_ = upload_array(cc_, p.omega, ro);
+  zeta_ = upload_array(cc_, p.damping_ratios, ro);
+  mode_instance_ = upload_array(cc_, p.mode_instance, ro);
+  node_instance_ = upload_array(cc_, p.node_instance, ro);
+
+  forces_ = zeroed(cc_, std::size_t(total_modes_));
+  state_ = zeroed(cc_, 2 * std::size_t(total_modes_));
+  sampled_wind_ = zeroed(cc_, 3 * std::size_t(total_samples_));
+  displacements_ = zeroed(cc_, 3 * std::size_t(total_nodes_));
+
+  wind_load_ = Kernel(cc_.build("tree_wind_load.cl"), "tree_wind_load");
+  cl::Program step = cc_.build("tree_modal_step.cl");
+  step_exact_ = Kernel(step, "tree_modal_step_exact");
+  step_semi_implicit_ = Kernel(step, "tree_modal_step_semi_implicit");
+  deform_ = Kernel(cc_.build("tree_deform.cl"), "tree_deform");
+}
+
+void ForestStages::enqueue_wind_load(DeviceVelocity& velocity) {
+  if (instance_count_ == 0) return;
+  wind_load_
+      .set_args(grid_, instance_count_, instances_, species_, projections_, sample_points_, velocity.u,
+                velocity.v, velocity.w, sampled_wind_, forces_)
+      .enqueue(cc_, cl::NDRange(cc_.flat_items(std::size_t(instance_count_))));
+}
+
+void ForestStages::enqueue_modal_step(float dt) {
+  if (!std::isfinite(dt) || dt < 0.0f)
+    throw std::invalid_argument(fmt::format("ForestStages: dt must be finite and >= 0, got {}", dt));
+  if (total_modes_ == 0) return;
+  Kernel& kernel = integrator_ == trees::ModalIntegrator::exact ? step_exact_ : step_semi_implicit_;
+  kernel.set_args(total_modes_, dt, mode_instance_, instances_, species_, omega_, zeta_, forces_, state_)
+      .enqueue(cc_, cl::NDRange(cc_.flat_items(std::size_t(total_modes_))));
+}
+
+void ForestStages::enqueue_deform() {
+  if (total_nodes_ == 0) return;
+  deform_.set_args(total_nodes_, node_instance_, instances_, species_, node_shapes_, state_, displacements_)
+      .enqueue(cc_, cl::NDRange(cc_.flat_items((std::size_t(total_nodes_) + 7) / 8)));  // blocks of 8 nodes
+}
+
+void ForestStages::reset_state() {
+  if (total_modes_ == 0) return;
+  cc_.queue().enqueueFillBuffer(state_, 0.0f, 0, 2 * std::size_t(total_modes_) * sizeof(float));
+  cc_.queue().enqueueFillBuffer(forces_, 0.0f, 0, std::size_t(total_modes_) * sizeof(float));
+}
+
+std::vector<float> ForestStages::read(cl::Buffer& buffer, std::size_t count) {
+  std::vector<float> values(count);
+  if (count > 0) cc_.queue().enqueueReadBuffer(buffer, CL_TRUE, 0, count * sizeof(float), values.data());
+  return values;
+}
+
+std::vector<float> ForestStages::download_displacements() {
+  return read(displacements_, 3 * std::size_t(total_nodes_));
+}
+
+std::vector<float> ForestStages::download_sampled_wind() {
+  return read(sampled_wind_, 3 * std::size_t(total_samples_));
+}
+
+std::vector<float> ForestStages::download_modal_forces() {
+  return read(forces_, std::size_t(total_modes_));
+}
+
+ModalState ForestStages::download_modal_state() {
+  const std::vector<float> interleaved = read(state_, 2 * std::size_t(total_modes_));
+  ModalState state;
+  state.q.resize(std::size_t(total_modes_));
+  state.qdot.resize(std::size_t(total_modes_));
+  for (std::size_t j = 0; j < state.q.size(); ++j) {
+    state.q[j] = interleaved[2 * j];
+    state.qdot[j] = interleaved[2 * j + 1];
+  }
+  return state;
+}
+
+void ForestStages::upload_modal_state(const ModalState& state) {
+  const std::size_t m = std::size_t(total_modes_);
+  if (state.q.size() != m || state.qdot.size() != m)
+    throw std::invalid_argument(
+        fmt::format("ForestStages: modal state needs {} values of q and qdot, got {} and {}", m,
+                    state.q.size(), state.qdot.size()));
+  std::vector<float> interleaved(2 * m);
+  for (std::size_t j = 0; j < m; ++j) {
+    interleaved[2 * j] = state.q[j];
+    interleaved[2 * j + 1] = state.qdot[j];
+  }
+  if (m > 0)
+    cc_.queue().enqueueWriteBuffer(state_, CL_TRUE, 0, interleaved.size() * sizeof(float),
+                                   interleaved.data());
+}
+
+}  // namespace fw::host

@@ -1,0 +1,91 @@
+#include "io/ProbesCsv.hpp"
+
+#include "io/PvdCollection.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cerrno>
+#include <cstdio>
+#include <cstring>
+#include <set>
+#include <stdexcept>
+#include <utility>
+
+namespace fw::io {
+
+ProbesCsv::ProbesCsv(std::filesystem::path path, std::vector<std::string> probe_names,
+                     std::vector<int> tree_ids, std::size_t rewrite_limit_bytes)
+    : path_(std::move(path)),
+      probes_(probe_names.size()),
+      trees_(tree_ids.size()),
+      rewrite_limit_(rewrite_limit_bytes) {
+  std::set<std::string> seen_names;
+  for (const std::string& name : probe_names) {
+    if (name.empty()) throw std::invalid_argument("ProbesCsv: expected a probe name, got an empty one");
+    if (name.find_first_of(",\"\r\n") != std::string::npos) {
+      throw std::invalid_argument(fmt::format(
+          "ProbesCsv: probe \"{}\": a name may not contain a comma, a quote or a line break", name));
+    }
+    if (!seen_names.insert(name).second) {
+      throw std::invalid_argument(fmt::format("ProbesCsv: probe \"{}\" is listed twice", name));
+    }
+  }
+  std::set<int> seen_ids;
+  for (int id : tree_ids) {
+    if (!seen_ids.insert(id).second) {
+      throw std::invalid_argument(fmt::format("ProbesCsv: tree {} is listed twice", id));
+    }
+  }
+
+  header_ = "time_s";
+  for (const std::string& name : probe_names) header_ += fmt::format(",{0}_u,{0}_v,{0}_w", name);
+  for (int id : tree_ids) header_ += fmt::format(",tree{0}_tip_dx,tree{0}_tip_dy,tree{0}_tip_dz", id);
+  content_ = header_ + "\n";
+  detail::write_text_atomically("ProbesCsv", path_, content_);
+}
+
+void ProbesCsv::append(double time, const std::vector<std::array<float, 3>>& probe_velocity,
+                       const std::vector<std::array<double, 3>>& tip_displacement) {
+  if (probe_velocity.size() != probes_ || tip_displacement.size() != trees_) {
+    throw std::invalid_argument(
+        fmt::format("ProbesCsv: {}: expected {} probe velocities and {} tip displacements, got {} and {}",
+                    path_.string(), probes_, trees_, probe_velocity.size(), tip_displacement.size()));
+  }
+  std::string line = fmt::format("{:.12g}", time);
+  for (const auto& v : probe_velocity) line += fmt::format(",{:.9g},{:.9g},{:.9g}", v[0], v[1], v[2]);
+  for (const auto& d : tip_displacement) line += fmt::format(",{:.9g},{:.9g},{:.9g}", d[0], d[1], d[2]);
+  line += '\n';
+
+  if (!appending_ && content_.size() + line.size() <= rewrite_limit_) {
+    content_ += line;
+    try {
+      detail::write_text_atomically("ProbesCsv", path_, content_);
+    } catch (...) {
+      content_.resize(content_.size() - line.size());  // the file still holds the previous rows
+      throw;
+    }
+    ++rows_;
+    return;
+  }
+
+  // Past the limit: one buffered fwrite of the whole line, flushed by fclose as a single write(2).
+  detail::require_output_folder("ProbesCsv", path_);
+  std::FILE* out = std::fopen(path_.c_str(), "ab");
+  if (!out) {
+    throw std::runtime_error(
+        fmt::format("ProbesCsv: cannot write {}: {}", path_.string(), std::strerror(errno)));
+  }
+  const bool written = std::fwrite(line.data(), 1, line.size(), out) == line.size();
+  const int saved = errno;
+  if (std::fclose(out) != 0 || !written) {
+    throw std::runtime_error(fmt::format("ProbesCsv: cannot write {}: {}", path_.string(),
+                                         std::strerror(written ? errno : saved)));
+  }
+  appending_ = true;
+  content_.clear();
+  content_.shrink_to_fit();
+  ++rows_;
+}
+
+}  // namespace fw::io

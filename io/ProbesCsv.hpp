@@ -1,0 +1,60 @@
+// probes.csv: one row per output frame with the wind velocity at named points and the tip displacement of a
+// few trees.
+//
+//   fw::io::ProbesCsv probes("out/probes.csv", {"mast", "gap"}, {0, 7});   // writes the header line
+//   probes.append(t, {sample_velocity(spec, vel, mast), sample_velocity(spec, vel, gap)},
+//                 {{0.12, -0.01, -0.003}, {0.08, 0.02, -0.001}});
+//
+// Columns: time_s, then <probe>_u,<probe>_v,<probe>_w for each probe (m/s), then
+// tree<id>_tip_dx,tree<id>_tip_dy,tree<id>_tip_dz for each tree (m). Comma-separated, '\n' line ends, no
+// quoting (names with a comma, quote or line break are refused). Numbers: time with 12 significant digits,
+// every other value with 9 (enough to read a float32 back exactly); non-finite values print as nan / inf.
+//
+// Writing: every append() leaves a complete file whose last line is a complete row. While the file is
+// smaller than `rewrite_limit_bytes` it is rewritten in full through AtomicFile (temporary + rename), so no
+// reader ever sees a partial row; past the limit each row is appended with one write of the whole line and a
+// flush, which keeps a long run linear in cost - there only a crash in the middle of that one write could
+// leave a truncated last line.
+#pragma once
+
+#include <array>
+#include <cstddef>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+namespace fw::io {
+
+class ProbesCsv {
+ public:
+  static constexpr std::size_t kDefaultRewriteLimit = 256 * 1024;
+
+  /// Writes the header line to `path` (replacing any old file). Throws std::invalid_argument for an empty
+  /// probe name, a name with a comma, quote or line break, or duplicate probe names or tree ids;
+  /// std::runtime_error naming the path if the folder does not exist or the file cannot be written.
+  ProbesCsv(std::filesystem::path path, std::vector<std::string> probe_names, std::vector<int> tree_ids,
+            std::size_t rewrite_limit_bytes = kDefaultRewriteLimit);
+
+  /// Appends one row. probe_velocity: one (u, v, w) per probe, m/s; tip_displacement: one (dx, dy, dz) per
+  /// tree, m, both in constructor order. Throws std::invalid_argument for the wrong counts (nothing is
+  /// written) and std::runtime_error naming the path on a write failure.
+  void append(double time, const std::vector<std::array<float, 3>>& probe_velocity,
+              const std::vector<std::array<double, 3>>& tip_displacement);
+
+  const std::filesystem::path& path() const { return path_; }
+  /// The header line, without the line end.
+  const std::string& header() const { return header_; }
+  /// Rows appended so far.
+  std::size_t rows() const { return rows_; }
+
+ private:
+  std::filesystem::path path_;
+  std::size_t probes_ = 0, trees_ = 0;
+  std::size_t rewrite_limit_ = kDefaultRewriteLimit;
+  std::string header_;
+  std::string content_;  // the whole file while it is rewritten; cleared once appending takes over
+  bool appending_ = false;
+  std::size_t rows_ = 0;
+};
+
+}  // namespace fw::io

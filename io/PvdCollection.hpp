@@ -1,0 +1,64 @@
+// A ParaView collection file (.pvd): the list of a time series' frames, each a dataset file and its time.
+//
+//   fw::io::PvdCollection wind("out/wind.pvd");
+//   fw::io::write_wind_vti("out/wind/wind_000000.vti", frame, fields);
+//   wind.add(frame.time, "wind/wind_000000.vti");   // rewrites out/wind.pvd atomically
+//
+// ParaView: File > Open wind.pvd, Apply; the time slider steps through the frames (times in seconds).
+// The file is rewritten in full through AtomicFile on every add(), so a run interrupted at any point leaves a
+// valid .pvd that lists every frame finished so far. Datasets are listed in increasing time.
+//
+// The detail:: helpers are shared by the other output writers of this folder (WindVtk, TreesVtk, VdbWriter,
+// ProbesCsv): the same folder check and the same atomic text write, with the same error messages.
+#pragma once
+
+#include <filesystem>
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace fw::io {
+
+class PvdCollection {
+ public:
+  struct Entry {
+    double time = 0.0;  ///< s
+    std::string file;   ///< relative to the folder of the .pvd (forward slashes), as written
+  };
+
+  /// path: the .pvd file. Nothing is written until add() or write().
+  explicit PvdCollection(std::filesystem::path path);
+
+  /// Adds a frame and rewrites the .pvd. file: the dataset's path relative to the .pvd's folder. A time
+  /// equal to an existing entry's goes after it (stable order); a file already listed is replaced (its time
+  /// updated) rather than listed twice. Throws std::invalid_argument for a non-finite time or an empty file
+  /// name, and std::runtime_error naming the path if the .pvd cannot be written (the entry is kept).
+  void add(double time, const std::string& file);
+
+  /// Writes the .pvd (also with no entries: an empty, valid collection). Throws std::runtime_error naming
+  /// the path on failure; no temporary is left behind.
+  void write() const;
+
+  const std::filesystem::path& path() const { return path_; }
+  const std::vector<Entry>& entries() const { return entries_; }
+
+ private:
+  std::filesystem::path path_;
+  std::vector<Entry> entries_;
+};
+
+namespace detail {
+
+/// Throws std::runtime_error("FUNCTION: cannot write PATH: the folder F does not exist" / "F is not a
+/// folder") unless the parent folder of `path` (or "." for a bare name) is an existing folder.
+void require_output_folder(const char* function, const std::filesystem::path& path);
+
+/// Writes `content` byte for byte to `path` through AtomicFile (temporary + rename). Throws
+/// std::runtime_error("FUNCTION: cannot write PATH: reason") on failure; no temporary is left behind.
+void write_text_atomically(const char* function, const std::filesystem::path& path, std::string_view content);
+
+/// `text` with &, <, >, " and ' replaced by XML entities, for attribute values.
+std::string xml_escape(std::string_view text);
+
+}  // namespace detail
+}  // namespace fw::io

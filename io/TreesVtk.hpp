@@ -1,0 +1,55 @@
+// VTK XML PolyData (.vtp) writer for the whole forest at one output time, at the deformed positions.
+//
+//   fw::io::TreesFrame frame;
+//   frame.time = 12.5;
+//   frame.trees.push_back({/*tree_id=*/0, /*species=*/0, rest, radius, parent, displacement});
+//   fw::io::write_trees_vtp("out/trees/trees_000025.vtp", frame);
+//
+// ParaView: open trees.pvd (see PvdCollection.hpp), Apply; Filters > Tube (Vary Radius: By Absolute Scalar,
+// scalars "radius", factor 1) draws the branches at their real thickness; colour by "tree_id" or
+// "displacement". Warp By Vector on "displacement" with scale factor -1 shows the rest shape, with e.g. 10 an
+// exaggerated sway.
+//
+// Layout: a single vtkPolyData holding all trees. Points (float64, m, world frame) are the DEFORMED node
+// positions, rest + displacement, tree after tree in frame order (tree t's nodes follow those of trees
+// 0..t-1, in that tree's node order). Cells: one 2-point line per element (parent node, child node), per tree
+// in node order of the child. Lines rather than one polyline per branch chain keep the file a direct image of
+// the elements; Tube then draws one segment per element, the segments meeting at the shared points.
+// Point arrays:
+//   radius        float64, m
+//   displacement  float64 x 3, m (deformed minus rest)   [the active vectors]
+//   tree_id       int32, the tree's id (TreesFrame::Tree::tree_id)
+//   species       int32, the species index
+//   node_id       int32, the node's index within its tree
+// Field data: "TimeValue" (float64, 1 tuple, s).
+// Files are binary (appended raw data, zlib-compressed, 64-bit headers) and written through AtomicFile.
+#pragma once
+
+#include <Eigen/Core>
+
+#include <filesystem>
+#include <vector>
+
+namespace fw::io {
+
+struct TreesFrame {
+  struct Tree {
+    int tree_id = 0;                ///< id shown in the files (e.g. the instance index of the forest)
+    int species = 0;                ///< species index
+    Eigen::MatrixX3d rest;          ///< #nodes x 3, m: node positions at rest, world frame
+    std::vector<double> radius;     ///< #nodes, m
+    std::vector<int> parent;        ///< #nodes, parent node index within the tree, -1 for the root
+    Eigen::MatrixX3d displacement;  ///< #nodes x 3, m: current translation of each node (empty = at rest)
+  };
+  double time = 0.0;  ///< s
+  std::vector<Tree> trees;
+};
+
+/// Writes `frame` as described above. An empty forest gives a valid file without points.
+/// Throws std::invalid_argument("write_trees_vtp: tree K (id I): ...") when radius, parent or displacement do
+/// not have one entry (row) per rest node, a parent index lies outside -1..n-1 or is the node itself, or a
+/// position or displacement is not finite; std::runtime_error naming the path when the folder does not exist
+/// or the file cannot be written (no partial file or temporary is left behind).
+void write_trees_vtp(const std::filesystem::path& path, const TreesFrame& frame);
+
+}  // namespace fw::io

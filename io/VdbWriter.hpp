@@ -1,0 +1,33 @@
+// OpenVDB (.vdb) writer for one frame of the wind grid, for Houdini, Blender and other VFX tools.
+//
+//   fw::io::WindFrame frame = fw::io::make_wind_frame(spec, vel, {}, solid, {}, t, step);
+//   fw::io::write_wind_vdb("out/vdb/wind.0012.vdb", frame, /*vel=*/true, /*speed=*/true);
+//
+// Houdini: File SOP on out/vdb/wind.$F4.vdb; "vel" is a vector VDB usable directly as a velocity field.
+// Blender: Add > Volume > Import OpenVDB (sequence detected from the frame numbers); shade by "speed".
+//
+// Layout:
+//   grid "vel"    Vec3SGrid, m/s, vector type VEC_CONTRAVARIANT_RELATIVE, grid class GRID_UNKNOWN
+//   grid "speed"  FloatGrid, |vel| in m/s, grid class GRID_FOG_VOLUME (so viewers show it as a density
+//                 right away; note the values are m/s, not confined to [0, 1])
+// Both grids: background 0; one voxel per cell, voxel (i,j,k) = cell (i,j,k); ACTIVE only in non-solid cells
+// (solid cells are inactive and read as the background 0). Transform: linear, voxel size h, translated so
+// that voxel (i,j,k)'s centre is at world origin + h * (i+1/2, j+1/2, k+1/2) (m) - the cell's centre.
+// Metadata: file metadata "time_s" (DoubleMetadata, s) and "step" (Int64Metadata); each grid also carries
+// "time_s" (DoubleMetadata), since some tools (Houdini) show only grid metadata.
+// Values are stored as 32-bit floats (not half). The file is written through AtomicFile.
+#pragma once
+
+#include "io/WindFrame.hpp"
+
+#include <filesystem>
+
+namespace fw::io {
+
+/// Writes the selected grids of `frame` as described above. Initialises OpenVDB on first use (thread-safe).
+/// Throws std::invalid_argument("write_wind_vdb: ...") when neither grid is selected or the frame is
+/// inconsistent, and std::runtime_error naming the path when the folder does not exist or the file cannot
+/// be written (no partial file or temporary is left behind).
+void write_wind_vdb(const std::filesystem::path& path, const WindFrame& frame, bool vel, bool speed);
+
+}  // namespace fw::io

@@ -1,0 +1,51 @@
+// VTK XML ImageData (.vti) writer for one frame of the wind grid, for viewing in ParaView.
+//
+//   fw::io::WindFrame frame = fw::io::make_wind_frame(spec, vel, pressure, solid, canopy, t, step);
+//   fw::io::write_wind_vti("out/wind/wind_000012.vti", frame, {"velocity", "speed", "solid"});
+//
+// ParaView: open wind.pvd (see PvdCollection.hpp) or a single .vti, Apply; colour by a cell array, or
+// Filters > Cell Data to Point Data then Stream Tracer / Glyph on "velocity" for streamlines and arrows.
+//
+// Layout: one vtkImageData whose CELLS are the grid's cells: origin = the domain's minimum corner (m),
+// spacing h (m) on all axes, point extent 0..nx x 0..ny x 0..nz. Cell arrays (x-fastest, VTK's own order):
+//   velocity        float32 x 3, m/s (cell-centred: mean of the two faces)       [the active vectors]
+//   pressure        float32, kinematic pressure p/rho, m^2/s^2
+//   speed           float32, |velocity|, m/s
+//   vorticity       float32 x 3, 1/s (see wind_vorticity)
+//   solid           uint8, 1 in solid cells, 0 in fluid
+//   canopy_density  float32, frontal area density a, 1/m
+// Field data: "TimeValue" (float64, 1 tuple, s), which ParaView uses as the dataset's time.
+// Files are binary (appended raw data, zlib-compressed, 64-bit headers) and written through AtomicFile.
+#pragma once
+
+#include "io/WindFrame.hpp"
+
+#include <filesystem>
+#include <string>
+#include <vector>
+
+class vtkXMLWriter;
+
+namespace fw::io {
+
+/// The field names write_wind_vti understands, in the order arrays are written.
+const std::vector<std::string>& wind_field_names();
+
+/// Writes the requested cell arrays of `frame` (by name, see above; duplicates are ignored, and pressure,
+/// solid or canopy_density are skipped when the frame holds none). An empty `fields` writes the geometry
+/// and TimeValue only. Throws std::invalid_argument("write_wind_vti: ...") for an unknown field name (listing
+/// the choices) or an inconsistent frame, and std::runtime_error naming the path if the folder does not exist
+/// or the file cannot be written; no partial file or temporary is left behind.
+void write_wind_vti(const std::filesystem::path& path, const WindFrame& frame,
+                    const std::vector<std::string>& fields);
+
+namespace detail {
+
+/// Runs `writer` (its input already set) into a temporary next to `path` as binary appended zlib data with
+/// 64-bit headers, capturing VTK's error output, and renames it into place. Throws std::runtime_error
+/// ("FUNCTION: cannot write PATH: reason") on failure, leaving neither the file nor a temporary.
+/// Shared with TreesVtk.cpp.
+void write_vtk_xml(const char* function, const std::filesystem::path& path, vtkXMLWriter* writer);
+
+}  // namespace detail
+}  // namespace fw::io

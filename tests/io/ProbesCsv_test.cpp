@@ -1,0 +1,177 @@
+#include "io/ProbesCsv.hpp"
+
+#include "io/WindFrame.hpp"
+#include "tests/support/TempDir.hpp"
+
+#include <catch2/catch.hpp>
+
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <array>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace fs = std::filesystem;
+
+namespace {
+
+std::vector<std::string> lines_of(const fs::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  REQUIRE_FALSE(text.empty());
+  CHECK(text.back() == '\n');  // the last row is complete
+  std::vector<std::string> lines;
+  std::istringstream stream(text);
+  for (std::string line; std::getline(stream, line);) lines.push_back(line);
+  return lines;
+}
+
+std::vector<std::string> split(const std::string& line) {
+  std::vector<std::string> cells;
+  std::istringstream stream(line);
+  for (std::string cell; std::getline(stream, cell, ',');) cells.push_back(cell);
+  return cells;
+}
+
+bool has_temporary(const fs::path& folder) {
+  for (const auto& entry : fs::directory_iterator(folder)) {
+    if (entry.path().filename().string().find(".tmp-") != std::string::npos) return true;
+  }
+  return false;
+}
+
+const std::string kHeader =
+    "time_s,mast_u,mast_v,mast_w,gap_u,gap_v,gap_w,tree0_tip_dx,tree0_tip_dy,tree0_tip_dz,"
+    "tree17_tip_dx,tree17_tip_dy,tree17_tip_dz";
+
+// Row n of a synthetic series, with values that need all 9 digits of a float.
+std::vector<std::array<float, 3>> velocities(int n) {
+  return {{1.0f / 3.0f + float(n), -2.718281828f, 1e-7f * float(n + 1)},
+          {12.345678f, 0.0f, -0.1f * float(n)}};
+}
+std::vector<std::array<double, 3>> tips(int n) {
+  return {{0.001 * n, -0.25, 1.0 / 7.0}, {3.0e-5, double(n), -0.5}};
+}
+
+void check_rows(const fs::path& path, int rows) {
+  const auto lines = lines_of(path);
+  REQUIRE(lines.size() == std::size_t(rows) + 1);
+  CHECK(lines[0] == kHeader);
+  for (int n = 0; n < rows; ++n) {
+    INFO("row " << n << ": " << lines[std::size_t(n) + 1]);
+    const auto cells = split(lines[std::size_t(n) + 1]);
+    REQUIRE(cells.size() == 13);
+    // Tolerance: the time is printed with 12 significant digits (0.1 * 3 = 0.30000000000000004 -> "0.3").
+    CHECK(std::stod(cells[0]) == Approx(0.1 * n).epsilon(1e-11).margin(1e-300));
+    const auto v = velocities(n);
+    const auto d = tips(n);
+    for (int p = 0; p < 2; ++p) {
+      for (int c = 0; c < 3; ++c) {
+        // Exact: 9 significant digits read a float32 back bit for bit.
+        CHECK(std::strtof(cells[std::size_t(1 + 3 * p + c)].c_str(), nullptr) ==
+              v[std::size_t(p)][std::size_t(c)]);
+        // Tolerance: doubles are printed with 9 significant digits (relative 5e-9).
+        CHECK(std::stod(cells[std::size_t(7 + 3 * p + c)]) ==
+              Approx(d[std::size_t(p)][std::size_t(c)]).epsilon(1e-8).margin(1e-15));
+      }
+    }
+  }
+}
+
+}  // namespace
+
+TEST_CASE("ProbesCsv: header, then one complete row per append, rewritten atomically", "[output]") {
+  fw::test::TempDir dir("fw_out");
+  const fs::path path = fs::path(dir.path()) / "probes.csv";
+  dir.write("probes.csv", "an old file from an earlier run\n");
+  fw::io::ProbesCsv probes(path, {"mast", "gap"}, {0, 17});
+  CHECK(probes.header() == kHeader);
+  check_rows(path, 0);  // the header alone replaces the old file
+  for (int n = 0; n < 4; ++n) {
+    probes.append(0.1 * n, velocities(n), tips(n));
+    check_rows(path, n + 1);
+    CHECK_FALSE(has_temporary(dir.path()));
+  }
+  CHECK(probes.rows() == 4);
+
+  // The wrong counts write nothing.
+  CHECK_THROWS_AS(probes.append(1.0, {velocities(0)[0]}, tips(0)), std::invalid_argument);
+  CHECK_THROWS_AS(probes.append(1.0, velocities(0), {}), std::invalid_argument);
+  check_rows(path, 4);
+}
+
+TEST_CASE("ProbesCsv: past the rewrite limit rows are appended, with the same content", "[output]") {
+  fw::test::TempDir dir("fw_out");
+  const fs::path path = fs::path(dir.path()) / "probes.csv";
+  // A limit of the header plus about two rows: the first rows are rewritten, the later ones appended.
+  fw::io::ProbesCsv probes(path, {"mast", "gap"}, {0, 17}, kHeader.size() + 200);
+  for (int n = 0; n < 6; ++n) {
+    probes.append(0.1 * n, velocities(n), tips(n));
+    check_rows(path, n + 1);
+  }
+  CHECK(probes.rows() == 6);
+  CHECK_FALSE(has_temporary(dir.path()));
+}
+
+TEST_CASE("ProbesCsv: probes sampled on the MAC grid go in as m/s", "[output]") {
+  fw::test::TempDir dir("fw_out");
+  fw::fluid::GridSpec spec;
+  spec.nx = spec.ny = spec.nz = 2;
+  spec.h = 1.0;
+  fw::fluid::MacVelocity vel(spec);
+  std::fill(vel.u.begin(), vel.u.end(), 3.0f);
+  std::fill(vel.w.begin(), vel.w.end(), -0.5f);
+  fw::io::ProbesCsv probes(fs::path(dir.path()) / "probes.csv", {"centre"}, {});
+  probes.append(2.5, {fw::io::sample_velocity(spec, vel, {1.0, 1.0, 1.0})}, {});
+  const auto lines = lines_of(fs::path(dir.path()) / "probes.csv");
+  REQUIRE(lines.size() == 2);
+  CHECK(lines[0] == "time_s,centre_u,centre_v,centre_w");
+  CHECK(lines[1] == "2.5,3,0,-0.5");
+}
+
+TEST_CASE("ProbesCsv: bad names throw invalid_argument; a missing or unwritable folder runtime_error",
+          "[output]") {
+  fw::test::TempDir dir("fw_out");
+  const fs::path path = fs::path(dir.path()) / "probes.csv";
+  CHECK_THROWS_AS(fw::io::ProbesCsv(path, {""}, {}), std::invalid_argument);
+  CHECK_THROWS_WITH(fw::io::ProbesCsv(path, {"a,b"}, {}),
+                    "ProbesCsv: probe \"a,b\": a name may not contain a comma, a quote or a line break");
+  CHECK_THROWS_AS(fw::io::ProbesCsv(path, {"m", "m"}, {}), std::invalid_argument);
+  CHECK_THROWS_AS(fw::io::ProbesCsv(path, {"m"}, {3, 3}), std::invalid_argument);
+  CHECK_FALSE(fs::exists(path));
+
+  const fs::path missing = fs::path(dir.path()) / "none" / "probes.csv";
+  CHECK_THROWS_MATCHES(
+      fw::io::ProbesCsv(missing, {"m"}, {}), std::runtime_error,
+      Catch::Matchers::Message("ProbesCsv: cannot write " + missing.string() + ": the folder " +
+                               missing.parent_path().string() + " does not exist"));
+
+  // A folder nobody may create files in, root included.
+  if (fs::is_directory("/proc")) {
+    const fs::path target = "/proc/fw_probes_test.csv";
+    CHECK_THROWS_WITH(fw::io::ProbesCsv(target, {"m"}, {}),
+                      Catch::Matchers::StartsWith("ProbesCsv: cannot write " + target.string() + ": "));
+  }
+
+  // A read-only folder. Root ignores permissions, so the check only runs where they apply.
+  const fs::path locked = fs::path(dir.path()) / "locked";
+  fs::create_directory(locked);
+  ::chmod(locked.c_str(), 0555);
+  if (::access(locked.c_str(), W_OK) == 0) {
+    WARN("running with permission overrides (root): the read-only folder case is skipped");
+  } else {
+    const fs::path target = locked / "probes.csv";
+    CHECK_THROWS_WITH(fw::io::ProbesCsv(target, {"m"}, {}),
+                      Catch::Matchers::StartsWith("ProbesCsv: cannot write " + target.string() + ": "));
+    CHECK(fs::is_empty(locked));
+  }
+  ::chmod(locked.c_str(), 0755);
+  CHECK_FALSE(has_temporary(dir.path()));
+}

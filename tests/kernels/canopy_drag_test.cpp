@@ -1,0 +1,264 @@
+// Canopy drag: the apply_canopy_drag kernel against fluid::reference::canopy_drag, and its effect in a
+// channel flow on the device (WindGrid::set_canopy).
+#include <catch2/catch.hpp>
+
+#include <chrono>
+#include <cmath>
+#include <cstring>
+#include <random>
+#include <vector>
+
+#include "fluid/PressureLevels.hpp"
+#include "fluid/ReferenceStages.hpp"
+#include "host/FluidStages.hpp"
+#include "host/WindGrid.hpp"
+#include "tests/support/Fields.hpp"
+#include "tests/support/TestDevice.hpp"
+
+using namespace fw;
+namespace ref = fw::fluid::reference;
+using B = fluid::BoundaryType;
+
+namespace {
+
+// Float kernel against the double reference: one square root, a few sums and one division per face, so a
+// few float ulps of each face's own value.
+constexpr double kDragTolerance = 2e-6;
+
+// Drag density in [0, 0.5] 1/m, zero in about a third of the cells (the kernel's copy path).
+std::vector<float> random_drag(std::size_t n, std::uint32_t seed) {
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<float> k(0.0f, 0.5f);
+  std::uniform_int_distribution<int> empty(0, 2);
+  std::vector<float> out(n);
+  for (auto& x : out) x = empty(rng) == 0 ? 0.0f : k(rng);
+  return out;
+}
+
+// Largest |a - b| / |b| over faces (faces with b = 0 compared absolutely).
+double face_relative_error(const std::vector<float>& a, const std::vector<float>& b) {
+  double worst = 0.0;
+  for (std::size_t i = 0; i < a.size(); ++i)
+    worst = std::max(worst, std::abs(double(a[i]) - b[i]) / std::max(std::abs(double(b[i])), 1e-30));
+  return worst;
+}
+
+}  // namespace
+
+TEST_CASE("canopy drag: the kernel matches the CPU reference on a random field", "[canopy]") {
+  auto* cc = test::device_or_skip();
+  if (!cc) return;
+  const auto spec = test::mixed_boundary_spec();
+  host::FluidStages stages(*cc, spec);
+  FwStep s{};
+  s.dt = 0.4f;
+  s.time = 2.0f;
+  stages.set_step(s);
+  const auto vel = test::random_velocity(spec, 8.0, 31);
+  const auto drag = random_drag(spec.cell_count(), 7);
+  auto dvel = stages.allocate_velocity(), out = stages.allocate_velocity();
+  test::upload(*cc, vel, dvel);
+  cl::Buffer ddrag = cc->buffer(drag.size() * sizeof(float));
+  test::upload(*cc, drag, ddrag);
+  for (int c = 0; c < 3; ++c) stages.enqueue_canopy_drag(c, ddrag, dvel, out.component(c));
+  const auto device = test::download(*cc, out, spec);
+  const auto expected = ref::canopy_drag(spec, vel, drag, 0.4);
+  for (int c = 0; c < 3; ++c) {
+    INFO("component " << c);
+    CHECK(face_relative_error(device.component(c), expected.component(c)) < kDragTolerance);
+    // Implicit: every face slows down or keeps its value, and none changes sign.
+    std::size_t slowed = 0;
+    for (std::size_t f = 0; f < expected.component(c).size(); ++f) {
+      const float before = vel.component(c)[f], after = device.component(c)[f];
+      CHECK(std::abs(after) <= std::abs(before));
+      CHECK(after * before >= 0.0f);
+      slowed += std::abs(after) < std::abs(before);
+    }
+    CHECK(slowed > expected.component(c).size() / 2);
+  }
+}
+
+TEST_CASE("canopy drag: the reference is u / (1 + dt k |u|) in a uniform field", "[canopy]") {
+  // Uniform wind (3, 4, 0) m/s, |u| = 5, uniform k = 0.2 1/m, dt = 0.5 s: every face scales by 1/1.5.
+  fluid::GridSpec spec;
+  spec.nx = 5;
+  spec.ny = 4;
+  spec.nz = 3;
+  spec.h = 2.0;
+  fluid::MacVelocity vel(spec);
+  std::fill(vel.u.begin(), vel.u.end(), 3.0f);
+  std::fill(vel.v.begin(), vel.v.end(), 4.0f);
+  const auto out = ref::canopy_drag(spec, vel, std::vector<float>(spec.cell_count(), 0.2f), 0.5);
+  for (float x : out.u) CHECK(x == Approx(2.0).epsilon(1e-7));
+  for (float x : out.v) CHECK(x == Approx(4.0 / 1.5).epsilon(1e-7));
+  for (float x : out.w) CHECK(x == 0.0f);
+  CHECK_THROWS_AS(ref::canopy_drag(spec, vel, std::vector<float>(3, 0.2f), 0.5), std::invalid_argument);
+}
+
+namespace {
+
+// A 48 x 16 x 16 m channel: uniform 3 m/s inflow from the west, outflow east, slip walls.
+host::WindGridSetup channel_setup() {
+  host::WindGridSetup setup;
+  auto& spec = setup.spec;
+  spec.nx = 48;
+  spec.ny = 16;
+  spec.nz = 16;
+  spec.h = 1.0;
+  spec.boundary = {B::inflow, B::outflow, B::slip, B::slip, B::slip, B::slip};
+  setup.settings.dt = 0.2;  // CFL 0.6 at the inflow speed
+  setup.settings.pressure.tolerance = 1e-5;
+  setup.ambient = {3.0, 0.0, 0.0};
+  return setup;
+}
+
+// Dense canopy block x 16-24, y 4-12, z 0-10 m (k = 0.3 1/m, a leaf area density of 1.5 with Cd 0.2).
+std::vector<float> block_canopy(const fluid::GridSpec& spec) {
+  std::vector<float> k(spec.cell_count(), 0.0f);
+  for (int kk = 0; kk < 10; ++kk)
+    for (int j = 4; j < 12; ++j)
+      for (int i = 16; i < 24; ++i)
+        k[std::size_t(i) + std::size_t(spec.nx) * (j + std::size_t(spec.ny) * kk)] = 0.3f;
+  return k;
+}
+
+// Mean cell-centred speed over cells [i0, i1) x [4, 12) x [0, 10).
+double mean_speed(const fluid::GridSpec& spec, const fluid::MacVelocity& vel, int i0, int i1) {
+  double sum = 0.0;
+  int n = 0;
+  for (int k = 0; k < 10; ++k)
+    for (int j = 4; j < 12; ++j)
+      for (int i = i0; i < i1; ++i) {
+        const double u =
+            0.5 * (vel.u[ref::face_index(spec, 0, i, j, k)] + vel.u[ref::face_index(spec, 0, i + 1, j, k)]);
+        const double v =
+            0.5 * (vel.v[ref::face_index(spec, 1, i, j, k)] + vel.v[ref::face_index(spec, 1, i, j + 1, k)]);
+        const double w =
+            0.5 * (vel.w[ref::face_index(spec, 2, i, j, k)] + vel.w[ref::face_index(spec, 2, i, j, k + 1)]);
+        sum += std::sqrt(u * u + v * v + w * w);
+        ++n;
+      }
+  return sum / n;
+}
+
+bool identical(const fluid::MacVelocity& a, const fluid::MacVelocity& b) {
+  for (int c = 0; c < 3; ++c)
+    if (a.component(c).size() != b.component(c).size() ||
+        std::memcmp(a.component(c).data(), b.component(c).data(), a.component(c).size() * sizeof(float)) != 0)
+      return false;
+  return true;
+}
+
+}  // namespace
+
+TEST_CASE("canopy drag: a dense canopy block slows the channel flow inside and behind it", "[canopy]") {
+  auto* cc = test::device_or_skip();
+  if (!cc) return;
+  const auto setup = channel_setup();
+  const auto& spec = setup.spec;
+  constexpr int kSteps = 120;  // 24 s, 1.5 flow-through times
+
+  auto run = [&](auto&& configure) {
+    host::WindGrid wind(*cc, setup);
+    configure(wind);
+    wind.initialise_ambient();
+    for (int n = 0; n < kSteps; ++n) wind.step();
+    return wind.download_velocity();
+  };
+  const auto open = run([](host::WindGrid&) {});
+  const auto forest = run([&](host::WindGrid& w) {
+    w.set_canopy(block_canopy(spec));
+    CHECK(w.canopy_enabled());
+  });
+
+  for (int c = 0; c < 3; ++c)
+    for (float x : forest.component(c)) REQUIRE(std::isfinite(x));
+  const double inside_open = mean_speed(spec, open, 16, 24), inside = mean_speed(spec, forest, 16, 24);
+  const double lee_open = mean_speed(spec, open, 24, 32), lee = mean_speed(spec, forest, 24, 32);
+  const double inside_drop = 1.0 - inside / inside_open, lee_drop = 1.0 - lee / lee_open;
+  WARN("canopy block (k = 0.3 1/m): mean speed inside "
+       << inside << " m/s vs " << inside_open << " open (" << 100 * inside_drop << "% lower); in the lee "
+       << lee << " vs " << lee_open << " (" << 100 * lee_drop << "% lower)");
+  CHECK(inside_drop > 0.2);
+  CHECK(lee_drop > 0.2);
+
+  // The projection still conserves mass: every cross-section carries the inflow flux, the air the canopy
+  // holds back goes around and over it.
+  auto flux_at = [&](const fluid::MacVelocity& vel, int i) {
+    double sum = 0.0;
+    for (int k = 0; k < spec.nz; ++k)
+      for (int j = 0; j < spec.ny; ++j) sum += vel.u[ref::face_index(spec, 0, i, j, k)];
+    return sum * spec.h * spec.h;
+  };
+  const double inflow = flux_at(forest, 0);
+  CHECK(inflow == Approx(3.0 * 16 * 16).epsilon(1e-6));
+  double worst = 0.0;
+  for (int i : {8, 16, 20, 24, 28, 40, 48})
+    worst = std::max(worst, std::abs(flux_at(forest, i) - inflow) / inflow);
+  WARN("canopy block: largest relative flux error over cross-sections " << worst);
+  CHECK(worst < 1e-4);
+  // Beside and above the block the wind speeds up.
+  CHECK(forest.u[ref::face_index(spec, 0, 20, 1, 5)] > open.u[ref::face_index(spec, 0, 20, 1, 5)]);
+  CHECK(forest.u[ref::face_index(spec, 0, 20, 8, 13)] > open.u[ref::face_index(spec, 0, 20, 8, 13)]);
+  const auto levels = fluid::build_fine_pressure_level(spec, {});
+  CHECK(ref::max_divergence(spec, levels, forest) < 1e-3);
+
+  SECTION("switched off, the run is bit-identical to one that never set a canopy") {
+    const auto cleared = run([&](host::WindGrid& w) {
+      w.set_canopy(block_canopy(spec));
+      w.set_canopy({});
+      CHECK_FALSE(w.canopy_enabled());
+    });
+    CHECK(identical(cleared, open));
+    const auto zero =
+        run([&](host::WindGrid& w) { w.set_canopy(std::vector<float>(spec.cell_count(), 0.0f)); });
+    CHECK(identical(zero, open));
+  }
+}
+
+TEST_CASE("canopy drag: WindGrid::set_canopy rejects bad fields", "[canopy]") {
+  auto* cc = test::device_or_skip();
+  if (!cc) return;
+  host::WindGrid wind(*cc, channel_setup());
+  using Catch::Matchers::Contains;
+  CHECK_THROWS_WITH(wind.set_canopy(std::vector<float>(7, 0.1f)), Contains("WindGrid") && Contains("cells"));
+  auto k = block_canopy(wind.spec());
+  k[5] = -0.1f;
+  CHECK_THROWS_WITH(wind.set_canopy(k), Contains("WindGrid"));
+  k[5] = NAN;
+  CHECK_THROWS_AS(wind.set_canopy(k), std::invalid_argument);
+  CHECK_FALSE(wind.canopy_enabled());
+}
+
+TEST_CASE("canopy drag: stage cost on a 128 x 128 x 64 grid", "[.][bench]") {
+  auto* cc = test::device_or_skip();
+  if (!cc) return;
+  host::WindGridSetup setup;
+  auto& spec = setup.spec;
+  spec.nx = 128;
+  spec.ny = 128;
+  spec.nz = 64;
+  spec.h = 2.0;
+  spec.boundary = {B::inflow, B::outflow, B::periodic, B::periodic, B::no_slip, B::slip};
+  setup.settings.dt = 0.2;
+  setup.ambient = {8.0, 0.0, 0.0};
+  host::WindGrid wind(*cc, setup);
+  // A forest over the middle half of the ground, 20 m (10 cells) tall.
+  std::vector<float> k(spec.cell_count(), 0.0f);
+  for (int kk = 0; kk < 10; ++kk)
+    for (int j = 0; j < spec.ny; ++j)
+      for (int i = 32; i < 96; ++i)
+        k[std::size_t(i) + std::size_t(spec.nx) * (j + std::size_t(spec.ny) * kk)] = 0.2f;
+  wind.set_canopy(k);
+  wind.initialise_ambient();
+  wind.step();  // warm-up: kernel builds
+  wind.set_stage_timing(true);
+  wind.reset_stage_ms();
+  constexpr int kSteps = 5;
+  for (int n = 0; n < kSteps; ++n) wind.step();
+  double total = 0.0;
+  for (const auto& [name, ms] : wind.stage_ms()) total += ms;
+  for (const auto& [name, ms] : wind.stage_ms()) WARN(name << ": " << ms / kSteps << " ms/step");
+  WARN("canopy: " << wind.stage_ms().at("canopy") / kSteps << " ms/step of " << total / kSteps << " ms/step");
+  CHECK(wind.stage_ms().count("canopy") == 1);
+}

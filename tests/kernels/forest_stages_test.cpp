@@ -1,0 +1,284 @@
+// The trees' kernels (host/ForestStages: kernels/tree_wind_load.cl, tree_modal_step.cl, tree_deform.cl)
+// against the CPU oracle trees/ForestReference, on a smooth random MAC wind and a forest of two small
+// species with various yaws and scales.
+#include <catch2/catch.hpp>
+
+#include <chrono>
+#include <cmath>
+#include <random>
+
+#include "host/ForestStages.hpp"
+#include "tests/support/Fields.hpp"
+#include "tests/support/TestDevice.hpp"
+#include "trees/ForestReference.hpp"
+#include "trees/TreeGenerator.hpp"
+
+using namespace fw;
+
+namespace {
+
+// Tolerances (float32 kernels against the double oracle):
+// sampling: positions and 8-point interpolation in float, ~10 ulps of the wind speed;
+constexpr double kSampleTolerance = 1e-5;
+// forces: |v| v (two more roundings) and dot products of 3S terms;
+constexpr double kForceTolerance = 1e-4;
+// 50 steps of forces and state in float: errors of the forces carry into q linearly;
+constexpr double kStateTolerance = 2e-4;
+// deformation from the same q: a dot product of m terms and a rotation.
+constexpr double kDeformTolerance = 1e-5;
+
+trees::SpeciesBasis small_species(const std::string& preset, double height, std::uint64_t seed,
+                                  int iterations, int modes, int samples) {
+  trees::GeneratorSettings g;
+  g.preset = preset;
+  g.height = height;
+  g.seed = seed;
+  g.iterations = iterations;
+  g.max_element_length = height;  // one element per drawn segment: a few dozen nodes
+  trees::SpeciesSettings settings;
+  settings.modal.mode_count = modes;
+  settings.modal.damping = trees::Damping::modal_ratio(0.03);
+  settings.wind.samples = samples;
+  return trees::SpeciesBasis::compute(trees::generate_tree(g), settings);
+}
+
+// 32 x 24 x 14 cells of 1 m; the origin off zero so that the kernels must use it.
+fluid::GridSpec forest_grid() {
+  fluid::GridSpec spec;
+  spec.nx = 32;
+  spec.ny = 24;
+  spec.nz = 14;
+  spec.h = 1.0;
+  spec.origin = {-4.0, 3.0, -1.0};
+  return spec;
+}
+
+// A smooth random wind: a mean flow plus three random Fourier modes per component, up to ~9 m/s.
+fluid::MacVelocity smooth_wind(const fluid::GridSpec& spec, std::uint32_t seed) {
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<double> unit(-1.0, 1.0);
+  struct Wave {
+    double amplitude, phase, k[3];
+  };
+  Wave waves[3][3];
+  for (auto& component : waves)
+    for (auto& w : component)
+      w = {2.0 * unit(rng), M_PI * unit(rng), {0.4 * unit(rng), 0.4 * unit(rng), 0.4 * unit(rng)}};
+  const double mean[3] = {6.0, -2.0, 0.3};
+  fluid::MacVelocity vel(spec);
+  for (int c = 0; c < 3; ++c) {
+    const int ex = spec.nx + (c == 0), ey = spec.ny + (c == 1), ez = spec.nz + (c == 2);
+    for (int k = 0; k < ez; ++k)
+      for (int j = 0; j < ey; ++j)
+        for (int i = 0; i < ex; ++i) {
+          const double x[3] = {spec.origin[0] + spec.h * (i + (c == 0 ? 0.0 : 0.5)),
+                               spec.origin[1] + spec.h * (j + (c == 1 ? 0.0 : 0.5)),
+                               spec.origin[2] + spec.h * (k + (c == 2 ? 0.0 : 0.5))};
+          double value = mean[c];
+          for (const Wave& w : waves[c])
+            value += w.amplitude * std::sin(w.k[0] * x[0] + w.k[1] * x[1] + w.k[2] * x[2] + w.phase);
+          vel.component(c)[std::size_t(i + ex * (j + ey * k))] = float(value);
+        }
+  }
+  return vel;
+}
+
+// 20 instances of two species, yaws all round, scales 0.6 .. 1.5, roots inside the grid; the last one stands
+// high enough that its crown leaves the domain (clamped sampling).
+trees::Forest test_forest() {
+  std::vector<trees::SpeciesBasis> species = {small_species("broadleaf", 6.0, 1, 5, 8, 3),
+                                              small_species("conifer", 5.0, 2, 4, 10, 2)};
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<double> x(-1.0, 26.0), y(5.0, 25.0), yaw(-M_PI, M_PI), scale(0.6, 1.5);
+  std::vector<trees::TreeInstance> trees;
+  for (int k = 0; k < 19; ++k) trees.push_back({k % 2, {x(rng), y(rng), 0.0}, yaw(rng), scale(rng)});
+  trees.push_back({0, {10.0, 14.0, 9.0}, 1.0, 1.2});
+  return trees::Forest(std::move(species), std::move(trees));
+}
+
+double relative(const std::vector<float>& device, const Eigen::MatrixXd& expected) {
+  REQUIRE(device.size() == std::size_t(expected.size()));
+  // Row-major flattening of expected (rows are samples or nodes, 3 columns; or a vector).
+  double diff = 0.0, scale = 0.0;
+  std::size_t n = 0;
+  for (int r = 0; r < expected.rows(); ++r)
+    for (int c = 0; c < expected.cols(); ++c, ++n) {
+      diff = std::max(diff, std::abs(double(device[n]) - expected(r, c)));
+      scale = std::max(scale, std::abs(expected(r, c)));
+    }
+  return diff / scale;
+}
+
+Eigen::VectorXd to_eigen(const std::vector<float>& v) {
+  Eigen::VectorXd out(Eigen::Index(v.size()));
+  for (std::size_t i = 0; i < v.size(); ++i) out(Eigen::Index(i)) = v[i];
+  return out;
+}
+
+struct ForestFixture {
+  host::ComputeContext& cc;
+  fluid::GridSpec spec = forest_grid();
+  trees::Forest forest = test_forest();
+  trees::ForestReference ref{forest};
+  fluid::MacVelocity wind = smooth_wind(spec, 17);
+  host::ForestStages stages{cc, spec, forest};
+  host::DeviceVelocity dwind;
+
+  explicit ForestFixture(host::ComputeContext& c) : cc(c) {
+    dwind.u = cc.buffer(spec.u_count() * sizeof(float));
+    dwind.v = cc.buffer(spec.v_count() * sizeof(float));
+    dwind.w = cc.buffer(spec.w_count() * sizeof(float));
+    test::upload(cc, wind, dwind);
+  }
+};
+
+}  // namespace
+
+TEST_CASE("tree_wind_load: sampled wind and modal forces match the reference", "[forest]") {
+  auto* cc = test::device_or_skip();
+  if (!cc) return;
+  ForestFixture f(*cc);
+  REQUIRE(f.stages.instance_count() == 20);
+  REQUIRE(f.stages.total_modes() == f.ref.total_modes());
+  INFO("species nodes: " << f.forest.species()[0].skeleton().size() << ", "
+                         << f.forest.species()[1].skeleton().size());
+  CHECK(f.forest.species()[0].skeleton().size() >= 30);
+  CHECK(f.forest.species()[1].skeleton().size() >= 30);
+  f.stages.enqueue_wind_load(f.dwind);
+  const double sample_error = relative(f.stages.download_sampled_wind(), f.ref.sample_wind(f.spec, f.wind));
+  const double force_error = relative(f.stages.download_modal_forces(), f.ref.modal_forces(f.spec, f.wind));
+  WARN("wind load: max relative error, sampled wind " << sample_error << ", modal forces " << force_error);
+  CHECK(sample_error < kSampleTolerance);
+  CHECK(force_error < kForceTolerance);
+}
+
+TEST_CASE("tree_modal_step: 50 steps of both integrators match the reference", "[forest]") {
+  auto* cc = test::device_or_skip();
+  if (!cc) return;
+  ForestFixture f(*cc);
+  const double omega_max = f.ref.omega().maxCoeff();
+  // exact: a step coarser than the highest modes' periods (it is stable at any dt); semi-implicit: within
+  // its stability limit omega dt < 2.
+  for (auto [integrator, dt, name] :
+       {std::tuple{trees::ModalIntegrator::exact, 0.02, "exact"},
+        std::tuple{trees::ModalIntegrator::semi_implicit, 0.5 / omega_max, "semi-implicit"}}) {
+    f.stages.set_integrator(integrator);
+    // Start from a random state, so that free oscillation and the forced response both show.
+    std::mt19937 rng(3);
+    std::uniform_real_distribution<float> unit(-1.0f, 1.0f);
+    const Eigen::VectorXd q_static = f.ref.static_modal_response(f.spec, f.wind);
+    const double amplitude = q_static.cwiseAbs().maxCoeff();
+    host::ModalState start;
+    for (int j = 0; j < f.stages.total_modes(); ++j) {
+      start.q.push_back(float(amplitude) * unit(rng));
+      start.qdot.push_back(float(amplitude * omega_max * 0.1) * unit(rng));
+    }
+    f.stages.upload_modal_state(start);
+    Eigen::VectorXd q = to_eigen(start.q), qdot = to_eigen(start.qdot);
+    for (int n = 0; n < 50; ++n) {
+      f.stages.enqueue_wind_load(f.dwind);
+      f.stages.enqueue_modal_step(float(dt));
+      f.ref.step(q, qdot, f.ref.modal_forces(f.spec, f.wind), double(float(dt)), integrator);
+    }
+    const host::ModalState state = f.stages.download_modal_state();
+    const double q_error = relative(state.q, q), qdot_error = relative(state.qdot, qdot);
+    WARN(name << ", 50 steps of " << dt << " s: max relative error q " << q_error << ", qdot " << qdot_error);
+    CHECK(q_error < kStateTolerance);
+    CHECK(qdot_error < kStateTolerance);
+
+    // The deformation, from the device's own q (the kernel alone) and against the oracle's whole chain.
+    f.stages.enqueue_deform();
+    const std::vector<float> u = f.stages.download_displacements();
+    const double deform_error = relative(u, f.ref.displacements(to_eigen(state.q)));
+    const double chain_error = relative(u, f.ref.displacements(q));
+    WARN(name << ": displacements, max relative error " << deform_error << " (kernel), " << chain_error
+              << " (whole chain)");
+    CHECK(deform_error < kDeformTolerance);
+    CHECK(chain_error < kStateTolerance);
+  }
+}
+
+TEST_CASE("tree_modal_step: a long exact run settles at the static response", "[forest]") {
+  auto* cc = test::device_or_skip();
+  if (!cc) return;
+  ForestFixture f(*cc);
+  f.stages.reset_state();
+  f.stages.enqueue_wind_load(f.dwind);
+  // zeta = 0.03: 1,000 steps of 0.5 s damp the slowest mode's transient below float rounding.
+  for (int n = 0; n < 1000; ++n) f.stages.enqueue_modal_step(0.5f);
+  const auto state = f.stages.download_modal_state();
+  CHECK(relative(state.q, f.ref.static_modal_response(f.spec, f.wind)) < kForceTolerance);
+}
+
+TEST_CASE("ForestStages: reset, bad dt and bad state sizes", "[forest]") {
+  auto* cc = test::device_or_skip();
+  if (!cc) return;
+  ForestFixture f(*cc);
+  f.stages.enqueue_wind_load(f.dwind);
+  f.stages.enqueue_modal_step(0.01f);
+  f.stages.reset_state();
+  const auto state = f.stages.download_modal_state();
+  for (int j = 0; j < f.stages.total_modes(); ++j) {
+    CHECK(state.q[std::size_t(j)] == 0.0f);
+    CHECK(state.qdot[std::size_t(j)] == 0.0f);
+  }
+  CHECK_THROWS_WITH(f.stages.enqueue_modal_step(-1.0f), "ForestStages: dt must be finite and >= 0, got -1");
+  CHECK_THROWS_AS(f.stages.enqueue_modal_step(std::nanf("")), std::invalid_argument);
+  CHECK_THROWS_AS(f.stages.upload_modal_state(host::ModalState{{1.0f}, {1.0f}}), std::invalid_argument);
+}
+
+// Timing, not a check: `kernel_tests "[forest-bench]"`. 1,000 instances x 25 modes x 3 samples.
+TEST_CASE("ForestStages: wind load + modal step timing", "[.][forest-bench]") {
+  auto* cc = test::device_or_skip();
+  if (!cc) return;
+  fluid::GridSpec spec;
+  spec.nx = 128;
+  spec.ny = 128;
+  spec.nz = 32;
+  spec.h = 2.0;
+  std::vector<trees::SpeciesBasis> species = {small_species("broadleaf", 12.0, 4, 5, 25, 3)};
+  std::mt19937 rng(9);
+  std::uniform_real_distribution<double> pos(10.0, 246.0), yaw(-M_PI, M_PI), scale(0.8, 1.2);
+  std::vector<trees::TreeInstance> trees;
+  for (int k = 0; k < 1000; ++k) trees.push_back({0, {pos(rng), pos(rng), 0.0}, yaw(rng), scale(rng)});
+  const trees::Forest forest(std::move(species), std::move(trees));
+  host::ForestStages stages(*cc, spec, forest);
+  const auto wind = smooth_wind(spec, 2);
+  host::DeviceVelocity dwind;
+  dwind.u = cc->buffer(spec.u_count() * sizeof(float));
+  dwind.v = cc->buffer(spec.v_count() * sizeof(float));
+  dwind.w = cc->buffer(spec.w_count() * sizeof(float));
+  test::upload(*cc, wind, dwind);
+  auto run = [&](int steps) {
+    const auto start = std::chrono::steady_clock::now();
+    for (int n = 0; n < steps; ++n) {
+      stages.enqueue_wind_load(dwind);
+      stages.enqueue_modal_step(0.01f);
+    }
+    cc->finish();
+    return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count() /
+           steps;
+  };
+  auto time_each = [&](auto&& enqueue, int steps) {
+    const auto start = std::chrono::steady_clock::now();
+    for (int n = 0; n < steps; ++n) enqueue();
+    cc->finish();
+    return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count() /
+           steps;
+  };
+  run(10);  // warm-up (kernel compilation for the work sizes)
+  const double ms = run(200);
+  const double load_ms = time_each([&] { stages.enqueue_wind_load(dwind); }, 200);
+  const double step_ms = time_each([&] { stages.enqueue_modal_step(0.01f); }, 200);
+  stages.set_integrator(trees::ModalIntegrator::semi_implicit);
+  const double semi_ms = time_each([&] { stages.enqueue_modal_step(0.001f); }, 200);
+  const auto t0 = std::chrono::steady_clock::now();
+  for (int n = 0; n < 50; ++n) stages.enqueue_deform();
+  cc->finish();
+  const double deform_ms =
+      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count() / 50;
+  WARN("1000 instances x 25 modes x 3 samples, "
+       << forest.species()[0].skeleton().size() << " nodes: wind load + modal step " << ms << " ms ("
+       << load_ms << " + " << step_ms << "), semi-implicit step " << semi_ms << " ms, deform " << deform_ms
+       << " ms");
+}

@@ -1,0 +1,144 @@
+#include "trees/Forest.hpp"
+
+#include <fmt/format.h>
+
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+
+namespace fw::trees {
+namespace {
+
+[[noreturn]] void fail(const std::string& what) {
+  throw std::invalid_argument("Forest: " + what);
+}
+
+void validate_species(const SpeciesBasis& sp, std::size_t index) {
+  const int n = sp.skeleton().size();
+  const int m = sp.modes().mode_count();
+  const int samples = sp.wind().sample_count();
+  if (m < 1) fail(fmt::format("species {}: no modes", index));
+  if (samples < 1 || samples > FW_MAX_TREE_SAMPLES)
+    fail(fmt::format("species {}: wind samples must be 1..{}, got {}", index, FW_MAX_TREE_SAMPLES, samples));
+  if (sp.wind().mode_count() != m)
+    fail(fmt::format("species {}: wind basis and modes differ in count", index));
+  if (sp.node_shapes().rows() != 3 * n || sp.node_shapes().cols() != m)
+    fail(fmt::format("species {}: node shapes are {} x {}, expected {} x {}", index, sp.node_shapes().rows(),
+                     sp.node_shapes().cols(), 3 * n, m));
+  for (int i = 0; i < m; ++i) {
+    const double w = sp.modes().omega()(i);
+    if (!std::isfinite(w) || w <= 0.0)
+      fail(fmt::format("species {}: mode {}: omega must be finite and > 0, got {}", index, i, w));
+  }
+}
+
+void check_int32(long long total, const char* what) {
+  if (total > std::numeric_limits<fw_int>::max())
+    fail(fmt::format("{} {} exceed 32-bit indexing on the device", total, what));
+}
+
+}  // namespace
+
+Forest::Forest(std::vector<SpeciesBasis> species, std::vector<TreeInstance> instances)
+    : species_(std::move(species)), instances_(std::move(instances)) {
+  long long shape_floats = 0;
+  for (std::size_t s = 0; s < species_.size(); ++s) {
+    validate_species(species_[s], s);
+    shape_floats += species_[s].node_shapes().size();
+  }
+  check_int32(shape_floats, "node-shape values");
+
+  long long modes = 0, nodes = 0, samples = 0;
+  for (std::size_t k = 0; k < instances_.size(); ++k) {
+    const TreeInstance& t = instances_[k];
+    if (t.species < 0 || std::size_t(t.species) >= species_.size())
+      fail(fmt::format("instance {}: species index must be 0..{}, got {}", k, int(species_.size()) - 1,
+                       t.species));
+    if (!t.position.allFinite())
+      fail(fmt::format("instance {}: position must be finite, got ({}, {}, {})", k, t.position.x(),
+                       t.position.y(), t.position.z()));
+    if (!std::isfinite(t.yaw_rad)) fail(fmt::format("instance {}: yaw must be finite, got {}", k, t.yaw_rad));
+    if (!std::isfinite(t.scale) || t.scale <= 0.0)
+      fail(fmt::format("instance {}: scale must be finite and > 0, got {}", k, t.scale));
+    const SpeciesBasis& sp = species_[std::size_t(t.species)];
+    modes += sp.modes().mode_count();
+    nodes += sp.skeleton().size();
+    samples += sp.wind().sample_count();
+    // 2 floats of modal state and 3 of sampled wind / displacement per entry: keep those indices in range.
+    check_int32(2 * modes, "modal state values");
+    check_int32(3 * nodes, "displacement values");
+    check_int32(3 * samples, "sampled wind values");
+    mode_offsets_.push_back(int(modes));
+    node_offsets_.push_back(int(nodes));
+    sample_offsets_.push_back(int(samples));
+  }
+}
+
+const SpeciesBasis& Forest::species_of(int instance) const {
+  return species_.at(std::size_t(instances_.at(std::size_t(instance)).species));
+}
+
+Eigen::Matrix3d Forest::rotation(int instance) const {
+  const double psi = instances_.at(std::size_t(instance)).yaw_rad;
+  Eigen::Matrix3d r;
+  r << std::cos(psi), -std::sin(psi), 0.0, std::sin(psi), std::cos(psi), 0.0, 0.0, 0.0, 1.0;
+  return r;
+}
+
+ForestPacking Forest::pack() const {
+  ForestPacking p;
+  for (const SpeciesBasis& sp : species_) {
+    const int n = sp.skeleton().size();
+    const int m = sp.modes().mode_count();
+    const int samples = sp.wind().sample_count();
+    FwSpecies row{};
+    row.node_count = n;
+    row.mode_count = m;
+    row.sample_count = samples;
+    row.shape_offset = fw_int(p.node_shapes.size());
+    row.projection_offset = fw_int(p.projections.size());
+    row.sample_point_offset = fw_int(p.sample_points.size());
+    row.modal_offset = fw_int(p.omega.size());
+    p.species.push_back(row);
+
+    const Eigen::MatrixXd& shapes = sp.node_shapes();
+    // Mode-major (m rows of 3n): for one mode, consecutive nodes' x y z are contiguous, so the deformation
+    // kernel reads 8 nodes of a mode with three vector loads.
+    for (int i = 0; i < m; ++i)
+      for (int r = 0; r < 3 * n; ++r) p.node_shapes.push_back(float(shapes(r, i)));
+    // Mode-major, so that one mode's force is a dot product over 3S contiguous values.
+    const Eigen::MatrixXd& proj = sp.wind().projection_matrix();
+    for (int i = 0; i < m; ++i)
+      for (int r = 0; r < 3 * samples; ++r) p.projections.push_back(float(proj(r, i)));
+    const Eigen::MatrixX3d& points = sp.wind().sample_points();
+    for (int s = 0; s < samples; ++s)
+      for (int a = 0; a < 3; ++a) p.sample_points.push_back(float(points(s, a)));
+    const Eigen::VectorXd zeta = sp.modes().damping_ratios();
+    for (int i = 0; i < m; ++i) {
+      p.omega.push_back(float(sp.modes().omega()(i)));
+      p.damping_ratios.push_back(float(zeta(i)));
+    }
+  }
+
+  for (int k = 0; k < instance_count(); ++k) {
+    const TreeInstance& t = instances_[std::size_t(k)];
+    FwTreeInstance row{};
+    row.species = t.species;
+    row.mode_offset = mode_offset(k);
+    row.node_offset = node_offset(k);
+    row.sample_offset = sample_offset(k);
+    for (int a = 0; a < 3; ++a) row.position[a] = float(t.position(a));
+    row.cos_yaw = float(std::cos(t.yaw_rad));
+    row.sin_yaw = float(std::sin(t.yaw_rad));
+    row.scale = float(t.scale);
+    p.instances.push_back(row);
+    p.mode_instance.insert(p.mode_instance.end(), std::size_t(mode_offset(k + 1) - mode_offset(k)), k);
+    p.node_instance.insert(p.node_instance.end(), std::size_t(node_offset(k + 1) - node_offset(k)), k);
+  }
+  p.total_modes = total_modes();
+  p.total_nodes = total_nodes();
+  p.total_samples = total_samples();
+  return p;
+}
+
+}  // namespace fw::trees

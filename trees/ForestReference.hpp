@@ -1,0 +1,82 @@
+// The CPU oracle of the trees' device stage (host/ForestStages, kernels/tree_*.cl): wind sampling, modal
+// forces, the modal time step and the skeleton deformation, in double precision, straight from the species'
+// SpeciesBasis (not from the float packing).
+//
+//   fw::trees::ForestReference ref(forest);
+//   Eigen::VectorXd f = ref.modal_forces(spec, velocity);          // #total modes, N / kg^1/2
+//   Eigen::VectorXd q = Eigen::VectorXd::Zero(ref.total_modes()), qdot = q;
+//   for (int n = 0; n < 100; ++n) ref.step(q, qdot, f, 0.01, fw::trees::ModalIntegrator::exact);
+//   Eigen::MatrixX3d u = ref.displacements(q);                      // #total nodes by 3, m, world frame
+//
+// Model, instance k of scale s, yaw psi (R = R(psi)) at x (see trees/Forest.hpp):
+//   wind sample  v_s = trilinear MAC sample of the grid at x + s R p_s (each component on its own staggered
+//                lattice, positions clamped to that lattice: constant extrapolation beyond the outer faces);
+//   modal force  f_i = sum_s |v_s| v_s . (s^1/2 R p_i^s);
+//   modal step   q'' + gamma q' + omega^2 q = f, f held over dt, omega = omega_i / s, gamma = 2 zeta_i omega;
+//   deformation  u_node = s^-3/2 R sum_i phi_node_i q_i.
+// Instances keep their species' damping ratios (exact for modal-ratio damping; Rayleigh damping is taken at
+// the species' own frequencies, not re-evaluated at omega / s).
+#pragma once
+
+#include <Eigen/Core>
+
+#include "fluid/GridSpec.hpp"
+#include "fluid/ReferenceStages.hpp"
+#include "trees/Forest.hpp"
+
+namespace fw::trees {
+
+enum class ModalIntegrator {
+  exact,          ///< exact solution of the damped oscillator for the force held over the step
+  semi_implicit,  ///< Diener's semi-implicit Euler: qdot += dt (f - gamma qdot - omega^2 q); q += dt qdot
+};
+
+/// Trilinear sample of the face velocities at a world position (m), m/s, with the clamping described above.
+Eigen::Vector3d sample_mac_velocity(const fluid::GridSpec& spec, const fluid::MacVelocity& velocity,
+                                    const Eigen::Vector3d& world);
+
+/// One exact step of q'' + gamma q' + omega^2 q = f over dt, f constant: x = q - f / omega^2 decays as a free
+/// damped oscillator, written so that it stays accurate through critical damping. omega > 0, gamma >= 0.
+void exact_modal_step(double& q, double& qdot, double f, double omega, double gamma, double dt);
+/// One semi-implicit (symplectic) Euler step of the same equation.
+void semi_implicit_modal_step(double& q, double& qdot, double f, double omega, double gamma, double dt);
+
+class ForestReference {
+ public:
+  /// Keeps a reference: `forest` must outlive this object.
+  explicit ForestReference(const Forest& forest) : forest_(forest) {}
+
+  int total_modes() const { return forest_.total_modes(); }
+  int total_nodes() const { return forest_.total_nodes(); }
+  int total_samples() const { return forest_.total_samples(); }
+
+  /// World positions of every instance's wind samples, #total samples by 3, m.
+  Eigen::MatrixX3d sample_positions() const;
+  /// The wind at every sample, #total samples by 3, m/s, world frame.
+  Eigen::MatrixX3d sample_wind(const fluid::GridSpec& spec, const fluid::MacVelocity& velocity) const;
+  /// Modal forces from sampled wind (#total samples by 3, m/s): #total modes, N / kg^1/2.
+  Eigen::VectorXd modal_forces(const Eigen::MatrixX3d& sampled_wind) const;
+  Eigen::VectorXd modal_forces(const fluid::GridSpec& spec, const fluid::MacVelocity& velocity) const;
+
+  /// Per flat mode: omega_i / s (rad/s) and gamma = 2 zeta_i omega_i / s (1/s) of the owning instance.
+  Eigen::VectorXd omega() const;
+  Eigen::VectorXd gamma() const;
+
+  /// Advances every flat mode by dt (s) with the forces f held constant. Throws std::invalid_argument
+  /// ("ForestReference: ...") for wrong sizes or a dt that is not finite and >= 0.
+  void step(Eigen::VectorXd& q, Eigen::VectorXd& qdot, const Eigen::VectorXd& forces, double dt,
+            ModalIntegrator integrator) const;
+
+  /// Nodal displacements of every instance for the modal coordinates q: #total nodes by 3, m, world frame.
+  Eigen::MatrixX3d displacements(const Eigen::VectorXd& q) const;
+
+  /// The equilibrium under constant forces, q_i = f_i / omega_i^2 (omega of the instance).
+  Eigen::VectorXd static_modal_response(const Eigen::VectorXd& forces) const;
+  Eigen::VectorXd static_modal_response(const fluid::GridSpec& spec,
+                                        const fluid::MacVelocity& velocity) const;
+
+ private:
+  const Forest& forest_;
+};
+
+}  // namespace fw::trees
