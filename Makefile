@@ -1,5 +1,5 @@
 # The two set-up commands of the README:
-#   make demo   installs the Debian packages, builds, and runs the demo (the wind-tunnel benchmark)
+#   make demo   installs the Debian packages, builds, and runs the demo: scenarios/storm.yaml into out/storm
 #   make test   installs the Debian packages, builds, and runs every test through CTest
 BUILD_DIR ?= build
 BUILD_TYPE ?= Release
@@ -18,7 +18,7 @@ test: deps build
 	ctest --test-dir $(BUILD_DIR) --output-on-failure
 
 demo: deps build
-	$(BUILD_DIR)/forestwind bench wind
+	$(BUILD_DIR)/forestwind run scenarios/storm.yaml
 
 format:
 	clang-format -i $$(git ls-files '*.cpp' '*.hpp' '*.h' '*.cl')

@@ -36,32 +36,6 @@ std::string cpu_name() {
   return "unknown CPU";
 }
 
-// The generated tree whose node count is closest to `target`: the node count falls as the element length
-// grows, so bisect on log(length) between 1 mm and the tree's height.
-trees::Skeleton tree_near(const TreeBenchOptions& options, int target, double* element_length) {
-  trees::GeneratorSettings settings;
-  settings.preset = options.preset;
-  settings.height = options.height;
-  settings.seed = options.seed;
-  double lo = std::log(1e-3), hi = std::log(options.height);
-  trees::Skeleton best;
-  double best_length = 0.0;
-  for (int step = 0; step < 30; ++step) {
-    const double mid = 0.5 * (lo + hi);
-    settings.max_element_length = std::exp(mid);
-    trees::Skeleton tree = trees::generate_tree(settings);
-    if (best.size() == 0 || std::abs(tree.size() - target) < std::abs(best.size() - target)) {
-      best = tree;
-      best_length = settings.max_element_length;
-    }
-    if (tree.size() == target) break;
-    (tree.size() > target ? lo : hi) = mid;
-    if (std::abs(best.size() - target) <= target / 200) break;  // within 0.5%
-  }
-  *element_length = best_length;
-  return best;
-}
-
 }  // namespace
 
 TreeBenchResult run_tree_bench(const TreeBenchOptions& options) {
@@ -71,7 +45,11 @@ TreeBenchResult run_tree_bench(const TreeBenchOptions& options) {
   for (const int target : options.target_nodes) {
     TreeBenchCase c;
     c.target_nodes = target;
-    const trees::Skeleton tree = tree_near(options, target, &c.max_element_length);
+    trees::GeneratorSettings generator;
+    generator.preset = options.preset;
+    generator.height = options.height;
+    generator.seed = options.seed;
+    const trees::Skeleton tree = trees::generate_tree_with_nodes(generator, target, &c.max_element_length);
     c.nodes = tree.size();
 
     trees::ModalSettings settings;

@@ -1,8 +1,11 @@
 #include "host/ClError.hpp"
 
-#include <CL/cl.h>
-#include <CL/cl_ext.h>
 #include <fmt/format.h>
+
+// Through our wrapper, which fixes the OpenCL target version before the first CL header.
+#include "host/opencl.hpp"
+
+#include <CL/cl_ext.h>
 
 namespace fw::host {
 

@@ -26,15 +26,30 @@ int main(int argc, char** argv) {
 
   cli::BenchOptions bench;
   std::vector<std::string> grids;
-  auto* bench_cmd =
-      app.add_subcommand("bench", "benchmarks: wind (the wind-tunnel case), trees (modal analysis)");
+  auto* bench_cmd = app.add_subcommand(
+      "bench", "benchmarks: wind (the wind-tunnel case), trees (modal analysis), coupled (wind + forest)");
   bench_cmd->add_option("what", bench.what, "which benchmark")
       ->required()
-      ->check(CLI::IsMember({"wind", "trees"}));
+      ->check(CLI::IsMember({"wind", "trees", "coupled"}));
   bench_cmd->add_option("--grid", grids,
                         "grid size NXxNYxNZ (repeatable; default 128x128x64, 64x64x32, 256x256x16)");
   bench_cmd->add_option("--steps", bench.steps, "timed steps per solver")->check(CLI::PositiveNumber);
+  bench_cmd->add_option("--trees", bench.trees, "trees in the coupled benchmark (default 1000)")
+      ->check(CLI::PositiveNumber);
   bench_cmd->add_flag("--json", bench.json, "one JSON object on stdout");
+
+  cli::RunOptions run;
+  auto* run_cmd = app.add_subcommand("run", "run a scenario: wind grid and forest on the OpenCL device");
+  run_cmd->add_option("scenario", run.scenario, "SCENARIO.yaml")->required();
+  run_cmd->add_option("-o,--output", run.output_dir,
+                      "output folder (default: the scenario's output.directory)");
+  run_cmd->add_option("--end", run.end_time, "stop at this simulated time, s (default: time.end)")
+      ->check(CLI::PositiveNumber);
+  run_cmd->add_flag("--quiet", run.quiet, "no progress line or summary");
+
+  std::string check_path;
+  auto* check_cmd = app.add_subcommand("check", "validate a scenario and summarise it (no device needed)");
+  check_cmd->add_option("scenario", check_path, "SCENARIO.yaml")->required();
 
   auto* tree = app.add_subcommand("tree", "tree species: generate skeletons, compute vibration modes");
   tree->require_subcommand(1);
@@ -76,6 +91,8 @@ int main(int argc, char** argv) {
 
   try {
     if (devices->parsed()) return cli::run_devices(devices_json);
+    if (run_cmd->parsed()) return cli::run_scenario(run, global);
+    if (check_cmd->parsed()) return cli::run_check(check_path);
     if (tree_generate->parsed()) return cli::run_tree_generate(generate);
     if (tree_modes->parsed()) return cli::run_tree_modes(modes);
     if (bench_cmd->parsed()) {

@@ -298,4 +298,30 @@ Skeleton generate_tree(const GeneratorSettings& settings) {
   return Skeleton::from_nodes(std::move(nodes));
 }
 
+Skeleton generate_tree_with_nodes(GeneratorSettings settings, int target_nodes, double* element_length) {
+  if (target_nodes < 2) {
+    throw std::invalid_argument(
+        fmt::format("TreeGenerator: target node count must be >= 2, got {}", target_nodes));
+  }
+  // The node count falls as the element length grows; bisect on log(length).
+  const double height = settings.height > 0.0 ? settings.height : generate_tree(settings).height();
+  double lo = std::log(1e-3), hi = std::log(height);
+  Skeleton best;
+  double best_length = 0.0;
+  for (int step = 0; step < 40; ++step) {
+    const double mid = 0.5 * (lo + hi);
+    settings.max_element_length = std::exp(mid);
+    Skeleton tree = generate_tree(settings);
+    const int nodes = tree.size();
+    if (best.size() == 0 || std::abs(nodes - target_nodes) < std::abs(best.size() - target_nodes)) {
+      best = std::move(tree);
+      best_length = settings.max_element_length;
+    }
+    if (std::abs(best.size() - target_nodes) <= target_nodes / 200) break;  // within 0.5%
+    (nodes > target_nodes ? lo : hi) = mid;
+  }
+  if (element_length) *element_length = best_length;
+  return best;
+}
+
 }  // namespace fw::trees

@@ -64,6 +64,13 @@ struct GeneratorSettings {
 /// negative or non-finite, iterations < 0, or settings that would give more than kMaxGeneratedNodes nodes.
 Skeleton generate_tree(const GeneratorSettings& settings);
 
+/// The tree of `settings` refined to about `target_nodes` nodes: bisects max_element_length (log scale,
+/// 1 mm to the height) and returns the closest node count found (within 0.5% when the preset's structure
+/// allows; a tree cannot get coarser than one element per L-system segment). The chosen length is stored in
+/// *element_length when given. Throws what generate_tree throws, and std::invalid_argument for target < 2.
+Skeleton generate_tree_with_nodes(GeneratorSettings settings, int target_nodes,
+                                  double* element_length = nullptr);
+
 /// The valid preset names, in a fixed order.
 std::vector<std::string> preset_names();
 

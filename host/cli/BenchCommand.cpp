@@ -3,6 +3,7 @@
 #include <iostream>
 #include <stdexcept>
 
+#include "bench/CoupledBench.hpp"
 #include "bench/TreeBench.hpp"
 #include "bench/WindBench.hpp"
 #include "host/ComputeContext.hpp"
@@ -36,9 +37,24 @@ int run_bench(const BenchOptions& options, const GlobalOptions& global) {
   }
   host::ComputeContext cc(host::select_device(host::device_filter_from_env(global.device_filter)),
                           global.profile);
+  if (options.what == "coupled") {
+    bench::CoupledBenchOptions opt;
+    if (!options.grids.empty()) opt.grids = options.grids;
+    if (options.steps > 0) opt.steps = options.steps;
+    if (options.trees > 0) opt.trees = options.trees;
+    if (!options.json)
+      std::cerr << "running the coupled forest benchmark on " << cc.device().device_name << " ...\n";
+    const auto result = bench::run_coupled_bench(cc, opt);
+    if (options.json)
+      std::cout << bench::coupled_bench_json(result) << "\n";
+    else
+      bench::print_coupled_bench_table(result, std::cout);
+    if (cc.profiling()) cc.profiler()->print(options.json ? std::cerr : std::cout);
+    return 0;
+  }
   if (options.what != "wind")
     throw std::invalid_argument(
-        fmt::format("bench {}: not available in this build (only 'wind' and 'trees')", options.what));
+        fmt::format("bench {}: not available in this build (wind, trees or coupled)", options.what));
   bench::WindBenchOptions opt;
   if (!options.grids.empty()) opt.grids = options.grids;
   if (options.steps > 0) opt.steps = options.steps;

@@ -20,6 +20,7 @@ struct BenchOptions {
   std::string what;                       // "wind"
   std::vector<std::array<int, 3>> grids;  // --grid (empty: the benchmark's defaults)
   int steps = 0;                          // --steps (0: default)
+  int trees = 0;                          // --trees (0: default), bench coupled
   bool json = false;
 };
 
@@ -47,6 +48,18 @@ struct TreeModesOptions {
 };
 
 int run_tree_modes(const TreeModesOptions& options);
+
+struct RunOptions {
+  std::string scenario;    // SCENARIO.yaml
+  std::string output_dir;  // -o: overrides output.directory
+  double end_time = 0.0;   // --end: s, > 0 overrides time.end
+  bool quiet = false;
+};
+
+/// `forestwind run`: 0 completed, 130 interrupted by SIGINT (frames so far kept), exceptions otherwise.
+int run_scenario(const RunOptions& options, const GlobalOptions& global);
+/// `forestwind check`: validates and summarises without a device.
+int run_check(const std::string& scenario_path);
 
 /// Parses "NXxNYxNZ" (e.g. "128x128x64"). Throws std::invalid_argument naming the text.
 std::array<int, 3> parse_grid(const std::string& text);

@@ -1,0 +1,220 @@
+#include "bench/CoupledBench.hpp"
+
+#include <fmt/format.h>
+
+#include <chrono>
+#include <cmath>
+#include <numbers>
+#include <random>
+
+#include "bench/FmaPeak.hpp"
+#include "fluid/CanopyField.hpp"
+#include "host/ForestStages.hpp"
+#include "host/WindGrid.hpp"
+#include "io/JsonWriter.hpp"
+#include "trees/Forest.hpp"
+#include "trees/LSystem.hpp"
+#include "trees/SpeciesBasis.hpp"
+#include "trees/TreeGenerator.hpp"
+
+namespace fw::bench {
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double ms_since(Clock::time_point start) {
+  return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
+}
+
+host::WindGridSetup forest_wind_setup(const std::array<int, 3>& grid, double h) {
+  host::WindGridSetup setup;
+  auto& spec = setup.spec;
+  spec.nx = grid[0];
+  spec.ny = grid[1];
+  spec.nz = grid[2];
+  spec.h = h;
+  using fluid::BoundaryType;
+  spec.boundary = {BoundaryType::inflow, BoundaryType::outflow, BoundaryType::slip,
+                   BoundaryType::slip,   BoundaryType::no_slip, BoundaryType::slip};
+  setup.settings.dt = 0.1;
+  setup.settings.pressure.solver = fluid::PressureSolverType::cg;
+  setup.settings.pressure.tolerance = 1e-3;
+  setup.settings.pressure.max_iterations = 200;
+  setup.ambient = {10.0, 0.0, 0.0};
+  return setup;
+}
+
+// `count` trees on a jittered lattice over the middle 80% of the ground, random yaw and scale 0.85-1.15.
+std::vector<trees::TreeInstance> forest_instances(int count, const std::array<int, 3>& grid, double h) {
+  const double width = grid[0] * h, depth = grid[1] * h;
+  const int columns = int(std::ceil(std::sqrt(count * width / depth)));
+  const int rows = (count + columns - 1) / columns;
+  std::mt19937_64 random(7);
+  std::vector<trees::TreeInstance> instances;
+  for (int k = 0; k < count; ++k) {
+    const double fx = (k % columns + 0.5 + 0.3 * (trees::unit_interval(random()) - 0.5)) / columns;
+    const double fy = (k / columns + 0.5 + 0.3 * (trees::unit_interval(random()) - 0.5)) / rows;
+    trees::TreeInstance tree;
+    tree.species = 0;
+    tree.position = {width * (0.1 + 0.8 * fx), depth * (0.1 + 0.8 * fy), 0.0};
+    tree.yaw_rad = 2.0 * std::numbers::pi * trees::unit_interval(random());
+    tree.scale = 0.85 + 0.3 * trees::unit_interval(random());
+    instances.push_back(tree);
+  }
+  return instances;
+}
+
+}  // namespace
+
+CoupledBenchResult run_coupled_bench(host::ComputeContext& cc, const CoupledBenchOptions& options) {
+  CoupledBenchResult result;
+  result.device = cc.device().device_name;
+  result.trees = options.trees;
+  result.modes = options.modes;
+  result.samples = options.samples;
+
+  // One species, computed once and shared by every instance (the point of the similarity laws).
+  const auto species_start = Clock::now();
+  trees::GeneratorSettings generator;
+  generator.preset = "broadleaf";
+  generator.height = 15.0;
+  generator.seed = 1;
+  trees::SpeciesSettings settings;
+  settings.modal.mode_count = options.modes;
+  settings.wind.samples = options.samples;
+  trees::SpeciesBasis species = trees::SpeciesBasis::compute(
+      trees::generate_tree_with_nodes(generator, options.nodes_per_tree), settings);
+  result.species_seconds = ms_since(species_start) * 1e-3;
+  result.nodes_per_tree = species.skeleton().size();
+
+  for (const auto& grid : options.grids) {
+    CoupledBenchCase c;
+    c.grid = grid;
+    host::WindGrid wind(cc, forest_wind_setup(grid, options.cell_size));
+    const trees::Forest forest({species}, forest_instances(options.trees, grid, options.cell_size));
+    host::ForestStages trees(cc, wind.spec(), forest);
+    // Two-way coupling: every tree's frontal area (branches, and leaves at LAI 3) drags on the wind.
+    fluid::CanopyField canopy(wind.spec());
+    for (int k = 0; k < forest.instance_count(); ++k) {
+      const trees::TreeInstance& tree = forest.instances()[std::size_t(k)];
+      canopy.add_tree(species.skeleton().transformed(forest.rotation(k), tree.position, tree.scale), 1.2, 3.0,
+                      0.2);
+    }
+    wind.set_canopy(canopy.drag_density());
+    wind.initialise_ambient();
+    auto coupled_step = [&] {
+      const auto report = wind.step();
+      trees.enqueue_wind_load(wind.velocity());
+      trees.enqueue_modal_step(float(report.dt));
+      return report;
+    };
+    for (int s = 0; s < options.warmup_steps; ++s) coupled_step();
+    cc.finish();
+
+    wind.set_stage_timing(true);
+    wind.reset_stage_ms();
+    double trees_ms = 0.0;
+    const auto start = Clock::now();
+    for (int s = 0; s < options.steps; ++s) {
+      const auto report = wind.step();
+      c.pressure_iterations += report.pressure.iterations;
+      const auto trees_start = Clock::now();
+      trees.enqueue_wind_load(wind.velocity());
+      trees.enqueue_modal_step(float(report.dt));
+      cc.finish();
+      trees_ms += ms_since(trees_start);
+    }
+    c.ms_per_step = ms_since(start) / options.steps;
+    c.pressure_iterations /= options.steps;
+    for (const auto& [stage, ms] : wind.stage_ms()) {
+      c.stages_ms[stage] = ms / options.steps;
+      c.fluid_ms += ms / options.steps;
+    }
+    c.trees_ms = trees_ms / options.steps;
+    c.stages_ms["trees"] = c.trees_ms;
+    result.cases.push_back(c);
+
+    // The deformation of every node, once per output frame; timed on the first grid only (it does not depend
+    // on the grid).
+    if (result.cases.size() == 1) {
+      trees.enqueue_deform();
+      cc.finish();
+      const auto deform_start = Clock::now();
+      for (int f = 0; f < options.deform_frames; ++f) trees.enqueue_deform();
+      cc.finish();
+      result.deform_ms = ms_since(deform_start) / options.deform_frames;
+      result.deform_frames_per_s = 1e3 / result.deform_ms;
+      result.node_modes_per_s = double(trees.total_nodes()) * options.modes * result.deform_frames_per_s;
+    }
+  }
+  result.fma_peak_gfma_s = measure_fma_peak(cc, 5);
+  // 3 FMAs (x, y, z) per node and mode.
+  result.deform_fraction_of_peak = 3.0 * result.node_modes_per_s / (result.fma_peak_gfma_s * 1e9);
+  return result;
+}
+
+void print_coupled_bench_table(const CoupledBenchResult& r, std::ostream& out) {
+  out << fmt::format(
+      "forestwind bench coupled on {}: {} trees x {} nodes x {} modes, {} wind samples per tree\n", r.device,
+      r.trees, r.nodes_per_tree, r.modes, r.samples);
+  out << fmt::format("species precomputation (host): {:.2f} s\n\n", r.species_seconds);
+  out << fmt::format("{:<12} {:>9} {:>9} {:>9} {:>9} {:>9} {:>9} {:>9}\n", "grid", "ms/step", "fluid",
+                     "advect", "canopy", "pressure", "trees", "p-iters");
+  for (const auto& c : r.cases) {
+    auto stage = [&](const char* name) {
+      auto it = c.stages_ms.find(name);
+      return it == c.stages_ms.end() ? 0.0 : it->second;
+    };
+    out << fmt::format("{:<12} {:>9.2f} {:>9.2f} {:>9.2f} {:>9.2f} {:>9.2f} {:>9.2f} {:>9.1f}\n",
+                       fmt::format("{}x{}x{}", c.grid[0], c.grid[1], c.grid[2]), c.ms_per_step, c.fluid_ms,
+                       stage("advect"), stage("canopy"), stage("pressure"), c.trees_ms,
+                       c.pressure_iterations);
+  }
+  out << fmt::format(
+      "\ndeformation of all {} nodes (output frames): {:.2f} ms = {:.1f} frames/s, {:.3g} node*modes/s\n",
+      r.trees * r.nodes_per_tree, r.deform_ms, r.deform_frames_per_s, r.node_modes_per_s);
+  out << fmt::format(
+      "FMA peak (device, same process): {:.1f} GFMA/s; the deformation reaches {:.0f}% of it\n",
+      r.fma_peak_gfma_s, 100.0 * r.deform_fraction_of_peak);
+}
+
+std::string coupled_bench_json(const CoupledBenchResult& r) {
+  io::JsonWriter json;
+  json.begin_object();
+  json.key("device").value(r.device);
+  json.key("trees").value(r.trees);
+  json.key("nodes_per_tree").value(r.nodes_per_tree);
+  json.key("modes").value(r.modes);
+  json.key("samples").value(r.samples);
+  const CoupledBenchCase& head = r.cases.front();
+  json.key("grid").begin_array().value(head.grid[0]).value(head.grid[1]).value(head.grid[2]).end_array();
+  json.key("ms_per_step").value(head.ms_per_step);
+  json.key("stages_ms").begin_object();
+  for (const auto& [stage, ms] : head.stages_ms) json.key(stage).value(ms);
+  json.end_object();
+  json.key("deform_ms").value(r.deform_ms);
+  json.key("deform_frames_per_s").value(r.deform_frames_per_s);
+  json.key("node_modes_per_s").value(r.node_modes_per_s);
+  json.key("fma_peak_gfma_s").value(r.fma_peak_gfma_s);
+  json.key("deform_fraction_of_peak").value(r.deform_fraction_of_peak);
+  json.key("species_seconds").value(r.species_seconds);
+  json.key("cases").begin_array();
+  for (const auto& c : r.cases) {
+    json.begin_object();
+    json.key("grid").begin_array().value(c.grid[0]).value(c.grid[1]).value(c.grid[2]).end_array();
+    json.key("ms_per_step").value(c.ms_per_step);
+    json.key("fluid_ms").value(c.fluid_ms);
+    json.key("trees_ms").value(c.trees_ms);
+    json.key("pressure_iterations").value(c.pressure_iterations);
+    json.key("stages_ms").begin_object();
+    for (const auto& [stage, ms] : c.stages_ms) json.key(stage).value(ms);
+    json.end_object();
+    json.end_object();
+  }
+  json.end_array();
+  json.end_object();
+  return json.str();
+}
+
+}  // namespace fw::bench

@@ -1,0 +1,68 @@
+// `forestwind bench coupled`: the wind grid and a whole forest stepping together on the OpenCL device.
+//
+// The case: a forest of `trees` copies (random yaw, scale 0.85-1.15, on a jittered lattice over the ground)
+// of one broadleaf species refined to about `nodes_per_tree` nodes (Diener's walnut has 3,437), with `modes`
+// modes and `samples` wind samples each, in a 10 m/s wind from the west on a grid of 2 m cells (inflow west,
+// outflow east, slip sides and top, no-slip ground), pressure by multigrid-preconditioned CG to 1e-3, with
+// two-way coupling (every tree's branches and leaves, LAI 3, as a canopy drag on the grid). Per step: the
+// fluid (advect, forces, canopy drag, projection) then the trees (sample the wind, modal forces, exact modal
+// step). Output frames add the deformation u = Phi q of every node; it is timed separately, over
+// `deform_frames` frames, and compared with the device's FMA peak measured in the same process
+// (kernels/bench_fma.cl): a node of a tree with m modes costs 3 m FMAs.
+//
+//   CoupledBenchOptions opt;                      // 1,000 trees x ~3,437 nodes x 25 modes; 128x128x32,
+//   256x256x16 CoupledBenchResult r = run_coupled_bench(cc, opt); print_coupled_bench_table(r, std::cout); //
+//   or coupled_bench_json(r)
+#pragma once
+
+#include <array>
+#include <map>
+#include <ostream>
+#include <string>
+#include <vector>
+
+#include "host/ComputeContext.hpp"
+
+namespace fw::bench {
+
+struct CoupledBenchOptions {
+  std::vector<std::array<int, 3>> grids{{128, 128, 32}, {256, 256, 16}};
+  int trees = 1000;
+  int nodes_per_tree = 3437;
+  int modes = 25;
+  int samples = 3;
+  int steps = 20;          // timed coupled steps per grid
+  int warmup_steps = 5;    // untimed steps first
+  int deform_frames = 10;  // timed deformation frames
+  double cell_size = 2.0;  // m
+};
+
+struct CoupledBenchCase {
+  std::array<int, 3> grid{};
+  double ms_per_step = 0.0;                 // fluid + trees, per step
+  std::map<std::string, double> stages_ms;  // per step: the wind grid's stages, "trees" (load + modal step)
+  double fluid_ms = 0.0;                    // the wind grid's share of a step
+  double trees_ms = 0.0;                    // sampling + modal forces + modal step
+  double pressure_iterations = 0.0;
+};
+
+struct CoupledBenchResult {
+  std::string device;
+  int trees = 0;
+  int nodes_per_tree = 0;
+  int modes = 0;
+  int samples = 0;
+  double species_seconds = 0.0;  // assembly + modes + wind basis of the species, host
+  double deform_ms = 0.0;        // one output frame's deformation of every node
+  double deform_frames_per_s = 0.0;
+  double node_modes_per_s = 0.0;  // nodes x modes deformed per second
+  double fma_peak_gfma_s = 0.0;   // measured in the same process
+  double deform_fraction_of_peak = 0.0;
+  std::vector<CoupledBenchCase> cases;
+};
+
+CoupledBenchResult run_coupled_bench(host::ComputeContext& cc, const CoupledBenchOptions& options);
+void print_coupled_bench_table(const CoupledBenchResult& result, std::ostream& out);
+std::string coupled_bench_json(const CoupledBenchResult& result);
+
+}  // namespace fw::bench

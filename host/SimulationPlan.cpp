@@ -1,0 +1,197 @@
+#include "host/SimulationPlan.hpp"
+
+#include <fmt/format.h>
+
+#include <chrono>
+#include <cmath>
+#include <numbers>
+#include <stdexcept>
+
+#include "fluid/CanopyField.hpp"
+#include "fluid/SolidMap.hpp"
+#include "trees/QsmImport.hpp"
+#include "trees/TreeFile.hpp"
+#include "trees/TreeGenerator.hpp"
+
+namespace fw::host {
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double seconds_since(Clock::time_point start) {
+  return std::chrono::duration<double>(Clock::now() - start).count();
+}
+
+constexpr double kDegree = std::numbers::pi / 180.0;
+
+trees::Skeleton species_skeleton(const io::Species& species) {
+  using Kind = io::SkeletonSource::Kind;
+  try {
+    switch (species.skeleton.kind) {
+      case Kind::generate:
+        return trees::generate_tree(species.skeleton.generate);
+      case Kind::file:
+        return trees::read_tree_file(species.skeleton.path.string());
+      case Kind::qsm:
+        return trees::read_qsm_cylinders(species.skeleton.path.string());
+    }
+  } catch (const std::invalid_argument&) {
+    throw;
+  } catch (const std::runtime_error& e) {
+    // The readers report "FILE:LINE: KEY: ..." as runtime errors; for a run they are input errors.
+    throw std::invalid_argument(e.what());
+  }
+  throw std::logic_error("species_skeleton: unknown skeleton source");
+}
+
+// The height of the ground under (x, y): the terrain's surface, else the domain floor.
+double ground_z(const io::Scenario& scenario, double x, double y) {
+  double z = scenario.domain.origin[2];
+  if (scenario.terrain && scenario.terrain->map) z += scenario.terrain->map->height_at(x, y);
+  return z;
+}
+
+std::size_t forest_device_bytes(const trees::Forest& forest) {
+  std::size_t floats = 0;
+  for (const auto& s : forest.species()) {
+    const std::size_t n = std::size_t(s.skeleton().size()), m = std::size_t(s.modes().mode_count()),
+                      samples = std::size_t(s.wind().sample_count());
+    floats += 3 * n * m + 3 * samples * m + 3 * samples + 2 * m;
+  }
+  // Per instance-mode: q, qdot, force, owner; per node: displacement and owner; per sample: the wind.
+  floats += 4 * std::size_t(forest.total_modes()) + 4 * std::size_t(forest.total_nodes()) +
+            3 * std::size_t(forest.total_samples());
+  return floats * 4 + std::size_t(forest.instance_count()) * sizeof(FwTreeInstance);
+}
+
+}  // namespace
+
+FwGust to_device_gust(const io::GustEvent& event, const std::array<double, 3>& wind_at_start) {
+  FwGust gust{};
+  gust.start = float(event.start);
+  gust.duration = float(event.duration);
+  gust.peak_speed = float(event.peak_speed);
+  gust.radius = float(event.radius);
+  const double speed = std::hypot(wind_at_start[0], wind_at_start[1], wind_at_start[2]);
+  for (int a = 0; a < 3; ++a) {
+    gust.center[a] = float(event.center[a]);
+    gust.travel[a] = float(event.travel[a]);
+    // Along the ambient wind; with no wind at the start, along +x (east), so the gust is still well defined.
+    gust.direction[a] = float(speed > 0.0 ? wind_at_start[a] / speed : (a == 0 ? 1.0 : 0.0));
+  }
+  return gust;
+}
+
+SimulationPlan plan_simulation(const io::Scenario& scenario, const trees::BasisCache* cache,
+                               std::ostream* log) {
+  SimulationPlan plan;
+  plan.scenario = scenario;
+
+  // --- the wind grid ---------------------------------------------------------------------------------------
+  WindGridSetup& wind = plan.wind;
+  wind.spec = scenario.grid_spec(0.0);
+  wind.settings = scenario.wind_settings();
+  wind.profile = scenario.wind.profile;
+  wind.ambient = scenario.wind_vector(0.0);
+  fluid::SolidMap solids(wind.spec);
+  for (const auto& obstacle : scenario.obstacles) {
+    std::visit([&](const auto& shape) { solids.add(shape); }, obstacle);
+  }
+  if (scenario.terrain && scenario.terrain->map) solids.add_terrain(*scenario.terrain->map);
+  wind.solid = solids.cells();
+  for (const auto& event : scenario.events) {
+    wind.gusts.push_back(to_device_gust(event, scenario.wind_vector(event.start)));
+  }
+
+  // --- species ---------------------------------------------------------------------------------------------
+  std::vector<trees::SpeciesBasis> bases;
+  for (const io::Species& species : scenario.forest.species) {
+    const auto start = Clock::now();
+    trees::SpeciesSettings settings;
+    settings.material = species.material;
+    settings.modal.mode_count = species.modes.count;
+    settings.modal.damping = trees::Damping::modal_ratio(species.modes.damping_ratio);
+    settings.wind.samples = species.modes.wind_samples;
+    // C = 1/2 rho_air C_D, with the species' branch drag coefficient.
+    settings.wind.drag_factor = 0.5 * 1.225 * species.drag_coefficient;
+    trees::Skeleton skeleton = species_skeleton(species);
+    SpeciesSummary summary;
+    summary.name = species.name;
+    if (cache) {
+      trees::CacheOutcome outcome{};
+      std::string store_error;
+      bases.push_back(cache->load_or_compute(skeleton, settings, &outcome, &store_error));
+      summary.cache = trees::to_string(outcome);
+      if (!store_error.empty() && log) *log << "warning: " << store_error << "\n";
+    } else {
+      bases.push_back(trees::SpeciesBasis::compute(skeleton, settings));
+    }
+    summary.seconds = seconds_since(start);
+    summary.nodes = bases.back().skeleton().size();
+    summary.modes = bases.back().modes().mode_count();
+    summary.samples = bases.back().wind().sample_count();
+    summary.first_hz = bases.back().modes().frequencies_hz()(0);
+    if (log) {
+      *log << fmt::format("species {}: {} nodes, {} modes from {:.3f} Hz, {} wind samples ({}, {:.2f} s)\n",
+                          summary.name, summary.nodes, summary.modes, summary.first_hz, summary.samples,
+                          summary.cache, summary.seconds);
+    }
+    plan.species.push_back(summary);
+  }
+
+  // --- instances: stands first, in file order, then the single trees
+  // ------------------------------------------
+  std::vector<trees::TreeInstance> instances;
+  for (const io::Stand& stand : scenario.forest.stands) {
+    for (const trees::PlacedTree& placed : trees::place_stand(stand.layout)) {
+      trees::TreeInstance tree;
+      tree.species = placed.species;
+      tree.position = {placed.position.x(), placed.position.y(),
+                       ground_z(scenario, placed.position.x(), placed.position.y())};
+      tree.yaw_rad = placed.yaw;
+      tree.scale = placed.scale;
+      instances.push_back(tree);
+    }
+  }
+  for (const io::PlacedTreeSettings& placed : scenario.forest.trees) {
+    trees::TreeInstance tree;
+    tree.species = placed.species_index;
+    tree.position = {placed.position[0], placed.position[1],
+                     placed.height_given ? placed.position[2]
+                                         : ground_z(scenario, placed.position[0], placed.position[1])};
+    tree.yaw_rad = placed.yaw * kDegree;
+    tree.scale = placed.scale;
+    instances.push_back(tree);
+  }
+  for (const auto& tree : instances) {
+    plan.instance_species.push_back(tree.species);
+    ++plan.species[std::size_t(tree.species)].trees;
+  }
+
+  // --- canopy: every tree's frontal area on the grid
+  // ---------------------------------------------------------
+  if (!instances.empty()) {
+    fluid::CanopyField canopy(wind.spec);
+    for (const auto& tree : instances) {
+      const io::Species& species = scenario.forest.species[std::size_t(tree.species)];
+      const Eigen::Matrix3d rotation =
+          Eigen::AngleAxisd(tree.yaw_rad, Eigen::Vector3d::UnitZ()).toRotationMatrix();
+      const trees::Skeleton world =
+          bases[std::size_t(tree.species)].skeleton().transformed(rotation, tree.position, tree.scale);
+      canopy.add_tree(world, species.drag_coefficient, species.canopy.leaf_area_index,
+                      species.canopy.drag_coefficient);
+    }
+    plan.canopy_density = canopy.frontal_area_density();
+    plan.canopy_dropped_area = canopy.dropped_frontal_area();
+    if (scenario.forest.two_way_coupling) plan.drag_density = canopy.drag_density();
+  }
+
+  plan.forest = trees::Forest(std::move(bases), std::move(instances));
+  plan.estimated_device_bytes = WindGrid::estimate_device_bytes(wind.spec, wind.settings, 1) +
+                                forest_device_bytes(plan.forest) +
+                                (plan.drag_density.empty() ? 0 : plan.drag_density.size() * sizeof(float));
+  return plan;
+}
+
+}  // namespace fw::host

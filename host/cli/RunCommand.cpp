@@ -1,0 +1,185 @@
+// `forestwind run` and `forestwind check` (DESIGN.md, "Command line").
+#include <fmt/format.h>
+#include <unistd.h>
+
+#include <atomic>
+#include <cmath>
+#include <csignal>
+#include <filesystem>
+#include <iostream>
+
+#include "host/ComputeContext.hpp"
+#include "host/Device.hpp"
+#include "host/Simulation.hpp"
+#include "host/SimulationPlan.hpp"
+#include "host/cli/Commands.hpp"
+#include "io/Scenario.hpp"
+#include "trees/BasisCache.hpp"
+#include "trees/ForestLayout.hpp"
+#include "trees/QsmImport.hpp"
+#include "trees/TreeFile.hpp"
+#include "trees/TreeGenerator.hpp"
+
+namespace fw::cli {
+
+namespace {
+
+std::atomic<bool> g_interrupted{false};
+
+extern "C" void on_interrupt(int) {
+  g_interrupted.store(true);
+}
+
+// Restores the previous SIGINT handler when the run ends, however it ends.
+class InterruptGuard {
+ public:
+  InterruptGuard() { previous_ = std::signal(SIGINT, on_interrupt); }
+  ~InterruptGuard() { std::signal(SIGINT, previous_); }
+
+ private:
+  void (*previous_)(int) = SIG_DFL;
+};
+
+std::string megabytes(std::size_t bytes) {
+  return fmt::format("{:.1f} MB", double(bytes) / 1e6);
+}
+
+// The largest ambient speed over the run (sampled every second and at the end) plus the strongest gust: what
+// an automatic time step will be limited by.
+double peak_wind_speed(const io::Scenario& scenario) {
+  double peak = 0.0;
+  for (double t = 0.0;; t = std::min(t + 1.0, scenario.time.end)) {
+    const auto v = scenario.wind_vector(t);
+    peak = std::max(peak, std::hypot(v[0], v[1], v[2]));
+    if (t >= scenario.time.end) break;
+  }
+  double gust = 0.0;
+  for (const auto& event : scenario.events) gust = std::max(gust, event.peak_speed);
+  return peak + gust;
+}
+
+int skeleton_nodes(const io::Species& species) {
+  using Kind = io::SkeletonSource::Kind;
+  try {
+    switch (species.skeleton.kind) {
+      case Kind::generate:
+        return trees::generate_tree(species.skeleton.generate).size();
+      case Kind::file:
+        return trees::read_tree_file(species.skeleton.path.string()).size();
+      case Kind::qsm:
+        return trees::read_qsm_cylinders(species.skeleton.path.string()).size();
+    }
+  } catch (const std::invalid_argument&) {
+    throw;
+  } catch (const std::runtime_error& e) {
+    throw std::invalid_argument(e.what());
+  }
+  return 0;
+}
+
+}  // namespace
+
+int run_check(const std::string& scenario_path) {
+  const io::Scenario scenario = io::load_scenario(scenario_path);
+  const fluid::GridSpec spec = scenario.grid_spec(0.0);
+  std::cout << fmt::format("{}: scenario '{}' is valid\n", scenario_path, scenario.name);
+  std::cout << fmt::format("grid: {} x {} x {} = {} cells of {} m, domain {} x {} x {} m\n", spec.nx, spec.ny,
+                           spec.nz, spec.cell_count(), spec.h, scenario.domain.size[0],
+                           scenario.domain.size[1], scenario.domain.size[2]);
+  static const char* faces[6] = {"west", "east", "south", "north", "ground", "top"};
+  std::string boundaries;
+  for (int f = 0; f < 6; ++f) {
+    boundaries +=
+        fmt::format("{}{} {}", f ? ", " : "", faces[f], fluid::to_string(spec.boundary[std::size_t(f)]));
+  }
+  std::cout << "boundaries at t = 0: " << boundaries << "\n";
+
+  std::vector<int> trees_per_species(scenario.forest.species.size(), 0);
+  for (const auto& stand : scenario.forest.stands) {
+    trees_per_species[std::size_t(stand.layout.species)] += int(trees::place_stand(stand.layout).size());
+  }
+  for (const auto& tree : scenario.forest.trees) ++trees_per_species[std::size_t(tree.species_index)];
+  std::size_t forest_floats = 0;
+  int tree_count = 0;
+  for (std::size_t i = 0; i < scenario.forest.species.size(); ++i) {
+    const io::Species& species = scenario.forest.species[i];
+    const int nodes = skeleton_nodes(species);
+    const int modes = species.modes.count;
+    std::cout << fmt::format("species {}: {} nodes, {} modes, {} wind samples, {} trees\n", species.name,
+                             nodes, modes, species.modes.wind_samples, trees_per_species[i]);
+    forest_floats += std::size_t(3) * std::size_t(nodes) * std::size_t(modes) +
+                     std::size_t(trees_per_species[i]) * (4 * std::size_t(modes) + 4 * std::size_t(nodes));
+    tree_count += trees_per_species[i];
+  }
+  std::cout << fmt::format("trees: {}, obstacles: {}, gusts: {}, terrain: {}, two-way coupling: {}\n",
+                           tree_count, scenario.obstacles.size(), scenario.events.size(),
+                           scenario.terrain ? "yes" : "no", scenario.forest.two_way_coupling ? "on" : "off");
+  const std::size_t bytes = host::WindGrid::estimate_device_bytes(spec, scenario.wind_settings(), 1) +
+                            forest_floats * sizeof(float) + (tree_count > 0 ? spec.cell_count() * 4 : 0);
+  std::cout << "estimated device memory: " << megabytes(bytes) << "\n";
+  if (scenario.time.dt) {
+    std::cout << fmt::format("steps: {} (dt {} s to t = {} s)\n",
+                             long(std::ceil(scenario.time.end / *scenario.time.dt)), *scenario.time.dt,
+                             scenario.time.end);
+  } else {
+    const double peak = peak_wind_speed(scenario);
+    const double dt = peak > 0.0 ? scenario.time.cfl * spec.h / peak : 1.0;
+    std::cout << fmt::format(
+        "steps: about {} or more (dt auto, CFL {}: {:.3f} s at the peak ambient wind plus gusts, {:.1f} m/s, "
+        "to t = "
+        "{} s)\n",
+        long(std::ceil(scenario.time.end / dt)), scenario.time.cfl, dt, peak, scenario.time.end);
+  }
+  std::cout << fmt::format("output: {} every {} s\n", scenario.output.directory.string(),
+                           scenario.output.interval);
+  return 0;
+}
+
+int run_scenario(const RunOptions& options, const GlobalOptions& global) {
+  // Everything that can be wrong with the input is found before the device or the output folder is touched.
+  const io::Scenario scenario = io::load_scenario(options.scenario);
+  const std::filesystem::path directory =
+      options.output_dir.empty() ? scenario.output.directory : std::filesystem::absolute(options.output_dir);
+  const bool terminal = ::isatty(STDERR_FILENO) == 1 && !options.quiet;
+  std::ostream* log = options.quiet ? nullptr : &std::cerr;
+  trees::BasisCache cache(trees::BasisCache::default_directory());
+  host::SimulationPlan plan = host::plan_simulation(scenario, &cache, log);
+
+  host::ComputeContext cc(host::select_device(host::device_filter_from_env(global.device_filter)),
+                          global.profile);
+  if (log) {
+    *log << fmt::format("{}: {} x {} x {} cells, {} trees, device {} ({})\n", scenario.name,
+                        plan.wind.spec.nx, plan.wind.spec.ny, plan.wind.spec.nz, plan.forest.instance_count(),
+                        cc.device().device_name, cc.device().platform_name);
+  }
+  host::Simulation simulation(cc, std::move(plan), directory);
+  host::RunOptions run;
+  run.end_time = options.end_time;
+  run.progress = terminal;
+  run.stop = &g_interrupted;
+  g_interrupted.store(false);
+  InterruptGuard guard;
+  const host::RunSummary summary = simulation.run(run);
+
+  if (!options.quiet) {
+    std::cout << fmt::format("{} steps to t = {:.2f} s in {:.1f} s ({:.1f} ms/step), {} frames{}\n",
+                             summary.steps, summary.simulated_time, summary.wall_seconds,
+                             summary.steps ? summary.wall_seconds * 1e3 / double(summary.steps) : 0.0,
+                             summary.frames, summary.interrupted ? " (interrupted)" : "");
+    std::cout << fmt::format("outputs in {}\n", directory.string());
+    std::cout << fmt::format(
+        "  ParaView: paraview {0}/wind.pvd {0}/trees.pvd   (color the wind by speed, slice it; trees are "
+        "polylines: "
+        "Tube filter by radius)\n",
+        directory.string());
+    if (scenario.output.vdb_enabled) {
+      std::cout << fmt::format("  Houdini / Blender: {}/vdb/wind.####.vdb (grids vel, speed)\n",
+                               directory.string());
+    }
+    std::cout << fmt::format("  probes: {0}/probes.csv   timings: {0}/run.json\n", directory.string());
+  }
+  if (cc.profiling()) cc.profiler()->print(std::cout);
+  return summary.interrupted ? 130 : 0;
+}
+
+}  // namespace fw::cli

@@ -1,0 +1,229 @@
+// A scenario file (DESIGN.md, "File formats"; every key documented in docs/scenario.md), read and validated
+// in full before anything is computed.
+//
+//   fw::io::Scenario scenario = fw::io::load_scenario("scenarios/storm.yaml");   // throws ScenarioError
+//   scenario.domain.cells;                       // {240, 120, 48}
+//   scenario.wind_vector(60.0);                  // m/s at the reference height, x east, y north
+//   fw::fluid::GridSpec grid = scenario.grid_spec(0.0);   // "auto" faces resolved for the wind at t = 0
+//   for (const auto& obstacle : scenario.obstacles)
+//     std::visit([&](const auto& shape) { solids.add(shape); }, obstacle);
+//
+// Conventions: SI units (m, s, kg, m/s, Pa); axes x east, y north, z up; the domain's minimum corner is
+// domain.origin. Wind directions are meteorological (degrees the wind blows FROM, clockwise from north).
+// Yaws of trees and boxes are degrees counter-clockwise about +z seen from above (fluid::SolidBox). Relative
+// paths in the file (skeletons, heightmap) resolve against the scenario file's folder; the output directory
+// resolves against the current working directory at load time.
+//
+// Validation is strict: unknown keys at any level, duplicate keys, wrong types, missing required keys,
+// out-of-range numbers, unknown enum words, positions outside the domain, missing or unreadable files and
+// bad expressions are all errors. Every error is a ScenarioError whose what() reads exactly
+//   FILE:LINE: KEY: what was expected[, got 'VALUE']
+// with LINE 1-based (0 when the file itself cannot be read) and KEY the dotted path of the offending key,
+// e.g. "forest.species[0].modes.count".
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <filesystem>
+#include <optional>
+#include <stdexcept>
+#include <string>
+#include <variant>
+#include <vector>
+
+#include "fluid/GridSpec.hpp"
+#include "fluid/Heightmap.hpp"
+#include "fluid/InflowProfile.hpp"
+#include "fluid/SolidMap.hpp"
+#include "fluid/WindSettings.hpp"
+#include "io/Expression.hpp"
+#include "trees/ForestLayout.hpp"
+#include "trees/Material.hpp"
+#include "trees/TreeGenerator.hpp"
+
+namespace fw::io {
+
+/// A scenario that cannot be used: what() is "FILE:LINE: KEY: what was expected[, got 'VALUE']".
+class ScenarioError : public std::invalid_argument {
+ public:
+  /// message is the part after "KEY: ".
+  ScenarioError(std::string file, int line, std::string key, const std::string& message);
+
+  const std::string& file() const { return file_; }
+  /// 1-based line of the offending node; 0 when the file could not be read at all.
+  int line() const { return line_; }
+  /// Dotted path such as "wind.speed" or "forest.species[0].modes.count"; "(file)" when the file could
+  /// not be read, "(yaml)" for a YAML syntax error.
+  const std::string& key() const { return key_; }
+
+ private:
+  std::string file_;
+  int line_ = 0;
+  std::string key_;
+};
+
+/// A face's boundary condition as written in the file. automatic ("auto", the four sides only): inflow where
+/// the ambient wind enters the domain, outflow where it leaves; see Scenario::grid_spec.
+enum class BoundaryChoice { automatic, inflow, outflow, slip, no_slip, periodic };
+std::string to_string(BoundaryChoice choice);  // the word used in the file
+
+struct TimeSettings {
+  double end = 0.0;           ///< s, > 0: the run covers [0, end]
+  std::optional<double> dt;   ///< s, > 0: fixed step; nullopt for "auto"
+  double cfl = 0.8;           ///< > 0, used with auto: dt = cfl * h / max|u|
+};
+
+struct DomainSettings {
+  std::array<double, 3> origin{0, 0, 0};  ///< minimum corner, m
+  std::array<double, 3> size{0, 0, 0};    ///< extent along x, y, z, m (> 0)
+  double cell_size = 0.0;                 ///< h, m (> 0); cells are cubic
+  std::array<int, 3> cells{0, 0, 0};      ///< round(size / h); size is a whole multiple of h
+
+  /// origin + size, m.
+  std::array<double, 3> max_corner() const {
+    return {origin[0] + size[0], origin[1] + size[1], origin[2] + size[2]};
+  }
+};
+
+struct WindSource {
+  Expression speed;                ///< m/s at reference_height, a function of t (s)
+  Expression direction;            ///< degrees the wind blows FROM, clockwise from north, a function of t
+  double reference_height = 10.0;  ///< m above the domain floor
+  /// Vertical shape; profile.reference_height == reference_height. Defaults: uniform; power alpha 0.2;
+  /// log displacement_height 0 (roughness_length has no default).
+  fluid::InflowProfile profile;
+};
+
+/// A gust: a Gaussian ball of extra wind with a 1-cos envelope over [start, start + duration].
+struct GustEvent {
+  double start = 0.0;                 ///< s, >= 0
+  double duration = 0.0;              ///< s, > 0
+  double peak_speed = 0.0;            ///< m/s, >= 0, at the envelope's peak and the ball's centre
+  std::array<double, 3> center{};     ///< m, at `start`
+  double radius = 0.0;                ///< m, > 0
+  bool travel_with_wind = true;       ///< `travel: with_wind` in the file
+  std::array<double, 3> travel{};     ///< m/s; with_wind: wind_vector(start), resolved at load
+};
+
+/// Shapes the wind grid voxelises (fluid/SolidMap.hpp), with the same parameters.
+using Obstacle = std::variant<fluid::SolidBox, fluid::SolidCylinder, fluid::SolidSphere>;
+
+struct TerrainSettings {
+  std::filesystem::path heightmap;  ///< resolved against the scenario folder
+  double cell_size = 0.0;           ///< m between samples (PGM; ignored for ESRI grids, 0 when not given)
+  double max_height = 0.0;          ///< m for the PGM's maxval (PGM; ignored for ESRI grids)
+  std::optional<fluid::Heightmap> map;  ///< the heightmap, read and checked at load (always set)
+};
+
+/// Where a species' skeleton comes from: exactly one of the three.
+struct SkeletonSource {
+  enum class Kind { generate, file, qsm };
+  Kind kind = Kind::generate;
+  trees::GeneratorSettings generate;  ///< Kind::generate: preset, height (m, 0 = preset default), seed
+  std::filesystem::path path;         ///< Kind::file (.tree) or Kind::qsm (TreeQSM text); resolved, exists
+};
+
+struct ModeSettings {
+  int count = 20;               ///< lowest modes kept, >= 1
+  double damping_ratio = 0.05;  ///< zeta per mode, >= 0
+  int wind_samples = 3;         ///< height bands with their own projection, 1..FW_MAX_TREE_SAMPLES
+};
+
+struct CanopySettings {
+  double leaf_area_index = 0.0;   ///< m^2 leaf per m^2 ground, >= 0 (0: no leaves)
+  double drag_coefficient = 0.2;  ///< leaf drag coefficient, >= 0
+};
+
+struct Species {
+  std::string name;  ///< unique among the species
+  SkeletonSource skeleton;
+  trees::Material material{1.0e10, 3.85e9, 900.0};  ///< E, G (Pa), rho (kg/m^3)
+  ModeSettings modes;
+  double drag_coefficient = 1.2;  ///< of the branches (cylinders in cross flow), >= 0
+  CanopySettings canopy;
+};
+
+/// A stand: trees placed by trees::place_stand (yaws uniform at random, scales uniform in [min, max]).
+struct Stand {
+  std::string species;     ///< a Species::name
+  trees::StandSpec layout;  ///< layout.species is the index into ForestSettings::species; region in m
+};
+
+/// One tree placed by hand.
+struct PlacedTreeSettings {
+  std::string species;                 ///< a Species::name
+  int species_index = 0;               ///< into ForestSettings::species
+  std::array<double, 3> position{};    ///< m; z from the file, else the ground (terrain) under (x, y)
+  bool height_given = false;           ///< whether the file gave z
+  double yaw = 0.0;                    ///< degrees, counter-clockwise about +z seen from above
+  double scale = 1.0;                  ///< > 0
+};
+
+struct ForestSettings {
+  bool two_way_coupling = true;  ///< trees' drag returned to the wind grid
+  std::vector<Species> species;
+  std::vector<Stand> stands;
+  std::vector<PlacedTreeSettings> trees;
+};
+
+struct SolverSettings {
+  fluid::PressureSolverType pressure = fluid::PressureSolverType::cg;
+  double tolerance = 1e-3;     ///< relative residual (multigrid, cg), > 0
+  int max_iterations = 100;    ///< >= 1 (multigrid, cg)
+  int jacobi_iterations = 40;  ///< >= 1 (jacobi)
+  fluid::AdvectionScheme advection = fluid::AdvectionScheme::semi_lagrangian;
+  double vorticity_confinement = 0.0;  ///< epsilon, dimensionless, >= 0 (0: off)
+};
+
+struct Probe {
+  std::string name;                 ///< [A-Za-z0-9_]+, unique
+  std::array<double, 3> position{};  ///< m, inside the domain (faces included)
+};
+
+struct OutputSettings {
+  std::filesystem::path directory;  ///< absolute: the file's value (default out/<scenario>) against the cwd
+  double interval = 1.0;            ///< s of simulated time between frames, > 0
+  bool vtk_wind = true;
+  bool vtk_trees = true;
+  /// Subset of velocity, pressure, speed, vorticity, solid, canopy_density, in the file's order.
+  std::vector<std::string> vtk_fields{"velocity", "pressure", "speed", "vorticity", "solid", "canopy_density"};
+  bool vdb_enabled = false;
+  std::vector<std::string> vdb_grids{"vel", "speed"};  ///< subset of vel, speed, in the file's order
+  std::vector<Probe> probes;
+};
+
+struct Scenario {
+  std::filesystem::path file;    ///< as given to load_scenario
+  std::filesystem::path folder;  ///< absolute folder of the file: relative paths resolve here
+  std::string text;              ///< the file's bytes, to copy into the output folder
+
+  std::string name;        ///< `scenario`: no path separators, not "." or ".."
+  std::uint64_t seed = 0;  ///< global seed
+  TimeSettings time;
+  DomainSettings domain;
+  /// Indexed by FW_FACE_* (west, east, south, north, ground, top).
+  std::array<BoundaryChoice, 6> boundaries{BoundaryChoice::automatic, BoundaryChoice::automatic,
+                                           BoundaryChoice::automatic, BoundaryChoice::automatic,
+                                           BoundaryChoice::no_slip,   BoundaryChoice::slip};
+  WindSource wind;
+  std::vector<GustEvent> events;
+  std::vector<Obstacle> obstacles;
+  std::optional<TerrainSettings> terrain;
+  ForestSettings forest;
+  SolverSettings solver;
+  OutputSettings output;
+
+  /// The ambient wind at the reference height at time t (s), m/s, x east, y north: the wind blows TOWARD
+  /// direction + 180 degrees, so v = -speed * (sin theta, cos theta, 0). Direction 270 blows toward +x.
+  std::array<double, 3> wind_vector(double t) const;
+  /// The grid with "auto" faces resolved for the wind at time t: inflow where wind_vector(t) points into
+  /// the domain, outflow elsewhere (also where the wind runs parallel to the face).
+  fluid::GridSpec grid_spec(double t) const;
+  /// Advection, pressure solver and time step as fluid::WindSettings (auto dt: cfl > 0; fixed: cfl = 0).
+  fluid::WindSettings wind_settings() const;
+};
+
+/// Reads and validates a scenario file. Throws ScenarioError (see the header comment) for every problem.
+Scenario load_scenario(const std::filesystem::path& file);
+
+}  // namespace fw::io

@@ -1,0 +1,79 @@
+# cmake -DFORESTWIND=<binary> -DWORK=<scratch folder> -DSCENARIOS=<repo>/scenarios -P scenario_errors.cmake
+#
+# Every bad scenario makes `forestwind run` and `forestwind check` exit with code 2, print FILE:LINE: KEY,
+# and leave no output folder behind. The example scenarios pass `forestwind check`.
+cmake_minimum_required(VERSION 3.25)
+if(NOT FORESTWIND OR NOT WORK OR NOT SCENARIOS)
+  message(FATAL_ERROR "pass -DFORESTWIND=<binary> -DWORK=<scratch folder> -DSCENARIOS=<scenarios folder>")
+endif()
+file(REMOVE_RECURSE "${WORK}")
+file(MAKE_DIRECTORY "${WORK}")
+file(WRITE "${WORK}/tree.tree" "0 -1 0 0 0 0.1\n1 0 0 0 1 0.08\n2 1 0 0 2 0.05\n")
+file(WRITE "${WORK}/broken.tree" "0 -1 0 0 0 0.1\n1 0 0 0 1 0.08\n2 1 0 0 two 0.05\n")
+
+# A valid scenario; each case below replaces one line of it.
+set(base
+"scenario: bad_case
+time: {end: 2.0, dt: auto}
+domain: {origin: [0, 0, 0], size: [32, 16, 16], cell_size: 2.0}
+wind: {speed: 5.0, direction: 270.0}
+forest:
+  species:
+    - name: shrub
+      skeleton: {file: tree.tree}
+      modes: {count: 4}
+  trees:
+    - {species: shrub, position: [16, 8]}
+output: {directory: OUTDIR, interval: 1.0}
+")
+
+# expect_bad(<case name> <line> <key> <line to replace> <replacement>)
+function(expect_bad name line key old new)
+  string(REPLACE "${old}" "${new}" text "${base}")
+  string(REPLACE "OUTDIR" "${WORK}/out_${name}" text "${text}")
+  if(text STREQUAL base)
+    message(FATAL_ERROR "case ${name}: '${old}' is not in the base scenario")
+  endif()
+  file(WRITE "${WORK}/${name}.yaml" "${text}")
+  foreach(command run check)
+    execute_process(COMMAND "${FORESTWIND}" ${command} "${WORK}/${name}.yaml"
+                    RESULT_VARIABLE code OUTPUT_VARIABLE out ERROR_VARIABLE err)
+    if(NOT code EQUAL 2)
+      message(FATAL_ERROR "${command} ${name}: exit code '${code}', expected 2\nstdout:\n${out}\nstderr:\n${err}")
+    endif()
+    string(FIND "${err}" "${line}: ${key}" at)
+    if(at EQUAL -1)
+      message(FATAL_ERROR "${command} ${name}: stderr does not name '${line}: ${key}':\n${err}")
+    endif()
+    if(EXISTS "${WORK}/out_${name}")
+      message(FATAL_ERROR "${command} ${name}: left the output folder ${WORK}/out_${name} behind")
+    endif()
+  endforeach()
+  message(STATUS "${name}: exit code 2, ${err}")
+endfunction()
+
+expect_bad(unknown_key "${WORK}/unknown_key.yaml:4" "wind.gustiness"
+           "wind: {speed: 5.0, direction: 270.0}" "wind: {speed: 5.0, direction: 270.0, gustiness: 3}")
+expect_bad(wrong_type "${WORK}/wrong_type.yaml:9" "forest.species[0].modes.count"
+           "modes: {count: 4}" "modes: {count: many}")
+expect_bad(negative_size "${WORK}/negative_size.yaml:3" "domain.size"
+           "size: [32, 16, 16]" "size: [32, -16, 16]")
+expect_bad(tree_outside "${WORK}/tree_outside.yaml:11" "forest.trees[0].position"
+           "position: [16, 8]" "position: [16, 80]")
+expect_bad(expression "${WORK}/expression.yaml:4" "wind.speed"
+           "speed: 5.0" "speed: \"5 + (t\"")
+expect_bad(missing_skeleton "${WORK}/missing_skeleton.yaml:8" "forest.species[0].skeleton.file"
+           "{file: tree.tree}" "{file: no_such.tree}")
+# A skeleton file that exists but does not parse: the error names the .tree file's line and column.
+expect_bad(unreadable_skeleton "${WORK}/broken.tree:3" "z" "{file: tree.tree}" "{file: broken.tree}")
+
+# The example scenarios are valid.
+file(GLOB examples "${SCENARIOS}/*.yaml")
+foreach(example ${examples})
+  execute_process(COMMAND "${FORESTWIND}" check "${example}" RESULT_VARIABLE code OUTPUT_VARIABLE out
+                  ERROR_VARIABLE err)
+  if(NOT code EQUAL 0)
+    message(FATAL_ERROR "check ${example}: exit code ${code}\n${out}\n${err}")
+  endif()
+endforeach()
+file(REMOVE_RECURSE "${WORK}")
