@@ -1,1 +1,971 @@
-// placeholder until the unit lands
+#include "io/Scenario.hpp"
+
+#include "kernels/shared_types.h"
+#include "tests/support/TempDir.hpp"
+
+#include <fmt/format.h>
+#include <catch2/catch.hpp>
+
+#include <array>
+#include <cmath>
+#include <filesystem>
+#include <string>
+#include <variant>
+
+namespace fs = std::filesystem;
+
+using Catch::Matchers::Contains;
+using Catch::Matchers::StartsWith;
+using fw::fluid::BoundaryType;
+using fw::io::BoundaryChoice;
+using fw::io::Expression;
+using fw::io::Scenario;
+
+namespace {
+
+// The reference example of DESIGN.md ("File formats"), verbatim: its heightmap hills.pgm is written next to
+// it by the test, and its skeleton is generated, so it needs no other file.
+const std::string kDesignExample =
+    R"yaml(# SI units; x east, y north, z up; directions in degrees the wind blows FROM, clockwise from north
+scenario: storm_over_forest
+seed: 7
+time: {end: 120.0, dt: auto, cfl: 0.8}                 # dt: seconds or auto
+domain: {origin: [0, 0, 0], size: [480, 240, 96], cell_size: 2.0}
+boundaries: {west: auto, east: auto, south: auto, north: auto, ground: no_slip, top: slip}
+  # auto: inflow where the ambient wind enters the domain, outflow where it leaves; also inflow|outflow|slip|no_slip|periodic
+wind:
+  speed: "12 + 10*min(1, max(0, (t-20)/40))"          # m/s at reference_height
+  direction: "250 + 20*min(1, max(0, (t-20)/40))"
+  reference_height: 10.0
+  profile: {type: log, roughness_length: 0.8, displacement_height: 12.0}   # or {type: power, alpha: 0.2} | {type: uniform}
+events:
+  - gust: {start: 70.0, duration: 6.0, peak_speed: 14.0, center: [120, 120, 30], radius: 60.0, travel: with_wind}
+obstacles:
+  - box: {name: barn, center: [300, 100, 6], size: [30, 15, 12], yaw: 15.0}
+  - cylinder: {name: silo, base: [340, 60, 0], radius: 4.0, height: 20.0}
+  - sphere: {name: dome, center: [420, 40, 0], radius: 10.0}
+terrain: {heightmap: hills.pgm, cell_size: 4.0, max_height: 20.0}   # optional; PGM or ESRI ASCII grid
+forest:
+  two_way_coupling: true
+  species:
+    - name: pine
+      skeleton: {generate: {preset: conifer, height: 18.0, seed: 3}}  # or {file: pine.tree} or {qsm: pine_qsm.txt}
+      material: {youngs_modulus: 1.0e10, shear_modulus: 3.85e9, density: 900}
+      modes: {count: 20, damping_ratio: 0.05, wind_samples: 3}
+      drag_coefficient: 1.2
+      canopy: {leaf_area_index: 3.5, drag_coefficient: 0.2}
+  stands:
+    - {species: pine, region: {min: [60, 20], max: [260, 220]}, layout: poisson, spacing: 6.0,
+       scale: {min: 0.85, max: 1.15}, seed: 11}                      # layout: poisson | grid
+  trees:
+    - {species: pine, position: [400, 200], yaw: 30.0, scale: 1.0}
+solver: {pressure: multigrid, tolerance: 1.0e-4, max_iterations: 100, advection: maccormack, vorticity_confinement: 0.0}
+  # pressure: multigrid | cg | jacobi (jacobi_iterations: N); advection: semi_lagrangian | maccormack
+output:
+  directory: out/storm
+  interval: 0.5                                       # seconds of simulated time between frames
+  vtk: {wind: true, trees: true, fields: [velocity, pressure, speed, vorticity, solid, canopy_density]}
+  vdb: {enabled: true, grids: [vel, speed]}
+  probes:
+    - {name: mast, position: [40, 120, 10]}
+)yaml";
+
+// A P2 heightmap `columns` wide and `rows` high that rises linearly to the east: pixel (c, r) = c, maxval
+// columns - 1, so the height is (x / cell_size - 0.5) / (columns - 1) * max_height between the pixel centres.
+std::string ramp_pgm(int columns, int rows) {
+  std::string text = fmt::format("P2\n# rises to the east\n{} {}\n{}\n", columns, rows, columns - 1);
+  for (int r = 0; r < rows; ++r) {
+    for (int c = 0; c < columns; ++c) text += fmt::format("{}{}", c, c + 1 < columns ? " " : "\n");
+  }
+  return text;
+}
+
+const std::string kTreeFile = "# a stick\n0 -1 0 0 0 0.1\n1 0 0 0 1 0.08\n2 1 0 0 2 0.05\n";
+const std::string kQsmFile = "0.1 1.0 0 0 0 0 0 1 0\n0.05 1.0 0 0 1 0 0 1 1\n";
+
+// The first four lines of every error case below: a valid scenario the cases add to or change.
+const std::string kBase =
+    "scenario: errors\n"                              // 1
+    "time: {end: 10.0}\n"                             // 2
+    "domain: {size: [40, 20, 10], cell_size: 2.0}\n"  // 3
+    "wind: {speed: 4.0, direction: 270}\n";           // 4
+
+// Loads `text` as NAME.yaml in dir and checks the ScenarioError: file, line, key, the "FILE:LINE: KEY: "
+// prefix of what() and a fragment of the rest.
+void expect_error(const fw::test::TempDir& dir, const std::string& name, const std::string& text, int line,
+                  const std::string& key, const std::string& fragment) {
+  INFO("case " << name << ":\n" << text);
+  const std::string path = dir.write(name + ".yaml", text);
+  try {
+    fw::io::load_scenario(path);
+    FAIL("load_scenario accepted the file");
+  } catch (const fw::io::ScenarioError& error) {
+    const std::string what = error.what();
+    INFO("what(): " << what);
+    CHECK(error.file() == path);
+    CHECK(error.line() == line);
+    CHECK(error.key() == key);
+    CHECK_THAT(what, StartsWith(fmt::format("{}:{}: {}: ", path, line, key)));
+    CHECK_THAT(what, Contains(fragment));
+  }
+}
+
+void check_vector(const std::array<double, 3>& actual, const std::array<double, 3>& expected, double margin) {
+  INFO("actual [" << actual[0] << ", " << actual[1] << ", " << actual[2] << "], expected [" << expected[0]
+                  << ", " << expected[1] << ", " << expected[2] << "]");
+  for (int i = 0; i < 3; ++i)
+    CHECK(actual[std::size_t(i)] == Approx(expected[std::size_t(i)]).margin(margin));
+}
+
+// A scenario built in memory for wind_vector and grid_spec: speed and direction as expressions of t.
+Scenario wind_only(const std::string& speed, const std::string& direction) {
+  Scenario scenario;
+  scenario.domain.size = {40, 20, 10};
+  scenario.domain.cell_size = 2.0;
+  scenario.domain.cells = {20, 10, 5};
+  scenario.wind.speed = Expression::parse(speed);
+  scenario.wind.direction = Expression::parse(direction);
+  return scenario;
+}
+
+// Changes the working directory for its lifetime.
+class WorkingDirectory {
+ public:
+  explicit WorkingDirectory(const fs::path& folder) : previous_(fs::current_path()) {
+    fs::current_path(folder);
+  }
+  ~WorkingDirectory() {
+    std::error_code ignored;
+    fs::current_path(previous_, ignored);
+  }
+  WorkingDirectory(const WorkingDirectory&) = delete;
+  WorkingDirectory& operator=(const WorkingDirectory&) = delete;
+
+ private:
+  fs::path previous_;
+};
+
+}  // namespace
+
+TEST_CASE("load_scenario: the example of DESIGN.md parses and every field lands where expected",
+          "[scenario]") {
+  fw::test::TempDir dir("fw_scenario");
+  dir.write("hills.pgm", ramp_pgm(121, 2));
+  const std::string path = dir.write("storm.yaml", kDesignExample);
+  const Scenario s = fw::io::load_scenario(path);
+
+  CHECK(s.file.string() == path);
+  CHECK(fs::equivalent(s.folder, dir.path()));
+  CHECK(s.text == kDesignExample);
+  CHECK(s.name == "storm_over_forest");
+  CHECK(s.seed == 7);
+
+  CHECK(s.time.end == 120.0);
+  CHECK_FALSE(s.time.dt.has_value());  // auto
+  CHECK(s.time.cfl == 0.8);
+
+  CHECK(s.domain.origin == std::array<double, 3>{0, 0, 0});
+  CHECK(s.domain.size == std::array<double, 3>{480, 240, 96});
+  CHECK(s.domain.cell_size == 2.0);
+  CHECK(s.domain.cells == std::array<int, 3>{240, 120, 48});  // size / cell_size
+  CHECK(s.domain.max_corner() == std::array<double, 3>{480, 240, 96});
+
+  CHECK(s.boundaries == std::array<BoundaryChoice, 6>{BoundaryChoice::automatic, BoundaryChoice::automatic,
+                                                      BoundaryChoice::automatic, BoundaryChoice::automatic,
+                                                      BoundaryChoice::no_slip, BoundaryChoice::slip});
+
+  // Wind: the ramp from 12 to 22 m/s veering from 250 to 270 degrees between t = 20 and 60 s.
+  CHECK(s.wind.speed.text() == "12 + 10*min(1, max(0, (t-20)/40))");
+  CHECK(s.wind.direction.text() == "250 + 20*min(1, max(0, (t-20)/40))");
+  CHECK_FALSE(s.wind.speed.is_constant());
+  CHECK(s.wind.speed(0.0) == 12.0);
+  CHECK(s.wind.speed(40.0) == 17.0);
+  CHECK(s.wind.speed(60.0) == 22.0);
+  CHECK(s.wind.direction(0.0) == 250.0);
+  CHECK(s.wind.direction(40.0) == 260.0);
+  CHECK(s.wind.direction(90.0) == 270.0);
+  CHECK(s.wind.reference_height == 10.0);
+  CHECK(s.wind.profile.type == fw::fluid::InflowProfile::Type::log);
+  CHECK(s.wind.profile.roughness_length == 0.8);
+  CHECK(s.wind.profile.displacement_height == 12.0);
+  CHECK(s.wind.profile.reference_height == 10.0);
+  // Tolerance: sin and cos of 250 degrees to 1e-12. From 250 degrees at 12 m/s the wind blows toward 70
+  // degrees: 12 * (sin 70, cos 70) = (11.27631145, 4.10424172).
+  check_vector(s.wind_vector(0.0), {11.27631145, 4.10424172, 0.0}, 1e-8);
+
+  // The gust travels with the wind at its start (t = 70 s: 22 m/s from 270 degrees, toward +x).
+  REQUIRE(s.events.size() == 1);
+  const fw::io::GustEvent& gust = s.events[0];
+  CHECK(gust.start == 70.0);
+  CHECK(gust.duration == 6.0);
+  CHECK(gust.peak_speed == 14.0);
+  CHECK(gust.center == std::array<double, 3>{120, 120, 30});
+  CHECK(gust.radius == 60.0);
+  CHECK(gust.travel_with_wind);
+  // Tolerance: 22 m/s times sin/cos rounding, 1e-12.
+  check_vector(gust.travel, {22.0, 0.0, 0.0}, 1e-12);
+  CHECK(gust.travel == s.wind_vector(70.0));
+
+  REQUIRE(s.obstacles.size() == 3);
+  const auto* barn = std::get_if<fw::fluid::SolidBox>(&s.obstacles[0]);
+  REQUIRE(barn != nullptr);
+  CHECK(barn->name == "barn");
+  CHECK(barn->center == std::array<double, 3>{300, 100, 6});
+  CHECK(barn->size == std::array<double, 3>{30, 15, 12});
+  CHECK(barn->yaw_deg == 15.0);
+  const auto* silo = std::get_if<fw::fluid::SolidCylinder>(&s.obstacles[1]);
+  REQUIRE(silo != nullptr);
+  CHECK(silo->name == "silo");
+  CHECK(silo->base == std::array<double, 3>{340, 60, 0});
+  CHECK(silo->radius == 4.0);
+  CHECK(silo->height == 20.0);
+  const auto* dome = std::get_if<fw::fluid::SolidSphere>(&s.obstacles[2]);
+  REQUIRE(dome != nullptr);
+  CHECK(dome->name == "dome");
+  CHECK(dome->center == std::array<double, 3>{420, 40, 0});
+  CHECK(dome->radius == 10.0);
+
+  REQUIRE(s.terrain.has_value());
+  CHECK(fs::equivalent(s.terrain->heightmap, fs::path(dir.path()) / "hills.pgm"));
+  CHECK(s.terrain->heightmap.is_absolute());
+  CHECK(s.terrain->cell_size == 4.0);
+  CHECK(s.terrain->max_height == 20.0);
+  REQUIRE(s.terrain->map.has_value());
+  CHECK(s.terrain->map->columns() == 121);
+  CHECK(s.terrain->map->rows() == 2);
+  CHECK(s.terrain->map->cell_size() == 4.0);
+  CHECK(s.terrain->map->max_height() == 20.0);  // the east column is maxval
+
+  const fw::io::ForestSettings& forest = s.forest;
+  CHECK(forest.two_way_coupling);
+  REQUIRE(forest.species.size() == 1);
+  const fw::io::Species& pine = forest.species[0];
+  CHECK(pine.name == "pine");
+  CHECK(pine.skeleton.kind == fw::io::SkeletonSource::Kind::generate);
+  CHECK(pine.skeleton.generate.preset == "conifer");
+  CHECK(pine.skeleton.generate.height == 18.0);
+  CHECK(pine.skeleton.generate.seed == 3);
+  CHECK(pine.material.youngs_modulus == 1.0e10);
+  CHECK(pine.material.shear_modulus == 3.85e9);
+  CHECK(pine.material.density == 900.0);
+  CHECK(pine.modes.count == 20);
+  CHECK(pine.modes.damping_ratio == 0.05);
+  CHECK(pine.modes.wind_samples == 3);
+  CHECK(pine.drag_coefficient == 1.2);
+  CHECK(pine.canopy.leaf_area_index == 3.5);
+  CHECK(pine.canopy.drag_coefficient == 0.2);
+
+  REQUIRE(forest.stands.size() == 1);
+  const fw::io::Stand& stand = forest.stands[0];
+  CHECK(stand.species == "pine");
+  CHECK(stand.layout.species == 0);
+  CHECK(stand.layout.min.x() == 60.0);
+  CHECK(stand.layout.min.y() == 20.0);
+  CHECK(stand.layout.max.x() == 260.0);
+  CHECK(stand.layout.max.y() == 220.0);
+  CHECK(stand.layout.layout == fw::trees::StandLayout::poisson);
+  CHECK(stand.layout.spacing == 6.0);
+  CHECK(stand.layout.scale_min == 0.85);
+  CHECK(stand.layout.scale_max == 1.15);
+  CHECK(stand.layout.seed == 11);
+
+  REQUIRE(forest.trees.size() == 1);
+  const fw::io::PlacedTreeSettings& tree = forest.trees[0];
+  CHECK(tree.species == "pine");
+  CHECK(tree.species_index == 0);
+  CHECK(tree.position[0] == 400.0);
+  CHECK(tree.position[1] == 200.0);
+  CHECK_FALSE(tree.height_given);
+  // On the ground: x = 400 m is pixel column 99.5 of the ramp, 99.5 / 120 * 20 m = 16.58333 m.
+  // Tolerance: bilinear interpolation in doubles, 1e-9 m.
+  CHECK(tree.position[2] == Approx(99.5 / 120.0 * 20.0).margin(1e-9));
+  CHECK(tree.yaw == 30.0);
+  CHECK(tree.scale == 1.0);
+
+  CHECK(s.solver.pressure == fw::fluid::PressureSolverType::multigrid);
+  CHECK(s.solver.tolerance == 1.0e-4);
+  CHECK(s.solver.max_iterations == 100);
+  CHECK(s.solver.jacobi_iterations == 40);  // not given: the default
+  CHECK(s.solver.advection == fw::fluid::AdvectionScheme::maccormack);
+  CHECK(s.solver.vorticity_confinement == 0.0);
+  const fw::fluid::WindSettings settings = s.wind_settings();
+  CHECK(settings.advection == fw::fluid::AdvectionScheme::maccormack);
+  CHECK(settings.pressure.solver == fw::fluid::PressureSolverType::multigrid);
+  CHECK(settings.pressure.tolerance == 1.0e-4);
+  CHECK(settings.pressure.max_iterations == 100);
+  CHECK(settings.cfl == 0.8);  // auto dt
+
+  // The output directory resolves against the working directory, not the scenario folder.
+  CHECK(s.output.directory.string() == fs::absolute("out/storm").lexically_normal().string());
+  CHECK(s.output.interval == 0.5);
+  CHECK(s.output.vtk_wind);
+  CHECK(s.output.vtk_trees);
+  CHECK(s.output.vtk_fields ==
+        std::vector<std::string>{"velocity", "pressure", "speed", "vorticity", "solid", "canopy_density"});
+  CHECK(s.output.vdb_enabled);
+  CHECK(s.output.vdb_grids == std::vector<std::string>{"vel", "speed"});
+  REQUIRE(s.output.probes.size() == 1);
+  CHECK(s.output.probes[0].name == "mast");
+  CHECK(s.output.probes[0].position == std::array<double, 3>{40, 120, 10});
+}
+
+TEST_CASE("load_scenario: values other than the defaults are read for every optional key", "[scenario]") {
+  fw::test::TempDir dir("fw_scenario");
+  // ESRI grid, north row first: centres x = 5, 15, 25 and y = 15 (north), 5 (south).
+  dir.write("ground.asc",
+            "ncols 3\nnrows 2\nxllcorner 0\nyllcorner 0\ncellsize 10\nNODATA_value -9999\n"
+            "1 2 3\n4 5 6\n");
+  dir.write("willow.tree", kTreeFile);
+  dir.write("birch_qsm.txt", kQsmFile);
+  const fs::path results = fs::path(dir.path()) / "results";
+  const std::string text = fmt::format(R"(scenario: all_keys
+seed: 18446744073709551615
+time: {{end: 5.0, dt: 0.01, cfl: 0.5}}
+domain: {{origin: [-10, 0, 5], size: [40, 20, 12], cell_size: 0.5}}
+boundaries: {{west: inflow, east: outflow, south: periodic, north: periodic, ground: slip, top: no_slip}}
+wind:
+  speed: "3 + t"
+  direction: 180
+  reference_height: 25
+  profile: {{type: power, alpha: 0.3}}
+events:
+  - gust: {{start: 0, duration: 1.5, peak_speed: 0, center: [-10, 0, 5], radius: 2.5, travel: [1, -2, 0.5]}}
+  - gust: {{start: 2, duration: 1, peak_speed: 3, center: [0, 10, 8], radius: 1}}
+obstacles:
+  - sphere: {{name: boulder, center: [0, 5, 5], radius: 1.5}}
+  - box: {{name: shed, center: [5, 5, 6], size: [2, 3, 2]}}
+terrain: {{heightmap: ground.asc}}
+forest:
+  two_way_coupling: false
+  species:
+    - name: willow
+      skeleton: {{file: willow.tree}}
+      material: {{youngs_modulus: 8e9, shear_modulus: 2.5e9, density: 650}}
+      modes: {{count: 5, damping_ratio: 0.1, wind_samples: 16}}
+      drag_coefficient: 0.9
+      canopy: {{leaf_area_index: 2.5, drag_coefficient: 0.15}}
+    - name: birch
+      skeleton: {{qsm: birch_qsm.txt}}
+  stands:
+    - {{species: birch, region: {{min: [-10, 0], max: [0, 10]}}, layout: grid, spacing: 2.5, scale: {{min: 0.5}},
+       seed: 99}}
+  trees:
+    - {{species: willow, position: [15, 10]}}
+    - {{species: birch, position: [20, 15, 9.5], yaw: -45, scale: 1.25}}
+solver: {{pressure: jacobi, jacobi_iterations: 7, tolerance: 0.5, max_iterations: 3, vorticity_confinement: 0.25}}
+output:
+  directory: {}
+  interval: 0.25
+  vtk: {{wind: false, trees: false, fields: [speed, velocity]}}
+  vdb: {{enabled: false, grids: [speed]}}
+  probes:
+    - {{name: a_1, position: [-10, 0, 5]}}
+    - {{name: B2, position: [30, 20, 17]}}
+)",
+                                       results.string());
+  const Scenario s = fw::io::load_scenario(dir.write("all_keys.yaml", text));
+
+  CHECK(s.seed == 18446744073709551615ULL);
+  REQUIRE(s.time.dt.has_value());
+  CHECK(*s.time.dt == 0.01);
+  CHECK(s.time.cfl == 0.5);
+  CHECK(s.domain.origin == std::array<double, 3>{-10, 0, 5});
+  CHECK(s.domain.cells == std::array<int, 3>{80, 40, 24});
+  CHECK(s.domain.max_corner() == std::array<double, 3>{30, 20, 17});
+  CHECK(s.boundaries == std::array<BoundaryChoice, 6>{BoundaryChoice::inflow, BoundaryChoice::outflow,
+                                                      BoundaryChoice::periodic, BoundaryChoice::periodic,
+                                                      BoundaryChoice::slip, BoundaryChoice::no_slip});
+
+  CHECK(s.wind.speed(2.0) == 5.0);
+  CHECK(s.wind.direction.is_constant());
+  CHECK(s.wind.direction(0.0) == 180.0);
+  CHECK(s.wind.reference_height == 25.0);
+  CHECK(s.wind.profile.type == fw::fluid::InflowProfile::Type::power);
+  CHECK(s.wind.profile.alpha == 0.3);
+  CHECK(s.wind.profile.reference_height == 25.0);  // follows reference_height
+
+  REQUIRE(s.events.size() == 2);
+  CHECK(s.events[0].start == 0.0);
+  CHECK(s.events[0].duration == 1.5);
+  CHECK(s.events[0].peak_speed == 0.0);
+  CHECK(s.events[0].radius == 2.5);
+  CHECK_FALSE(s.events[0].travel_with_wind);
+  CHECK(s.events[0].travel == std::array<double, 3>{1, -2, 0.5});
+  // No travel key: with the wind at t = 2 s, 5 m/s from the south, toward +y. Tolerance 1e-12 m/s.
+  CHECK(s.events[1].travel_with_wind);
+  check_vector(s.events[1].travel, {0.0, 5.0, 0.0}, 1e-12);
+
+  REQUIRE(s.obstacles.size() == 2);
+  const auto* boulder = std::get_if<fw::fluid::SolidSphere>(&s.obstacles[0]);
+  REQUIRE(boulder != nullptr);
+  CHECK(boulder->name == "boulder");
+  CHECK(boulder->radius == 1.5);
+  const auto* shed = std::get_if<fw::fluid::SolidBox>(&s.obstacles[1]);
+  REQUIRE(shed != nullptr);
+  CHECK(shed->size == std::array<double, 3>{2, 3, 2});
+  CHECK(shed->yaw_deg == 0.0);  // not given
+
+  // An ESRI grid needs neither cell_size nor max_height.
+  REQUIRE(s.terrain.has_value());
+  CHECK(s.terrain->cell_size == 0.0);
+  CHECK(s.terrain->map->columns() == 3);
+  CHECK(s.terrain->map->cell_size() == 10.0);
+
+  const fw::io::ForestSettings& forest = s.forest;
+  CHECK_FALSE(forest.two_way_coupling);
+  REQUIRE(forest.species.size() == 2);
+  const fw::io::Species& willow = forest.species[0];
+  CHECK(willow.skeleton.kind == fw::io::SkeletonSource::Kind::file);
+  CHECK(fs::equivalent(willow.skeleton.path, fs::path(dir.path()) / "willow.tree"));
+  CHECK(willow.material.youngs_modulus == 8e9);
+  CHECK(willow.material.shear_modulus == 2.5e9);
+  CHECK(willow.material.density == 650.0);
+  CHECK(willow.modes.count == 5);
+  CHECK(willow.modes.damping_ratio == 0.1);
+  CHECK(willow.modes.wind_samples == FW_MAX_TREE_SAMPLES);
+  CHECK(willow.drag_coefficient == 0.9);
+  CHECK(willow.canopy.leaf_area_index == 2.5);
+  CHECK(willow.canopy.drag_coefficient == 0.15);
+  const fw::io::Species& birch = forest.species[1];
+  CHECK(birch.skeleton.kind == fw::io::SkeletonSource::Kind::qsm);
+  CHECK(fs::equivalent(birch.skeleton.path, fs::path(dir.path()) / "birch_qsm.txt"));
+
+  REQUIRE(forest.stands.size() == 1);
+  const fw::io::Stand& stand = forest.stands[0];
+  CHECK(stand.species == "birch");
+  CHECK(stand.layout.species == 1);
+  CHECK(stand.layout.layout == fw::trees::StandLayout::grid);
+  CHECK(stand.layout.spacing == 2.5);
+  CHECK(stand.layout.scale_min == 0.5);
+  CHECK(stand.layout.scale_max == 1.0);  // max not given
+  CHECK(stand.layout.seed == 99);
+
+  REQUIRE(forest.trees.size() == 2);
+  // On the ESRI ground: x = 15 is column 1, y = 10 halfway between the south (5) and north (2) rows, and the
+  // terrain counts from the domain floor z = 5. Tolerance: bilinear in doubles, 1e-12 m.
+  CHECK_FALSE(forest.trees[0].height_given);
+  CHECK(forest.trees[0].species_index == 0);
+  CHECK(forest.trees[0].position[2] == Approx(5.0 + 3.5).margin(1e-12));
+  CHECK(forest.trees[1].species == "birch");
+  CHECK(forest.trees[1].species_index == 1);
+  CHECK(forest.trees[1].height_given);
+  CHECK(forest.trees[1].position == std::array<double, 3>{20, 15, 9.5});
+  CHECK(forest.trees[1].yaw == -45.0);
+  CHECK(forest.trees[1].scale == 1.25);
+
+  CHECK(s.solver.pressure == fw::fluid::PressureSolverType::jacobi);
+  CHECK(s.solver.jacobi_iterations == 7);
+  CHECK(s.solver.tolerance == 0.5);
+  CHECK(s.solver.max_iterations == 3);
+  CHECK(s.solver.advection == fw::fluid::AdvectionScheme::semi_lagrangian);
+  CHECK(s.solver.vorticity_confinement == 0.25);
+  const fw::fluid::WindSettings settings = s.wind_settings();
+  CHECK(settings.dt == 0.01);
+  CHECK(settings.cfl == 0.0);  // fixed dt
+  CHECK(settings.pressure.solver == fw::fluid::PressureSolverType::jacobi);
+  CHECK(settings.pressure.jacobi_iterations == 7);
+  CHECK(settings.vorticity_confinement == 0.25);
+
+  // Explicit faces pass through grid_spec unchanged.
+  const fw::fluid::GridSpec grid = s.grid_spec(0.0);
+  CHECK(grid.nx == 80);
+  CHECK(grid.ny == 40);
+  CHECK(grid.nz == 24);
+  CHECK(grid.h == 0.5);
+  CHECK(grid.origin == std::array<double, 3>{-10, 0, 5});
+  CHECK(grid.boundary == std::array<BoundaryType, 6>{BoundaryType::inflow, BoundaryType::outflow,
+                                                     BoundaryType::periodic, BoundaryType::periodic,
+                                                     BoundaryType::slip, BoundaryType::no_slip});
+
+  CHECK(s.output.directory.string() == results.string());
+  CHECK(s.output.interval == 0.25);
+  CHECK_FALSE(s.output.vtk_wind);
+  CHECK_FALSE(s.output.vtk_trees);
+  CHECK(s.output.vtk_fields == std::vector<std::string>{"speed", "velocity"});  // the file's order
+  CHECK_FALSE(s.output.vdb_enabled);
+  CHECK(s.output.vdb_grids == std::vector<std::string>{"speed"});
+  REQUIRE(s.output.probes.size() == 2);
+  CHECK(s.output.probes[0].name == "a_1");
+  CHECK(s.output.probes[1].name == "B2");
+  CHECK(s.output.probes[1].position == std::array<double, 3>{30, 20, 17});  // the far corner: faces count
+}
+
+TEST_CASE("load_scenario: a minimal scenario gets the documented defaults", "[scenario]") {
+  fw::test::TempDir dir("fw_scenario");
+  const Scenario s = fw::io::load_scenario(dir.write("minimal.yaml", R"(scenario: minimal
+time: {end: 10.0}
+domain: {size: [40, 20, 10], cell_size: 2.0}
+wind: {speed: 4.0, direction: 270}
+events:
+  - gust: {start: 1.0, duration: 2.0, peak_speed: 3.0, center: [10, 10, 5], radius: 4.0}
+forest:
+  species:
+    - name: oak
+      skeleton: {generate: {preset: broadleaf}}
+  stands:
+    - {species: oak, region: {min: [5, 5], max: [15, 15]}, spacing: 4.0}
+  trees:
+    - {species: oak, position: [30, 10]}
+)"));
+  CHECK(s.name == "minimal");
+  CHECK(s.seed == 0);
+  CHECK(s.time.end == 10.0);
+  CHECK_FALSE(s.time.dt.has_value());
+  CHECK(s.time.cfl == 0.8);
+  CHECK(s.domain.origin == std::array<double, 3>{0, 0, 0});
+  CHECK(s.domain.cells == std::array<int, 3>{20, 10, 5});
+  CHECK(s.boundaries == std::array<BoundaryChoice, 6>{BoundaryChoice::automatic, BoundaryChoice::automatic,
+                                                      BoundaryChoice::automatic, BoundaryChoice::automatic,
+                                                      BoundaryChoice::no_slip, BoundaryChoice::slip});
+  CHECK(s.wind.speed.is_constant());
+  CHECK(s.wind.speed.text() == "4.0");
+  CHECK(s.wind.reference_height == 10.0);
+  CHECK(s.wind.profile.type == fw::fluid::InflowProfile::Type::uniform);
+  CHECK(s.wind.profile.alpha == 0.2);
+  CHECK(s.wind.profile.displacement_height == 0.0);
+  CHECK(s.wind.profile.reference_height == 10.0);
+
+  // travel defaults to with_wind: 4 m/s from the west at t = 1 s. Tolerance 1e-12 m/s.
+  REQUIRE(s.events.size() == 1);
+  CHECK(s.events[0].travel_with_wind);
+  check_vector(s.events[0].travel, {4.0, 0.0, 0.0}, 1e-12);
+  CHECK(s.obstacles.empty());
+  CHECK_FALSE(s.terrain.has_value());
+
+  CHECK(s.forest.two_way_coupling);
+  REQUIRE(s.forest.species.size() == 1);
+  const fw::io::Species& oak = s.forest.species[0];
+  CHECK(oak.skeleton.generate.preset == "broadleaf");
+  CHECK(oak.skeleton.generate.height == 0.0);  // the preset's default height
+  CHECK(oak.material.youngs_modulus == 1.0e10);
+  CHECK(oak.material.shear_modulus == 3.85e9);
+  CHECK(oak.material.density == 900.0);
+  CHECK(oak.modes.count == 20);
+  CHECK(oak.modes.damping_ratio == 0.05);
+  CHECK(oak.modes.wind_samples == 3);
+  CHECK(oak.drag_coefficient == 1.2);
+  CHECK(oak.canopy.leaf_area_index == 0.0);
+  CHECK(oak.canopy.drag_coefficient == 0.2);
+  REQUIRE(s.forest.stands.size() == 1);
+  CHECK(s.forest.stands[0].layout.layout == fw::trees::StandLayout::poisson);
+  CHECK(s.forest.stands[0].layout.scale_min == 1.0);
+  CHECK(s.forest.stands[0].layout.scale_max == 1.0);
+  CHECK(s.forest.stands[0].layout.seed == 0);
+  REQUIRE(s.forest.trees.size() == 1);
+  CHECK(s.forest.trees[0].position == std::array<double, 3>{30, 10, 0});  // no terrain: the domain floor
+  CHECK(s.forest.trees[0].yaw == 0.0);
+  CHECK(s.forest.trees[0].scale == 1.0);
+
+  CHECK(s.solver.pressure == fw::fluid::PressureSolverType::cg);
+  CHECK(s.solver.tolerance == 1e-3);
+  CHECK(s.solver.max_iterations == 100);
+  CHECK(s.solver.jacobi_iterations == 40);
+  CHECK(s.solver.advection == fw::fluid::AdvectionScheme::semi_lagrangian);
+  CHECK(s.solver.vorticity_confinement == 0.0);
+
+  CHECK(s.output.directory.string() == (fs::current_path() / "out" / "minimal").lexically_normal().string());
+  CHECK(s.output.interval == 1.0);
+  CHECK(s.output.vtk_wind);
+  CHECK(s.output.vtk_trees);
+  CHECK(s.output.vtk_fields ==
+        std::vector<std::string>{"velocity", "pressure", "speed", "vorticity", "solid", "canopy_density"});
+  CHECK_FALSE(s.output.vdb_enabled);
+  CHECK(s.output.vdb_grids == std::vector<std::string>{"vel", "speed"});
+  CHECK(s.output.probes.empty());
+}
+
+TEST_CASE("Scenario::wind_vector: directions are where the wind comes from, clockwise from north",
+          "[scenario]") {
+  struct Case {
+    double direction;
+    std::array<double, 3> expected;  // m/s for 5 m/s
+  };
+  const double diagonal = 5.0 / std::sqrt(2.0);
+  const Case cases[] = {
+      {0.0, {0.0, -5.0, 0.0}},    // from the north, toward -y
+      {90.0, {-5.0, 0.0, 0.0}},   // from the east, toward -x
+      {180.0, {0.0, 5.0, 0.0}},   // from the south, toward +y
+      {270.0, {5.0, 0.0, 0.0}},   // from the west, toward +x
+      {360.0, {0.0, -5.0, 0.0}},  // a full turn is north again
+      {-90.0, {5.0, 0.0, 0.0}},   // -90 is 270
+      {225.0, {diagonal, diagonal, 0.0}},
+      {250.0, {5.0 * 0.9396926208, 5.0 * 0.3420201433, 0.0}},  // toward 70 degrees: 5 (sin 70, cos 70)
+  };
+  for (const Case& c : cases) {
+    INFO("direction " << c.direction);
+    // Tolerance: sin and cos in doubles, and 10 digits in the 250-degree case: 1e-9 m/s.
+    check_vector(wind_only("5", fmt::format("{}", c.direction)).wind_vector(0.0), c.expected, 1e-9);
+  }
+}
+
+TEST_CASE("Scenario::wind_vector: speed and direction follow their expressions of t", "[scenario]") {
+  // Speed 2t m/s; direction veering from 270 to 180 degrees over the first 10 s.
+  const Scenario s = wind_only("2*t", "270 - 90*min(1, t/10)");
+  const double diagonal = 10.0 / std::sqrt(2.0);
+  // Tolerance: 1e-9 m/s.
+  check_vector(s.wind_vector(0.0), {0.0, 0.0, 0.0}, 1e-9);            // calm at t = 0
+  check_vector(s.wind_vector(5.0), {diagonal, diagonal, 0.0}, 1e-9);  // 10 m/s from 225: toward north-east
+  check_vector(s.wind_vector(10.0), {0.0, 20.0, 0.0}, 1e-9);          // 20 m/s from the south
+  check_vector(s.wind_vector(20.0), {0.0, 40.0, 0.0}, 1e-9);          // 40 m/s, still from the south
+}
+
+TEST_CASE("Scenario::grid_spec: auto faces are inflow upwind and outflow downwind and alongside",
+          "[scenario]") {
+  using B = BoundaryType;
+  struct Case {
+    const char* direction;
+    std::array<B, 6> expected;  // west, east, south, north, ground, top
+  };
+  const Case cases[] = {
+      {"270", {B::inflow, B::outflow, B::outflow, B::outflow, B::no_slip, B::slip}},  // westerly
+      {"90", {B::outflow, B::inflow, B::outflow, B::outflow, B::no_slip, B::slip}},   // easterly
+      {"180", {B::outflow, B::outflow, B::inflow, B::outflow, B::no_slip, B::slip}},  // southerly
+      {"0", {B::outflow, B::outflow, B::outflow, B::inflow, B::no_slip, B::slip}},    // northerly
+      {"225", {B::inflow, B::outflow, B::inflow, B::outflow, B::no_slip, B::slip}},   // from the south-west
+      {"45", {B::outflow, B::inflow, B::outflow, B::inflow, B::no_slip, B::slip}},    // from the north-east
+  };
+  for (const Case& c : cases) {
+    INFO("direction " << c.direction);
+    const fw::fluid::GridSpec grid = wind_only("5", c.direction).grid_spec(0.0);
+    CHECK(grid.boundary == c.expected);
+    CHECK(grid.nx == 20);
+    CHECK(grid.ny == 10);
+    CHECK(grid.nz == 5);
+    CHECK(grid.h == 2.0);
+  }
+
+  // The faces follow the wind at the time asked for: westerly until t = 10 s, easterly after.
+  const Scenario turning = wind_only("5", "t < 10 ? 270 : 90");
+  CHECK(turning.grid_spec(0.0).boundary[FW_FACE_WEST] == B::inflow);
+  CHECK(turning.grid_spec(0.0).boundary[FW_FACE_EAST] == B::outflow);
+  CHECK(turning.grid_spec(10.0).boundary[FW_FACE_WEST] == B::outflow);
+  CHECK(turning.grid_spec(10.0).boundary[FW_FACE_EAST] == B::inflow);
+
+  // No wind enters anywhere in a calm.
+  const fw::fluid::GridSpec calm = wind_only("0", "270").grid_spec(0.0);
+  for (int face = 0; face < 4; ++face) CHECK(calm.boundary[std::size_t(face)] == B::outflow);
+
+  // Faces given explicitly are kept, whatever the wind.
+  Scenario fixed = wind_only("5", "270");
+  fixed.boundaries[FW_FACE_WEST] = BoundaryChoice::slip;
+  fixed.boundaries[FW_FACE_EAST] = BoundaryChoice::inflow;
+  fixed.boundaries[FW_FACE_SOUTH] = BoundaryChoice::periodic;
+  fixed.boundaries[FW_FACE_NORTH] = BoundaryChoice::periodic;
+  CHECK(fixed.grid_spec(0.0).boundary ==
+        std::array<B, 6>{B::slip, B::inflow, B::periodic, B::periodic, B::no_slip, B::slip});
+}
+
+TEST_CASE("load_scenario: relative paths resolve against the scenario's folder, the output against the cwd",
+          "[scenario]") {
+  fw::test::TempDir root("fw_scenario");
+  const fs::path base = root.path();
+  fs::create_directories(base / "scenarios" / "trees");
+  fs::create_directories(base / "shared");
+  fs::create_directories(base / "run");
+  root.write("scenarios/hills.pgm", ramp_pgm(11, 6));
+  root.write("scenarios/trees/pine.tree", kTreeFile);
+  root.write("shared/birch_qsm.txt", kQsmFile);
+  // A decoy next to the working directory that must not be the one found.
+  root.write("run/hills.pgm", "not a heightmap");
+  const std::string text = R"(scenario: paths
+time: {end: 1.0}
+domain: {size: [40, 20, 10], cell_size: 2.0}
+wind: {speed: 4.0, direction: 270}
+terrain: {heightmap: hills.pgm, cell_size: 4.0, max_height: 10.0}
+forest:
+  species:
+    - name: pine
+      skeleton: {file: trees/pine.tree}
+    - name: birch
+      skeleton: {qsm: ../shared/birch_qsm.txt}
+)";
+  root.write("scenarios/paths.yaml", text);
+
+  const WorkingDirectory cwd(base / "run");
+  const Scenario s = fw::io::load_scenario("../scenarios/paths.yaml");
+  CHECK(s.file.string() == "../scenarios/paths.yaml");
+  CHECK(s.folder.is_absolute());
+  CHECK(fs::equivalent(s.folder, base / "scenarios"));
+  REQUIRE(s.terrain.has_value());
+  CHECK(s.terrain->heightmap.is_absolute());
+  CHECK(fs::equivalent(s.terrain->heightmap, base / "scenarios" / "hills.pgm"));
+  CHECK(s.terrain->map->columns() == 11);  // the real heightmap, not the decoy
+  REQUIRE(s.forest.species.size() == 2);
+  CHECK(fs::equivalent(s.forest.species[0].skeleton.path, base / "scenarios" / "trees" / "pine.tree"));
+  CHECK(fs::equivalent(s.forest.species[1].skeleton.path, base / "shared" / "birch_qsm.txt"));
+  CHECK(s.forest.species[1].skeleton.path.lexically_normal().string() ==
+        s.forest.species[1].skeleton.path.string());  // no ".." left
+  // The default output directory is out/<scenario> under the working directory.
+  CHECK(s.output.directory.string() == (fs::current_path() / "out" / "paths").string());
+
+  // A file that exists only next to the working directory is not found.
+  root.write("run/only_here.tree", kTreeFile);
+  std::string only_here = text;
+  only_here.replace(only_here.find("trees/pine.tree"), std::string("trees/pine.tree").size(),
+                    "only_here.tree");
+  root.write("scenarios/only_here.yaml", only_here);
+  try {
+    fw::io::load_scenario("../scenarios/only_here.yaml");
+    FAIL("a skeleton next to the working directory was accepted");
+  } catch (const fw::io::ScenarioError& error) {
+    CHECK(error.line() == 9);
+    CHECK(error.key() == "forest.species[0].skeleton.file");
+    CHECK_THAT(std::string(error.what()), Contains("no such file"));
+  }
+}
+
+TEST_CASE("load_scenario: unknown key names file, line and dotted key", "[scenario]") {
+  fw::test::TempDir dir("fw_scenario");
+  expect_error(dir, "nested",
+               kBase +
+                   "forest:\n"                                          // 5
+                   "  species:\n"                                       // 6
+                   "    - name: oak\n"                                  // 7
+                   "      skeleton: {generate: {preset: broadleaf}}\n"  // 8
+                   "      modes:\n"                                     // 9
+                   "        count: 8\n"                                 // 10
+                   "        damping: 0.05\n",                           // 11
+               11, "forest.species[0].modes.damping",
+               "one of the keys count, damping_ratio, wind_samples expected, got 'damping'");
+  expect_error(dir, "top_level", kBase + "gusts: []\n", 5, "gusts", "got 'gusts'");
+  expect_error(dir, "in_event",
+               kBase +
+                   "events:\n  - gust: {start: 1, duration: 2, peak_speed: 3, center: [1, 1, 1], radius: 2,\n"
+                   "            spin: 4}\n",
+               7, "events[0].gust.spin",
+               "one of the keys start, duration, peak_speed, center, radius, travel");
+  // The profile's keys depend on its type: alpha belongs to power only.
+  expect_error(
+      dir, "profile_key",
+      "scenario: errors\ntime: {end: 10.0}\ndomain: {size: [40, 20, 10], cell_size: 2.0}\n"
+      "wind:\n  speed: 4\n  direction: 270\n  profile: {type: log, roughness_length: 0.1, alpha: 0.2}\n",
+      7, "wind.profile.alpha", "got 'alpha'");
+}
+
+TEST_CASE("load_scenario: duplicate key names its second line and the first", "[scenario]") {
+  fw::test::TempDir dir("fw_scenario");
+  expect_error(dir, "duplicate",
+               "scenario: errors\n"
+               "time: {end: 10.0}\n"
+               "domain: {size: [40, 20, 10], cell_size: 2.0}\n"
+               "wind:\n"
+               "  speed: 4.0\n"  // 5
+               "  direction: 270\n"
+               "  speed: 6.0\n",  // 7
+               7, "wind.speed", "each key once expected, got 'speed' again (first on line 5)");
+  expect_error(dir, "duplicate_top", kBase + "time: {end: 20.0}\n", 5, "time", "(first on line 2)");
+}
+
+TEST_CASE("load_scenario: wrong type names the key and shows the value", "[scenario]") {
+  fw::test::TempDir dir("fw_scenario");
+  expect_error(dir, "end_word",
+               "scenario: errors\ntime: {end: soon}\ndomain: {size: [40, 20, 10], cell_size: 2.0}\n"
+               "wind: {speed: 4.0, direction: 270}\n",
+               2, "time.end", "a number > 0 (s) expected, got 'soon'");
+  expect_error(dir, "coupling", kBase + "forest:\n  two_way_coupling: maybe\n", 6, "forest.two_way_coupling",
+               "true or false expected, got 'maybe'");
+  expect_error(dir, "cell_list",
+               "scenario: errors\ntime: {end: 10.0}\ndomain: {size: [40, 20, 10], cell_size: [2]}\n"
+               "wind: {speed: 4.0, direction: 270}\n",
+               3, "domain.cell_size", "got '[2]'");
+  expect_error(dir, "probes_map", kBase + "output:\n  probes: {name: mast}\n", 6, "output.probes",
+               "a list of probes expected, got a map");
+  expect_error(dir, "size_two",
+               "scenario: errors\ntime: {end: 10.0}\ndomain: {size: [40, 20], cell_size: 2}\n"
+               "wind: {speed: 4.0, direction: 270}\n",
+               3, "domain.size", "a list of 3 numbers [x, y, z], each > 0 (m) expected, got '[40, 20]'");
+  expect_error(dir, "root_list", "- scenario: errors\n", 1, "(top level)", "a map of scenario keys");
+  expect_error(dir, "empty", "", 1, "(top level)",
+               "a map of scenario keys (scenario, time, domain, wind, ...) "
+               "expected, got nothing");
+}
+
+TEST_CASE("load_scenario: missing required key names the map that lacks it", "[scenario]") {
+  fw::test::TempDir dir("fw_scenario");
+  expect_error(dir, "no_speed",
+               "scenario: errors\ntime: {end: 10.0}\ndomain: {size: [40, 20, 10], cell_size: 2.0}\n"
+               "wind:\n"
+               "  direction: 270\n"  // 5: the map starts here
+               "  reference_height: 10\n",
+               5, "wind.speed", "(required), got nothing");
+  expect_error(dir, "no_time",
+               "scenario: errors\ndomain: {size: [40, 20, 10], cell_size: 2.0}\n"
+               "wind: {speed: 4.0, direction: 270}\n",
+               1, "time", "a map {end, dt, cfl} expected (required), got nothing");
+  expect_error(dir, "no_radius",
+               kBase + "events:\n  - gust: {start: 1, duration: 2, peak_speed: 3, center: [1, 1, 1]}\n", 6,
+               "events[0].gust.radius", "a number > 0 (m) expected (required)");
+  expect_error(dir, "no_roughness",
+               "scenario: errors\ntime: {end: 10.0}\ndomain: {size: [40, 20, 10], cell_size: 2.0}\n"
+               "wind:\n  speed: 4\n  direction: 270\n  profile: {type: log}\n",
+               7, "wind.profile.roughness_length", "(required)");
+  expect_error(dir, "no_skeleton", kBase + "forest:\n  species:\n    - name: oak\n", 7,
+               "forest.species[0].skeleton", "(required)");
+}
+
+TEST_CASE("load_scenario: out-of-range numbers name the key and the allowed range", "[scenario]") {
+  fw::test::TempDir dir("fw_scenario");
+  const std::string species = kBase +
+                              "forest:\n"
+                              "  species:\n"
+                              "    - name: oak\n"
+                              "      skeleton: {generate: {preset: broadleaf}}\n";  // 8
+  expect_error(dir, "samples", species + "      modes: {wind_samples: 17}\n", 9,
+               "forest.species[0].modes.wind_samples", "an integer 1..16 expected, got '17'");
+  expect_error(dir, "count", species + "      modes: {count: 0}\n", 9, "forest.species[0].modes.count",
+               "an integer >= 1 expected, got '0'");
+  expect_error(dir, "damping", species + "      modes: {damping_ratio: -0.1}\n", 9,
+               "forest.species[0].modes.damping_ratio", "a number >= 0 expected, got '-0.1'");
+  expect_error(dir, "density", species + "      material: {density: 0}\n", 9,
+               "forest.species[0].material.density", "a number > 0 (kg/m^3) expected, got '0'");
+  expect_error(
+      dir, "gust_zero",
+      kBase + "events:\n  - gust: {start: 1, duration: 0, peak_speed: 3, center: [1, 1, 1], radius: 2}\n", 6,
+      "events[0].gust.duration", "a number > 0 (s) expected, got '0'");
+  expect_error(dir, "seed", kBase + "seed: -1\n", 5, "seed",
+               "an integer 0..18446744073709551615 expected, got '-1'");
+  expect_error(dir, "cfl",
+               "scenario: errors\ntime: {end: 10.0, cfl: 0}\ndomain: {size: [40, 20, 10], cell_size: 2.0}\n"
+               "wind: {speed: 4.0, direction: 270}\n",
+               2, "time.cfl", "a number > 0 expected, got '0'");
+  expect_error(dir, "dt",
+               "scenario: errors\ntime: {end: 10.0, dt: -0.5}\ndomain: {size: [40, 20, 10], cell_size: 2.0}\n"
+               "wind: {speed: 4.0, direction: 270}\n",
+               2, "time.dt", "a number > 0 (s) or auto expected, got '-0.5'");
+  expect_error(dir, "scale",
+               species +
+                   "  stands:\n    - {species: oak, region: {min: [5, 5], max: [15, 15]}, "
+                   "spacing: 4, scale: {min: 1.2, max: 1.1}}\n",
+               10, "forest.stands[0].scale.max", "a number >= scale.min (1.2)");
+}
+
+TEST_CASE("load_scenario: unknown enum word lists the allowed words", "[scenario]") {
+  fw::test::TempDir dir("fw_scenario");
+  expect_error(dir, "pressure", kBase + "solver: {pressure: sor}\n", 5, "solver.pressure",
+               "one of multigrid | cg | jacobi expected, got 'sor'");
+  // auto follows the horizontal wind, so the ground and the top do not take it.
+  expect_error(dir, "ground_auto", kBase + "boundaries: {ground: auto}\n", 5, "boundaries.ground",
+               "one of inflow | outflow | slip | no_slip | periodic expected, got 'auto'");
+  expect_error(dir, "profile",
+               "scenario: errors\ntime: {end: 10.0}\ndomain: {size: [40, 20, 10], cell_size: 2.0}\n"
+               "wind:\n  speed: 4\n  direction: 270\n  profile: {type: exponential}\n",
+               7, "wind.profile.type", "one of uniform | power | log expected, got 'exponential'");
+  expect_error(dir, "field", kBase + "output:\n  vtk: {fields: [velocity, temperature]}\n", 6,
+               "output.vtk.fields[1]", "got 'temperature'");
+  expect_error(dir, "preset",
+               kBase + "forest:\n  species:\n    - name: oak\n      skeleton: {generate: {preset: baobab}}\n",
+               8, "forest.species[0].skeleton.generate.preset", "got 'baobab'");
+}
+
+TEST_CASE("load_scenario: a size that is not a whole multiple of cell_size names the axis", "[scenario]") {
+  fw::test::TempDir dir("fw_scenario");
+  expect_error(dir, "odd_z",
+               "scenario: errors\ntime: {end: 10.0}\ndomain: {size: [40, 20, 15], cell_size: 2.0}\n"
+               "wind: {speed: 4.0, direction: 270}\n",
+               3, "domain.size[2]", "a whole multiple of cell_size (2 m) along z expected, got '15'");
+  expect_error(dir, "too_small",
+               "scenario: errors\ntime: {end: 10.0}\ndomain: {size: [40, 1, 10], cell_size: 2.0}\n"
+               "wind: {speed: 4.0, direction: 270}\n",
+               3, "domain.size[1]", "along y");
+  // Periodic faces come in pairs, along an axis with an even cell count.
+  expect_error(dir, "periodic_pair", kBase + "boundaries: {west: periodic}\n", 5, "boundaries.west",
+               "periodic on both west and east (a pair), or neither; east is 'auto'");
+  expect_error(dir, "periodic_odd",
+               "scenario: errors\ntime: {end: 10.0}\ndomain: {size: [42, 20, 10], cell_size: 2.0}\n"
+               "wind: {speed: 4.0, direction: 270}\nboundaries: {west: periodic, east: periodic}\n",
+               5, "boundaries.west", "an even cell count; x has 21 cells");
+}
+
+TEST_CASE("load_scenario: positions outside the domain name the position's key", "[scenario]") {
+  fw::test::TempDir dir("fw_scenario");
+  const std::string species = kBase +
+                              "forest:\n"
+                              "  species:\n"
+                              "    - name: oak\n"
+                              "      skeleton: {generate: {preset: broadleaf}}\n";  // 8
+  expect_error(dir, "tree_west", species + "  trees:\n    - {species: oak, position: [-1, 10]}\n", 10,
+               "forest.trees[0].position", "inside the domain's horizontal extent [0, 40] x [0, 20] m");
+  expect_error(
+      dir, "stand_corner",
+      species + "  stands:\n    - {species: oak, spacing: 4,\n       region: {min: [5, 5], max: [50, 15]}}\n",
+      11, "forest.stands[0].region.max", "a point [x, y] inside the domain's horizontal extent");
+  expect_error(dir, "probe_high",
+               kBase + "output:\n  probes:\n    - {name: mast, position: [10, 10, 10.5]}\n", 7,
+               "output.probes[0].position", "a position inside the domain [0, 40] x [0, 20] x [0, 10] m");
+  expect_error(dir, "probe_name",
+               kBase + "output:\n  probes:\n    - {name: wind-mast, position: [10, 10, 5]}\n", 7,
+               "output.probes[0].name", "a probe name of letters, digits and _");
+  expect_error(dir, "unknown_species", species + "  trees:\n    - {species: elm, position: [10, 10]}\n", 10,
+               "forest.trees[0].species", "a species name, one of oak expected, got 'elm'");
+  expect_error(dir, "species_twice",
+               species + "    - name: oak\n      skeleton: {generate: {preset: conifer}}\n", 9,
+               "forest.species[1].name", "a species name not used before");
+}
+
+TEST_CASE("load_scenario: a bad expression, or one that goes negative or infinite, names the key",
+          "[scenario]") {
+  fw::test::TempDir dir("fw_scenario");
+  expect_error(dir, "unknown_function",
+               "scenario: errors\ntime: {end: 10.0}\ndomain: {size: [40, 20, 10], cell_size: 2.0}\n"
+               "wind:\n  speed: 4\n  direction: \"270 + wobble(t)\"\n",
+               6, "wind.direction", "unknown variable or function \"wobble\"");
+  // A valid formula that gives a negative speed during the run: sampled over [0, end].
+  expect_error(dir, "negative_speed",
+               "scenario: errors\ntime: {end: 10.0}\ndomain: {size: [40, 20, 10], cell_size: 2.0}\n"
+               "wind:\n  speed: \"5 - t\"\n  direction: 270\n",
+               5, "wind.speed", "a value that is finite and >= 0 for 0 <= t <= 10 s");
+  // Beyond the end of the run the formula is never used.
+  CHECK_NOTHROW(fw::io::load_scenario(
+      dir.write("late.yaml",
+                "scenario: late\ntime: {end: 4.0}\ndomain: {size: [40, 20, 10], cell_size: 2.0}\n"
+                "wind:\n  speed: \"5 - t\"\n  direction: 270\n")));
+  expect_error(dir, "infinite_direction",
+               "scenario: errors\ntime: {end: 10.0}\ndomain: {size: [40, 20, 10], cell_size: 2.0}\n"
+               "wind:\n  speed: 4\n  direction: \"270 + 1/(t-5)\"\n",
+               6, "wind.direction", "a value that is finite for 0 <= t <= 10 s");
+}
+
+TEST_CASE("load_scenario: a missing heightmap names the heightmap key's line", "[scenario]") {
+  fw::test::TempDir dir("fw_scenario");
+  expect_error(dir, "no_heightmap",
+               kBase + "terrain:\n  cell_size: 4\n  heightmap: nowhere.pgm\n  max_height: 10\n", 7,
+               "terrain.heightmap", "no such file");
+  // A PGM needs cell_size and max_height; the error points at the terrain map.
+  dir.write("hills.pgm", ramp_pgm(5, 5));
+  expect_error(dir, "no_max_height", kBase + "terrain:\n  heightmap: hills.pgm\n  cell_size: 4\n", 6,
+               "terrain.max_height", "needed for a PGM heightmap");
+  // A file that is neither PGM nor ESRI grid.
+  dir.write("notes.txt", "hills to the east\n");
+  expect_error(dir, "not_a_heightmap", kBase + "terrain: {heightmap: notes.txt}\n", 5, "terrain.heightmap",
+               "a PGM or ESRI ASCII grid");
+}
+
+TEST_CASE("load_scenario: a YAML syntax error reports key (yaml) and its line", "[scenario]") {
+  fw::test::TempDir dir("fw_scenario");
+  expect_error(dir, "indent", kBase + "seed: 3\n  extra: 4\n", 6, "(yaml)",
+               "valid YAML expected, got a syntax error");
+  expect_error(dir, "two_documents", kBase + "---\nscenario: again\n", 6, "(yaml)",
+               "one YAML document expected, got 2");
+}
+
+TEST_CASE("load_scenario: a file that cannot be read reports line 0 and key (file)", "[scenario]") {
+  fw::test::TempDir dir("fw_scenario");
+  const std::string missing = (fs::path(dir.path()) / "missing.yaml").string();
+  try {
+    fw::io::load_scenario(missing);
+    FAIL("a missing file was accepted");
+  } catch (const fw::io::ScenarioError& error) {
+    CHECK(error.file() == missing);
+    CHECK(error.line() == 0);
+    CHECK(error.key() == "(file)");
+    CHECK_THAT(std::string(error.what()), StartsWith(missing + ":0: (file): ") && Contains("no such file"));
+  }
+  try {
+    fw::io::load_scenario(dir.path());
+    FAIL("a directory was accepted");
+  } catch (const fw::io::ScenarioError& error) {
+    CHECK(error.line() == 0);
+    CHECK(error.key() == "(file)");
+    CHECK_THAT(std::string(error.what()), Contains("got a directory"));
+  }
+}
