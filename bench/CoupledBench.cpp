@@ -6,6 +6,7 @@
 #include <cmath>
 #include <numbers>
 #include <random>
+#include <stdexcept>
 
 #include "bench/FmaPeak.hpp"
 #include "fluid/CanopyField.hpp"
@@ -13,6 +14,7 @@
 #include "host/WindGrid.hpp"
 #include "io/JsonWriter.hpp"
 #include "trees/Forest.hpp"
+#include "trees/ForestReference.hpp"
 #include "trees/LSystem.hpp"
 #include "trees/SpeciesBasis.hpp"
 #include "trees/TreeGenerator.hpp"
@@ -27,7 +29,8 @@ double ms_since(Clock::time_point start) {
   return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
 }
 
-host::WindGridSetup forest_wind_setup(const std::array<int, 3>& grid, double h) {
+// jacobi_iterations > 0: Oliapuram's fixed Jacobi sweeps instead of CG to 1e-3.
+host::WindGridSetup forest_wind_setup(const std::array<int, 3>& grid, double h, int jacobi_iterations) {
   host::WindGridSetup setup;
   auto& spec = setup.spec;
   spec.nx = grid[0];
@@ -38,9 +41,14 @@ host::WindGridSetup forest_wind_setup(const std::array<int, 3>& grid, double h) 
   spec.boundary = {BoundaryType::inflow, BoundaryType::outflow, BoundaryType::slip,
                    BoundaryType::slip,   BoundaryType::no_slip, BoundaryType::slip};
   setup.settings.dt = 0.1;
-  setup.settings.pressure.solver = fluid::PressureSolverType::cg;
-  setup.settings.pressure.tolerance = 1e-3;
-  setup.settings.pressure.max_iterations = 200;
+  if (jacobi_iterations > 0) {
+    setup.settings.pressure.solver = fluid::PressureSolverType::jacobi;
+    setup.settings.pressure.jacobi_iterations = jacobi_iterations;
+  } else {
+    setup.settings.pressure.solver = fluid::PressureSolverType::cg;
+    setup.settings.pressure.tolerance = 1e-3;
+    setup.settings.pressure.max_iterations = 200;
+  }
   setup.ambient = {10.0, 0.0, 0.0};
   return setup;
 }
@@ -89,63 +97,79 @@ CoupledBenchResult run_coupled_bench(host::ComputeContext& cc, const CoupledBenc
   result.nodes_per_tree = species.skeleton().size();
 
   for (const auto& grid : options.grids) {
-    CoupledBenchCase c;
-    c.grid = grid;
-    host::WindGrid wind(cc, forest_wind_setup(grid, options.cell_size));
     const trees::Forest forest({species}, forest_instances(options.trees, grid, options.cell_size));
-    host::ForestStages trees(cc, wind.spec(), forest);
     // Two-way coupling: every tree's frontal area (branches, and leaves at LAI 3) drags on the wind.
-    fluid::CanopyField canopy(wind.spec());
+    fluid::CanopyField canopy(forest_wind_setup(grid, options.cell_size, 0).spec);
     for (int k = 0; k < forest.instance_count(); ++k) {
       const trees::TreeInstance& tree = forest.instances()[std::size_t(k)];
       canopy.add_tree(species.skeleton().transformed(forest.rotation(k), tree.position, tree.scale), 1.2, 3.0,
                       0.2);
     }
-    wind.set_canopy(canopy.drag_density());
-    wind.initialise_ambient();
-    auto coupled_step = [&] {
-      const auto report = wind.step();
-      trees.enqueue_wind_load(wind.velocity());
-      trees.enqueue_modal_step(float(report.dt));
-      return report;
-    };
-    for (int s = 0; s < options.warmup_steps; ++s) coupled_step();
-    cc.finish();
+    std::vector<int> jacobi_variants{0};
+    if (options.baseline_jacobi_iterations > 0) jacobi_variants.push_back(options.baseline_jacobi_iterations);
+    for (const int jacobi : jacobi_variants) {
+      CoupledBenchCase c;
+      c.grid = grid;
+      c.pressure = jacobi > 0 ? fmt::format("jacobi {}", jacobi) : "cg 1e-3";
+      host::WindGrid wind(cc, forest_wind_setup(grid, options.cell_size, jacobi));
+      host::ForestStages trees(cc, wind.spec(), forest);
+      wind.set_canopy(canopy.drag_density());
+      wind.initialise_ambient();
+      for (int s = 0; s < options.warmup_steps; ++s) {
+        const auto report = wind.step();
+        trees.enqueue_wind_load(wind.velocity());
+        trees.enqueue_modal_step(float(report.dt));
+      }
+      cc.finish();
 
-    wind.set_stage_timing(true);
-    wind.reset_stage_ms();
-    double trees_ms = 0.0;
-    const auto start = Clock::now();
-    for (int s = 0; s < options.steps; ++s) {
-      const auto report = wind.step();
-      c.pressure_iterations += report.pressure.iterations;
-      const auto trees_start = Clock::now();
-      trees.enqueue_wind_load(wind.velocity());
-      trees.enqueue_modal_step(float(report.dt));
-      cc.finish();
-      trees_ms += ms_since(trees_start);
-    }
-    c.ms_per_step = ms_since(start) / options.steps;
-    c.pressure_iterations /= options.steps;
-    for (const auto& [stage, ms] : wind.stage_ms()) {
-      c.stages_ms[stage] = ms / options.steps;
-      c.fluid_ms += ms / options.steps;
-    }
-    c.trees_ms = trees_ms / options.steps;
-    c.stages_ms["trees"] = c.trees_ms;
-    result.cases.push_back(c);
+      wind.set_stage_timing(true);
+      wind.reset_stage_ms();
+      double trees_ms = 0.0;
+      const auto start = Clock::now();
+      for (int s = 0; s < options.steps; ++s) {
+        const auto report = wind.step();
+        c.pressure_iterations += report.pressure.iterations;
+        const auto trees_start = Clock::now();
+        trees.enqueue_wind_load(wind.velocity());
+        trees.enqueue_modal_step(float(report.dt));
+        cc.finish();
+        trees_ms += ms_since(trees_start);
+      }
+      c.ms_per_step = ms_since(start) / options.steps;
+      c.pressure_iterations /= options.steps;
+      for (const auto& [stage, ms] : wind.stage_ms()) {
+        c.stages_ms[stage] = ms / options.steps;
+        c.fluid_ms += ms / options.steps;
+      }
+      c.trees_ms = trees_ms / options.steps;
+      c.stages_ms["trees"] = c.trees_ms;
+      result.cases.push_back(c);
 
-    // The deformation of every node, once per output frame; timed on the first grid only (it does not depend
-    // on the grid).
-    if (result.cases.size() == 1) {
-      trees.enqueue_deform();
-      cc.finish();
-      const auto deform_start = Clock::now();
-      for (int f = 0; f < options.deform_frames; ++f) trees.enqueue_deform();
-      cc.finish();
-      result.deform_ms = ms_since(deform_start) / options.deform_frames;
-      result.deform_frames_per_s = 1e3 / result.deform_ms;
-      result.node_modes_per_s = double(trees.total_nodes()) * options.modes * result.deform_frames_per_s;
+      // Once, on the first case (neither depends on the grid): the deformation of every node, as on an
+      // output frame, and the CPU reference of the trees' step and of the deformation.
+      if (result.cases.size() == 1) {
+        trees.enqueue_deform();
+        cc.finish();
+        const auto deform_start = Clock::now();
+        for (int f = 0; f < options.deform_frames; ++f) trees.enqueue_deform();
+        cc.finish();
+        result.deform_ms = ms_since(deform_start) / options.deform_frames;
+        result.deform_frames_per_s = 1e3 / result.deform_ms;
+        result.node_modes_per_s = double(trees.total_nodes()) * options.modes * result.deform_frames_per_s;
+
+        const trees::ForestReference reference(forest);
+        const fluid::MacVelocity velocity = wind.download_velocity();
+        Eigen::VectorXd q = Eigen::VectorXd::Zero(reference.total_modes()), qdot = q;
+        const auto reference_start = Clock::now();
+        const Eigen::VectorXd forces = reference.modal_forces(wind.spec(), velocity);
+        reference.step(q, qdot, forces, 0.1, trees::ModalIntegrator::exact);
+        result.trees_reference_ms = ms_since(reference_start);
+        const auto reference_deform_start = Clock::now();
+        const Eigen::MatrixX3d displacement = reference.displacements(q);
+        result.deform_reference_ms = ms_since(reference_deform_start);
+        if (!displacement.allFinite())
+          throw std::runtime_error("bench coupled: CPU reference gave non-finite values");
+      }
     }
   }
   result.fma_peak_gfma_s = measure_fma_peak(cc, 5);
@@ -159,21 +183,28 @@ void print_coupled_bench_table(const CoupledBenchResult& r, std::ostream& out) {
       "forestwind bench coupled on {}: {} trees x {} nodes x {} modes, {} wind samples per tree\n", r.device,
       r.trees, r.nodes_per_tree, r.modes, r.samples);
   out << fmt::format("species precomputation (host): {:.2f} s\n\n", r.species_seconds);
-  out << fmt::format("{:<12} {:>9} {:>9} {:>9} {:>9} {:>9} {:>9} {:>9}\n", "grid", "ms/step", "fluid",
-                     "advect", "canopy", "pressure", "trees", "p-iters");
+  out << fmt::format("{:<12} {:<10} {:>9} {:>9} {:>9} {:>9} {:>9} {:>9} {:>9}\n", "grid", "pressure",
+                     "ms/step", "fluid", "advect", "canopy", "pressure", "trees", "p-iters");
   for (const auto& c : r.cases) {
     auto stage = [&](const char* name) {
       auto it = c.stages_ms.find(name);
       return it == c.stages_ms.end() ? 0.0 : it->second;
     };
-    out << fmt::format("{:<12} {:>9.2f} {:>9.2f} {:>9.2f} {:>9.2f} {:>9.2f} {:>9.2f} {:>9.1f}\n",
-                       fmt::format("{}x{}x{}", c.grid[0], c.grid[1], c.grid[2]), c.ms_per_step, c.fluid_ms,
-                       stage("advect"), stage("canopy"), stage("pressure"), c.trees_ms,
+    out << fmt::format("{:<12} {:<10} {:>9.2f} {:>9.2f} {:>9.2f} {:>9.2f} {:>9.2f} {:>9.2f} {:>9.1f}\n",
+                       fmt::format("{}x{}x{}", c.grid[0], c.grid[1], c.grid[2]), c.pressure, c.ms_per_step,
+                       c.fluid_ms, stage("advect"), stage("canopy"), stage("pressure"), c.trees_ms,
                        c.pressure_iterations);
   }
+  out << "(jacobi N: Oliapuram's fixed Jacobi sweeps, the baseline; divergence is not controlled)\n";
+  const CoupledBenchCase& head = r.cases.front();
+  out << fmt::format(
+      "trees' step on the device {:.2f} ms; CPU reference (double, 1 thread) {:.2f} ms: x{:.1f}\n",
+      head.trees_ms, r.trees_reference_ms, r.trees_reference_ms / head.trees_ms);
   out << fmt::format(
       "\ndeformation of all {} nodes (output frames): {:.2f} ms = {:.1f} frames/s, {:.3g} node*modes/s\n",
       r.trees * r.nodes_per_tree, r.deform_ms, r.deform_frames_per_s, r.node_modes_per_s);
+  out << fmt::format("CPU reference deformation (double, 1 thread): {:.1f} ms: the device is x{:.1f}\n",
+                     r.deform_reference_ms, r.deform_reference_ms / r.deform_ms);
   out << fmt::format(
       "FMA peak (device, same process): {:.1f} GFMA/s; the deformation reaches {:.0f}% of it\n",
       r.fma_peak_gfma_s, 100.0 * r.deform_fraction_of_peak);
@@ -199,10 +230,13 @@ std::string coupled_bench_json(const CoupledBenchResult& r) {
   json.key("fma_peak_gfma_s").value(r.fma_peak_gfma_s);
   json.key("deform_fraction_of_peak").value(r.deform_fraction_of_peak);
   json.key("species_seconds").value(r.species_seconds);
+  json.key("trees_reference_ms").value(r.trees_reference_ms);
+  json.key("deform_reference_ms").value(r.deform_reference_ms);
   json.key("cases").begin_array();
   for (const auto& c : r.cases) {
     json.begin_object();
     json.key("grid").begin_array().value(c.grid[0]).value(c.grid[1]).value(c.grid[2]).end_array();
+    json.key("pressure").value(c.pressure);
     json.key("ms_per_step").value(c.ms_per_step);
     json.key("fluid_ms").value(c.fluid_ms);
     json.key("trees_ms").value(c.trees_ms);

@@ -10,9 +10,13 @@
 // `deform_frames` frames, and compared with the device's FMA peak measured in the same process
 // (kernels/bench_fma.cl): a node of a tree with m modes costs 3 m FMAs.
 //
-//   CoupledBenchOptions opt;                      // 1,000 trees x ~3,437 nodes x 25 modes; 128x128x32,
-//   256x256x16 CoupledBenchResult r = run_coupled_bench(cc, opt); print_coupled_bench_table(r, std::cout); //
-//   or coupled_bench_json(r)
+// Baselines run in the same process: each grid again with Oliapuram's pressure solve (a fixed
+// `baseline_jacobi_iterations` Jacobi sweeps, 4 in the paper, not converged), and the trees' step and the
+// deformation by the double-precision CPU reference (trees/ForestReference, one host thread).
+//
+//   CoupledBenchOptions opt;                                 // 1,000 trees x ~3,437 nodes x 25 modes
+//   CoupledBenchResult r = run_coupled_bench(cc, opt);       // on 128x128x32 and 256x256x16
+//   print_coupled_bench_table(r, std::cout);                 // or coupled_bench_json(r)
 #pragma once
 
 #include <array>
@@ -31,14 +35,16 @@ struct CoupledBenchOptions {
   int nodes_per_tree = 3437;
   int modes = 25;
   int samples = 3;
-  int steps = 20;          // timed coupled steps per grid
-  int warmup_steps = 5;    // untimed steps first
-  int deform_frames = 10;  // timed deformation frames
-  double cell_size = 2.0;  // m
+  int steps = 20;                      // timed coupled steps per grid
+  int warmup_steps = 5;                // untimed steps first
+  int deform_frames = 10;              // timed deformation frames
+  double cell_size = 2.0;              // m
+  int baseline_jacobi_iterations = 4;  // Oliapuram's fixed Jacobi sweeps; 0 skips the baseline rows
 };
 
 struct CoupledBenchCase {
   std::array<int, 3> grid{};
+  std::string pressure;                     // "cg 1e-3" or "jacobi 4" (the baseline)
   double ms_per_step = 0.0;                 // fluid + trees, per step
   std::map<std::string, double> stages_ms;  // per step: the wind grid's stages, "trees" (load + modal step)
   double fluid_ms = 0.0;                    // the wind grid's share of a step
@@ -58,6 +64,8 @@ struct CoupledBenchResult {
   double node_modes_per_s = 0.0;  // nodes x modes deformed per second
   double fma_peak_gfma_s = 0.0;   // measured in the same process
   double deform_fraction_of_peak = 0.0;
+  double trees_reference_ms = 0.0;   // CPU reference: sampling + modal forces + modal step, per step
+  double deform_reference_ms = 0.0;  // CPU reference: one frame's deformation
   std::vector<CoupledBenchCase> cases;
 };
 
