@@ -1,7 +1,12 @@
 #include "host/FluidStages.hpp"
 
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <cmath>
+#include <stdexcept>
+#include <string>
+#include <utility>
 
 namespace fw::host {
 namespace {
@@ -35,7 +40,8 @@ FluidStages::FluidStages(ComputeContext& cc, const fluid::GridSpec& spec)
   vorticity_ = Kernel(forces, "vorticity");
   confinement_ = Kernel(forces, "vorticity_confinement");
   diffuse_ = Kernel(forces, "diffuse");
-  canopy_drag_ = Kernel(forces, "apply_canopy_drag");
+  for (int c = 0; c < 3; ++c) canopy_drag_[c] = Kernel(forces, std::string("canopy_drag_") + "uvw"[c]);
+  copy_face_box_ = Kernel(forces, "copy_face_box");
   boundaries_ = Kernel(cc_.build("fluid_boundaries.cl"), "enforce_boundaries");
   cl::Program project = cc_.build("fluid_project.cl");
   divergence_ = Kernel(project, "divergence_rhs");
@@ -117,9 +123,56 @@ void FluidStages::enqueue_diffuse(int c, float nu_dt_over_h2, cl::Buffer& q, cl:
   diffuse_.set_args(grid_, step_, profile_, c, nu_dt_over_h2, q, out).enqueue(cc_, component_rows(c));
 }
 
-void FluidStages::enqueue_canopy_drag(int c, cl::Buffer& drag_density, DeviceVelocity& vel, cl::Buffer& out) {
-  canopy_drag_.set_args(grid_, step_, c, drag_density, vel.u, vel.v, vel.w, out)
-      .enqueue(cc_, component_rows(c));
+void FluidStages::enqueue_canopy_drag(cl::Buffer& drag_density, const CellBox& box, DeviceVelocity& vel,
+                                      DeviceVelocity& scratch) {
+  if (box.empty()) return;
+  // Faces of component c next to the box's cells: one more along c (the far face of the last cell).
+  auto face_box = [&](int c) {
+    cl_int4 first{}, count{};
+    const int cells[3] = {spec_.nx, spec_.ny, spec_.nz};
+    for (int a = 0; a < 3; ++a) {
+      first.s[a] = box.first[a];
+      count.s[a] = a == c ? std::min(box.first[a] + box.count[a], cells[a]) - box.first[a] + 1 : box.count[a];
+    }
+    return std::pair{first, count};
+  };
+  // Out of place: each component's |u| needs the other two before the drag touched them.
+  for (int c = 0; c < 3; ++c) {
+    const auto [first, count] = face_box(c);
+    canopy_drag_[c]
+        .set_args(grid_, step_, first, count, drag_density, vel.u, vel.v, vel.w, scratch.component(c))
+        .enqueue(cc_, cc_.rows(count.s[0], count.s[1], count.s[2]));
+  }
+  for (int c = 0; c < 3; ++c) {
+    const auto [first, count] = face_box(c);
+    copy_face_box_.set_args(grid_, c, first, count, scratch.component(c), vel.component(c))
+        .enqueue(cc_, cc_.rows(count.s[0], count.s[1], count.s[2]));
+  }
+}
+
+CellBox nonzero_cell_box(const fluid::GridSpec& spec, const std::vector<float>& values) {
+  if (values.size() != spec.cell_count())
+    throw std::invalid_argument(
+        fmt::format("nonzero_cell_box: {} values for a grid of {} cells", values.size(), spec.cell_count()));
+  std::array<int, 3> lo{spec.nx, spec.ny, spec.nz}, hi{-1, -1, -1};
+  std::size_t id = 0;
+  for (int k = 0; k < spec.nz; ++k)
+    for (int j = 0; j < spec.ny; ++j)
+      for (int i = 0; i < spec.nx; ++i, ++id) {
+        if (values[id] == 0.0f) continue;
+        const int at[3] = {i, j, k};
+        for (int a = 0; a < 3; ++a) {
+          lo[a] = std::min(lo[a], at[a]);
+          hi[a] = std::max(hi[a], at[a]);
+        }
+      }
+  CellBox box;
+  if (hi[0] < 0) return box;
+  for (int a = 0; a < 3; ++a) {
+    box.first[a] = lo[a];
+    box.count[a] = hi[a] - lo[a] + 1;
+  }
+  return box;
 }
 
 void FluidStages::enqueue_enforce_boundaries(int c, cl::Buffer& mask, cl::Buffer& q) {

@@ -9,6 +9,7 @@
 // Numerics and ghost rules: kernels/common.cl and fluid/ReferenceStages.hpp (the CPU oracle).
 #pragma once
 
+#include <array>
 #include <vector>
 
 #include "fluid/GridSpec.hpp"
@@ -22,6 +23,17 @@ struct DeviceVelocity {
   cl::Buffer u, v, w;
   cl::Buffer& component(int c) { return c == 0 ? u : (c == 1 ? v : w); }
 };
+
+/// Cells first .. first + count - 1 along x, y, z (cell indices); count 0 on an axis: no cell.
+struct CellBox {
+  std::array<int, 3> first{0, 0, 0};
+  std::array<int, 3> count{0, 0, 0};
+  bool empty() const { return count[0] <= 0 || count[1] <= 0 || count[2] <= 0; }
+};
+
+/// The smallest box holding every cell whose value is non-zero (values: one a cell, x fastest); empty when
+/// all are zero. Throws std::invalid_argument when the size is not spec.cell_count().
+CellBox nonzero_cell_box(const fluid::GridSpec& spec, const std::vector<float>& values);
 
 class FluidStages {
  public:
@@ -49,9 +61,11 @@ class FluidStages {
   void enqueue_vorticity(DeviceVelocity& vel, cl::Buffer& omega);
   void enqueue_vorticity_confinement(int c, float epsilon, cl::Buffer& omega, cl::Buffer& q);
   void enqueue_diffuse(int c, float nu_dt_over_h2, cl::Buffer& q, cl::Buffer& out);
-  /// out = component c of vel after implicit canopy drag over step().dt: q / (1 + dt k |u|), k the drag
-  /// density (1/m, one float a cell). Reads all three components, so `out` must not alias any of them.
-  void enqueue_canopy_drag(int c, cl::Buffer& drag_density, DeviceVelocity& vel, cl::Buffer& out);
+  /// vel <- vel after implicit canopy drag over step().dt: q / (1 + dt k |u|) on every face, k the drag
+  /// density (1/m, one float a cell) and |u| the old speed at the face. `box` must hold every cell of
+  /// non-zero k (nonzero_cell_box): only the faces of those cells are touched, through `scratch`.
+  void enqueue_canopy_drag(cl::Buffer& drag_density, const CellBox& box, DeviceVelocity& vel,
+                           DeviceVelocity& scratch);
   void enqueue_enforce_boundaries(int c, cl::Buffer& mask, cl::Buffer& q);
   void enqueue_divergence_rhs(cl::Buffer& mask, DeviceVelocity& vel, cl::Buffer& b);
   void enqueue_subtract_gradient(int c, cl::Buffer& mask, cl::Buffer& phi, cl::Buffer& q);
@@ -74,7 +88,7 @@ class FluidStages {
   cl::Buffer profile_, partial_;
   std::vector<float> partial_host_;
   Kernel pad_, advect_[3], maccormack_[3], forces_, vorticity_, confinement_, diffuse_, boundaries_,
-      divergence_, max_div_, gradient_, max_abs_, canopy_drag_;
+      divergence_, max_div_, gradient_, max_abs_, canopy_drag_[3], copy_face_box_;
 };
 
 }  // namespace fw::host

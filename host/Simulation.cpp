@@ -8,6 +8,7 @@
 #include <cmath>
 #include <fstream>
 #include <iostream>
+#include <limits>
 #include <optional>
 
 #include "host/ForestStages.hpp"
@@ -20,6 +21,7 @@
 #include "io/VdbWriter.hpp"
 #include "io/WindFrame.hpp"
 #include "io/WindVtk.hpp"
+#include "trees/ForestReference.hpp"
 
 namespace fw::host {
 
@@ -33,6 +35,20 @@ double ms_since(Clock::time_point start) {
 
 // A fixed time step this far past the advection CFL limit is a blow-up in the making, not a slow run.
 constexpr double kRunawayCfl = 5.0;
+
+// Semi-implicit Euler of q'' + gamma q' + omega^2 q = f is stable while dt^2 omega^2 + 2 gamma dt < 4 (Jury's
+// test on its amplification matrix, trace 2 - dt^2 omega^2 - gamma dt and determinant 1 - gamma dt): the
+// largest stable dt over every instance's modes, s; infinity without trees.
+double semi_implicit_dt_limit(const trees::Forest& forest) {
+  const trees::ForestReference reference(forest);
+  const Eigen::VectorXd omega = reference.omega(), gamma = reference.gamma();
+  double limit = std::numeric_limits<double>::infinity();
+  for (Eigen::Index i = 0; i < omega.size(); ++i) {
+    const double w2 = omega[i] * omega[i];
+    limit = std::min(limit, (std::sqrt(gamma[i] * gamma[i] + 4.0 * w2) - gamma[i]) / w2);
+  }
+  return limit;
+}
 
 std::string format_duration(double seconds) {
   if (!std::isfinite(seconds) || seconds < 0) return "?";
@@ -98,6 +114,7 @@ struct Simulation::State {
         wind_pvd(directory / "wind.pvd"),
         trees_pvd(directory / "trees.pvd") {
     if (!plan.drag_density.empty()) wind.set_canopy(plan.drag_density);
+    trees.set_integrator(plan.scenario.forest.integrator);
     rest = rest_trees(plan.forest);
   }
 
@@ -295,6 +312,9 @@ RunSummary Simulation::run(const RunOptions& options) {
   };
 
   try {
+    const double semi_implicit_limit = scenario.forest.integrator == trees::ModalIntegrator::semi_implicit
+                                           ? semi_implicit_dt_limit(s.plan.forest)
+                                           : std::numeric_limits<double>::infinity();
     // The last step may overshoot `end` by less than one dt: frames are only written up to `end`.
     while (s.wind.time() < end - 1e-9) {
       if (options.stop && options.stop->load()) {
@@ -303,6 +323,13 @@ RunSummary Simulation::run(const RunOptions& options) {
       }
       s.wind.set_ambient(scenario.wind_vector(s.wind.time()));
       const WindStepReport report = s.wind.step();
+      if (report.dt >= semi_implicit_limit) {
+        throw SimulationError(fmt::format(
+            "step {} (t = {:.3f} s): field tree modes: semi-implicit Euler is unstable at dt = {:.4g} s for "
+            "the "
+            "fastest tree mode (stable below {:.4g} s); lower time.dt or set forest.integrator: exact",
+            report.step, report.time, report.dt, semi_implicit_limit));
+      }
       const auto trees_start = Clock::now();
       if (s.plan.forest.instance_count() > 0) {
         s.trees.enqueue_wind_load(s.wind.velocity());

@@ -106,7 +106,8 @@ SimulationPlan plan_simulation(const io::Scenario& scenario, const trees::BasisC
 
   // --- species ---------------------------------------------------------------------------------------------
   std::vector<trees::SpeciesBasis> bases;
-  for (const io::Species& species : scenario.forest.species) {
+  for (std::size_t index = 0; index < scenario.forest.species.size(); ++index) {
+    const io::Species& species = scenario.forest.species[index];
     const auto start = Clock::now();
     trees::SpeciesSettings settings;
     settings.material = species.material;
@@ -116,6 +117,7 @@ SimulationPlan plan_simulation(const io::Scenario& scenario, const trees::BasisC
     // C = 1/2 rho_air C_D, with the species' branch drag coefficient.
     settings.wind.drag_factor = 0.5 * 1.225 * species.drag_coefficient;
     trees::Skeleton skeleton = species_skeleton(species);
+    io::check_species_skeleton(scenario, int(index), skeleton.size());
     SpeciesSummary summary;
     summary.name = species.name;
     if (cache) {

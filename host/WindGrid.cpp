@@ -187,15 +187,14 @@ void WindGrid::set_canopy(std::vector<float> drag_density) {
     canopy_ = cl::Buffer();
     return;
   }
+  canopy_box_ = nonzero_cell_box(setup_.spec, drag_density);
   canopy_ = cc_.buffer(drag_density.size() * sizeof(float));
   cc_.queue().enqueueWriteBuffer(canopy_, CL_TRUE, 0, drag_density.size() * sizeof(float),
                                  drag_density.data());
 }
 
 void WindGrid::apply_canopy_drag() {
-  // Out of place: each component's |u| needs the other two before the drag touched them.
-  for (int c = 0; c < 3; ++c) stages_.enqueue_canopy_drag(c, canopy_, vel_, tmp_.component(c));
-  std::swap(vel_, tmp_);
+  stages_.enqueue_canopy_drag(canopy_, canopy_box_, vel_, tmp_);
 }
 
 void WindGrid::enforce_boundaries() {

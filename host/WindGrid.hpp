@@ -113,7 +113,8 @@ class WindGrid {
   cl::Buffer omega_, gusts_, profile_;
   double time_ = 0.0, last_dt_ = 0.0;
   long steps_ = 0;
-  cl::Buffer canopy_;  // drag density, one float a cell; valid while canopy_on_
+  cl::Buffer canopy_;   // drag density, one float a cell; valid while canopy_on_
+  CellBox canopy_box_;  // the cells of non-zero drag density
   bool canopy_on_ = false;
   bool stage_timing_ = false;
   std::map<std::string, double> stage_ms_;

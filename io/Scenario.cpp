@@ -89,7 +89,8 @@ fluid::GridSpec Scenario::grid_spec(double t) const {
   for (int face = 0; face < 6; ++face) {
     switch (boundaries[face]) {
       case BoundaryChoice::automatic: {
-        // The wind enters through a minimum face when it points along +axis, through a maximum face when -axis.
+        // The wind enters through a minimum face when it points along +axis, through a maximum face when
+        // -axis.
         const double along = wind_now[face / 2];
         const bool enters = face % 2 == 0 ? along > 0.0 : along < 0.0;
         spec.boundary[face] = enters ? fluid::BoundaryType::inflow : fluid::BoundaryType::outflow;
@@ -198,7 +199,8 @@ std::optional<double> parse_double(const std::string& text) {
   std::string_view view = text;
   // from_chars takes a leading '-' but not '+', which YAML numbers may have.
   if (!view.empty() && view.front() == '+') view.remove_prefix(1);
-  if (view.empty() || view.front() == '+' || (view.front() == '-' && text.front() == '+')) return std::nullopt;
+  if (view.empty() || view.front() == '+' || (view.front() == '-' && text.front() == '+'))
+    return std::nullopt;
   double value = 0.0;
   const auto [end, error] = std::from_chars(view.data(), view.data() + view.size(), value);
   if (error != std::errc() || end != view.data() + view.size() || !std::isfinite(value)) return std::nullopt;
@@ -209,7 +211,8 @@ template <typename Integer>
 std::optional<Integer> parse_integer(const std::string& text) {
   std::string_view view = text;
   if (!view.empty() && view.front() == '+') view.remove_prefix(1);
-  if (view.empty() || view.front() == '+' || (view.front() == '-' && text.front() == '+')) return std::nullopt;
+  if (view.empty() || view.front() == '+' || (view.front() == '-' && text.front() == '+'))
+    return std::nullopt;
   Integer value{};
   const auto [end, error] = std::from_chars(view.data(), view.data() + view.size(), value);
   if (error != std::errc() || end != view.data() + view.size()) return std::nullopt;
@@ -250,7 +253,8 @@ class MapFields {
 
 class Loader {
  public:
-  Loader(std::string file, std::filesystem::path folder) : file_(std::move(file)), folder_(std::move(folder)) {}
+  Loader(std::string file, std::filesystem::path folder)
+      : file_(std::move(file)), folder_(std::move(folder)) {}
 
   [[noreturn]] void fail(const Field& field, const std::string& message) const {
     throw ScenarioError(file_, field.line, field.key.empty() ? kTopLevel : field.key, message);
@@ -267,13 +271,15 @@ class Loader {
   // --- scalars ---------------------------------------------------------------------------------------
 
   double number(const Field& field, Sign sign = Sign::any, const std::string& unit = "") const {
-    const std::string what = fmt::format("a number{}{}", sign == Sign::positive       ? " > 0"
-                                                         : sign == Sign::non_negative ? " >= 0"
-                                                                                      : "",
+    const std::string what = fmt::format("a number{}{}",
+                                         sign == Sign::positive       ? " > 0"
+                                         : sign == Sign::non_negative ? " >= 0"
+                                                                      : "",
                                          unit.empty() ? "" : " (" + unit + ")");
     if (!field.node.IsScalar()) expected(field, what);
     const std::optional<double> value = parse_double(field.node.Scalar());
-    if (!value || (sign == Sign::positive && !(*value > 0.0)) || (sign == Sign::non_negative && !(*value >= 0.0)))
+    if (!value || (sign == Sign::positive && !(*value > 0.0)) ||
+        (sign == Sign::non_negative && !(*value >= 0.0)))
       expected(field, what);
     return *value;
   }
@@ -323,10 +329,11 @@ class Loader {
   std::array<double, N> vector(const Field& field, Sign sign, const std::string& unit) const {
     static const char* const kNames[] = {"x", "y", "z"};
     std::vector<std::string> names(kNames, kNames + N);
-    const std::string what =
-        fmt::format("a list of {} numbers [{}]{}{}", N, join(names, ", "),
-                    sign == Sign::positive ? ", each > 0" : sign == Sign::non_negative ? ", each >= 0" : "",
-                    unit.empty() ? "" : " (" + unit + ")");
+    const std::string what = fmt::format("a list of {} numbers [{}]{}{}", N, join(names, ", "),
+                                         sign == Sign::positive       ? ", each > 0"
+                                         : sign == Sign::non_negative ? ", each >= 0"
+                                                                      : "",
+                                         unit.empty() ? "" : " (" + unit + ")");
     if (!field.node.IsSequence() || field.node.size() != N) expected(field, what);
     std::array<double, N> values{};
     for (std::size_t i = 0; i < N; ++i)
@@ -420,7 +427,9 @@ Field MapFields::require(const std::string& name, const std::string& what) const
   loader_.fail(Field{self_.node, path(name), self_.line}, what + " expected (required), got nothing");
 }
 
-std::string axis_name(std::size_t axis) { return std::string(1, "xyz"[axis]); }
+std::string axis_name(std::size_t axis) {
+  return std::string(1, "xyz"[axis]);
+}
 
 // --- sections --------------------------------------------------------------------------------------------
 
@@ -429,7 +438,8 @@ void read_time(const Loader& loader, const Field& field, TimeSettings& time) {
   time.end = loader.number(map.require("end", "a number > 0 (s)"), Sign::positive, "s");
   if (const auto dt = map.get("dt")) {
     if (!(dt->node.IsScalar() && dt->node.Scalar() == "auto")) {
-      if (!dt->node.IsScalar() || !parse_double(dt->node.Scalar()) || !(*parse_double(dt->node.Scalar()) > 0.0))
+      if (!dt->node.IsScalar() || !parse_double(dt->node.Scalar()) ||
+          !(*parse_double(dt->node.Scalar()) > 0.0))
         loader.expected(*dt, "a number > 0 (s) or auto");
       time.dt = *parse_double(dt->node.Scalar());
     }
@@ -448,17 +458,21 @@ void read_domain(const Loader& loader, const Field& field, DomainSettings& domai
     const double cells = domain.size[axis] / domain.cell_size;
     const double whole = std::round(cells);
     if (whole < 1.0 || std::abs(whole * domain.cell_size - domain.size[axis]) > 1e-6 * domain.size[axis]) {
-      loader.expected(loader.child(size, size.node[axis], fmt::format("{}[{}]", size.key, axis)),
-                      fmt::format("a whole multiple of cell_size ({} m) along {}", domain.cell_size,
-                                  axis_name(axis)));
+      loader.expected(
+          loader.child(size, size.node[axis], fmt::format("{}[{}]", size.key, axis)),
+          fmt::format("a whole multiple of cell_size ({} m) along {}", domain.cell_size, axis_name(axis)));
     }
     if (whole > double(std::numeric_limits<int>::max())) total = std::numeric_limits<double>::infinity();
     domain.cells[axis] = int(std::min(whole, double(std::numeric_limits<int>::max())));
     total *= whole;
   }
-  if (total > 2147483648.0) {
+  // Face arrays hold (nx + 1)(ny + 1)(nz + 1) values at most, indexed by 32-bit ints on the device.
+  const double faces = (domain.cells[0] + 1.0) * (domain.cells[1] + 1.0) * (domain.cells[2] + 1.0);
+  if (!(total < std::numeric_limits<double>::infinity()) || faces > 2147483647.0) {
     loader.expected(map.require("cell_size", ""),
-                    fmt::format("a cell size giving at most 2^31 cells (size / cell_size gives {:.3g})", total));
+                    fmt::format("a cell size giving (nx + 1)(ny + 1)(nz + 1) <= 2^31 - 1 (size / cell_size "
+                                "gives {:.3g} cells)",
+                                total));
   }
 }
 
@@ -482,9 +496,10 @@ void read_boundaries(const Loader& loader, const Field& field, Scenario& scenari
     const bool high_periodic = scenario.boundaries[high] == BoundaryChoice::periodic;
     if (low_periodic != high_periodic) {
       const int face = low_periodic ? low : high, other = low_periodic ? high : low;
-      loader.expected(*given[face],
-                      fmt::format("periodic on both {} and {} (a pair), or neither; {} is '{}', so not periodic",
-                                  faces[low], faces[high], faces[other], to_string(scenario.boundaries[other])));
+      loader.expected(
+          *given[face],
+          fmt::format("periodic on both {} and {} (a pair), or neither; {} is '{}', so not periodic",
+                      faces[low], faces[high], faces[other], to_string(scenario.boundaries[other])));
     }
     const int cells = scenario.domain.cells[axis];
     if (low_periodic && cells > 1 && cells % 2 != 0) {
@@ -503,8 +518,9 @@ void check_time_series(const Loader& loader, const Field& field, const Expressio
     const double t = samples == 1 ? 0.0 : end * i / (samples - 1);
     const double value = expression(t);
     if (!std::isfinite(value) || (non_negative && value < 0.0)) {
-      loader.expected(field, fmt::format("a value that is finite{} for 0 <= t <= {} s (it gives {} at t = {} s)",
-                                         non_negative ? " and >= 0" : "", end, value, t));
+      loader.expected(field,
+                      fmt::format("a value that is finite{} for 0 <= t <= {} s (it gives {} at t = {} s)",
+                                  non_negative ? " and >= 0" : "", end, value, t));
     }
   }
 }
@@ -536,14 +552,25 @@ void read_wind(const Loader& loader, const Field& field, Scenario& scenario) {
     } else if (type == 1) {
       const MapFields profile(loader, *profile_field, {"type", "alpha"});
       wind.profile.type = fluid::InflowProfile::Type::power;
-      if (const auto alpha = profile.get("alpha")) wind.profile.alpha = loader.number(*alpha, Sign::non_negative);
+      if (const auto alpha = profile.get("alpha"))
+        wind.profile.alpha = loader.number(*alpha, Sign::non_negative);
     } else {
       const MapFields profile(loader, *profile_field, {"type", "roughness_length", "displacement_height"});
       wind.profile.type = fluid::InflowProfile::Type::log;
       wind.profile.roughness_length =
           loader.number(profile.require("roughness_length", "a number > 0 (m)"), Sign::positive, "m");
-      if (const auto d = profile.get("displacement_height"))
-        wind.profile.displacement_height = loader.number(*d, Sign::non_negative, "m");
+      const auto displacement = profile.get("displacement_height");
+      if (displacement)
+        wind.profile.displacement_height = loader.number(*displacement, Sign::non_negative, "m");
+      // The log law is only defined above d + z0, and the reference height is where it equals `speed`.
+      const double floor = wind.profile.displacement_height + wind.profile.roughness_length;
+      if (!(wind.reference_height > floor)) {
+        loader.expected(
+            displacement ? *displacement : profile.require("roughness_length", ""),
+            fmt::format(
+                "displacement_height + roughness_length (now {} m) below wind.reference_height ({} m)", floor,
+                wind.reference_height));
+      }
     }
   }
 }
@@ -558,7 +585,8 @@ void read_events(const Loader& loader, const Field& field, Scenario& scenario) {
     gust.duration = loader.number(map.require("duration", "a number > 0 (s)"), Sign::positive, "s");
     gust.peak_speed =
         loader.number(map.require("peak_speed", "a number >= 0 (m/s)"), Sign::non_negative, "m/s");
-    gust.center = loader.vector<3>(map.require("center", "a list of 3 numbers [x, y, z] (m)"), Sign::any, "m");
+    gust.center =
+        loader.vector<3>(map.require("center", "a list of 3 numbers [x, y, z] (m)"), Sign::any, "m");
     gust.radius = loader.number(map.require("radius", "a number > 0 (m)"), Sign::positive, "m");
     gust.travel_with_wind = true;
     if (const auto travel = map.get("travel")) {
@@ -584,15 +612,18 @@ void read_obstacles(const Loader& loader, const Field& field, Scenario& scenario
       const MapFields map(loader, body, {"name", "center", "size", "yaw"});
       fluid::SolidBox box;
       box.name = loader.text(map.require("name", "a name"), "a name");
-      box.center = loader.vector<3>(map.require("center", "a list of 3 numbers [x, y, z] (m)"), Sign::any, "m");
-      box.size = loader.vector<3>(map.require("size", "a list of 3 numbers [x, y, z] (m)"), Sign::positive, "m");
+      box.center =
+          loader.vector<3>(map.require("center", "a list of 3 numbers [x, y, z] (m)"), Sign::any, "m");
+      box.size =
+          loader.vector<3>(map.require("size", "a list of 3 numbers [x, y, z] (m)"), Sign::positive, "m");
       if (const auto yaw = map.get("yaw")) box.yaw_deg = loader.number(*yaw, Sign::any, "degrees");
       scenario.obstacles.emplace_back(box);
     } else if (shape == "cylinder") {
       const MapFields map(loader, body, {"name", "base", "radius", "height"});
       fluid::SolidCylinder cylinder;
       cylinder.name = loader.text(map.require("name", "a name"), "a name");
-      cylinder.base = loader.vector<3>(map.require("base", "a list of 3 numbers [x, y, z] (m)"), Sign::any, "m");
+      cylinder.base =
+          loader.vector<3>(map.require("base", "a list of 3 numbers [x, y, z] (m)"), Sign::any, "m");
       cylinder.radius = loader.number(map.require("radius", "a number > 0 (m)"), Sign::positive, "m");
       cylinder.height = loader.number(map.require("height", "a number > 0 (m)"), Sign::positive, "m");
       scenario.obstacles.emplace_back(cylinder);
@@ -600,7 +631,8 @@ void read_obstacles(const Loader& loader, const Field& field, Scenario& scenario
       const MapFields map(loader, body, {"name", "center", "radius"});
       fluid::SolidSphere sphere;
       sphere.name = loader.text(map.require("name", "a name"), "a name");
-      sphere.center = loader.vector<3>(map.require("center", "a list of 3 numbers [x, y, z] (m)"), Sign::any, "m");
+      sphere.center =
+          loader.vector<3>(map.require("center", "a list of 3 numbers [x, y, z] (m)"), Sign::any, "m");
       sphere.radius = loader.number(map.require("radius", "a number > 0 (m)"), Sign::positive, "m");
       scenario.obstacles.emplace_back(sphere);
     }
@@ -631,7 +663,9 @@ void read_terrain(const Loader& loader, const Field& field, Scenario& scenario) 
   scenario.terrain = std::move(terrain);
 }
 
-bool inside(double value, double low, double high) { return value >= low && value <= high; }
+bool inside(double value, double low, double high) {
+  return value >= low && value <= high;
+}
 
 std::string horizontal_extent(const DomainSettings& domain) {
   const Vec3 top = domain.max_corner();
@@ -648,9 +682,12 @@ int species_index(const Loader& loader, const Field& field, const std::vector<Sp
                                        : "a species name, one of " + join(names, ", "));
 }
 
-Species read_species(const Loader& loader, const Field& item, const std::vector<Species>& earlier) {
+// global_seed + 1 + its index seeds a species' generator unless the file gives a seed.
+Species read_species(const Loader& loader, const Field& item, const std::vector<Species>& earlier,
+                     std::uint64_t global_seed) {
   const MapFields map(loader, item, {"name", "skeleton", "material", "modes", "drag_coefficient", "canopy"});
   Species species;
+  species.modes.count_line = item.line;
   const Field name = map.require("name", "a species name");
   species.name = loader.text(name, "a species name");
   for (const Species& other : earlier)
@@ -673,6 +710,7 @@ Species read_species(const Loader& loader, const Field& item, const std::vector<
         presets[loader.word(generate.require("preset", "one of " + join(presets, " | ")), presets)];
     if (const auto height = generate.get("height"))
       species.skeleton.generate.height = loader.number(*height, Sign::non_negative, "m");
+    species.skeleton.generate.seed = global_seed + 1 + earlier.size();
     if (const auto seed = generate.get("seed")) species.skeleton.generate.seed = loader.seed(*seed);
   } else {
     species.skeleton.kind = source == "file" ? SkeletonSource::Kind::file : SkeletonSource::Kind::qsm;
@@ -685,12 +723,15 @@ Species read_species(const Loader& loader, const Field& item, const std::vector<
       species.material.youngs_modulus = loader.number(*e, Sign::positive, "Pa");
     if (const auto g = material.get("shear_modulus"))
       species.material.shear_modulus = loader.number(*g, Sign::positive, "Pa");
-    if (const auto rho = material.get("density")) species.material.density = loader.number(*rho, Sign::positive, "kg/m^3");
+    if (const auto rho = material.get("density"))
+      species.material.density = loader.number(*rho, Sign::positive, "kg/m^3");
   }
   if (const auto modes_field = map.get("modes")) {
     const MapFields modes(loader, *modes_field, {"count", "damping_ratio", "wind_samples"});
-    if (const auto count = modes.get("count"))
+    if (const auto count = modes.get("count")) {
       species.modes.count = loader.integer(*count, 1, std::numeric_limits<int>::max());
+      species.modes.count_line = count->line;
+    }
     if (const auto zeta = modes.get("damping_ratio"))
       species.modes.damping_ratio = loader.number(*zeta, Sign::non_negative);
     if (const auto samples = modes.get("wind_samples"))
@@ -712,7 +753,8 @@ Vec2 region_corner(const Loader& loader, const Field& field, const DomainSetting
   const Vec2 corner = loader.vector<2>(field, Sign::any, "m");
   const Vec3 top = domain.max_corner();
   if (!inside(corner[0], domain.origin[0], top[0]) || !inside(corner[1], domain.origin[1], top[1]))
-    loader.expected(field, "a point [x, y] inside the domain's horizontal extent " + horizontal_extent(domain));
+    loader.expected(field,
+                    "a point [x, y] inside the domain's horizontal extent " + horizontal_extent(domain));
   return corner;
 }
 
@@ -723,12 +765,15 @@ Stand read_stand(const Loader& loader, const Field& item, const Scenario& scenar
   stand.layout.species = species_index(loader, species, scenario.forest.species);
   stand.species = scenario.forest.species[stand.layout.species].name;
 
-  const MapFields region(loader, map.require("region", "a map {min: [x, y], max: [x, y]} (m)"), {"min", "max"});
-  const Vec2 min = region_corner(loader, region.require("min", "a list of 2 numbers [x, y] (m)"), scenario.domain);
+  const MapFields region(loader, map.require("region", "a map {min: [x, y], max: [x, y]} (m)"),
+                         {"min", "max"});
+  const Vec2 min =
+      region_corner(loader, region.require("min", "a list of 2 numbers [x, y] (m)"), scenario.domain);
   const Field max_field = region.require("max", "a list of 2 numbers [x, y] (m)");
   const Vec2 max = region_corner(loader, max_field, scenario.domain);
   if (!(max[0] > min[0]) || !(max[1] > min[1]))
-    loader.expected(max_field, fmt::format("a point north-east of min [{}, {}] (x and y both larger)", min[0], min[1]));
+    loader.expected(max_field,
+                    fmt::format("a point north-east of min [{}, {}] (x and y both larger)", min[0], min[1]));
   stand.layout.min = {min[0], min[1]};
   stand.layout.max = {max[0], max[1]};
 
@@ -749,7 +794,8 @@ Stand read_stand(const Loader& loader, const Field& item, const Scenario& scenar
       loader.expected(*scale.get("min"), "a number <= scale.max (1, the default)");
     }
   }
-  stand.layout.seed = 0;
+  // Unless the file gives one: the global seed plus the stand's index.
+  stand.layout.seed = scenario.seed + scenario.forest.stands.size();
   if (const auto seed = map.get("seed")) stand.layout.seed = loader.seed(*seed);
   try {
     stand.layout.validate();  // what is left to fail: too many trees for the region and spacing
@@ -762,25 +808,33 @@ Stand read_stand(const Loader& loader, const Field& item, const Scenario& scenar
 PlacedTreeSettings read_tree(const Loader& loader, const Field& item, const Scenario& scenario) {
   const MapFields map(loader, item, {"species", "position", "yaw", "scale"});
   PlacedTreeSettings tree;
-  tree.species_index = species_index(loader, map.require("species", "a species name"), scenario.forest.species);
+  tree.species_index =
+      species_index(loader, map.require("species", "a species name"), scenario.forest.species);
   tree.species = scenario.forest.species[tree.species_index].name;
 
   const Field position = map.require("position", "a list [x, y] or [x, y, z] (m)");
   if (!position.node.IsSequence() || (position.node.size() != 2 && position.node.size() != 3))
     loader.expected(position, "a list [x, y] or [x, y, z] (m)");
   for (std::size_t i = 0; i < position.node.size(); ++i) {
-    tree.position[i] =
-        loader.number(loader.child(position, position.node[i], fmt::format("{}[{}]", position.key, i)), Sign::any, "m");
+    tree.position[i] = loader.number(
+        loader.child(position, position.node[i], fmt::format("{}[{}]", position.key, i)), Sign::any, "m");
   }
   const DomainSettings& domain = scenario.domain;
   const Vec3 top = domain.max_corner();
-  if (!inside(tree.position[0], domain.origin[0], top[0]) || !inside(tree.position[1], domain.origin[1], top[1]))
-    loader.expected(position, "a position inside the domain's horizontal extent " + horizontal_extent(domain));
+  if (!inside(tree.position[0], domain.origin[0], top[0]) ||
+      !inside(tree.position[1], domain.origin[1], top[1]))
+    loader.expected(position,
+                    "a position inside the domain's horizontal extent " + horizontal_extent(domain));
   tree.height_given = position.node.size() == 3;
+  if (tree.height_given && !inside(tree.position[2], domain.origin[2], top[2])) {
+    loader.expected(loader.child(position, position.node[2], position.key + "[2]"),
+                    fmt::format("a height inside the domain's [{}, {}] m", domain.origin[2], top[2]));
+  }
   if (!tree.height_given) {
     // On the ground: the terrain surface, whose heights count from the domain floor.
     tree.position[2] = domain.origin[2];
-    if (scenario.terrain) tree.position[2] += scenario.terrain->map->height_at(tree.position[0], tree.position[1]);
+    if (scenario.terrain)
+      tree.position[2] += scenario.terrain->map->height_at(tree.position[0], tree.position[1]);
   }
   if (const auto yaw = map.get("yaw")) tree.yaw = loader.number(*yaw, Sign::any, "degrees");
   if (const auto scale = map.get("scale")) tree.scale = loader.number(*scale, Sign::positive);
@@ -788,12 +842,17 @@ PlacedTreeSettings read_tree(const Loader& loader, const Field& item, const Scen
 }
 
 void read_forest(const Loader& loader, const Field& field, Scenario& scenario) {
-  const MapFields map(loader, field, {"two_way_coupling", "species", "stands", "trees"});
+  const MapFields map(loader, field, {"two_way_coupling", "integrator", "species", "stands", "trees"});
   ForestSettings& forest = scenario.forest;
   if (const auto coupling = map.get("two_way_coupling")) forest.two_way_coupling = loader.boolean(*coupling);
+  if (const auto integrator = map.get("integrator")) {
+    forest.integrator = loader.word(*integrator, {"exact", "semi_implicit"}) == 0
+                            ? trees::ModalIntegrator::exact
+                            : trees::ModalIntegrator::semi_implicit;
+  }
   if (const auto species = map.get("species"))
     for (const Field& item : loader.items(*species, "a list of species"))
-      forest.species.push_back(read_species(loader, item, forest.species));
+      forest.species.push_back(read_species(loader, item, forest.species, scenario.seed));
   if (const auto stands = map.get("stands"))
     for (const Field& item : loader.items(*stands, "a list of stands"))
       forest.stands.push_back(read_stand(loader, item, scenario));
@@ -803,14 +862,17 @@ void read_forest(const Loader& loader, const Field& field, Scenario& scenario) {
 }
 
 void read_solver(const Loader& loader, const Field& field, SolverSettings& solver) {
-  const MapFields map(loader, field, {"pressure", "tolerance", "max_iterations", "jacobi_iterations", "advection",
-                                      "vorticity_confinement"});
+  const MapFields map(
+      loader, field,
+      {"pressure", "tolerance", "max_iterations", "jacobi_iterations", "advection", "vorticity_confinement"});
   if (const auto pressure = map.get("pressure")) {
-    const fluid::PressureSolverType solvers[] = {fluid::PressureSolverType::multigrid, fluid::PressureSolverType::cg,
+    const fluid::PressureSolverType solvers[] = {fluid::PressureSolverType::multigrid,
+                                                 fluid::PressureSolverType::cg,
                                                  fluid::PressureSolverType::jacobi};
     solver.pressure = solvers[loader.word(*pressure, {"multigrid", "cg", "jacobi"})];
   }
-  if (const auto tolerance = map.get("tolerance")) solver.tolerance = loader.number(*tolerance, Sign::positive);
+  if (const auto tolerance = map.get("tolerance"))
+    solver.tolerance = loader.number(*tolerance, Sign::positive);
   if (const auto iterations = map.get("max_iterations"))
     solver.max_iterations = loader.integer(*iterations, 1, std::numeric_limits<int>::max());
   if (const auto iterations = map.get("jacobi_iterations"))
@@ -836,7 +898,8 @@ void read_output(const Loader& loader, const Field& field, Scenario& scenario) {
   if (const auto given = map.get("directory")) directory = loader.text(*given, "a directory path");
   // Against the working directory, not the scenario folder: a run writes where it is started.
   output.directory = std::filesystem::absolute(directory).lexically_normal();
-  if (const auto interval = map.get("interval")) output.interval = loader.number(*interval, Sign::positive, "s");
+  if (const auto interval = map.get("interval"))
+    output.interval = loader.number(*interval, Sign::positive, "s");
   if (const auto vtk_field = map.get("vtk")) {
     const MapFields vtk(loader, *vtk_field, {"wind", "trees", "fields"});
     if (const auto wind = vtk.get("wind")) output.vtk_wind = loader.boolean(*wind);
@@ -864,9 +927,10 @@ void read_output(const Loader& loader, const Field& field, Scenario& scenario) {
       const Vec3 top = scenario.domain.max_corner();
       for (int axis = 0; axis < 3; ++axis) {
         if (!inside(probe.position[axis], scenario.domain.origin[axis], top[axis])) {
-          loader.expected(position, fmt::format("a position inside the domain [{}, {}] x [{}, {}] x [{}, {}] m",
-                                                scenario.domain.origin[0], top[0], scenario.domain.origin[1],
-                                                top[1], scenario.domain.origin[2], top[2]));
+          loader.expected(position,
+                          fmt::format("a position inside the domain [{}, {}] x [{}, {}] x [{}, {}] m",
+                                      scenario.domain.origin[0], top[0], scenario.domain.origin[1], top[1],
+                                      scenario.domain.origin[2], top[2]));
         }
       }
       output.probes.push_back(probe);
@@ -881,9 +945,10 @@ std::string read_whole_file(const std::filesystem::path& file) {
     throw ScenarioError(name, 0, "(file)", "a readable scenario file expected, got a directory");
   std::ifstream in(file, std::ios::binary);
   if (!in) {
-    throw ScenarioError(name, 0, "(file)",
-                        fmt::format("a readable scenario file expected, got '{}' ({})", name,
-                                    std::filesystem::exists(file, error) ? std::strerror(errno) : "no such file"));
+    throw ScenarioError(
+        name, 0, "(file)",
+        fmt::format("a readable scenario file expected, got '{}' ({})", name,
+                    std::filesystem::exists(file, error) ? std::strerror(errno) : "no such file"));
   }
   std::ostringstream text;
   text << in.rdbuf();
@@ -914,12 +979,14 @@ Scenario load_scenario(const std::filesystem::path& file) {
   }
   const Field root{documents.empty() ? YAML::Node() : documents.front(), "", 1};
   if (!root.node.IsMap()) loader.expected(root, "a map of scenario keys (scenario, time, domain, wind, ...)");
-  const MapFields top(loader, root, {"scenario", "seed", "time", "domain", "boundaries", "wind", "events",
-                                     "obstacles", "terrain", "forest", "solver", "output"});
+  const MapFields top(loader, root,
+                      {"scenario", "seed", "time", "domain", "boundaries", "wind", "events", "obstacles",
+                       "terrain", "forest", "solver", "output"});
 
   const Field scenario_name = top.require("scenario", "a scenario name");
   scenario.name = loader.text(scenario_name, "a scenario name");
-  if (scenario.name.find_first_of("/\\") != std::string::npos || scenario.name == "." || scenario.name == ".." ||
+  if (scenario.name.find_first_of("/\\") != std::string::npos || scenario.name == "." ||
+      scenario.name == ".." ||
       std::any_of(scenario.name.begin(), scenario.name.end(), [](unsigned char c) { return c < 0x20; })) {
     // The name becomes a folder name (out/<scenario>).
     loader.expected(scenario_name, "a scenario name usable as a folder name (no / or \\, not . or ..)");
@@ -934,8 +1001,22 @@ Scenario load_scenario(const std::filesystem::path& file) {
   if (const auto terrain = top.get("terrain")) read_terrain(loader, *terrain, scenario);
   if (const auto forest = top.get("forest")) read_forest(loader, *forest, scenario);
   if (const auto solver = top.get("solver")) read_solver(loader, *solver, scenario.solver);
-  read_output(loader, top.get("output").value_or(Field{YAML::Node(YAML::NodeType::Null), "output", 1}), scenario);
+  read_output(loader, top.get("output").value_or(Field{YAML::Node(YAML::NodeType::Null), "output", 1}),
+              scenario);
   return scenario;
+}
+
+void check_species_skeleton(const Scenario& scenario, int species_index, int skeleton_nodes) {
+  const Species& species = scenario.forest.species.at(std::size_t(species_index));
+  // A skeleton of n nodes, root clamped, has 6 (n - 1) DOFs; the modal analysis keeps fewer modes than that.
+  const long dofs = 6L * (skeleton_nodes - 1);
+  if (species.modes.count >= dofs) {
+    throw ScenarioError(
+        scenario.file.string(), species.modes.count_line,
+        fmt::format("forest.species[{}].modes.count", species_index),
+        fmt::format("at most {} modes for this skeleton of {} nodes ({} DOFs) expected, got '{}'",
+                    std::max(0L, dofs - 1), skeleton_nodes, dofs, species.modes.count));
+  }
 }
 
 }  // namespace fw::io

@@ -38,6 +38,7 @@
 #include "fluid/WindSettings.hpp"
 #include "io/Expression.hpp"
 #include "trees/ForestLayout.hpp"
+#include "trees/ForestReference.hpp"
 #include "trees/Material.hpp"
 #include "trees/TreeGenerator.hpp"
 
@@ -68,9 +69,9 @@ enum class BoundaryChoice { automatic, inflow, outflow, slip, no_slip, periodic 
 std::string to_string(BoundaryChoice choice);  // the word used in the file
 
 struct TimeSettings {
-  double end = 0.0;           ///< s, > 0: the run covers [0, end]
-  std::optional<double> dt;   ///< s, > 0: fixed step; nullopt for "auto"
-  double cfl = 0.8;           ///< > 0, used with auto: dt = cfl * h / max|u|
+  double end = 0.0;          ///< s, > 0: the run covers [0, end]
+  std::optional<double> dt;  ///< s, > 0: fixed step; nullopt for "auto"
+  double cfl = 0.8;          ///< > 0, used with auto: dt = cfl * h / max|u|
 };
 
 struct DomainSettings {
@@ -96,22 +97,22 @@ struct WindSource {
 
 /// A gust: a Gaussian ball of extra wind with a 1-cos envelope over [start, start + duration].
 struct GustEvent {
-  double start = 0.0;                 ///< s, >= 0
-  double duration = 0.0;              ///< s, > 0
-  double peak_speed = 0.0;            ///< m/s, >= 0, at the envelope's peak and the ball's centre
-  std::array<double, 3> center{};     ///< m, at `start`
-  double radius = 0.0;                ///< m, > 0
-  bool travel_with_wind = true;       ///< `travel: with_wind` in the file
-  std::array<double, 3> travel{};     ///< m/s; with_wind: wind_vector(start), resolved at load
+  double start = 0.0;              ///< s, >= 0
+  double duration = 0.0;           ///< s, > 0
+  double peak_speed = 0.0;         ///< m/s, >= 0, at the envelope's peak and the ball's centre
+  std::array<double, 3> center{};  ///< m, at `start`
+  double radius = 0.0;             ///< m, > 0
+  bool travel_with_wind = true;    ///< `travel: with_wind` in the file
+  std::array<double, 3> travel{};  ///< m/s; with_wind: wind_vector(start), resolved at load
 };
 
 /// Shapes the wind grid voxelises (fluid/SolidMap.hpp), with the same parameters.
 using Obstacle = std::variant<fluid::SolidBox, fluid::SolidCylinder, fluid::SolidSphere>;
 
 struct TerrainSettings {
-  std::filesystem::path heightmap;  ///< resolved against the scenario folder
-  double cell_size = 0.0;           ///< m between samples (PGM; ignored for ESRI grids, 0 when not given)
-  double max_height = 0.0;          ///< m for the PGM's maxval (PGM; ignored for ESRI grids)
+  std::filesystem::path heightmap;      ///< resolved against the scenario folder
+  double cell_size = 0.0;               ///< m between samples (PGM; ignored for ESRI grids, 0 when not given)
+  double max_height = 0.0;              ///< m for the PGM's maxval (PGM; ignored for ESRI grids)
   std::optional<fluid::Heightmap> map;  ///< the heightmap, read and checked at load (always set)
 };
 
@@ -127,6 +128,7 @@ struct ModeSettings {
   int count = 20;               ///< lowest modes kept, >= 1
   double damping_ratio = 0.05;  ///< zeta per mode, >= 0
   int wind_samples = 3;         ///< height bands with their own projection, 1..FW_MAX_TREE_SAMPLES
+  int count_line = 0;           ///< line of `count` in the file (of the species entry when not given)
 };
 
 struct CanopySettings {
@@ -145,22 +147,24 @@ struct Species {
 
 /// A stand: trees placed by trees::place_stand (yaws uniform at random, scales uniform in [min, max]).
 struct Stand {
-  std::string species;     ///< a Species::name
+  std::string species;      ///< a Species::name
   trees::StandSpec layout;  ///< layout.species is the index into ForestSettings::species; region in m
 };
 
 /// One tree placed by hand.
 struct PlacedTreeSettings {
-  std::string species;                 ///< a Species::name
-  int species_index = 0;               ///< into ForestSettings::species
-  std::array<double, 3> position{};    ///< m; z from the file, else the ground (terrain) under (x, y)
-  bool height_given = false;           ///< whether the file gave z
-  double yaw = 0.0;                    ///< degrees, counter-clockwise about +z seen from above
-  double scale = 1.0;                  ///< > 0
+  std::string species;               ///< a Species::name
+  int species_index = 0;             ///< into ForestSettings::species
+  std::array<double, 3> position{};  ///< m; z from the file, else the ground (terrain) under (x, y)
+  bool height_given = false;         ///< whether the file gave z
+  double yaw = 0.0;                  ///< degrees, counter-clockwise about +z seen from above
+  double scale = 1.0;                ///< > 0
 };
 
 struct ForestSettings {
   bool two_way_coupling = true;  ///< trees' drag returned to the wind grid
+  /// The modal time step: exact for the force held over a step, or Diener's semi-implicit Euler.
+  trees::ModalIntegrator integrator = trees::ModalIntegrator::exact;
   std::vector<Species> species;
   std::vector<Stand> stands;
   std::vector<PlacedTreeSettings> trees;
@@ -176,7 +180,7 @@ struct SolverSettings {
 };
 
 struct Probe {
-  std::string name;                 ///< [A-Za-z0-9_]+, unique
+  std::string name;                  ///< [A-Za-z0-9_]+, unique
   std::array<double, 3> position{};  ///< m, inside the domain (faces included)
 };
 
@@ -186,7 +190,8 @@ struct OutputSettings {
   bool vtk_wind = true;
   bool vtk_trees = true;
   /// Subset of velocity, pressure, speed, vorticity, solid, canopy_density, in the file's order.
-  std::vector<std::string> vtk_fields{"velocity", "pressure", "speed", "vorticity", "solid", "canopy_density"};
+  std::vector<std::string> vtk_fields{"velocity",  "pressure", "speed",
+                                      "vorticity", "solid",    "canopy_density"};
   bool vdb_enabled = false;
   std::vector<std::string> vdb_grids{"vel", "speed"};  ///< subset of vel, speed, in the file's order
   std::vector<Probe> probes;
@@ -225,5 +230,9 @@ struct Scenario {
 
 /// Reads and validates a scenario file. Throws ScenarioError (see the header comment) for every problem.
 Scenario load_scenario(const std::filesystem::path& file);
+
+/// The checks that need a species' skeleton, once it is built or read (`check` and `run` both call this):
+/// modes.count must stay below the skeleton's 6 (nodes - 1) DOFs. Throws ScenarioError at modes.count.
+void check_species_skeleton(const Scenario& scenario, int species_index, int skeleton_nodes);
 
 }  // namespace fw::io

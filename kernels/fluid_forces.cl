@@ -126,27 +126,30 @@ __kernel void diffuse(const FwGrid g, const FwStep s, __global const float* prof
  * out = q / (1 + dt k_face |u|_face), which never reverses or amplifies the flow for any dt.
  * k_face is the mean of the two cells beside the face (the one inside at the domain's edge); |u|_face takes
  * the face's own component and the other two averaged from the four faces of those two cells. Reads the
- * old u, v, w and writes component c to `out`. Reference: fluid/ReferenceStages.cpp canopy_drag. */
-__kernel void apply_canopy_drag(const FwGrid g, const FwStep s, const int c, __global const float* drag,
-                                __global const float* u, __global const float* v, __global const float* w,
-                                __global float* out) {
-  const int j = get_global_id(1), k = get_global_id(2);
-  const int ex = face_extent(&g, c, 0);
-  const int n = axis_cells(&g, c);
+ * old u, v, w and writes component c to `out`, on the faces first .. first + count - 1 of component c only:
+ * the host passes the box of faces next to a cell of non-zero drag (a forest covers a small part of the
+ * domain), and copies them back with copy_face_box. Global range: (ceil(count.x / FW_ROW_CHUNK), count.y,
+ * count.z). Reference: fluid/ReferenceStages.cpp canopy_drag. */
+FW_INLINE void canopy_drag_box(const FwGrid* g, const float dt, const int c, const int4 first, const int4 count,
+                               __global const float* drag, __global const float* u, __global const float* v,
+                               __global const float* w, __global float* out) {
+  const int j = first.y + (int)get_global_id(1), k = first.z + (int)get_global_id(2);
+  const int n = axis_cells(g, c);
   /* The face's own component q and the other two, a (axis d1) and b (axis d2). */
   const int d1 = c == 0 ? 1 : 0, d2 = c == 2 ? 1 : 2;
   __global const float* q = c == 0 ? u : (c == 1 ? v : w);
   __global const float* a = d1 == 0 ? u : v;
   __global const float* b = d2 == 1 ? v : w;
-  for (int i = FW_ROW_BEGIN; i < FW_ROW_END(ex); ++i) {
+  for (int r = FW_ROW_BEGIN; r < FW_ROW_END(count.x); ++r) {
+    const int i = first.x + r;
     int lo[3] = {i, j, k}, hi[3] = {i, j, k};
     lo[c] = max(lo[c] - 1, 0);
     hi[c] = min(hi[c], n - 1);
     const float kf =
-        0.5f * (drag[cell_index(&g, lo[0], lo[1], lo[2])] + drag[cell_index(&g, hi[0], hi[1], hi[2])]);
-    const int face = face_index(&g, c, i, j, k);
+        0.5f * (drag[cell_index(g, lo[0], lo[1], lo[2])] + drag[cell_index(g, hi[0], hi[1], hi[2])]);
+    const int face = face_index(g, c, i, j, k);
     const float qf = q[face];
-    if (kf == 0.0f) { /* most of the domain: a plain copy */
+    if (kf == 0.0f) { /* gaps between the trees: a plain copy */
       out[face] = qf;
       continue;
     }
@@ -158,11 +161,36 @@ __kernel void apply_canopy_drag(const FwGrid g, const FwStep s, const int c, __g
     lo2[d2] += 1;
     hi2[d2] += 1;
     const float ma =
-        0.25f * (a[face_index(&g, d1, lo[0], lo[1], lo[2])] + a[face_index(&g, d1, lo1[0], lo1[1], lo1[2])] +
-                 a[face_index(&g, d1, hi[0], hi[1], hi[2])] + a[face_index(&g, d1, hi1[0], hi1[1], hi1[2])]);
+        0.25f * (a[face_index(g, d1, lo[0], lo[1], lo[2])] + a[face_index(g, d1, lo1[0], lo1[1], lo1[2])] +
+                 a[face_index(g, d1, hi[0], hi[1], hi[2])] + a[face_index(g, d1, hi1[0], hi1[1], hi1[2])]);
     const float mb =
-        0.25f * (b[face_index(&g, d2, lo[0], lo[1], lo[2])] + b[face_index(&g, d2, lo2[0], lo2[1], lo2[2])] +
-                 b[face_index(&g, d2, hi[0], hi[1], hi[2])] + b[face_index(&g, d2, hi2[0], hi2[1], hi2[2])]);
-    out[face] = qf / (1.0f + s.dt * kf * sqrt(qf * qf + ma * ma + mb * mb));
+        0.25f * (b[face_index(g, d2, lo[0], lo[1], lo[2])] + b[face_index(g, d2, lo2[0], lo2[1], lo2[2])] +
+                 b[face_index(g, d2, hi[0], hi[1], hi[2])] + b[face_index(g, d2, hi2[0], hi2[1], hi2[2])]);
+    out[face] = qf / (1.0f + dt * kf * sqrt(qf * qf + ma * ma + mb * mb));
   }
+}
+
+/* One kernel a component, so that c is a literal and the index arrays above fold into registers. */
+__kernel void canopy_drag_u(const FwGrid g, const FwStep s, const int4 first, const int4 count,
+                            __global const float* drag, __global const float* u, __global const float* v,
+                            __global const float* w, __global float* out) {
+  canopy_drag_box(&g, s.dt, 0, first, count, drag, u, v, w, out);
+}
+__kernel void canopy_drag_v(const FwGrid g, const FwStep s, const int4 first, const int4 count,
+                            __global const float* drag, __global const float* u, __global const float* v,
+                            __global const float* w, __global float* out) {
+  canopy_drag_box(&g, s.dt, 1, first, count, drag, u, v, w, out);
+}
+__kernel void canopy_drag_w(const FwGrid g, const FwStep s, const int4 first, const int4 count,
+                            __global const float* drag, __global const float* u, __global const float* v,
+                            __global const float* w, __global float* out) {
+  canopy_drag_box(&g, s.dt, 2, first, count, drag, u, v, w, out);
+}
+
+/* to = from on the faces first .. first + count - 1 of component c; the range as for canopy_drag_*. */
+__kernel void copy_face_box(const FwGrid g, const int c, const int4 first, const int4 count,
+                            __global const float* from, __global float* to) {
+  const int j = first.y + (int)get_global_id(1), k = first.z + (int)get_global_id(2);
+  const int row = face_index(&g, c, first.x, j, k);
+  for (int r = FW_ROW_BEGIN; r < FW_ROW_END(count.x); ++r) to[row + r] = from[row + r];
 }

@@ -104,6 +104,7 @@ int run_check(const std::string& scenario_path) {
   for (std::size_t i = 0; i < scenario.forest.species.size(); ++i) {
     const io::Species& species = scenario.forest.species[i];
     const int nodes = skeleton_nodes(species);
+    io::check_species_skeleton(scenario, int(i), nodes);
     const int modes = species.modes.count;
     std::cout << fmt::format("species {}: {} nodes, {} modes, {} wind samples, {} trees\n", species.name,
                              nodes, modes, species.modes.wind_samples, trees_per_species[i]);

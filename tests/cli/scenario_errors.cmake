@@ -66,6 +66,13 @@ expect_bad(missing_skeleton "${WORK}/missing_skeleton.yaml:8" "forest.species[0]
            "{file: tree.tree}" "{file: no_such.tree}")
 # A skeleton file that exists but does not parse: the error names the .tree file's line and column.
 expect_bad(unreadable_skeleton "${WORK}/broken.tree:3" "z" "{file: tree.tree}" "{file: broken.tree}")
+# The 3-node skeleton has 12 DOFs: 12 modes are one too many, found once the skeleton is read.
+expect_bad(too_many_modes "${WORK}/too_many_modes.yaml:9" "forest.species[0].modes.count"
+           "modes: {count: 4}" "modes: {count: 12}")
+# A log profile whose reference height (10 m, the default) lies below d + z0.
+expect_bad(log_profile "${WORK}/log_profile.yaml:4" "wind.profile.displacement_height"
+           "wind: {speed: 5.0, direction: 270.0}"
+           "wind: {speed: 5.0, direction: 270.0, profile: {type: log, roughness_length: 0.5, displacement_height: 12}}")
 
 # The example scenarios are valid.
 file(GLOB examples "${SCENARIOS}/*.yaml")

@@ -45,6 +45,7 @@ struct ScenarioText {
   std::string dt = "auto";
   double end = 6.0;
   bool coupling = true;
+  std::string integrator = "exact";
   std::string obstacles;  // YAML list items, or empty
   std::string trees = "    - {species: shrub, position: [24, 16], yaw: 0.0}\n";
   std::string stands;
@@ -59,7 +60,8 @@ struct ScenarioText {
       << "wind: {speed: " << speed << ", direction: " << direction << ", reference_height: 10.0, "
       << "profile: {type: uniform}}\n";
     if (!obstacles.empty()) s << "obstacles:\n" << obstacles;
-    s << "forest:\n  two_way_coupling: " << (coupling ? "true" : "false") << "\n  species:\n"
+    s << "forest:\n  two_way_coupling: " << (coupling ? "true" : "false") << "\n  integrator: " << integrator
+      << "\n  species:\n"
       << "    - name: shrub\n      skeleton: {file: shrub.tree}\n"
       << "      modes: {count: 6, damping_ratio: 0.05, wind_samples: 2}\n"
       << "      canopy: {leaf_area_index: 4.0, drag_coefficient: 0.3}\n";
@@ -307,4 +309,32 @@ TEST_CASE("Simulation: a runaway time step stops the run, names step and field, 
   CHECK(std::filesystem::exists(out / "wind/wind_000000.vti"));
   CHECK(read_text(out / "wind.pvd").find("wind/wind_000000.vti") != std::string::npos);
   CHECK(read_text(out / "run.json").find("\"status\":\"failed\"") != std::string::npos);
+}
+
+TEST_CASE("Simulation: semi-implicit Euler past its stable step stops at step 1 naming the tree modes",
+          "[simulation]") {
+  auto* cc = fw::test::device_or_skip();
+  if (!cc) return;
+  TempDir dir("fw_sim");
+  ScenarioText text;
+  text.integrator = "semi_implicit";
+  text.dt = "0.05";  // the shrub's sixth mode is far faster than 2 / 0.05 = 40 rad/s
+  std::string message;
+  try {
+    run_in(*cc, dir, text, "unstable");
+  } catch (const fw::host::SimulationError& e) {
+    message = e.what();
+  }
+  INFO(message);
+  CHECK(message.find("step 1 ") != std::string::npos);
+  CHECK(message.find("field tree modes") != std::string::npos);
+  CHECK(message.find("forest.integrator: exact") != std::string::npos);
+  const auto out = std::filesystem::path(dir.path()) / "unstable";
+  CHECK(std::filesystem::exists(out / "wind/wind_000000.vti"));
+  CHECK(read_text(out / "run.json").find("\"status\":\"failed\"") != std::string::npos);
+  // The same scenario with the exact step runs to the end.
+  text.integrator = "exact";
+  fw::host::RunSummary summary;
+  run_in(*cc, dir, text, "exact", &summary);
+  CHECK(summary.simulated_time == Approx(text.end).margin(1e-6));  // margin: float time accumulation
 }

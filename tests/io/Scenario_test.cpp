@@ -23,8 +23,10 @@ using fw::io::Scenario;
 
 namespace {
 
-// The reference example of DESIGN.md ("File formats"), verbatim: its heightmap hills.pgm is written next to
-// it by the test, and its skeleton is generated, so it needs no other file.
+// The reference example of DESIGN.md ("File formats"), verbatim but for one value: its reference_height of 10
+// m lies below displacement_height + roughness_length = 12.8 m, where the log law gives no wind, which the
+// loader rejects (see "a log profile whose reference height..." below), so it reads 20 m here. Its heightmap
+// hills.pgm is written next to it by the test, and its skeleton is generated, so it needs no other file.
 const std::string kDesignExample =
     R"yaml(# SI units; x east, y north, z up; directions in degrees the wind blows FROM, clockwise from north
 scenario: storm_over_forest
@@ -36,7 +38,7 @@ boundaries: {west: auto, east: auto, south: auto, north: auto, ground: no_slip, 
 wind:
   speed: "12 + 10*min(1, max(0, (t-20)/40))"          # m/s at reference_height
   direction: "250 + 20*min(1, max(0, (t-20)/40))"
-  reference_height: 10.0
+  reference_height: 20.0
   profile: {type: log, roughness_length: 0.8, displacement_height: 12.0}   # or {type: power, alpha: 0.2} | {type: uniform}
 events:
   - gust: {start: 70.0, duration: 6.0, peak_speed: 14.0, center: [120, 120, 30], radius: 60.0, travel: with_wind}
@@ -184,11 +186,11 @@ TEST_CASE("load_scenario: the example of DESIGN.md parses and every field lands 
   CHECK(s.wind.direction(0.0) == 250.0);
   CHECK(s.wind.direction(40.0) == 260.0);
   CHECK(s.wind.direction(90.0) == 270.0);
-  CHECK(s.wind.reference_height == 10.0);
+  CHECK(s.wind.reference_height == 20.0);
   CHECK(s.wind.profile.type == fw::fluid::InflowProfile::Type::log);
   CHECK(s.wind.profile.roughness_length == 0.8);
   CHECK(s.wind.profile.displacement_height == 12.0);
-  CHECK(s.wind.profile.reference_height == 10.0);
+  CHECK(s.wind.profile.reference_height == 20.0);
   // Tolerance: sin and cos of 250 degrees to 1e-12. From 250 degrees at 12 m/s the wind blows toward 70
   // degrees: 12 * (sin 70, cos 70) = (11.27631145, 4.10424172).
   check_vector(s.wind_vector(0.0), {11.27631145, 4.10424172, 0.0}, 1e-8);
@@ -337,6 +339,7 @@ obstacles:
 terrain: {{heightmap: ground.asc}}
 forest:
   two_way_coupling: false
+  integrator: semi_implicit
   species:
     - name: willow
       skeleton: {{file: willow.tree}}
@@ -413,6 +416,7 @@ output:
 
   const fw::io::ForestSettings& forest = s.forest;
   CHECK_FALSE(forest.two_way_coupling);
+  CHECK(forest.integrator == fw::trees::ModalIntegrator::semi_implicit);
   REQUIRE(forest.species.size() == 2);
   const fw::io::Species& willow = forest.species[0];
   CHECK(willow.skeleton.kind == fw::io::SkeletonSource::Kind::file);
@@ -533,6 +537,7 @@ forest:
   CHECK_FALSE(s.terrain.has_value());
 
   CHECK(s.forest.two_way_coupling);
+  CHECK(s.forest.integrator == fw::trees::ModalIntegrator::exact);
   REQUIRE(s.forest.species.size() == 1);
   const fw::io::Species& oak = s.forest.species[0];
   CHECK(oak.skeleton.generate.preset == "broadleaf");
@@ -967,5 +972,108 @@ TEST_CASE("load_scenario: a file that cannot be read reports line 0 and key (fil
     CHECK(error.line() == 0);
     CHECK(error.key() == "(file)");
     CHECK_THAT(std::string(error.what()), Contains("got a directory"));
+  }
+}
+
+TEST_CASE("load_scenario: a log profile whose reference height is not above d + z0 names the profile key",
+          "[scenario]") {
+  fw::test::TempDir dir("fw_scenario");
+  // DESIGN.md's own combination: 10 m reference, d = 12 m, z0 = 0.8 m.
+  expect_error(dir, "log_below_displacement",
+               "scenario: errors\n"
+               "time: {end: 10.0}\n"
+               "domain: {size: [40, 20, 30], cell_size: 2.0}\n"
+               "wind:\n"
+               "  speed: 4.0\n"
+               "  direction: 270\n"
+               "  reference_height: 10.0\n"
+               "  profile: {type: log, roughness_length: 0.8, displacement_height: 12.0}\n",
+               8, "wind.profile.displacement_height", "(now 12.8 m) below wind.reference_height (10 m)");
+  // Without a displacement height the roughness length alone is checked, and named.
+  expect_error(dir, "log_rough",
+               "scenario: errors\n"
+               "time: {end: 10.0}\n"
+               "domain: {size: [40, 20, 30], cell_size: 2.0}\n"
+               "wind:\n"
+               "  speed: 4.0\n"
+               "  direction: 270\n"
+               "  reference_height: 2.0\n"
+               "  profile:\n"
+               "    type: log\n"
+               "    roughness_length: 3.0\n",
+               10, "wind.profile.roughness_length", "(now 3 m) below wind.reference_height (2 m)");
+}
+
+TEST_CASE("load_scenario: a tree's height outside the domain names position[2]", "[scenario]") {
+  fw::test::TempDir dir("fw_scenario");
+  expect_error(dir, "tree_above",
+               kBase +
+                   "forest:\n"
+                   "  species:\n"
+                   "    - {name: stick, skeleton: {generate: {preset: palm}}}\n"
+                   "  trees:\n"
+                   "    - {species: stick, position: [10, 10, 12]}\n",
+               9, "forest.trees[0].position[2]", "a height inside the domain's [0, 10] m");
+}
+
+TEST_CASE("load_scenario: stands and generated skeletons take their default seeds from the global seed",
+          "[scenario]") {
+  fw::test::TempDir dir("fw_scenario");
+  auto forest = [](const std::string& seed_line) {
+    return seed_line + kBase.substr(kBase.find('\n') + 1) +
+           "forest:\n"
+           "  species:\n"
+           "    - {name: a, skeleton: {generate: {preset: palm}}}\n"
+           "    - {name: b, skeleton: {generate: {preset: palm, seed: 99}}}\n"
+           "  stands:\n"
+           "    - {species: a, region: {min: [0, 0], max: [40, 20]}, spacing: 8.0}\n"
+           "    - {species: b, region: {min: [0, 0], max: [40, 20]}, spacing: 8.0, seed: 5}\n"
+           "    - {species: b, region: {min: [0, 0], max: [40, 20]}, spacing: 8.0}\n";
+  };
+  const Scenario unseeded = fw::io::load_scenario(dir.write("unseeded.yaml", "scenario: s0\n" + forest("")));
+  const Scenario seeded =
+      fw::io::load_scenario(dir.write("seeded.yaml", "scenario: s7\nseed: 7\n" + forest("")));
+  // Without a global seed (0): species k generates with seed 1 + k, stand k is laid out with seed k.
+  CHECK(unseeded.forest.species[0].skeleton.generate.seed == 1);
+  CHECK(unseeded.forest.stands[0].layout.seed == 0);
+  CHECK(unseeded.forest.stands[2].layout.seed == 2);
+  // With seed 7 every default moves with it; seeds the file gives stay as written.
+  CHECK(seeded.forest.species[0].skeleton.generate.seed == 8);
+  CHECK(seeded.forest.species[1].skeleton.generate.seed == 99);
+  CHECK(seeded.forest.stands[0].layout.seed == 7);
+  CHECK(seeded.forest.stands[1].layout.seed == 5);
+  CHECK(seeded.forest.stands[2].layout.seed == 9);
+}
+
+TEST_CASE("check_species_skeleton: more modes than the skeleton has DOFs names modes.count's line",
+          "[scenario]") {
+  fw::test::TempDir dir("fw_scenario");
+  const std::string text = kBase +
+                           "forest:\n"                                                     // 5
+                           "  species:\n"                                                  // 6
+                           "    - name: stick\n"                                           // 7
+                           "      skeleton: {generate: {preset: palm}}\n"                  // 8
+                           "      modes:\n"                                                // 9
+                           "        count: 12\n"                                           // 10
+                           "    - {name: plain, skeleton: {generate: {preset: palm}}}\n";  // 11
+  const std::string path = dir.write("modes.yaml", text);
+  const Scenario s = fw::io::load_scenario(path);
+  // 3 nodes, root clamped: 12 DOFs, so at most 11 modes.
+  try {
+    fw::io::check_species_skeleton(s, 0, 3);
+    FAIL("check_species_skeleton accepted 12 modes for 12 DOFs");
+  } catch (const fw::io::ScenarioError& error) {
+    CHECK(error.line() == 10);
+    CHECK(error.key() == "forest.species[0].modes.count");
+    CHECK_THAT(std::string(error.what()),
+               Contains("at most 11 modes for this skeleton of 3 nodes (12 DOFs)"));
+  }
+  CHECK_NOTHROW(fw::io::check_species_skeleton(s, 0, 4));
+  // The default count (20) with no modes key: the species entry's line.
+  try {
+    fw::io::check_species_skeleton(s, 1, 3);
+    FAIL("check_species_skeleton accepted 20 modes for 12 DOFs");
+  } catch (const fw::io::ScenarioError& error) {
+    CHECK(error.line() == 11);
   }
 }

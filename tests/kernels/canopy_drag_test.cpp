@@ -1,4 +1,4 @@
-// Canopy drag: the apply_canopy_drag kernel against fluid::reference::canopy_drag, and its effect in a
+// Canopy drag: the canopy_drag_{u,v,w} kernels against fluid::reference::canopy_drag, and its effect in a
 // channel flow on the device (WindGrid::set_canopy).
 #include <catch2/catch.hpp>
 
@@ -56,12 +56,12 @@ TEST_CASE("canopy drag: the kernel matches the CPU reference on a random field",
   stages.set_step(s);
   const auto vel = test::random_velocity(spec, 8.0, 31);
   const auto drag = random_drag(spec.cell_count(), 7);
-  auto dvel = stages.allocate_velocity(), out = stages.allocate_velocity();
+  auto dvel = stages.allocate_velocity(), scratch = stages.allocate_velocity();
   test::upload(*cc, vel, dvel);
   cl::Buffer ddrag = cc->buffer(drag.size() * sizeof(float));
   test::upload(*cc, drag, ddrag);
-  for (int c = 0; c < 3; ++c) stages.enqueue_canopy_drag(c, ddrag, dvel, out.component(c));
-  const auto device = test::download(*cc, out, spec);
+  stages.enqueue_canopy_drag(ddrag, host::nonzero_cell_box(spec, drag), dvel, scratch);
+  const auto device = test::download(*cc, dvel, spec);
   const auto expected = ref::canopy_drag(spec, vel, drag, 0.4);
   for (int c = 0; c < 3; ++c) {
     INFO("component " << c);
@@ -76,6 +76,48 @@ TEST_CASE("canopy drag: the kernel matches the CPU reference on a random field",
     }
     CHECK(slowed > expected.component(c).size() / 2);
   }
+}
+
+TEST_CASE("canopy drag: only the faces of the drag's box change, and they match the reference", "[canopy]") {
+  auto* cc = test::device_or_skip();
+  if (!cc) return;
+  const auto spec = test::mixed_boundary_spec();
+  host::FluidStages stages(*cc, spec);
+  FwStep s{};
+  s.dt = 0.3f;
+  stages.set_step(s);
+  const auto vel = test::random_velocity(spec, 6.0, 5);
+  // Drag in a block of cells away from every wall, and in one cell on the east wall's far corner.
+  std::vector<float> drag(spec.cell_count(), 0.0f);
+  for (int k = 1; k < 3; ++k)
+    for (int j = 2; j < 4; ++j)
+      for (int i = 1; i < 3; ++i) drag[std::size_t(i + spec.nx * (j + spec.ny * k))] = 0.4f;
+  const host::CellBox block = host::nonzero_cell_box(spec, drag);
+  CHECK(block.first == std::array<int, 3>{1, 2, 1});
+  CHECK(block.count == std::array<int, 3>{2, 2, 2});
+  drag[spec.cell_count() - 1] = 0.2f;
+  const host::CellBox box = host::nonzero_cell_box(spec, drag);
+  CHECK(box.first == std::array<int, 3>{1, 2, 1});
+  CHECK(box.count == std::array<int, 3>{spec.nx - 1, spec.ny - 2, spec.nz - 1});
+  CHECK(host::nonzero_cell_box(spec, std::vector<float>(spec.cell_count(), 0.0f)).empty());
+
+  auto dvel = stages.allocate_velocity(), scratch = stages.allocate_velocity();
+  test::upload(*cc, vel, dvel);
+  cl::Buffer ddrag = cc->buffer(drag.size() * sizeof(float));
+  test::upload(*cc, drag, ddrag);
+  stages.enqueue_canopy_drag(ddrag, box, dvel, scratch);
+  const auto device = test::download(*cc, dvel, spec);
+  const auto expected = ref::canopy_drag(spec, vel, drag, 0.3);
+  std::size_t changed = 0;
+  for (int c = 0; c < 3; ++c) {
+    INFO("component " << c);
+    CHECK(face_relative_error(device.component(c), expected.component(c)) < kDragTolerance);
+    for (std::size_t f = 0; f < vel.component(c).size(); ++f)
+      changed += device.component(c)[f] != vel.component(c)[f];
+  }
+  // The block's 8 cells touch 3 x 12 faces, the corner cell 3 x 2 more (some of them are wall faces).
+  CHECK(changed >= 30);
+  CHECK(changed <= 42);
 }
 
 TEST_CASE("canopy drag: the reference is u / (1 + dt k |u|) in a uniform field", "[canopy]") {
