@@ -129,10 +129,9 @@ void FluidStages::enqueue_canopy_drag(cl::Buffer& drag_density, const CellBox& b
   // Faces of component c next to the box's cells: one more along c (the far face of the last cell).
   auto face_box = [&](int c) {
     cl_int4 first{}, count{};
-    const int cells[3] = {spec_.nx, spec_.ny, spec_.nz};
     for (int a = 0; a < 3; ++a) {
       first.s[a] = box.first[a];
-      count.s[a] = a == c ? std::min(box.first[a] + box.count[a], cells[a]) - box.first[a] + 1 : box.count[a];
+      count.s[a] = box.count[a] + (a == c ? 1 : 0);
     }
     return std::pair{first, count};
   };

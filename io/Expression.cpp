@@ -32,7 +32,8 @@ std::string describe(const mu::Parser::exception_type& error) {
   if (error.GetPos() >= 0 && message.find("position") == std::string::npos)
     message += fmt::format(" at position {}", error.GetPos());
   if (error.GetCode() == mu::ecUNASSIGNABLE_TOKEN)
-    message += fmt::format(" (unknown variable or function \"{}\"; the only variable is t)", error.GetToken());
+    message +=
+        fmt::format(" (unknown variable or function \"{}\"; the only variable is t)", error.GetToken());
   return message;
 }
 

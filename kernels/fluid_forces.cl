@@ -130,9 +130,9 @@ __kernel void diffuse(const FwGrid g, const FwStep s, __global const float* prof
  * the host passes the box of faces next to a cell of non-zero drag (a forest covers a small part of the
  * domain), and copies them back with copy_face_box. Global range: (ceil(count.x / FW_ROW_CHUNK), count.y,
  * count.z). Reference: fluid/ReferenceStages.cpp canopy_drag. */
-FW_INLINE void canopy_drag_box(const FwGrid* g, const float dt, const int c, const int4 first, const int4 count,
-                               __global const float* drag, __global const float* u, __global const float* v,
-                               __global const float* w, __global float* out) {
+FW_INLINE void canopy_drag_box(const FwGrid* g, const float dt, const int c, const int4 first,
+                               const int4 count, __global const float* drag, __global const float* u,
+                               __global const float* v, __global const float* w, __global float* out) {
   const int j = first.y + (int)get_global_id(1), k = first.z + (int)get_global_id(2);
   const int n = axis_cells(g, c);
   /* The face's own component q and the other two, a (axis d1) and b (axis d2). */
