@@ -660,6 +660,18 @@ void read_terrain(const Loader& loader, const Field& field, Scenario& scenario) 
   } catch (const std::exception& error) {
     loader.expected(heightmap, fmt::format("a PGM or ESRI ASCII grid ({})", error.what()));
   }
+  if (pgm) {
+    // An image has no georeference: its south-west corner goes to the domain's, wherever the origin is.
+    const fluid::Heightmap& image = *terrain.map;
+    std::vector<double> heights;
+    heights.reserve(std::size_t(image.columns()) * std::size_t(image.rows()));
+    for (int row = 0; row < image.rows(); ++row)
+      for (int column = 0; column < image.columns(); ++column) heights.push_back(image.sample(column, row));
+    const double half = 0.5 * image.cell_size();
+    terrain.map = fluid::Heightmap(image.columns(), image.rows(), image.cell_size(),
+                                   {scenario.domain.origin[0] + half, scenario.domain.origin[1] + half},
+                                   std::move(heights));
+  }
   scenario.terrain = std::move(terrain);
 }
 

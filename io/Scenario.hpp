@@ -110,10 +110,12 @@ struct GustEvent {
 using Obstacle = std::variant<fluid::SolidBox, fluid::SolidCylinder, fluid::SolidSphere>;
 
 struct TerrainSettings {
-  std::filesystem::path heightmap;      ///< resolved against the scenario folder
-  double cell_size = 0.0;               ///< m between samples (PGM; ignored for ESRI grids, 0 when not given)
-  double max_height = 0.0;              ///< m for the PGM's maxval (PGM; ignored for ESRI grids)
-  std::optional<fluid::Heightmap> map;  ///< the heightmap, read and checked at load (always set)
+  std::filesystem::path heightmap;  ///< resolved against the scenario folder
+  double cell_size = 0.0;           ///< m between samples (PGM; ignored for ESRI grids, 0 when not given)
+  double max_height = 0.0;          ///< m for the PGM's maxval (PGM; ignored for ESRI grids)
+  /// The heightmap, read and checked at load (always set). A PGM's south-west corner is placed at the
+  /// domain's (origin x, origin y); an ESRI grid keeps the placement of its header.
+  std::optional<fluid::Heightmap> map;
 };
 
 /// Where a species' skeleton comes from: exactly one of the three.

@@ -1077,3 +1077,24 @@ TEST_CASE("check_species_skeleton: more modes than the skeleton has DOFs names m
     CHECK(error.line() == 11);
   }
 }
+
+TEST_CASE("load_scenario: a PGM heightmap's south-west corner sits at the domain's origin", "[scenario]") {
+  fw::test::TempDir dir("fw_scenario");
+  // 11 columns rising east, 6 rows, 4 m pixels: height (x' / 4 - 0.5) / 10 * 10 m at x' = x - origin x.
+  dir.write("ramp.pgm", ramp_pgm(11, 6));
+  const Scenario s = fw::io::load_scenario(dir.write("shifted.yaml",
+                                                     "scenario: shifted\n"
+                                                     "time: {end: 1.0}\n"
+                                                     "domain: {origin: [-100, 50, 3], size: [44, 24, 20], "
+                                                     "cell_size: 2.0}\n"
+                                                     "wind: {speed: 1.0, direction: 270}\n"
+                                                     "terrain: {heightmap: ramp.pgm, cell_size: 4.0, "
+                                                     "max_height: 10.0}\n"));
+  REQUIRE(s.terrain.has_value());
+  const fw::fluid::Heightmap& map = *s.terrain->map;
+  CHECK(map.sw_centre() == std::array<double, 2>{-98.0, 52.0});  // origin + half a pixel
+  // Tolerance: bilinear interpolation in doubles, 1e-12 m.
+  CHECK(map.height_at(-98.0, 60.0) == Approx(0.0).margin(1e-12));   // first pixel centre
+  CHECK(map.height_at(-78.0, 60.0) == Approx(5.0).margin(1e-12));   // column 5 of 0..10
+  CHECK(map.height_at(-58.0, 60.0) == Approx(10.0).margin(1e-12));  // the east column
+}
