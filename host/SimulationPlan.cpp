@@ -25,26 +25,6 @@ double seconds_since(Clock::time_point start) {
 
 constexpr double kDegree = std::numbers::pi / 180.0;
 
-trees::Skeleton species_skeleton(const io::Species& species) {
-  using Kind = io::SkeletonSource::Kind;
-  try {
-    switch (species.skeleton.kind) {
-      case Kind::generate:
-        return trees::generate_tree(species.skeleton.generate);
-      case Kind::file:
-        return trees::read_tree_file(species.skeleton.path.string());
-      case Kind::qsm:
-        return trees::read_qsm_cylinders(species.skeleton.path.string());
-    }
-  } catch (const std::invalid_argument&) {
-    throw;
-  } catch (const std::runtime_error& e) {
-    // The readers report "FILE:LINE: KEY: ..." as runtime errors; for a run they are input errors.
-    throw std::invalid_argument(e.what());
-  }
-  throw std::logic_error("species_skeleton: unknown skeleton source");
-}
-
 // The height of the ground under (x, y): the terrain's surface, else the domain floor.
 double ground_z(const io::Scenario& scenario, double x, double y) {
   double z = scenario.domain.origin[2];
@@ -66,6 +46,26 @@ std::size_t forest_device_bytes(const trees::Forest& forest) {
 }
 
 }  // namespace
+
+trees::Skeleton species_skeleton(const io::Species& species) {
+  using Kind = io::SkeletonSource::Kind;
+  try {
+    switch (species.skeleton.kind) {
+      case Kind::generate:
+        return trees::generate_tree(species.skeleton.generate);
+      case Kind::file:
+        return trees::read_tree_file(species.skeleton.path.string());
+      case Kind::qsm:
+        return trees::read_qsm_cylinders(species.skeleton.path.string());
+    }
+  } catch (const std::invalid_argument&) {
+    throw;
+  } catch (const std::runtime_error& e) {
+    // The readers report "FILE:LINE: KEY: ..." as runtime errors; for a run they are input errors.
+    throw std::invalid_argument(e.what());
+  }
+  throw std::logic_error("species_skeleton: unknown skeleton source");
+}
 
 FwGust to_device_gust(const io::GustEvent& event, const std::array<double, 3>& wind_at_start) {
   FwGust gust{};

@@ -57,6 +57,10 @@ SimulationPlan plan_simulation(const io::Scenario& scenario, const trees::BasisC
                                std::ostream* log);
 
 /// The FwGust of a gust event (travel resolved, direction along the ambient wind at its start).
+/// A species' skeleton: generated, or read from its .tree or TreeQSM file. A file that does not parse throws
+/// std::invalid_argument naming that file's line (an input error, exit code 2).
+trees::Skeleton species_skeleton(const io::Species& species);
+
 FwGust to_device_gust(const io::GustEvent& event, const std::array<double, 3>& wind_at_start);
 
 }  // namespace fw::host

@@ -16,9 +16,6 @@
 #include "io/Scenario.hpp"
 #include "trees/BasisCache.hpp"
 #include "trees/ForestLayout.hpp"
-#include "trees/QsmImport.hpp"
-#include "trees/TreeFile.hpp"
-#include "trees/TreeGenerator.hpp"
 
 namespace fw::cli {
 
@@ -58,25 +55,6 @@ double peak_wind_speed(const io::Scenario& scenario) {
   return peak + gust;
 }
 
-int skeleton_nodes(const io::Species& species) {
-  using Kind = io::SkeletonSource::Kind;
-  try {
-    switch (species.skeleton.kind) {
-      case Kind::generate:
-        return trees::generate_tree(species.skeleton.generate).size();
-      case Kind::file:
-        return trees::read_tree_file(species.skeleton.path.string()).size();
-      case Kind::qsm:
-        return trees::read_qsm_cylinders(species.skeleton.path.string()).size();
-    }
-  } catch (const std::invalid_argument&) {
-    throw;
-  } catch (const std::runtime_error& e) {
-    throw std::invalid_argument(e.what());
-  }
-  return 0;
-}
-
 }  // namespace
 
 int run_check(const std::string& scenario_path) {
@@ -103,7 +81,7 @@ int run_check(const std::string& scenario_path) {
   int tree_count = 0;
   for (std::size_t i = 0; i < scenario.forest.species.size(); ++i) {
     const io::Species& species = scenario.forest.species[i];
-    const int nodes = skeleton_nodes(species);
+    const int nodes = host::species_skeleton(species).size();
     io::check_species_skeleton(scenario, int(i), nodes);
     const int modes = species.modes.count;
     std::cout << fmt::format("species {}: {} nodes, {} modes, {} wind samples, {} trees\n", species.name,
