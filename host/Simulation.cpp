@@ -325,9 +325,9 @@ RunSummary Simulation::run(const RunOptions& options) {
       const WindStepReport report = s.wind.step();
       if (report.dt >= semi_implicit_limit) {
         throw SimulationError(fmt::format(
-            "step {} (t = {:.3f} s): field tree modes: semi-implicit Euler is unstable at dt = {:.4g} s for "
-            "the "
-            "fastest tree mode (stable below {:.4g} s); lower time.dt or set forest.integrator: exact",
+            "step {} (t = {:.3f} s): field tree modes: semi-implicit Euler is unstable at dt = {:.4g} s "
+            "for the fastest tree mode (stable below {:.4g} s); lower time.dt or set forest.integrator: "
+            "exact",
             report.step, report.time, report.dt, semi_implicit_limit));
       }
       const auto trees_start = Clock::now();
