@@ -10,8 +10,8 @@
 
 #include "bench/FmaPeak.hpp"
 #include "fluid/CanopyField.hpp"
-#include "host/ForestStages.hpp"
-#include "host/WindGrid.hpp"
+#include "host/stages/ForestStages.hpp"
+#include "host/stages/WindGrid.hpp"
 #include "io/JsonWriter.hpp"
 #include "trees/Forest.hpp"
 #include "trees/ForestReference.hpp"

@@ -25,7 +25,7 @@
 #include <string>
 #include <vector>
 
-#include "host/ComputeContext.hpp"
+#include "host/runtime/ComputeContext.hpp"
 
 namespace fw::bench {
 

@@ -4,7 +4,7 @@
 //   double gfma_s = fw::bench::measure_fma_peak(cc, 5);   // best of 5 runs, 1e9 FMA/s
 #pragma once
 
-#include "host/ComputeContext.hpp"
+#include "host/runtime/ComputeContext.hpp"
 
 namespace fw::bench {
 

@@ -6,7 +6,7 @@
 
 #include <cstddef>
 
-#include "host/ComputeContext.hpp"
+#include "host/runtime/ComputeContext.hpp"
 
 namespace fw::bench {
 

@@ -18,8 +18,8 @@
 #include <string>
 #include <vector>
 
-#include "host/ComputeContext.hpp"
-#include "host/WindGrid.hpp"
+#include "host/runtime/ComputeContext.hpp"
+#include "host/stages/WindGrid.hpp"
 
 namespace fw::bench {
 

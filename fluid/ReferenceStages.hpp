@@ -18,26 +18,11 @@
 #include <vector>
 
 #include "fluid/GridSpec.hpp"
+#include "fluid/MacVelocity.hpp"
 #include "fluid/PressureLevels.hpp"
 #include "kernels/shared_types.h"
 
 namespace fw::fluid {
-
-/// Face velocities of a MAC grid, m/s. Sizes: u (nx+1)*ny*nz, v nx*(ny+1)*nz, w nx*ny*(nz+1), x-fastest.
-struct MacVelocity {
-  std::vector<float> u, v, w;
-  MacVelocity() = default;
-  explicit MacVelocity(const GridSpec& spec)
-      : u(spec.u_count(), 0.f), v(spec.v_count(), 0.f), w(spec.w_count(), 0.f) {}
-  std::vector<float>& component(int c) { return c == 0 ? u : (c == 1 ? v : w); }
-  const std::vector<float>& component(int c) const { return c == 0 ? u : (c == 1 ? v : w); }
-};
-
-/// What ghost values on inflow faces need: the ambient wind at the reference height and the profile shape.
-struct InflowState {
-  std::array<float, 3> ambient{0, 0, 0};  // m/s at the reference height
-  std::vector<float> profile;             // nz shape factors at cell-centre heights (InflowProfile)
-};
 
 namespace reference {
 

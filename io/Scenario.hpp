@@ -38,7 +38,7 @@
 #include "fluid/WindSettings.hpp"
 #include "io/Expression.hpp"
 #include "trees/ForestLayout.hpp"
-#include "trees/ForestReference.hpp"
+#include "trees/ModalIntegrator.hpp"
 #include "trees/Material.hpp"
 #include "trees/TreeGenerator.hpp"
 

@@ -12,7 +12,7 @@
 #pragma once
 
 #include "fluid/GridSpec.hpp"
-#include "fluid/ReferenceStages.hpp"
+#include "fluid/MacVelocity.hpp"
 
 #include <array>
 #include <cstddef>

@@ -23,13 +23,10 @@
 #include "fluid/GridSpec.hpp"
 #include "fluid/ReferenceStages.hpp"
 #include "trees/Forest.hpp"
+#include "trees/ModalIntegrator.hpp"
 
 namespace fw::trees {
 
-enum class ModalIntegrator {
-  exact,          ///< exact solution of the damped oscillator for the force held over the step
-  semi_implicit,  ///< Diener's semi-implicit Euler: qdot += dt (f - gamma qdot - omega^2 q); q += dt qdot
-};
 
 /// Trilinear sample of the face velocities at a world position (m), m/s, with the clamping described above.
 Eigen::Vector3d sample_mac_velocity(const fluid::GridSpec& spec, const fluid::MacVelocity& velocity,

@@ -6,8 +6,8 @@
 #include "bench/CoupledBench.hpp"
 #include "bench/TreeBench.hpp"
 #include "bench/WindBench.hpp"
-#include "host/ComputeContext.hpp"
-#include "host/Device.hpp"
+#include "host/runtime/ComputeContext.hpp"
+#include "host/runtime/Device.hpp"
 #include "host/cli/Commands.hpp"
 
 namespace fw::cli {

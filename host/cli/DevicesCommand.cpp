@@ -2,7 +2,7 @@
 
 #include <iostream>
 
-#include "host/Device.hpp"
+#include "host/runtime/Device.hpp"
 #include "host/cli/Commands.hpp"
 #include "io/JsonWriter.hpp"
 

@@ -8,10 +8,10 @@
 #include <filesystem>
 #include <iostream>
 
-#include "host/ComputeContext.hpp"
-#include "host/Device.hpp"
-#include "host/Simulation.hpp"
-#include "host/SimulationPlan.hpp"
+#include "host/runtime/ComputeContext.hpp"
+#include "host/runtime/Device.hpp"
+#include "host/app/Simulation.hpp"
+#include "host/app/SimulationPlan.hpp"
 #include "host/cli/Commands.hpp"
 #include "io/Scenario.hpp"
 #include "trees/BasisCache.hpp"

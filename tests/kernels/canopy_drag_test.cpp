@@ -10,8 +10,8 @@
 
 #include "fluid/PressureLevels.hpp"
 #include "fluid/ReferenceStages.hpp"
-#include "host/FluidStages.hpp"
-#include "host/WindGrid.hpp"
+#include "host/stages/FluidStages.hpp"
+#include "host/stages/WindGrid.hpp"
 #include "tests/support/Fields.hpp"
 #include "tests/support/TestDevice.hpp"
 

@@ -4,7 +4,7 @@
 
 #include "fluid/PressureLevels.hpp"
 #include "fluid/ReferenceStages.hpp"
-#include "host/FluidStages.hpp"
+#include "host/stages/FluidStages.hpp"
 #include "tests/support/Fields.hpp"
 #include "tests/support/TestDevice.hpp"
 

@@ -7,7 +7,7 @@
 #include <cmath>
 #include <random>
 
-#include "host/ForestStages.hpp"
+#include "host/stages/ForestStages.hpp"
 #include "tests/support/Fields.hpp"
 #include "tests/support/TestDevice.hpp"
 #include "trees/ForestReference.hpp"

@@ -5,7 +5,7 @@
 
 #include "fluid/PressureLevels.hpp"
 #include "fluid/ReferenceStages.hpp"
-#include "host/PressureSolver.hpp"
+#include "host/stages/PressureSolver.hpp"
 #include "tests/support/Fields.hpp"
 #include "tests/support/TestDevice.hpp"
 

@@ -5,8 +5,8 @@
 #include <string>
 #include <vector>
 
-#include "host/KernelSources.hpp"
-#include "host/opencl.hpp"
+#include "host/runtime/KernelSources.hpp"
+#include "host/runtime/opencl.hpp"
 #include "kernels/shared_types.h"
 #include "tests/support/TestDevice.hpp"
 

@@ -8,8 +8,8 @@
 #include "fluid/GridSpec.hpp"
 #include "fluid/InflowProfile.hpp"
 #include "fluid/ReferenceStages.hpp"
-#include "host/ComputeContext.hpp"
-#include "host/FluidStages.hpp"
+#include "host/runtime/ComputeContext.hpp"
+#include "host/stages/FluidStages.hpp"
 
 namespace fw::test {
 

@@ -6,8 +6,8 @@
 #include <memory>
 #include <string>
 
-#include "host/ClError.hpp"
-#include "host/Device.hpp"
+#include "host/runtime/ClError.hpp"
+#include "host/runtime/Device.hpp"
 
 namespace fw::test {
 

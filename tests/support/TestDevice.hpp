@@ -10,7 +10,7 @@
 // the kernels on PoCL. FORESTWIND_DEVICE picks the device, as for the program.
 #pragma once
 
-#include "host/ComputeContext.hpp"
+#include "host/runtime/ComputeContext.hpp"
 
 namespace fw::test {
 

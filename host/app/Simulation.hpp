@@ -31,8 +31,8 @@
 #include <stdexcept>
 #include <string>
 
-#include "host/ComputeContext.hpp"
-#include "host/SimulationPlan.hpp"
+#include "host/runtime/ComputeContext.hpp"
+#include "host/app/SimulationPlan.hpp"
 
 namespace fw::host {
 

@@ -7,7 +7,7 @@
 
 #include "fluid/ReferenceStages.hpp"
 #include "fluid/SolidMap.hpp"
-#include "host/WindGrid.hpp"
+#include "host/stages/WindGrid.hpp"
 #include "tests/support/TestDevice.hpp"
 
 using namespace fw;

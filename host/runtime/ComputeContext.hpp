@@ -16,9 +16,9 @@
 #include <memory>
 #include <string>
 
-#include "host/Device.hpp"
-#include "host/Profiler.hpp"
-#include "host/opencl.hpp"
+#include "host/runtime/Device.hpp"
+#include "host/runtime/Profiler.hpp"
+#include "host/runtime/opencl.hpp"
 
 namespace fw::host {
 

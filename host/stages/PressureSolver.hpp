@@ -21,7 +21,7 @@
 #include "fluid/GridSpec.hpp"
 #include "fluid/PressureLevels.hpp"
 #include "fluid/WindSettings.hpp"
-#include "host/ComputeContext.hpp"
+#include "host/runtime/ComputeContext.hpp"
 
 namespace fw::host {
 

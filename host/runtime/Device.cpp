@@ -1,4 +1,4 @@
-#include "host/Device.hpp"
+#include "host/runtime/Device.hpp"
 
 #include <fmt/format.h>
 
@@ -6,7 +6,7 @@
 #include <cctype>
 #include <cstdlib>
 
-#include "host/ClError.hpp"
+#include "host/runtime/ClError.hpp"
 
 namespace fw::host {
 namespace {

@@ -1,4 +1,4 @@
-#include "host/FluidStages.hpp"
+#include "host/stages/FluidStages.hpp"
 
 #include <fmt/format.h>
 

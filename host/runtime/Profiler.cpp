@@ -1,4 +1,4 @@
-#include "host/Profiler.hpp"
+#include "host/runtime/Profiler.hpp"
 
 #include <fmt/format.h>
 

@@ -1,4 +1,4 @@
-#include "host/WindGrid.hpp"
+#include "host/stages/WindGrid.hpp"
 
 #include <fmt/format.h>
 

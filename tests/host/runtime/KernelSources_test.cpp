@@ -1,4 +1,4 @@
-#include "host/KernelSources.hpp"
+#include "host/runtime/KernelSources.hpp"
 
 #include <fmt/format.h>
 #include <catch2/catch.hpp>
@@ -18,7 +18,7 @@
 #include <string_view>
 #include <vector>
 
-#include "host/ClError.hpp"
+#include "host/runtime/ClError.hpp"
 #include "tests/support/TestDevice.hpp"
 
 namespace {

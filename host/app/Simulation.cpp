@@ -1,4 +1,4 @@
-#include "host/Simulation.hpp"
+#include "host/app/Simulation.hpp"
 
 #include <fmt/format.h>
 #include <unistd.h>
@@ -11,8 +11,8 @@
 #include <limits>
 #include <optional>
 
-#include "host/ForestStages.hpp"
-#include "host/WindGrid.hpp"
+#include "host/stages/ForestStages.hpp"
+#include "host/stages/WindGrid.hpp"
 #include "io/AtomicFile.hpp"
 #include "io/JsonWriter.hpp"
 #include "io/ProbesCsv.hpp"

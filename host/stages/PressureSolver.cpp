@@ -1,4 +1,4 @@
-#include "host/PressureSolver.hpp"
+#include "host/stages/PressureSolver.hpp"
 
 #include <algorithm>
 #include <cmath>

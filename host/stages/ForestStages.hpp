@@ -20,11 +20,11 @@
 #include <vector>
 
 #include "fluid/GridSpec.hpp"
-#include "host/ComputeContext.hpp"
-#include "host/FluidStages.hpp"
+#include "host/runtime/ComputeContext.hpp"
+#include "host/stages/FluidStages.hpp"
 #include "kernels/shared_types.h"
 #include "trees/Forest.hpp"
-#include "trees/ForestReference.hpp"
+#include "trees/ModalIntegrator.hpp"
 
 namespace fw::host {
 

@@ -7,8 +7,8 @@
 #include <cmath>
 #include <vector>
 
-#include "host/ForestStages.hpp"
-#include "host/WindGrid.hpp"
+#include "host/stages/ForestStages.hpp"
+#include "host/stages/WindGrid.hpp"
 #include "tests/support/TestDevice.hpp"
 #include "trees/Forest.hpp"
 #include "trees/SpeciesBasis.hpp"

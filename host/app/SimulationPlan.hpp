@@ -20,7 +20,7 @@
 #include <string>
 #include <vector>
 
-#include "host/WindGrid.hpp"
+#include "host/stages/WindGrid.hpp"
 #include "io/Scenario.hpp"
 #include "trees/BasisCache.hpp"
 #include "trees/Forest.hpp"

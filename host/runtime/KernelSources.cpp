@@ -1,4 +1,4 @@
-#include "host/KernelSources.hpp"
+#include "host/runtime/KernelSources.hpp"
 
 #include <fmt/format.h>
 

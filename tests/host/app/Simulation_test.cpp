@@ -1,6 +1,6 @@
 // The coupled run end to end on the OpenCL device: scenario -> plan -> Simulation -> files, read back with
 // the VTK and OpenVDB libraries; determinism; two-way coupling; shelter; blow-up handling.
-#include "host/Simulation.hpp"
+#include "host/app/Simulation.hpp"
 
 #include <catch2/catch.hpp>
 
@@ -22,7 +22,7 @@
 #include <string>
 #include <vector>
 
-#include "host/SimulationPlan.hpp"
+#include "host/app/SimulationPlan.hpp"
 #include "io/Scenario.hpp"
 #include "tests/support/TempDir.hpp"
 #include "tests/support/TestDevice.hpp"

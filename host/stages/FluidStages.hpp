@@ -13,7 +13,7 @@
 #include <vector>
 
 #include "fluid/GridSpec.hpp"
-#include "host/ComputeContext.hpp"
+#include "host/runtime/ComputeContext.hpp"
 #include "kernels/shared_types.h"
 
 namespace fw::host {

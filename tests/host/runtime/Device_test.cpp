@@ -1,4 +1,4 @@
-#include "host/Device.hpp"
+#include "host/runtime/Device.hpp"
 
 #include <catch2/catch.hpp>
 
@@ -11,7 +11,7 @@
 #include <string>
 #include <vector>
 
-#include "host/ClError.hpp"
+#include "host/runtime/ClError.hpp"
 
 using fw::host::DeviceInfo;
 

@@ -1,9 +1,9 @@
-#include "host/ClError.hpp"
+#include "host/runtime/ClError.hpp"
 
 #include <fmt/format.h>
 
 // Through our wrapper, which fixes the OpenCL target version before the first CL header.
-#include "host/opencl.hpp"
+#include "host/runtime/opencl.hpp"
 
 #include <CL/cl_ext.h>
 

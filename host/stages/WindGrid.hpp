@@ -24,10 +24,10 @@
 
 #include "fluid/GridSpec.hpp"
 #include "fluid/InflowProfile.hpp"
-#include "fluid/ReferenceStages.hpp"
+#include "fluid/MacVelocity.hpp"
 #include "fluid/WindSettings.hpp"
-#include "host/FluidStages.hpp"
-#include "host/PressureSolver.hpp"
+#include "host/stages/FluidStages.hpp"
+#include "host/stages/PressureSolver.hpp"
 
 namespace fw::host {
 

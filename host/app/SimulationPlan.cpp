@@ -1,4 +1,4 @@
-#include "host/SimulationPlan.hpp"
+#include "host/app/SimulationPlan.hpp"
 
 #include <fmt/format.h>
 

@@ -1,9 +1,9 @@
-#include "host/ComputeContext.hpp"
+#include "host/runtime/ComputeContext.hpp"
 
 #include <fmt/format.h>
 
-#include "host/ClError.hpp"
-#include "host/KernelSources.hpp"
+#include "host/runtime/ClError.hpp"
+#include "host/runtime/KernelSources.hpp"
 
 namespace fw::host {
 

@@ -1,4 +1,4 @@
-#include "host/ForestStages.hpp"
+#include "host/stages/ForestStages.hpp"
 
 #include <fmt/format.h>
 

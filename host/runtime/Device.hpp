@@ -12,7 +12,7 @@
 #include <string>
 #include <vector>
 
-#include "host/opencl.hpp"
+#include "host/runtime/opencl.hpp"
 
 namespace fw::host {
 

@@ -5,7 +5,7 @@
 #include <iostream>
 #include <stdexcept>
 
-#include "host/ClError.hpp"
+#include "host/runtime/ClError.hpp"
 #include "host/cli/Commands.hpp"
 
 int main(int argc, char** argv) {
