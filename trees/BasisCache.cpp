@@ -142,7 +142,10 @@ std::uint64_t BasisCache::key(const Skeleton& skeleton, const SpeciesSettings& s
   for (double zeta : modal.damping.ratios) hash.value(zeta);
   hash.value(modal.damping.alpha);
   hash.value(modal.damping.beta);
-  hash.value(settings.wind.drag_factor);
+  hash.value(settings.wind.air_density);
+  hash.value(settings.wind.branch_drag_coefficient);
+  hash.value(settings.wind.leaf_area_index);
+  hash.value(settings.wind.leaf_drag_coefficient);
   hash.value(std::int32_t(settings.wind.branch_normal_drag ? 1 : 0));
   hash.value(std::int32_t(settings.wind.samples));
   return hash.digest();

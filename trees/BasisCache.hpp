@@ -6,7 +6,8 @@
 //
 // Key: a 64-bit FNV-1a hash of everything the basis depends on: the format version, every node (parent,
 // position, radius, as raw IEEE doubles), the material, the modal settings (count, damping, solver
-// tolerances) and the wind basis settings. Entry: "<directory>/<key as 16 hex digits>.fwbasis".
+// tolerances) and the wind basis settings (air density, branch and leaf drag coefficients, leaf
+// area index, branch-normal drag, samples). Entry: "<directory>/<key as 16 hex digits>.fwbasis".
 //
 // Entry layout (binary, little-endian as the host writes it; the cache is per machine):
 //   "FWBASIS\0", u32 version, u64 key, i32 nodes, i32 dofs, i32 modes, i32 samples,
@@ -34,7 +35,9 @@ const char* to_string(CacheOutcome outcome);
 
 class BasisCache {
  public:
-  static constexpr std::uint32_t kFormatVersion = 1;
+  /// 2: the wind settings became air density, branch and leaf drag coefficients and leaf area index (the
+  /// projections of version 1 entries hold no foliage).
+  static constexpr std::uint32_t kFormatVersion = 2;
 
   /// directory: where entries live; created on the first store.
   explicit BasisCache(std::filesystem::path directory);

@@ -1,7 +1,8 @@
 // The elastic and inertial properties of a tree species' wood, as used by the FEM beam model.
 //
-//   fw::trees::Material wood{1.0e10, 3.85e9, 900.0};   // E, G in Pa; rho in kg/m^3
+//   fw::trees::Material wood{1.2e10, 4.6e9, 650.0};    // E, G in Pa; rho in kg/m^3
 //   wood.validate();                                   // throws std::invalid_argument("Material: ...")
+//   fw::trees::kDefaultWood;                           // the wood of a species that names none
 //
 // All three values are SI. The model is isotropic: one Young's modulus for axial stretch and bending, one
 // shear modulus for torsion.
@@ -36,5 +37,9 @@ struct Material {
     }
   }
 };
+
+/// The default wood of every species (trees::SpeciesSettings, the scenario's `material`): Diener's wood,
+/// G = E / 2.6.
+inline constexpr Material kDefaultWood{1.0e10, 3.85e9, 900.0};
 
 }  // namespace fw::trees

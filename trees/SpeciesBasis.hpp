@@ -24,9 +24,9 @@
 namespace fw::trees {
 
 struct SpeciesSettings {
-  Material material{1.0e10, 3.85e9, 900.0};  ///< E, G (Pa), rho (kg/m^3): Diener's wood, G = E / 2.6
-  ModalSettings modal;                       ///< how many modes, damping, solver tolerances
-  WindBasisSettings wind;                    ///< drag factor, branch-normal drag, wind samples
+  Material material = kDefaultWood;  ///< E, G (Pa), rho (kg/m^3): Diener's wood, G = E / 2.6
+  ModalSettings modal;               ///< how many modes, damping, solver tolerances
+  WindBasisSettings wind;            ///< drag coefficients, leaf area index, wind samples
 
   /// Throws std::invalid_argument naming the part (Material, ModalSettings, Damping, WindBasisSettings).
   void validate() const;

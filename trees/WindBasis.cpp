@@ -1,6 +1,7 @@
 #include "trees/WindBasis.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <stdexcept>
 #include <utility>
@@ -10,6 +11,7 @@
 
 #include "trees/BeamElement.hpp"
 #include "trees/BeamModel.hpp"
+#include "trees/Foliage.hpp"
 #include "trees/Skeleton.hpp"
 
 namespace fw::trees {
@@ -68,74 +70,74 @@ Eigen::Matrix<double, 3, 12> integrated_shape_functions(double length, double s0
 }
 
 void WindBasisSettings::validate() const {
-  if (!std::isfinite(drag_factor) || !(drag_factor >= 0.0)) {
-    throw std::invalid_argument(fmt::format(
-        "WindBasisSettings: drag_factor (C = 1/2 rho_air C_D, kg/m^3) must be finite and >= 0, got {}",
-        drag_factor));
+  const std::pair<const char*, double> fields[] = {
+      {"air_density (rho_air, kg/m^3)", air_density},
+      {"branch_drag_coefficient (C_D of the wood)", branch_drag_coefficient},
+      {"leaf_area_index (one-sided leaf area / crown hull area)", leaf_area_index},
+      {"leaf_drag_coefficient (C_D of the foliage)", leaf_drag_coefficient}};
+  for (const auto& [name, value] : fields) {
+    if (!std::isfinite(value) || !(value >= 0.0)) {
+      throw std::invalid_argument(
+          fmt::format("WindBasisSettings: {} must be finite and >= 0, got {}", name, value));
+    }
   }
   if (samples < 1) {
     throw std::invalid_argument(fmt::format("WindBasisSettings: samples must be >= 1, got {}", samples));
   }
 }
 
-WindBasis WindBasis::compute(const Skeleton& skeleton, const BeamModel& model, const Eigen::MatrixXd& shapes,
-                             const WindBasisSettings& settings) {
-  settings.validate();
-  if (model.node_count() != skeleton.size()) {
-    throw std::invalid_argument(fmt::format("WindBasis: the model has {} nodes but the skeleton has {}",
-                                            model.node_count(), skeleton.size()));
-  }
-  if (shapes.rows() != model.dof_count()) {
-    throw std::invalid_argument(fmt::format("WindBasis: shapes must have model.dof_count() = {} rows, got {}",
-                                            model.dof_count(), shapes.rows()));
-  }
-  if (!shapes.allFinite()) throw std::invalid_argument("WindBasis: shapes contain non-finite values");
+namespace {
 
+// The load operator G (6 n) x (3 S), node-major, and the sample points S x 3 (header comment).
+struct Assembled {
+  Eigen::MatrixXd load;
+  Eigen::MatrixX3d sample_points;
+};
+
+Assembled assemble(const Skeleton& skeleton, const WindBasisSettings& settings) {
+  settings.validate();
+  if (skeleton.size() < 2) throw std::invalid_argument("WindBasis: the skeleton has no elements");
   const int bands = settings.samples;
-  const Eigen::Index modes = shapes.cols();
   const double z_root = skeleton.node(skeleton.root()).position.z();
   double z_top = z_root;
   for (const auto& node : skeleton.nodes()) z_top = std::max(z_top, node.position.z());
   const double height = z_top - z_root;
   // A flat tree (no node above the root) cannot be split by height: everything goes to band 0.
   const bool split = bands > 1 && height > 0.0;
+  const Foliage foliage = Foliage::of(skeleton, settings.leaf_area_index);
+  const double half_rho = 0.5 * settings.air_density;
 
-  WindBasis basis;
-  basis.settings_ = settings;
-  basis.projection_ = Eigen::MatrixXd::Zero(3 * bands, modes);
-  Eigen::VectorXd weight = Eigen::VectorXd::Zero(bands);                // int D ds per band, m^2
-  Eigen::MatrixX3d moment = Eigen::MatrixX3d::Zero(bands, 3);           // int D x ds per band, m^3
-  Eigen::Matrix<double, 12, Eigen::Dynamic> element_shapes(12, modes);  // phi^e, global frame
+  Assembled out;
+  out.load = Eigen::MatrixXd::Zero(6 * Eigen::Index(skeleton.size()), 3 * bands);
+  // Centroid weights per band: the drag width w (m) and, for a tree without any drag, the diameter D.
+  Eigen::MatrixX2d weight = Eigen::MatrixX2d::Zero(bands, 2);  // int w ds, int D ds per band, m^2
+  std::array<Eigen::MatrixX3d, 2> moment = {Eigen::MatrixX3d::Zero(bands, 3),
+                                            Eigen::MatrixX3d::Zero(bands, 3)};  // int w x ds, int D x ds
   std::vector<double> cuts;
 
-  for (const auto& [parent, child] : skeleton.elements()) {
+  const auto& elements = skeleton.elements();
+  for (std::size_t e = 0; e < elements.size(); ++e) {
+    const auto [parent, child] = elements[e];
     const SkeletonNode& a = skeleton.node(parent);
     const SkeletonNode& b = skeleton.node(child);
     const double length = (b.position - a.position).norm();
-    const double diameter = a.radius + b.radius;  // 2 * mean radius
+    const double diameter = a.radius + b.radius;  // 2 * mean radius, as in the stiffness
+    const double leaf = foliage.leaf_area_per_metre[e];
+    const double drag_width =
+        settings.branch_drag_coefficient * diameter + settings.leaf_drag_coefficient * leaf;
     const Eigen::Matrix3d frame = element_frame(a.position, b.position);
 
-    // Everything that does not depend on the piece: C D_e [P_e] R_e^T (3x3, local to global).
-    Eigen::Matrix3d to_global = settings.drag_factor * diameter * frame.transpose();
+    // A_e = 1/2 rho (C_Db D P_e + C_Df lambda I), symmetric (N s^2 / m^4 = kg/m^3 x m).
+    Eigen::Matrix3d wood = Eigen::Matrix3d::Identity();
     if (settings.branch_normal_drag) {
       const Eigen::Vector3d axis = frame.row(0).transpose();
-      to_global = (Eigen::Matrix3d::Identity() - axis * axis.transpose()) * to_global;
+      wood -= axis * axis.transpose();
     }
-
-    for (int local = 0; local < 6; ++local) {
-      const int dof_a = model.free_dof_of(parent, local);
-      const int dof_b = model.free_dof_of(child, local);
-      if (dof_a >= 0) {
-        element_shapes.row(local) = shapes.row(dof_a);
-      } else {
-        element_shapes.row(local).setZero();  // clamped root
-      }
-      if (dof_b >= 0) {
-        element_shapes.row(6 + local) = shapes.row(dof_b);
-      } else {
-        element_shapes.row(6 + local).setZero();
-      }
-    }
+    const Eigen::Matrix3d drag =
+        half_rho * (settings.branch_drag_coefficient * diameter * wood +
+                    settings.leaf_drag_coefficient * leaf * Eigen::Matrix3d::Identity());
+    // R_e A_e: maps the global |v| v to the local force per length, which (int N ds)^T spreads onto the DOFs.
+    const Eigen::Matrix3d to_local = frame * drag;
 
     // Pieces of the element between band borders, as fractions t of its length.
     cuts.assign({0.0, 1.0});
@@ -163,26 +165,76 @@ WindBasis WindBasis::compute(const Skeleton& skeleton, const BeamModel& model, c
 
       const Eigen::Matrix<double, 3, 12> integral =
           integrated_shape_functions(length, t0 * length, t1 * length);
-      // integral * T_e, T_e = diag(R, R, R, R): maps global nodal DOFs to the integrated local displacement.
-      Eigen::Matrix<double, 3, 12> global;
+      // G_e = T_e^T (int N ds)^T R_e A_e, block by block of T_e = diag(R, R, R, R); block 0, 1 are node a's
+      // translations and rotations, 2, 3 node b's.
       for (int block = 0; block < 4; ++block) {
-        global.middleCols<3>(3 * block) = to_global * integral.middleCols<3>(3 * block) * frame;
+        const int node = block < 2 ? parent : child;
+        const Eigen::Index row = 6 * Eigen::Index(node) + 3 * (block % 2);
+        out.load.block<3, 3>(row, 3 * band) +=
+            frame.transpose() * integral.middleCols<3>(3 * block).transpose() * to_local;
       }
-      basis.projection_.middleRows<3>(3 * band) += global * element_shapes;
 
-      const double w = diameter * (t1 - t0) * length;
-      weight(band) += w;
-      moment.row(band) += w * middle.transpose();  // exact: D is constant and x linear along the piece
+      const double piece_length = (t1 - t0) * length;
+      const double w[2] = {drag_width * piece_length, diameter * piece_length};
+      for (int kind = 0; kind < 2; ++kind) {
+        weight(band, kind) += w[kind];
+        moment[std::size_t(kind)].row(band) += w[kind] * middle.transpose();  // exact: w constant, x linear
+      }
     }
   }
 
-  const double total_weight = weight.sum();
-  const Eigen::RowVector3d centroid = moment.colwise().sum() / total_weight;
-  basis.sample_points_.resize(bands, 3);
+  // Drag-weighted centroids; diameter-weighted when nothing drags (all coefficients 0).
+  const int kind = weight.col(0).sum() > 0.0 ? 0 : 1;
+  const Eigen::MatrixX3d& m = moment[std::size_t(kind)];
+  const Eigen::RowVector3d centroid = m.colwise().sum() / weight.col(kind).sum();
+  out.sample_points.resize(bands, 3);
   for (int band = 0; band < bands; ++band) {
-    basis.sample_points_.row(band) =
-        weight(band) > 0.0 ? Eigen::RowVector3d(moment.row(band) / weight(band)) : centroid;
+    out.sample_points.row(band) =
+        weight(band, kind) > 0.0 ? Eigen::RowVector3d(m.row(band) / weight(band, kind)) : centroid;
   }
+  return out;
+}
+
+}  // namespace
+
+Eigen::MatrixXd WindBasis::load_operator(const Skeleton& skeleton, const WindBasisSettings& settings) {
+  return assemble(skeleton, settings).load;
+}
+
+Eigen::VectorXd WindBasis::squared_wind(const Eigen::MatrixX3d& wind) {
+  Eigen::VectorXd stacked(3 * wind.rows());
+  for (Eigen::Index s = 0; s < wind.rows(); ++s) {
+    stacked.segment<3>(3 * s) = wind.row(s).norm() * wind.row(s).transpose();
+  }
+  return stacked;
+}
+
+WindBasis WindBasis::compute(const Skeleton& skeleton, const BeamModel& model, const Eigen::MatrixXd& shapes,
+                             const WindBasisSettings& settings) {
+  settings.validate();
+  if (model.node_count() != skeleton.size()) {
+    throw std::invalid_argument(fmt::format("WindBasis: the model has {} nodes but the skeleton has {}",
+                                            model.node_count(), skeleton.size()));
+  }
+  if (shapes.rows() != model.dof_count()) {
+    throw std::invalid_argument(fmt::format("WindBasis: shapes must have model.dof_count() = {} rows, got {}",
+                                            model.dof_count(), shapes.rows()));
+  }
+  if (!shapes.allFinite()) throw std::invalid_argument("WindBasis: shapes contain non-finite values");
+
+  Assembled assembled = assemble(skeleton, settings);
+  // G_free: the rows of the model's free DOFs (the clamped root's load does no work on the modes).
+  Eigen::MatrixXd free_load(model.dof_count(), assembled.load.cols());
+  for (int node = 0; node < skeleton.size(); ++node) {
+    for (int local = 0; local < 6; ++local) {
+      const int dof = model.free_dof_of(node, local);
+      if (dof >= 0) free_load.row(dof) = assembled.load.row(6 * Eigen::Index(node) + local);
+    }
+  }
+  WindBasis basis;
+  basis.settings_ = settings;
+  basis.projection_ = free_load.transpose() * shapes;  // p_i^s = G_s,free^T phi_i
+  basis.sample_points_ = std::move(assembled.sample_points);
   return basis;
 }
 
@@ -226,11 +278,7 @@ Eigen::VectorXd WindBasis::modal_forces(const Eigen::MatrixX3d& wind) const {
                                             sample_count(), wind.rows()));
   }
   // Stack |v_s| v_s into one 3S vector; then f = P^T w is a single product.
-  Eigen::VectorXd stacked(3 * wind.rows());
-  for (Eigen::Index s = 0; s < wind.rows(); ++s) {
-    stacked.segment<3>(3 * s) = wind.row(s).norm() * wind.row(s).transpose();
-  }
-  return projection_.transpose() * stacked;
+  return projection_.transpose() * squared_wind(wind);
 }
 
 WindBasis WindBasis::scaled(double s) const {

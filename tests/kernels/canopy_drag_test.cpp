@@ -8,6 +8,7 @@
 #include <random>
 #include <vector>
 
+#include "fluid/CanopyField.hpp"
 #include "fluid/PressureLevels.hpp"
 #include "fluid/ReferenceStages.hpp"
 #include "host/stages/FluidStages.hpp"
@@ -154,14 +155,27 @@ host::WindGridSetup channel_setup() {
   return setup;
 }
 
-// Dense canopy block x 16-24, y 4-12, z 0-10 m (k = 0.3 1/m, a leaf area density of 1.5 with Cd 0.2).
+// Dense canopy block x 16-24, y 4-12, z 0-10 m of foliage with leaf area density 1.5 1/m and C_D 0.4,
+// rasterised by fluid::CanopyField (one vertical element of length h through each cell's centre): under
+// the drag convention F = 1/2 rho C_D A |u| u, k = 1/2 C_D a = 0.3 1/m.
+constexpr double kBlockLeafAreaDensity = 1.5;  // 1/m
+constexpr double kBlockDragCoefficient = 0.4;  // trees::WindBasisSettings::kFoliageDragCoefficient
+constexpr double kBlockDragDensity = 0.5 * kBlockDragCoefficient * kBlockLeafAreaDensity;  // 0.3 1/m
+
 std::vector<float> block_canopy(const fluid::GridSpec& spec) {
-  std::vector<float> k(spec.cell_count(), 0.0f);
+  fluid::CanopyField canopy(spec);
+  const double h = spec.h;
+  const double per_metre = kBlockLeafAreaDensity * h * h;  // a = alpha h / h^3
+  std::vector<fluid::CanopyElement> elements;
   for (int kk = 0; kk < 10; ++kk)
     for (int j = 4; j < 12; ++j)
-      for (int i = 16; i < 24; ++i)
-        k[std::size_t(i) + std::size_t(spec.nx) * (j + std::size_t(spec.ny) * kk)] = 0.3f;
-  return k;
+      for (int i = 16; i < 24; ++i) {
+        const double x = spec.origin[0] + (i + 0.5) * h, y = spec.origin[1] + (j + 0.5) * h;
+        const double z = spec.origin[2] + kk * h;
+        elements.push_back({{x, y, z}, {x, y, z + h}, per_metre, kBlockDragCoefficient * per_metre});
+      }
+  canopy.add_elements(elements);
+  return canopy.drag_density();
 }
 
 // Mean cell-centred speed over cells [i0, i1) x [4, 12) x [0, 10).
@@ -207,9 +221,16 @@ TEST_CASE("canopy drag: a dense canopy block slows the channel flow inside and b
     for (int n = 0; n < kSteps; ++n) wind.step();
     return wind.download_velocity();
   };
+  // The rasterised block holds k = 1/2 C_D a in its cells and nothing elsewhere.
+  const auto k = block_canopy(spec);
+  double block_sum = 0.0;
+  for (float x : k) block_sum += x;
+  CHECK(k[std::size_t(20 + spec.nx * (8 + spec.ny * 5))] == Approx(kBlockDragDensity).epsilon(1e-6));
+  CHECK(block_sum == Approx(8 * 8 * 10 * kBlockDragDensity).epsilon(1e-6));
+
   const auto open = run([](host::WindGrid&) {});
   const auto forest = run([&](host::WindGrid& w) {
-    w.set_canopy(block_canopy(spec));
+    w.set_canopy(k);
     CHECK(w.canopy_enabled());
   });
 
@@ -218,9 +239,9 @@ TEST_CASE("canopy drag: a dense canopy block slows the channel flow inside and b
   const double inside_open = mean_speed(spec, open, 16, 24), inside = mean_speed(spec, forest, 16, 24);
   const double lee_open = mean_speed(spec, open, 24, 32), lee = mean_speed(spec, forest, 24, 32);
   const double inside_drop = 1.0 - inside / inside_open, lee_drop = 1.0 - lee / lee_open;
-  WARN("canopy block (k = 0.3 1/m): mean speed inside "
-       << inside << " m/s vs " << inside_open << " open (" << 100 * inside_drop << "% lower); in the lee "
-       << lee << " vs " << lee_open << " (" << 100 * lee_drop << "% lower)");
+  WARN("canopy block (k = " << kBlockDragDensity << " 1/m): mean speed inside " << inside << " m/s vs "
+                            << inside_open << " open (" << 100 * inside_drop << "% lower); in the lee " << lee
+                            << " vs " << lee_open << " (" << 100 * lee_drop << "% lower)");
   CHECK(inside_drop > 0.2);
   CHECK(lee_drop > 0.2);
 

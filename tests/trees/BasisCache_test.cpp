@@ -33,6 +33,7 @@ SpeciesSettings cached_settings() {
   SpeciesSettings settings;
   settings.modal.mode_count = 6;
   settings.wind.samples = 2;
+  settings.wind.leaf_area_index = 2.0;  // foliage in the stored projections too
   return settings;
 }
 
@@ -43,6 +44,10 @@ void check_same(const SpeciesBasis& a, const SpeciesBasis& b) {
   CHECK(a.wind().projection_matrix() == b.wind().projection_matrix());
   CHECK(a.wind().sample_points() == b.wind().sample_points());
   CHECK(a.node_shapes() == b.node_shapes());
+  CHECK(a.settings().wind.leaf_area_index == b.settings().wind.leaf_area_index);
+  CHECK(a.settings().wind.leaf_drag_coefficient == b.settings().wind.leaf_drag_coefficient);
+  CHECK(a.settings().wind.branch_drag_coefficient == b.settings().wind.branch_drag_coefficient);
+  CHECK(a.settings().wind.air_density == b.settings().wind.air_density);
 }
 
 std::vector<char> read_bytes(const std::filesystem::path& path) {
@@ -103,6 +108,19 @@ TEST_CASE("BasisCache: the key changes with the skeleton, the material and every
   CHECK(BasisCache::key(tree, changed) != key);
   changed = base;
   changed.wind.samples = 3;
+  CHECK(BasisCache::key(tree, changed) != key);
+  // Every field of the drag convention changes the projections, so each is in the key.
+  changed = base;
+  changed.wind.air_density = 1.2;
+  CHECK(BasisCache::key(tree, changed) != key);
+  changed = base;
+  changed.wind.branch_drag_coefficient = 1.0;
+  CHECK(BasisCache::key(tree, changed) != key);
+  changed = base;
+  changed.wind.leaf_area_index = 2.5;
+  CHECK(BasisCache::key(tree, changed) != key);
+  changed = base;
+  changed.wind.leaf_drag_coefficient = 0.3;
   CHECK(BasisCache::key(tree, changed) != key);
 }
 

@@ -108,7 +108,7 @@ TEST_CASE("LSystem: the same seed gives the same word and another seed a differe
   CHECK_FALSE(bush.derive(8, 124) == first);
 }
 
-TEST_CASE("LSystem: unit_interval maps 64 random bits onto [0, 1)", "[lsystem]") {
+TEST_CASE("LSystem: unit_interval maps 64 random bits onto 0 <= u < 1", "[lsystem]") {
   CHECK(fw::trees::unit_interval(0) == 0.0);
   CHECK(fw::trees::unit_interval(~std::uint64_t(0)) == 1.0 - 0x1.0p-53);
   CHECK(fw::trees::unit_interval(std::uint64_t(1) << 63) == 0.5);

@@ -14,10 +14,12 @@
 #include <vector>
 
 #include "trees/BeamModel.hpp"
+#include "trees/Foliage.hpp"
 #include "trees/Material.hpp"
 #include "trees/Skeleton.hpp"
 
 using fw::trees::BeamModel;
+using fw::trees::Foliage;
 using fw::trees::integrated_shape_functions;
 using fw::trees::Material;
 using fw::trees::Skeleton;
@@ -28,7 +30,10 @@ using fw::trees::WindBasisSettings;
 namespace {
 
 const Material kWood{1.0e10, 3.85e9, 900.0};
-constexpr double kDrag = 0.5 * 1.225 * 1.2;
+// 1/2 rho_air C_Db with the defaults: the woody drag per unit diameter and length, kg/m^3.
+constexpr double kDrag = 0.5 * WindBasisSettings::kAirDensity * WindBasisSettings::kCylinderDragCoefficient;
+// A leaf area index that makes the foliage's drag comparable to the wood's on branched_tree().
+constexpr double kLeafAreaIndex = 3.0;
 
 // Appends a straight branch of `count` elements from node `from` to `end`, the radius tapering linearly from
 // the parent's radius to `end_radius`. Returns the index of its last node.
@@ -108,6 +113,7 @@ struct QuadraturePoint {
   double diameter;           // m
   double weight;             // quadrature weight, m
   int band;                  // height band of the point
+  std::size_t element;       // index into skeleton.elements()
   Eigen::Matrix3Xd phi;      // global displacement of every mode at the point (3 x m)
 };
 
@@ -138,7 +144,8 @@ void integrate_tree(const Skeleton& skeleton, const BeamModel& model, const Eige
   const double gauss_x[3] = {-std::sqrt(0.6), 0.0, std::sqrt(0.6)};
   const double gauss_w[3] = {5.0 / 9.0, 8.0 / 9.0, 5.0 / 9.0};
 
-  for (const auto& [parent, child] : skeleton.elements()) {
+  for (std::size_t element = 0; element < skeleton.elements().size(); ++element) {
+    const auto [parent, child] = skeleton.elements()[element];
     const Eigen::Vector3d a = skeleton.node(parent).position;
     const Eigen::Vector3d b = skeleton.node(child).position;
     const double length = (b - a).norm();
@@ -169,8 +176,8 @@ void integrate_tree(const Skeleton& skeleton, const BeamModel& model, const Eige
           const double h2 = length * t * (1.0 - t) * (1.0 - t);
           const double h3 = t * t * (3.0 - 2.0 * t);
           const double h4 = length * t * t * (t - 1.0);
-          QuadraturePoint point{a + s * axis,      axis, diameter, 0.5 * (hi - lo) * gauss_w[g], band,
-                                Eigen::Matrix3Xd()};
+          QuadraturePoint point{a + s * axis, axis,    diameter,          0.5 * (hi - lo) * gauss_w[g],
+                                band,         element, Eigen::Matrix3Xd()};
           point.phi = axis * (axis.transpose() * ((1.0 - t) * ua + t * ub)) + normal * (h1 * ua + h3 * ub) +
                       h2 * slope_a + h4 * slope_b;
           callback(point);
@@ -190,21 +197,30 @@ Reference reference_basis(const Skeleton& skeleton, const BeamModel& model, cons
   const int bands = settings.samples;
   Reference ref{Eigen::MatrixXd::Zero(3 * bands, shapes.cols()), Eigen::MatrixX3d::Zero(bands, 3)};
   Eigen::VectorXd weight = Eigen::VectorXd::Zero(bands);
+  const Foliage foliage = Foliage::of(skeleton, settings.leaf_area_index);
+  const double half_rho = 0.5 * settings.air_density;
   integrate_tree(skeleton, model, shapes, bands, [&](const QuadraturePoint& q) {
-    Eigen::Matrix3Xd phi = q.phi;
-    // f . phi with f = C D P v equals C D v . (P phi): P is symmetric.
-    if (settings.branch_normal_drag) phi = phi - q.axis * (q.axis.transpose() * phi);
-    ref.projection.middleRows(3 * q.band, 3) += settings.drag_factor * q.diameter * q.weight * phi;
-    ref.sample_points.row(q.band) += q.diameter * q.weight * q.position.transpose();
-    weight(q.band) += q.diameter * q.weight;
+    Eigen::Matrix3Xd wood = q.phi;
+    // f . phi with f = C D P v equals C D v . (P phi): P is symmetric. The leaves drag with the whole wind.
+    if (settings.branch_normal_drag) wood = wood - q.axis * (q.axis.transpose() * wood);
+    const double leaf = foliage.leaf_area_per_metre[q.element];
+    ref.projection.middleRows(3 * q.band, 3) += half_rho * q.weight *
+                                                (settings.branch_drag_coefficient * q.diameter * wood +
+                                                 settings.leaf_drag_coefficient * leaf * q.phi);
+    const double width =
+        settings.branch_drag_coefficient * q.diameter + settings.leaf_drag_coefficient * leaf;
+    ref.sample_points.row(q.band) += width * q.weight * q.position.transpose();
+    weight(q.band) += width * q.weight;
   });
   for (int band = 0; band < bands; ++band) ref.sample_points.row(band) /= weight(band);
   return ref;
 }
 
-WindBasisSettings make_settings(bool normal, int samples) {
+WindBasisSettings make_settings(bool normal, int samples, double leaf_area_index = 0.0) {
   WindBasisSettings settings;
-  settings.drag_factor = kDrag;
+  settings.air_density = WindBasisSettings::kAirDensity;
+  settings.branch_drag_coefficient = WindBasisSettings::kCylinderDragCoefficient;
+  settings.leaf_area_index = leaf_area_index;
   settings.branch_normal_drag = normal;
   settings.samples = samples;
   return settings;
@@ -264,18 +280,20 @@ TEST_CASE("WindBasis closed form matches brute-force quadrature", "[windbasis]")
 
   for (const bool normal : {false, true}) {
     for (const int samples : {1, 3}) {
-      const WindBasisSettings settings = make_settings(normal, samples);
-      const WindBasis basis = WindBasis::compute(skeleton, model, modes.vectors, settings);
-      const Reference ref = reference_basis(skeleton, model, modes.vectors, settings);
-      REQUIRE(basis.sample_count() == samples);
-      REQUIRE(basis.mode_count() == 10);
-      const double p_error = relative_error(basis.projection_matrix(), ref.projection);
-      const double x_error = relative_error(basis.sample_points(), ref.sample_points);
-      INFO("branch_normal_drag " << normal << ", samples " << samples);
-      INFO("projection: max rel error (to the largest |p|) " << p_error);
-      INFO("sample points: max rel error (to the largest |x|) " << x_error);
-      CHECK(p_error < 1e-10);
-      CHECK(x_error < 1e-12);
+      for (const double lai : {0.0, kLeafAreaIndex}) {
+        const WindBasisSettings settings = make_settings(normal, samples, lai);
+        const WindBasis basis = WindBasis::compute(skeleton, model, modes.vectors, settings);
+        const Reference ref = reference_basis(skeleton, model, modes.vectors, settings);
+        REQUIRE(basis.sample_count() == samples);
+        REQUIRE(basis.mode_count() == 10);
+        const double p_error = relative_error(basis.projection_matrix(), ref.projection);
+        const double x_error = relative_error(basis.sample_points(), ref.sample_points);
+        INFO("branch_normal_drag " << normal << ", samples " << samples << ", LAI " << lai);
+        INFO("projection: max rel error (to the largest |p|) " << p_error);
+        INFO("sample points: max rel error (to the largest |x|) " << x_error);
+        CHECK(p_error < 1e-10);
+        CHECK(x_error < 1e-12);
+      }
     }
   }
 }
@@ -312,16 +330,18 @@ TEST_CASE("WindBasis bands: per-point band membership agrees with the element sp
         0.1 * one_band.cwiseAbs().maxCoeff());
 }
 
-TEST_CASE("WindBasis bands sum to the single-sample basis; sample points lie in their bands", "[windbasis]") {
+TEST_CASE("WindBasis bands sum to the single-sample basis and sample points lie in their bands",
+          "[windbasis]") {
   const Skeleton skeleton = branched_tree();
   const BeamModel model(skeleton, kWood);
   const Modes modes = dense_modes(model, 12);
 
   for (const bool normal : {false, true}) {
-    const WindBasis one = WindBasis::compute(skeleton, model, modes.vectors, make_settings(normal, 1));
+    const WindBasis one =
+        WindBasis::compute(skeleton, model, modes.vectors, make_settings(normal, 1, kLeafAreaIndex));
     for (const int samples : {2, 3, 5}) {
       const WindBasis banded =
-          WindBasis::compute(skeleton, model, modes.vectors, make_settings(normal, samples));
+          WindBasis::compute(skeleton, model, modes.vectors, make_settings(normal, samples, kLeafAreaIndex));
       Eigen::MatrixXd sum = Eigen::MatrixXd::Zero(3, modes.vectors.cols());
       for (int s = 0; s < samples; ++s) sum += banded.projection_matrix().middleRows(3 * s, 3);
       const double error = relative_error(sum, one.projection_matrix());
@@ -356,6 +376,25 @@ TEST_CASE("WindBasis bands sum to the single-sample basis; sample points lie in 
       (one.sample_points().row(0).transpose() - moment / weight).norm() / (moment / weight).norm();
   INFO("S = 1 sample point vs D-weighted centroid, rel error " << error);
   CHECK(error < 1e-13);
+
+  // With leaves: weighted by the drag width C_Db D_e + C_Df lambda_e, which pulls it into the crown.
+  const Foliage foliage = Foliage::of(skeleton, kLeafAreaIndex);
+  Eigen::Vector3d leafy_moment = Eigen::Vector3d::Zero();
+  double leafy_weight = 0.0;
+  for (std::size_t e = 0; e < skeleton.elements().size(); ++e) {
+    const auto& a = skeleton.node(skeleton.elements()[e].first);
+    const auto& b = skeleton.node(skeleton.elements()[e].second);
+    const double w = (WindBasisSettings::kCylinderDragCoefficient * (a.radius + b.radius) +
+                      WindBasisSettings::kFoliageDragCoefficient * foliage.leaf_area_per_metre[e]) *
+                     (b.position - a.position).norm();
+    leafy_moment += w * 0.5 * (a.position + b.position);
+    leafy_weight += w;
+  }
+  const WindBasis leafy =
+      WindBasis::compute(skeleton, model, modes.vectors, make_settings(false, 1, kLeafAreaIndex));
+  const Eigen::Vector3d leafy_centroid = leafy_moment / leafy_weight;
+  CHECK((leafy.sample_points().row(0).transpose() - leafy_centroid).norm() < 1e-13 * leafy_centroid.norm());
+  CHECK(leafy_centroid.z() > (moment / weight).z());  // the trunk's base weighs less against the leaves
 }
 
 TEST_CASE("WindBasis cantilever: rigid translation and the static deflection q L^4 / (8 E I)",
@@ -450,18 +489,24 @@ TEST_CASE("WindBasis modal forces", "[windbasis]") {
   const BeamModel model(skeleton, kWood);
   const Modes modes = dense_modes(model, 10);
 
+  const Foliage foliage = Foliage::of(skeleton, kLeafAreaIndex);
+  REQUIRE(foliage.leaf_area > 0.0);
   for (const bool normal : {false, true}) {
     const int bands = 3;
-    const WindBasis basis = WindBasis::compute(skeleton, model, modes.vectors, make_settings(normal, bands));
+    const WindBasis basis =
+        WindBasis::compute(skeleton, model, modes.vectors, make_settings(normal, bands, kLeafAreaIndex));
     Eigen::MatrixX3d wind(bands, 3);
     wind << 4.0, -1.0, 0.3, 9.0, 2.5, -0.7, 14.0, 6.0, 1.1;
 
-    // Direct evaluation: f_i = int C D |v| (P) v . phi_i ds with the wind of each point's band.
+    // Direct evaluation: f_i = int 1/2 rho (C_Db D (P) + C_Df lambda) |v| v . phi_i ds with the wind of each
+    // point's band.
     Eigen::VectorXd direct = Eigen::VectorXd::Zero(modes.vectors.cols());
     integrate_tree(skeleton, model, modes.vectors, bands, [&](const QuadraturePoint& q) {
       Eigen::Vector3d v = wind.row(q.band).transpose();
       Eigen::Vector3d load = kDrag * q.diameter * v.norm() * v;
       if (normal) load -= q.axis * q.axis.dot(load);
+      load += 0.5 * WindBasisSettings::kAirDensity * WindBasisSettings::kFoliageDragCoefficient *
+              foliage.leaf_area_per_metre[q.element] * v.norm() * v;
       direct += q.weight * q.phi.transpose() * load;
     });
     const Eigen::VectorXd f = basis.modal_forces(wind);
@@ -470,7 +515,8 @@ TEST_CASE("WindBasis modal forces", "[windbasis]") {
     CHECK(error < 1e-10);
 
     // Uniform wind: S bands give the S = 1 forces.
-    const WindBasis one = WindBasis::compute(skeleton, model, modes.vectors, make_settings(normal, 1));
+    const WindBasis one =
+        WindBasis::compute(skeleton, model, modes.vectors, make_settings(normal, 1, kLeafAreaIndex));
     Eigen::MatrixX3d uniform(bands, 3), single(1, 3);
     single << 8.0, -3.0, 0.5;
     uniform = single.replicate(bands, 1);
@@ -481,6 +527,52 @@ TEST_CASE("WindBasis modal forces", "[windbasis]") {
     // No wind, no force.
     CHECK(basis.modal_forces(Eigen::MatrixX3d::Zero(bands, 3)).isZero(0.0));
   }
+}
+
+TEST_CASE("WindBasis load operator: nodal loads sum to the total drag, projections are shapes^T G",
+          "[windbasis]") {
+  const Skeleton skeleton = branched_tree();
+  const BeamModel model(skeleton, kWood);
+  const Modes modes = dense_modes(model, 5);
+  const Foliage foliage = Foliage::of(skeleton, kLeafAreaIndex);
+  for (const bool normal : {false, true}) {
+    const int bands = 3;
+    const WindBasisSettings settings = make_settings(normal, bands, kLeafAreaIndex);
+    const Eigen::MatrixXd G = WindBasis::load_operator(skeleton, settings);
+    REQUIRE(G.rows() == 6 * skeleton.size());
+    REQUIRE(G.cols() == 3 * bands);
+    const Eigen::Vector3d v(6.0, -2.0, 0.5);
+    const Eigen::VectorXd F =
+        G * WindBasis::squared_wind(Eigen::MatrixX3d(v.transpose().replicate(bands, 1)));
+    Eigen::Vector3d total = Eigen::Vector3d::Zero();
+    for (int node = 0; node < skeleton.size(); ++node) total += F.segment<3>(6 * node);
+    // Closed form: sum_e A_e L_e |v| v, A_e = 1/2 rho (C_Db D_e P_e + C_Df lambda_e I).
+    Eigen::Vector3d expected = Eigen::Vector3d::Zero();
+    for (std::size_t e = 0; e < skeleton.elements().size(); ++e) {
+      const auto [a, b] = skeleton.elements()[e];
+      const Eigen::Vector3d d = skeleton.node(b).position - skeleton.node(a).position;
+      const Eigen::Vector3d axis = d.normalized();
+      Eigen::Vector3d wood = v.norm() * v;
+      if (normal) wood -= axis * axis.dot(wood);
+      expected +=
+          0.5 * WindBasisSettings::kAirDensity * d.norm() *
+          (WindBasisSettings::kCylinderDragCoefficient * (skeleton.node(a).radius + skeleton.node(b).radius) *
+               wood +
+           WindBasisSettings::kFoliageDragCoefficient * foliage.leaf_area_per_metre[e] * v.norm() * v);
+    }
+    INFO("branch_normal_drag " << normal);
+    CHECK((total - expected).norm() < 1e-12 * expected.norm());
+    // The projections are the free rows of G against the shapes.
+    Eigen::MatrixXd free(model.dof_count(), 3 * bands);
+    for (int node = 0; node < skeleton.size(); ++node)
+      for (int j = 0; j < 6; ++j)
+        if (model.free_dof_of(node, j) >= 0) free.row(model.free_dof_of(node, j)) = G.row(6 * node + j);
+    const WindBasis basis = WindBasis::compute(skeleton, model, modes.vectors, settings);
+    CHECK(relative_error(basis.projection_matrix(), free.transpose() * modes.vectors) < 1e-14);
+  }
+  CHECK_THROWS_WITH(
+      WindBasis::load_operator(Skeleton::from_nodes({{-1, {0, 0, 0}, 0.1}}), WindBasisSettings{}),
+      Catch::Matchers::Contains("WindBasis:"));
 }
 
 TEST_CASE("WindBasis scaled(s) matches the basis of the scaled skeleton", "[windbasis]") {
@@ -504,7 +596,8 @@ TEST_CASE("WindBasis scaled(s) matches the basis of the scaled skeleton", "[wind
   CHECK(omega_error < 1e-9);
 
   for (const bool normal : {false, true}) {
-    const WindBasisSettings settings = make_settings(normal, 3);
+    // Leaves too: lambda_e scales as s like D_e, so the similarity law holds with foliage.
+    const WindBasisSettings settings = make_settings(normal, 3, kLeafAreaIndex);
     const WindBasis scaled =
         WindBasis::compute(small, small_model, small_modes.vectors.leftCols(m), settings).scaled(s);
     const WindBasis direct = WindBasis::compute(big, big_model, big_modes.vectors, settings);
@@ -557,11 +650,24 @@ TEST_CASE("WindBasis rejects bad arguments", "[windbasis]") {
   using Catch::Matchers::Contains;
   WindBasisSettings bad = make_settings(false, 0);
   CHECK_THROWS_WITH(bad.validate(), Contains("WindBasisSettings:") && Contains("samples"));
+  for (const char* field :
+       {"air_density", "branch_drag_coefficient", "leaf_area_index", "leaf_drag_coefficient"}) {
+    for (const double value :
+         {-1.0, std::numeric_limits<double>::quiet_NaN(), std::numeric_limits<double>::infinity()}) {
+      bad = make_settings(false, 1);
+      const std::string name = field;
+      double& target = name == "air_density"               ? bad.air_density
+                       : name == "branch_drag_coefficient" ? bad.branch_drag_coefficient
+                       : name == "leaf_area_index"         ? bad.leaf_area_index
+                                                           : bad.leaf_drag_coefficient;
+      target = value;
+      INFO(field << " = " << value);
+      CHECK_THROWS_WITH(bad.validate(), Contains("WindBasisSettings:") && Contains(field));
+    }
+  }
+  CHECK_NOTHROW(make_settings(false, 1, kLeafAreaIndex).validate());
   bad = make_settings(false, 1);
-  bad.drag_factor = -1.0;
-  CHECK_THROWS_WITH(bad.validate(), Contains("WindBasisSettings:") && Contains("drag_factor"));
-  bad.drag_factor = std::numeric_limits<double>::quiet_NaN();
-  CHECK_THROWS_AS(bad.validate(), std::invalid_argument);
+  bad.air_density = -1.0;
   CHECK_THROWS_WITH(WindBasis::compute(skeleton, model, modes.vectors, bad), Contains("WindBasisSettings:"));
 
   // Shapes with the wrong number of rows, non-finite shapes, a model of another skeleton.

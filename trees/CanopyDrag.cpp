@@ -1,0 +1,70 @@
+#include "trees/CanopyDrag.hpp"
+
+#include <fmt/format.h>
+
+#include <stdexcept>
+
+#include "trees/Foliage.hpp"
+
+namespace fw::trees {
+
+namespace {
+
+struct Elements {
+  std::vector<fluid::CanopyElement> elements;
+  Foliage foliage;
+  double woody_area = 0.0;  // sum of D_e L_e, m^2
+};
+
+Elements elements_of(const Skeleton& world, const WindBasisSettings& settings) {
+  try {
+    settings.validate();
+  } catch (const std::invalid_argument& e) {
+    throw std::invalid_argument(fmt::format("CanopyDrag: {}", e.what()));
+  }
+  if (world.size() < 2) throw std::invalid_argument("CanopyDrag: the skeleton has no elements");
+  Elements out;
+  out.foliage = Foliage::of(world, settings.leaf_area_index);
+  const auto& pairs = world.elements();
+  out.elements.reserve(pairs.size());
+  for (std::size_t e = 0; e < pairs.size(); ++e) {
+    const SkeletonNode& a = world.node(pairs[e].first);
+    const SkeletonNode& b = world.node(pairs[e].second);
+    const double diameter = a.radius + b.radius;  // D_e = 2 x mean radius, as in WindBasis
+    const double leaf = out.foliage.leaf_area_per_metre[e];
+    fluid::CanopyElement c;
+    c.start = {a.position.x(), a.position.y(), a.position.z()};
+    c.end = {b.position.x(), b.position.y(), b.position.z()};
+    c.frontal_area_per_metre = diameter + leaf;
+    c.drag_area_per_metre =
+        settings.branch_drag_coefficient * diameter + settings.leaf_drag_coefficient * leaf;
+    out.elements.push_back(c);
+    out.woody_area += diameter * (b.position - a.position).norm();
+  }
+  return out;
+}
+
+}  // namespace
+
+std::vector<fluid::CanopyElement> canopy_elements(const Skeleton& world_skeleton,
+                                                  const WindBasisSettings& settings) {
+  return elements_of(world_skeleton, settings).elements;
+}
+
+fluid::CanopyTreeReport add_to_canopy(fluid::CanopyField& canopy, const Forest& forest, int instance) {
+  if (instance < 0 || instance >= forest.instance_count()) {
+    throw std::invalid_argument(
+        fmt::format("CanopyDrag: instance {} outside 0..{}", instance, forest.instance_count() - 1));
+  }
+  const TreeInstance& tree = forest.instances()[std::size_t(instance)];
+  const SpeciesBasis& species = forest.species_of(instance);
+  const Skeleton world = species.skeleton().transformed(forest.rotation(instance), tree.position, tree.scale);
+  const Elements parts = elements_of(world, species.settings().wind);
+  fluid::CanopyTreeReport report = canopy.add_elements(parts.elements);
+  report.woody_area = parts.woody_area;
+  report.leaf_area = parts.foliage.leaf_area;
+  report.crown_projected_area = parts.foliage.crown_projected_area;
+  return report;
+}
+
+}  // namespace fw::trees
