@@ -15,11 +15,16 @@ PressureSolverType parse_pressure_solver(const std::string& name);  // "jacobi" 
 std::string to_string(AdvectionScheme scheme);
 std::string to_string(PressureSolverType solver);
 
+/// The relative residual at which the converging solvers stop, unless told otherwise (the scenario's
+/// solver.tolerance reads it too): a tenth of a per cent of the divergence left, and well above the float32
+/// floor near 1e-5 that a solve cannot get below.
+inline constexpr double kDefaultPressureTolerance = 1e-3;
+
 struct PressureSettings {
   PressureSolverType solver = PressureSolverType::cg;  // cg: conjugate gradients, multigrid-preconditioned
-  double tolerance = 1e-4;     // relative residual ||b - A p|| / ||b|| (multigrid, cg)
-  int max_iterations = 100;    // V-cycles (multigrid) or CG iterations (cg)
-  int jacobi_iterations = 40;  // fixed count (jacobi)
+  double tolerance = kDefaultPressureTolerance;  // relative residual ||b - A p|| / ||b|| (multigrid, cg)
+  int max_iterations = 100;                      // V-cycles (multigrid) or CG iterations (cg)
+  int jacobi_iterations = 40;                    // fixed count (jacobi)
   MultigridSmoother smoother = MultigridSmoother::red_black;
   int smoothing_sweeps = 2;  // sweeps before and after each coarse correction (pairs, for Jacobi)
 };

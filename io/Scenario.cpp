@@ -72,6 +72,10 @@ std::array<double, 2> sin_cos_degrees(double degrees) {
 }  // namespace
 
 std::array<double, 3> Scenario::wind_vector(double t) const {
+  return io::wind_vector(wind, t);
+}
+
+std::array<double, 3> wind_vector(const WindSource& wind, double t) {
   const double speed = wind.speed(t);
   // Meteorological: the direction is where the wind comes FROM, so it blows toward direction + 180 degrees.
   const auto [sin_theta, cos_theta] = sin_cos_degrees(wind.direction(t));
@@ -219,23 +223,41 @@ std::optional<Integer> parse_integer(const std::string& text) {
   return value;
 }
 
-enum class Sign { any, positive, non_negative };
+using schema::Bound;
+using schema::Key;
+
+/// The key of the table a field of the file stands for ("forest.species[0].modes" -> forest.species[].modes).
+const Key& key_of(const Field& field) {
+  const std::string path = schema::generic_path(field.key);
+  const Key* key = schema::find(path);
+  if (!key) throw std::logic_error("Scenario: the loader reads " + path + ", which the schema lacks");
+  return *key;
+}
+
+/// A number with the bound and unit of `owner` (the components of a point, say), as the table's number key.
+std::string number_expected(const Key& owner) {
+  return schema::expected(
+      Key{.path = owner.path, .type = schema::Type::number, .unit = owner.unit, .bound = owner.bound});
+}
 
 class Loader;
 
-/// The keys of one map, checked against the allowed names (unknown and duplicate keys are errors). A null
-/// value (`solver:` with nothing after it) counts as an empty map.
+/// The keys of one map, checked against its keys in the schema (unknown and duplicate keys are errors, and
+/// so are missing required keys). A null value (`solver:` with nothing after it) counts as an empty map.
+/// With a variant (wind.profile's type), keys that apply to another variant are unknown; without one, all
+/// are allowed and only the keys of every variant are required.
 class MapFields {
  public:
-  MapFields(const Loader& loader, const Field& map, const std::vector<std::string>& allowed);
+  MapFields(const Loader& loader, const Field& map, const std::string* variant = nullptr);
 
   std::optional<Field> get(const std::string& name) const {
     const auto found = fields_.find(name);
     if (found == fields_.end()) return std::nullopt;
     return found->second;
   }
-  /// The field, or an error at the map's line: "WHAT expected (required), got nothing".
-  Field require(const std::string& name, const std::string& what) const;
+  /// The field, or an error at the map's line: "WHAT expected (required), got nothing", WHAT from the
+  /// schema and `reason` (why it is needed here) after it.
+  Field require(const std::string& name, const std::string& reason = "") const;
   std::size_t size() const { return fields_.size(); }
   const Field& self() const { return self_; }
   std::string path(const std::string& name) const {
@@ -263,42 +285,32 @@ class Loader {
   [[noreturn]] void expected(const Field& field, const std::string& what) const {
     fail(field, what + " expected, got " + shown(field.node));
   }
+  /// "WHAT expected, got VALUE" with WHAT from the field's key in the schema.
+  [[noreturn]] void expected(const Field& field) const { expected(field, schema::expected(key_of(field))); }
 
   Field child(const Field& parent, const YAML::Node& node, const std::string& key) const {
     return Field{node, key, line_of(node, parent.line)};
   }
 
-  // --- scalars ---------------------------------------------------------------------------------------
+  // --- scalars, each as its key in the schema says -------------------------------------------------------
 
-  double number(const Field& field, Sign sign = Sign::any, const std::string& unit = "") const {
-    const std::string what = fmt::format("a number{}{}",
-                                         sign == Sign::positive       ? " > 0"
-                                         : sign == Sign::non_negative ? " >= 0"
-                                                                      : "",
-                                         unit.empty() ? "" : " (" + unit + ")");
-    if (!field.node.IsScalar()) expected(field, what);
-    const std::optional<double> value = parse_double(field.node.Scalar());
-    if (!value || (sign == Sign::positive && !(*value > 0.0)) ||
-        (sign == Sign::non_negative && !(*value >= 0.0)))
-      expected(field, what);
-    return *value;
+  double number(const Field& field) const {
+    const Key& key = key_of(field);
+    return number(field, key.bound, schema::expected(key));
   }
 
-  int integer(const Field& field, int lowest, int highest) const {
-    const std::string what = highest == std::numeric_limits<int>::max()
-                                 ? fmt::format("an integer >= {}", lowest)
-                                 : fmt::format("an integer {}..{}", lowest, highest);
-    if (!field.node.IsScalar()) expected(field, what);
+  int integer(const Field& field) const {
+    const Key& key = key_of(field);
+    if (!field.node.IsScalar()) expected(field);
     const auto value = parse_integer<long long>(field.node.Scalar());
-    if (!value || *value < lowest || *value > highest) expected(field, what);
+    if (!value || *value < key.lowest || *value > key.highest) expected(field);
     return int(*value);
   }
 
   std::uint64_t seed(const Field& field) const {
-    const std::string what = "an integer 0..18446744073709551615";
-    if (!field.node.IsScalar()) expected(field, what);
+    if (!field.node.IsScalar()) expected(field);
     const auto value = parse_integer<std::uint64_t>(field.node.Scalar());
-    if (!value) expected(field, what);
+    if (!value) expected(field);
     return *value;
   }
 
@@ -308,41 +320,34 @@ class Loader {
       if (text == "true" || text == "True" || text == "TRUE") return true;
       if (text == "false" || text == "False" || text == "FALSE") return false;
     }
-    expected(field, "true or false");
+    expected(field);
   }
 
-  std::string text(const Field& field, const std::string& what) const {
-    if (!field.node.IsScalar() || field.node.Scalar().empty()) expected(field, what);
+  std::string text(const Field& field) const {
+    if (!field.node.IsScalar() || field.node.Scalar().empty()) expected(field);
     return field.node.Scalar();
   }
 
-  /// One of words; returns its index.
-  std::size_t word(const Field& field, const std::vector<std::string>& words) const {
-    if (field.node.IsScalar()) {
-      const auto found = std::find(words.begin(), words.end(), field.node.Scalar());
-      if (found != words.end()) return std::size_t(found - words.begin());
-    }
-    expected(field, "one of " + join(words, " | "));
-  }
+  /// One of the key's words.
+  std::string word(const Field& field) const { return word(field, key_of(field)); }
 
   template <std::size_t N>
-  std::array<double, N> vector(const Field& field, Sign sign, const std::string& unit) const {
-    static const char* const kNames[] = {"x", "y", "z"};
-    std::vector<std::string> names(kNames, kNames + N);
-    const std::string what = fmt::format("a list of {} numbers [{}]{}{}", N, join(names, ", "),
-                                         sign == Sign::positive       ? ", each > 0"
-                                         : sign == Sign::non_negative ? ", each >= 0"
-                                                                      : "",
-                                         unit.empty() ? "" : " (" + unit + ")");
-    if (!field.node.IsSequence() || field.node.size() != N) expected(field, what);
+  std::array<double, N> vector(const Field& field) const {
+    const Key& key = key_of(field);
+    if (!field.node.IsSequence() || field.node.size() != N) expected(field);
     std::array<double, N> values{};
-    for (std::size_t i = 0; i < N; ++i)
-      values[i] = number(child(field, field.node[i], fmt::format("{}[{}]", field.key, i)), sign, unit);
+    for (std::size_t i = 0; i < N; ++i) values[i] = component(field, i, key);
     return values;
   }
 
+  /// Item i of a list of numbers, with the bound and unit of the list's key.
+  double component(const Field& list, std::size_t i, const Key& key) const {
+    return number(child(list, list.node[i], fmt::format("{}[{}]", list.key, i)), key.bound,
+                  number_expected(key));
+  }
+
   Expression expression(const Field& field) const {
-    const std::string what = "a number or a muparser expression of t";
+    const std::string what = schema::expected(key_of(field));
     if (!field.node.IsScalar() || field.node.Scalar().empty()) expected(field, what);
     try {
       return Expression::parse(field.node.Scalar());
@@ -357,7 +362,7 @@ class Loader {
 
   /// A path relative to the scenario folder (or absolute) naming a readable regular file.
   std::filesystem::path readable_file(const Field& field) const {
-    const std::string written = text(field, "a file path");
+    const std::string written = text(field);
     std::filesystem::path path = written;
     if (path.is_relative()) path = (folder_ / path).lexically_normal();
     std::error_code error;
@@ -374,22 +379,24 @@ class Loader {
   }
 
   /// A list (null counts as empty); each item keyed KEY[i].
-  std::vector<Field> items(const Field& field, const std::string& what) const {
+  std::vector<Field> items(const Field& field) const {
     std::vector<Field> out;
     if (field.node.IsNull()) return out;
-    if (!field.node.IsSequence()) expected(field, what);
+    if (!field.node.IsSequence()) expected(field);
     for (std::size_t i = 0; i < field.node.size(); ++i)
       out.push_back(child(field, field.node[i], fmt::format("{}[{}]", field.key, i)));
     return out;
   }
 
-  /// A list of distinct words from the vocabulary, in the file's order.
-  std::vector<std::string> word_set(const Field& field, const std::vector<std::string>& words) const {
+  /// A list of distinct words of the key's vocabulary, in the file's order.
+  std::vector<std::string> word_set(const Field& field) const {
+    const Key& key = key_of(field);
+    const std::vector<std::string> vocabulary = schema::words(key);
     std::vector<std::string> chosen;
-    for (const Field& item : items(field, "a list of " + join(words, ", "))) {
-      const std::string& choice = words[word(item, words)];
+    for (const Field& item : items(field)) {
+      const std::string choice = word(item, key);
       if (std::find(chosen.begin(), chosen.end(), choice) != chosen.end())
-        expected(item, "each of " + join(words, ", ") + " at most once");
+        expected(item, "each of " + join(vocabulary, ", ") + " at most once");
       chosen.push_back(choice);
     }
     return chosen;
@@ -398,61 +405,104 @@ class Loader {
   const std::filesystem::path& folder() const { return folder_; }
 
  private:
+  double number(const Field& field, Bound bound, const std::string& what) const {
+    if (!field.node.IsScalar()) expected(field, what);
+    const std::optional<double> value = parse_double(field.node.Scalar());
+    if (!value || (bound == Bound::positive && !(*value > 0.0)) ||
+        (bound == Bound::non_negative && !(*value >= 0.0)))
+      expected(field, what);
+    return *value;
+  }
+
+  /// One of the vocabulary of `key` (a word key, or a word_set key for one of its items).
+  std::string word(const Field& field, const Key& key) const {
+    const std::vector<std::string> vocabulary = schema::words(key);
+    if (field.node.IsScalar()) {
+      const auto found = std::find(vocabulary.begin(), vocabulary.end(), field.node.Scalar());
+      if (found != vocabulary.end()) return *found;
+    }
+    expected(field, "one of " + join(vocabulary, " | "));
+  }
+
   std::string file_;
   std::filesystem::path folder_;
 };
 
-MapFields::MapFields(const Loader& loader, const Field& map, const std::vector<std::string>& allowed)
+bool applies(const Key& key, const std::string* variant) {
+  return !variant || key.only_with.empty() || key.only_with == *variant;
+}
+
+MapFields::MapFields(const Loader& loader, const Field& map, const std::string* variant)
     : loader_(loader), self_(map) {
-  if (map.node.IsNull()) return;
-  if (!map.node.IsMap()) loader.expected(map, "a map with the keys " + join(allowed, ", "));
-  for (auto it = map.node.begin(); it != map.node.end(); ++it) {
-    const YAML::Node key = it->first;
-    const int key_line = line_of(key, map.line);
-    if (!key.IsScalar()) loader.fail(Field{key, map.key, key_line}, "a key name expected, got " + shown(key));
-    const std::string& name = key.Scalar();
-    const Field key_field{key, path(name), key_line};
-    if (std::find(allowed.begin(), allowed.end(), name) == allowed.end())
-      loader.expected(key_field, "one of the keys " + join(allowed, ", "));
-    if (const auto first = fields_.find(name); first != fields_.end())
-      loader.fail(key_field, fmt::format("each key once expected, got '{}' again (first on line {})", name,
-                                         first->second.line));
-    fields_.emplace(name, Field{it->second, path(name), line_of(it->second, key_line)});
-    order_.push_back(name);
+  const std::string parent = schema::generic_path(map.key);
+  std::vector<std::string> allowed;
+  for (const Key* key : schema::children(parent))
+    if (applies(*key, variant)) allowed.emplace_back(key->path.substr(key->path.rfind('.') + 1));
+  if (!map.node.IsNull()) {
+    if (!map.node.IsMap()) loader.expected(map, "a map with the keys " + join(allowed, ", "));
+    for (auto it = map.node.begin(); it != map.node.end(); ++it) {
+      const YAML::Node key = it->first;
+      const int key_line = line_of(key, map.line);
+      if (!key.IsScalar())
+        loader.fail(Field{key, map.key, key_line}, "a key name expected, got " + shown(key));
+      const std::string& name = key.Scalar();
+      const Field key_field{key, path(name), key_line};
+      if (std::find(allowed.begin(), allowed.end(), name) == allowed.end())
+        loader.expected(key_field, "one of the keys " + join(allowed, ", "));
+      if (const auto first = fields_.find(name); first != fields_.end())
+        loader.fail(key_field, fmt::format("each key once expected, got '{}' again (first on line {})", name,
+                                           first->second.line));
+      fields_.emplace(name, Field{it->second, path(name), line_of(it->second, key_line)});
+      order_.push_back(name);
+    }
+  }
+  // A key required only by some variant is checked once the variant is known.
+  for (const Key* key : schema::children(parent)) {
+    const bool every_variant = key->only_with.empty();
+    if (key->required && (variant ? applies(*key, variant) : every_variant))
+      require(std::string(key->path.substr(key->path.rfind('.') + 1)));
   }
 }
 
-Field MapFields::require(const std::string& name, const std::string& what) const {
+Field MapFields::require(const std::string& name, const std::string& reason) const {
   if (auto field = get(name)) return *field;
-  loader_.fail(Field{self_.node, path(name), self_.line}, what + " expected (required), got nothing");
+  const Field missing{self_.node, path(name), self_.line};
+  const std::string what = schema::expected(key_of(missing)) + (reason.empty() ? "" : ", " + reason);
+  loader_.fail(missing, what + " expected (required), got nothing");
 }
 
 std::string axis_name(std::size_t axis) {
   return std::string(1, "xyz"[axis]);
 }
 
+/// The enum value of a word the loader read, from a vocabulary and its values aligned by position.
+template <typename Enum, std::size_t N>
+Enum value(const std::string_view (&words)[N], const Enum (&values)[N], const std::string& word) {
+  return schema::value_of(words, values, word);
+}
+
 // --- sections --------------------------------------------------------------------------------------------
 
 void read_time(const Loader& loader, const Field& field, TimeSettings& time) {
-  const MapFields map(loader, field, {"end", "dt", "cfl"});
-  time.end = loader.number(map.require("end", "a number > 0 (s)"), Sign::positive, "s");
+  const MapFields map(loader, field);
+  time.end = loader.number(map.require("end"));
   if (const auto dt = map.get("dt")) {
-    if (!(dt->node.IsScalar() && dt->node.Scalar() == "auto")) {
-      if (!dt->node.IsScalar() || !parse_double(dt->node.Scalar()) ||
-          !(*parse_double(dt->node.Scalar()) > 0.0))
-        loader.expected(*dt, "a number > 0 (s) or auto");
-      time.dt = *parse_double(dt->node.Scalar());
+    const Key& key = key_of(*dt);
+    if (!(dt->node.IsScalar() && dt->node.Scalar() == key.word)) {  // the word: auto
+      const std::optional<double> step = dt->node.IsScalar() ? parse_double(dt->node.Scalar()) : std::nullopt;
+      if (!step || !(*step > 0.0)) loader.expected(*dt);
+      time.dt = *step;
     }
   }
-  if (const auto cfl = map.get("cfl")) time.cfl = loader.number(*cfl, Sign::positive);
+  if (const auto cfl = map.get("cfl")) time.cfl = loader.number(*cfl);
 }
 
 void read_domain(const Loader& loader, const Field& field, DomainSettings& domain) {
-  const MapFields map(loader, field, {"origin", "size", "cell_size"});
-  if (const auto origin = map.get("origin")) domain.origin = loader.vector<3>(*origin, Sign::any, "m");
-  const Field size = map.require("size", "a list of 3 numbers [x, y, z] (m)");
-  domain.size = loader.vector<3>(size, Sign::positive, "m");
-  domain.cell_size = loader.number(map.require("cell_size", "a number > 0 (m)"), Sign::positive, "m");
+  const MapFields map(loader, field);
+  if (const auto origin = map.get("origin")) domain.origin = loader.vector<3>(*origin);
+  const Field size = map.require("size");
+  domain.size = loader.vector<3>(size);
+  domain.cell_size = loader.number(map.require("cell_size"));
   double total = 1.0;
   for (std::size_t axis = 0; axis < 3; ++axis) {
     const double cells = domain.size[axis] / domain.cell_size;
@@ -469,7 +519,7 @@ void read_domain(const Loader& loader, const Field& field, DomainSettings& domai
   // Face arrays hold (nx + 1)(ny + 1)(nz + 1) values at most, indexed by 32-bit ints on the device.
   const double faces = (domain.cells[0] + 1.0) * (domain.cells[1] + 1.0) * (domain.cells[2] + 1.0);
   if (!(total < std::numeric_limits<double>::infinity()) || faces > 2147483647.0) {
-    loader.expected(map.require("cell_size", ""),
+    loader.expected(map.require("cell_size"),
                     fmt::format("a cell size giving (nx + 1)(ny + 1)(nz + 1) <= 2^31 - 1 (size / cell_size "
                                 "gives {:.3g} cells)",
                                 total));
@@ -477,18 +527,13 @@ void read_domain(const Loader& loader, const Field& field, DomainSettings& domai
 }
 
 void read_boundaries(const Loader& loader, const Field& field, Scenario& scenario) {
-  const std::vector<std::string> faces = {"west", "east", "south", "north", "ground", "top"};
-  const MapFields map(loader, field, faces);
-  const std::vector<std::string> side_words = {"auto", "inflow", "outflow", "slip", "no_slip", "periodic"};
-  const std::vector<std::string> cap_words = {"inflow", "outflow", "slip", "no_slip", "periodic"};
+  const std::vector<std::string> faces = schema::child_names("boundaries");  // in the order of FW_FACE_*
+  const MapFields map(loader, field);
   std::array<std::optional<Field>, 6> given;
   for (int face = 0; face < 6; ++face) {
     given[face] = map.get(faces[face]);
-    if (!given[face]) continue;
-    // "auto" follows the horizontal wind, which never crosses the ground or the top.
-    const bool side = face < 4;
-    const std::size_t index = loader.word(*given[face], side ? side_words : cap_words);
-    scenario.boundaries[face] = BoundaryChoice(side ? index : index + 1);
+    if (given[face])
+      scenario.boundaries[face] = value(schema::kBoundaryWords, kBoundaryChoices, loader.word(*given[face]));
   }
   for (int axis = 0; axis < 3; ++axis) {
     const int low = 2 * axis, high = 2 * axis + 1;
@@ -510,8 +555,9 @@ void read_boundaries(const Loader& loader, const Field& field, Scenario& scenari
   }
 }
 
-void check_time_series(const Loader& loader, const Field& field, const Expression& expression, double end,
-                       bool non_negative) {
+/// Every value of the expression over the run is finite, and >= 0 where its key's bound says so.
+void check_time_series(const Loader& loader, const Field& field, const Expression& expression, double end) {
+  const bool non_negative = key_of(field).bound == Bound::non_negative;
   // Sampled densely over the run so that a formula that goes bad mid-run fails at load, not at step 10^5.
   const int samples = expression.is_constant() ? 1 : 1001;
   for (int i = 0; i < samples; ++i) {
@@ -527,46 +573,38 @@ void check_time_series(const Loader& loader, const Field& field, const Expressio
 
 void read_wind(const Loader& loader, const Field& field, Scenario& scenario) {
   WindSource& wind = scenario.wind;
-  const MapFields map(loader, field, {"speed", "direction", "reference_height", "profile"});
-  const Field speed = map.require("speed", "a number or a muparser expression of t (m/s)");
+  const MapFields map(loader, field);
+  const Field speed = map.require("speed");
   wind.speed = loader.expression(speed);
-  check_time_series(loader, speed, wind.speed, scenario.time.end, true);
-  const Field direction = map.require("direction", "a number or a muparser expression of t (degrees)");
+  check_time_series(loader, speed, wind.speed, scenario.time.end);
+  const Field direction = map.require("direction");
   wind.direction = loader.expression(direction);
-  check_time_series(loader, direction, wind.direction, scenario.time.end, false);
-  if (const auto height = map.get("reference_height"))
-    wind.reference_height = loader.number(*height, Sign::positive, "m");
+  check_time_series(loader, direction, wind.direction, scenario.time.end);
+  if (const auto height = map.get("reference_height")) wind.reference_height = loader.number(*height);
 
   wind.profile = fluid::InflowProfile{};
-  wind.profile.type = fluid::InflowProfile::Type::uniform;
-  wind.profile.alpha = 0.2;
-  wind.profile.displacement_height = 0.0;
+  wind.profile.type =
+      value(schema::kProfileWords, schema::kProfileTypes, std::string(schema::key("wind.profile.type").word));
+  wind.profile.alpha = schema::key("wind.profile.alpha").number;
+  wind.profile.displacement_height = schema::key("wind.profile.displacement_height").number;
   wind.profile.reference_height = wind.reference_height;
   if (const auto profile_field = map.get("profile")) {
     // The allowed keys depend on the type, so read the type first.
-    const MapFields any(loader, *profile_field, {"type", "alpha", "roughness_length", "displacement_height"});
-    const std::size_t type =
-        loader.word(any.require("type", "one of uniform | power | log"), {"uniform", "power", "log"});
-    if (type == 0) {
-      const MapFields profile(loader, *profile_field, {"type"});
-    } else if (type == 1) {
-      const MapFields profile(loader, *profile_field, {"type", "alpha"});
-      wind.profile.type = fluid::InflowProfile::Type::power;
-      if (const auto alpha = profile.get("alpha"))
-        wind.profile.alpha = loader.number(*alpha, Sign::non_negative);
-    } else {
-      const MapFields profile(loader, *profile_field, {"type", "roughness_length", "displacement_height"});
-      wind.profile.type = fluid::InflowProfile::Type::log;
-      wind.profile.roughness_length =
-          loader.number(profile.require("roughness_length", "a number > 0 (m)"), Sign::positive, "m");
-      const auto displacement = profile.get("displacement_height");
-      if (displacement)
-        wind.profile.displacement_height = loader.number(*displacement, Sign::non_negative, "m");
+    const MapFields any(loader, *profile_field);
+    const std::string type = loader.word(any.require("type"));
+    const MapFields profile(loader, *profile_field, &type);
+    wind.profile.type = value(schema::kProfileWords, schema::kProfileTypes, type);
+    if (const auto alpha = profile.get("alpha")) wind.profile.alpha = loader.number(*alpha);
+    if (const auto roughness = profile.get("roughness_length"))
+      wind.profile.roughness_length = loader.number(*roughness);
+    const auto displacement = profile.get("displacement_height");
+    if (displacement) wind.profile.displacement_height = loader.number(*displacement);
+    if (wind.profile.type == fluid::InflowProfile::Type::log) {
       // The log law is only defined above d + z0, and the reference height is where it equals `speed`.
       const double floor = wind.profile.displacement_height + wind.profile.roughness_length;
       if (!(wind.reference_height > floor)) {
         loader.expected(
-            displacement ? *displacement : profile.require("roughness_length", ""),
+            displacement ? *displacement : profile.require("roughness_length"),
             fmt::format(
                 "displacement_height + roughness_length (now {} m) below wind.reference_height ({} m)", floor,
                 wind.reference_height));
@@ -576,25 +614,23 @@ void read_wind(const Loader& loader, const Field& field, Scenario& scenario) {
 }
 
 void read_events(const Loader& loader, const Field& field, Scenario& scenario) {
-  for (const Field& item : loader.items(field, "a list of events (- gust: {...})")) {
-    const MapFields kind(loader, item, {"gust"});
-    const MapFields map(loader, kind.require("gust", "a gust map"),
-                        {"start", "duration", "peak_speed", "center", "radius", "travel"});
+  for (const Field& item : loader.items(field)) {
+    const MapFields kind(loader, item);
+    const MapFields map(loader, kind.require("gust"));
     GustEvent gust;
-    gust.start = loader.number(map.require("start", "a number >= 0 (s)"), Sign::non_negative, "s");
-    gust.duration = loader.number(map.require("duration", "a number > 0 (s)"), Sign::positive, "s");
-    gust.peak_speed =
-        loader.number(map.require("peak_speed", "a number >= 0 (m/s)"), Sign::non_negative, "m/s");
-    gust.center =
-        loader.vector<3>(map.require("center", "a list of 3 numbers [x, y, z] (m)"), Sign::any, "m");
-    gust.radius = loader.number(map.require("radius", "a number > 0 (m)"), Sign::positive, "m");
+    gust.start = loader.number(map.require("start"));
+    gust.duration = loader.number(map.require("duration"));
+    gust.peak_speed = loader.number(map.require("peak_speed"));
+    gust.center = loader.vector<3>(map.require("center"));
+    gust.radius = loader.number(map.require("radius"));
     gust.travel_with_wind = true;
     if (const auto travel = map.get("travel")) {
-      if (travel->node.IsSequence()) {
+      const Key& key = key_of(*travel);
+      if (travel->node.IsSequence() && travel->node.size() == 3) {
         gust.travel_with_wind = false;
-        gust.travel = loader.vector<3>(*travel, Sign::any, "m/s");
-      } else if (!(travel->node.IsScalar() && travel->node.Scalar() == "with_wind")) {
-        loader.expected(*travel, "with_wind or a list of 3 numbers [vx, vy, vz] (m/s)");
+        for (std::size_t i = 0; i < 3; ++i) gust.travel[i] = loader.component(*travel, i, key);
+      } else if (!(travel->node.IsScalar() && travel->node.Scalar() == key.word)) {  // the word: with_wind
+        loader.expected(*travel);
       }
     }
     if (gust.travel_with_wind) gust.travel = scenario.wind_vector(gust.start);
@@ -602,47 +638,50 @@ void read_events(const Loader& loader, const Field& field, Scenario& scenario) {
   }
 }
 
+/// The one key of a map that must hold exactly one of its schema's keys (an obstacle, a skeleton source).
+std::string the_one_key(const Loader& loader, const MapFields& map) {
+  if (map.size() != 1) {
+    const std::string parent = schema::generic_path(map.self().key);
+    loader.fail(map.self(), fmt::format("a map with exactly one of the keys {} expected, got {}",
+                                        join(schema::child_names(parent), ", "),
+                                        map.size() == 0 ? std::string("none") : join(map.given(), " and ")));
+  }
+  return map.given().front();
+}
+
 void read_obstacles(const Loader& loader, const Field& field, Scenario& scenario) {
-  for (const Field& item : loader.items(field, "a list of obstacles (- box|cylinder|sphere: {...})")) {
-    const MapFields kind(loader, item, {"box", "cylinder", "sphere"});
-    if (kind.size() != 1) loader.expected(item, "a map with exactly one of the keys box, cylinder, sphere");
-    const std::string shape = kind.given().front();
-    const Field body = *kind.get(shape);
+  for (const Field& item : loader.items(field)) {
+    const MapFields kind(loader, item);
+    const std::string shape = the_one_key(loader, kind);
+    const MapFields map(loader, *kind.get(shape));
     if (shape == "box") {
-      const MapFields map(loader, body, {"name", "center", "size", "yaw"});
       fluid::SolidBox box;
-      box.name = loader.text(map.require("name", "a name"), "a name");
-      box.center =
-          loader.vector<3>(map.require("center", "a list of 3 numbers [x, y, z] (m)"), Sign::any, "m");
-      box.size =
-          loader.vector<3>(map.require("size", "a list of 3 numbers [x, y, z] (m)"), Sign::positive, "m");
-      if (const auto yaw = map.get("yaw")) box.yaw_deg = loader.number(*yaw, Sign::any, "degrees");
+      box.name = loader.text(map.require("name"));
+      box.center = loader.vector<3>(map.require("center"));
+      box.size = loader.vector<3>(map.require("size"));
+      if (const auto yaw = map.get("yaw")) box.yaw_deg = loader.number(*yaw);
       scenario.obstacles.emplace_back(box);
     } else if (shape == "cylinder") {
-      const MapFields map(loader, body, {"name", "base", "radius", "height"});
       fluid::SolidCylinder cylinder;
-      cylinder.name = loader.text(map.require("name", "a name"), "a name");
-      cylinder.base =
-          loader.vector<3>(map.require("base", "a list of 3 numbers [x, y, z] (m)"), Sign::any, "m");
-      cylinder.radius = loader.number(map.require("radius", "a number > 0 (m)"), Sign::positive, "m");
-      cylinder.height = loader.number(map.require("height", "a number > 0 (m)"), Sign::positive, "m");
+      cylinder.name = loader.text(map.require("name"));
+      cylinder.base = loader.vector<3>(map.require("base"));
+      cylinder.radius = loader.number(map.require("radius"));
+      cylinder.height = loader.number(map.require("height"));
       scenario.obstacles.emplace_back(cylinder);
     } else {
-      const MapFields map(loader, body, {"name", "center", "radius"});
       fluid::SolidSphere sphere;
-      sphere.name = loader.text(map.require("name", "a name"), "a name");
-      sphere.center =
-          loader.vector<3>(map.require("center", "a list of 3 numbers [x, y, z] (m)"), Sign::any, "m");
-      sphere.radius = loader.number(map.require("radius", "a number > 0 (m)"), Sign::positive, "m");
+      sphere.name = loader.text(map.require("name"));
+      sphere.center = loader.vector<3>(map.require("center"));
+      sphere.radius = loader.number(map.require("radius"));
       scenario.obstacles.emplace_back(sphere);
     }
   }
 }
 
 void read_terrain(const Loader& loader, const Field& field, Scenario& scenario) {
-  const MapFields map(loader, field, {"heightmap", "cell_size", "max_height"});
+  const MapFields map(loader, field);
   TerrainSettings terrain;
-  const Field heightmap = map.require("heightmap", "a file path (PGM or ESRI ASCII grid)");
+  const Field heightmap = map.require("heightmap");
   terrain.heightmap = loader.readable_file(heightmap);
   // The format comes from the content (fluid/Heightmap.hpp); cell size and height scale matter for PGM only.
   char magic[2] = {0, 0};
@@ -650,10 +689,11 @@ void read_terrain(const Loader& loader, const Field& field, Scenario& scenario) 
   const bool pgm = magic[0] == 'P' && (magic[1] == '2' || magic[1] == '5');
   const auto cell_size = map.get("cell_size");
   const auto max_height = map.get("max_height");
-  if (cell_size) terrain.cell_size = loader.number(*cell_size, Sign::positive, "m");
-  if (max_height) terrain.max_height = loader.number(*max_height, Sign::non_negative, "m");
-  if (pgm && !cell_size) map.require("cell_size", "a number > 0 (m), needed for a PGM heightmap");
-  if (pgm && !max_height) map.require("max_height", "a number >= 0 (m), needed for a PGM heightmap");
+  if (cell_size) terrain.cell_size = loader.number(*cell_size);
+  if (max_height) terrain.max_height = loader.number(*max_height);
+  const std::string reason = "needed for a PGM heightmap";
+  if (pgm && !cell_size) map.require("cell_size", reason);
+  if (pgm && !max_height) map.require("max_height", reason);
   try {
     terrain.map = fluid::Heightmap::read(terrain.heightmap.string(), pgm ? terrain.cell_size : 1.0,
                                          pgm ? terrain.max_height : 0.0);
@@ -685,43 +725,36 @@ std::string horizontal_extent(const DomainSettings& domain) {
 }
 
 int species_index(const Loader& loader, const Field& field, const std::vector<Species>& species) {
-  const std::string name = loader.text(field, "a species name");
+  const std::string name = loader.text(field);
   for (std::size_t i = 0; i < species.size(); ++i)
     if (species[i].name == name) return int(i);
   std::vector<std::string> names;
   for (const Species& s : species) names.push_back(s.name);
-  loader.expected(field, names.empty() ? std::string("a species name (forest.species is empty)")
-                                       : "a species name, one of " + join(names, ", "));
+  const std::string what = schema::expected(key_of(field));
+  loader.expected(
+      field, names.empty() ? what + " (forest.species is empty)" : what + ", one of " + join(names, ", "));
 }
 
 // global_seed + 1 + its index seeds a species' generator unless the file gives a seed.
 Species read_species(const Loader& loader, const Field& item, const std::vector<Species>& earlier,
                      std::uint64_t global_seed) {
-  const MapFields map(loader, item, {"name", "skeleton", "material", "modes", "drag_coefficient", "canopy"});
+  const MapFields map(loader, item);
   Species species;
   species.modes.count_line = item.line;
-  const Field name = map.require("name", "a species name");
-  species.name = loader.text(name, "a species name");
+  const Field name = map.require("name");
+  species.name = loader.text(name);
   for (const Species& other : earlier)
-    if (other.name == species.name) loader.expected(name, "a species name not used before");
+    if (other.name == species.name)
+      loader.expected(name, schema::expected(key_of(name)) + " not used before");
 
-  const Field skeleton_field = map.require("skeleton", "a map with one of generate, file, qsm");
-  const MapFields skeleton(loader, skeleton_field, {"generate", "file", "qsm"});
-  if (skeleton.size() != 1) {
-    loader.fail(skeleton_field,
-                fmt::format("exactly one of generate, file, qsm expected, got {}",
-                            skeleton.size() == 0 ? std::string("none") : join(skeleton.given(), " and ")));
-  }
-  const std::string source = skeleton.given().front();
+  const MapFields skeleton(loader, map.require("skeleton"));
+  const std::string source = the_one_key(loader, skeleton);
   const Field body = *skeleton.get(source);
   if (source == "generate") {
     species.skeleton.kind = SkeletonSource::Kind::generate;
-    const MapFields generate(loader, body, {"preset", "height", "seed"});
-    const std::vector<std::string> presets = trees::preset_names();
-    species.skeleton.generate.preset =
-        presets[loader.word(generate.require("preset", "one of " + join(presets, " | ")), presets)];
-    if (const auto height = generate.get("height"))
-      species.skeleton.generate.height = loader.number(*height, Sign::non_negative, "m");
+    const MapFields generate(loader, body);
+    species.skeleton.generate.preset = loader.word(generate.require("preset"));
+    if (const auto height = generate.get("height")) species.skeleton.generate.height = loader.number(*height);
     species.skeleton.generate.seed = global_seed + 1 + earlier.size();
     if (const auto seed = generate.get("seed")) species.skeleton.generate.seed = loader.seed(*seed);
   } else {
@@ -730,39 +763,32 @@ Species read_species(const Loader& loader, const Field& item, const std::vector<
   }
 
   if (const auto material_field = map.get("material")) {
-    const MapFields material(loader, *material_field, {"youngs_modulus", "shear_modulus", "density"});
-    if (const auto e = material.get("youngs_modulus"))
-      species.material.youngs_modulus = loader.number(*e, Sign::positive, "Pa");
-    if (const auto g = material.get("shear_modulus"))
-      species.material.shear_modulus = loader.number(*g, Sign::positive, "Pa");
-    if (const auto rho = material.get("density"))
-      species.material.density = loader.number(*rho, Sign::positive, "kg/m^3");
+    const MapFields material(loader, *material_field);
+    if (const auto e = material.get("youngs_modulus")) species.material.youngs_modulus = loader.number(*e);
+    if (const auto g = material.get("shear_modulus")) species.material.shear_modulus = loader.number(*g);
+    if (const auto rho = material.get("density")) species.material.density = loader.number(*rho);
   }
   if (const auto modes_field = map.get("modes")) {
-    const MapFields modes(loader, *modes_field, {"count", "damping_ratio", "wind_samples"});
+    const MapFields modes(loader, *modes_field);
     if (const auto count = modes.get("count")) {
-      species.modes.count = loader.integer(*count, 1, std::numeric_limits<int>::max());
+      species.modes.count = loader.integer(*count);
       species.modes.count_line = count->line;
     }
-    if (const auto zeta = modes.get("damping_ratio"))
-      species.modes.damping_ratio = loader.number(*zeta, Sign::non_negative);
-    if (const auto samples = modes.get("wind_samples"))
-      species.modes.wind_samples = loader.integer(*samples, 1, FW_MAX_TREE_SAMPLES);
+    if (const auto zeta = modes.get("damping_ratio")) species.modes.damping_ratio = loader.number(*zeta);
+    if (const auto samples = modes.get("wind_samples")) species.modes.wind_samples = loader.integer(*samples);
   }
-  if (const auto drag = map.get("drag_coefficient"))
-    species.drag_coefficient = loader.number(*drag, Sign::non_negative);
+  if (const auto drag = map.get("drag_coefficient")) species.drag_coefficient = loader.number(*drag);
   if (const auto canopy_field = map.get("canopy")) {
-    const MapFields canopy(loader, *canopy_field, {"leaf_area_index", "drag_coefficient"});
-    if (const auto lai = canopy.get("leaf_area_index"))
-      species.canopy.leaf_area_index = loader.number(*lai, Sign::non_negative, "m^2/m^2");
+    const MapFields canopy(loader, *canopy_field);
+    if (const auto lai = canopy.get("leaf_area_index")) species.canopy.leaf_area_index = loader.number(*lai);
     if (const auto drag = canopy.get("drag_coefficient"))
-      species.canopy.drag_coefficient = loader.number(*drag, Sign::non_negative);
+      species.canopy.drag_coefficient = loader.number(*drag);
   }
   return species;
 }
 
 Vec2 region_corner(const Loader& loader, const Field& field, const DomainSettings& domain) {
-  const Vec2 corner = loader.vector<2>(field, Sign::any, "m");
+  const Vec2 corner = loader.vector<2>(field);
   const Vec3 top = domain.max_corner();
   if (!inside(corner[0], domain.origin[0], top[0]) || !inside(corner[1], domain.origin[1], top[1]))
     loader.expected(field,
@@ -771,17 +797,15 @@ Vec2 region_corner(const Loader& loader, const Field& field, const DomainSetting
 }
 
 Stand read_stand(const Loader& loader, const Field& item, const Scenario& scenario) {
-  const MapFields map(loader, item, {"species", "region", "layout", "spacing", "scale", "seed"});
+  const MapFields map(loader, item);
   Stand stand;
-  const Field species = map.require("species", "a species name");
+  const Field species = map.require("species");
   stand.layout.species = species_index(loader, species, scenario.forest.species);
   stand.species = scenario.forest.species[stand.layout.species].name;
 
-  const MapFields region(loader, map.require("region", "a map {min: [x, y], max: [x, y]} (m)"),
-                         {"min", "max"});
-  const Vec2 min =
-      region_corner(loader, region.require("min", "a list of 2 numbers [x, y] (m)"), scenario.domain);
-  const Field max_field = region.require("max", "a list of 2 numbers [x, y] (m)");
+  const MapFields region(loader, map.require("region"));
+  const Vec2 min = region_corner(loader, region.require("min"), scenario.domain);
+  const Field max_field = region.require("max");
   const Vec2 max = region_corner(loader, max_field, scenario.domain);
   if (!(max[0] > min[0]) || !(max[1] > min[1]))
     loader.expected(max_field,
@@ -789,21 +813,24 @@ Stand read_stand(const Loader& loader, const Field& item, const Scenario& scenar
   stand.layout.min = {min[0], min[1]};
   stand.layout.max = {max[0], max[1]};
 
+  stand.layout.layout =
+      value(schema::kLayoutWords, schema::kLayouts, std::string(schema::key("forest.stands[].layout").word));
   if (const auto layout = map.get("layout"))
-    stand.layout.layout = loader.word(*layout, {"poisson", "grid"}) == 0 ? trees::StandLayout::poisson
-                                                                         : trees::StandLayout::grid;
-  const Field spacing = map.require("spacing", "a number > 0 (m)");
-  stand.layout.spacing = loader.number(spacing, Sign::positive, "m");
-  stand.layout.scale_min = stand.layout.scale_max = 1.0;
+    stand.layout.layout = value(schema::kLayoutWords, schema::kLayouts, loader.word(*layout));
+  const Field spacing = map.require("spacing");
+  stand.layout.spacing = loader.number(spacing);
+  stand.layout.scale_min = schema::key("forest.stands[].scale.min").number;
+  stand.layout.scale_max = schema::key("forest.stands[].scale.max").number;
   if (const auto scale_field = map.get("scale")) {
-    const MapFields scale(loader, *scale_field, {"min", "max"});
-    if (const auto low = scale.get("min")) stand.layout.scale_min = loader.number(*low, Sign::positive);
+    const MapFields scale(loader, *scale_field);
+    if (const auto low = scale.get("min")) stand.layout.scale_min = loader.number(*low);
     if (const auto high = scale.get("max")) {
-      stand.layout.scale_max = loader.number(*high, Sign::positive);
+      stand.layout.scale_max = loader.number(*high);
       if (stand.layout.scale_max < stand.layout.scale_min)
         loader.expected(*high, fmt::format("a number >= scale.min ({})", stand.layout.scale_min));
     } else if (stand.layout.scale_max < stand.layout.scale_min) {
-      loader.expected(*scale.get("min"), "a number <= scale.max (1, the default)");
+      loader.expected(*scale.get("min"),
+                      fmt::format("a number <= scale.max ({}, the default)", stand.layout.scale_max));
     }
   }
   // Unless the file gives one: the global seed plus the stand's index.
@@ -818,19 +845,16 @@ Stand read_stand(const Loader& loader, const Field& item, const Scenario& scenar
 }
 
 PlacedTreeSettings read_tree(const Loader& loader, const Field& item, const Scenario& scenario) {
-  const MapFields map(loader, item, {"species", "position", "yaw", "scale"});
+  const MapFields map(loader, item);
   PlacedTreeSettings tree;
-  tree.species_index =
-      species_index(loader, map.require("species", "a species name"), scenario.forest.species);
+  tree.species_index = species_index(loader, map.require("species"), scenario.forest.species);
   tree.species = scenario.forest.species[tree.species_index].name;
 
-  const Field position = map.require("position", "a list [x, y] or [x, y, z] (m)");
+  const Field position = map.require("position");
   if (!position.node.IsSequence() || (position.node.size() != 2 && position.node.size() != 3))
-    loader.expected(position, "a list [x, y] or [x, y, z] (m)");
-  for (std::size_t i = 0; i < position.node.size(); ++i) {
-    tree.position[i] = loader.number(
-        loader.child(position, position.node[i], fmt::format("{}[{}]", position.key, i)), Sign::any, "m");
-  }
+    loader.expected(position);
+  for (std::size_t i = 0; i < position.node.size(); ++i)
+    tree.position[i] = loader.component(position, i, key_of(position));
   const DomainSettings& domain = scenario.domain;
   const Vec3 top = domain.max_corner();
   if (!inside(tree.position[0], domain.origin[0], top[0]) ||
@@ -848,53 +872,39 @@ PlacedTreeSettings read_tree(const Loader& loader, const Field& item, const Scen
     if (scenario.terrain)
       tree.position[2] += scenario.terrain->map->height_at(tree.position[0], tree.position[1]);
   }
-  if (const auto yaw = map.get("yaw")) tree.yaw = loader.number(*yaw, Sign::any, "degrees");
-  if (const auto scale = map.get("scale")) tree.scale = loader.number(*scale, Sign::positive);
+  if (const auto yaw = map.get("yaw")) tree.yaw = loader.number(*yaw);
+  if (const auto scale = map.get("scale")) tree.scale = loader.number(*scale);
   return tree;
 }
 
 void read_forest(const Loader& loader, const Field& field, Scenario& scenario) {
-  const MapFields map(loader, field, {"two_way_coupling", "integrator", "species", "stands", "trees"});
+  const MapFields map(loader, field);
   ForestSettings& forest = scenario.forest;
   if (const auto coupling = map.get("two_way_coupling")) forest.two_way_coupling = loader.boolean(*coupling);
-  if (const auto integrator = map.get("integrator")) {
-    forest.integrator = loader.word(*integrator, {"exact", "semi_implicit"}) == 0
-                            ? trees::ModalIntegrator::exact
-                            : trees::ModalIntegrator::semi_implicit;
-  }
+  if (const auto integrator = map.get("integrator"))
+    forest.integrator = value(schema::kIntegratorWords, schema::kIntegrators, loader.word(*integrator));
   if (const auto species = map.get("species"))
-    for (const Field& item : loader.items(*species, "a list of species"))
+    for (const Field& item : loader.items(*species))
       forest.species.push_back(read_species(loader, item, forest.species, scenario.seed));
   if (const auto stands = map.get("stands"))
-    for (const Field& item : loader.items(*stands, "a list of stands"))
+    for (const Field& item : loader.items(*stands))
       forest.stands.push_back(read_stand(loader, item, scenario));
   if (const auto trees = map.get("trees"))
-    for (const Field& item : loader.items(*trees, "a list of trees"))
-      forest.trees.push_back(read_tree(loader, item, scenario));
+    for (const Field& item : loader.items(*trees)) forest.trees.push_back(read_tree(loader, item, scenario));
 }
 
 void read_solver(const Loader& loader, const Field& field, SolverSettings& solver) {
-  const MapFields map(
-      loader, field,
-      {"pressure", "tolerance", "max_iterations", "jacobi_iterations", "advection", "vorticity_confinement"});
-  if (const auto pressure = map.get("pressure")) {
-    const fluid::PressureSolverType solvers[] = {fluid::PressureSolverType::multigrid,
-                                                 fluid::PressureSolverType::cg,
-                                                 fluid::PressureSolverType::jacobi};
-    solver.pressure = solvers[loader.word(*pressure, {"multigrid", "cg", "jacobi"})];
-  }
-  if (const auto tolerance = map.get("tolerance"))
-    solver.tolerance = loader.number(*tolerance, Sign::positive);
-  if (const auto iterations = map.get("max_iterations"))
-    solver.max_iterations = loader.integer(*iterations, 1, std::numeric_limits<int>::max());
+  const MapFields map(loader, field);
+  if (const auto pressure = map.get("pressure"))
+    solver.pressure = value(schema::kPressureWords, schema::kPressureSolvers, loader.word(*pressure));
+  if (const auto tolerance = map.get("tolerance")) solver.tolerance = loader.number(*tolerance);
+  if (const auto iterations = map.get("max_iterations")) solver.max_iterations = loader.integer(*iterations);
   if (const auto iterations = map.get("jacobi_iterations"))
-    solver.jacobi_iterations = loader.integer(*iterations, 1, std::numeric_limits<int>::max());
+    solver.jacobi_iterations = loader.integer(*iterations);
   if (const auto advection = map.get("advection"))
-    solver.advection = loader.word(*advection, {"semi_lagrangian", "maccormack"}) == 0
-                           ? fluid::AdvectionScheme::semi_lagrangian
-                           : fluid::AdvectionScheme::maccormack;
+    solver.advection = value(schema::kAdvectionWords, schema::kAdvectionSchemes, loader.word(*advection));
   if (const auto epsilon = map.get("vorticity_confinement"))
-    solver.vorticity_confinement = loader.number(*epsilon, Sign::non_negative);
+    solver.vorticity_confinement = loader.number(*epsilon);
 }
 
 bool probe_name(const std::string& name) {
@@ -903,39 +913,42 @@ bool probe_name(const std::string& name) {
   });
 }
 
+/// Where output.directory's default names the scenario.
+constexpr std::string_view kScenarioNamePlaceholder = "<scenario>";
+
 void read_output(const Loader& loader, const Field& field, Scenario& scenario) {
   OutputSettings& output = scenario.output;
-  const MapFields map(loader, field, {"directory", "interval", "vtk", "vdb", "probes"});
-  std::filesystem::path directory = std::filesystem::path("out") / scenario.name;
-  if (const auto given = map.get("directory")) directory = loader.text(*given, "a directory path");
+  const MapFields map(loader, field);
+  std::string directory(schema::key("output.directory").word);
+  if (const std::size_t at = directory.find(kScenarioNamePlaceholder); at != std::string::npos)
+    directory.replace(at, kScenarioNamePlaceholder.size(), scenario.name);
+  if (const auto given = map.get("directory")) directory = loader.text(*given);
   // Against the working directory, not the scenario folder: a run writes where it is started.
-  output.directory = std::filesystem::absolute(directory).lexically_normal();
-  if (const auto interval = map.get("interval"))
-    output.interval = loader.number(*interval, Sign::positive, "s");
+  output.directory = std::filesystem::absolute(std::filesystem::path(directory)).lexically_normal();
+  if (const auto interval = map.get("interval")) output.interval = loader.number(*interval);
   if (const auto vtk_field = map.get("vtk")) {
-    const MapFields vtk(loader, *vtk_field, {"wind", "trees", "fields"});
+    const MapFields vtk(loader, *vtk_field);
     if (const auto wind = vtk.get("wind")) output.vtk_wind = loader.boolean(*wind);
     if (const auto trees = vtk.get("trees")) output.vtk_trees = loader.boolean(*trees);
-    if (const auto fields = vtk.get("fields"))
-      output.vtk_fields =
-          loader.word_set(*fields, {"velocity", "pressure", "speed", "vorticity", "solid", "canopy_density"});
+    if (const auto fields = vtk.get("fields")) output.vtk_fields = loader.word_set(*fields);
   }
   if (const auto vdb_field = map.get("vdb")) {
-    const MapFields vdb(loader, *vdb_field, {"enabled", "grids"});
+    const MapFields vdb(loader, *vdb_field);
     if (const auto enabled = vdb.get("enabled")) output.vdb_enabled = loader.boolean(*enabled);
-    if (const auto grids = vdb.get("grids")) output.vdb_grids = loader.word_set(*grids, {"vel", "speed"});
+    if (const auto grids = vdb.get("grids")) output.vdb_grids = loader.word_set(*grids);
   }
   if (const auto probes = map.get("probes")) {
-    for (const Field& item : loader.items(*probes, "a list of probes")) {
-      const MapFields probe_map(loader, item, {"name", "position"});
+    for (const Field& item : loader.items(*probes)) {
+      const MapFields probe_map(loader, item);
       Probe probe;
-      const Field name = probe_map.require("name", "a probe name");
-      probe.name = loader.text(name, "a probe name");
-      if (!probe_name(probe.name)) loader.expected(name, "a probe name of letters, digits and _");
+      const Field name = probe_map.require("name");
+      probe.name = loader.text(name);
+      const std::string what = schema::expected(key_of(name));
+      if (!probe_name(probe.name)) loader.expected(name, what + " of letters, digits and _");
       for (const Probe& other : output.probes)
-        if (other.name == probe.name) loader.expected(name, "a probe name not used before");
-      const Field position = probe_map.require("position", "a list of 3 numbers [x, y, z] (m)");
-      probe.position = loader.vector<3>(position, Sign::any, "m");
+        if (other.name == probe.name) loader.expected(name, what + " not used before");
+      const Field position = probe_map.require("position");
+      probe.position = loader.vector<3>(position);
       const Vec3 top = scenario.domain.max_corner();
       for (int axis = 0; axis < 3; ++axis) {
         if (!inside(probe.position[axis], scenario.domain.origin[axis], top[axis])) {
@@ -990,24 +1003,28 @@ Scenario load_scenario(const std::filesystem::path& file) {
                 fmt::format("one YAML document expected, got {}", documents.size()));
   }
   const Field root{documents.empty() ? YAML::Node() : documents.front(), "", 1};
-  if (!root.node.IsMap()) loader.expected(root, "a map of scenario keys (scenario, time, domain, wind, ...)");
-  const MapFields top(loader, root,
-                      {"scenario", "seed", "time", "domain", "boundaries", "wind", "events", "obstacles",
-                       "terrain", "forest", "solver", "output"});
+  if (!root.node.IsMap()) {
+    std::vector<std::string> required;
+    for (const Key* key : schema::children(""))
+      if (key->required) required.emplace_back(key->path);
+    loader.expected(root, "a map of scenario keys (" + join(required, ", ") + ", ...)");
+  }
+  const MapFields top(loader, root);
 
-  const Field scenario_name = top.require("scenario", "a scenario name");
-  scenario.name = loader.text(scenario_name, "a scenario name");
+  const Field scenario_name = top.require("scenario");
+  scenario.name = loader.text(scenario_name);
   if (scenario.name.find_first_of("/\\") != std::string::npos || scenario.name == "." ||
       scenario.name == ".." ||
       std::any_of(scenario.name.begin(), scenario.name.end(), [](unsigned char c) { return c < 0x20; })) {
     // The name becomes a folder name (out/<scenario>).
-    loader.expected(scenario_name, "a scenario name usable as a folder name (no / or \\, not . or ..)");
+    loader.expected(scenario_name, schema::expected(key_of(scenario_name)) +
+                                       " usable as a folder name (no / or \\, not . or ..)");
   }
   if (const auto seed = top.get("seed")) scenario.seed = loader.seed(*seed);
-  read_time(loader, top.require("time", "a map {end, dt, cfl}"), scenario.time);
-  read_domain(loader, top.require("domain", "a map {origin, size, cell_size}"), scenario.domain);
+  read_time(loader, top.require("time"), scenario.time);
+  read_domain(loader, top.require("domain"), scenario.domain);
   if (const auto boundaries = top.get("boundaries")) read_boundaries(loader, *boundaries, scenario);
-  read_wind(loader, top.require("wind", "a map {speed, direction, reference_height, profile}"), scenario);
+  read_wind(loader, top.require("wind"), scenario);
   if (const auto events = top.get("events")) read_events(loader, *events, scenario);
   if (const auto obstacles = top.get("obstacles")) read_obstacles(loader, *obstacles, scenario);
   if (const auto terrain = top.get("terrain")) read_terrain(loader, *terrain, scenario);

@@ -1,8 +1,9 @@
-// A scenario file (DESIGN.md, "File formats"; every key documented in docs/scenario.md), read and validated
-// in full before anything is computed.
+// A scenario file (DESIGN.md, "File formats"), read and validated in full before anything is computed. Every
+// key's type, unit, default and allowed values are defined once, in io/ScenarioSchema.hpp: the defaults
+// below are read from there, and docs/scenario.md's key tables are generated from there.
 //
 //   fw::io::Scenario scenario = fw::io::load_scenario("scenarios/storm.yaml");   // throws ScenarioError
-//   scenario.domain.cells;                       // {240, 120, 48}
+//   scenario.domain.cells;                       // {160, 80, 24}: 480 x 240 x 72 m in cells of 3 m
 //   scenario.wind_vector(60.0);                  // m/s at the reference height, x east, y north
 //   fw::fluid::GridSpec grid = scenario.grid_spec(0.0);   // "auto" faces resolved for the wind at t = 0
 //   for (const auto& obstacle : scenario.obstacles)
@@ -37,9 +38,10 @@
 #include "fluid/SolidMap.hpp"
 #include "fluid/WindSettings.hpp"
 #include "io/Expression.hpp"
+#include "io/ScenarioSchema.hpp"
 #include "trees/ForestLayout.hpp"
-#include "trees/ModalIntegrator.hpp"
 #include "trees/Material.hpp"
+#include "trees/ModalIntegrator.hpp"
 #include "trees/TreeGenerator.hpp"
 
 namespace fw::io {
@@ -68,17 +70,34 @@ class ScenarioError : public std::invalid_argument {
 enum class BoundaryChoice { automatic, inflow, outflow, slip, no_slip, periodic };
 std::string to_string(BoundaryChoice choice);  // the word used in the file
 
+/// In the order of schema::kBoundaryWords.
+inline constexpr BoundaryChoice kBoundaryChoices[] = {BoundaryChoice::automatic, BoundaryChoice::inflow,
+                                                      BoundaryChoice::outflow,   BoundaryChoice::slip,
+                                                      BoundaryChoice::no_slip,   BoundaryChoice::periodic};
+
+/// The schema's default per face, indexed by FW_FACE_* (west, east, south, north, ground, top).
+constexpr std::array<BoundaryChoice, 6> default_boundaries() {
+  const auto choice = [](std::string_view word) {
+    return schema::value_of(schema::kBoundaryWords, kBoundaryChoices, word);
+  };
+  return {choice(schema::key("boundaries.west").word),   choice(schema::key("boundaries.east").word),
+          choice(schema::key("boundaries.south").word),  choice(schema::key("boundaries.north").word),
+          choice(schema::key("boundaries.ground").word), choice(schema::key("boundaries.top").word)};
+}
+
 struct TimeSettings {
-  double end = 0.0;          ///< s, > 0: the run covers [0, end]
-  std::optional<double> dt;  ///< s, > 0: fixed step; nullopt for "auto"
-  double cfl = 0.8;          ///< > 0, used with auto: dt = cfl * h / max|u|
+  double end = 0.0;                             ///< s, > 0: the run covers [0, end]
+  std::optional<double> dt;                     ///< s, > 0: fixed step; nullopt for "auto"
+  double cfl = schema::key("time.cfl").number;  ///< > 0, used with auto: dt = cfl * h / max|u|
 };
 
 struct DomainSettings {
-  std::array<double, 3> origin{0, 0, 0};  ///< minimum corner, m
-  std::array<double, 3> size{0, 0, 0};    ///< extent along x, y, z, m (> 0)
-  double cell_size = 0.0;                 ///< h, m (> 0); cells are cubic
-  std::array<int, 3> cells{0, 0, 0};      ///< round(size / h); size is a whole multiple of h
+  /// minimum corner, m
+  std::array<double, 3> origin{schema::key("domain.origin").number, schema::key("domain.origin").number,
+                               schema::key("domain.origin").number};
+  std::array<double, 3> size{0, 0, 0};  ///< extent along x, y, z, m (> 0)
+  double cell_size = 0.0;               ///< h, m (> 0); cells are cubic
+  std::array<int, 3> cells{0, 0, 0};    ///< round(size / h); size is a whole multiple of h
 
   /// origin + size, m.
   std::array<double, 3> max_corner() const {
@@ -87,11 +106,11 @@ struct DomainSettings {
 };
 
 struct WindSource {
-  Expression speed;                ///< m/s at reference_height, a function of t (s)
-  Expression direction;            ///< degrees the wind blows FROM, clockwise from north, a function of t
-  double reference_height = 10.0;  ///< m above the domain floor
-  /// Vertical shape; profile.reference_height == reference_height. Defaults: uniform; power alpha 0.2;
-  /// log displacement_height 0 (roughness_length has no default).
+  Expression speed;      ///< m/s at reference_height, a function of t (s)
+  Expression direction;  ///< degrees the wind blows FROM, clockwise from north, a function of t
+  double reference_height = schema::key("wind.reference_height").number;  ///< m above the domain floor
+  /// Vertical shape; profile.reference_height == reference_height. Defaults: the schema's wind.profile.*
+  /// (roughness_length has none).
   fluid::InflowProfile profile;
 };
 
@@ -127,23 +146,30 @@ struct SkeletonSource {
 };
 
 struct ModeSettings {
-  int count = 20;               ///< lowest modes kept, >= 1
-  double damping_ratio = 0.05;  ///< zeta per mode, >= 0
-  int wind_samples = 3;         ///< height bands with their own projection, 1..FW_MAX_TREE_SAMPLES
-  int count_line = 0;           ///< line of `count` in the file (of the species entry when not given)
+  int count = int(schema::key("forest.species[].modes.count").number);  ///< lowest modes kept, >= 1
+  double damping_ratio = schema::key("forest.species[].modes.damping_ratio").number;  ///< zeta per mode, >= 0
+  /// Height bands with their own projection, 1..FW_MAX_TREE_SAMPLES.
+  int wind_samples = int(schema::key("forest.species[].modes.wind_samples").number);
+  int count_line = 0;  ///< line of `count` in the file (of the species entry when not given)
 };
 
 struct CanopySettings {
-  double leaf_area_index = 0.0;   ///< m^2 leaf per m^2 ground, >= 0 (0: no leaves)
-  double drag_coefficient = 0.2;  ///< leaf drag coefficient, >= 0
+  /// One-sided m^2 leaf per m^2 ground, >= 0 (0: no leaves).
+  double leaf_area_index = schema::key("forest.species[].canopy.leaf_area_index").number;
+  /// C_D of the leaves per one-sided leaf area (the branches' convention), >= 0.
+  double drag_coefficient = schema::key("forest.species[].canopy.drag_coefficient").number;
 };
 
 struct Species {
   std::string name;  ///< unique among the species
   SkeletonSource skeleton;
-  trees::Material material{1.0e10, 3.85e9, 900.0};  ///< E, G (Pa), rho (kg/m^3)
+  trees::Material material{
+      schema::key("forest.species[].material.youngs_modulus").number,
+      schema::key("forest.species[].material.shear_modulus").number,
+      schema::key("forest.species[].material.density").number};  ///< E, G (Pa), rho (kg/m^3)
   ModeSettings modes;
-  double drag_coefficient = 1.2;  ///< of the branches (cylinders in cross flow), >= 0
+  /// C_D of the branches (cylinders in cross flow) per frontal area, >= 0.
+  double drag_coefficient = schema::key("forest.species[].drag_coefficient").number;
   CanopySettings canopy;
 };
 
@@ -159,26 +185,30 @@ struct PlacedTreeSettings {
   int species_index = 0;             ///< into ForestSettings::species
   std::array<double, 3> position{};  ///< m; z from the file, else the ground (terrain) under (x, y)
   bool height_given = false;         ///< whether the file gave z
-  double yaw = 0.0;                  ///< degrees, counter-clockwise about +z seen from above
-  double scale = 1.0;                ///< > 0
+  double yaw = schema::key("forest.trees[].yaw").number;  ///< degrees, counter-clockwise about +z from above
+  double scale = schema::key("forest.trees[].scale").number;  ///< > 0
 };
 
 struct ForestSettings {
-  bool two_way_coupling = true;  ///< trees' drag returned to the wind grid
+  bool two_way_coupling = schema::key("forest.two_way_coupling").flag;  ///< trees' drag returned to the wind
   /// The modal time step: exact for the force held over a step, or Diener's semi-implicit Euler.
-  trees::ModalIntegrator integrator = trees::ModalIntegrator::exact;
+  trees::ModalIntegrator integrator =
+      schema::value_of(schema::kIntegratorWords, schema::kIntegrators, schema::key("forest.integrator").word);
   std::vector<Species> species;
   std::vector<Stand> stands;
   std::vector<PlacedTreeSettings> trees;
 };
 
 struct SolverSettings {
-  fluid::PressureSolverType pressure = fluid::PressureSolverType::cg;
-  double tolerance = 1e-3;     ///< relative residual (multigrid, cg), > 0
-  int max_iterations = 100;    ///< >= 1 (multigrid, cg)
-  int jacobi_iterations = 40;  ///< >= 1 (jacobi)
-  fluid::AdvectionScheme advection = fluid::AdvectionScheme::semi_lagrangian;
-  double vorticity_confinement = 0.0;  ///< epsilon, dimensionless, >= 0 (0: off)
+  fluid::PressureSolverType pressure =
+      schema::value_of(schema::kPressureWords, schema::kPressureSolvers, schema::key("solver.pressure").word);
+  double tolerance = schema::key("solver.tolerance").number;  ///< relative residual (multigrid, cg), > 0
+  int max_iterations = int(schema::key("solver.max_iterations").number);        ///< >= 1 (multigrid, cg)
+  int jacobi_iterations = int(schema::key("solver.jacobi_iterations").number);  ///< >= 1 (jacobi)
+  fluid::AdvectionScheme advection = schema::value_of(schema::kAdvectionWords, schema::kAdvectionSchemes,
+                                                      schema::key("solver.advection").word);
+  /// epsilon, dimensionless, >= 0 (0: off)
+  double vorticity_confinement = schema::key("solver.vorticity_confinement").number;
 };
 
 struct Probe {
@@ -188,16 +218,20 @@ struct Probe {
 
 struct OutputSettings {
   std::filesystem::path directory;  ///< absolute: the file's value (default out/<scenario>) against the cwd
-  double interval = 1.0;            ///< s of simulated time between frames, > 0
-  bool vtk_wind = true;
-  bool vtk_trees = true;
-  /// Subset of velocity, pressure, speed, vorticity, solid, canopy_density, in the file's order.
-  std::vector<std::string> vtk_fields{"velocity",  "pressure", "speed",
-                                      "vorticity", "solid",    "canopy_density"};
-  bool vdb_enabled = false;
-  std::vector<std::string> vdb_grids{"vel", "speed"};  ///< subset of vel, speed, in the file's order
+  double interval = schema::key("output.interval").number;  ///< s of simulated time between frames, > 0
+  bool vtk_wind = schema::key("output.vtk.wind").flag;
+  bool vtk_trees = schema::key("output.vtk.trees").flag;
+  /// Subset of schema::kVtkFieldWords, in the file's order.
+  std::vector<std::string> vtk_fields = schema::strings(schema::key("output.vtk.fields").chosen);
+  bool vdb_enabled = schema::key("output.vdb.enabled").flag;
+  /// Subset of schema::kVdbGridWords, in the file's order.
+  std::vector<std::string> vdb_grids = schema::strings(schema::key("output.vdb.grids").chosen);
   std::vector<Probe> probes;
 };
+
+/// The ambient wind of `wind` at the reference height at time t (s), m/s: Scenario::wind_vector without the
+/// rest of the scenario, for whoever keeps only the wind.
+std::array<double, 3> wind_vector(const WindSource& wind, double t);
 
 struct Scenario {
   std::filesystem::path file;    ///< as given to load_scenario
@@ -209,9 +243,7 @@ struct Scenario {
   TimeSettings time;
   DomainSettings domain;
   /// Indexed by FW_FACE_* (west, east, south, north, ground, top).
-  std::array<BoundaryChoice, 6> boundaries{BoundaryChoice::automatic, BoundaryChoice::automatic,
-                                           BoundaryChoice::automatic, BoundaryChoice::automatic,
-                                           BoundaryChoice::no_slip,   BoundaryChoice::slip};
+  std::array<BoundaryChoice, 6> boundaries = default_boundaries();
   WindSource wind;
   std::vector<GustEvent> events;
   std::vector<Obstacle> obstacles;

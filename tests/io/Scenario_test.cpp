@@ -550,7 +550,7 @@ forest:
   CHECK(oak.modes.wind_samples == 3);
   CHECK(oak.drag_coefficient == 1.2);
   CHECK(oak.canopy.leaf_area_index == 0.0);
-  CHECK(oak.canopy.drag_coefficient == 0.2);
+  CHECK(oak.canopy.drag_coefficient == 0.4);  // per one-sided leaf area: 1/2 C_D = 0.2, canopy LES's C_d
   REQUIRE(s.forest.stands.size() == 1);
   CHECK(s.forest.stands[0].layout.layout == fw::trees::StandLayout::poisson);
   CHECK(s.forest.stands[0].layout.scale_min == 1.0);

@@ -1,0 +1,390 @@
+#include "io/ScenarioSchema.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+
+#include "trees/TreeGenerator.hpp"
+
+namespace fw::io::schema {
+
+std::vector<std::string> preset_words() {
+  return trees::preset_names();
+}
+
+const Key* find(std::string_view path) {
+  for (const Key& entry : kKeys)
+    if (entry.path == path) return &entry;
+  return nullptr;
+}
+
+std::string generic_path(std::string_view key) {
+  std::string out;
+  for (std::size_t i = 0; i < key.size(); ++i) {
+    out += key[i];
+    if (key[i] == '[') {
+      while (i + 1 < key.size() && key[i + 1] != ']') ++i;  // drop the index
+    }
+  }
+  return out;
+}
+
+namespace {
+
+/// The last component of a path ("count" of "forest.species[].modes.count") and what lies above it.
+std::string_view name_of(std::string_view path) {
+  const std::size_t dot = path.rfind('.');
+  return dot == std::string_view::npos ? path : path.substr(dot + 1);
+}
+
+bool below(std::string_view path, std::string_view parent) {
+  if (parent.empty()) return path.find_first_of(".[") == std::string_view::npos;
+  return path.size() > parent.size() + 1 && path.starts_with(parent) && path[parent.size()] == '.' &&
+         path.substr(parent.size() + 1).find('.') == std::string_view::npos;
+}
+
+std::string join(const std::vector<std::string>& words, std::string_view separator,
+                 std::string_view quote = "") {
+  std::string out;
+  for (std::size_t i = 0; i < words.size(); ++i)
+    out += fmt::format("{}{}{}{}", i ? separator : "", quote, words[i], quote);
+  return out;
+}
+
+std::string unit_suffix(const Key& key) {
+  return key.unit.empty() ? "" : fmt::format(" ({})", key.unit);
+}
+
+std::string sign_text(Bound bound) {
+  return bound == Bound::positive ? "> 0" : bound == Bound::non_negative ? ">= 0" : "";
+}
+
+/// "[x, y]", "[x, y, z]".
+std::string point_names(int count) {
+  return count == 2 ? "[x, y]" : "[x, y, z]";
+}
+
+int point_size(Type type) {
+  return type == Type::point2 ? 2 : 3;
+}
+
+/// The generic path of the list whose items a key of a list item belongs to ("events" for "events[].gust").
+std::string_view parent_of(std::string_view path) {
+  const std::size_t dot = path.rfind('.');
+  if (dot == std::string_view::npos) return {};
+  std::string_view parent = path.substr(0, dot);
+  if (parent.ends_with("[]")) parent.remove_suffix(2);
+  return parent;
+}
+
+/// A number as the docs write it: plain in the range people read at a glance, else the shortest scientific
+/// form with a plain exponent (1e10, 3.85e9, 1e-3).
+std::string number_text(double value) {
+  constexpr double kPlainBelow = 1e5, kPlainFrom = 1e-2;  // 12000, 0.05; but 1e10 and 1e-3
+  const double size = std::abs(value);
+  if (value == 0.0 || (size < kPlainBelow && size >= kPlainFrom)) return fmt::format("{}", value);
+  std::string text;
+  for (int digits = 0; digits <= std::numeric_limits<double>::max_digits10; ++digits) {
+    text = fmt::format("{:.{}e}", value, digits);
+    if (std::stod(text) == value) break;
+  }
+  const std::size_t e = text.find('e');
+  std::string exponent = text.substr(e + 1);
+  const bool negative = exponent.front() == '-';
+  exponent.erase(0, exponent.find_first_not_of("+-0"));
+  return text.substr(0, e + 1) + (negative ? "-" : "") + exponent;
+}
+
+}  // namespace
+
+std::vector<const Key*> children(std::string_view parent) {
+  std::vector<const Key*> out;
+  for (const Key& entry : kKeys)
+    if (below(entry.path, parent)) out.push_back(&entry);
+  return out;
+}
+
+std::vector<std::string> child_names(std::string_view parent) {
+  std::vector<std::string> out;
+  for (const Key* child : children(parent)) out.emplace_back(name_of(child->path));
+  return out;
+}
+
+std::vector<std::string> words(const Key& key) {
+  if (key.run_time_words) return key.run_time_words();
+  return {key.words.begin(), key.words.end()};
+}
+
+std::string expected(const Key& key) {
+  switch (key.type) {
+    case Type::map:
+      return fmt::format("a map {{{}}}", join(child_names(key.path), ", "));
+    case Type::choice:
+      return "a map with exactly one of the keys " + join(child_names(key.path), ", ");
+    case Type::list:
+    case Type::choice_list:
+    case Type::text:
+      return std::string(key.noun);
+    case Type::file:
+      return key.noun.empty() ? "a file path" : std::string(key.noun);
+    case Type::directory:
+      return key.noun.empty() ? "a directory path" : std::string(key.noun);
+    case Type::number: {
+      const std::string sign = sign_text(key.bound);
+      return "a number" + (sign.empty() ? "" : " " + sign) + unit_suffix(key);
+    }
+    case Type::number_or_auto: {
+      const std::string sign = sign_text(key.bound);
+      return "a number" + (sign.empty() ? "" : " " + sign) + unit_suffix(key) + " or auto";
+    }
+    case Type::integer:
+      return key.highest == kNoUpperLimit ? fmt::format("an integer >= {}", key.lowest)
+                                          : fmt::format("an integer {}..{}", key.lowest, key.highest);
+    case Type::seed:
+      return fmt::format("an integer 0..{}", std::numeric_limits<std::uint64_t>::max());
+    case Type::boolean:
+      return "true or false";
+    case Type::word:
+      return "one of " + join(words(key), " | ");
+    case Type::word_set:
+      return "a list of " + join(words(key), ", ");
+    case Type::point2:
+    case Type::point3: {
+      const int size = point_size(key.type);
+      const std::string sign = sign_text(key.bound);
+      return fmt::format("a list of {} numbers {}{}{}", size, point_names(size),
+                         sign.empty() ? "" : ", each " + sign, unit_suffix(key));
+    }
+    case Type::point2_or_3:
+      return "a list [x, y] or [x, y, z]" + unit_suffix(key);
+    case Type::expression:
+      return "a number or a muparser expression of t" + unit_suffix(key);
+    case Type::velocity_or_with_wind:
+      return "with_wind or a list of 3 numbers [vx, vy, vz]" + unit_suffix(key);
+  }
+  return "?";
+}
+
+// --- docs
+// ----------------------------------------------------------------------------------------------------
+
+namespace {
+
+std::string doc_type(const Key& key) {
+  switch (key.type) {
+    case Type::map:
+    case Type::choice:
+      return "map";
+    case Type::list:
+    case Type::choice_list:
+      return "list";
+    case Type::text:
+      return "string";
+    case Type::file:
+      return "file path";
+    case Type::directory:
+      return "path";
+    case Type::number:
+      return "number";
+    case Type::number_or_auto:
+      return "number or `auto`";
+    case Type::integer:
+    case Type::seed:
+      return "integer";
+    case Type::boolean:
+      return "boolean";
+    case Type::word:
+      return "word";
+    case Type::word_set:
+      return "list of words";
+    case Type::point2:
+    case Type::point3:
+      return fmt::format("list of {} numbers `{}`", point_size(key.type), point_names(point_size(key.type)));
+    case Type::point2_or_3:
+      return "list `[x, y]` or `[x, y, z]`";
+    case Type::expression:
+      return "number or expression of `t`";
+    case Type::velocity_or_with_wind:
+      return "`with_wind` or list of 3 numbers `[vx, vy, vz]`";
+  }
+  return "?";
+}
+
+std::string doc_default(const Key& key) {
+  if (!key.default_note.empty()) return std::string(key.default_note);
+  if (key.required)
+    return key.only_with.empty() ? "required" : fmt::format("required for `{}`", key.only_with);
+  const Key* parent = find(parent_of(key.path));
+  if (parent && (parent->type == Type::choice || parent->type == Type::choice_list)) return "—";
+  switch (key.type) {
+    case Type::map:
+    case Type::choice:
+      return "all defaults below";
+    case Type::list:
+    case Type::choice_list:
+      return "`[]` (none)";
+    case Type::number:
+    case Type::integer:
+      return fmt::format("`{}`", number_text(key.number));
+    case Type::point3: {
+      const std::string component = number_text(key.number);
+      return fmt::format("`[{0}, {0}, {0}]`", component);
+    }
+    case Type::boolean:
+      return key.flag ? "`true`" : "`false`";
+    case Type::word:
+    case Type::number_or_auto:
+    case Type::velocity_or_with_wind:
+    case Type::directory:
+      return fmt::format("`{}`", key.word);
+    case Type::word_set:
+      return fmt::format("`[{}]`", join({key.chosen.begin(), key.chosen.end()}, ", "));
+    case Type::seed:
+      return "`0`";
+    default:
+      return "—";
+  }
+}
+
+std::string doc_allowed(const Key& key) {
+  if (!key.allowed.empty()) return std::string(key.allowed);
+  std::string allowed;
+  switch (key.type) {
+    case Type::map:
+      allowed = "keys " + join(child_names(key.path), ", ", "`");
+      break;
+    case Type::choice:
+      allowed = "exactly one of " + join(child_names(key.path), ", ", "`");
+      break;
+    case Type::list:
+      allowed = "maps with keys " + join(child_names(std::string(key.path) + "[]"), ", ", "`");
+      break;
+    case Type::choice_list: {
+      std::vector<std::string> items;
+      for (const std::string& name : child_names(std::string(key.path) + "[]"))
+        items.push_back(fmt::format("`- {}: {{...}}`", name));
+      allowed = "items " + join(items, ", ");
+      break;
+    }
+    case Type::text:
+    case Type::directory:
+      allowed = "non-empty";
+      break;
+    case Type::file:
+      allowed = "a readable file; relative to the scenario's folder";
+      break;
+    case Type::number:
+      allowed = key.bound == Bound::any ? "any" : sign_text(key.bound);
+      break;
+    case Type::number_or_auto:
+      allowed = sign_text(key.bound) + ", or the word `auto`";
+      break;
+    case Type::integer:
+      allowed = key.highest == kNoUpperLimit ? fmt::format(">= {}", key.lowest)
+                                             : fmt::format("{}..{}", key.lowest, key.highest);
+      break;
+    case Type::seed:
+      allowed = fmt::format("0..{}", std::numeric_limits<std::uint64_t>::max());
+      break;
+    case Type::boolean:
+      allowed = "`true` \\| `false`";
+      break;
+    case Type::word:
+      allowed = join(words(key), " \\| ", "`");
+      break;
+    case Type::word_set:
+      allowed = "each of " + join(words(key), ", ", "`") + " at most once; file order is kept";
+      break;
+    case Type::point2:
+    case Type::point3:
+    case Type::point2_or_3:
+      allowed = key.bound == Bound::any ? "any" : "each " + sign_text(key.bound);
+      break;
+    case Type::expression:
+      allowed = fmt::format("finite{} for 0 <= t <= `time.end`",
+                            key.bound == Bound::any ? "" : " and " + sign_text(key.bound));
+      break;
+    case Type::velocity_or_with_wind:
+      allowed = "the word `with_wind` or any 3 numbers";
+      break;
+  }
+  if (!key.constraint.empty()) allowed += "; " + std::string(key.constraint);
+  if (!key.only_with.empty()) allowed += fmt::format("; `{}` only", key.only_with);
+  return allowed;
+}
+
+std::string table(const std::vector<const Key*>& keys) {
+  std::string out =
+      "| key | type | unit | default | allowed | meaning |\n"
+      "|---|---|---|---|---|---|\n";
+  for (const Key* key : keys) {
+    out += fmt::format("| `{}` | {} | {} | {} | {} | {} |\n", key->path, doc_type(*key),
+                       key->unit.empty() ? "—" : key->unit, doc_default(*key), doc_allowed(*key),
+                       key->description);
+  }
+  return out;
+}
+
+constexpr std::string_view kTopLevelSection = "(top level)";
+constexpr std::string_view kOpenMarker = "<!-- schema: ";
+constexpr std::string_view kMarkerEnd = " -->";
+constexpr std::string_view kCloseMarker = "<!-- end schema -->";
+
+/// How well a section takes a key: the length of the section when the key equals it or lies below it, 0 for
+/// the top level's own keys, -1 otherwise.
+long claim(std::string_view section, std::string_view path) {
+  if (section == kTopLevelSection) return path.find_first_of(".[") == std::string_view::npos ? 0 : -1;
+  const bool takes = path == section || (path.starts_with(section) &&
+                                         (path[section.size()] == '.' || path[section.size()] == '['));
+  return takes ? long(section.size()) : -1;
+}
+
+}  // namespace
+
+std::string render_scenario_docs(std::string_view page) {
+  // First the sections named by the markers, so that each key goes to the most specific one.
+  std::vector<std::string> sections;
+  for (std::size_t at = page.find(kOpenMarker); at != std::string_view::npos;
+       at = page.find(kOpenMarker, at + 1)) {
+    const std::size_t name = at + kOpenMarker.size();
+    const std::size_t end = page.find(kMarkerEnd, name);
+    if (end == std::string_view::npos)
+      throw std::invalid_argument("scenario docs: a schema marker is not closed");
+    sections.emplace_back(page.substr(name, end - name));
+  }
+  std::vector<std::vector<const Key*>> taken(sections.size());
+  for (const Key& key : kKeys) {
+    long best = -1;
+    std::size_t best_section = 0;
+    for (std::size_t s = 0; s < sections.size(); ++s) {
+      const long score = claim(sections[s], key.path);
+      if (score > best) best = score, best_section = s;
+    }
+    if (best < 0)
+      throw std::invalid_argument(
+          fmt::format("scenario docs: key {} is in no table (add a <!-- schema: ... --> block)", key.path));
+    taken[best_section].push_back(&key);
+  }
+
+  std::string out;
+  std::size_t copied = 0;
+  for (std::size_t s = 0; s < sections.size(); ++s) {
+    if (taken[s].empty())
+      throw std::invalid_argument(fmt::format("scenario docs: section {} has no keys", sections[s]));
+    const std::size_t open = page.find(kOpenMarker, copied);
+    const std::size_t open_end = page.find('\n', open);
+    const std::size_t close = page.find(kCloseMarker, open_end);
+    if (open_end == std::string_view::npos || close == std::string_view::npos)
+      throw std::invalid_argument(
+          fmt::format("scenario docs: section {} has no {}", sections[s], kCloseMarker));
+    out += page.substr(copied, open_end + 1 - copied);
+    out += table(taken[s]);
+    copied = close;
+  }
+  out += page.substr(copied);
+  return out;
+}
+
+}  // namespace fw::io::schema

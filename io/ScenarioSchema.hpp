@@ -1,0 +1,770 @@
+// The scenario schema: every key a scenario file may hold, with its type, unit, default, allowed values and
+// meaning, defined once (issue 9, "The schema in one place"). io/Scenario.cpp takes from here its unknown-key
+// checks, its required keys, its vocabularies and the "... expected" part of its messages; the defaults of
+// the io::Scenario structs are read from here; and the key tables of docs/scenario.md are generated from here
+// (render_scenario_docs; tests/io/ScenarioSchema_test.cpp fails when the committed page differs).
+//
+//   constexpr double cfl = fw::io::schema::key("time.cfl").number;       // 0.8, looked up at compile time
+//   const fw::io::schema::Key* found = fw::io::schema::find("forest.species[].modes.count");   // at run time
+//   fw::io::schema::expected(*found);                                   // "an integer >= 1"
+//   fw::io::schema::child_names("wind.profile");                        // type, alpha, roughness_length, ...
+//
+// Paths are dotted, with "[]" for the items of a list: "forest.species[].canopy.leaf_area_index". A file's
+// key "forest.species[2].modes" is generic_path'd to "forest.species[].modes" before a lookup. Defaults that
+// belong to another part of the program (the pressure tolerance of fluid::PressureSettings, the wood of
+// trees::kDefaultWood, the drag coefficients of trees::WindBasisSettings, the modal defaults of
+// trees::ModalSettings) are taken from there, so that each value is written once.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <limits>
+#include <span>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "fluid/InflowProfile.hpp"
+#include "fluid/WindSettings.hpp"
+#include "kernels/shared_types.h"
+#include "trees/ForestLayout.hpp"
+#include "trees/Material.hpp"
+#include "trees/ModalBasis.hpp"
+#include "trees/ModalIntegrator.hpp"
+#include "trees/WindBasis.hpp"
+
+namespace fw::io::schema {
+
+/// What a key holds. The loader reads each type with one function, and the docs' type column names it.
+enum class Type {
+  map,                    ///< a map of the keys below it
+  choice,                 ///< a map with exactly one of the keys below it
+  list,                   ///< a list of maps of the keys below PATH[]
+  choice_list,            ///< a list of maps, each with exactly one of the keys below PATH[]
+  text,                   ///< a non-empty string
+  file,                   ///< a readable file, relative to the scenario's folder
+  directory,              ///< a folder, relative to the working directory
+  number,                 ///< a finite decimal number
+  number_or_auto,         ///< a number, or the word auto (no number)
+  integer,                ///< a whole number within [lowest, highest]
+  seed,                   ///< an unsigned 64-bit integer
+  boolean,                ///< true or false
+  word,                   ///< one of words
+  word_set,               ///< a list of distinct words of words
+  point2,                 ///< [x, y]
+  point3,                 ///< [x, y, z]
+  point2_or_3,            ///< [x, y] or [x, y, z]
+  expression,             ///< a number or a muparser expression of t
+  velocity_or_with_wind,  ///< [vx, vy, vz], or the word with_wind
+};
+
+/// The sign a number (or each number of a point, or each value of an expression) must have.
+enum class Bound { any, positive, non_negative };
+
+using Words = std::span<const std::string_view>;
+
+struct Key {
+  std::string_view path{};
+  Type type = Type::map;
+  std::string_view unit{};  ///< SI unit; empty when dimensionless or not a quantity
+  bool required = false;
+  Bound bound = Bound::any;
+  long long lowest = 0;   ///< integer: the smallest value allowed
+  long long highest = 0;  ///< integer: the largest value allowed (numeric_limits<int>::max(): no limit)
+  Words words{};          ///< word, word_set: the vocabulary
+  /// word: a vocabulary known only at run time (replaces words).
+  std::vector<std::string> (*run_time_words)() = nullptr;
+  double number = 0.0;              ///< default of number, integer (and of every component of point3)
+  bool flag = false;                ///< default of boolean
+  std::string_view word{};          ///< default of word, number_or_auto, velocity_or_with_wind, directory
+  Words chosen{};                   ///< default of word_set
+  std::string_view noun{};          ///< text, file, directory, list: what the value is, in messages
+  std::string_view only_with{};     ///< the key applies only where its sibling `type` is this word
+  std::string_view default_note{};  ///< docs: the default in words, where it is not a plain value
+  std::string_view allowed{};       ///< docs: replaces the allowed values derived from the type
+  std::string_view constraint{};    ///< docs: what is allowed beyond the type's own rule
+  std::string_view description{};   ///< docs: the meaning, one table row
+};
+
+inline constexpr int kNoUpperLimit = std::numeric_limits<int>::max();
+
+// --- vocabularies ----------------------------------------------------------------------------------------
+
+/// In the order of io::BoundaryChoice; the ground and the top take all but the first ("auto").
+inline constexpr std::string_view kBoundaryWords[] = {"auto", "inflow",  "outflow",
+                                                      "slip", "no_slip", "periodic"};
+inline constexpr Words kSideBoundaryWords{kBoundaryWords};
+inline constexpr Words kCapBoundaryWords = Words(kBoundaryWords).subspan(1);
+
+inline constexpr std::string_view kProfileWords[] = {"uniform", "power", "log"};
+inline constexpr fluid::InflowProfile::Type kProfileTypes[] = {
+    fluid::InflowProfile::Type::uniform, fluid::InflowProfile::Type::power, fluid::InflowProfile::Type::log};
+
+inline constexpr std::string_view kIntegratorWords[] = {"exact", "semi_implicit"};
+inline constexpr trees::ModalIntegrator kIntegrators[] = {trees::ModalIntegrator::exact,
+                                                          trees::ModalIntegrator::semi_implicit};
+
+inline constexpr std::string_view kLayoutWords[] = {"poisson", "grid"};
+inline constexpr trees::StandLayout kLayouts[] = {trees::StandLayout::poisson, trees::StandLayout::grid};
+
+inline constexpr std::string_view kPressureWords[] = {"multigrid", "cg", "jacobi"};
+inline constexpr fluid::PressureSolverType kPressureSolvers[] = {
+    fluid::PressureSolverType::multigrid, fluid::PressureSolverType::cg, fluid::PressureSolverType::jacobi};
+
+inline constexpr std::string_view kAdvectionWords[] = {"semi_lagrangian", "maccormack"};
+inline constexpr fluid::AdvectionScheme kAdvectionSchemes[] = {fluid::AdvectionScheme::semi_lagrangian,
+                                                               fluid::AdvectionScheme::maccormack};
+
+inline constexpr std::string_view kVtkFieldWords[] = {"velocity",  "pressure", "speed",
+                                                      "vorticity", "solid",    "canopy_density"};
+inline constexpr std::string_view kVdbGridWords[] = {"vel", "speed"};
+
+/// The generator's presets (trees::preset_names), known at run time.
+std::vector<std::string> preset_words();
+
+// --- the table ---------------------------------------------------------------------------------------------
+
+// Each map's keys in the order the loader's messages and the docs list them. Defaults owned elsewhere:
+inline constexpr fluid::PressureSettings kPressureDefaults{};
+inline constexpr trees::WindBasisSettings kDragDefaults{};
+
+inline constexpr Key kKeys[] = {
+    // top level
+    {.path = "scenario",
+     .type = Type::text,
+     .required = true,
+     .noun = "a scenario name",
+     .constraint = "no `/` or `\\`, no control characters, not `.` or `..`",
+     .description = "Name of the scenario. Used as the folder name in the default output directory "
+                    "`out/<scenario>`."},
+    {.path = "seed",
+     .type = Type::seed,
+     .description = "Global seed, recorded in `run.json`. Seeds the file does not give derive from it: stand "
+                    "k is laid out with `seed + k`, species k generates its skeleton with `seed + 1 + k`."},
+    // time
+    {.path = "time", .required = true, .description = "Simulated time span and time step."},
+    {.path = "time.end",
+     .type = Type::number,
+     .unit = "s",
+     .required = true,
+     .bound = Bound::positive,
+     .description =
+         "The run covers t = 0 to `end`. `forestwind run --end SECONDS` overrides it for one run."},
+    {.path = "time.dt",
+     .type = Type::number_or_auto,
+     .unit = "s",
+     .bound = Bound::positive,
+     .word = "auto",
+     .description =
+         "Time step. With a number, the step is fixed; a run stops with exit code 1 when that "
+         "step's CFL number exceeds 5 (checked every 10 steps). With `auto`, each step uses `dt = "
+         "cfl * h / max\\|u\\|` (h = `domain.cell_size`, max over the velocity components), capped "
+         "at 1 s."},
+    {.path = "time.cfl",
+     .type = Type::number,
+     .bound = Bound::positive,
+     .number = 0.8,
+     .description = "CFL number for `dt: auto`. With a fixed `dt` it is still validated, but not used."},
+    // domain
+    {.path = "domain", .required = true, .description = "The wind grid."},
+    {.path = "domain.origin",
+     .type = Type::point3,
+     .unit = "m",
+     .number = 0.0,
+     .description = "The minimum (south-west, bottom) corner. Its z is the domain floor."},
+    {.path = "domain.size",
+     .type = Type::point3,
+     .unit = "m",
+     .required = true,
+     .bound = Bound::positive,
+     .constraint = "each a whole multiple of `cell_size` (to 1e-6 relative), at least one cell",
+     .description = "Extent along x, y and z."},
+    {.path = "domain.cell_size",
+     .type = Type::number,
+     .unit = "m",
+     .required = true,
+     .bound = Bound::positive,
+     .constraint = "(nx + 1)(ny + 1)(nz + 1) <= 2^31 - 1",
+     .description = "Cell edge h. The grid has `size / cell_size` cells along each axis."},
+    // boundaries, in the order of FW_FACE_*
+    {.path = "boundaries", .description = "Boundary condition per face."},
+    {.path = "boundaries.west",
+     .type = Type::word,
+     .words = kSideBoundaryWords,
+     .word = "auto",
+     .description = "West face (x minimum)."},
+    {.path = "boundaries.east",
+     .type = Type::word,
+     .words = kSideBoundaryWords,
+     .word = "auto",
+     .description = "East face (x maximum)."},
+    {.path = "boundaries.south",
+     .type = Type::word,
+     .words = kSideBoundaryWords,
+     .word = "auto",
+     .description = "South face (y minimum)."},
+    {.path = "boundaries.north",
+     .type = Type::word,
+     .words = kSideBoundaryWords,
+     .word = "auto",
+     .description = "North face (y maximum)."},
+    {.path = "boundaries.ground",
+     .type = Type::word,
+     .words = kCapBoundaryWords,
+     .word = "no_slip",
+     .constraint = "no `auto`",
+     .description = "Bottom face (z minimum)."},
+    {.path = "boundaries.top",
+     .type = Type::word,
+     .words = kCapBoundaryWords,
+     .word = "slip",
+     .constraint = "no `auto`",
+     .description = "Top face (z maximum)."},
+    // wind
+    {.path = "wind", .required = true, .description = "The ambient wind."},
+    {.path = "wind.speed",
+     .type = Type::expression,
+     .unit = "m/s",
+     .required = true,
+     .bound = Bound::non_negative,
+     .description = "Wind speed at `reference_height`."},
+    {.path = "wind.direction",
+     .type = Type::expression,
+     .unit = "degrees",
+     .required = true,
+     .constraint = "any value (370 is the same as 10)",
+     .description = "Direction the wind blows FROM, clockwise from north."},
+    {.path = "wind.reference_height",
+     .type = Type::number,
+     .unit = "m",
+     .bound = Bound::positive,
+     .number = 10.0,
+     .description = "Height above the domain floor where the wind has speed `wind.speed`."},
+    {.path = "wind.profile",
+     .default_note = "`{type: uniform}`",
+     .allowed = "keys `type` plus that type's keys",
+     .description = "Vertical shape of the wind on inflow faces. A key that belongs to another type is an "
+                    "error."},
+    {.path = "wind.profile.type",
+     .type = Type::word,
+     .required = true,
+     .words = kProfileWords,
+     .word = "uniform",
+     .default_note = "required when `profile` is given",
+     .description = "`uniform`: shape 1 at every height. `power`: `(z / reference_height)^alpha`. `log`: "
+                    "`ln((z - d) / z0) / ln((reference_height - d) / z0)`, and 0 where `z - d <= z0`."},
+    {.path = "wind.profile.alpha",
+     .type = Type::number,
+     .bound = Bound::non_negative,
+     .number = 0.2,
+     .only_with = "power",
+     .description = "Power-law exponent."},
+    {.path = "wind.profile.roughness_length",
+     .type = Type::number,
+     .unit = "m",
+     .required = true,
+     .bound = Bound::positive,
+     .only_with = "log",
+     .description = "Roughness length z0. `reference_height` must exceed `displacement_height + "
+                    "roughness_length` (the log law gives no wind below it); the error names "
+                    "`displacement_height` when given, else `roughness_length`."},
+    {.path = "wind.profile.displacement_height",
+     .type = Type::number,
+     .unit = "m",
+     .bound = Bound::non_negative,
+     .number = 0.0,
+     .only_with = "log",
+     .description = "Displacement height d (of a canopy, for example)."},
+    // events
+    {.path = "events",
+     .type = Type::choice_list,
+     .noun = "a list of events (- gust: {...})",
+     .description = "Gust events."},
+    {.path = "events[].gust",
+     .required = true,
+     .default_note = "required in each item",
+     .description = "One gust."},
+    {.path = "events[].gust.start",
+     .type = Type::number,
+     .unit = "s",
+     .required = true,
+     .bound = Bound::non_negative,
+     .description = "Time at which the gust begins."},
+    {.path = "events[].gust.duration",
+     .type = Type::number,
+     .unit = "s",
+     .required = true,
+     .bound = Bound::positive,
+     .description = "Length of the envelope."},
+    {.path = "events[].gust.peak_speed",
+     .type = Type::number,
+     .unit = "m/s",
+     .required = true,
+     .bound = Bound::non_negative,
+     .description = "Extra speed at the envelope's peak and the ball's centre. A plain number, not an "
+                    "expression."},
+    {.path = "events[].gust.center",
+     .type = Type::point3,
+     .unit = "m",
+     .required = true,
+     .constraint = "may lie outside the domain",
+     .description = "Position of the ball's centre at `start`."},
+    {.path = "events[].gust.radius",
+     .type = Type::number,
+     .unit = "m",
+     .required = true,
+     .bound = Bound::positive,
+     .description = "Radius R of the Gaussian."},
+    {.path = "events[].gust.travel",
+     .type = Type::velocity_or_with_wind,
+     .unit = "m/s",
+     .word = "with_wind",
+     .description = "Velocity of the ball. `with_wind` takes the ambient wind vector at the reference height "
+                    "at time `start` and keeps it constant."},
+    // obstacles
+    {.path = "obstacles",
+     .type = Type::choice_list,
+     .noun = "a list of obstacles (- box|cylinder|sphere: {...})",
+     .description = "Solid obstacles."},
+    {.path = "obstacles[].box",
+     .description = "A box, possibly turned about the vertical axis through its centre."},
+    {.path = "obstacles[].box.name",
+     .type = Type::text,
+     .required = true,
+     .noun = "a name",
+     .description = "Name, used in messages. Names need not be unique."},
+    {.path = "obstacles[].box.center",
+     .type = Type::point3,
+     .unit = "m",
+     .required = true,
+     .description = "Centre of the box."},
+    {.path = "obstacles[].box.size",
+     .type = Type::point3,
+     .unit = "m",
+     .required = true,
+     .bound = Bound::positive,
+     .description = "Full edge lengths along the box's own axes (before yaw)."},
+    {.path = "obstacles[].box.yaw",
+     .type = Type::number,
+     .unit = "degrees",
+     .number = 0.0,
+     .description = "Rotation about +z, counter-clockwise seen from above."},
+    {.path = "obstacles[].cylinder", .description = "A vertical cylinder standing on its base."},
+    {.path = "obstacles[].cylinder.name",
+     .type = Type::text,
+     .required = true,
+     .noun = "a name",
+     .description = "Name, used in messages."},
+    {.path = "obstacles[].cylinder.base",
+     .type = Type::point3,
+     .unit = "m",
+     .required = true,
+     .description = "Centre of the bottom disc."},
+    {.path = "obstacles[].cylinder.radius",
+     .type = Type::number,
+     .unit = "m",
+     .required = true,
+     .bound = Bound::positive,
+     .description = "Radius."},
+    {.path = "obstacles[].cylinder.height",
+     .type = Type::number,
+     .unit = "m",
+     .required = true,
+     .bound = Bound::positive,
+     .description = "Extent upward from the base."},
+    {.path = "obstacles[].sphere", .description = "A sphere."},
+    {.path = "obstacles[].sphere.name",
+     .type = Type::text,
+     .required = true,
+     .noun = "a name",
+     .description = "Name, used in messages."},
+    {.path = "obstacles[].sphere.center",
+     .type = Type::point3,
+     .unit = "m",
+     .required = true,
+     .description = "Centre."},
+    {.path = "obstacles[].sphere.radius",
+     .type = Type::number,
+     .unit = "m",
+     .required = true,
+     .bound = Bound::positive,
+     .description = "Radius."},
+    // terrain
+    {.path = "terrain", .default_note = "none (flat floor)", .description = "Terrain."},
+    {.path = "terrain.heightmap",
+     .type = Type::file,
+     .required = true,
+     .noun = "a file path (PGM or ESRI ASCII grid)",
+     .allowed = "a readable PGM or ESRI ASCII grid; relative to the scenario's folder",
+     .description = "The height field."},
+    {.path = "terrain.cell_size",
+     .type = Type::number,
+     .unit = "m",
+     .bound = Bound::positive,
+     .default_note = "required for a PGM; ignored for an ESRI grid",
+     .constraint = "checked for an ESRI grid too",
+     .description = "Distance between PGM pixels."},
+    {.path = "terrain.max_height",
+     .type = Type::number,
+     .unit = "m",
+     .bound = Bound::non_negative,
+     .default_note = "required for a PGM; ignored for an ESRI grid",
+     .constraint = "checked for an ESRI grid too",
+     .description = "Height that the PGM's maxval stands for."},
+    // forest
+    {.path = "forest", .default_note = "no trees", .description = "The forest."},
+    {.path = "forest.two_way_coupling",
+     .type = Type::boolean,
+     .flag = true,
+     .description =
+         "With `true`, the drag of the trees' branches and leaves slows the wind on the grid. With "
+         "`false`, the trees feel the wind but do not affect it."},
+    {.path = "forest.integrator",
+     .type = Type::word,
+     .words = kIntegratorWords,
+     .word = "exact",
+     .description = "The modal time step. `exact` solves each mode's damped oscillator exactly for the force "
+                    "held over the step, stable at any dt. `semi_implicit` is Diener's semi-implicit Euler, "
+                    "stable only while dt² ω² + 2 γ dt < 4 for every mode; a run whose dt breaks that stops "
+                    "with exit code 1 at that step."},
+    {.path = "forest.species",
+     .type = Type::list,
+     .noun = "a list of species",
+     .description = "Tree species."},
+    {.path = "forest.stands",
+     .type = Type::list,
+     .noun = "a list of stands",
+     .description = "Stands: trees scattered over a region."},
+    {.path = "forest.trees",
+     .type = Type::list,
+     .noun = "a list of trees",
+     .description = "Single trees placed by hand."},
+    // forest.species
+    {.path = "forest.species[].name",
+     .type = Type::text,
+     .required = true,
+     .noun = "a species name",
+     .constraint = "unique among the species",
+     .description = "Name that stands and trees refer to."},
+    {.path = "forest.species[].skeleton",
+     .type = Type::choice,
+     .required = true,
+     .description = "Where the species' skeleton comes from."},
+    {.path = "forest.species[].skeleton.generate",
+     .description = "Grow a skeleton with the built-in L-system generator, as `forestwind tree generate` "
+                    "does."},
+    {.path = "forest.species[].skeleton.generate.preset",
+     .type = Type::word,
+     .required = true,
+     .run_time_words = preset_words,
+     .description = "Tree shape."},
+    {.path = "forest.species[].skeleton.generate.height",
+     .type = Type::number,
+     .unit = "m",
+     .bound = Bound::non_negative,
+     .number = 0.0,
+     .default_note = "`0` (the preset's height: broadleaf 15, conifer 20, palm 12, weeping 10)",
+     .description = "Height of the generated tree."},
+    {.path = "forest.species[].skeleton.generate.seed",
+     .type = Type::seed,
+     .default_note = "global `seed` + 1 + species index",
+     .description = "Generator seed. The same seed gives the same tree."},
+    {.path = "forest.species[].skeleton.file",
+     .type = Type::file,
+     .noun = "a file path",
+     .allowed = "a readable `.tree` file; relative to the scenario's folder",
+     .description = "A skeleton in the `.tree` format (`id parent x y z radius` per line, metres)."},
+    {.path = "forest.species[].skeleton.qsm",
+     .type = Type::file,
+     .noun = "a file path",
+     .allowed = "a readable TreeQSM cylinder table; relative to the scenario's folder",
+     .description = "A scanned tree, as a TreeQSM text export."},
+    {.path = "forest.species[].material", .description = "Wood, isotropic."},
+    {.path = "forest.species[].material.youngs_modulus",
+     .type = Type::number,
+     .unit = "Pa",
+     .bound = Bound::positive,
+     .number = trees::kDefaultWood.youngs_modulus,
+     .description = "Young's modulus E (stretching and bending)."},
+    {.path = "forest.species[].material.shear_modulus",
+     .type = Type::number,
+     .unit = "Pa",
+     .bound = Bound::positive,
+     .number = trees::kDefaultWood.shear_modulus,
+     .description = "Shear modulus G (torsion)."},
+    {.path = "forest.species[].material.density",
+     .type = Type::number,
+     .unit = "kg/m^3",
+     .bound = Bound::positive,
+     .number = trees::kDefaultWood.density,
+     .description = "Wood density rho."},
+    {.path = "forest.species[].modes", .description = "Modal model."},
+    {.path = "forest.species[].modes.count",
+     .type = Type::integer,
+     .lowest = 1,
+     .highest = kNoUpperLimit,
+     .number = trees::ModalSettings{}.mode_count,
+     .constraint = "fewer than the skeleton's 6 × (nodes − 1) DOFs",
+     .description = "Number of lowest vibration modes kept."},
+    {.path = "forest.species[].modes.damping_ratio",
+     .type = Type::number,
+     .bound = Bound::non_negative,
+     .number = trees::Damping{}.ratios.front(),
+     .description = "Damping ratio zeta, the same for every mode."},
+    {.path = "forest.species[].modes.wind_samples",
+     .type = Type::integer,
+     .lowest = 1,
+     .highest = FW_MAX_TREE_SAMPLES,
+     .number = 3,
+     .description = "Number of height bands per tree. Each band samples the wind separately, which captures "
+                    "shear and gust fronts within one crown."},
+    {.path = "forest.species[].drag_coefficient",
+     .type = Type::number,
+     .bound = Bound::non_negative,
+     .number = kDragDefaults.branch_drag_coefficient,
+     .description =
+         "Drag coefficient C_D of the branches, as cylinders in cross flow: the drag is 1/2 rho_air "
+         "C_D D L \\|u\\| u per element of diameter D and length L, with air density 1.225 kg/m^3. "
+         "Used for the wind load on the tree and for its drag on the wind."},
+    {.path = "forest.species[].canopy", .description = "Leaves."},
+    {.path = "forest.species[].canopy.leaf_area_index",
+     .type = Type::number,
+     .unit = "m^2/m^2",
+     .bound = Bound::non_negative,
+     .number = 0.0,
+     .default_note = "`0` (no leaves)",
+     .description = "One-sided leaf area per ground area under the crown. The crown's ground area is the "
+                    "horizontal convex hull of the tree's branches (the trunk excluded)."},
+    {.path = "forest.species[].canopy.drag_coefficient",
+     .type = Type::number,
+     .bound = Bound::non_negative,
+     .number = kDragDefaults.leaf_drag_coefficient,
+     .description = "Drag coefficient C_D of the leaves, in the convention of the branches' "
+                    "`drag_coefficient`: the drag is 1/2 rho_air C_D A \\|u\\| u per one-sided leaf area A. "
+                    "The default 0.4 makes 1/2 C_D = 0.2, the canopy drag coefficient C_d of canopy LES in "
+                    "the form C_d a \\|u\\| u (Shaw & Schumann 1992)."},
+    // forest.stands
+    {.path = "forest.stands[].species",
+     .type = Type::text,
+     .required = true,
+     .noun = "a species name",
+     .allowed = "the name of a species in `forest.species`",
+     .description = "Species of every tree in the stand."},
+    {.path = "forest.stands[].region",
+     .required = true,
+     .description = "Horizontal rectangle the trees stand in."},
+    {.path = "forest.stands[].region.min",
+     .type = Type::point2,
+     .unit = "m",
+     .required = true,
+     .allowed = "inside the domain's horizontal extent, edges included",
+     .description = "South-west corner."},
+    {.path = "forest.stands[].region.max",
+     .type = Type::point2,
+     .unit = "m",
+     .required = true,
+     .allowed = "inside the domain's horizontal extent; x and y both larger than `min`",
+     .description = "North-east corner."},
+    {.path = "forest.stands[].layout",
+     .type = Type::word,
+     .words = kLayoutWords,
+     .word = "poisson",
+     .description = "`poisson`: a natural stand, with no two trees closer than `spacing` and no gaps much "
+                    "wider than twice `spacing`. `grid`: rows and columns `spacing` apart, centred in the "
+                    "region."},
+    {.path = "forest.stands[].spacing",
+     .type = Type::number,
+     .unit = "m",
+     .required = true,
+     .bound = Bound::positive,
+     .constraint =
+         "`(width / spacing + 1) * (depth / spacing + 1)` at most 500,000, where width and depth are "
+         "the region's extents",
+     .description = "Minimum distance between trees (`poisson`) or exact distance (`grid`)."},
+    {.path = "forest.stands[].scale",
+     .default_note = "`{min: 1, max: 1}`",
+     .description =
+         "Range of uniform tree scales. A tree scaled by s is s times as tall, and its frequencies "
+         "are divided by s."},
+    {.path = "forest.stands[].scale.min",
+     .type = Type::number,
+     .bound = Bound::positive,
+     .number = 1.0,
+     .constraint = "<= `scale.max`",
+     .description = "Smallest scale."},
+    {.path = "forest.stands[].scale.max",
+     .type = Type::number,
+     .bound = Bound::positive,
+     .number = 1.0,
+     .constraint = ">= `scale.min`",
+     .description = "Largest scale."},
+    {.path = "forest.stands[].seed",
+     .type = Type::seed,
+     .default_note = "global `seed` + stand index",
+     .description = "Seed for positions, yaws and scales. The same seed gives the same stand."},
+    // forest.trees
+    {.path = "forest.trees[].species",
+     .type = Type::text,
+     .required = true,
+     .noun = "a species name",
+     .allowed = "the name of a species in `forest.species`",
+     .description = "Species of the tree."},
+    {.path = "forest.trees[].position",
+     .type = Type::point2_or_3,
+     .unit = "m",
+     .required = true,
+     .allowed = "inside the domain, edges included",
+     .description = "Position of the root. Without z, the tree stands on the ground: the terrain surface, "
+                    "else the domain floor."},
+    {.path = "forest.trees[].yaw",
+     .type = Type::number,
+     .unit = "degrees",
+     .number = 0.0,
+     .description = "Rotation about +z, counter-clockwise seen from above."},
+    {.path = "forest.trees[].scale",
+     .type = Type::number,
+     .bound = Bound::positive,
+     .number = 1.0,
+     .description = "Uniform scale of the species' skeleton."},
+    // solver
+    {.path = "solver", .description = "Wind solver settings."},
+    {.path = "solver.pressure",
+     .type = Type::word,
+     .words = kPressureWords,
+     .word = "cg",
+     .description = "Pressure solver. `cg`: conjugate gradients preconditioned by a multigrid V-cycle. "
+                    "`multigrid`: V-cycles alone. `jacobi`: a fixed number of Jacobi sweeps (the baseline)."},
+    {.path = "solver.tolerance",
+     .type = Type::number,
+     .bound = Bound::positive,
+     .number = fluid::kDefaultPressureTolerance,
+     .description = "Relative residual `\\|\\|b - A p\\|\\| / \\|\\|b\\|\\|` at which `cg` and `multigrid` "
+                    "stop. In float32, values below about 1e-5 cannot be reached."},
+    {.path = "solver.max_iterations",
+     .type = Type::integer,
+     .lowest = 1,
+     .highest = kNoUpperLimit,
+     .number = kPressureDefaults.max_iterations,
+     .description = "Most CG iterations or V-cycles per solve (`cg`, `multigrid`)."},
+    {.path = "solver.jacobi_iterations",
+     .type = Type::integer,
+     .lowest = 1,
+     .highest = kNoUpperLimit,
+     .number = kPressureDefaults.jacobi_iterations,
+     .description = "Sweeps per solve (`jacobi`)."},
+    {.path = "solver.advection",
+     .type = Type::word,
+     .words = kAdvectionWords,
+     .word = "semi_lagrangian",
+     .description = "Advection scheme. `maccormack` (clamped) keeps gusts sharper."},
+    {.path = "solver.vorticity_confinement",
+     .type = Type::number,
+     .bound = Bound::non_negative,
+     .number = fluid::WindSettings{}.vorticity_confinement,
+     .default_note = "`0` (off)",
+     .description = "Vorticity confinement strength epsilon."},
+    // output
+    {.path = "output", .description = "What to write, and where."},
+    {.path = "output.directory",
+     .type = Type::directory,
+     .word = "out/<scenario>",
+     .noun = "a directory path",
+     .allowed = "non-empty; relative to the **current working directory**",
+     .description = "Output folder, created when the run starts. `forestwind run -o DIR` overrides it."},
+    {.path = "output.interval",
+     .type = Type::number,
+     .unit = "s",
+     .bound = Bound::positive,
+     .number = 1.0,
+     .description = "Simulated time between output frames."},
+    {.path = "output.vtk", .description = "ParaView output."},
+    {.path = "output.vtk.wind",
+     .type = Type::boolean,
+     .flag = true,
+     .description = "Write `wind.pvd` with `wind/wind_NNNNNN.vti`."},
+    {.path = "output.vtk.trees",
+     .type = Type::boolean,
+     .flag = true,
+     .description = "Write `trees.pvd` with `trees/trees_NNNNNN.vtp` (when there are trees)."},
+    {.path = "output.vtk.fields",
+     .type = Type::word_set,
+     .words = kVtkFieldWords,
+     .chosen = kVtkFieldWords,
+     .description = "Arrays in the wind `.vti` files. `pressure` is the kinematic pressure p/rho (m^2/s^2). "
+                    "`canopy_density` is the trees' frontal area density (1/m)."},
+    {.path = "output.vdb", .description = "OpenVDB output (Houdini, Blender)."},
+    {.path = "output.vdb.enabled",
+     .type = Type::boolean,
+     .flag = false,
+     .description = "Write `vdb/wind.NNNN.vdb` per frame."},
+    {.path = "output.vdb.grids",
+     .type = Type::word_set,
+     .words = kVdbGridWords,
+     .chosen = kVdbGridWords,
+     .description = "Grids in each VDB file: `vel` (Vec3s, m/s), `speed` (float, m/s)."},
+    {.path = "output.probes",
+     .type = Type::list,
+     .noun = "a list of probes",
+     .description = "Points where `probes.csv` records the wind velocity every frame."},
+    {.path = "output.probes[].name",
+     .type = Type::text,
+     .required = true,
+     .noun = "a probe name",
+     .allowed = "letters, digits and `_`; unique",
+     .description = "Probe name, used in the column names `<name>_u`, `<name>_v`, `<name>_w`."},
+    {.path = "output.probes[].position",
+     .type = Type::point3,
+     .unit = "m",
+     .required = true,
+     .allowed = "inside the domain, faces included",
+     .description = "Probe location. The velocity there is interpolated trilinearly."},
+};
+
+// --- look-ups ----------------------------------------------------------------------------------------------
+
+/// The key at a generic path, at compile time: a path not in the table does not compile.
+consteval const Key& key(std::string_view path) {
+  for (const Key& entry : kKeys)
+    if (entry.path == path) return entry;
+  throw "not a key of the scenario schema";
+}
+
+/// The value of `word` (a key's default word, say) in a vocabulary and its values, aligned by position.
+template <typename Enum, std::size_t N>
+constexpr Enum value_of(const std::string_view (&words)[N], const Enum (&values)[N], std::string_view word) {
+  for (std::size_t i = 0; i < N; ++i)
+    if (words[i] == word) return values[i];
+  throw "not a word of the vocabulary";
+}
+
+/// A vocabulary as strings (the defaults of the io::Scenario structs).
+inline std::vector<std::string> strings(Words words) {
+  return {words.begin(), words.end()};
+}
+
+/// The key at a generic path, or nullptr.
+const Key* find(std::string_view path);
+
+/// A file's dotted key with its list indices dropped: "forest.species[2].modes" -> "forest.species[].modes".
+std::string generic_path(std::string_view key);
+
+/// The keys directly below a map's generic path ("" for the top level, "events[]" for an event), in table
+/// order.
+std::vector<const Key*> children(std::string_view parent);
+std::vector<std::string> child_names(std::string_view parent);
+
+/// The vocabulary of a word or word_set key.
+std::vector<std::string> words(const Key& key);
+
+/// The "... expected" part of the loader's messages for a value of this key, e.g. "a number > 0 (s)".
+std::string expected(const Key& key);
+
+/// docs/scenario.md with each block between a line "<!-- schema: SECTION -->" and the next line
+/// "<!-- end schema -->" replaced by the key table of SECTION: a generic path ("time", "forest.species[]") or
+/// "(top level)". A key goes to the longest SECTION it equals or lies below ("forest.species[].name" to
+/// "forest.species[]", "forest.species" to "forest"); "(top level)" takes the top-level keys no other SECTION
+/// takes. Throws std::invalid_argument for a marker left open, a SECTION without keys, or a key of the table
+/// that no SECTION takes (so every key is documented).
+std::string render_scenario_docs(std::string_view page);
+
+}  // namespace fw::io::schema

@@ -1,0 +1,135 @@
+#include "io/ScenarioSchema.hpp"
+
+#include <catch2/catch.hpp>
+
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <set>
+#include <sstream>
+#include <string>
+
+#include "fluid/WindSettings.hpp"
+#include "io/Scenario.hpp"
+
+namespace schema = fw::io::schema;
+
+namespace {
+
+// The committed page, next to this test's source tree (as tests/host/runtime/KernelSources_test.cpp finds
+// the kernels).
+std::filesystem::path docs_page() {
+  return std::filesystem::path(__FILE__).parent_path().parent_path().parent_path() / "docs" / "scenario.md";
+}
+
+std::string read_text(const std::filesystem::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::ostringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
+
+/// "" when equal, else the first line that differs, on both sides (the whole page would drown the report).
+std::string first_difference(const std::string& committed, const std::string& generated) {
+  std::istringstream a(committed), b(generated);
+  std::string left, right;
+  for (int line = 1;; ++line) {
+    const bool more_left = bool(std::getline(a, left)), more_right = bool(std::getline(b, right));
+    if (!more_left && !more_right) return "";
+    if (more_left != more_right || left != right)
+      return "line " + std::to_string(line) + ":\n  committed: " + (more_left ? left : "(end)") +
+             "\n  generated: " + (more_right ? right : "(end)");
+  }
+}
+
+}  // namespace
+
+TEST_CASE("schema: docs/scenario.md's key tables are the ones the schema generates", "[schema]") {
+  const std::filesystem::path page = docs_page();
+  REQUIRE(std::filesystem::exists(page));
+  const std::string committed = read_text(page);
+  const std::string generated = schema::render_scenario_docs(committed);
+  if (generated != committed && std::getenv("FORESTWIND_UPDATE_DOCS") != nullptr) {
+    std::ofstream(page, std::ios::binary) << generated;
+    WARN("rewrote " << page.string());
+    return;
+  }
+  INFO(
+      "docs/scenario.md differs from io/ScenarioSchema.hpp; regenerate its tables with "
+      "FORESTWIND_UPDATE_DOCS=1 io_tests \"[schema]\" and commit the page");
+  CHECK(first_difference(committed, generated) == "");
+}
+
+TEST_CASE("schema: every key sits below a map or list of the table, once", "[schema]") {
+  std::set<std::string_view> paths;
+  for (const schema::Key& key : schema::kKeys) {
+    INFO("key " << key.path);
+    CHECK(paths.insert(key.path).second);
+    CHECK_FALSE(key.description.empty());
+    const std::size_t dot = key.path.rfind('.');
+    if (dot == std::string_view::npos) continue;
+    std::string_view parent = key.path.substr(0, dot);
+    const bool item = parent.ends_with("[]");
+    if (item) parent.remove_suffix(2);
+    const schema::Key* owner = schema::find(parent);
+    REQUIRE(owner != nullptr);
+    if (item)
+      CHECK((owner->type == schema::Type::list || owner->type == schema::Type::choice_list));
+    else
+      CHECK((owner->type == schema::Type::map || owner->type == schema::Type::choice));
+  }
+  for (const schema::Key& key : schema::kKeys) {
+    INFO("key " << key.path);
+    if (key.type == schema::Type::map || key.type == schema::Type::choice)
+      CHECK_FALSE(schema::children(key.path).empty());
+  }
+}
+
+TEST_CASE("schema: the loader's messages come from the key's type, bound and unit", "[schema]") {
+  CHECK(schema::expected(schema::key("time.end")) == "a number > 0 (s)");
+  CHECK(schema::expected(schema::key("time.dt")) == "a number > 0 (s) or auto");
+  CHECK(schema::expected(schema::key("time")) == "a map {end, dt, cfl}");
+  CHECK(schema::expected(schema::key("domain.size")) == "a list of 3 numbers [x, y, z], each > 0 (m)");
+  CHECK(schema::expected(schema::key("forest.species[].modes.wind_samples")) == "an integer 1..16");
+  CHECK(schema::expected(schema::key("forest.species[].modes.count")) == "an integer >= 1");
+  CHECK(schema::expected(schema::key("solver.pressure")) == "one of multigrid | cg | jacobi");
+  CHECK(schema::expected(schema::key("boundaries.ground")) ==
+        "one of inflow | outflow | slip | no_slip | periodic");
+  CHECK(schema::expected(schema::key("forest.species[].skeleton")) ==
+        "a map with exactly one of the keys generate, file, qsm");
+  CHECK(schema::child_names("forest.species[].modes") ==
+        std::vector<std::string>{"count", "damping_ratio", "wind_samples"});
+  CHECK(schema::generic_path("forest.species[12].modes.count") == "forest.species[].modes.count");
+  CHECK(schema::generic_path("output.vtk.fields[1]") == "output.vtk.fields[]");
+}
+
+TEST_CASE("schema: defaults owned elsewhere are read from their owner, once", "[schema]") {
+  // One pressure tolerance for the wind grid and the scenario.
+  CHECK(schema::key("solver.tolerance").number == fw::fluid::kDefaultPressureTolerance);
+  CHECK(fw::fluid::PressureSettings{}.tolerance == fw::fluid::kDefaultPressureTolerance);
+  CHECK(fw::io::SolverSettings{}.tolerance == fw::fluid::kDefaultPressureTolerance);
+  // One default wood.
+  const fw::trees::Material wood = fw::io::Species{}.material;
+  CHECK(wood.youngs_modulus == fw::trees::kDefaultWood.youngs_modulus);
+  CHECK(wood.shear_modulus == fw::trees::kDefaultWood.shear_modulus);
+  CHECK(wood.density == fw::trees::kDefaultWood.density);
+  // The solver's words name fluid's own defaults, so a scenario without `solver` runs as WindSettings does.
+  const fw::fluid::WindSettings wind;
+  CHECK(fw::fluid::to_string(wind.pressure.solver) == schema::key("solver.pressure").word);
+  CHECK(fw::fluid::to_string(wind.advection) == schema::key("solver.advection").word);
+  const fw::io::Scenario scenario;
+  CHECK(scenario.wind_settings().pressure.max_iterations == wind.pressure.max_iterations);
+  CHECK(scenario.wind_settings().pressure.jacobi_iterations == wind.pressure.jacobi_iterations);
+  // Foliage drag per one-sided leaf area, as the branches': 1/2 C_D = 0.2, the canopy LES C_d.
+  CHECK(fw::io::CanopySettings{}.drag_coefficient == fw::trees::WindBasisSettings::kFoliageDragCoefficient);
+  CHECK(fw::io::Species{}.drag_coefficient == fw::trees::WindBasisSettings::kCylinderDragCoefficient);
+}
+
+TEST_CASE("schema: a page whose tables leave a key out, or leave a table open, is refused", "[schema]") {
+  const std::string page = "# Scenario files\n<!-- schema: time -->\n<!-- end schema -->\n";
+  CHECK_THROWS_WITH(schema::render_scenario_docs(page), Catch::Matchers::Contains("is in no table"));
+  std::string open_table = read_text(docs_page());
+  const std::string close = "<!-- end schema -->";
+  open_table.erase(open_table.rfind(close), close.size());
+  CHECK_THROWS_WITH(schema::render_scenario_docs(open_table), Catch::Matchers::Contains("has no " + close));
+}
