@@ -136,7 +136,7 @@ TEST_CASE("ProbesCsv: probes sampled on the MAC grid go in as m/s", "[output]") 
   CHECK(lines[1] == "2.5,3,0,-0.5");
 }
 
-TEST_CASE("ProbesCsv: bad names throw invalid_argument; a missing or unwritable folder runtime_error",
+TEST_CASE("ProbesCsv: bad names throw invalid_argument, a missing or unwritable folder runtime_error",
           "[output]") {
   fw::test::TempDir dir("fw_out");
   const fs::path path = fs::path(dir.path()) / "probes.csv";

@@ -152,7 +152,7 @@ TEST_CASE("write_wind_vdb: grids vel and speed with cell-centred transform, valu
   CHECK_FALSE(vel_at.isValueOn(openvdb::Coord(5, 0, 0)));  // outside the domain
 }
 
-TEST_CASE("write_wind_vdb: only the selected grids; no grid selected is an error", "[output]") {
+TEST_CASE("write_wind_vdb: only the selected grids are written and selecting none is an error", "[output]") {
   fw::test::TempDir dir("fw_out");
   fw::io::WindFrame frame = sample_frame();
   frame.solid.clear();  // no solids: every cell active
