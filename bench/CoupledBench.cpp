@@ -10,9 +10,9 @@
 
 #include "bench/FmaPeak.hpp"
 #include "fluid/CanopyField.hpp"
-#include "host/stages/ForestStages.hpp"
-#include "host/stages/WindGrid.hpp"
+#include "host/app/CoupledStep.hpp"
 #include "io/JsonWriter.hpp"
+#include "trees/CanopyDrag.hpp"
 #include "trees/Forest.hpp"
 #include "trees/ForestReference.hpp"
 #include "trees/LSystem.hpp"
@@ -24,6 +24,10 @@ namespace fw::bench {
 namespace {
 
 using Clock = std::chrono::steady_clock;
+
+// The bench forest's foliage: a leaf area index of 3, a broadleaf stand in leaf (the branches' and the
+// leaves' drag coefficients are the species defaults).
+constexpr double kLeafAreaIndex = 3.0;
 
 double ms_since(Clock::time_point start) {
   return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
@@ -91,6 +95,7 @@ CoupledBenchResult run_coupled_bench(host::ComputeContext& cc, const CoupledBenc
   trees::SpeciesSettings settings;
   settings.modal.mode_count = options.modes;
   settings.wind.samples = options.samples;
+  settings.wind.leaf_area_index = kLeafAreaIndex;
   trees::SpeciesBasis species = trees::SpeciesBasis::compute(
       trees::generate_tree_with_nodes(generator, options.nodes_per_tree), settings);
   result.species_seconds = ms_since(species_start) * 1e-3;
@@ -98,56 +103,43 @@ CoupledBenchResult run_coupled_bench(host::ComputeContext& cc, const CoupledBenc
 
   for (const auto& grid : options.grids) {
     const trees::Forest forest({species}, forest_instances(options.trees, grid, options.cell_size));
-    // Two-way coupling: every tree's frontal area (branches, and leaves at LAI 3) drags on the wind.
+    // Two-way coupling: every tree's frontal area (branches, and leaves at kLeafAreaIndex) drags on the wind
+    // with the force the tree receives (trees/CanopyDrag.hpp).
     fluid::CanopyField canopy(forest_wind_setup(grid, options.cell_size, 0).spec);
-    for (int k = 0; k < forest.instance_count(); ++k) {
-      const trees::TreeInstance& tree = forest.instances()[std::size_t(k)];
-      canopy.add_tree(species.skeleton().transformed(forest.rotation(k), tree.position, tree.scale), 1.2, 3.0,
-                      0.2);
-    }
+    for (int k = 0; k < forest.instance_count(); ++k) trees::add_to_canopy(canopy, forest, k);
     std::vector<int> jacobi_variants{0};
     if (options.baseline_jacobi_iterations > 0) jacobi_variants.push_back(options.baseline_jacobi_iterations);
     for (const int jacobi : jacobi_variants) {
       CoupledBenchCase c;
       c.grid = grid;
       c.pressure = jacobi > 0 ? fmt::format("jacobi {}", jacobi) : "cg 1e-3";
-      host::WindGrid wind(cc, forest_wind_setup(grid, options.cell_size, jacobi));
-      host::ForestStages trees(cc, wind.spec(), forest);
-      wind.set_canopy(canopy.drag_density());
-      wind.initialise_ambient();
-      for (int s = 0; s < options.warmup_steps; ++s) {
-        const auto report = wind.step();
-        trees.enqueue_wind_load(wind.velocity());
-        trees.enqueue_modal_step(float(report.dt));
-      }
+      host::WindGridSetup setup = forest_wind_setup(grid, options.cell_size, jacobi);
+      const std::array<double, 3> ambient = setup.ambient;
+      host::CouplingSettings coupling;
+      coupling.drag_density = canopy.drag_density();
+      host::CoupledStep coupled(cc, std::move(setup), forest, std::move(coupling));
+      coupled.start(ambient);
+      for (int s = 0; s < options.warmup_steps; ++s) coupled.step();
       cc.finish();
 
-      wind.set_stage_timing(true);
-      wind.reset_stage_ms();
-      double trees_ms = 0.0;
+      coupled.set_stage_timing(true);
+      coupled.reset_stage_ms();
       const auto start = Clock::now();
-      for (int s = 0; s < options.steps; ++s) {
-        const auto report = wind.step();
-        c.pressure_iterations += report.pressure.iterations;
-        const auto trees_start = Clock::now();
-        trees.enqueue_wind_load(wind.velocity());
-        trees.enqueue_modal_step(float(report.dt));
-        cc.finish();
-        trees_ms += ms_since(trees_start);
-      }
+      for (int s = 0; s < options.steps; ++s)
+        c.pressure_iterations += coupled.step().wind.pressure.iterations;
       c.ms_per_step = ms_since(start) / options.steps;
       c.pressure_iterations /= options.steps;
-      for (const auto& [stage, ms] : wind.stage_ms()) {
+      for (const auto& [stage, ms] : coupled.stage_ms()) {
         c.stages_ms[stage] = ms / options.steps;
-        c.fluid_ms += ms / options.steps;
+        if (stage != "trees") c.fluid_ms += ms / options.steps;
       }
-      c.trees_ms = trees_ms / options.steps;
-      c.stages_ms["trees"] = c.trees_ms;
+      c.trees_ms = c.stages_ms["trees"];
       result.cases.push_back(c);
 
       // Once, on the first case (neither depends on the grid): the deformation of every node, as on an
       // output frame, and the CPU reference of the trees' step and of the deformation.
       if (result.cases.size() == 1) {
+        host::ForestStages& trees = coupled.trees();
         trees.enqueue_deform();
         cc.finish();
         const auto deform_start = Clock::now();
@@ -158,10 +150,10 @@ CoupledBenchResult run_coupled_bench(host::ComputeContext& cc, const CoupledBenc
         result.node_modes_per_s = double(trees.total_nodes()) * options.modes * result.deform_frames_per_s;
 
         const trees::ForestReference reference(forest);
-        const fluid::MacVelocity velocity = wind.download_velocity();
+        const fluid::MacVelocity velocity = coupled.wind().download_velocity();
         Eigen::VectorXd q = Eigen::VectorXd::Zero(reference.total_modes()), qdot = q;
         const auto reference_start = Clock::now();
-        const Eigen::VectorXd forces = reference.modal_forces(wind.spec(), velocity);
+        const Eigen::VectorXd forces = reference.modal_forces(coupled.wind().spec(), velocity);
         reference.step(q, qdot, forces, 0.1, trees::ModalIntegrator::exact);
         result.trees_reference_ms = ms_since(reference_start);
         const auto reference_deform_start = Clock::now();

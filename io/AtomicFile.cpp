@@ -3,6 +3,11 @@
 #include <fmt/format.h>
 #include <unistd.h>
 
+#include <cerrno>
+#include <cstdio>
+#include <cstring>
+#include <memory>
+
 #include <stdexcept>
 #include <system_error>
 #include <utility>
@@ -33,6 +38,44 @@ void AtomicFile::commit() {
                                          target_.string(), error.message()));
   }
   committed_ = true;
+}
+
+void require_output_folder(const char* function, const std::filesystem::path& path) {
+  std::filesystem::path folder = path.parent_path();
+  if (folder.empty()) folder = ".";
+  std::error_code error;
+  if (std::filesystem::is_directory(folder, error)) return;
+  const bool exists = std::filesystem::exists(folder, error);
+  throw std::runtime_error(exists ? fmt::format("{}: cannot write {}: {} is not a folder", function,
+                                                path.string(), folder.string())
+                                  : fmt::format("{}: cannot write {}: the folder {} does not exist", function,
+                                                path.string(), folder.string()));
+}
+
+void write_text_atomically(const char* function, const std::filesystem::path& path,
+                           std::string_view content) {
+  require_output_folder(function, path);
+  AtomicFile file(path);
+  {
+    // stdio rather than iostreams, for errno in the message.
+    std::unique_ptr<std::FILE, int (*)(std::FILE*)> out(std::fopen(file.temporary_path().c_str(), "wb"),
+                                                        &std::fclose);
+    if (!out) {
+      throw std::runtime_error(
+          fmt::format("{}: cannot write {}: {}", function, path.string(), std::strerror(errno)));
+    }
+    const bool written = std::fwrite(content.data(), 1, content.size(), out.get()) == content.size();
+    const int saved = errno;
+    if (!written || std::fclose(out.release()) != 0) {
+      throw std::runtime_error(fmt::format("{}: cannot write {}: {}", function, path.string(),
+                                           std::strerror(written ? errno : saved)));
+    }
+  }
+  try {
+    file.commit();
+  } catch (const std::runtime_error& error) {
+    throw std::runtime_error(fmt::format("{}: cannot write {}: {}", function, path.string(), error.what()));
+  }
 }
 
 }  // namespace fw::io

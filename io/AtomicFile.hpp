@@ -10,6 +10,8 @@
 // If commit() is never called (an exception on the way), the destructor removes the temporary file.
 #pragma once
 
+#include <string_view>
+
 #include <filesystem>
 
 namespace fw::io {
@@ -34,5 +36,16 @@ class AtomicFile {
   std::filesystem::path temporary_;
   bool committed_ = false;
 };
+
+// The two helpers every writer of io/ shares: the same folder check and the same atomic text write, with the
+// same error messages.
+
+/// Throws std::runtime_error("FUNCTION: cannot write PATH: the folder F does not exist" / "F is not a
+/// folder") unless the parent folder of `path` (or "." for a bare name) is an existing folder.
+void require_output_folder(const char* function, const std::filesystem::path& path);
+
+/// Writes `content` byte for byte to `path` through AtomicFile (temporary + rename). Throws
+/// std::runtime_error("FUNCTION: cannot write PATH: reason") on failure; no temporary is left behind.
+void write_text_atomically(const char* function, const std::filesystem::path& path, std::string_view content);
 
 }  // namespace fw::io

@@ -1,6 +1,6 @@
 #include "io/ProbesCsv.hpp"
 
-#include "io/PvdCollection.hpp"
+#include "io/AtomicFile.hpp"
 
 #include <fmt/format.h>
 
@@ -42,7 +42,7 @@ ProbesCsv::ProbesCsv(std::filesystem::path path, std::vector<std::string> probe_
   for (const std::string& name : probe_names) header_ += fmt::format(",{0}_u,{0}_v,{0}_w", name);
   for (int id : tree_ids) header_ += fmt::format(",tree{0}_tip_dx,tree{0}_tip_dy,tree{0}_tip_dz", id);
   content_ = header_ + "\n";
-  detail::write_text_atomically("ProbesCsv", path_, content_);
+  write_text_atomically("ProbesCsv", path_, content_);
 }
 
 void ProbesCsv::append(double time, const std::vector<std::array<float, 3>>& probe_velocity,
@@ -60,7 +60,7 @@ void ProbesCsv::append(double time, const std::vector<std::array<float, 3>>& pro
   if (!appending_ && content_.size() + line.size() <= rewrite_limit_) {
     content_ += line;
     try {
-      detail::write_text_atomically("ProbesCsv", path_, content_);
+      write_text_atomically("ProbesCsv", path_, content_);
     } catch (...) {
       content_.resize(content_.size() - line.size());  // the file still holds the previous rows
       throw;
@@ -70,7 +70,7 @@ void ProbesCsv::append(double time, const std::vector<std::array<float, 3>>& pro
   }
 
   // Past the limit: one buffered fwrite of the whole line, flushed by fclose as a single write(2).
-  detail::require_output_folder("ProbesCsv", path_);
+  require_output_folder("ProbesCsv", path_);
   std::FILE* out = std::fopen(path_.c_str(), "ab");
   if (!out) {
     throw std::runtime_error(

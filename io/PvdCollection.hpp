@@ -8,8 +8,6 @@
 // The file is rewritten in full through AtomicFile on every add(), so a run interrupted at any point leaves a
 // valid .pvd that lists every frame finished so far. Datasets are listed in increasing time.
 //
-// The detail:: helpers are shared by the other output writers of this folder (WindVtk, TreesVtk, VdbWriter,
-// ProbesCsv): the same folder check and the same atomic text write, with the same error messages.
 #pragma once
 
 #include <filesystem>
@@ -48,14 +46,6 @@ class PvdCollection {
 };
 
 namespace detail {
-
-/// Throws std::runtime_error("FUNCTION: cannot write PATH: the folder F does not exist" / "F is not a
-/// folder") unless the parent folder of `path` (or "." for a bare name) is an existing folder.
-void require_output_folder(const char* function, const std::filesystem::path& path);
-
-/// Writes `content` byte for byte to `path` through AtomicFile (temporary + rename). Throws
-/// std::runtime_error("FUNCTION: cannot write PATH: reason") on failure; no temporary is left behind.
-void write_text_atomically(const char* function, const std::filesystem::path& path, std::string_view content);
 
 /// `text` with &, <, >, " and ' replaced by XML entities, for attribute values.
 std::string xml_escape(std::string_view text);

@@ -1,16 +1,12 @@
 #include "io/SkeletonVtk.hpp"
 
-#include "io/AtomicFile.hpp"
+#include "io/VtkXml.hpp"
 
 #include <fmt/format.h>
 
-#include <vtkCallbackCommand.h>
 #include <vtkCellArray.h>
 #include <vtkCellData.h>
-#include <vtkCommand.h>
 #include <vtkDoubleArray.h>
-#include <vtkErrorCode.h>
-#include <vtkExecutive.h>
 #include <vtkFieldData.h>
 #include <vtkIntArray.h>
 #include <vtkNew.h>
@@ -21,10 +17,8 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstring>
 #include <stdexcept>
 #include <string>
-#include <system_error>
 
 namespace fw::io {
 namespace {
@@ -74,89 +68,11 @@ void fill_skeleton(vtkPolyData* data, const trees::Skeleton& skeleton) {
   data->GetCellData()->AddArray(element);
 }
 
-// Collects the error messages a VTK object reports, instead of letting them go to the output window (stderr).
-void collect_error(vtkObject* /*caller*/, unsigned long /*event*/, void* client, void* call) {
-  auto* messages = static_cast<std::string*>(client);
-  if (!messages->empty()) *messages += "; ";
-  std::string text = call ? static_cast<const char*>(call) : "unknown VTK error";
-  // VTK 9.1 formats "ERROR: In FILE, line N\nCLASS (ADDRESS): message\n\n"; keep the message only.
-  if (text.rfind("ERROR: In ", 0) == 0 && text.find('\n') != std::string::npos)
-    text.erase(0, text.find('\n') + 1);
-  if (const auto colon = text.find("): "); colon != std::string::npos && colon < text.find('\n')) {
-    text.erase(0, colon + 3);
-  }
-  while (!text.empty() && (text.back() == '\n' || text.back() == ' ')) text.pop_back();
-  *messages += text;
-}
-
-// vtkErrorCode::GetStringFromErrorCode lives in VTK::CommonMisc, which forestwind_io does not link; the codes
-// themselves are a header-only enum (below FirstVTKErrorCode they are errno values).
-std::string describe_error_code(unsigned long code) {
-  switch (code) {
-    case vtkErrorCode::FileNotFoundError:
-      return "file not found";
-    case vtkErrorCode::CannotOpenFileError:
-      return "cannot open the file";
-    case vtkErrorCode::NoFileNameError:
-      return "no file name";
-    case vtkErrorCode::OutOfDiskSpaceError:
-      return "out of disk space";
-    default:
-      break;
-  }
-  if (code > 0 && code < vtkErrorCode::FirstVTKErrorCode) return std::strerror(int(code));
-  return fmt::format("VTK error code {}", code);
-}
-
-// Writes `data` to `path` as binary appended, zlib-compressed XML PolyData through an AtomicFile.
+// Writes `data` with the shared VTK XML settings (io/VtkXml).
 void write_polydata(const char* function, const std::filesystem::path& path, vtkPolyData* data) {
-  std::filesystem::path folder = path.parent_path();
-  if (folder.empty()) folder = ".";
-  std::error_code error;
-  if (!std::filesystem::is_directory(folder, error)) {
-    const bool exists = std::filesystem::exists(folder, error);
-    throw std::runtime_error(exists ? fmt::format("{}: cannot write {}: {} is not a folder", function,
-                                                  path.string(), folder.string())
-                                    : fmt::format("{}: cannot write {}: the folder {} does not exist",
-                                                  function, path.string(), folder.string()));
-  }
-
-  AtomicFile file(path);
-  const std::string temporary = file.temporary_path().string();
-
   vtkNew<vtkXMLPolyDataWriter> writer;
   writer->SetInputData(data);
-  writer->SetFileName(temporary.c_str());
-  writer->SetDataModeToAppended();
-  writer->EncodeAppendedDataOff();  // raw bytes after <AppendedData>, not base64
-  writer->SetCompressorTypeToZLib();
-  writer->SetHeaderTypeToUInt64();
-
-  std::string messages;
-  vtkNew<vtkCallbackCommand> on_error;
-  on_error->SetCallback(collect_error);
-  on_error->SetClientData(&messages);
-  writer->AddObserver(vtkCommand::ErrorEvent, on_error);
-  // The pipeline repeats a failure with a dump of the request; keep it off stderr and use it only as a
-  // fallback reason.
-  std::string pipeline_messages;
-  vtkNew<vtkCallbackCommand> on_pipeline_error;
-  on_pipeline_error->SetCallback(collect_error);
-  on_pipeline_error->SetClientData(&pipeline_messages);
-  writer->GetExecutive()->AddObserver(vtkCommand::ErrorEvent, on_pipeline_error);
-
-  const int written = writer->Write();
-  const unsigned long code = writer->GetErrorCode();
-  if (written == 0 || code != vtkErrorCode::NoError || !messages.empty()) {
-    std::string reason = messages;
-    if (reason.empty() && code != vtkErrorCode::NoError) reason = describe_error_code(code);
-    if (reason.empty() && !pipeline_messages.empty()) {
-      reason = pipeline_messages.substr(0, pipeline_messages.find('\n'));
-    }
-    if (reason.empty()) reason = "vtkXMLPolyDataWriter::Write() failed";
-    throw std::runtime_error(fmt::format("{}: cannot write {}: {}", function, path.string(), reason));
-  }
-  file.commit();  // throws std::runtime_error naming the path; the temporary is removed either way
+  write_vtk_xml(function, path, writer);
 }
 
 void require_nodes(const char* function, const trees::Skeleton& skeleton) {

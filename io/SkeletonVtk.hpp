@@ -18,7 +18,7 @@
 //   The mode's frequency and damping ratio are entry NN-1 of the field arrays frequencies_hz and
 //   damping_ratios (Information panel, or Spreadsheet view > Field Data).
 //
-// Files are binary (appended raw data, zlib-compressed, 64-bit headers) and written through AtomicFile: a
+// Files are binary (appended raw data, LZ4, 64-bit headers; io/VtkXml) and written through AtomicFile: a
 // temporary name in the same folder, renamed into place once complete, so no partial file is ever visible.
 #pragma once
 

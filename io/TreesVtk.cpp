@@ -1,6 +1,6 @@
 #include "io/TreesVtk.hpp"
 
-#include "io/WindVtk.hpp"
+#include "io/VtkXml.hpp"
 
 #include <fmt/format.h>
 
@@ -15,6 +15,7 @@
 #include <vtkPolyData.h>
 #include <vtkXMLPolyDataWriter.h>
 
+#include <cmath>
 #include <stdexcept>
 #include <string>
 
@@ -47,10 +48,18 @@ void check_tree(std::size_t index, const TreesFrame::Tree& tree) {
 
 }  // namespace
 
-void write_trees_vtp(const std::filesystem::path& path, const TreesFrame& frame) {
+struct TreesVtp::Layout {
+  std::vector<float> rest;  // 3 per point, m, world frame
+  vtkNew<vtkPolyData> data;
+  vtkNew<vtkPoints> points;
+  vtkNew<vtkFloatArray> displacement;
+  vtkNew<vtkDoubleArray> time;
+};
+
+TreesVtp::TreesVtp(const std::vector<TreesFrame::Tree>& trees) : layout_(std::make_unique<Layout>()) {
   vtkIdType point_count = 0, line_count = 0;
-  for (std::size_t t = 0; t < frame.trees.size(); ++t) {
-    const TreesFrame::Tree& tree = frame.trees[t];
+  for (std::size_t t = 0; t < trees.size(); ++t) {
+    const TreesFrame::Tree& tree = trees[t];
     check_tree(t, tree);
     point_count += tree.rest.rows();
     for (int p : tree.parent) line_count += p >= 0 ? 1 : 0;
@@ -58,16 +67,15 @@ void write_trees_vtp(const std::filesystem::path& path, const TreesFrame& frame)
 
   // Float32 throughout: a forest frame holds millions of points, positions within a few km keep 0.1 mm, and
   // the files are half the size of float64 ones.
-  vtkNew<vtkPoints> points;
-  points->SetDataTypeToFloat();
-  points->SetNumberOfPoints(point_count);
+  Layout& l = *layout_;
+  l.points->SetDataTypeToFloat();
+  l.points->SetNumberOfPoints(point_count);
+  l.displacement->SetName("displacement");
+  l.displacement->SetNumberOfComponents(3);
+  l.displacement->SetNumberOfTuples(point_count);
   vtkNew<vtkFloatArray> radius;
   radius->SetName("radius");
   radius->SetNumberOfTuples(point_count);
-  vtkNew<vtkFloatArray> displacement;
-  displacement->SetName("displacement");
-  displacement->SetNumberOfComponents(3);
-  displacement->SetNumberOfTuples(point_count);
   vtkNew<vtkIntArray> tree_id;
   tree_id->SetName("tree_id");
   tree_id->SetNumberOfTuples(point_count);
@@ -81,19 +89,13 @@ void write_trees_vtp(const std::filesystem::path& path, const TreesFrame& frame)
   lines->Use32BitStorage();  // point ids fit 32 bits up to 2^31 points; halves the connectivity
   lines->AllocateExact(line_count, 2 * line_count);
 
+  l.rest.reserve(3 * std::size_t(point_count));
   vtkIdType first = 0;  // index of the current tree's node 0 among all points
-  for (const TreesFrame::Tree& tree : frame.trees) {
-    const bool moved = tree.displacement.size() != 0;
+  for (const TreesFrame::Tree& tree : trees) {
     for (Eigen::Index i = 0; i < tree.rest.rows(); ++i) {
       const vtkIdType point = first + i;
-      double d[3] = {0.0, 0.0, 0.0};
-      if (moved) {
-        for (int c = 0; c < 3; ++c) d[c] = tree.displacement(i, c);
-      }
-      points->SetPoint(point, tree.rest(i, 0) + d[0], tree.rest(i, 1) + d[1], tree.rest(i, 2) + d[2]);
+      for (int c = 0; c < 3; ++c) l.rest.push_back(float(tree.rest(i, c)));
       radius->SetValue(point, float(tree.radius[std::size_t(i)]));
-      const float d_float[3] = {float(d[0]), float(d[1]), float(d[2])};
-      displacement->SetTypedTuple(point, d_float);
       tree_id->SetValue(point, tree.tree_id);
       species->SetValue(point, tree.species);
       node_id->SetValue(point, int(i));
@@ -103,25 +105,67 @@ void write_trees_vtp(const std::filesystem::path& path, const TreesFrame& frame)
     first += tree.rest.rows();
   }
 
-  vtkNew<vtkPolyData> data;
-  data->SetPoints(points);
-  data->SetLines(lines);
-  data->GetPointData()->AddArray(radius);
-  data->GetPointData()->AddArray(displacement);
-  data->GetPointData()->SetActiveVectors("displacement");
-  data->GetPointData()->AddArray(tree_id);
-  data->GetPointData()->AddArray(species);
-  data->GetPointData()->AddArray(node_id);
+  l.data->SetPoints(l.points);
+  l.data->SetLines(lines);
+  l.data->GetPointData()->AddArray(radius);
+  l.data->GetPointData()->AddArray(l.displacement);
+  l.data->GetPointData()->SetActiveVectors("displacement");
+  l.data->GetPointData()->AddArray(tree_id);
+  l.data->GetPointData()->AddArray(species);
+  l.data->GetPointData()->AddArray(node_id);
+  l.time->SetName("TimeValue");
+  l.time->SetNumberOfTuples(1);
+  l.data->GetFieldData()->AddArray(l.time);
+}
 
-  vtkNew<vtkDoubleArray> time;
-  time->SetName("TimeValue");
-  time->SetNumberOfTuples(1);
-  time->SetValue(0, frame.time);
-  data->GetFieldData()->AddArray(time);
+TreesVtp::~TreesVtp() = default;
+
+std::size_t TreesVtp::point_count() const {
+  return layout_->rest.size() / 3;
+}
+
+void TreesVtp::write(const std::filesystem::path& path, double time, std::span<const float> displacement) {
+  Layout& l = *layout_;
+  const std::size_t n = point_count();
+  if (!displacement.empty() && displacement.size() != 3 * n) {
+    throw std::invalid_argument(
+        fmt::format("write_trees_vtp: displacement: expected {} values (3 per point) or none, got {}", 3 * n,
+                    displacement.size()));
+  }
+  float* points = static_cast<vtkFloatArray*>(l.points->GetData())->GetPointer(0);
+  float* moved = l.displacement->GetPointer(0);
+  for (std::size_t v = 0; v < 3 * n; ++v) {
+    const float d = displacement.empty() ? 0.0f : displacement[v];
+    if (!std::isfinite(d))
+      throw std::invalid_argument(
+          fmt::format("write_trees_vtp: displacement of point {} is not finite", v / 3));
+    moved[v] = d;
+    points[v] = l.rest[v] + d;
+  }
+  l.points->Modified();
+  l.displacement->Modified();
+  l.time->SetValue(0, time);
 
   vtkNew<vtkXMLPolyDataWriter> writer;
-  writer->SetInputData(data);
-  detail::write_vtk_xml("write_trees_vtp", path, writer);
+  writer->SetInputData(l.data);
+  write_vtk_xml("write_trees_vtp", path, writer);
+}
+
+void write_trees_vtp(const std::filesystem::path& path, const TreesFrame& frame) {
+  TreesVtp forest(frame.trees);
+  std::vector<float> displacement;
+  bool moved = false;
+  for (const TreesFrame::Tree& tree : frame.trees) moved = moved || tree.displacement.size() != 0;
+  if (moved) {
+    displacement.reserve(3 * forest.point_count());
+    for (const TreesFrame::Tree& tree : frame.trees) {
+      for (Eigen::Index i = 0; i < tree.rest.rows(); ++i) {
+        for (int c = 0; c < 3; ++c)
+          displacement.push_back(tree.displacement.size() != 0 ? float(tree.displacement(i, c)) : 0.0f);
+      }
+    }
+  }
+  forest.write(path, frame.time, displacement);
 }
 
 }  // namespace fw::io

@@ -5,6 +5,11 @@
 //   frame.trees.push_back({/*tree_id=*/0, /*species=*/0, rest, radius, parent, displacement});
 //   fw::io::write_trees_vtp("out/trees/trees_000025.vtp", frame);
 //
+// A run writes the same forest every frame: TreesVtp builds the parts that never change (cells, radius,
+// ids) once, and each write() fills only the points and the displacement.
+//   fw::io::TreesVtp forest(frame.trees);                   // rest geometry; displacements ignored
+//   forest.write("out/trees/trees_000026.vtp", 13.0, u);    // u: 3 floats per point, m
+//
 // ParaView: open trees.pvd (see PvdCollection.hpp), Apply; Filters > Tube (Vary Radius: By Absolute Scalar,
 // scalars "radius", factor 1) draws the branches at their real thickness; colour by "tree_id" or
 // "displacement". Warp By Vector on "displacement" with scale factor -1 shows the rest shape, with e.g. 10 an
@@ -22,8 +27,11 @@
 //   species       int32, the species index
 //   node_id       int32, the node's index within its tree
 // Field data: "TimeValue" (float64, 1 tuple, s).
-// Files are binary (appended raw data, zlib-compressed, 64-bit headers) and written through AtomicFile.
+// Files are binary (appended raw data, LZ4, 64-bit headers; io/VtkXml) and written through AtomicFile.
 #pragma once
+
+#include <memory>
+#include <span>
 
 #include <Eigen/Core>
 
@@ -51,5 +59,27 @@ struct TreesFrame {
 /// position or displacement is not finite; std::runtime_error naming the path when the folder does not exist
 /// or the file cannot be written (no partial file or temporary is left behind).
 void write_trees_vtp(const std::filesystem::path& path, const TreesFrame& frame);
+
+class TreesVtp {
+ public:
+  /// The static part of the layout from the trees' rest, radius and parent (their displacement is ignored).
+  /// Throws std::invalid_argument("write_trees_vtp: tree K (id I): ...") as write_trees_vtp does.
+  explicit TreesVtp(const std::vector<TreesFrame::Tree>& trees);
+  ~TreesVtp();
+  TreesVtp(const TreesVtp&) = delete;
+  TreesVtp& operator=(const TreesVtp&) = delete;
+
+  /// Number of points: every node of every tree.
+  std::size_t point_count() const;
+
+  /// Writes one frame at `time` (s). displacement: 3 floats per point in point order (m), or empty for the
+  /// rest shape. Throws std::invalid_argument("write_trees_vtp: ...") for another size or a non-finite
+  /// value, std::runtime_error as write_trees_vtp.
+  void write(const std::filesystem::path& path, double time, std::span<const float> displacement);
+
+ private:
+  struct Layout;
+  std::unique_ptr<Layout> layout_;
+};
 
 }  // namespace fw::io

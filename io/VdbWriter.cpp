@@ -1,7 +1,6 @@
 #include "io/VdbWriter.hpp"
 
 #include "io/AtomicFile.hpp"
-#include "io/PvdCollection.hpp"
 
 #include <fmt/format.h>
 
@@ -44,7 +43,7 @@ void write_wind_vdb(const std::filesystem::path& path, const WindFrame& frame, b
   } catch (const std::invalid_argument& error) {
     throw std::invalid_argument(std::string("write_wind_vdb: ") + error.what());
   }
-  detail::require_output_folder("write_wind_vdb", path);
+  require_output_folder("write_wind_vdb", path);
   initialize_openvdb();
 
   const auto transform = cell_centred_transform(frame);

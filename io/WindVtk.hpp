@@ -15,7 +15,7 @@
 //   solid           uint8, 1 in solid cells, 0 in fluid
 //   canopy_density  float32, frontal area density a, 1/m
 // Field data: "TimeValue" (float64, 1 tuple, s), which ParaView uses as the dataset's time.
-// Files are binary (appended raw data, zlib-compressed, 64-bit headers) and written through AtomicFile.
+// Files are written by io/VtkXml (binary appended data, LZ4, 64-bit headers, through AtomicFile).
 #pragma once
 
 #include "io/WindFrame.hpp"
@@ -23,8 +23,6 @@
 #include <filesystem>
 #include <string>
 #include <vector>
-
-class vtkXMLWriter;
 
 namespace fw::io {
 
@@ -39,13 +37,4 @@ const std::vector<std::string>& wind_field_names();
 void write_wind_vti(const std::filesystem::path& path, const WindFrame& frame,
                     const std::vector<std::string>& fields);
 
-namespace detail {
-
-/// Runs `writer` (its input already set) into a temporary next to `path` as binary appended zlib data with
-/// 64-bit headers, capturing VTK's error output, and renames it into place. Throws std::runtime_error
-/// ("FUNCTION: cannot write PATH: reason") on failure, leaving neither the file nor a temporary.
-/// Shared with TreesVtk.cpp.
-void write_vtk_xml(const char* function, const std::filesystem::path& path, vtkXMLWriter* writer);
-
-}  // namespace detail
 }  // namespace fw::io

@@ -9,6 +9,7 @@
 
 #include "fluid/CanopyField.hpp"
 #include "fluid/SolidMap.hpp"
+#include "trees/CanopyDrag.hpp"
 #include "trees/QsmImport.hpp"
 #include "trees/TreeFile.hpp"
 #include "trees/TreeGenerator.hpp"
@@ -86,7 +87,10 @@ FwGust to_device_gust(const io::GustEvent& event, const std::array<double, 3>& w
 SimulationPlan plan_simulation(const io::Scenario& scenario, const trees::BasisCache* cache,
                                std::ostream* log) {
   SimulationPlan plan;
-  plan.scenario = scenario;
+  plan.scenario = {scenario.name, scenario.file.filename().string(), scenario.text, scenario.seed};
+  plan.end_time = scenario.time.end;
+  plan.ambient_wind = [source = scenario.wind](double t) { return io::wind_vector(source, t); };
+  plan.output = scenario.output;
 
   // --- the wind grid ---------------------------------------------------------------------------------------
   WindGridSetup& wind = plan.wind;
@@ -114,11 +118,13 @@ SimulationPlan plan_simulation(const io::Scenario& scenario, const trees::BasisC
     settings.modal.mode_count = species.modes.count;
     settings.modal.damping = trees::Damping::modal_ratio(species.modes.damping_ratio);
     settings.wind.samples = species.modes.wind_samples;
-    // C = 1/2 rho_air C_D, with the species' branch drag coefficient.
-    settings.wind.drag_factor = 0.5 * 1.225 * species.drag_coefficient;
+    // One drag convention on both sides of the coupling (trees/CanopyDrag.hpp): 1/2 rho C_D A |u| u.
+    settings.wind.branch_drag_coefficient = species.drag_coefficient;
+    settings.wind.leaf_area_index = species.canopy.leaf_area_index;
+    settings.wind.leaf_drag_coefficient = species.canopy.drag_coefficient;
     trees::Skeleton skeleton = species_skeleton(species);
     io::check_species_skeleton(scenario, int(index), skeleton.size());
-    SpeciesSummary summary;
+    io::SpeciesSummary summary;
     summary.name = species.name;
     if (cache) {
       trees::CacheOutcome outcome{};
@@ -171,28 +177,22 @@ SimulationPlan plan_simulation(const io::Scenario& scenario, const trees::BasisC
     ++plan.species[std::size_t(tree.species)].trees;
   }
 
-  // --- canopy: every tree's frontal area on the grid
-  // ---------------------------------------------------------
-  if (!instances.empty()) {
+  plan.forest = trees::Forest(std::move(bases), std::move(instances));
+  plan.coupling.integrator = scenario.forest.integrator;
+
+  // --- canopy: every tree's frontal area on the grid, with the drag the trees themselves receive
+  // ------------
+  if (plan.forest.instance_count() > 0) {
     fluid::CanopyField canopy(wind.spec);
-    for (const auto& tree : instances) {
-      const io::Species& species = scenario.forest.species[std::size_t(tree.species)];
-      const Eigen::Matrix3d rotation =
-          Eigen::AngleAxisd(tree.yaw_rad, Eigen::Vector3d::UnitZ()).toRotationMatrix();
-      const trees::Skeleton world =
-          bases[std::size_t(tree.species)].skeleton().transformed(rotation, tree.position, tree.scale);
-      canopy.add_tree(world, species.drag_coefficient, species.canopy.leaf_area_index,
-                      species.canopy.drag_coefficient);
-    }
+    for (int k = 0; k < plan.forest.instance_count(); ++k) trees::add_to_canopy(canopy, plan.forest, k);
     plan.canopy_density = canopy.frontal_area_density();
     plan.canopy_dropped_area = canopy.dropped_frontal_area();
-    if (scenario.forest.two_way_coupling) plan.drag_density = canopy.drag_density();
+    if (scenario.forest.two_way_coupling) plan.coupling.drag_density = canopy.drag_density();
   }
 
-  plan.forest = trees::Forest(std::move(bases), std::move(instances));
   plan.estimated_device_bytes = WindGrid::estimate_device_bytes(wind.spec, wind.settings, 1) +
                                 forest_device_bytes(plan.forest) +
-                                (plan.drag_density.empty() ? 0 : plan.drag_density.size() * sizeof(float));
+                                (plan.coupling.drag_density.size() * sizeof(float));
   return plan;
 }
 

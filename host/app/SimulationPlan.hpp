@@ -1,11 +1,12 @@
-// Everything a run needs, built on the host from a validated scenario before the device is touched: the wind
-// grid's setup (grid, solids, profile, gusts), every species' modal and wind basis (through the disk cache),
-// the placed tree instances, and the canopy drag field for two-way coupling.
+// Everything a run needs, resolved on the host from a validated scenario before the device is touched: the
+// wind grid's setup (grid, solids, profile, gusts), the ambient wind over time, every species' modal and wind
+// basis (through the disk cache), the placed tree instances, the canopy drag of two-way coupling and the
+// output settings. Nothing past the plan reads the scenario.
 //
 //   fw::io::Scenario scenario = fw::io::load_scenario("scenarios/gust.yaml");
 //   fw::trees::BasisCache cache(fw::trees::BasisCache::default_directory());
 //   fw::host::SimulationPlan plan = fw::host::plan_simulation(scenario, &cache, &std::cerr);
-//   plan.forest.instance_count();   plan.wind.spec.cell_count();   plan.estimated_device_bytes;
+//   plan.forest.instance_count();   plan.wind.spec.cell_count();   plan.ambient_wind(30.0);
 //
 // Conventions where DESIGN.md leaves a choice: "auto" boundaries are resolved once, for the wind at t = 0; a
 // tree's root stands on the ground under it (the terrain's height, else the domain floor) unless the file
@@ -15,38 +16,44 @@
 // trees::ModalError.
 #pragma once
 
+#include <array>
 #include <cstddef>
+#include <cstdint>
+#include <functional>
 #include <ostream>
 #include <string>
 #include <vector>
 
+#include "host/app/CoupledStep.hpp"
 #include "host/stages/WindGrid.hpp"
 #include "io/Scenario.hpp"
+#include "io/writers/ManifestWriter.hpp"
 #include "trees/BasisCache.hpp"
 #include "trees/Forest.hpp"
 
 namespace fw::host {
 
-struct SpeciesSummary {
+/// Where a run came from, for run.json and the scenario copy in the output folder.
+struct ScenarioRecord {
   std::string name;
-  int nodes = 0;
-  int modes = 0;
-  int samples = 0;
-  int trees = 0;                   ///< instances of this species
-  double first_hz = 0.0;           ///< lowest natural frequency at scale 1
-  std::string cache = "disabled";  ///< "hit", "miss", "corrupt_recomputed" or "disabled"
-  double seconds = 0.0;            ///< time to obtain the basis (load or compute)
+  std::string file_name;  ///< the scenario file's name, without its folder
+  std::string text;       ///< the file's bytes
+  std::uint64_t seed = 0;
 };
 
 struct SimulationPlan {
-  io::Scenario scenario;
+  ScenarioRecord scenario;
+  double end_time = 0.0;  ///< s: the run covers [0, end_time]
+  /// The ambient wind at time t (s): m/s at the reference height, x east, y north.
+  std::function<std::array<double, 3>(double)> ambient_wind;
   WindGridSetup wind;  ///< ambient set for t = 0
+  CouplingSettings coupling;
   trees::Forest forest;
-  std::vector<SpeciesSummary> species;
+  std::vector<io::SpeciesSummary> species;
   std::vector<int> instance_species;  ///< species index of every instance (same order as forest.instances())
-  std::vector<float> drag_density;    ///< per cell, Cd a (1/m); empty without two-way coupling or trees
   std::vector<float> canopy_density;  ///< per cell, frontal area density a (1/m); empty without trees
   double canopy_dropped_area = 0.0;   ///< m^2 of frontal area outside the domain
+  io::OutputSettings output;          ///< folder, frame interval, which writers and fields
   std::size_t estimated_device_bytes = 0;
 };
 
@@ -56,11 +63,11 @@ struct SimulationPlan {
 SimulationPlan plan_simulation(const io::Scenario& scenario, const trees::BasisCache* cache,
                                std::ostream* log);
 
-/// The FwGust of a gust event (travel resolved, direction along the ambient wind at its start).
 /// A species' skeleton: generated, or read from its .tree or TreeQSM file. A file that does not parse throws
 /// std::invalid_argument naming that file's line (an input error, exit code 2).
 trees::Skeleton species_skeleton(const io::Species& species);
 
+/// The FwGust of a gust event (travel resolved, direction along the ambient wind at its start).
 FwGust to_device_gust(const io::GustEvent& event, const std::array<double, 3>& wind_at_start);
 
 }  // namespace fw::host

@@ -7,6 +7,9 @@
 #include <string>
 #include <vector>
 
+#include "trees/Material.hpp"
+#include "trees/ModalBasis.hpp"
+
 namespace fw::cli {
 
 struct GlobalOptions {
@@ -38,11 +41,13 @@ int run_tree_generate(const TreeGenerateOptions& options);
 
 struct TreeModesOptions {
   std::string file;  // FILE.tree, or a TreeQSM cylinder table
-  int modes = 20;
-  double youngs_modulus = 1.0e10;  // Pa
-  double shear_modulus = 3.85e9;   // Pa
-  double density = 900.0;          // kg/m^3
-  double damping_ratio = 0.05;
+  // The defaults of a species (trees/Material.hpp, trees/ModalBasis.hpp), so that the command and a
+  // scenario agree.
+  int modes = trees::ModalSettings{}.mode_count;
+  double youngs_modulus = trees::kDefaultWood.youngs_modulus;  // Pa
+  double shear_modulus = trees::kDefaultWood.shear_modulus;    // Pa
+  double density = trees::kDefaultWood.density;                // kg/m^3
+  double damping_ratio = trees::Damping{}.ratios.front();
   bool json = false;
   std::string output_dir;  // -o: skeleton.vtp and modes.vtp
 };

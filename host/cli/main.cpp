@@ -5,8 +5,8 @@
 #include <iostream>
 #include <stdexcept>
 
-#include "host/runtime/ClError.hpp"
 #include "host/cli/Commands.hpp"
+#include "host/runtime/ClError.hpp"
 
 int main(int argc, char** argv) {
   using namespace fw;
@@ -71,13 +71,20 @@ int main(int argc, char** argv) {
   auto* tree_modes =
       tree->add_subcommand("modes", "the lowest vibration modes of a .tree file or TreeQSM table");
   tree_modes->add_option("file", modes.file, "FILE.tree, or a TreeQSM cylinder table (.txt)")->required();
-  tree_modes->add_option("--modes", modes.modes, "number of modes (default 20)")->check(CLI::PositiveNumber);
-  tree_modes->add_option("--youngs-modulus", modes.youngs_modulus, "E, Pa (default 1e10)")
+  tree_modes->add_option("--modes", modes.modes, "number of modes")
+      ->capture_default_str()
       ->check(CLI::PositiveNumber);
-  tree_modes->add_option("--shear-modulus", modes.shear_modulus, "G, Pa (default 3.85e9)")
+  tree_modes->add_option("--youngs-modulus", modes.youngs_modulus, "E, Pa")
+      ->capture_default_str()
       ->check(CLI::PositiveNumber);
-  tree_modes->add_option("--density", modes.density, "rho, kg/m^3 (default 900)")->check(CLI::PositiveNumber);
-  tree_modes->add_option("--damping-ratio", modes.damping_ratio, "zeta of every mode (default 0.05)")
+  tree_modes->add_option("--shear-modulus", modes.shear_modulus, "G, Pa")
+      ->capture_default_str()
+      ->check(CLI::PositiveNumber);
+  tree_modes->add_option("--density", modes.density, "rho, kg/m^3")
+      ->capture_default_str()
+      ->check(CLI::PositiveNumber);
+  tree_modes->add_option("--damping-ratio", modes.damping_ratio, "zeta of every mode")
+      ->capture_default_str()
       ->check(CLI::NonNegativeNumber);
   tree_modes->add_flag("--json", modes.json, "one JSON object on stdout");
   tree_modes->add_option("-o,--output", modes.output_dir, "folder for skeleton.vtp and modes.vtp");

@@ -212,16 +212,29 @@ PressureSolveStatus WindGrid::project() {
   return status;
 }
 
-WindStepReport WindGrid::step() {
+double WindGrid::cfl_dt(double max_speed_component) const {
   const auto& st = setup_.settings;
-  const auto& spec = setup_.spec;
-  double dt = st.dt;
-  if (st.cfl > 0.0) {
+  if (!(st.cfl > 0.0)) return st.dt;
+  return max_speed_component > 0.0 ? std::min(st.max_dt, st.cfl * setup_.spec.h / max_speed_component)
+                                   : st.max_dt;
+}
+
+WindStepReport WindGrid::step() {
+  double dt = setup_.settings.dt;
+  if (setup_.settings.cfl > 0.0) {
     const double vmax = stages_.max_speed_component(vel_);
     if (!std::isfinite(vmax))
       throw std::runtime_error(fmt::format("WindGrid: velocity is not finite before step {}", steps_ + 1));
-    dt = vmax > 0.0 ? std::min(st.max_dt, st.cfl * spec.h / vmax) : st.max_dt;
+    dt = cfl_dt(vmax);
   }
+  return step_by(dt);
+}
+
+WindStepReport WindGrid::step_by(double dt) {
+  if (!std::isfinite(dt) || !(dt > 0.0))
+    throw std::invalid_argument(fmt::format("WindGrid: a step needs a finite dt > 0 s, got {}", dt));
+  const auto& st = setup_.settings;
+  const auto& spec = setup_.spec;
   FwStep s = stages_.step();
   s.dt = static_cast<float>(dt);
   s.time = static_cast<float>(time_);

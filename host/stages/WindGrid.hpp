@@ -63,7 +63,15 @@ class WindGrid {
   void set_ambient(const std::array<double, 3>& ambient_m_s);
   /// Every face set to the ambient profile, then boundaries and one projection.
   void initialise_ambient();
+  /// One step of the dt the settings give: fixed, or from the CFL number (which reads max|u| back).
   WindStepReport step();
+  /// One step of exactly dt (s, finite and > 0, else std::invalid_argument): for callers that choose dt
+  /// themselves (the coupled step lands on the run's end time).
+  WindStepReport step_by(double dt);
+  /// The CFL time step for a largest face speed (m/s): min(max_dt, cfl h / speed), max_dt at rest; the
+  /// fixed dt when the settings have no CFL number.
+  double cfl_dt(double max_speed_component) const;
+  bool fixed_dt() const { return !(setup_.settings.cfl > 0.0); }
 
   double time() const { return time_; }
   long steps() const { return steps_; }

@@ -80,7 +80,7 @@ void check_array(vtkCellData* cells, const char* name, int type, int components,
   REQUIRE(std::size_t(array->GetNumberOfTuples()) * std::size_t(components) == expected.size());
   for (std::size_t t = 0; t < expected.size() / std::size_t(components); ++t) {
     for (int c = 0; c < components; ++c) {
-      // Exact: float32 and uint8 values travel losslessly through zlib.
+      // Exact: float32 and uint8 values travel losslessly through LZ4.
       CHECK(array->GetComponent(vtkIdType(t), c) ==
             double(expected[t * std::size_t(components) + std::size_t(c)]));
     }
@@ -96,11 +96,11 @@ TEST_CASE("write_wind_vti: cell arrays, origin, spacing, extent and TimeValue re
   fw::io::write_wind_vti(path, frame, fw::io::wind_field_names());
   CHECK_FALSE(has_temporary(dir.path()));
 
-  // Binary appended raw data, zlib-compressed, 64-bit headers (house format).
+  // Binary appended raw data, LZ4-compressed, 64-bit headers (io/VtkXml).
   std::ifstream in(path, std::ios::binary);
   const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
   CHECK(text.find("header_type=\"UInt64\"") != std::string::npos);
-  CHECK(text.find("compressor=\"vtkZLibDataCompressor\"") != std::string::npos);
+  CHECK(text.find("compressor=\"vtkLZ4DataCompressor\"") != std::string::npos);
   CHECK(text.find("format=\"appended\"") != std::string::npos);
   CHECK(text.find("<AppendedData encoding=\"raw\">") != std::string::npos);
 

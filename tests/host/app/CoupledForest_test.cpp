@@ -7,8 +7,7 @@
 #include <cmath>
 #include <vector>
 
-#include "host/stages/ForestStages.hpp"
-#include "host/stages/WindGrid.hpp"
+#include "host/app/CoupledStep.hpp"
 #include "tests/support/TestDevice.hpp"
 #include "trees/Forest.hpp"
 #include "trees/SpeciesBasis.hpp"
@@ -63,15 +62,10 @@ TEST_CASE("CoupledForest: one tree in steady uniform wind settles at the static 
   const fw::trees::SpeciesBasis species = species_from(asymmetric_nodes());
   const double yaw = 0.7, scale = 1.2;
   const fw::trees::Forest forest({species}, {{0, {12.0, 6.0, 0.0}, yaw, scale}});
-  fw::host::WindGrid wind(*cc, channel(8.0));
-  fw::host::ForestStages trees(*cc, wind.spec(), forest);
-  wind.initialise_ambient();
-  for (int step = 0; step < 600; ++step) {  // 30 s: more than 10 damping times of the slowest mode
-    const auto report = wind.step();
-    trees.enqueue_wind_load(wind.velocity());
-    trees.enqueue_modal_step(float(report.dt));
-  }
-  const fw::host::ModalState state = trees.download_modal_state();
+  fw::host::CoupledStep coupled(*cc, channel(8.0), forest, {});
+  coupled.start({8.0, 0.0, 0.0});
+  for (int step = 0; step < 600; ++step) coupled.step();  // 30 s: over 10 damping times of the slowest mode
+  const fw::host::ModalState state = coupled.trees().download_modal_state();
 
   // On the host, from the species alone: f_i = |v| v . (s^1/2 R p_i^s) summed over the samples, for the
   // uniform wind v = (8, 0, 0); q_i = f_i / (omega_i / s)^2.
@@ -102,16 +96,11 @@ TEST_CASE("CoupledForest: wind from the east gives the mirror image of the respo
   const fw::trees::Forest east_forest({species_from(mirrored)}, {{0, {12.0, 6.0, 0.0}, 0.0, 1.0}});
 
   auto run = [&](const fw::trees::Forest& forest, double wind_x) {
-    fw::host::WindGrid wind(*cc, channel(wind_x));
-    fw::host::ForestStages trees(*cc, wind.spec(), forest);
-    wind.initialise_ambient();
-    for (int step = 0; step < 40; ++step) {  // 2 s: still swinging, not yet static
-      const auto report = wind.step();
-      trees.enqueue_wind_load(wind.velocity());
-      trees.enqueue_modal_step(float(report.dt));
-    }
-    trees.enqueue_deform();
-    return trees.download_displacements();
+    fw::host::CoupledStep coupled(*cc, channel(wind_x), forest, {});
+    coupled.start({wind_x, 0.0, 0.0});
+    for (int step = 0; step < 40; ++step) coupled.step();  // 2 s: still swinging, not yet static
+    coupled.trees().enqueue_deform();
+    return coupled.trees().download_displacements();
   };
   const std::vector<float> west = run(west_forest, 8.0);   // wind from the west blows toward +x
   const std::vector<float> east = run(east_forest, -8.0);  // the mirrored tree, wind from the east

@@ -64,7 +64,7 @@ struct ScenarioText {
       << "\n  species:\n"
       << "    - name: shrub\n      skeleton: {file: shrub.tree}\n"
       << "      modes: {count: 6, damping_ratio: 0.05, wind_samples: 2}\n"
-      << "      canopy: {leaf_area_index: 4.0, drag_coefficient: 0.3}\n";
+      << "      canopy: {leaf_area_index: 4.0, drag_coefficient: 0.6}\n";
     if (!stands.empty()) s << "  stands:\n" << stands;
     if (!trees.empty()) s << "  trees:\n" << trees;
     s << "output:\n  directory: out\n  interval: 2.0\n  vdb: {enabled: true, grids: [vel, speed]}\n";
@@ -302,10 +302,11 @@ TEST_CASE("Simulation: a runaway time step stops the run, names step and field, 
   } catch (const fw::host::SimulationError& e) {
     message = e.what();
   }
-  CHECK(message.find("step 10") != std::string::npos);
+  // Checked before every step, so the first step already stops: CFL 9 from the start.
+  CHECK(message.find("step 1 ") != std::string::npos);
   CHECK(message.find("field velocity") != std::string::npos);
   out = std::filesystem::path(dir.path()) / "runaway";
-  // The frames before the failure (t = 0, 3, 6, ... up to step 10) are complete and listed.
+  // The frame before the failure (t = 0) is complete and listed.
   CHECK(std::filesystem::exists(out / "wind/wind_000000.vti"));
   CHECK(read_text(out / "wind.pvd").find("wind/wind_000000.vti") != std::string::npos);
   CHECK(read_text(out / "run.json").find("\"status\":\"failed\"") != std::string::npos);
@@ -337,4 +338,46 @@ TEST_CASE("Simulation: semi-implicit Euler past its stable step stops at step 1 
   fw::host::RunSummary summary;
   run_in(*cc, dir, text, "exact", &summary);
   CHECK(summary.simulated_time == Approx(text.end).margin(1e-6));  // margin: float time accumulation
+}
+
+TEST_CASE("Simulation: a fixed dt that does not divide the end time ends exactly on it", "[simulation]") {
+  auto* cc = fw::test::device_or_skip();
+  if (!cc) return;
+  TempDir dir("fw_sim");
+  ScenarioText text;
+  text.dt = "0.3";  // 2.0 s is 6 steps of 0.3 s and one of 0.2 s
+  text.end = 2.0;
+  fw::host::RunSummary summary;
+  const auto out = run_in(*cc, dir, text, "short_last_step", &summary);
+  CHECK(summary.steps == 7);
+  CHECK(summary.simulated_time == Approx(2.0).margin(1e-9));  // margin: a sum of seven doubles
+  // Frames at 0 and at the step that reaches 2.0 (interval 2 s): the last one is written at the end time.
+  CHECK(summary.frames == 2);
+  CHECK(read_text(out / "wind.pvd").find("timestep=\"2\"") != std::string::npos);
+}
+
+TEST_CASE("Simulation: a writer that fails stops the run with its message and keeps the listed frames",
+          "[simulation]") {
+  auto* cc = fw::test::device_or_skip();
+  if (!cc) return;
+  TempDir dir("fw_sim");
+  ScenarioText text;
+  text.dt = "0.5";
+  text.end = 6.0;
+  // A folder where the second wind frame's file should go: the rename into place fails.
+  const auto out = std::filesystem::path(dir.path()) / "blocked";
+  std::filesystem::create_directories(out / "wind/wind_000001.vti/inside");
+  std::string message;
+  try {
+    run_in(*cc, dir, text, "blocked");
+  } catch (const std::runtime_error& e) {
+    message = e.what();
+  }
+  INFO(message);
+  CHECK(message.find("wind VTK") != std::string::npos);
+  CHECK(message.find("wind_000001.vti") != std::string::npos);
+  const std::string pvd = read_text(out / "wind.pvd");
+  CHECK(pvd.find("wind/wind_000000.vti") != std::string::npos);
+  CHECK(pvd.find("wind/wind_000001.vti") == std::string::npos);
+  CHECK(read_text(out / "run.json").find("\"status\":\"failed\"") != std::string::npos);
 }

@@ -28,7 +28,8 @@ using fw::test::TempDir;
 
 // kernels/ of the source tree this test was compiled from.
 std::filesystem::path source_kernel_dir() {
-  return std::filesystem::path(__FILE__).parent_path().parent_path().parent_path() / "kernels";
+  // tests/host/runtime/ -> the repository root.
+  return std::filesystem::path(__FILE__).parent_path().parent_path().parent_path().parent_path() / "kernels";
 }
 
 std::size_t count(const std::string& text, const std::string& part) {

@@ -1,0 +1,106 @@
+#include "host/app/CoupledStep.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <utility>
+
+namespace fw::host {
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+// The semi-implicit integrator's stable dt over every instance-mode: omega / s, gamma = 2 zeta omega / s.
+double forest_semi_implicit_limit(const trees::Forest& forest) {
+  double limit = std::numeric_limits<double>::infinity();
+  for (int k = 0; k < forest.instance_count(); ++k) {
+    const trees::ModalBasis& modes = forest.species_of(k).modes();
+    const double scale = forest.instances()[std::size_t(k)].scale;
+    for (int i = 0; i < modes.mode_count(); ++i) {
+      const double omega = modes.omega()(i) / scale;
+      const double gamma = 2.0 * modes.damping_ratios()(i) * omega;
+      limit = std::min(limit, trees::semi_implicit_dt_limit(omega, gamma));
+    }
+  }
+  return limit;
+}
+
+std::string where(long step, double time) {
+  return fmt::format("step {} (t = {:.3f} s)", step, time);
+}
+
+}  // namespace
+
+CoupledStep::CoupledStep(ComputeContext& cc, WindGridSetup wind, const trees::Forest& forest,
+                         CouplingSettings coupling)
+    : cc_(cc),
+      wind_(cc, std::move(wind)),
+      trees_(cc, wind_.spec(), forest),
+      tree_count_(forest.instance_count()) {
+  if (!coupling.drag_density.empty()) wind_.set_canopy(std::move(coupling.drag_density));
+  trees_.set_integrator(coupling.integrator);
+  if (coupling.integrator == trees::ModalIntegrator::semi_implicit)
+    integrator_dt_limit_ = forest_semi_implicit_limit(forest);
+}
+
+void CoupledStep::start(const std::array<double, 3>& ambient) {
+  wind_.set_ambient(ambient);
+  wind_.initialise_ambient();
+  if (has_trees()) trees_.reset_state();
+}
+
+CoupledStepReport CoupledStep::step(double max_dt) {
+  const long next = wind_.steps() + 1;
+  CoupledStepReport report;
+  report.max_speed_component = wind_.max_speed_component();
+  if (!std::isfinite(report.max_speed_component))
+    throw SimulationError(fmt::format("{}: field velocity is not finite", where(next, time())));
+  double dt = wind_.cfl_dt(report.max_speed_component);
+  if (max_dt < dt) dt = max_dt;
+  report.cfl = report.max_speed_component * dt / wind_.spec().h;
+  if (wind_.fixed_dt() && report.cfl > kRunawayCfl) {
+    throw SimulationError(fmt::format(
+        "{}: field velocity reaches {:.1f} m/s, CFL number {:.1f} > {} with the fixed dt {} s; lower "
+        "time.dt or use dt: auto",
+        where(next, time()), report.max_speed_component, report.cfl, kRunawayCfl, dt));
+  }
+  if (dt >= integrator_dt_limit_) {
+    throw SimulationError(fmt::format(
+        "{}: field tree modes: semi-implicit Euler is unstable at dt = {:.4g} s for the fastest tree mode "
+        "(stable below {:.4g} s); lower time.dt or set forest.integrator: exact",
+        where(next, time()), dt, integrator_dt_limit_));
+  }
+
+  report.wind = wind_.step_by(dt);
+  if (has_trees()) {
+    const auto trees_start = Clock::now();
+    trees_.enqueue_wind_load(wind_.velocity());
+    trees_.enqueue_modal_step(float(dt));
+    if (stage_timing_) {
+      cc_.finish();
+      trees_ms_ += std::chrono::duration<double, std::milli>(Clock::now() - trees_start).count();
+    }
+  }
+  return report;
+}
+
+void CoupledStep::set_stage_timing(bool on) {
+  stage_timing_ = on;
+  wind_.set_stage_timing(on);
+}
+
+std::map<std::string, double> CoupledStep::stage_ms() const {
+  std::map<std::string, double> ms = wind_.stage_ms();
+  if (has_trees()) ms["trees"] += trees_ms_;
+  return ms;
+}
+
+void CoupledStep::reset_stage_ms() {
+  wind_.reset_stage_ms();
+  trees_ms_ = 0.0;
+}
+
+}  // namespace fw::host

@@ -1,0 +1,104 @@
+// One step of the coupled forest: the wind grid and every tree's modes, in one order, with the stability
+// checks, on one OpenCL queue (DESIGN.md, "Data flow"). The run loop, `bench coupled` and the coupled tests
+// all drive this class; none of them repeats the order.
+//
+//   fw::host::CoupledStep coupled(cc, plan.wind, plan.forest, plan.coupling);   // uploads everything
+//   coupled.start(wind_at(0.0));              // wind from the ambient profile, projected; trees at rest
+//   while (coupled.time() < end) {
+//     coupled.set_ambient(wind_at(coupled.time()));
+//     fw::host::CoupledStepReport r = coupled.step(end - coupled.time());   // never steps past `end`
+//   }
+//   coupled.trees().enqueue_deform();         // an output frame: u = Phi q per instance
+//
+// A step: choose dt (fixed, or the CFL number from max|u|, capped to land on the caller's limit) -> check it
+// -> wind grid step (advect, forces and gusts, canopy drag, projection) -> sample the wind at every tree's
+// sample points -> modal forces -> modal step. Only the scalars of reductions come back to the host.
+//
+// Checks, every step, before anything moves (a SimulationError names the step, the time and the field):
+//   - the velocity is finite (max|u| is read back each step: the CFL time step needs it, and a fixed dt
+//     needs it for the next check; one reduction over the faces costs under 1% of a step);
+//   - a fixed dt whose CFL number exceeds kRunawayCfl is a blow-up in the making, not a slow run;
+//   - Diener's semi-implicit Euler is stable only while dt^2 omega^2 + 2 gamma dt < 4 for every mode.
+#pragma once
+
+#include <array>
+#include <limits>
+#include <map>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "host/runtime/ComputeContext.hpp"
+#include "host/stages/ForestStages.hpp"
+#include "host/stages/WindGrid.hpp"
+#include "trees/Forest.hpp"
+#include "trees/ModalIntegrator.hpp"
+
+namespace fw::host {
+
+/// A numerical blow-up: what() names the step, the time and the field.
+class SimulationError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+/// How the trees and the wind exchange momentum.
+struct CouplingSettings {
+  trees::ModalIntegrator integrator = trees::ModalIntegrator::exact;
+  /// Per cell, the drag density k (1/m, fluid/CanopyField); empty = one-way coupling (the air feels no tree).
+  std::vector<float> drag_density;
+};
+
+struct CoupledStepReport {
+  WindStepReport wind;               ///< step index, time after the step, dt, pressure solve
+  double max_speed_component = 0.0;  ///< max over faces of |u|, |v|, |w| before the step, m/s
+  double cfl = 0.0;                  ///< max_speed_component dt / h
+};
+
+class CoupledStep {
+ public:
+  /// A fixed dt this many times past the advection CFL limit stops the run.
+  static constexpr double kRunawayCfl = 5.0;
+
+  /// Uploads the wind grid, the canopy drag and the forest. Throws std::invalid_argument when the grid does
+  /// not fit the device or a setting is invalid (see WindGrid, ForestStages).
+  CoupledStep(ComputeContext& cc, WindGridSetup wind, const trees::Forest& forest, CouplingSettings coupling);
+
+  /// Sets the ambient wind (m/s at the reference height) and starts from it: every face on the inflow
+  /// profile, projected; the trees at rest.
+  void start(const std::array<double, 3>& ambient);
+  /// The ambient wind for the next step, m/s at the reference height.
+  void set_ambient(const std::array<double, 3>& ambient) { wind_.set_ambient(ambient); }
+
+  /// One coupled step of at most max_dt seconds (the settings' dt otherwise). Throws SimulationError (see
+  /// the header comment) before the step when a check fails.
+  CoupledStepReport step(double max_dt = std::numeric_limits<double>::infinity());
+
+  double time() const { return wind_.time(); }
+  long steps() const { return wind_.steps(); }
+  bool has_trees() const { return tree_count_ > 0; }
+  /// The largest stable dt of the semi-implicit integrator over every instance's modes, s; infinity with
+  /// the exact integrator or without trees.
+  double integrator_dt_limit() const { return integrator_dt_limit_; }
+
+  /// When on, each stage ends with a queue finish and its wall time is added to stage_ms() (benchmarks and
+  /// run.json): the wind grid's stages and "trees".
+  void set_stage_timing(bool on);
+  std::map<std::string, double> stage_ms() const;
+  void reset_stage_ms();
+
+  WindGrid& wind() { return wind_; }
+  ForestStages& trees() { return trees_; }
+  ComputeContext& context() { return cc_; }
+
+ private:
+  ComputeContext& cc_;
+  WindGrid wind_;
+  ForestStages trees_;
+  int tree_count_ = 0;
+  double integrator_dt_limit_ = std::numeric_limits<double>::infinity();
+  bool stage_timing_ = false;
+  double trees_ms_ = 0.0;
+};
+
+}  // namespace fw::host

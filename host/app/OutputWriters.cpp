@@ -1,0 +1,65 @@
+#include "host/app/OutputWriters.hpp"
+
+#include <algorithm>
+#include <string>
+
+#include "io/writers/ProbesWriter.hpp"
+#include "io/writers/TreesVtkWriter.hpp"
+#include "io/writers/WindVdbWriter.hpp"
+#include "io/writers/WindVtkWriter.hpp"
+
+namespace fw::host {
+
+namespace {
+
+bool contains(const std::vector<std::string>& list, const std::string& name) {
+  return std::find(list.begin(), list.end(), name) != list.end();
+}
+
+io::RunManifest manifest_of(const SimulationPlan& plan, const DeviceInfo& device) {
+  io::RunManifest m;
+  m.version = FORESTWIND_VERSION;
+  m.scenario_name = plan.scenario.name;
+  m.scenario_file_name = plan.scenario.file_name;
+  m.scenario_text = plan.scenario.text;
+  m.seed = plan.scenario.seed;
+  m.device = device.device_name;
+  m.platform = device.platform_name;
+  m.grid = {plan.wind.spec.nx, plan.wind.spec.ny, plan.wind.spec.nz};
+  m.cell_size = plan.wind.spec.h;
+  m.trees = plan.forest.instance_count();
+  m.species = plan.species;
+  m.two_way_coupling = !plan.coupling.drag_density.empty();
+  return m;
+}
+
+}  // namespace
+
+std::vector<std::unique_ptr<io::FrameWriter>> make_writers(const SimulationPlan& plan,
+                                                           const std::filesystem::path& directory,
+                                                           const DeviceInfo& device, int tip_trees) {
+  const io::OutputSettings& out = plan.output;
+  const bool trees_present = plan.forest.instance_count() > 0;
+  std::vector<std::unique_ptr<io::FrameWriter>> writers;
+  writers.push_back(std::make_unique<io::ManifestWriter>(directory, manifest_of(plan, device)));
+  if (out.vtk_wind) {
+    writers.push_back(std::make_unique<io::WindVtkWriter>(directory, plan.wind.spec, plan.wind.solid,
+                                                          plan.canopy_density, out.vtk_fields));
+  }
+  if (out.vtk_trees && trees_present)
+    writers.push_back(std::make_unique<io::TreesVtkWriter>(directory, plan.forest));
+  if (out.vdb_enabled) {
+    writers.push_back(std::make_unique<io::WindVdbWriter>(directory, plan.wind.spec, plan.wind.solid,
+                                                          contains(out.vdb_grids, "vel"),
+                                                          contains(out.vdb_grids, "speed")));
+  }
+  std::vector<io::ProbePoint> probes;
+  for (const auto& probe : out.probes) probes.push_back({probe.name, probe.position});
+  if (!probes.empty() || (trees_present && tip_trees > 0)) {
+    writers.push_back(std::make_unique<io::ProbesWriter>(directory, plan.wind.spec, std::move(probes),
+                                                         plan.forest, tip_trees));
+  }
+  return writers;
+}
+
+}  // namespace fw::host

@@ -1,0 +1,72 @@
+// The one interface of every run output (DESIGN.md, "Outputs"): the run loop hands each frame to every
+// writer, and a new output is a new class, not an edit of the loop.
+//
+//   std::vector<std::unique_ptr<fw::io::FrameWriter>> writers;
+//   writers.push_back(std::make_unique<fw::io::WindVtkWriter>(directory, settings, grid));
+//   fw::io::OutputPipeline output(std::move(writers));   // writes on a background thread
+//   output.begin();                                      // folders and headers, before the first step
+//   output.push(std::move(frame));                       // every output frame
+//   output.finish(outcome);                              // waits for the queue, then each writer's finish
+//
+// A writer's begin() and finish() run on the run loop's thread, write() on the output thread, one frame at
+// a time in frame order. Every file is written under a temporary name and renamed (io/AtomicFile), and a
+// collection (.pvd) lists a frame only once its file is complete.
+#pragma once
+
+#include <map>
+#include <string>
+#include <vector>
+
+#include "fluid/MacVelocity.hpp"
+
+namespace fw::io {
+
+/// What a frame carries: the state copied back from the device. What never changes (grid, solids, canopy,
+/// the trees' rest geometry) the writers keep from their construction.
+struct OutputFrame {
+  int index = 0;                ///< 0, 1, 2, ...: the frame number in file names
+  double time = 0.0;            ///< simulated time, s
+  long step = 0;                ///< solver steps taken
+  fluid::MacVelocity velocity;  ///< face velocities, m/s
+  std::vector<float> pressure;  ///< kinematic pressure p/rho per cell, m^2/s^2; empty unless needed
+  std::vector<float>
+      displacement;  ///< 3 per forest node (instance order, world frame), m; empty unless needed
+};
+
+/// Which optional parts of a frame a writer reads, so that the run copies back only those.
+struct FrameNeeds {
+  bool pressure = false;
+  bool displacement = false;
+  FrameNeeds& operator|=(const FrameNeeds& other) {
+    pressure = pressure || other.pressure;
+    displacement = displacement || other.displacement;
+    return *this;
+  }
+};
+
+/// How a run ended, for the writers' finish().
+struct RunOutcome {
+  std::string status = "completed";  ///< "completed", "interrupted" or "failed"
+  std::string message;               ///< the error, for "failed"
+  long steps = 0;
+  double simulated_time = 0.0;  ///< s
+  int frames = 0;               ///< frames written
+  double wall_seconds = 0.0;
+  std::map<std::string, double> stage_ms;  ///< totals over the run, ms
+};
+
+class FrameWriter {
+ public:
+  virtual ~FrameWriter() = default;
+  /// What the writer produces, for messages ("wind VTK").
+  virtual std::string name() const = 0;
+  virtual FrameNeeds needs() const { return {}; }
+  /// Creates folders and headers. Throws std::runtime_error naming the path on failure.
+  virtual void begin() {}
+  /// Writes one frame. Throws std::runtime_error naming the path on failure.
+  virtual void write(const OutputFrame& frame) = 0;
+  /// After the last frame was written (also after a failure or an interruption).
+  virtual void finish(const RunOutcome& /*outcome*/) {}
+};
+
+}  // namespace fw::io

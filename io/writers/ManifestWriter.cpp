@@ -1,0 +1,75 @@
+#include "io/writers/ManifestWriter.hpp"
+
+#include <fmt/format.h>
+
+#include <utility>
+
+#include "io/AtomicFile.hpp"
+#include "io/JsonWriter.hpp"
+
+namespace fw::io {
+
+std::string text_hash(const std::string& text) {
+  constexpr std::uint64_t kFnvOffset = 0xcbf29ce484222325ULL, kFnvPrime = 0x100000001b3ULL;
+  std::uint64_t hash = kFnvOffset;
+  for (unsigned char c : text) {
+    hash ^= c;
+    hash *= kFnvPrime;
+  }
+  return fmt::format("{:016x}", hash);
+}
+
+ManifestWriter::ManifestWriter(std::filesystem::path directory, RunManifest manifest)
+    : directory_(std::move(directory)), manifest_(std::move(manifest)) {}
+
+void ManifestWriter::begin() {
+  std::filesystem::create_directories(directory_);
+  if (!manifest_.scenario_file_name.empty())
+    write_text_atomically("ManifestWriter", directory_ / manifest_.scenario_file_name,
+                          manifest_.scenario_text);
+}
+
+void ManifestWriter::finish(const RunOutcome& outcome) {
+  const RunManifest& m = manifest_;
+  JsonWriter json;
+  json.begin_object();
+  json.key("version").value(m.version);
+  json.key("scenario").value(m.scenario_name);
+  json.key("scenario_file").value(m.scenario_file_name);
+  json.key("scenario_hash").value(text_hash(m.scenario_text));
+  json.key("seed").value(m.seed);
+  json.key("device").value(m.device);
+  json.key("platform").value(m.platform);
+  json.key("status").value(outcome.status);
+  if (!outcome.message.empty()) json.key("message").value(outcome.message);
+  json.key("grid").begin_array().value(m.grid[0]).value(m.grid[1]).value(m.grid[2]).end_array();
+  json.key("cell_size_m").value(m.cell_size);
+  json.key("trees").value(m.trees);
+  json.key("species").begin_array();
+  for (const SpeciesSummary& s : m.species) {
+    json.begin_object();
+    json.key("name").value(s.name);
+    json.key("nodes").value(s.nodes);
+    json.key("modes").value(s.modes);
+    json.key("wind_samples").value(s.samples);
+    json.key("trees").value(s.trees);
+    json.key("first_hz").value(s.first_hz);
+    json.key("cache").value(s.cache);
+    json.end_object();
+  }
+  json.end_array();
+  json.key("two_way_coupling").value(m.two_way_coupling);
+  json.key("steps").value(std::int64_t(outcome.steps));
+  json.key("simulated_time_s").value(outcome.simulated_time);
+  json.key("frames").value(outcome.frames);
+  json.key("interrupted").value(outcome.status == "interrupted");
+  json.key("wall_seconds").value(outcome.wall_seconds);
+  json.key("ms_per_step").value(outcome.steps > 0 ? outcome.wall_seconds * 1e3 / double(outcome.steps) : 0.0);
+  json.key("stages_ms").begin_object();
+  for (const auto& [stage, ms] : outcome.stage_ms) json.key(stage).value(ms);
+  json.end_object();
+  json.end_object();
+  write_text_atomically("ManifestWriter", directory_ / "run.json", json.str() + "\n");
+}
+
+}  // namespace fw::io

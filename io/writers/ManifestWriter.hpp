@@ -1,0 +1,68 @@
+// run.json and a copy of the scenario file: how the output folder was made and how the run went.
+//
+//   fw::io::ManifestWriter manifest("out/storm", info);   // begin() copies the scenario text
+//   manifest.finish(outcome);                              // run.json: status, steps, timings per stage
+//
+// run.json keys: version, scenario, scenario_file, scenario_hash (64-bit FNV-1a of the scenario text), seed,
+// device, platform, status ("completed", "interrupted", "failed"), message (when failed), grid, cell_size_m,
+// trees, species (name, nodes, modes, wind_samples, trees, first_hz, cache), two_way_coupling, steps,
+// simulated_time_s, frames, interrupted, wall_seconds, ms_per_step, stages_ms. It is written once, when
+// the run ends, through AtomicFile.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "io/writers/FrameWriter.hpp"
+
+namespace fw::io {
+
+struct SpeciesSummary {
+  std::string name;
+  int nodes = 0;
+  int modes = 0;
+  int samples = 0;
+  int trees = 0;                   ///< instances of this species
+  double first_hz = 0.0;           ///< lowest natural frequency at scale 1
+  std::string cache = "disabled";  ///< "hit", "miss", "corrupt_recomputed" or "disabled"
+  double seconds = 0.0;            ///< time to obtain the basis (load or compute)
+};
+
+/// What run.json says about the run's set-up.
+struct RunManifest {
+  std::string version;
+  std::string scenario_name;
+  std::string scenario_file_name;  ///< the copy's name in the output folder
+  std::string scenario_text;       ///< copied byte for byte; its hash goes to run.json
+  std::uint64_t seed = 0;
+  std::string device, platform;
+  std::array<int, 3> grid{0, 0, 0};
+  double cell_size = 0.0;  ///< m
+  int trees = 0;
+  std::vector<SpeciesSummary> species;
+  bool two_way_coupling = false;
+};
+
+/// 64-bit FNV-1a of a text, as 16 hex digits (the scenario hash in run.json).
+std::string text_hash(const std::string& text);
+
+class ManifestWriter : public FrameWriter {
+ public:
+  ManifestWriter(std::filesystem::path directory, RunManifest manifest);
+
+  std::string name() const override { return "run.json"; }
+  /// Writes the scenario copy.
+  void begin() override;
+  void write(const OutputFrame& /*frame*/) override {}
+  /// Writes run.json.
+  void finish(const RunOutcome& outcome) override;
+
+ private:
+  std::filesystem::path directory_;
+  RunManifest manifest_;
+};
+
+}  // namespace fw::io

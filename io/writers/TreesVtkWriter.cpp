@@ -1,0 +1,45 @@
+#include "io/writers/TreesVtkWriter.hpp"
+
+#include <fmt/format.h>
+
+#include <utility>
+
+namespace fw::io {
+
+std::vector<TreesFrame::Tree> forest_at_rest(const trees::Forest& forest) {
+  std::vector<TreesFrame::Tree> rest;
+  for (int k = 0; k < forest.instance_count(); ++k) {
+    const trees::TreeInstance& instance = forest.instances()[std::size_t(k)];
+    const trees::Skeleton& skeleton = forest.species_of(k).skeleton();
+    const Eigen::Matrix3d rotation = forest.rotation(k);
+    TreesFrame::Tree tree;
+    tree.tree_id = k;
+    tree.species = instance.species;
+    tree.rest.resize(skeleton.size(), 3);
+    for (int n = 0; n < skeleton.size(); ++n) {
+      const trees::SkeletonNode& node = skeleton.node(n);
+      tree.rest.row(n) = (instance.position + instance.scale * rotation * node.position).transpose();
+      tree.radius.push_back(instance.scale * node.radius);
+      tree.parent.push_back(node.parent);
+    }
+    rest.push_back(std::move(tree));
+  }
+  return rest;
+}
+
+TreesVtkWriter::TreesVtkWriter(std::filesystem::path directory, const trees::Forest& forest)
+    : directory_(std::move(directory)),
+      forest_(std::make_unique<TreesVtp>(forest_at_rest(forest))),
+      collection_(directory_ / "trees.pvd") {}
+
+void TreesVtkWriter::begin() {
+  std::filesystem::create_directories(directory_ / "trees");
+}
+
+void TreesVtkWriter::write(const OutputFrame& frame) {
+  const std::string file = fmt::format("trees/trees_{:06d}.vtp", frame.index);
+  forest_->write(directory_ / file, frame.time, frame.displacement);
+  collection_.add(frame.time, file);
+}
+
+}  // namespace fw::io

@@ -1,0 +1,36 @@
+// trees.pvd + trees/trees_NNNNNN.vtp: the whole forest at its deformed positions every frame, for ParaView
+// (io/TreesVtk.hpp has the layout). The rest geometry, cells and ids are built once from the forest.
+//
+//   fw::io::TreesVtkWriter trees("out/storm", forest);
+#pragma once
+
+#include <filesystem>
+#include <memory>
+#include <string>
+
+#include "io/PvdCollection.hpp"
+#include "io/TreesVtk.hpp"
+#include "io/writers/FrameWriter.hpp"
+#include "trees/Forest.hpp"
+
+namespace fw::io {
+
+/// Every instance of the forest at rest in the world frame (x + s R p per node), tree_id = instance index.
+std::vector<TreesFrame::Tree> forest_at_rest(const trees::Forest& forest);
+
+class TreesVtkWriter : public FrameWriter {
+ public:
+  TreesVtkWriter(std::filesystem::path directory, const trees::Forest& forest);
+
+  std::string name() const override { return "trees VTK"; }
+  FrameNeeds needs() const override { return {.pressure = false, .displacement = true}; }
+  void begin() override;
+  void write(const OutputFrame& frame) override;
+
+ private:
+  std::filesystem::path directory_;
+  std::unique_ptr<TreesVtp> forest_;
+  PvdCollection collection_;
+};
+
+}  // namespace fw::io

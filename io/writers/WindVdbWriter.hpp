@@ -1,0 +1,34 @@
+// vdb/wind.NNNN.vdb: the wind grid of every frame as OpenVDB grids, for Houdini and Blender (io/VdbWriter.hpp
+// has the layout).
+//
+//   fw::io::WindVdbWriter vdb("out/storm", spec, solid, /*vel=*/true, /*speed=*/true);
+#pragma once
+
+#include <cstdint>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "fluid/GridSpec.hpp"
+#include "io/writers/FrameWriter.hpp"
+
+namespace fw::io {
+
+class WindVdbWriter : public FrameWriter {
+ public:
+  /// solid: 1 byte a cell (empty = none); solid cells are inactive voxels.
+  WindVdbWriter(std::filesystem::path directory, fluid::GridSpec spec, std::vector<std::uint8_t> solid,
+                bool vel, bool speed);
+
+  std::string name() const override { return "VDB"; }
+  void begin() override;
+  void write(const OutputFrame& frame) override;
+
+ private:
+  std::filesystem::path directory_;
+  fluid::GridSpec spec_;
+  std::vector<std::uint8_t> solid_;
+  bool vel_ = true, speed_ = true;
+};
+
+}  // namespace fw::io
