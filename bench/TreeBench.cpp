@@ -41,7 +41,7 @@ std::string cpu_name() {
 TreeBenchResult run_tree_bench(const TreeBenchOptions& options) {
   TreeBenchResult result;
   result.cpu = cpu_name();
-  const trees::Material wood{1.0e10, 3.85e9, 900.0};
+  const trees::Material wood = trees::kDefaultWood;
   for (const int target : options.target_nodes) {
     TreeBenchCase c;
     c.target_nodes = target;
