@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include <stdexcept>
+#include <utility>
 
 #include "trees/Foliage.hpp"
 
@@ -17,30 +18,28 @@ struct Elements {
 };
 
 Elements elements_of(const Skeleton& world, const WindBasisSettings& settings) {
+  ElementDrag drag;
   try {
-    settings.validate();
+    drag = ElementDrag::of(world, settings);  // the same widths the wind basis integrates
   } catch (const std::invalid_argument& e) {
     throw std::invalid_argument(fmt::format("CanopyDrag: {}", e.what()));
   }
   if (world.size() < 2) throw std::invalid_argument("CanopyDrag: the skeleton has no elements");
   Elements out;
-  out.foliage = Foliage::of(world, settings.leaf_area_index);
   const auto& pairs = world.elements();
   out.elements.reserve(pairs.size());
   for (std::size_t e = 0; e < pairs.size(); ++e) {
     const SkeletonNode& a = world.node(pairs[e].first);
     const SkeletonNode& b = world.node(pairs[e].second);
-    const double diameter = a.radius + b.radius;  // D_e = 2 x mean radius, as in WindBasis
-    const double leaf = out.foliage.leaf_area_per_metre[e];
     fluid::CanopyElement c;
     c.start = {a.position.x(), a.position.y(), a.position.z()};
     c.end = {b.position.x(), b.position.y(), b.position.z()};
-    c.frontal_area_per_metre = diameter + leaf;
-    c.drag_area_per_metre =
-        settings.branch_drag_coefficient * diameter + settings.leaf_drag_coefficient * leaf;
+    c.frontal_area_per_metre = drag.diameter[e] + drag.foliage.leaf_area_per_metre[e];
+    c.drag_area_per_metre = drag.drag_width[e];
     out.elements.push_back(c);
-    out.woody_area += diameter * (b.position - a.position).norm();
+    out.woody_area += drag.diameter[e] * (b.position - a.position).norm();
   }
+  out.foliage = std::move(drag.foliage);
   return out;
 }
 

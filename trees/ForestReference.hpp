@@ -27,7 +27,6 @@
 
 namespace fw::trees {
 
-
 /// Trilinear sample of the face velocities at a world position (m), m/s, with the clamping described above.
 Eigen::Vector3d sample_mac_velocity(const fluid::GridSpec& spec, const fluid::MacVelocity& velocity,
                                     const Eigen::Vector3d& world);

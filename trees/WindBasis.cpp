@@ -11,7 +11,6 @@
 
 #include "trees/BeamElement.hpp"
 #include "trees/BeamModel.hpp"
-#include "trees/Foliage.hpp"
 #include "trees/Skeleton.hpp"
 
 namespace fw::trees {
@@ -95,7 +94,7 @@ struct Assembled {
 };
 
 Assembled assemble(const Skeleton& skeleton, const WindBasisSettings& settings) {
-  settings.validate();
+  const ElementDrag element_drag = ElementDrag::of(skeleton, settings);  // validates the settings
   if (skeleton.size() < 2) throw std::invalid_argument("WindBasis: the skeleton has no elements");
   const int bands = settings.samples;
   const double z_root = skeleton.node(skeleton.root()).position.z();
@@ -104,7 +103,6 @@ Assembled assemble(const Skeleton& skeleton, const WindBasisSettings& settings) 
   const double height = z_top - z_root;
   // A flat tree (no node above the root) cannot be split by height: everything goes to band 0.
   const bool split = bands > 1 && height > 0.0;
-  const Foliage foliage = Foliage::of(skeleton, settings.leaf_area_index);
   const double half_rho = 0.5 * settings.air_density;
 
   Assembled out;
@@ -121,10 +119,9 @@ Assembled assemble(const Skeleton& skeleton, const WindBasisSettings& settings) 
     const SkeletonNode& a = skeleton.node(parent);
     const SkeletonNode& b = skeleton.node(child);
     const double length = (b.position - a.position).norm();
-    const double diameter = a.radius + b.radius;  // 2 * mean radius, as in the stiffness
-    const double leaf = foliage.leaf_area_per_metre[e];
-    const double drag_width =
-        settings.branch_drag_coefficient * diameter + settings.leaf_drag_coefficient * leaf;
+    const double diameter = element_drag.diameter[e];
+    const double leaf = element_drag.foliage.leaf_area_per_metre[e];
+    const double drag_width = element_drag.drag_width[e];
     const Eigen::Matrix3d frame = element_frame(a.position, b.position);
 
     // A_e = 1/2 rho (C_Db D P_e + C_Df lambda I), symmetric (N s^2 / m^4 = kg/m^3 x m).
@@ -196,6 +193,23 @@ Assembled assemble(const Skeleton& skeleton, const WindBasisSettings& settings) 
 }
 
 }  // namespace
+
+ElementDrag ElementDrag::of(const Skeleton& skeleton, const WindBasisSettings& settings) {
+  settings.validate();
+  ElementDrag drag;
+  drag.foliage = Foliage::of(skeleton, settings.leaf_area_index);
+  const auto& elements = skeleton.elements();
+  drag.diameter.reserve(elements.size());
+  drag.drag_width.reserve(elements.size());
+  for (std::size_t e = 0; e < elements.size(); ++e) {
+    const double diameter =
+        skeleton.node(elements[e].first).radius + skeleton.node(elements[e].second).radius;
+    drag.diameter.push_back(diameter);
+    drag.drag_width.push_back(settings.branch_drag_coefficient * diameter +
+                              settings.leaf_drag_coefficient * drag.foliage.leaf_area_per_metre[e]);
+  }
+  return drag;
+}
 
 Eigen::MatrixXd WindBasis::load_operator(const Skeleton& skeleton, const WindBasisSettings& settings) {
   return assemble(skeleton, settings).load;

@@ -63,6 +63,10 @@
 
 #include <Eigen/Dense>
 
+#include <vector>
+
+#include "trees/Foliage.hpp"
+
 namespace fw::trees {
 
 class Skeleton;
@@ -102,6 +106,19 @@ struct WindBasisSettings {
   /// branch_drag_coefficient, leaf_area_index, leaf_drag_coefficient (each must be finite and >= 0; all
   /// zero switches the wind load off) or samples (>= 1).
   void validate() const;
+};
+
+/// What drags on each element of a skeleton (skeleton.elements() order), the one definition both sides of
+/// the coupling use (WindBasis for the trees, trees/CanopyDrag for the air): the force per metre of element
+/// is 1/2 rho_air (C_Db D_e [P_e] + C_Df lambda_e) |v| v.
+struct ElementDrag {
+  Foliage foliage;               ///< leaf-bearing elements, lambda_e, crown and leaf area
+  std::vector<double> diameter;  ///< D_e = r_a + r_b (twice the mean node radius, as in the stiffness), m
+  /// w_e = C_Db D_e + C_Df lambda_e, m: the drag area per metre of element (without the normal projection).
+  std::vector<double> drag_width;
+
+  /// Throws std::invalid_argument("WindBasisSettings: ...") for invalid settings.
+  static ElementDrag of(const Skeleton& skeleton, const WindBasisSettings& settings);
 };
 
 class WindBasis {

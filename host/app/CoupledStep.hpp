@@ -89,7 +89,6 @@ class CoupledStep {
 
   WindGrid& wind() { return wind_; }
   ForestStages& trees() { return trees_; }
-  ComputeContext& context() { return cc_; }
 
  private:
   ComputeContext& cc_;

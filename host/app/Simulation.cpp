@@ -4,6 +4,7 @@
 
 #include <chrono>
 #include <cmath>
+#include <exception>
 #include <iostream>
 #include <utility>
 
@@ -37,7 +38,7 @@ io::OutputFrame capture_frame(CoupledStep& coupled, const io::FrameNeeds& needs,
   frame.index = index;
   frame.time = coupled.time();
   frame.step = coupled.steps();
-  frame.velocity = coupled.wind().download_velocity();
+  if (needs.velocity) frame.velocity = coupled.wind().download_velocity();
   if (needs.pressure) frame.pressure = coupled.wind().download_pressure();
   if (needs.displacement && coupled.has_trees()) {
     coupled.trees().enqueue_deform();
@@ -72,23 +73,35 @@ RunSummary Simulation::run(const RunOptions& options) {
     output_ms += ms_since(start);
   };
 
+  // Every frame captured so far is written before run.json: a writer's error found while waiting for them
+  // fails the run (unless it failed already) and is rethrown once run.json records it.
   auto finish = [&](const std::string& status, const std::string& message) {
     cc_.finish();
     io::RunOutcome outcome;
     outcome.status = status;
     outcome.message = message;
+    std::exception_ptr write_error;
+    const auto drain_start = Clock::now();
+    try {
+      output.drain();
+    } catch (const std::exception& e) {
+      write_error = std::current_exception();
+      if (outcome.status != "failed") {
+        outcome.status = "failed";
+        outcome.message = e.what();
+      }
+    }
+    output_ms += ms_since(drain_start);
     outcome.steps = summary.steps = coupled.steps();
     outcome.simulated_time = summary.simulated_time = coupled.time();
     summary.stage_ms = coupled.stage_ms();
-    const auto drain_start = Clock::now();
-    output.drain();
-    output_ms += ms_since(drain_start);
     summary.stage_ms["output"] = output_ms;
     summary.stage_ms["output_write"] = output.write_ms();
     outcome.frames = summary.frames = output.frames_written();
     outcome.wall_seconds = summary.wall_seconds = ms_since(wall_start) * 1e-3;
     outcome.stage_ms = summary.stage_ms;
     output.finish(outcome);
+    if (write_error) std::rethrow_exception(write_error);
   };
 
   try {

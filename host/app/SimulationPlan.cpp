@@ -148,8 +148,7 @@ SimulationPlan plan_simulation(const io::Scenario& scenario, const trees::BasisC
     plan.species.push_back(summary);
   }
 
-  // --- instances: stands first, in file order, then the single trees
-  // ------------------------------------------
+  // --- instances: stands first, in file order, then the single trees ---------------------------------------
   std::vector<trees::TreeInstance> instances;
   for (const io::Stand& stand : scenario.forest.stands) {
     for (const trees::PlacedTree& placed : trees::place_stand(stand.layout)) {
@@ -172,16 +171,12 @@ SimulationPlan plan_simulation(const io::Scenario& scenario, const trees::BasisC
     tree.scale = placed.scale;
     instances.push_back(tree);
   }
-  for (const auto& tree : instances) {
-    plan.instance_species.push_back(tree.species);
-    ++plan.species[std::size_t(tree.species)].trees;
-  }
+  for (const auto& tree : instances) ++plan.species[std::size_t(tree.species)].trees;
 
   plan.forest = trees::Forest(std::move(bases), std::move(instances));
   plan.coupling.integrator = scenario.forest.integrator;
 
-  // --- canopy: every tree's frontal area on the grid, with the drag the trees themselves receive
-  // ------------
+  // --- canopy: every tree's frontal area on the grid, with the drag the trees receive ---------------------
   if (plan.forest.instance_count() > 0) {
     fluid::CanopyField canopy(wind.spec);
     for (int k = 0; k < plan.forest.instance_count(); ++k) trees::add_to_canopy(canopy, plan.forest, k);

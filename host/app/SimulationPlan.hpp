@@ -50,7 +50,6 @@ struct SimulationPlan {
   CouplingSettings coupling;
   trees::Forest forest;
   std::vector<io::SpeciesSummary> species;
-  std::vector<int> instance_species;  ///< species index of every instance (same order as forest.instances())
   std::vector<float> canopy_density;  ///< per cell, frontal area density a (1/m); empty without trees
   double canopy_dropped_area = 0.0;   ///< m^2 of frontal area outside the domain
   io::OutputSettings output;          ///< folder, frame interval, which writers and fields

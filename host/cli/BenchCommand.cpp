@@ -6,9 +6,9 @@
 #include "bench/CoupledBench.hpp"
 #include "bench/TreeBench.hpp"
 #include "bench/WindBench.hpp"
+#include "host/cli/Commands.hpp"
 #include "host/runtime/ComputeContext.hpp"
 #include "host/runtime/Device.hpp"
-#include "host/cli/Commands.hpp"
 
 namespace fw::cli {
 

@@ -2,8 +2,8 @@
 
 #include <iostream>
 
-#include "host/runtime/Device.hpp"
 #include "host/cli/Commands.hpp"
+#include "host/runtime/Device.hpp"
 #include "io/JsonWriter.hpp"
 
 namespace fw::cli {

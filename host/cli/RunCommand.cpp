@@ -8,11 +8,11 @@
 #include <filesystem>
 #include <iostream>
 
-#include "host/runtime/ComputeContext.hpp"
-#include "host/runtime/Device.hpp"
 #include "host/app/Simulation.hpp"
 #include "host/app/SimulationPlan.hpp"
 #include "host/cli/Commands.hpp"
+#include "host/runtime/ComputeContext.hpp"
+#include "host/runtime/Device.hpp"
 #include "io/Scenario.hpp"
 #include "trees/BasisCache.hpp"
 #include "trees/ForestLayout.hpp"

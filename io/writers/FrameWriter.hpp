@@ -35,9 +35,11 @@ struct OutputFrame {
 
 /// Which optional parts of a frame a writer reads, so that the run copies back only those.
 struct FrameNeeds {
+  bool velocity = false;
   bool pressure = false;
   bool displacement = false;
   FrameNeeds& operator|=(const FrameNeeds& other) {
+    velocity = velocity || other.velocity;
     pressure = pressure || other.pressure;
     displacement = displacement || other.displacement;
     return *this;

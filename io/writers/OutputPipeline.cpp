@@ -56,10 +56,8 @@ void OutputPipeline::check() {
 }
 
 void OutputPipeline::push(OutputFrame frame) {
-  const auto start = Clock::now();
   std::unique_lock lock(mutex_);
   changed_.wait(lock, [&] { return error_ || queue_.size() < capacity_; });
-  wait_ms_ += ms_since(start);
   rethrow_locked();
   if (error_) return;  // already reported: the run is stopping, drop the frame
   queue_.push_back(std::move(frame));
@@ -68,10 +66,8 @@ void OutputPipeline::push(OutputFrame frame) {
 }
 
 void OutputPipeline::drain() {
-  const auto start = Clock::now();
   std::unique_lock lock(mutex_);
   changed_.wait(lock, [&] { return error_ || (queue_.empty() && !writing_); });
-  wait_ms_ += ms_since(start);
   rethrow_locked();
 }
 

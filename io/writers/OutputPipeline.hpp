@@ -57,8 +57,6 @@ class OutputPipeline {
 
   /// Frames written completely by every writer.
   int frames_written() const;
-  /// Time the caller spent waiting for room in the queue or for drain, ms.
-  double wait_ms() const { return wait_ms_; }
   /// Time the output thread spent writing, ms (overlapped with the steps).
   double write_ms() const;
 
@@ -76,7 +74,7 @@ class OutputPipeline {
   std::exception_ptr error_;
   bool error_reported_ = false;
   int frames_written_ = 0;
-  double write_ms_ = 0.0, wait_ms_ = 0.0;
+  double write_ms_ = 0.0;
   std::thread thread_;
 };
 

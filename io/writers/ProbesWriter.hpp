@@ -32,7 +32,9 @@ class ProbesWriter : public FrameWriter {
                const trees::Forest& forest, int tip_trees);
 
   std::string name() const override { return "probes"; }
-  FrameNeeds needs() const override { return {.pressure = false, .displacement = !tip_nodes_.empty()}; }
+  FrameNeeds needs() const override {
+    return {.velocity = !probes_.empty(), .displacement = !tip_nodes_.empty()};
+  }
   void begin() override;
   void write(const OutputFrame& frame) override;
 

@@ -10,16 +10,16 @@ std::vector<TreesFrame::Tree> forest_at_rest(const trees::Forest& forest) {
   std::vector<TreesFrame::Tree> rest;
   for (int k = 0; k < forest.instance_count(); ++k) {
     const trees::TreeInstance& instance = forest.instances()[std::size_t(k)];
-    const trees::Skeleton& skeleton = forest.species_of(k).skeleton();
-    const Eigen::Matrix3d rotation = forest.rotation(k);
+    const trees::Skeleton world =
+        forest.species_of(k).skeleton().transformed(forest.rotation(k), instance.position, instance.scale);
     TreesFrame::Tree tree;
     tree.tree_id = k;
     tree.species = instance.species;
-    tree.rest.resize(skeleton.size(), 3);
-    for (int n = 0; n < skeleton.size(); ++n) {
-      const trees::SkeletonNode& node = skeleton.node(n);
-      tree.rest.row(n) = (instance.position + instance.scale * rotation * node.position).transpose();
-      tree.radius.push_back(instance.scale * node.radius);
+    tree.rest.resize(world.size(), 3);
+    for (int n = 0; n < world.size(); ++n) {
+      const trees::SkeletonNode& node = world.node(n);
+      tree.rest.row(n) = node.position.transpose();
+      tree.radius.push_back(node.radius);
       tree.parent.push_back(node.parent);
     }
     rest.push_back(std::move(tree));

@@ -23,7 +23,7 @@ class TreesVtkWriter : public FrameWriter {
   TreesVtkWriter(std::filesystem::path directory, const trees::Forest& forest);
 
   std::string name() const override { return "trees VTK"; }
-  FrameNeeds needs() const override { return {.pressure = false, .displacement = true}; }
+  FrameNeeds needs() const override { return {.displacement = true}; }
   void begin() override;
   void write(const OutputFrame& frame) override;
 

@@ -21,6 +21,7 @@ class WindVdbWriter : public FrameWriter {
                 bool vel, bool speed);
 
   std::string name() const override { return "VDB"; }
+  FrameNeeds needs() const override { return {.velocity = true}; }
   void begin() override;
   void write(const OutputFrame& frame) override;
 

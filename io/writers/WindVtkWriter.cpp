@@ -22,6 +22,7 @@ WindVtkWriter::WindVtkWriter(std::filesystem::path directory, fluid::GridSpec sp
 
 FrameNeeds WindVtkWriter::needs() const {
   FrameNeeds needs;
+  needs.velocity = true;
   needs.pressure = std::find(fields_.begin(), fields_.end(), "pressure") != fields_.end();
   return needs;
 }
