@@ -73,7 +73,7 @@ TEST_CASE("OutputPipeline: every frame reaches the writer once, in order, before
   CHECK(log.finishes == 1);
 }
 
-TEST_CASE("OutputPipeline: the queue holds at most its capacity; push waits for room", "[output]") {
+TEST_CASE("OutputPipeline: the queue holds at most its capacity and push waits for room", "[output]") {
   Log log;
   log.gate_open = false;  // the output thread blocks inside the first write
   fw::io::OutputPipeline output(writers(log), 2);
