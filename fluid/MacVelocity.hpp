@@ -1,5 +1,5 @@
-// Face velocities of a MAC grid on the host, and what inflow ghost values need: the plain data that the
-// device wind grid downloads and uploads, the writers read, and the CPU reference computes with.
+// Face velocities of a MAC grid on the host: the plain data that the device wind grid downloads and
+// uploads, the writers read, and the CPU reference computes with.
 //
 //   fw::fluid::MacVelocity vel(spec);            // every face 0 m/s
 //   vel.component(0).size() == spec.u_count();
@@ -20,12 +20,6 @@ struct MacVelocity {
       : u(spec.u_count(), 0.f), v(spec.v_count(), 0.f), w(spec.w_count(), 0.f) {}
   std::vector<float>& component(int c) { return c == 0 ? u : (c == 1 ? v : w); }
   const std::vector<float>& component(int c) const { return c == 0 ? u : (c == 1 ? v : w); }
-};
-
-/// What ghost values on inflow faces need: the ambient wind at the reference height and the profile shape.
-struct InflowState {
-  std::array<float, 3> ambient{0, 0, 0};  // m/s at the reference height
-  std::vector<float> profile;             // nz shape factors at cell-centre heights (InflowProfile)
 };
 
 }  // namespace fw::fluid

@@ -5,6 +5,9 @@
 #include <cmath>
 #include <numbers>
 #include <stdexcept>
+#include <string>
+
+#include "fluid/SubgridStress.hpp"
 
 namespace fw::fluid::reference {
 namespace {
@@ -95,10 +98,7 @@ double fetch(const GridSpec& spec, const InflowState& inflow, const std::vector<
       idx[a] = ((idx[a] % n) + n) % n;
       continue;
     }
-    if (bc == BoundaryType::inflow) {
-      const int kk = std::clamp(idx[2], 0, spec.nz - 1);
-      return double(inflow.ambient[c]) * double(inflow.profile[kk]);
-    }
+    if (bc == BoundaryType::inflow) return inflow.value(spec, c, i, j, k, idx[2]);
     if (bc == BoundaryType::no_slip && a != c) {
       idx[a] = low ? (-1 - idx[a]) : (2 * ext - 1 - idx[a]);
       sign = -sign;
@@ -364,7 +364,7 @@ void enforce_boundaries(const GridSpec& spec, const PressureLevel& fine, const I
         const bool fluid_cell =
             fine.mask[cell_index(spec.nx, spec.ny, cell[0], cell[1], cell[2])] & FW_MASK_FLUID;
         if (spec.boundary[face] == BoundaryType::inflow && fluid_cell)
-          value = double(inflow.ambient[c]) * double(inflow.profile[std::clamp(k, 0, spec.nz - 1)]);
+          value = inflow.value(spec, c, i, j, k, k);
       }
       q[id] = float(value);
     });
@@ -574,6 +574,158 @@ int solve_pressure_cg(const GridSpec& spec, const PressureLevel& fine, const std
   phi_out.assign(n, 0.f);
   for (std::size_t i = 0; i < n; ++i) phi_out[i] = float(x[i]);
   return it;
+}
+
+// --- Subgrid and wall stresses (fluid/SubgridStress.hpp; kernels/subgrid_stress.cl) ---------------------
+
+namespace {
+
+void check_solid_size(const GridSpec& spec, const std::vector<std::uint8_t>& solid, const char* who) {
+  if (!solid.empty() && solid.size() != spec.cell_count())
+    throw std::invalid_argument(std::string(who) + ": the solid map needs one byte a cell");
+}
+
+// A cell index up to two steps outside an axis of n cells: wrapped on a periodic axis, else the edge cell.
+int wrap_or_clamp(int x, int n, bool periodic) {
+  if (periodic) return ((x % n) + n) % n;
+  return std::clamp(x, 0, n - 1);
+}
+
+// The two cells sharing face (i,j,k) of component c, below (lo) and above (hi) it along c. The face may lie
+// one face outside the array: its cells are then wrapped or clamped like the cells beside a boundary face.
+void face_cells(const GridSpec& spec, int c, int i, int j, int k, int lo[3], int hi[3]) {
+  lo[0] = hi[0] = i;
+  lo[1] = hi[1] = j;
+  lo[2] = hi[2] = k;
+  lo[c] -= 1;
+  for (int a = 0; a < 3; ++a) {
+    lo[a] = wrap_or_clamp(lo[a], dims(spec, a), spec.periodic(a));
+    hi[a] = wrap_or_clamp(hi[a], dims(spec, a), spec.periodic(a));
+  }
+}
+
+}  // namespace
+
+std::vector<float> eddy_viscosity(const GridSpec& spec, const std::vector<std::uint8_t>& solid,
+                                  const MacVelocity& vel, double smagorinsky_constant, double cap) {
+  check_solid_size(spec, solid, "eddy_viscosity");
+  const int nx = spec.nx, ny = spec.ny, nz = spec.nz;
+  // A face of component c, its index wrapped where it lies outside a periodic axis (the ghost's rule).
+  auto face = [&](int c, int i, int j, int k) {
+    int idx[3] = {i, j, k};
+    for (int a = 0; a < 3; ++a) {
+      if (idx[a] >= 0 && idx[a] < extent(spec, c, a)) continue;
+      const int n = dims(spec, a);
+      idx[a] = ((idx[a] % n) + n) % n;
+    }
+    return double(vel.component(c)[face_index(spec, c, idx[0], idx[1], idx[2])]);
+  };
+  auto centre = [&](int c, int i, int j, int k) {
+    int hi[3] = {i, j, k};
+    hi[c] += 1;
+    return 0.5 * (face(c, i, j, k) + face(c, hi[0], hi[1], hi[2]));
+  };
+  auto deriv = [&](int c, int a, int i, int j, int k) {
+    int p[3] = {i, j, k}, m[3] = {i, j, k};
+    p[a] += 1;
+    m[a] -= 1;
+    if (!spec.periodic(a)) {
+      p[a] = std::min(p[a], dims(spec, a) - 1);
+      m[a] = std::max(m[a], 0);
+    }
+    const int span = p[a] - m[a];
+    if (span == 0) return 0.0;
+    return (centre(c, p[0], p[1], p[2]) - centre(c, m[0], m[1], m[2])) / (span * spec.h);
+  };
+  const double cs_h = smagorinsky_constant * spec.h;
+  std::vector<float> nu(spec.cell_count(), 0.0f);
+  for (int k = 0; k < nz; ++k)
+    for (int j = 0; j < ny; ++j)
+      for (int i = 0; i < nx; ++i) {
+        const std::size_t id = cell_index(nx, ny, i, j, k);
+        if (!solid.empty() && solid[id]) continue;
+        double g[3][3];  // g[c][a] = d u_c / d x_a
+        for (int c = 0; c < 3; ++c)
+          for (int a = 0; a < 3; ++a) g[c][a] = deriv(c, a, i, j, k);
+        double s2 = 0.0;  // 2 S_ij S_ij
+        for (int c = 0; c < 3; ++c)
+          for (int a = 0; a < 3; ++a) {
+            const double s = 0.5 * (g[c][a] + g[a][c]);
+            s2 += 2.0 * s * s;
+          }
+        nu[id] = float(std::fmin(cs_h * cs_h * std::sqrt(s2), cap));
+      }
+  return nu;
+}
+
+MacVelocity diffuse_eddy(const GridSpec& spec, const std::vector<std::uint8_t>& solid,
+                         const InflowState& inflow, const MacVelocity& vel, const std::vector<float>& nu_t,
+                         double dt, bool wall_slip) {
+  check_solid_size(spec, solid, "diffuse_eddy");
+  if (nu_t.size() != spec.cell_count())
+    throw std::invalid_argument("diffuse_eddy: the eddy viscosity needs one value a cell");
+  auto is_solid = [&](const int cell[3]) {
+    return !solid.empty() && solid[cell_index(spec.nx, spec.ny, cell[0], cell[1], cell[2])] != 0;
+  };
+  auto face_nu = [&](int c, int i, int j, int k) {
+    int lo[3], hi[3];
+    face_cells(spec, c, i, j, k, lo, hi);
+    return 0.5 * (double(nu_t[cell_index(spec.nx, spec.ny, lo[0], lo[1], lo[2])]) +
+                  nu_t[cell_index(spec.nx, spec.ny, hi[0], hi[1], hi[2])]);
+  };
+  MacVelocity out(spec);
+  const double dt_over_h2 = dt / (spec.h * spec.h);
+  for (int c = 0; c < 3; ++c)
+    for_each_face(spec, c, [&](int i, int j, int k, std::size_t id) {
+      const auto& q = vel.component(c);
+      const double centre = q[id], nu_centre = face_nu(c, i, j, k);
+      double flux = 0.0;
+      for (int a = 0; a < 3; ++a)
+        for (int side = -1; side <= 1; side += 2) {
+          int nb[3] = {i, j, k};
+          nb[a] += side;
+          double value = fetch(spec, inflow, q, c, nb[0], nb[1], nb[2]);
+          if (wall_slip && c < 2 && a == 2 && side < 0 && k > 0) {
+            int lo[3], hi[3];
+            face_cells(spec, c, i, j, k - 1, lo, hi);
+            if (is_solid(lo) || is_solid(hi)) value = centre;  // the wall stress carries this flux
+          }
+          flux += 0.5 * (nu_centre + face_nu(c, nb[0], nb[1], nb[2])) * (value - centre);
+        }
+      out.component(c)[id] = float(centre + dt_over_h2 * flux);
+    });
+  return out;
+}
+
+MacVelocity wall_stress(const GridSpec& spec, const std::vector<std::uint8_t>& solid, const MacVelocity& vel,
+                        double drag_coefficient, double dt) {
+  const std::vector<float> walls = wall_cells(spec, solid);
+  auto wall = [&](const int cell[3]) {
+    return double(walls[cell_index(spec.nx, spec.ny, cell[0], cell[1], cell[2])]);
+  };
+  MacVelocity out = vel;
+  for (int c = 0; c < 2; ++c) {
+    const int d = 1 - c;  // the other horizontal component
+    for_each_face(spec, c, [&](int i, int j, int k, std::size_t id) {
+      int lo[3], hi[3];
+      face_cells(spec, c, i, j, k, lo, hi);
+      const double weight = 0.5 * (wall(lo) + wall(hi));
+      if (weight == 0.0) return;
+      // Component d at the face: the mean of the d-faces below and above both cells along d.
+      double m = 0.0;
+      for (const int* cell : {lo, hi})
+        for (int side = 0; side < 2; ++side) {
+          int f[3] = {cell[0], cell[1], cell[2]};
+          f[d] += side;
+          m += vel.component(d)[face_index(spec, d, f[0], f[1], f[2])];
+        }
+      m *= 0.25;
+      const double q = vel.component(c)[id];
+      const double speed = std::sqrt(q * q + m * m);
+      out.component(c)[id] = float(q / (1.0 + dt * drag_coefficient * weight * speed / spec.h));
+    });
+  }
+  return out;
 }
 
 }  // namespace fw::fluid::reference

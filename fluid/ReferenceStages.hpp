@@ -18,6 +18,7 @@
 #include <vector>
 
 #include "fluid/GridSpec.hpp"
+#include "fluid/InflowState.hpp"
 #include "fluid/MacVelocity.hpp"
 #include "fluid/PressureLevels.hpp"
 #include "kernels/shared_types.h"
@@ -77,6 +78,30 @@ MacVelocity canopy_drag(const GridSpec& spec, const MacVelocity& vel, const std:
 /// One explicit step of q += dt * nu * laplacian(q), with the ghost rules of fetch().
 MacVelocity diffuse(const GridSpec& spec, const InflowState& inflow, const MacVelocity& vel, double nu,
                     double dt);
+
+/// Smagorinsky eddy viscosity (fluid/SubgridStress.hpp), m^2/s, one float a cell (x fastest):
+/// min((C_s h)^2 |S|, cap) with |S| = sqrt(2 S_ij S_ij) from central differences of the cell-centred
+/// velocities (one-sided at a non-periodic edge, wrapping across a periodic axis); 0 in solid cells.
+/// `solid`: one byte a cell, non-zero = solid, or empty. Throws std::invalid_argument for a wrong size.
+std::vector<float> eddy_viscosity(const GridSpec& spec, const std::vector<std::uint8_t>& solid,
+                                  const MacVelocity& vel, double smagorinsky_constant, double cap);
+
+/// One explicit step of the eddy diffusion in flux form, q += dt div(nu grad q) (fluid/SubgridStress.hpp):
+/// q += dt / h^2 * sum over the six neighbours of (nu_face + nu_face_nb) / 2 * (q_nb - q), nu_face the mean
+/// of `nu_t` (one float a cell, m^2/s) over the two cells sharing a face (wrapped across a periodic axis,
+/// clamped into the grid elsewhere, also for a neighbour outside the array), the neighbours through
+/// fetch()'s ghost rules. With wall_slip, a u or v face whose neighbour below touches a solid cell exchanges
+/// nothing with it (the wall stress replaces that flux). Throws std::invalid_argument for wrong sizes.
+MacVelocity diffuse_eddy(const GridSpec& spec, const std::vector<std::uint8_t>& solid,
+                         const InflowState& inflow, const MacVelocity& vel, const std::vector<float>& nu_t,
+                         double dt, bool wall_slip);
+
+/// Implicit log-law wall stress (fluid/SubgridStress.hpp): u and v faces become
+/// q / (1 + dt C_w weight |U| / h), weight the mean of fluid::wall_cells over the two cells sharing the face
+/// (cells found as in diffuse_eddy), |U| the horizontal speed with the other horizontal component averaged
+/// from the four faces of those two cells, all from the old velocity; w is copied. drag_coefficient: C_w.
+MacVelocity wall_stress(const GridSpec& spec, const std::vector<std::uint8_t>& solid, const MacVelocity& vel,
+                        double drag_coefficient, double dt);
 
 /// Imposes prescribed face velocities: inflow faces get the profile, walls and faces touching a solid get 0,
 /// periodic faces copy the low face to the high one. Faces open to the pressure solve are left alone.

@@ -48,9 +48,58 @@ FW_INLINE float face_offset(int c, int a) {
   return c == a ? 0.0f : 0.5f;
 }
 
+/* Component c of the inflow turbulence at world position (x, y, z), m/s per unit sigma: the box after the
+ * profile in `inflow` (interleaved u v w per point, x fastest), trilinear and periodic on every axis.
+ * Mirrors fluid/TurbulenceBox.cpp sample(). */
+FW_INLINE float turbulence_box_sample(const FwGrid* g, const FwStep* s, __global const float* inflow, int c,
+                                      float x, float y, float z) {
+  __global const float* box = inflow + g->nz;
+  const float p[3] = {(x - s->turbulence_offset[0]) / s->turbulence_spacing,
+                      (y - s->turbulence_offset[1]) / s->turbulence_spacing,
+                      (z - s->turbulence_offset[2]) / s->turbulence_spacing};
+  int lo[3], hi[3];
+  float t[3];
+  for (int a = 0; a < 3; ++a) {
+    const int n = s->turbulence_cells[a];
+    const float wrapped = p[a] - (float)n * floor(p[a] / (float)n); /* [0, n], n only by rounding */
+    const float f = floor(wrapped);
+    t[a] = wrapped - f;
+    lo[a] = min((int)f, n - 1);
+    hi[a] = lo[a] + 1 == n ? 0 : lo[a] + 1;
+  }
+  const int sx = 3, sy = 3 * s->turbulence_cells[0], sz = sy * s->turbulence_cells[1];
+  const int x0 = sx * lo[0], x1 = sx * hi[0], y0 = sy * lo[1], y1 = sy * hi[1], z0 = sz * lo[2],
+            z1 = sz * hi[2];
+  const float c00 = mix(box[c + x0 + y0 + z0], box[c + x1 + y0 + z0], t[0]);
+  const float c10 = mix(box[c + x0 + y1 + z0], box[c + x1 + y1 + z0], t[0]);
+  const float c01 = mix(box[c + x0 + y0 + z1], box[c + x1 + y0 + z1], t[0]);
+  const float c11 = mix(box[c + x0 + y1 + z1], box[c + x1 + y1 + z1], t[0]);
+  return mix(mix(c00, c10, t[1]), mix(c01, c11, t[1]), t[2]);
+}
+
+/* The prescribed value of component c at inflow face index (i,j,k) (inside the array or a ghost): the
+ * ambient profile at the height index `level`, plus, when on, the turbulence at the face's world position,
+ * its sigma tapered to 0 where the mean wind is (below z0 + d of a log law, in a canopy's displacement
+ * layer). `inflow` holds the nz profile factors, then the turbulence box. Mirrors
+ * fluid::InflowState::value(). */
+FW_INLINE float inflow_face_value(const FwGrid* g, const FwStep* s, __global const float* inflow, int c,
+                                  int i, int j, int k, int level) {
+  const float shape = inflow[clamp(level, 0, g->nz - 1)];
+  float value = s->ambient[c] * shape;
+  if (s->turbulence_sigma != 0.0f) {
+    const float x = g->origin[0] + g->h * ((float)i + face_offset(c, 0));
+    const float y = g->origin[1] + g->h * ((float)j + face_offset(c, 1));
+    const float z = g->origin[2] + g->h * ((float)k + face_offset(c, 2));
+    const float taper = clamp(shape / FW_TURBULENCE_FULL_SHAPE, 0.0f, 1.0f);
+    value += s->turbulence_sigma * taper * turbulence_box_sample(g, s, inflow, c, x, y, z);
+  }
+  return value;
+}
+
 /* Value of component c at face index (i,j,k), which may lie outside the array. Periodic axes wrap; an inflow
- * face gives the ambient profile; a no-slip wall mirrors tangential components with a flipped sign (zero at
- * the wall); other walls and outflow repeat the edge value. Mirrors fluid/ReferenceStages.cpp fetch(). */
+ * face gives the ambient profile (and the inflow turbulence); a no-slip wall mirrors tangential components
+ * with a flipped sign (zero at the wall); other walls and outflow repeat the edge value. `profile` is the
+ * inflow buffer of inflow_face_value. Mirrors fluid/ReferenceStages.cpp fetch(). */
 FW_INLINE float fetch_face(__global const float* q, int c, int i, int j, int k, const FwGrid* g,
                            const FwStep* s, __global const float* profile) {
   int idx[3] = {i, j, k};
@@ -65,7 +114,7 @@ FW_INLINE float fetch_face(__global const float* q, int c, int i, int j, int k, 
       idx[a] = ((idx[a] % n) + n) % n;
       continue;
     }
-    if (bc == FW_BC_INFLOW) return s->ambient[c] * profile[clamp(idx[2], 0, g->nz - 1)];
+    if (bc == FW_BC_INFLOW) return inflow_face_value(g, s, profile, c, i, j, k, idx[2]);
     if (bc == FW_BC_NO_SLIP && a != c) {
       idx[a] = low ? (-1 - idx[a]) : (2 * ext - 1 - idx[a]);
       sign = -sign;
@@ -73,6 +122,30 @@ FW_INLINE float fetch_face(__global const float* q, int c, int i, int j, int k, 
     idx[a] = clamp(idx[a], 0, ext - 1);
   }
   return sign * q[face_index(g, c, idx[0], idx[1], idx[2])];
+}
+
+/* Component c of the MAC velocity at X (cell units, world = origin + h X), for point samples (trees,
+ * probes): trilinear on the component's own staggered lattice, the position clamped to that lattice
+ * (constant beyond the outermost faces). */
+FW_INLINE float sample_mac_component(const FwGrid* g, __global const float* q, int c, const float X[3]) {
+  int lo[3], hi[3];
+  float t[3];
+  for (int a = 0; a < 3; ++a) {
+    const int extent = face_extent(g, c, a);
+    const float x = clamp(X[a] - face_offset(c, a), 0.0f, (float)(extent - 1));
+    lo[a] = min((int)x, extent - 1);
+    hi[a] = min(lo[a] + 1, extent - 1);
+    t[a] = x - (float)lo[a];
+  }
+  const float c00 =
+      mix(q[face_index(g, c, lo[0], lo[1], lo[2])], q[face_index(g, c, hi[0], lo[1], lo[2])], t[0]);
+  const float c10 =
+      mix(q[face_index(g, c, lo[0], hi[1], lo[2])], q[face_index(g, c, hi[0], hi[1], lo[2])], t[0]);
+  const float c01 =
+      mix(q[face_index(g, c, lo[0], lo[1], hi[2])], q[face_index(g, c, hi[0], lo[1], hi[2])], t[0]);
+  const float c11 =
+      mix(q[face_index(g, c, lo[0], hi[1], hi[2])], q[face_index(g, c, hi[0], hi[1], hi[2])], t[0]);
+  return mix(mix(c00, c10, t[1]), mix(c01, c11, t[1]), t[2]);
 }
 
 /* Index along its own axis of face (i,j,k) of component c. */

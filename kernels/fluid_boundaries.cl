@@ -2,12 +2,12 @@
 #include "common.cl"
 
 /* Faces open in the pressure mask are left to the projection. Every other face gets its prescribed value:
- * the ambient profile on inflow faces beside a fluid cell, 0 on walls and on faces touching a solid.
- * The high face of a periodic axis repeats the low one (computed from the low face's inputs, not its
- * output, so no work-item reads what another writes). */
+ * the ambient profile (and the inflow turbulence) on inflow faces beside a fluid cell, 0 on walls and on
+ * faces touching a solid. The high face of a periodic axis repeats the low one (computed from the low face's
+ * inputs, not its output, so no work-item reads what another writes). */
 /* The prescribed value of one face with the general rules, or its current value if it is open. */
-FW_INLINE float boundary_face(const FwGrid* g, int c, __global const uchar* mask, __global const float* q,
-                              float inflow_value, int i, int j, int k) {
+FW_INLINE float boundary_face(const FwGrid* g, const FwStep* s, int c, __global const uchar* mask,
+                              __global const float* q, __global const float* inflow, int i, int j, int k) {
   const int own = own_index(c, i, j, k);
   const int n = axis_cells(g, c);
   const int periodic = g->bc[2 * c] == FW_BC_PERIODIC;
@@ -20,25 +20,24 @@ FW_INLINE float boundary_face(const FwGrid* g, int c, __global const uchar* mask
   if ((own == 0 || own == n) && !periodic) {
     const int face = 2 * c + (own == 0 ? 0 : 1);
     const int fluid = mask[face_cell(g, c, i, j, k)] & FW_MASK_FLUID;
-    if (g->bc[face] == FW_BC_INFLOW && fluid) return inflow_value;
+    if (g->bc[face] == FW_BC_INFLOW && fluid) return inflow_face_value(g, s, inflow, c, i, j, k, k);
   }
   return 0.0f;
 }
 
-__kernel void enforce_boundaries(const FwGrid g, const FwStep s, __global const float* profile, const int c,
+__kernel void enforce_boundaries(const FwGrid g, const FwStep s, __global const float* inflow, const int c,
                                  __global const uchar* mask, __global float* q) {
   const int j = get_global_id(1), k = get_global_id(2);
   const int begin = FW_ROW_BEGIN, end = FW_ROW_END(face_extent(&g, c, 0));
-  const float inflow_value = s.ambient[c] * profile[min(k, g.nz - 1)];
   const int sc = cell_stride(&g, c), bit = 2 * c + 1;
   int lo, hi;
   interior_face_span(&g, c, j, k, begin, end, &lo, &hi);
   for (int i = begin; i < lo; ++i)
-    q[face_index(&g, c, i, j, k)] = boundary_face(&g, c, mask, q, inflow_value, i, j, k);
+    q[face_index(&g, c, i, j, k)] = boundary_face(&g, &s, c, mask, q, inflow, i, j, k);
   for (int i = lo; i < hi; ++i) { /* interior: closed faces touch a solid and carry its zero velocity */
     const int id = face_index(&g, c, i, j, k);
     q[id] = ((mask[cell_index(&g, i, j, k) - sc] >> bit) & 1) ? q[id] : 0.0f;
   }
   for (int i = hi; i < end; ++i)
-    q[face_index(&g, c, i, j, k)] = boundary_face(&g, c, mask, q, inflow_value, i, j, k);
+    q[face_index(&g, c, i, j, k)] = boundary_face(&g, &s, c, mask, q, inflow, i, j, k);
 }

@@ -41,7 +41,7 @@ packages=(
   # OpenCL: headers, C++ bindings, ICD loader, PoCL (the CPU implementation CI runs on), clinfo
   opencl-headers opencl-clhpp-headers ocl-icd-opencl-dev pocl-opencl-icd clinfo
   # numerics
-  libeigen3-dev libspectra-dev libglm-dev libmuparser-dev
+  libeigen3-dev libspectra-dev libglm-dev libmuparser-dev libfftw3-dev
   # output: VTK for ParaView, OpenVDB for Houdini/Blender (its CMake module needs boost-iostreams)
   libvtk9-dev libopenvdb-dev libboost-iostreams-dev
   # command line, config, logging, tests

@@ -8,12 +8,30 @@
 #include <string>
 #include <utility>
 
+#include "fluid/SubgridStress.hpp"
+
 namespace fw::host {
 namespace {
 constexpr int kPad = 2;  // FW_PAD in kernels/common.cl
 // Advection is compute-bound: each work-item advects FW_LANES = 8 faces in float8 (kernels/fluid_advect.cl).
 constexpr int kAdvectLanes = 8;
 }  // namespace
+
+std::vector<float> inflow_buffer_values(const fluid::InflowState& inflow) {
+  std::vector<float> values = inflow.profile;
+  if (inflow.turbulence)  // whatever sigma is now: it may be raised later
+    values.insert(values.end(), inflow.turbulence->values().begin(), inflow.turbulence->values().end());
+  return values;
+}
+
+void set_step_turbulence(FwStep& step, const fluid::InflowState& inflow) {
+  step.turbulence_sigma = inflow.turbulent() ? inflow.turbulence_sigma : 0.0f;
+  for (int a = 0; a < 3; ++a) {
+    step.turbulence_offset[a] = inflow.turbulence_offset[a];
+    step.turbulence_cells[a] = inflow.turbulence ? inflow.turbulence->cells()[a] : 1;
+  }
+  step.turbulence_spacing = inflow.turbulence ? static_cast<float>(inflow.turbulence->spacing()) : 1.0f;
+}
 
 FluidStages::FluidStages(ComputeContext& cc, const fluid::GridSpec& spec)
     : cc_(cc), spec_(spec), grid_(spec.to_device()) {
@@ -143,6 +161,65 @@ void FluidStages::enqueue_canopy_drag(cl::Buffer& drag_density, const CellBox& b
         .enqueue(cc_, cc_.rows(count.s[0], count.s[1], count.s[2]));
   }
   for (int c = 0; c < 3; ++c) {
+    const auto [first, count] = face_box(c);
+    copy_face_box_.set_args(grid_, c, first, count, scratch.component(c), vel.component(c))
+        .enqueue(cc_, cc_.rows(count.s[0], count.s[1], count.s[2]));
+  }
+}
+
+void FluidStages::build_subgrid_kernels() {
+  if (subgrid_built_) return;
+  cl::Program program = cc_.build("subgrid_stress.cl");
+  eddy_viscosity_ = Kernel(program, "eddy_viscosity");
+  for (int c = 0; c < 3; ++c) diffuse_eddy_[c] = Kernel(program, std::string("diffuse_eddy_") + "uvw"[c]);
+  wall_stress_[0] = Kernel(program, "wall_stress_u");
+  wall_stress_[1] = Kernel(program, "wall_stress_v");
+  subgrid_built_ = true;
+}
+
+void FluidStages::enqueue_eddy_viscosity(float smagorinsky_constant, float cap, cl::Buffer& mask,
+                                         DeviceVelocity& padded, cl::Buffer& nu_t) {
+  build_subgrid_kernels();
+  const float cs_h = smagorinsky_constant * static_cast<float>(spec_.h);
+  eddy_viscosity_.set_args(grid_, cs_h * cs_h, cap, mask, padded.u, padded.v, padded.w, nu_t)
+      .enqueue(cc_, cc_.rows(spec_.nx, spec_.ny, spec_.nz));
+}
+
+void FluidStages::enqueue_diffuse_eddy(int c, bool wall_slip, cl::Buffer& mask, cl::Buffer& nu_t,
+                                       cl::Buffer& padded_q, cl::Buffer& out) {
+  build_subgrid_kernels();
+  diffuse_eddy_[c]
+      .set_args(grid_, step_, int(wall_slip), mask, nu_t, padded_q, out)
+      .enqueue(cc_, component_rows(c));
+}
+
+void FluidStages::enqueue_wall_stress(float drag_coefficient, const CellBox& walls, cl::Buffer& mask,
+                                      DeviceVelocity& vel, DeviceVelocity& scratch) {
+  if (walls.empty()) return;
+  build_subgrid_kernels();
+  // Faces of component c next to the wall cells: one more along c. Across a periodic axis the face at the
+  // seam belongs to the last and the first cell, so there the box spans the whole axis.
+  auto face_box = [&](int c) {
+    cl_int4 first{}, count{};
+    for (int a = 0; a < 3; ++a) {
+      const int n = a == 0 ? spec_.nx : (a == 1 ? spec_.ny : spec_.nz);
+      const bool whole = spec_.periodic(a);
+      first.s[a] = whole ? 0 : walls.first[a];
+      count.s[a] = (whole ? n : walls.count[a]) + (a == c ? 1 : 0);
+    }
+    return std::pair{first, count};
+  };
+  const float drag_per_length = drag_coefficient / static_cast<float>(spec_.h);
+  const int ground_wall = fluid::ground_is_wall(spec_) ? 1 : 0;
+  // Out of place: each component's |U| needs the other one before the stress touched it.
+  for (int c = 0; c < 2; ++c) {
+    const auto [first, count] = face_box(c);
+    wall_stress_[c]
+        .set_args(grid_, step_, first, count, drag_per_length, ground_wall, mask, vel.u, vel.v,
+                  scratch.component(c))
+        .enqueue(cc_, cc_.rows(count.s[0], count.s[1], count.s[2]));
+  }
+  for (int c = 0; c < 2; ++c) {
     const auto [first, count] = face_box(c);
     copy_face_box_.set_args(grid_, c, first, count, scratch.component(c), vel.component(c))
         .enqueue(cc_, cc_.rows(count.s[0], count.s[1], count.s[2]));

@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "fluid/GridSpec.hpp"
+#include "fluid/InflowState.hpp"
 #include "host/runtime/ComputeContext.hpp"
 #include "kernels/shared_types.h"
 
@@ -35,13 +36,20 @@ struct CellBox {
 /// all are zero. Throws std::invalid_argument when the size is not spec.cell_count().
 CellBox nonzero_cell_box(const fluid::GridSpec& spec, const std::vector<float>& values);
 
+/// The kernels' `inflow` buffer (kernels/common.cl inflow_face_value): the nz profile factors, then, when
+/// there is a turbulence box (at any sigma, 0 included), its values (3 floats a point).
+std::vector<float> inflow_buffer_values(const fluid::InflowState& inflow);
+/// FwStep's turbulence fields from `inflow`: sigma 0 (off) unless inflow.turbulent().
+void set_step_turbulence(FwStep& step, const fluid::InflowState& inflow);
+
 class FluidStages {
  public:
   FluidStages(ComputeContext& cc, const fluid::GridSpec& spec);
 
-  /// What each step passes: dt, time and the ambient wind (FwStep), and the inflow profile (nz floats).
+  /// What each step passes: dt, time, the ambient wind and the inflow turbulence (FwStep), and the inflow
+  /// buffer (inflow_buffer_values: the profile's nz floats, then the turbulence box).
   void set_step(const FwStep& step) { step_ = step; }
-  void set_profile(cl::Buffer profile) { profile_ = std::move(profile); }
+  void set_profile(cl::Buffer inflow) { profile_ = std::move(inflow); }
   const FwStep& step() const { return step_; }
 
   DeviceVelocity allocate_velocity();
@@ -66,6 +74,21 @@ class FluidStages {
   /// non-zero k (nonzero_cell_box): only the faces of those cells are touched, through `scratch`.
   void enqueue_canopy_drag(cl::Buffer& drag_density, const CellBox& box, DeviceVelocity& vel,
                            DeviceVelocity& scratch);
+  /// Smagorinsky eddy viscosity (fluid/SubgridStress.hpp) into nu_t (one float a cell, m^2/s):
+  /// min((C_s h)^2 |S|, cap), 0 in the solid cells of the pressure mask. Reads the padded velocity
+  /// (enqueue_pad first). cap: fluid::eddy_viscosity_cap(h, step().dt).
+  void enqueue_eddy_viscosity(float smagorinsky_constant, float cap, cl::Buffer& mask, DeviceVelocity& padded,
+                              cl::Buffer& nu_t);
+  /// out = q + step().dt div(nu grad q) for component c in flux form (fluid::reference::diffuse_eddy), read
+  /// from its padded copy padded_q (the ghost rules of enqueue_diffuse); out may be the unpadded component
+  /// itself. wall_slip: no flux from a u or v face into the face below it when that one touches a solid.
+  void enqueue_diffuse_eddy(int c, bool wall_slip, cl::Buffer& mask, cl::Buffer& nu_t, cl::Buffer& padded_q,
+                            cl::Buffer& out);
+  /// u, v <- the implicit log-law wall stress over step().dt, q / (1 + dt C_w weight |U| / h) (see
+  /// fluid::reference::wall_stress; drag_coefficient: C_w). `walls` must hold every wall cell
+  /// (nonzero_cell_box of fluid::wall_cells); only their faces are touched, through `scratch`.
+  void enqueue_wall_stress(float drag_coefficient, const CellBox& walls, cl::Buffer& mask,
+                           DeviceVelocity& vel, DeviceVelocity& scratch);
   void enqueue_enforce_boundaries(int c, cl::Buffer& mask, cl::Buffer& q);
   void enqueue_divergence_rhs(cl::Buffer& mask, DeviceVelocity& vel, cl::Buffer& b);
   void enqueue_subtract_gradient(int c, cl::Buffer& mask, cl::Buffer& phi, cl::Buffer& q);
@@ -80,6 +103,7 @@ class FluidStages {
 
  private:
   double max_partials(std::size_t count);
+  void build_subgrid_kernels();  // on first use: a run without the subgrid or wall stage never builds them
 
   ComputeContext& cc_;
   fluid::GridSpec spec_;
@@ -89,6 +113,8 @@ class FluidStages {
   std::vector<float> partial_host_;
   Kernel pad_, advect_[3], maccormack_[3], forces_, vorticity_, confinement_, diffuse_, boundaries_,
       divergence_, max_div_, gradient_, max_abs_, canopy_drag_[3], copy_face_box_;
+  Kernel eddy_viscosity_, diffuse_eddy_[3], wall_stress_[2];
+  bool subgrid_built_ = false;
 };
 
 }  // namespace fw::host

@@ -2,9 +2,12 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <stdexcept>
+
+#include "fluid/SubgridStress.hpp"
 
 namespace fw::host {
 namespace {
@@ -17,11 +20,21 @@ WindGridSetup validated(ComputeContext& cc, WindGridSetup setup) {
   if (!setup.solid.empty() && setup.solid.size() != setup.spec.cell_count())
     throw std::invalid_argument(fmt::format("WindGrid: solid map has {} cells, the grid {}",
                                             setup.solid.size(), setup.spec.cell_count()));
+  const double z0 = setup.settings.wall_roughness_length;
+  if (z0 > 0.0 && !(z0 < 0.5 * setup.spec.h))  // the log law needs the first cell's centre above z0
+    throw std::invalid_argument(fmt::format(
+        "WindGrid: wall_roughness_length must be below h/2 = {} m (the first cell centre's height), got {} m",
+        0.5 * setup.spec.h, z0));
+  if (!(std::isfinite(setup.forcing.relaxation_time) && setup.forcing.relaxation_time >= 0.0))
+    throw std::invalid_argument(fmt::format("WindGrid: the mean forcing's relaxation time must be >= 0 s, got {}",
+                                            setup.forcing.relaxation_time));
   for (const FwGust& g : setup.gusts)
     if (!(g.duration > 0.0f) || !(g.radius > 0.0f))
       throw std::invalid_argument("WindGrid: a gust needs a positive duration and radius");
+  const std::size_t box_bytes = setup.turbulence ? setup.turbulence->values().size() * sizeof(float) : 0;
   WindGrid::check_fits_device(
-      setup.spec, WindGrid::estimate_device_bytes(setup.spec, setup.settings, cc.row_chunk()), cc.device());
+      setup.spec, WindGrid::estimate_device_bytes(setup.spec, setup.settings, cc.row_chunk()) + box_bytes,
+      cc.device());
   return setup;
 }
 
@@ -40,6 +53,7 @@ std::size_t WindGrid::estimate_device_bytes(const fluid::GridSpec& spec, const f
   const std::size_t padded = std::size_t(spec.nx + 5) * (spec.ny + 5) * (spec.nz + 5) * 3;
   std::size_t bytes = ((maccormack ? 3 : 2) * faces + (maccormack ? 2 : 1) * padded) * sizeof(float);
   if (settings.vorticity_confinement > 0.0) bytes += spec.cell_count() * 4 * sizeof(float);
+  if (settings.smagorinsky_constant > 0.0) bytes += spec.cell_count() * sizeof(float);  // nu_t
   // Pressure hierarchy: about 1/7 extra for the coarse levels of a 3D grid.
   const std::size_t cells = spec.cell_count();
   const std::size_t levels = cells + cells / 7 + 64;
@@ -77,6 +91,12 @@ WindGrid::WindGrid(ComputeContext& cc, WindGridSetup setup)
   }
   if (setup_.settings.vorticity_confinement > 0.0)
     omega_ = cc_.buffer(setup_.spec.cell_count() * 4 * sizeof(float));
+  if (subgrid_enabled()) eddy_viscosity_ = cc_.buffer(setup_.spec.cell_count() * sizeof(float));
+  if (wall_stress_enabled()) {
+    wall_drag_coefficient_ =
+        fluid::wall_drag_coefficient(setup_.spec.h, setup_.settings.wall_roughness_length);
+    wall_box_ = nonzero_cell_box(setup_.spec, fluid::wall_cells(setup_.spec, setup_.solid));
+  }
   if (!setup_.gusts.empty()) {
     gusts_ = cc_.buffer(setup_.gusts.size() * sizeof(FwGust));
     cc_.queue().enqueueWriteBuffer(gusts_, CL_TRUE, 0, setup_.gusts.size() * sizeof(FwGust),
@@ -84,25 +104,79 @@ WindGrid::WindGrid(ComputeContext& cc, WindGridSetup setup)
   } else {
     gusts_ = cc_.buffer(sizeof(FwGust));
   }
-  const auto shape = setup_.profile.sample_cell_centres(setup_.spec.nz, setup_.spec.h);
-  profile_ = cc_.buffer(shape.size() * sizeof(float));
-  cc_.queue().enqueueWriteBuffer(profile_, CL_TRUE, 0, shape.size() * sizeof(float), shape.data());
+  const auto inflow = inflow_buffer_values(inflow_state());
+  profile_ = cc_.buffer(inflow.size() * sizeof(float));
+  cc_.queue().enqueueWriteBuffer(profile_, CL_TRUE, 0, inflow.size() * sizeof(float), inflow.data());
   stages_.set_profile(profile_);
   set_ambient(setup_.ambient);
 }
 
+void WindGrid::upload_step_inflow() {
+  FwStep s = stages_.step();
+  const fluid::InflowState inflow = inflow_state();
+  for (int a = 0; a < 3; ++a) s.ambient[a] = inflow.ambient[a];
+  set_step_turbulence(s, inflow);
+  stages_.set_step(s);
+}
+
 void WindGrid::set_ambient(const std::array<double, 3>& ambient) {
   setup_.ambient = ambient;
-  FwStep s = stages_.step();
-  for (int a = 0; a < 3; ++a) s.ambient[a] = static_cast<float>(ambient[a]);
-  stages_.set_step(s);
+  upload_step_inflow();
+}
+
+void WindGrid::set_turbulence_sigma(double sigma) {
+  if (!(std::isfinite(sigma) && sigma >= 0.0))
+    throw std::invalid_argument(fmt::format("WindGrid: turbulence sigma must be >= 0 m/s, got {}", sigma));
+  turbulence_sigma_ = sigma;
+  upload_step_inflow();
 }
 
 fluid::InflowState WindGrid::inflow_state() const {
   fluid::InflowState state;
   for (int a = 0; a < 3; ++a) state.ambient[a] = static_cast<float>(setup_.ambient[a]);
   state.profile = setup_.profile.sample_cell_centres(setup_.spec.nz, setup_.spec.h);
+  state.turbulence = setup_.turbulence;
+  state.turbulence_sigma = static_cast<float>(turbulence_sigma_);
+  for (int a = 0; a < 3; ++a) state.turbulence_offset[a] = static_cast<float>(turbulence_offset_[a]);
   return state;
+}
+
+std::array<double, 2> WindGrid::reference_layer_mean() {
+  const auto& spec = setup_.spec;
+  // Cell-centre layers k0 and k0 + 1 around the reference height, weight t on the upper one.
+  const double level = std::clamp(setup_.profile.reference_height / spec.h - 0.5, 0.0, spec.nz - 1.0);
+  const int k0 = std::min(static_cast<int>(level), spec.nz - 1), k1 = std::min(k0 + 1, spec.nz - 1);
+  const double t = level - k0;
+  std::array<double, 2> mean{0, 0};
+  for (int c = 0; c < 2; ++c) {
+    const std::size_t ex = spec.nx + (c == 0), ey = spec.ny + (c == 1), layer = ex * ey;
+    // The faces that are distinct (a periodic axis' last face repeats its first).
+    const std::size_t nx = c == 0 && spec.periodic(0) ? spec.nx : ex, ny = c == 1 && spec.periodic(1) ? spec.ny : ey;
+    std::vector<float> rows(2 * layer);
+    cc_.queue().enqueueReadBuffer(vel_.component(c), CL_FALSE, layer * k0 * sizeof(float), layer * sizeof(float),
+                                  rows.data());
+    cc_.queue().enqueueReadBuffer(vel_.component(c), CL_TRUE, layer * k1 * sizeof(float), layer * sizeof(float),
+                                  rows.data() + layer);
+    double lower = 0.0, upper = 0.0;
+    for (std::size_t j = 0; j < ny; ++j)
+      for (std::size_t i = 0; i < nx; ++i) {
+        lower += rows[i + ex * j];
+        upper += rows[layer + i + ex * j];
+      }
+    mean[c] = ((1.0 - t) * lower + t * upper) / double(nx * ny);
+  }
+  return mean;
+}
+
+void WindGrid::update_mean_forcing(double dt) {
+  const double tau = setup_.forcing.relaxation_time;
+  if (!(tau > 0.0)) return;
+  const auto mean = reference_layer_mean();
+  for (int c = 0; c < 2; ++c) {
+    const double error = setup_.ambient[c] - mean[c];
+    forcing_integral_[c] += error * dt;
+    forcing_acceleration_[c] = error / tau + forcing_integral_[c] / (tau * tau);
+  }
 }
 
 template <typename F>
@@ -122,6 +196,7 @@ void WindGrid::initialise_ambient() {
   const auto& spec = setup_.spec;
   const auto inflow = inflow_state();
   fluid::MacVelocity vel(spec);
+  // The profile, and the turbulence where there is some, on every face: a turbulent run starts developed.
   for (int c = 0; c < 3; ++c) {
     const int ex = spec.nx + (c == 0), ey = spec.ny + (c == 1), ez = spec.nz + (c == 2);
     auto& q = vel.component(c);
@@ -129,7 +204,7 @@ void WindGrid::initialise_ambient() {
       for (int j = 0; j < ey; ++j)
         for (int i = 0; i < ex; ++i)
           q[std::size_t(i) + std::size_t(ex) * (j + std::size_t(ey) * k)] =
-              inflow.ambient[c] * inflow.profile[std::min(k, spec.nz - 1)];
+              static_cast<float>(inflow.value(spec, c, i, j, k, k));
   }
   upload_velocity(vel);
   enforce_boundaries();
@@ -156,11 +231,13 @@ void WindGrid::advect(float dt) {
 
 void WindGrid::apply_forces() {
   const auto& st = setup_.settings;
-  const bool body = st.body_force[0] != 0.0 || st.body_force[1] != 0.0 || st.body_force[2] != 0.0;
-  if (body || !setup_.gusts.empty())
+  std::array<double, 3> body = st.body_force;
+  for (int c = 0; c < 2; ++c) body[c] += forcing_acceleration_[c];
+  const bool any_body = body[0] != 0.0 || body[1] != 0.0 || body[2] != 0.0;
+  if (any_body || !setup_.gusts.empty())
     for (int c = 0; c < 3; ++c)
-      stages_.enqueue_apply_forces(c, static_cast<float>(st.body_force[c]), gusts_,
-                                   static_cast<int>(setup_.gusts.size()), vel_.component(c));
+      stages_.enqueue_apply_forces(c, static_cast<float>(body[c]), gusts_, static_cast<int>(setup_.gusts.size()),
+                                   vel_.component(c));
   if (st.vorticity_confinement > 0.0) {
     stages_.enqueue_vorticity(vel_, omega_);
     for (int c = 0; c < 3; ++c)
@@ -195,6 +272,23 @@ void WindGrid::set_canopy(std::vector<float> drag_density) {
 
 void WindGrid::apply_canopy_drag() {
   stages_.enqueue_canopy_drag(canopy_, canopy_box_, vel_, tmp_);
+}
+
+void WindGrid::apply_subgrid_stress(double dt) {
+  // The padded copies are free once advection is done: one pad of the forced velocity feeds both the strain
+  // and the diffusion's ghosts, and the diffusion can then write the faces in place.
+  stages_.enqueue_pad(vel_, padded_);
+  const auto cap = static_cast<float>(fluid::eddy_viscosity_cap(setup_.spec.h, dt));
+  stages_.enqueue_eddy_viscosity(static_cast<float>(setup_.settings.smagorinsky_constant), cap,
+                                 pressure_.mask(), padded_, eddy_viscosity_);
+  for (int c = 0; c < 3; ++c)
+    stages_.enqueue_diffuse_eddy(c, wall_stress_enabled(), pressure_.mask(), eddy_viscosity_,
+                                 padded_.component(c), vel_.component(c));
+}
+
+void WindGrid::apply_wall_stress() {
+  stages_.enqueue_wall_stress(static_cast<float>(wall_drag_coefficient_), wall_box_, pressure_.mask(), vel_,
+                              tmp_);
 }
 
 void WindGrid::enforce_boundaries() {
@@ -235,15 +329,27 @@ WindStepReport WindGrid::step_by(double dt) {
     throw std::invalid_argument(fmt::format("WindGrid: a step needs a finite dt > 0 s, got {}", dt));
   const auto& st = setup_.settings;
   const auto& spec = setup_.spec;
+  if (setup_.turbulence) {
+    // Taylor's hypothesis: the frozen box moves with the ambient wind; the offset stays within one box
+    // length so that float positions keep their resolution over long runs.
+    for (int a = 0; a < 3; ++a) {
+      const double length = setup_.turbulence->cells()[a] * setup_.turbulence->spacing();
+      turbulence_offset_[a] = std::fmod(turbulence_offset_[a] + setup_.ambient[a] * dt, length);
+    }
+  }
+  upload_step_inflow();
   FwStep s = stages_.step();
   s.dt = static_cast<float>(dt);
   s.time = static_cast<float>(time_);
   stages_.set_step(s);
+  update_mean_forcing(dt);
 
   WindStepReport report;
   timed("advect", [&] { advect(static_cast<float>(dt)); });
   timed("forces", [&] { apply_forces(); });
   if (canopy_on_) timed("canopy", [&] { apply_canopy_drag(); });
+  if (subgrid_enabled()) timed("subgrid", [&] { apply_subgrid_stress(dt); });
+  if (wall_stress_enabled()) timed("wall", [&] { apply_wall_stress(); });
   report.viscous_substeps = viscous_substeps(st.viscosity, dt, spec.h);
   if (report.viscous_substeps > 0) {
     timed("viscosity", [&] {

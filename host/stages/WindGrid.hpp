@@ -10,26 +10,40 @@
 //     fw::host::WindStepReport r = wind.step();   // r.pressure.iterations, r.pressure.relative_residual
 //   }
 //
-// A step: (dt from the CFL number if set) -> advect (semi-Lagrangian RK2, or clamped MacCormack) ->
-// body force and gusts -> vorticity confinement -> canopy drag (set_canopy) -> viscosity (explicit,
-// sub-stepped) -> prescribed faces -> divergence -> pressure solve -> subtract the gradient. Everything stays
-// on the device; only the scalars of reductions (residual norms, max speed for the CFL step) come back.
+// A step: (dt from the CFL number if set) -> the inflow turbulence's box travels ambient * dt -> advect
+// (semi-Lagrangian RK2, or clamped MacCormack) -> body force, mean forcing and gusts -> vorticity
+// confinement -> canopy drag (set_canopy) -> Smagorinsky subgrid stress and log-law wall stress (when set)
+// -> viscosity (explicit, sub-stepped) -> prescribed faces (inflow profile + turbulence) -> divergence ->
+// pressure solve -> subtract the gradient. Everything stays on the device; only the scalars of reductions
+// (residual norms, max speed for the CFL step) and, with a mean forcing, two layers of u and v come back.
 #pragma once
 
 #include <array>
 #include <cstdint>
 #include <map>
+#include <memory>
 #include <string>
 #include <vector>
 
 #include "fluid/GridSpec.hpp"
 #include "fluid/InflowProfile.hpp"
+#include "fluid/InflowState.hpp"
 #include "fluid/MacVelocity.hpp"
+#include "fluid/TurbulenceBox.hpp"
 #include "fluid/WindSettings.hpp"
 #include "host/stages/FluidStages.hpp"
 #include "host/stages/PressureSolver.hpp"
 
 namespace fw::host {
+
+/// Holds the horizontal mean wind of the reference-height layer at the ambient wind, for periodic domains
+/// that have no inflow to drive them (canopy LES): a uniform body acceleration a = e / tau + (integral of e
+/// dt) / tau^2 with e = ambient - layer mean. For a flow whose drag responds slowly this PI controller
+/// settles like an oscillator of natural period 2 pi tau and damping ratio 1/2, and its integral part
+/// converges to the mean pressure gradient that balances the drag.
+struct MeanForcing {
+  double relaxation_time = 0.0;  // tau, s; 0: off
+};
 
 struct WindGridSetup {
   fluid::GridSpec spec;
@@ -38,6 +52,10 @@ struct WindGridSetup {
   std::vector<std::uint8_t> solid;         // one byte a cell, non-zero = solid; empty = no solids
   std::vector<FwGust> gusts;               // travelling gust balls
   std::array<double, 3> ambient{0, 0, 0};  // ambient wind at the reference height, m/s
+  /// Unit-sigma synthetic turbulence swept through the inflow faces at the ambient wind (Taylor's frozen
+  /// turbulence) and added to the initial field; null: a laminar inflow. Its sigma is set_turbulence_sigma.
+  std::shared_ptr<const fluid::TurbulenceBox> turbulence;
+  MeanForcing forcing;
 };
 
 struct WindStepReport {
@@ -61,6 +79,13 @@ class WindGrid {
   static void check_fits_device(const fluid::GridSpec& spec, std::size_t bytes, const DeviceInfo& device);
 
   void set_ambient(const std::array<double, 3>& ambient_m_s);
+  /// sigma_u of the inflow turbulence from now on, m/s (finite, >= 0); ignored without a turbulence box.
+  void set_turbulence_sigma(double sigma_m_s);
+  /// The mean forcing's horizontal body acceleration of the last step, m/s^2 (0 when off).
+  std::array<double, 2> forcing_acceleration() const { return forcing_acceleration_; }
+  /// Mean u and v of the layer at the profile's reference height (linear between the two nearest cell
+  /// layers, solid faces counted as 0), m/s. Blocks: reads two layers of u and v back.
+  std::array<double, 2> reference_layer_mean();
   /// Every face set to the ambient profile, then boundaries and one projection.
   void initialise_ambient();
   /// One step of the dt the settings give: fixed, or from the CFL number (which reads max|u| back).
@@ -95,6 +120,12 @@ class WindGrid {
   /// Throws std::invalid_argument for a wrong size or a negative or non-finite value.
   void set_canopy(std::vector<float> drag_density);
   bool canopy_enabled() const { return canopy_on_; }
+  /// The subgrid stage (WindSettings::smagorinsky_constant > 0): Smagorinsky eddy viscosity and its explicit
+  /// diffusion, right after the canopy drag. The wall stage (wall_roughness_length > 0): the implicit
+  /// log-law stress on the wall cells' u and v, after it. Both off by default; when off they enqueue
+  /// nothing and allocate nothing. fluid/SubgridStress.hpp has the numerics.
+  bool subgrid_enabled() const { return setup_.settings.smagorinsky_constant > 0.0; }
+  bool wall_stress_enabled() const { return setup_.settings.wall_roughness_length > 0.0; }
 
   /// When on, each stage ends with a queue finish and its wall time is added to stage_ms() (for benchmarks).
   void set_stage_timing(bool on) { stage_timing_ = on; }
@@ -112,6 +143,10 @@ class WindGrid {
   void apply_forces();
   void enforce_boundaries();
   void apply_canopy_drag();
+  void apply_subgrid_stress(double dt);
+  void apply_wall_stress();
+  void update_mean_forcing(double dt);
+  void upload_step_inflow();
 
   ComputeContext& cc_;
   WindGridSetup setup_;
@@ -120,10 +155,17 @@ class WindGrid {
   DeviceVelocity vel_, tmp_, back_, padded_, padded_forward_;
   cl::Buffer omega_, gusts_, profile_;
   double time_ = 0.0, last_dt_ = 0.0;
+  double turbulence_sigma_ = 0.0;                  // m/s
+  std::array<double, 3> turbulence_offset_{0, 0, 0};  // m, within one box length
+  std::array<double, 2> forcing_integral_{0, 0};      // integral of the error, m
+  std::array<double, 2> forcing_acceleration_{0, 0};  // m/s^2
   long steps_ = 0;
   cl::Buffer canopy_;   // drag density, one float a cell; valid while canopy_on_
   CellBox canopy_box_;  // the cells of non-zero drag density
   bool canopy_on_ = false;
+  cl::Buffer eddy_viscosity_;  // nu_t, one float a cell, m^2/s; valid while subgrid_enabled()
+  CellBox wall_box_;           // the wall cells (fluid::wall_cells); used while wall_stress_enabled()
+  double wall_drag_coefficient_ = 0.0;  // C_w of the log law at the first cell centre
   bool stage_timing_ = false;
   std::map<std::string, double> stage_ms_;
 };

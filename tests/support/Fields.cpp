@@ -97,8 +97,9 @@ fluid::MacVelocity download(host::ComputeContext& cc, host::DeviceVelocity& devi
 }
 
 cl::Buffer upload_profile(host::ComputeContext& cc, const fluid::InflowState& inflow) {
-  cl::Buffer buf = cc.buffer(inflow.profile.size() * sizeof(float));
-  upload(cc, inflow.profile, buf);
+  const std::vector<float> values = host::inflow_buffer_values(inflow);
+  cl::Buffer buf = cc.buffer(values.size() * sizeof(float));
+  upload(cc, values, buf);
   return buf;
 }
 

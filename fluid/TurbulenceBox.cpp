@@ -1,0 +1,224 @@
+#include "fluid/TurbulenceBox.hpp"
+
+#include <fftw3.h>
+#include <fmt/format.h>
+
+#include <cmath>
+#include <complex>
+#include <cstring>
+#include <limits>
+#include <memory>
+#include <mutex>
+#include <numbers>
+#include <random>
+#include <stdexcept>
+#include <type_traits>
+
+namespace fw::fluid {
+
+namespace {
+
+// The smallest even count that leaves a mode that is neither k = 0 nor Nyquist (m = +-1) on the axis.
+constexpr int kMinCells = 4;
+// The wind grid's kernels index buffers with a 32-bit int, and values() holds 3 floats per point.
+constexpr std::size_t kMaxPoints = std::size_t(std::numeric_limits<int>::max()) / 3;
+constexpr int kComponents = 3;
+// Each drawn half-spectrum mode stands for itself and its conjugate partner -k in the full lattice sum.
+constexpr double kPartnerWeight = 2.0;
+
+// FFTW's planner (plan creation and destruction) is not re-entrant.
+std::mutex& planner_mutex() {
+  static std::mutex m;
+  return m;
+}
+
+struct FftwFree {
+  void operator()(void* p) const { fftw_free(p); }
+};
+struct PlanFree {
+  void operator()(fftw_plan p) const {
+    std::lock_guard lock(planner_mutex());
+    fftw_destroy_plan(p);
+  }
+};
+using ComplexBuffer = std::unique_ptr<fftw_complex[], FftwFree>;
+using RealBuffer = std::unique_ptr<double[], FftwFree>;
+
+ComplexBuffer complex_buffer(std::size_t n) {
+  ComplexBuffer b(fftw_alloc_complex(n));
+  if (!b) throw std::bad_alloc();
+  std::memset(b.get(), 0, n * sizeof(fftw_complex));
+  return b;
+}
+
+// The signed wave index m of storage index i on an axis of n points (FFTW's order: 0, 1, ..., -1).
+int signed_index(int i, int n) {
+  return i <= n / 2 ? i : i - n;
+}
+
+}  // namespace
+
+void TurbulenceBoxSpec::validate() const {
+  static constexpr const char* kAxis = "xyz";
+  for (int a = 0; a < kComponents; ++a) {
+    if (cells[a] < kMinCells || cells[a] % 2 != 0)
+      throw std::invalid_argument(fmt::format("TurbulenceBox: cells along {} must be even and >= {}, got {}",
+                                              kAxis[a], kMinCells, cells[a]));
+  }
+  // Each count is < 2^31, so the product of the first two cannot overflow std::size_t.
+  const std::size_t xy = std::size_t(cells[0]) * std::size_t(cells[1]);
+  if (xy > kMaxPoints || xy * std::size_t(cells[2]) > kMaxPoints)
+    throw std::invalid_argument(fmt::format("TurbulenceBox: {} x {} x {} points exceed the limit of {}",
+                                            cells[0], cells[1], cells[2], kMaxPoints));
+  if (!(std::isfinite(spacing) && spacing > 0.0))
+    throw std::invalid_argument(fmt::format("TurbulenceBox: spacing must be > 0 m, got {}", spacing));
+  try {
+    spectrum.validate();
+  } catch (const std::invalid_argument& e) {
+    throw std::invalid_argument(fmt::format("TurbulenceBox: {}", e.what()));
+  }
+  for (int a = 0; a < kComponents; ++a) {
+    if (!(std::isfinite(component_scale[a]) && component_scale[a] >= 0.0))
+      throw std::invalid_argument(fmt::format(
+          "TurbulenceBox: component_scale[{}] must be finite and >= 0, got {}", a, component_scale[a]));
+  }
+}
+
+TurbulenceBox::TurbulenceBox(const TurbulenceBoxSpec& spec) : spec_(spec) {
+  spec_.validate();
+  const int nx = spec_.cells[0], ny = spec_.cells[1], nz = spec_.cells[2];
+  const int hx = nx / 2 + 1;  // x points of the half spectrum (FFTW's r2c/c2r layout)
+  const std::size_t modes = std::size_t(hx) * ny * nz;
+  const std::size_t points = spec_.point_count();
+  const double h = spec_.spacing;
+  constexpr double two_pi = 2.0 * std::numbers::pi;
+  const std::array<double, 3> dk{two_pi / (nx * h), two_pi / (ny * h), two_pi / (nz * h)};
+  const double dK = dk[0] * dk[1] * dk[2];
+
+  std::array<ComplexBuffer, kComponents> u_hat{complex_buffer(modes), complex_buffer(modes),
+                                               complex_buffer(modes)};
+  std::mt19937_64 rng(spec_.seed);
+  std::normal_distribution<double> normal(0.0, 1.0);
+  const double inv_sqrt2 = 1.0 / std::numbers::sqrt2;
+  std::array<double, 3> variance{0.0, 0.0, 0.0};  // V_c, summed over the full lattice
+
+  for (int iz = 0; iz < nz; ++iz) {
+    if (iz == nz / 2) continue;  // Nyquist plane
+    const int mz = signed_index(iz, nz);
+    for (int iy = 0; iy < ny; ++iy) {
+      if (iy == ny / 2) continue;
+      const int my = signed_index(iy, ny);
+      for (int ix = 0; ix < hx - 1; ++ix) {  // ix = nx / 2 is the Nyquist plane
+        // On k_x = 0 only one of each pair (k, -k) is drawn; this also skips k = 0.
+        if (ix == 0 && !(mz > 0 || (mz == 0 && my > 0))) continue;
+        const std::array<double, 3> k{dk[0] * ix, dk[1] * my, dk[2] * mz};
+        const double k2 = k[0] * k[0] + k[1] * k[1] + k[2] * k[2];
+        const double e = spec_.spectrum.energy(std::sqrt(k2));
+        const double amp = std::sqrt(dK * e / (4.0 * std::numbers::pi * k2 * k2));
+        std::array<std::complex<double>, 3> n;
+        for (auto& c : n) {
+          const double re = normal(rng);
+          const double im = normal(rng);
+          c = {re * inv_sqrt2, im * inv_sqrt2};
+        }
+        const std::array<std::complex<double>, 3> kxn{k[1] * n[2] - k[2] * n[1], k[2] * n[0] - k[0] * n[2],
+                                                      k[0] * n[1] - k[1] * n[0]};
+        const std::size_t idx = (std::size_t(iz) * ny + iy) * hx + ix;
+        const std::size_t partner = ix == 0 ? (std::size_t((nz - iz) % nz) * ny + (ny - iy) % ny) * hx : 0;
+        for (int c = 0; c < kComponents; ++c) {
+          const std::complex<double> value = amp * kxn[c];
+          u_hat[c][idx][0] = value.real();
+          u_hat[c][idx][1] = value.imag();
+          if (ix == 0) {
+            u_hat[c][partner][0] = value.real();
+            u_hat[c][partner][1] = -value.imag();
+          }
+          variance[c] += kPartnerWeight * dK * e / (4.0 * std::numbers::pi * k2) * (1.0 - k[c] * k[c] / k2);
+        }
+      }
+    }
+  }
+
+  std::array<double, 3> factor{};
+  for (int c = 0; c < kComponents; ++c) {
+    const double sigma2 = spec_.spectrum.sigma * spec_.spectrum.sigma;
+    if (!(std::isfinite(variance[c]) && variance[c] > 0.0))
+      throw std::invalid_argument(fmt::format(
+          "TurbulenceBox: the {} x {} x {} lattice at {} m holds none of the spectrum with L_u = {} m", nx,
+          ny, nz, h, spec_.spectrum.integral_length));
+    resolved_fraction_[c] = variance[c] / sigma2;
+    factor[c] = spec_.component_scale[c] * spec_.spectrum.sigma / std::sqrt(variance[c]);
+  }
+
+  RealBuffer real(fftw_alloc_real(points));
+  if (!real) throw std::bad_alloc();
+  std::unique_ptr<std::remove_pointer_t<fftw_plan>, PlanFree> plan;
+  {
+    std::lock_guard lock(planner_mutex());
+    // FFTW_ESTIMATE picks the algorithm without timing, so the plan (and the rounding) is the same every run.
+    plan.reset(
+        fftw_plan_dft_c2r_3d(nz, ny, nx, u_hat[0].get(), real.get(), FFTW_ESTIMATE | FFTW_DESTROY_INPUT));
+  }
+  if (!plan) throw std::runtime_error("TurbulenceBox: FFTW could not plan the transform");
+
+  values_.resize(kComponents * points);
+  std::array<double, 3> sum{}, sum2{};
+  for (int c = 0; c < kComponents; ++c) {
+    // fftw_malloc gives every buffer the same alignment, as the new-array execute requires.
+    fftw_execute_dft_c2r(plan.get(), u_hat[c].get(), real.get());
+    u_hat[c].reset();
+    for (std::size_t p = 0; p < points; ++p) {
+      const float v = static_cast<float>(factor[c] * real[p]);
+      values_[kComponents * p + c] = v;
+      sum[c] += v;
+      sum2[c] += double(v) * v;
+    }
+  }
+  for (int c = 0; c < kComponents; ++c) {
+    const double mean = sum[c] / double(points);
+    realised_sigma_[c] = std::sqrt(std::max(0.0, sum2[c] / double(points) - mean * mean));
+  }
+}
+
+std::array<double, 3> TurbulenceBox::period() const {
+  return {spec_.cells[0] * spec_.spacing, spec_.cells[1] * spec_.spacing, spec_.cells[2] * spec_.spacing};
+}
+
+std::array<double, 3> TurbulenceBox::at(int i, int j, int k) const {
+  const auto& n = spec_.cells;
+  if (i < 0 || i >= n[0] || j < 0 || j >= n[1] || k < 0 || k >= n[2])
+    throw std::invalid_argument(
+        fmt::format("TurbulenceBox: point ({}, {}, {}) outside {} x {} x {}", i, j, k, n[0], n[1], n[2]));
+  const std::size_t p = kComponents * (std::size_t(i) + std::size_t(n[0]) * (j + std::size_t(n[1]) * k));
+  return {values_[p], values_[p + 1], values_[p + 2]};
+}
+
+std::array<double, 3> TurbulenceBox::sample(double x, double y, double z) const {
+  if (!(std::isfinite(x) && std::isfinite(y) && std::isfinite(z)))
+    throw std::invalid_argument(fmt::format("TurbulenceBox: cannot sample at ({}, {}, {})", x, y, z));
+  const std::array<double, 3> pos{x, y, z};
+  std::array<std::size_t, 3> lo{}, hi{};
+  std::array<double, 3> t{};
+  for (int a = 0; a < kComponents; ++a) {
+    const double f = pos[a] / spec_.spacing;
+    const double fl = std::floor(f);
+    t[a] = f - fl;
+    const int n = spec_.cells[a];
+    double wrapped = std::fmod(fl, double(n));  // exact for integers, in (-n, n)
+    if (wrapped < 0.0) wrapped += n;
+    lo[a] = std::size_t(wrapped);
+    hi[a] = lo[a] + 1 == std::size_t(n) ? 0 : lo[a] + 1;
+  }
+  const std::size_t nx = spec_.cells[0], nxy = nx * spec_.cells[1];
+  std::array<double, 3> out{0.0, 0.0, 0.0};
+  for (int corner = 0; corner < 8; ++corner) {
+    const bool bx = corner & 1, by = corner & 2, bz = corner & 4;
+    const double w = (bx ? t[0] : 1.0 - t[0]) * (by ? t[1] : 1.0 - t[1]) * (bz ? t[2] : 1.0 - t[2]);
+    const std::size_t p =
+        kComponents * ((bx ? hi[0] : lo[0]) + nx * (by ? hi[1] : lo[1]) + nxy * (bz ? hi[2] : lo[2]));
+    for (int c = 0; c < kComponents; ++c) out[c] += w * values_[p + c];
+  }
+  return out;
+}
+
+}  // namespace fw::fluid

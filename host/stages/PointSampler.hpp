@@ -1,0 +1,39 @@
+// The wind at fixed world points on the device, read back as a few floats: what probes sample every probe
+// interval without copying the grid back (kernels/probe_sample.cl).
+//
+//   fw::host::PointSampler probes(cc, spec, {{40, 120, 10}, {160, 120, 10}});   // m, world frame
+//   std::vector<std::array<float, 3>> wind = probes.sample(grid.velocity());      // m/s, blocks
+//
+// Each point is sampled like a tree's wind sample (trilinear on each component's staggered lattice, clamped
+// to it), so that a probe and a tree at the same place see the same wind.
+#pragma once
+
+#include <array>
+#include <vector>
+
+#include "fluid/GridSpec.hpp"
+#include "host/runtime/ComputeContext.hpp"
+#include "host/stages/FluidStages.hpp"
+
+namespace fw::host {
+
+class PointSampler {
+ public:
+  /// points: world positions, m. Throws std::invalid_argument("PointSampler: ...") for an invalid spec or
+  /// a non-finite position.
+  PointSampler(ComputeContext& cc, const fluid::GridSpec& spec,
+               const std::vector<std::array<double, 3>>& points);
+
+  int point_count() const { return count_; }
+  /// The velocity at every point, m/s, in the constructor's order. Blocks until read back.
+  std::vector<std::array<float, 3>> sample(DeviceVelocity& velocity);
+
+ private:
+  ComputeContext& cc_;
+  FwGrid grid_;
+  int count_ = 0;
+  cl::Buffer positions_, wind_;
+  Kernel kernel_;
+};
+
+}  // namespace fw::host

@@ -1,0 +1,245 @@
+/* The subgrid stress (Smagorinsky eddy viscosity and its explicit diffusion) and the log-law wall stress.
+ * Numerics, units and the stability clamp: fluid/SubgridStress.hpp. Reference: fluid/ReferenceStages.cpp
+ * eddy_viscosity, diffuse_eddy, wall_stress. */
+#include "common.cl"
+
+FW_INLINE int axis_periodic(const FwGrid* g, int a) {
+  return g->bc[2 * a] == FW_BC_PERIODIC;
+}
+
+/* A cell index up to two steps outside an axis of n cells: wrapped on a periodic axis, else the edge cell
+ * (the domain's boundary face belongs to the cell inside). */
+FW_INLINE int wrap_or_clamp(int x, int n, int periodic) {
+  if (n == 1) return 0;
+  if (periodic) return x < 0 ? x + n : (x >= n ? x - n : x);
+  return clamp(x, 0, n - 1);
+}
+
+/* Where a derivative along an axis of n cells looks at index x: one cell up (*plus = 1) and down
+ * (*minus = 1), or the cell itself (0) at a non-periodic edge, where the difference turns one-sided; across a
+ * periodic seam the padded copy's ghosts hold the wrapped values. *inverse = 1 / (span h), 0 for a single
+ * cell along a non-periodic axis. */
+FW_INLINE void difference_offsets(int x, int n, int periodic, float h, int* plus, int* minus,
+                                  float* inverse) {
+  *plus = (x + 1 < n || periodic) ? 1 : 0;
+  *minus = (x > 0 || periodic) ? 1 : 0;
+  const int span = *plus + *minus;
+  *inverse = span > 0 ? 1.0f / ((float)span * h) : 0.0f;
+}
+
+/* Difference of the cell-centred values of a padded component between the cells `up` and `down` padded
+ * indices away from the cell at `at`, times `inverse`; `own` is the component's stride along its own axis
+ * (a cell's centre value is the mean of its two faces along it). */
+FW_INLINE float centre_difference(__global const float* pq, int at, int own, int up, int down,
+                                  float inverse) {
+  const int p = at + up, m = at - down;
+  return 0.5f * ((pq[p] + pq[p + own]) - (pq[m] + pq[m + own])) * inverse;
+}
+
+/* nu = min((C_s h)^2 |S|, cap) per cell (m^2/s), 0 in solid cells; |S| = sqrt(2 S_ij S_ij) from central
+ * differences of the cell-centred padded velocity (kernels/fluid_ghosts.cl pad_component, after the step's
+ * forces), one-sided at non-periodic edges. cs_h_squared = (C_s h)^2, m^2; cap = kEddyDiffusionLimit h^2 /
+ * dt. The y and z offsets are fixed for a row and the x ones are selects, so the row loop has no branch and
+ * vectorises. Global range: rows over the cells. */
+__kernel void eddy_viscosity(const FwGrid g, const float cs_h_squared, const float cap,
+                             __global const uchar* mask, __global const float* pu, __global const float* pv,
+                             __global const float* pw, __global float* nu) {
+  const int j = get_global_id(1), k = get_global_id(2);
+  int py, my, pz, mz;
+  float iy, iz;
+  difference_offsets(j, g.ny, axis_periodic(&g, 1), g.h, &py, &my, &iy);
+  difference_offsets(k, g.nz, axis_periodic(&g, 2), g.h, &pz, &mz, &iz);
+  const int periodic_x = axis_periodic(&g, 0);
+  /* Padded strides along y and z of u, v and w. */
+  const int yu = padded_extent(&g, 0, 0), zu = yu * padded_extent(&g, 0, 1);
+  const int yv = padded_extent(&g, 1, 0), zv = yv * padded_extent(&g, 1, 1);
+  const int yw = padded_extent(&g, 2, 0), zw = yw * padded_extent(&g, 2, 1);
+  const int row_u = padded_index(&g, 0, 0, j, k), row_v = padded_index(&g, 1, 0, j, k),
+            row_w = padded_index(&g, 2, 0, j, k);
+  const int row_cell = cell_index(&g, 0, j, k);
+  for (int i = FW_ROW_BEGIN; i < FW_ROW_END(g.nx); ++i) {
+    int px, mx;
+    float ix;
+    difference_offsets(i, g.nx, periodic_x, g.h, &px, &mx, &ix);
+    const int au = row_u + i, av = row_v + i, aw = row_w + i;
+    /* dc_a = d u_c / d x_a */
+    const float du_x = centre_difference(pu, au, 1, px, mx, ix);
+    const float du_y = centre_difference(pu, au, 1, py * yu, my * yu, iy);
+    const float du_z = centre_difference(pu, au, 1, pz * zu, mz * zu, iz);
+    const float dv_x = centre_difference(pv, av, yv, px, mx, ix);
+    const float dv_y = centre_difference(pv, av, yv, py * yv, my * yv, iy);
+    const float dv_z = centre_difference(pv, av, yv, pz * zv, mz * zv, iz);
+    const float dw_x = centre_difference(pw, aw, zw, px, mx, ix);
+    const float dw_y = centre_difference(pw, aw, zw, py * yw, my * yw, iy);
+    const float dw_z = centre_difference(pw, aw, zw, pz * zw, mz * zw, iz);
+    /* 2 S_ij S_ij: the diagonal twice, each off-diagonal pair (d_ij + d_ji)^2 once. */
+    const float sxy = du_y + dv_x, sxz = du_z + dw_x, syz = dv_z + dw_y;
+    const float s2 = 2.0f * (du_x * du_x + dv_y * dv_y + dw_z * dw_z) + sxy * sxy + sxz * sxz + syz * syz;
+    const int id = row_cell + i;
+    nu[id] = (mask[id] & FW_MASK_FLUID) ? fmin(cs_h_squared * sqrt(s2), cap) : 0.0f;
+  }
+}
+
+/* The cells sharing the faces of row (j, k) of component c (which may lie one row outside the array), as
+ * the indices of the cells (0, j', k') of their rows; the x index is added per face (face_nu). */
+FW_INLINE void face_row_cells(const FwGrid* g, int c, int j, int k, int* row_lo, int* row_hi) {
+  int lo[3] = {0, j, k}, hi[3] = {0, j, k};
+  if (c > 0) lo[c] -= 1;
+  for (int a = 1; a < 3; ++a) {
+    const int n = axis_cells(g, a), periodic = axis_periodic(g, a);
+    lo[a] = wrap_or_clamp(lo[a], n, periodic);
+    hi[a] = wrap_or_clamp(hi[a], n, periodic);
+  }
+  *row_lo = cell_index(g, 0, lo[1], lo[2]);
+  *row_hi = cell_index(g, 0, hi[1], hi[2]);
+}
+
+/* nu_face of face i (which may lie one face outside the array) of a row of component c: the mean of the two
+ * cells sharing it. `wrap` = 0 where i - 2 .. i + 1 are all inside the row, which skips the wrap and lets
+ * the interior run vectorise. */
+FW_INLINE float face_nu(const FwGrid* g, __global const float* nu, int c, int periodic_x, int wrap,
+                        int row_lo, int row_hi, int i) {
+  int lo = c == 0 ? i - 1 : i, hi = i;
+  if (wrap) {
+    lo = wrap_or_clamp(lo, g->nx, periodic_x);
+    hi = wrap_or_clamp(hi, g->nx, periodic_x);
+  }
+  return 0.5f * (nu[row_lo + lo] + nu[row_hi + hi]);
+}
+
+/* One face's update inside diffuse_eddy_rows, a macro so that each of its loops gets the wrap it needs as a
+ * literal and the interior loop carries no wrap at all. */
+#define FW_EDDY_FACE(wrap_)                                                                               \
+  do {                                                                                                    \
+    const float n0 = face_nu(g, nu, c, periodic_x, wrap_, lo, hi, i);                                     \
+    const float nxm = face_nu(g, nu, c, periodic_x, wrap_, lo, hi, i - 1),                                \
+                nxp = face_nu(g, nu, c, periodic_x, wrap_, lo, hi, i + 1);                                \
+    const float nym = face_nu(g, nu, c, periodic_x, wrap_, lo_ym, hi_ym, i);                              \
+    const float nyp = face_nu(g, nu, c, periodic_x, wrap_, lo_yp, hi_yp, i);                              \
+    const float nzm = face_nu(g, nu, c, periodic_x, wrap_, lo_zm, hi_zm, i);                              \
+    const float nzp = face_nu(g, nu, c, periodic_x, wrap_, lo_zp, hi_zp, i);                              \
+    const int at = row_at + i;                                                                            \
+    const float q = pq[at];                                                                               \
+    /* The two cells of the face below (its own cells one layer down; the row itself when not checked, so \
+     * that the loads stay in bounds and the loop branch-free). */                                        \
+    int x_lo = c == 0 ? i - 1 : i, x_hi = i;                                                              \
+    if (wrap_) {                                                                                          \
+      x_lo = wrap_or_clamp(x_lo, g->nx, periodic_x);                                                      \
+      x_hi = wrap_or_clamp(x_hi, g->nx, periodic_x);                                                      \
+    }                                                                                                     \
+    const int open_below =                                                                                \
+        !check_below || ((mask[lo - down + x_lo] & mask[hi - down + x_hi]) & FW_MASK_FLUID);              \
+    const float below = open_below ? pq[at - sz] : q;                                                     \
+    const float flux = (n0 + nxm) * (pq[at - 1] - q) + (n0 + nxp) * (pq[at + 1] - q) +                    \
+                       (n0 + nym) * (pq[at - sy] - q) + (n0 + nyp) * (pq[at + sy] - q) +                  \
+                       (n0 + nzm) * (below - q) + (n0 + nzp) * (pq[at + sz] - q);                         \
+    out[row_out + i] = q + half_dt_over_h2 * flux;                                                        \
+  } while (0)
+
+/* The eddy diffusion of component c in flux form, the diagonal part div(nu_t grad q) of the stress:
+ * out = q + dt / h^2 * sum over the six neighbours of nu_edge (q_nb - q), where nu_edge is the mean of the
+ * nu_face of the face and of its neighbour, and nu_face the mean of the two cells sharing a face. Each pair
+ * of faces exchanges the same flux, so the stage conserves momentum. Neighbours come from the padded copy of
+ * q (the ghosts are the constant-viscosity stage's fetch_face rules); the nu of a face outside the array is
+ * that of its wrapped or clamped cells. With wall_slip set, a horizontal face whose neighbour below touches
+ * a solid cell exchanges nothing with it (a zero gradient): the wall stress stage carries that momentum
+ * flux. Writes every face of component c; out may be the unpadded component itself. Global range: rows over
+ * its faces. */
+FW_INLINE void diffuse_eddy_rows(const FwGrid* g, const float dt, const int c, const int wall_slip,
+                                 __global const uchar* mask, __global const float* nu,
+                                 __global const float* pq, __global float* out) {
+  const int j = get_global_id(1), k = get_global_id(2);
+  const int ex = face_extent(g, c, 0), periodic_x = axis_periodic(g, 0);
+  const int sy = padded_extent(g, c, 0), sz = sy * padded_extent(g, c, 1);
+  const int layer = g->nx * g->ny;
+  const float half_dt_over_h2 = 0.5f * dt / (g->h * g->h);
+  const int check_below = wall_slip && c < 2 && k > 0;
+  const int down = check_below ? layer : 0;
+  int lo, hi, lo_ym, hi_ym, lo_yp, hi_yp, lo_zm, hi_zm, lo_zp, hi_zp;
+  face_row_cells(g, c, j, k, &lo, &hi);
+  face_row_cells(g, c, j - 1, k, &lo_ym, &hi_ym);
+  face_row_cells(g, c, j + 1, k, &lo_yp, &hi_yp);
+  face_row_cells(g, c, j, k - 1, &lo_zm, &hi_zm);
+  face_row_cells(g, c, j, k + 1, &lo_zp, &hi_zp);
+  const int row_at = padded_index(g, c, 0, j, k), row_out = face_index(g, c, 0, j, k);
+  const int begin = FW_ROW_BEGIN, end = FW_ROW_END(ex);
+  /* Faces 2 .. nx-2 need no wrap: their neighbours' cells i-2 .. i+1 lie inside the row. */
+  const int first = clamp(2, begin, end), last = clamp(g->nx - 1, first, end);
+  for (int i = begin; i < first; ++i) FW_EDDY_FACE(1);
+  for (int i = first; i < last; ++i) FW_EDDY_FACE(0);
+  for (int i = last; i < end; ++i) FW_EDDY_FACE(1);
+}
+
+/* One kernel a component, so that c is a literal and the selects above fold away. */
+__kernel void diffuse_eddy_u(const FwGrid g, const FwStep s, const int wall_slip, __global const uchar* mask,
+                             __global const float* nu, __global const float* pq, __global float* out) {
+  diffuse_eddy_rows(&g, s.dt, 0, wall_slip, mask, nu, pq, out);
+}
+__kernel void diffuse_eddy_v(const FwGrid g, const FwStep s, const int wall_slip, __global const uchar* mask,
+                             __global const float* nu, __global const float* pq, __global float* out) {
+  diffuse_eddy_rows(&g, s.dt, 1, wall_slip, mask, nu, pq, out);
+}
+__kernel void diffuse_eddy_w(const FwGrid g, const FwStep s, const int wall_slip, __global const uchar* mask,
+                             __global const float* nu, __global const float* pq, __global float* out) {
+  diffuse_eddy_rows(&g, s.dt, 2, wall_slip, mask, nu, pq, out);
+}
+
+/* 1 for a wall cell (fluid, with a solid cell right below, or on the ground when ground_wall), else 0.
+ * Mirrors fluid/SubgridStress.cpp wall_cells. */
+FW_INLINE float wall_weight(const FwGrid* g, __global const uchar* mask, int ground_wall, int i, int j,
+                            int k) {
+  const int id = cell_index(g, i, j, k);
+  if (!(mask[id] & FW_MASK_FLUID)) return 0.0f;
+  if (k == 0) return ground_wall ? 1.0f : 0.0f;
+  return (mask[id - g->nx * g->ny] & FW_MASK_FLUID) ? 0.0f : 1.0f;
+}
+
+/* Implicit log-law wall stress on horizontal component c (0: u, 1: v):
+ * out = q / (1 + dt (C_w / h) weight |U|), weight the mean wall_weight of the two cells sharing the face and
+ * |U| = sqrt(q^2 + b^2) the horizontal speed, b the other horizontal component averaged from the four faces
+ * of those two cells, all from the old u and v. drag_per_length = C_w / h, 1/m. On the faces first ..
+ * first + count - 1 of component c only (the box of the wall cells, as for canopy_drag_*; the host copies
+ * them back). Global range: (ceil(count.x / FW_ROW_CHUNK), count.y, count.z). */
+FW_INLINE void wall_stress_box(const FwGrid* g, const float dt, const int c, const int4 first,
+                               const int4 count, const float drag_per_length, const int ground_wall,
+                               __global const uchar* mask, __global const float* u, __global const float* v,
+                               __global float* out) {
+  const int j = first.y + (int)get_global_id(1), k = first.z + (int)get_global_id(2);
+  const int n = axis_cells(g, c), periodic = axis_periodic(g, c);
+  const int d = 1 - c; /* the other horizontal component */
+  __global const float* q = c == 0 ? u : v;
+  __global const float* b = c == 0 ? v : u;
+  for (int r = FW_ROW_BEGIN; r < FW_ROW_END(count.x); ++r) {
+    const int i = first.x + r;
+    int lo[3] = {i, j, k}, hi[3] = {i, j, k};
+    lo[c] = wrap_or_clamp(lo[c] - 1, n, periodic);
+    hi[c] = wrap_or_clamp(hi[c], n, periodic);
+    const float weight = 0.5f * (wall_weight(g, mask, ground_wall, lo[0], lo[1], lo[2]) +
+                                 wall_weight(g, mask, ground_wall, hi[0], hi[1], hi[2]));
+    const int face = face_index(g, c, i, j, k);
+    const float qf = q[face];
+    if (weight == 0.0f) { /* faces above the wall layer, or beside solids */
+      out[face] = qf;
+      continue;
+    }
+    int lo1[3] = {lo[0], lo[1], lo[2]}, hi1[3] = {hi[0], hi[1], hi[2]};
+    lo1[d] += 1;
+    hi1[d] += 1;
+    const float mb =
+        0.25f * (b[face_index(g, d, lo[0], lo[1], lo[2])] + b[face_index(g, d, lo1[0], lo1[1], lo1[2])] +
+                 b[face_index(g, d, hi[0], hi[1], hi[2])] + b[face_index(g, d, hi1[0], hi1[1], hi1[2])]);
+    out[face] = qf / (1.0f + dt * drag_per_length * weight * sqrt(qf * qf + mb * mb));
+  }
+}
+
+/* One kernel a component, so that c is a literal and the index arrays fold into registers. */
+__kernel void wall_stress_u(const FwGrid g, const FwStep s, const int4 first, const int4 count,
+                            const float drag_per_length, const int ground_wall, __global const uchar* mask,
+                            __global const float* u, __global const float* v, __global float* out) {
+  wall_stress_box(&g, s.dt, 0, first, count, drag_per_length, ground_wall, mask, u, v, out);
+}
+__kernel void wall_stress_v(const FwGrid g, const FwStep s, const int4 first, const int4 count,
+                            const float drag_per_length, const int ground_wall, __global const uchar* mask,
+                            __global const float* u, __global const float* v, __global float* out) {
+  wall_stress_box(&g, s.dt, 1, first, count, drag_per_length, ground_wall, mask, u, v, out);
+}
