@@ -55,11 +55,25 @@ typedef struct FwLevel {
   fw_int periodic;
 } FwLevel;
 
-/* What changes from step to step, passed by value to the kernels that need it. */
+/* What changes from step to step, passed by value to the kernels that need it.
+ * Synthetic inflow turbulence (fluid/TurbulenceBox, DESIGN.md "Turbulence"): a periodic box of unit-sigma
+ * velocity fluctuations, stored after the nz profile factors in the kernels' `inflow` buffer, is swept
+ * through the inflow faces (Taylor's frozen turbulence): a face at world position x adds
+ * turbulence_sigma * taper * box(x - turbulence_offset), taper = min(1, profile / FW_TURBULENCE_FULL_SHAPE).
+ * turbulence_sigma 0: no turbulence. */
+/* The inflow turbulence has its full sigma where the mean profile reaches this fraction of the reference
+ * speed, and tapers linearly to 0 where the mean wind does. In the surface layer sigma_u stays near 2.5 u*
+ * at every height (so the intensity rises toward the ground), which a taper by the profile itself would cut;
+ * a taper is still needed where the mean wind is 0 (below z0 + d of a log law). */
+#define FW_TURBULENCE_FULL_SHAPE 0.5f
 typedef struct FwStep {
-  float dt;         /* s */
-  float time;       /* simulated time at the start of the step, s */
-  float ambient[3]; /* ambient wind at the reference height, m/s (vector, x east, y north, z up) */
+  float dt;                   /* s */
+  float time;                 /* simulated time at the start of the step, s */
+  float ambient[3];           /* ambient wind at the reference height, m/s (vector, x east, y north, z up) */
+  float turbulence_sigma;     /* sigma_u of the inflow turbulence now, m/s (0: off) */
+  float turbulence_offset[3]; /* how far the frozen box has travelled, m, kept within one box length */
+  fw_int turbulence_cells[3]; /* box points along x, y, z */
+  float turbulence_spacing;   /* box point spacing, m */
 } FwStep;
 
 /* A gust: a Gaussian ball of extra velocity with a 1-cos envelope in time, travelling at a constant
@@ -89,10 +103,12 @@ typedef struct FwSpecies {
   fw_int node_count;          /* n, skeleton nodes */
   fw_int mode_count;          /* m */
   fw_int sample_count;        /* S, wind samples, 1..FW_MAX_TREE_SAMPLES */
-  fw_int shape_offset;        /* node shapes, floats: (3n x m) row-major, [(3 node + axis) m + mode] */
+  fw_int shape_offset;        /* node shapes and strong-wind v, w, floats: [mode 3n + 3 node + axis] */
   fw_int projection_offset;   /* projections, floats: mode-major, [mode 3S + 3 sample + axis], kg^1/2/m */
   fw_int sample_point_offset; /* sample points, floats: [3 sample + axis], m, skeleton frame */
-  fw_int modal_offset;        /* omega (rad/s) and damping ratio zeta, one float each per mode */
+  fw_int modal_offset;        /* omega (rad/s), damping ratio zeta, strong-wind b: one float each per mode */
+  fw_int skeleton_offset;     /* first of its n entries in the skeleton walk (2 ints each: node, parent) and
+                                 rest elements (3 floats each), both in walk order (trees/Forest.hpp) */
 } FwSpecies;
 
 /* One tree instance: world position x + scale R(yaw) p of a skeleton point p; R turns counter-clockwise
@@ -105,7 +121,7 @@ typedef struct FwTreeInstance {
   float position[3];    /* world position of the skeleton origin (the root), m */
   float cos_yaw;        /* cos and sin of the yaw angle */
   float sin_yaw;
-  float scale;          /* s > 0: lengths times s, frequencies over s */
+  float scale; /* s > 0: lengths times s, frequencies over s */
 } FwTreeInstance;
 
 #endif

@@ -148,6 +148,12 @@ std::uint64_t BasisCache::key(const Skeleton& skeleton, const SpeciesSettings& s
   hash.value(settings.wind.leaf_drag_coefficient);
   hash.value(std::int32_t(settings.wind.branch_normal_drag ? 1 : 0));
   hash.value(std::int32_t(settings.wind.samples));
+  const StrongWindSettings& strong = settings.strong_wind;
+  hash.value(std::int32_t(strong.samples_per_side));
+  hash.value(strong.reach);
+  hash.value(strong.max_slope);
+  hash.value(std::int32_t(strong.search_points));
+  hash.value(strong.beta_max);
   return hash.digest();
 }
 
@@ -204,12 +210,26 @@ std::optional<SpeciesBasis> BasisCache::load(const Skeleton& skeleton, const Spe
     reader.doubles(projection.data(), std::size_t(3 * samples) * std::size_t(modes));
     Eigen::MatrixX3d sample_points(samples, 3);
     reader.doubles(sample_points.data(), std::size_t(samples) * 3);
+    Eigen::MatrixXd strong_v(3 * nodes, modes), strong_w(3 * nodes, modes);
+    reader.doubles(strong_v.data(), std::size_t(strong_v.size()));
+    reader.doubles(strong_w.data(), std::size_t(strong_w.size()));
+    Eigen::VectorXd strong_b(modes);
+    reader.doubles(strong_b.data(), std::size_t(modes));
+    std::vector<StrongWindModeFit> fits(static_cast<std::size_t>(modes));
+    for (StrongWindModeFit& fit : fits) {
+      fit.q_max = reader.value<double>();
+      fit.relative_residual = reader.value<double>();
+      fit.linear_relative_residual = reader.value<double>();
+      fit.shape_change = reader.value<double>();
+    }
     if (reader.offset() != body) throw std::runtime_error("the entry has trailing bytes");
 
     ModalBasis modal = ModalBasis::from_values(std::move(omega), std::move(shapes), settings.modal.damping,
                                                std::move(status));
     WindBasis wind = WindBasis::from_values(std::move(projection), std::move(sample_points), settings.wind);
-    return SpeciesBasis::from_parts(skeleton, settings, std::move(modal), std::move(wind));
+    StrongWindCorrection strong = StrongWindCorrection::from_values(std::move(strong_v), std::move(strong_w),
+                                                                    std::move(strong_b), std::move(fits));
+    return SpeciesBasis::from_parts(skeleton, settings, std::move(modal), std::move(wind), std::move(strong));
   } catch (const std::exception& e) {
     if (why_not) *why_not = fmt::format("{}: {}", path.string(), e.what());
     return std::nullopt;
@@ -237,6 +257,16 @@ void BasisCache::store(const SpeciesBasis& species) const {
   writer.doubles(modal.shapes().data(), std::size_t(modal.shapes().size()));
   writer.doubles(wind.projection_matrix().data(), std::size_t(wind.projection_matrix().size()));
   writer.doubles(wind.sample_points().data(), std::size_t(wind.sample_points().size()));
+  const StrongWindCorrection& strong = species.strong_wind();
+  writer.doubles(strong.linear_shapes().data(), std::size_t(strong.linear_shapes().size()));
+  writer.doubles(strong.quadratic_shapes().data(), std::size_t(strong.quadratic_shapes().size()));
+  writer.doubles(strong.b().data(), std::size_t(strong.b().size()));
+  for (const StrongWindModeFit& fit : strong.fits()) {
+    writer.value(fit.q_max);
+    writer.value(fit.relative_residual);
+    writer.value(fit.linear_relative_residual);
+    writer.value(fit.shape_change);
+  }
   Fnv1a checksum;
   checksum.bytes(writer.buffer().data(), writer.buffer().size());
   writer.value(checksum.digest());

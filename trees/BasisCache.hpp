@@ -6,14 +6,17 @@
 //
 // Key: a 64-bit FNV-1a hash of everything the basis depends on: the format version, every node (parent,
 // position, radius, as raw IEEE doubles), the material, the modal settings (count, damping, solver
-// tolerances) and the wind basis settings (air density, branch and leaf drag coefficients, leaf
-// area index, branch-normal drag, samples). Entry: "<directory>/<key as 16 hex digits>.fwbasis".
+// tolerances), the wind basis settings (air density, branch and leaf drag coefficients, leaf area index,
+// branch-normal drag, samples) and the strong-wind fit settings (samples, reach, slope, search).
+// Entry: "<directory>/<key as 16 hex digits>.fwbasis".
 //
 // Entry layout (binary, little-endian as the host writes it; the cache is per machine):
 //   "FWBASIS\0", u32 version, u64 key, i32 nodes, i32 dofs, i32 modes, i32 samples,
 //   i32 converged, i32 iterations, i32 operations, f64 max_residual, u32 length + method text,
 //   f64 omega[modes], f64 shapes[dofs x modes] (column-major), f64 projection[3 samples x modes],
-//   f64 sample_points[samples x 3], u64 FNV-1a checksum of every byte before it.
+//   f64 sample_points[samples x 3], the strong-wind correction: f64 v[3 nodes x modes] and
+//   f64 w[3 nodes x modes] (column-major), f64 b[modes], per mode f64 q_max, relative residual, linear
+//   relative residual and shape change; then u64 FNV-1a checksum of every byte before it.
 // An entry that is truncated, has another magic, version, key or sizes, or fails its checksum is corrupt: it
 // is reported (corrupt_recomputed) and replaced by a fresh computation. Entries are written under a temporary
 // name and renamed, so a crash never leaves a half-written entry under the final name.
@@ -36,8 +39,9 @@ const char* to_string(CacheOutcome outcome);
 class BasisCache {
  public:
   /// 2: the wind settings became air density, branch and leaf drag coefficients and leaf area index (the
-  /// projections of version 1 entries hold no foliage).
-  static constexpr std::uint32_t kFormatVersion = 2;
+  /// projections of version 1 entries hold no foliage). 3: the strong-wind correction (v, w, b, fits) follows
+  /// the sample points. The version is part of the key, so an older entry is never even opened.
+  static constexpr std::uint32_t kFormatVersion = 3;
 
   /// directory: where entries live; created on the first store.
   explicit BasisCache(std::filesystem::path directory);

@@ -25,6 +25,9 @@ void validate_species(const SpeciesBasis& sp, std::size_t index) {
   if (sp.node_shapes().rows() != 3 * n || sp.node_shapes().cols() != m)
     fail(fmt::format("species {}: node shapes are {} x {}, expected {} x {}", index, sp.node_shapes().rows(),
                      sp.node_shapes().cols(), 3 * n, m));
+  if (sp.strong_wind().mode_count() != m || sp.strong_wind().node_count() != n)
+    fail(fmt::format("species {}: the strong-wind correction has {} modes of {} nodes, expected {} of {}",
+                     index, sp.strong_wind().mode_count(), sp.strong_wind().node_count(), m, n));
   for (int i = 0; i < m; ++i) {
     const double w = sp.modes().omega()(i);
     if (!std::isfinite(w) || w <= 0.0)
@@ -41,6 +44,7 @@ void check_int32(long long total, const char* what) {
 
 Forest::Forest(std::vector<SpeciesBasis> species, std::vector<TreeInstance> instances)
     : species_(std::move(species)), instances_(std::move(instances)) {
+  // 3 n m node-shape floats per species bound the 3 n of its rest elements (ForestPacking) as well.
   long long shape_floats = 0;
   for (std::size_t s = 0; s < species_.size(); ++s) {
     validate_species(species_[s], s);
@@ -99,6 +103,7 @@ ForestPacking Forest::pack() const {
     row.projection_offset = fw_int(p.projections.size());
     row.sample_point_offset = fw_int(p.sample_points.size());
     row.modal_offset = fw_int(p.omega.size());
+    row.skeleton_offset = fw_int(p.walk.size() / 2);
     p.species.push_back(row);
 
     const Eigen::MatrixXd& shapes = sp.node_shapes();
@@ -106,6 +111,12 @@ ForestPacking Forest::pack() const {
     // kernel reads 8 nodes of a mode with three vector loads.
     for (int i = 0; i < m; ++i)
       for (int r = 0; r < 3 * n; ++r) p.node_shapes.push_back(float(shapes(r, i)));
+    const StrongWindCorrection& strong = sp.strong_wind();
+    for (int i = 0; i < m; ++i)
+      for (int r = 0; r < 3 * n; ++r) {
+        p.strong_v.push_back(float(strong.linear_shapes()(r, i)));
+        p.strong_w.push_back(float(strong.quadratic_shapes()(r, i)));
+      }
     // Mode-major, so that one mode's force is a dot product over 3S contiguous values.
     const Eigen::MatrixXd& proj = sp.wind().projection_matrix();
     for (int i = 0; i < m; ++i)
@@ -117,6 +128,17 @@ ForestPacking Forest::pack() const {
     for (int i = 0; i < m; ++i) {
       p.omega.push_back(float(sp.modes().omega()(i)));
       p.damping_ratios.push_back(float(zeta(i)));
+      p.strong_b.push_back(float(strong.b()(i)));
+    }
+    const Skeleton& skeleton = sp.skeleton();
+    for (int node : skeleton.topological_order()) {
+      const int parent = skeleton.node(node).parent;
+      p.walk.push_back(node);
+      p.walk.push_back(parent);
+      const Eigen::Vector3d rest =
+          parent < 0 ? Eigen::Vector3d::Zero()
+                     : Eigen::Vector3d(skeleton.node(node).position - skeleton.node(parent).position);
+      for (int a = 0; a < 3; ++a) p.rest_elements.push_back(float(rest(a)));
     }
   }
 

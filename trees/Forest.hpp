@@ -11,7 +11,8 @@
 // An instance k of species sp, scale s, yaw psi and root position x places a skeleton-frame point p at
 // x + s R(psi) p, R turning counter-clockwise about +z seen from above. Similarity laws (ModalBasis.hpp,
 // WindBasis.hpp): omega / s, the damping ratio kept (gamma = 2 zeta omega / s), projections s^1/2 R p_i^s,
-// nodal translations s^-3/2 R phi, sample points x + s R p_s.
+// nodal translations s^-3/2 R phi, sample points x + s R p_s, and the strong-wind correction
+// s R sum_i (q~_i v_i + q~_i^2 w_i), q~_i = arctan(b_i s^-5/2 q_i) / b_i (trees/StrongWindCorrection.hpp).
 //
 // Flat numbering: instance k owns the modes [mode_offset(k), mode_offset(k) + m), the nodes
 // [node_offset(k), node_offset(k) + n) and the samples [sample_offset(k), sample_offset(k) + S) of the
@@ -45,6 +46,17 @@ struct ForestPacking {
   std::vector<float> damping_ratios;      ///< per species m, zeta (dimensionless)
   std::vector<fw_int> mode_instance;      ///< #total modes: the instance that owns each flat mode
   std::vector<fw_int> node_instance;      ///< #total nodes: the instance that owns each flat node
+  /// Diener's strong-wind correction per species, v and w in the layout of node_shapes (so that
+  /// FwSpecies::shape_offset indexes all three) and b_i per mode (FwSpecies::modal_offset, like omega).
+  std::vector<float> strong_v, strong_w, strong_b;
+  /// The skeleton walk of the strong-wind correction's length-restoring pass
+  /// (trees/StrongWindCorrection.hpp), per species n entries from FwSpecies::skeleton_offset, parents before
+  /// children (topological_order()): walk holds (node, parent) pairs, the root first with parent -1;
+  /// rest_elements holds, for the same entry, the rest element from the parent to the node (x y z, skeleton
+  /// frame, m; zero for the root). Elements, not positions: the pass needs only differences, and lengths from
+  /// these floats keep a tree at rest.
+  std::vector<fw_int> walk;
+  std::vector<float> rest_elements;
   int total_modes = 0;
   int total_nodes = 0;
   int total_samples = 0;

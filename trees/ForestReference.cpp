@@ -2,6 +2,8 @@
 
 #include <fmt/format.h>
 
+#include "trees/UnresolvedTurbulence.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
@@ -173,17 +175,32 @@ void ForestReference::step(Eigen::VectorXd& q, Eigen::VectorXd& qdot, const Eige
   }
 }
 
-Eigen::MatrixX3d ForestReference::displacements(const Eigen::VectorXd& q) const {
+Eigen::MatrixX3d ForestReference::instance_displacements(int k, const Eigen::VectorXd& qk,
+                                                         bool strong_wind_correction) const {
+  const TreeInstance& t = forest_.instances().at(std::size_t(k));
+  const SpeciesBasis& sp = forest_.species_of(k);
+  if (qk.size() != sp.modes().mode_count())
+    fail(fmt::format("instance {} has {} modes, got {} coordinates", k, sp.modes().mode_count(), qk.size()));
+  // The correction is fitted on the species (scale 1): its q is s^-5/2 times the instance's, and the
+  // instance's displacement s times the species'. The length-restoring pass runs here in the species'
+  // frame, on the device in the world frame: it commutes with s R, so the two routes check each other.
+  const Eigen::Matrix3d r =
+      (strong_wind_correction ? t.scale : std::pow(t.scale, -1.5)) * forest_.rotation(k);
+  const Eigen::VectorXd local = strong_wind_correction ? sp.strong_wind().corrected_displacement(
+                                                             sp.skeleton(), std::pow(t.scale, -2.5) * qk)
+                                                       : Eigen::VectorXd(sp.node_shapes() * qk);
+  Eigen::MatrixX3d u(sp.skeleton().size(), 3);
+  for (int n = 0; n < sp.skeleton().size(); ++n) u.row(n) = (r * local.segment<3>(3 * n)).transpose();
+  return u;
+}
+
+Eigen::MatrixX3d ForestReference::displacements(const Eigen::VectorXd& q, bool strong_wind_correction) const {
   if (q.size() != total_modes()) fail(fmt::format("q has {} entries, expected {}", q.size(), total_modes()));
   Eigen::MatrixX3d u(total_nodes(), 3);
   for (int k = 0; k < forest_.instance_count(); ++k) {
-    const TreeInstance& t = forest_.instances()[std::size_t(k)];
-    const Eigen::Matrix3d r = std::pow(t.scale, -1.5) * forest_.rotation(k);
-    const SpeciesBasis& sp = forest_.species_of(k);
-    const Eigen::VectorXd local =
-        sp.node_shapes() * q.segment(forest_.mode_offset(k), sp.modes().mode_count());
-    for (int n = 0; n < sp.skeleton().size(); ++n)
-      u.row(forest_.node_offset(k) + n) = (r * local.segment<3>(3 * n)).transpose();
+    const int m = forest_.species_of(k).modes().mode_count();
+    u.middleRows(forest_.node_offset(k), forest_.species_of(k).skeleton().size()) =
+        instance_displacements(k, q.segment(forest_.mode_offset(k), m), strong_wind_correction);
   }
   return u;
 }
@@ -197,6 +214,54 @@ Eigen::VectorXd ForestReference::static_modal_response(const Eigen::VectorXd& fo
 Eigen::VectorXd ForestReference::static_modal_response(const fluid::GridSpec& spec,
                                                        const fluid::MacVelocity& velocity) const {
   return static_modal_response(modal_forces(spec, velocity));
+}
+
+Eigen::VectorXd ForestReference::unresolved_modal_forces(const Eigen::MatrixX3d& sampled_wind,
+                                                         const TreeTravel& travel,
+                                                         const UnresolvedTurbulence& series,
+                                                         const std::vector<int>& offsets,
+                                                         double intensity) const {
+  if (sampled_wind.rows() != total_samples())
+    fail(fmt::format("sampled wind has {} rows, expected {}", sampled_wind.rows(), total_samples()));
+  if (travel.distance.size() != forest_.instance_count() ||
+      travel.last_step.size() != forest_.instance_count())
+    fail(fmt::format("travel has {} distances and {} last steps, expected {}", travel.distance.size(),
+                     travel.last_step.size(), forest_.instance_count()));
+  if (offsets.size() != std::size_t(total_samples()))
+    fail(fmt::format("offsets have {} entries, expected {}", offsets.size(), total_samples()));
+  if (!std::isfinite(intensity) || intensity < 0.0)
+    fail(fmt::format("intensity must be finite and >= 0, got {}", intensity));
+  Eigen::VectorXd f = Eigen::VectorXd::Zero(total_modes());
+  for (int k = 0; k < forest_.instance_count(); ++k) {
+    const TreeInstance& t = forest_.instances()[std::size_t(k)];
+    const Eigen::Matrix3d r = forest_.rotation(k);
+    const WindBasis& basis = forest_.species_of(k).wind();
+    for (int s = 0; s < basis.sample_count(); ++s) {
+      const int flat = forest_.sample_offset(k) + s;
+      const Eigen::Vector3d v = sampled_wind.row(flat).transpose();
+      const Eigen::Vector3d xi = series.average(
+          travel.distance(k) + series.spacing() * offsets[std::size_t(flat)], travel.last_step(k));
+      const Eigen::Vector3d load = linearised_drag_increment(v, unresolved_fluctuation(v, xi, intensity));
+      for (int i = 0; i < basis.mode_count(); ++i)
+        f(forest_.mode_offset(k) + i) += load.dot(std::sqrt(t.scale) * r * basis.projection(s, i));
+    }
+  }
+  return f;
+}
+
+void ForestReference::advance_travelled(TreeTravel& travel, const Eigen::MatrixX3d& sampled_wind,
+                                        double dt) const {
+  if (sampled_wind.rows() != total_samples())
+    fail(fmt::format("sampled wind has {} rows, expected {}", sampled_wind.rows(), total_samples()));
+  if (travel.distance.size() != forest_.instance_count() ||
+      travel.last_step.size() != forest_.instance_count())
+    fail(fmt::format("travel has {} distances and {} last steps, expected {}", travel.distance.size(),
+                     travel.last_step.size(), forest_.instance_count()));
+  if (!std::isfinite(dt) || dt < 0.0) fail(fmt::format("dt must be finite and >= 0, got {}", dt));
+  for (int k = 0; k < forest_.instance_count(); ++k) {
+    travel.last_step(k) = sampled_wind.row(forest_.sample_offset(k)).norm() * dt;
+    travel.distance(k) += travel.last_step(k);
+  }
 }
 
 }  // namespace fw::trees

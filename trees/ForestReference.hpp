@@ -7,18 +7,24 @@
 //   Eigen::VectorXd q = Eigen::VectorXd::Zero(ref.total_modes()), qdot = q;
 //   for (int n = 0; n < 100; ++n) ref.step(q, qdot, f, 0.01, fw::trees::ModalIntegrator::exact);
 //   Eigen::MatrixX3d u = ref.displacements(q);                      // #total nodes by 3, m, world frame
+//   Eigen::MatrixX3d u_linear = ref.displacements(q, false);        // without the strong-wind correction
 //
 // Model, instance k of scale s, yaw psi (R = R(psi)) at x (see trees/Forest.hpp):
 //   wind sample  v_s = trilinear MAC sample of the grid at x + s R p_s (each component on its own staggered
 //                lattice, positions clamped to that lattice: constant extrapolation beyond the outer faces);
 //   modal force  f_i = sum_s |v_s| v_s . (s^1/2 R p_i^s);
 //   modal step   q'' + gamma q' + omega^2 q = f, f held over dt, omega = omega_i / s, gamma = 2 zeta_i omega;
-//   deformation  u_node = s^-3/2 R sum_i phi_node_i q_i.
+//   deformation  u_node = s^-3/2 R sum_i phi_node_i q_i (linear), or with Diener's strong-wind correction
+//                (trees/StrongWindCorrection.hpp) u_node = s R sum_i (q~_i v_node_i + q~_i^2 w_node_i),
+//                q~_i = arctan(b_i s^-5/2 q_i) / b_i (q~_i = s^-5/2 q_i for b_i = 0), followed by the
+//                length-restoring walk from the root (every element back at its rest length s L_e).
 // Instances keep their species' damping ratios (exact for modal-ratio damping; Rayleigh damping is taken at
 // the species' own frequencies, not re-evaluated at omega / s).
 #pragma once
 
 #include <Eigen/Core>
+
+#include <vector>
 
 #include "fluid/GridSpec.hpp"
 #include "fluid/ReferenceStages.hpp"
@@ -26,6 +32,9 @@
 #include "trees/ModalIntegrator.hpp"
 
 namespace fw::trees {
+
+class UnresolvedTurbulence;  // trees/UnresolvedTurbulence.hpp
+struct TreeTravel;
 
 /// Trilinear sample of the face velocities at a world position (m), m/s, with the clamping described above.
 Eigen::Vector3d sample_mac_velocity(const fluid::GridSpec& spec, const fluid::MacVelocity& velocity,
@@ -64,12 +73,32 @@ class ForestReference {
             ModalIntegrator integrator) const;
 
   /// Nodal displacements of every instance for the modal coordinates q: #total nodes by 3, m, world frame.
-  Eigen::MatrixX3d displacements(const Eigen::VectorXd& q) const;
+  /// strong_wind_correction: the strong-wind correction, Diener's quadratic part and the length-restoring
+  /// pass (the default, as on the device), or the linear modal sum.
+  /// One instance's nodal displacements for its modal coordinates qk (its m modes): #nodes by 3, m, world
+  /// frame (the same as the instance's rows of displacements()).
+  Eigen::MatrixX3d instance_displacements(int instance, const Eigen::VectorXd& qk,
+                                          bool strong_wind_correction = true) const;
+  Eigen::MatrixX3d displacements(const Eigen::VectorXd& q, bool strong_wind_correction = true) const;
 
   /// The equilibrium under constant forces, q_i = f_i / omega_i^2 (omega of the instance).
   Eigen::VectorXd static_modal_response(const Eigen::VectorXd& forces) const;
   Eigen::VectorXd static_modal_response(const fluid::GridSpec& spec,
                                         const fluid::MacVelocity& velocity) const;
+
+  /// The unresolved turbulence's modal forces delta f (trees/UnresolvedTurbulence.hpp), #total modes,
+  /// N / kg^1/2, to add to modal_forces: sampled wind (#total samples by 3, m/s), every instance's travel
+  /// (X_k and the last step's distance, the read window; #instances each, m), the series, its per-sample
+  /// offsets (series.offsets(forest)) and the intensity sigma_u / U. Sample s of tree k reads
+  /// series.average(X_k + dx o_s, last_step_k). Throws std::invalid_argument ("ForestReference: ...") for
+  /// wrong sizes or an intensity that is not finite and >= 0.
+  Eigen::VectorXd unresolved_modal_forces(const Eigen::MatrixX3d& sampled_wind, const TreeTravel& travel,
+                                          const UnresolvedTurbulence& series, const std::vector<int>& offsets,
+                                          double intensity) const;
+  /// last_step_k = |v| dt and X_k += last_step_k, v the wind at instance k's first sample: the step after
+  /// the forces that read X_k. Throws std::invalid_argument for wrong sizes or a dt that is not finite and
+  /// >= 0.
+  void advance_travelled(TreeTravel& travel, const Eigen::MatrixX3d& sampled_wind, double dt) const;
 
  private:
   const Forest& forest_;

@@ -37,6 +37,7 @@ void SpeciesSettings::validate() const {
   material.validate();
   modal.validate();
   wind.validate();
+  strong_wind.validate();
 }
 
 SpeciesBasis SpeciesBasis::compute(Skeleton skeleton, const SpeciesSettings& settings) {
@@ -54,13 +55,15 @@ SpeciesBasis SpeciesBasis::compute(Skeleton skeleton, const SpeciesSettings& set
   WindBasis wind = WindBasis::compute(skeleton, model, modes.shapes(), settings.wind);
   timings.wind = seconds_since(start);
 
+  start = Clock::now();
   SpeciesBasis species = from_parts(std::move(skeleton), settings, std::move(modes), std::move(wind));
+  timings.strong_wind = seconds_since(start);  // from_parts fits the correction; the rest is copies
   species.timings_ = timings;
   return species;
 }
 
 SpeciesBasis SpeciesBasis::from_parts(Skeleton skeleton, SpeciesSettings settings, ModalBasis modes,
-                                      WindBasis wind) {
+                                      WindBasis wind, std::optional<StrongWindCorrection> strong_wind) {
   const int dofs = 6 * (skeleton.size() - 1);
   if (modes.dof_count() != dofs) {
     throw std::invalid_argument(
@@ -79,8 +82,17 @@ SpeciesBasis SpeciesBasis::from_parts(Skeleton skeleton, SpeciesSettings setting
                     "for {}",
                     wind.sample_count(), settings.wind.samples));
   }
+  if (strong_wind &&
+      (strong_wind->mode_count() != modes.mode_count() || strong_wind->node_count() != skeleton.size())) {
+    throw std::invalid_argument(fmt::format(
+        "SpeciesBasis: the strong-wind correction has {} modes of {} nodes, expected {} of {}",
+        strong_wind->mode_count(), strong_wind->node_count(), modes.mode_count(), skeleton.size()));
+  }
   SpeciesBasis species;
   species.node_shapes_ = gather_node_shapes(skeleton, modes);
+  species.strong_wind_ =
+      strong_wind ? std::move(*strong_wind)
+                  : StrongWindCorrection::fit(skeleton, species.node_shapes_, settings.strong_wind);
   species.skeleton_ = std::move(skeleton);
   species.settings_ = std::move(settings);
   species.modes_ = std::move(modes);
@@ -92,7 +104,8 @@ SpeciesBasis SpeciesBasis::scaled(double s) const {
   ModalBasis modes = modes_.scaled(s);  // validates s
   WindBasis wind = wind_.scaled(s);
   Skeleton skeleton = skeleton_.transformed(Eigen::Matrix3d::Identity(), Eigen::Vector3d::Zero(), s);
-  return from_parts(std::move(skeleton), settings_, std::move(modes), std::move(wind));
+  return from_parts(std::move(skeleton), settings_, std::move(modes), std::move(wind),
+                    strong_wind_.scaled(s));
 }
 
 }  // namespace fw::trees

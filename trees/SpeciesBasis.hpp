@@ -9,16 +9,20 @@
 //   species.modes().frequencies_hz();
 //   species.wind().projection_matrix();          // (3 S) x m
 //   species.node_shapes();                       // (3 n) x m: nodal translations, for u = Phi q on a device
+//   species.strong_wind().corrected_displacement(species.skeleton(), q);   // strong-wind pose of Phi q (3 n)
 //   auto instance = species.scaled(1.1);         // one basis serves a whole stand of similar trees
 //
-// The expensive part (the eigenproblem) is cached on disk by trees/BasisCache.hpp.
+// The expensive part (the eigenproblem) is cached on disk by trees/BasisCache.hpp, with the strong-wind fit.
 #pragma once
 
 #include <Eigen/Core>
 
+#include <optional>
 #include "trees/Material.hpp"
 #include "trees/ModalBasis.hpp"
+
 #include "trees/Skeleton.hpp"
+#include "trees/StrongWindCorrection.hpp"
 #include "trees/WindBasis.hpp"
 
 namespace fw::trees {
@@ -27,16 +31,19 @@ struct SpeciesSettings {
   Material material = kDefaultWood;  ///< E, G (Pa), rho (kg/m^3): Diener's wood, G = E / 2.6
   ModalSettings modal;               ///< how many modes, damping, solver tolerances
   WindBasisSettings wind;            ///< drag coefficients, leaf area index, wind samples
+  StrongWindSettings strong_wind;    ///< the fit of Diener's strong-wind correction (samples, ranges)
 
-  /// Throws std::invalid_argument naming the part (Material, ModalSettings, Damping, WindBasisSettings).
+  /// Throws std::invalid_argument naming the part (Material, ModalSettings, Damping, WindBasisSettings,
+  /// StrongWindSettings).
   void validate() const;
 };
 
 /// How long the parts of SpeciesBasis::compute took, s.
 struct SpeciesTimings {
-  double assembly = 0.0;  ///< BeamModel: element matrices and sparse assembly
-  double modes = 0.0;     ///< ModalBasis: factorisation and Lanczos
-  double wind = 0.0;      ///< WindBasis
+  double assembly = 0.0;     ///< BeamModel: element matrices and sparse assembly
+  double modes = 0.0;        ///< ModalBasis: factorisation and Lanczos
+  double wind = 0.0;         ///< WindBasis
+  double strong_wind = 0.0;  ///< StrongWindCorrection::fit
 };
 
 class SpeciesBasis {
@@ -45,23 +52,26 @@ class SpeciesBasis {
   /// (ModalError when the modes do not converge) and WindBasis throw.
   static SpeciesBasis compute(Skeleton skeleton, const SpeciesSettings& settings);
 
-  /// Rebuilds a species from its parts (the disk cache). Throws std::invalid_argument("SpeciesBasis: ...")
-  /// when the parts do not fit together (DOFs against the skeleton, mode counts, sample counts).
+  /// Rebuilds a species from its parts (the disk cache). Without a strong-wind correction it is fitted
+  /// (settings.strong_wind). Throws std::invalid_argument("SpeciesBasis: ...") when the parts do not fit
+  /// together (DOFs against the skeleton, mode, sample and node counts).
   static SpeciesBasis from_parts(Skeleton skeleton, SpeciesSettings settings, ModalBasis modes,
-                                 WindBasis wind);
+                                 WindBasis wind, std::optional<StrongWindCorrection> strong_wind = {});
 
   const Skeleton& skeleton() const { return skeleton_; }
   const SpeciesSettings& settings() const { return settings_; }
   const ModalBasis& modes() const { return modes_; }
   const WindBasis& wind() const { return wind_; }
+  /// Diener's quadratic strong-wind correction of node_shapes() * q (trees/StrongWindCorrection.hpp).
+  const StrongWindCorrection& strong_wind() const { return strong_wind_; }
   const SpeciesTimings& timings() const { return timings_; }
 
   /// Nodal translations of every mode, (3 n) x m, m per unit modal coordinate: rows 3k..3k+2 are node k's
   /// x, y, z; the root's rows are zero. The skeleton displacement is node_shapes() * q.
   const Eigen::MatrixXd& node_shapes() const { return node_shapes_; }
 
-  /// The species grown by s about its root origin (Skeleton::transformed(I, 0, s)), with modes and wind basis
-  /// transformed by the similarity laws instead of recomputed.
+  /// The species grown by s about its root origin (Skeleton::transformed(I, 0, s)), with modes, wind basis
+  /// and strong-wind correction transformed by the similarity laws instead of recomputed.
   SpeciesBasis scaled(double s) const;
 
  private:
@@ -70,6 +80,7 @@ class SpeciesBasis {
   ModalBasis modes_;
   WindBasis wind_;
   Eigen::MatrixXd node_shapes_;
+  StrongWindCorrection strong_wind_;
   SpeciesTimings timings_;
 };
 

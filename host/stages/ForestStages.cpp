@@ -16,6 +16,9 @@ cl::Buffer upload_array(ComputeContext& cc, const std::vector<T>& values, cl_mem
   return buffer;
 }
 
+// Per instance in the unresolved turbulence's travel buffer: whole points, fraction, last step (points).
+constexpr std::size_t kTravelFloats = 3;
+
 cl::Buffer zeroed(ComputeContext& cc, std::size_t floats) {
   cl::Buffer buffer = cc.buffer(floats * sizeof(float));
   if (floats > 0) cc.queue().enqueueFillBuffer(buffer, 0.0f, 0, floats * sizeof(float));
@@ -48,17 +51,28 @@ ForestStages::ForestStages(ComputeContext& cc, const fluid::GridSpec& spec, cons
   zeta_ = upload_array(cc_, p.damping_ratios, ro);
   mode_instance_ = upload_array(cc_, p.mode_instance, ro);
   node_instance_ = upload_array(cc_, p.node_instance, ro);
+  strong_v_ = upload_array(cc_, p.strong_v, ro);
+  strong_w_ = upload_array(cc_, p.strong_w, ro);
+  strong_b_ = upload_array(cc_, p.strong_b, ro);
+  walk_ = upload_array(cc_, p.walk, ro);
+  rest_elements_ = upload_array(cc_, p.rest_elements, ro);
 
   forces_ = zeroed(cc_, std::size_t(total_modes_));
   state_ = zeroed(cc_, 2 * std::size_t(total_modes_));
   sampled_wind_ = zeroed(cc_, 3 * std::size_t(total_samples_));
   displacements_ = zeroed(cc_, 3 * std::size_t(total_nodes_));
 
-  wind_load_ = Kernel(cc_.build("tree_wind_load.cl"), "tree_wind_load");
+  wind_load_program_ = cc_.build("tree_wind_load.cl");
+  wind_load_ = Kernel(wind_load_program_, "tree_wind_load");
+  for (const FwTreeInstance& t : p.instances)
+    instance_samples_.push_back(p.species[std::size_t(t.species)].sample_count);
   cl::Program step = cc_.build("tree_modal_step.cl");
   step_exact_ = Kernel(step, "tree_modal_step_exact");
   step_semi_implicit_ = Kernel(step, "tree_modal_step_semi_implicit");
-  deform_ = Kernel(cc_.build("tree_deform.cl"), "tree_deform");
+  cl::Program deform = cc_.build("tree_deform.cl");
+  deform_ = Kernel(deform, "tree_deform");
+  deform_strong_ = Kernel(deform, "tree_deform_strong");
+  restore_lengths_ = Kernel(deform, "tree_restore_lengths");
 }
 
 void ForestStages::enqueue_wind_load(DeviceVelocity& velocity) {
@@ -67,6 +81,11 @@ void ForestStages::enqueue_wind_load(DeviceVelocity& velocity) {
       .set_args(grid_, instance_count_, instances_, species_, projections_, sample_points_, velocity.u,
                 velocity.v, velocity.w, sampled_wind_, forces_)
       .enqueue(cc_, cl::NDRange(cc_.flat_items(std::size_t(instance_count_))));
+  if (unresolved_on_)
+    unresolved_load_
+        .set_args(instance_count_, instances_, species_, projections_, sampled_wind_, series_, series_length_,
+                  float(series_spacing_), sample_offsets_, travel_, unresolved_intensity_, forces_)
+        .enqueue(cc_, cl::NDRange(cc_.flat_items(std::size_t(instance_count_))));
 }
 
 void ForestStages::enqueue_modal_step(float dt) {
@@ -76,18 +95,37 @@ void ForestStages::enqueue_modal_step(float dt) {
   Kernel& kernel = integrator_ == trees::ModalIntegrator::exact ? step_exact_ : step_semi_implicit_;
   kernel.set_args(total_modes_, dt, mode_instance_, instances_, species_, omega_, zeta_, forces_, state_)
       .enqueue(cc_, cl::NDRange(cc_.flat_items(std::size_t(total_modes_))));
+  if (unresolved_on_)
+    unresolved_advance_
+        .set_args(instance_count_, instances_, sampled_wind_, series_length_, float(series_spacing_), dt,
+                  travel_)
+        .enqueue(cc_, cl::NDRange(cc_.flat_items(std::size_t(instance_count_))));
 }
 
 void ForestStages::enqueue_deform() {
   if (total_nodes_ == 0) return;
-  deform_.set_args(total_nodes_, node_instance_, instances_, species_, node_shapes_, state_, displacements_)
-      .enqueue(cc_, cl::NDRange(cc_.flat_items((std::size_t(total_nodes_) + 7) / 8)));  // blocks of 8 nodes
+  const cl::NDRange blocks(cc_.flat_items((std::size_t(total_nodes_) + 7) / 8));  // blocks of 8 nodes
+  if (strong_wind_correction_) {
+    deform_strong_
+        .set_args(total_nodes_, node_instance_, instances_, species_, strong_v_, strong_w_, strong_b_, state_,
+                  displacements_)
+        .enqueue(cc_, blocks);
+    // In place on Diener's displacements; the in-order queue runs it after them.
+    restore_lengths_.set_args(instance_count_, instances_, species_, walk_, rest_elements_, displacements_)
+        .enqueue(cc_, cl::NDRange(cc_.flat_items(std::size_t(instance_count_))));
+  } else {
+    deform_.set_args(total_nodes_, node_instance_, instances_, species_, node_shapes_, state_, displacements_)
+        .enqueue(cc_, blocks);
+  }
 }
 
 void ForestStages::reset_state() {
   if (total_modes_ == 0) return;
   cc_.queue().enqueueFillBuffer(state_, 0.0f, 0, 2 * std::size_t(total_modes_) * sizeof(float));
   cc_.queue().enqueueFillBuffer(forces_, 0.0f, 0, std::size_t(total_modes_) * sizeof(float));
+  if (unresolved_on_)
+    cc_.queue().enqueueFillBuffer(travel_, 0.0f, 0,
+                                  kTravelFloats * std::size_t(instance_count_) * sizeof(float));
 }
 
 std::vector<float> ForestStages::read(cl::Buffer& buffer, std::size_t count) {
@@ -134,6 +172,56 @@ void ForestStages::upload_modal_state(const ModalState& state) {
   if (m > 0)
     cc_.queue().enqueueWriteBuffer(state_, CL_TRUE, 0, interleaved.size() * sizeof(float),
                                    interleaved.data());
+}
+
+void ForestStages::set_unresolved_turbulence(const trees::UnresolvedTurbulence& series, double intensity) {
+  if (!std::isfinite(intensity) || intensity < 0.0)
+    throw std::invalid_argument(fmt::format(
+        "ForestStages: unresolved turbulence intensity must be finite and >= 0, got {}", intensity));
+  disable_unresolved_turbulence();
+  if (instance_count_ == 0) return;  // nothing to force; stays off
+  std::vector<fw_int> offsets(static_cast<std::size_t>(total_samples_));
+  std::size_t flat = 0;
+  for (int k = 0; k < instance_count_; ++k)
+    for (int s = 0; s < instance_samples_[std::size_t(k)]; ++s) offsets[flat++] = series.offset(k, s);
+  constexpr cl_mem_flags ro = CL_MEM_READ_ONLY;
+  series_ = upload_array(cc_, series.device_table(), ro);
+  sample_offsets_ = upload_array(cc_, offsets, ro);
+  travel_ = zeroed(cc_, kTravelFloats * std::size_t(instance_count_));
+  series_length_ = series.length();
+  series_spacing_ = series.spacing();
+  unresolved_intensity_ = float(intensity);
+  if (unresolved_load_.name().empty()) {
+    unresolved_load_ = Kernel(wind_load_program_, "tree_unresolved_load");
+    unresolved_advance_ = Kernel(wind_load_program_, "tree_unresolved_advance");
+  }
+  unresolved_on_ = true;
+}
+
+void ForestStages::set_unresolved_intensity(double intensity) {
+  if (!unresolved_on_)
+    throw std::invalid_argument(
+        "ForestStages: set_unresolved_intensity needs set_unresolved_turbulence first");
+  if (!std::isfinite(intensity) || intensity < 0.0)
+    throw std::invalid_argument(fmt::format(
+        "ForestStages: unresolved turbulence intensity must be finite and >= 0, got {}", intensity));
+  unresolved_intensity_ = float(intensity);
+}
+
+void ForestStages::disable_unresolved_turbulence() {
+  unresolved_on_ = false;
+  series_ = sample_offsets_ = travel_ = cl::Buffer();
+  series_length_ = 0;
+  series_spacing_ = 0.0;
+}
+
+std::vector<double> ForestStages::download_travelled() {
+  if (!unresolved_on_) return {};
+  const std::vector<float> travel = read(travel_, kTravelFloats * std::size_t(instance_count_));
+  std::vector<double> metres(static_cast<std::size_t>(instance_count_));
+  for (std::size_t k = 0; k < metres.size(); ++k)
+    metres[k] = (double(travel[kTravelFloats * k]) + double(travel[kTravelFloats * k + 1])) * series_spacing_;
+  return metres;
 }
 
 }  // namespace fw::host

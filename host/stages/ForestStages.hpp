@@ -4,16 +4,20 @@
 //
 //   fw::host::ForestStages trees(cc, spec, forest);      // uploads species and instances, state = 0
 //   trees.set_integrator(fw::trees::ModalIntegrator::exact);
+//   trees.set_unresolved_turbulence(series, 0.15);      // optional: trees/UnresolvedTurbulence
 //   for (int n = 0; n < steps; ++n) {
 //     wind.step();
 //     trees.enqueue_wind_load(wind.velocity());           // sampled wind and modal forces
 //     trees.enqueue_modal_step(float(dt));                // q, qdot of every instance-mode
 //   }
-//   trees.enqueue_deform();                               // output frame: u = s^-3/2 R Phi q
+//   trees.set_strong_wind_correction(true);               // the default: Diener's correction + exact lengths
+//   trees.enqueue_deform();                               // output frame: u = s^-3/2 R Phi q, corrected
 //   std::vector<float> u = trees.download_displacements();   // #total nodes by 3, m, world frame
 //
 // Kernels: kernels/tree_wind_load.cl (one instance per iteration: sample once, reuse for all modes),
-// kernels/tree_modal_step.cl and kernels/tree_deform.cl (one instance-mode / instance node per iteration).
+// kernels/tree_modal_step.cl and kernels/tree_deform.cl (one instance-mode / block of 8 instance nodes per
+// iteration; tree_deform_strong then tree_restore_lengths, one instance per iteration, with the strong-wind
+// correction, tree_deform without).
 // The CPU oracle is trees/ForestReference.
 #pragma once
 
@@ -25,6 +29,7 @@
 #include "kernels/shared_types.h"
 #include "trees/Forest.hpp"
 #include "trees/ModalIntegrator.hpp"
+#include "trees/UnresolvedTurbulence.hpp"
 
 namespace fw::host {
 
@@ -47,12 +52,19 @@ class ForestStages {
   void set_integrator(trees::ModalIntegrator integrator) { integrator_ = integrator; }
   trees::ModalIntegrator integrator() const { return integrator_; }
 
+  /// Whether enqueue_deform applies the strong-wind correction (trees/StrongWindCorrection.hpp): Diener's
+  /// quadratic correction, then the pass that restores every element's rest length, so branch lengths stay
+  /// constant under large q; on by default. Off, frames are the linear modal sum exactly as before the
+  /// correction existed. Affects only the deformation, not the modal state.
+  void set_strong_wind_correction(bool on) { strong_wind_correction_ = on; }
+  bool strong_wind_correction() const { return strong_wind_correction_; }
+
   /// Samples `velocity` at every instance's sample points and computes the modal forces.
   void enqueue_wind_load(DeviceVelocity& velocity);
   /// Advances every instance-mode by dt (s, finite and >= 0, else std::invalid_argument) with the forces of
   /// the last wind load held constant.
   void enqueue_modal_step(float dt);
-  /// Nodal displacements from the current modal state.
+  /// Nodal displacements from the current modal state (with or without the strong-wind correction).
   void enqueue_deform();
   /// q = qdot = 0 and forces = 0.
   void reset_state();
@@ -65,6 +77,22 @@ class ForestStages {
   ModalState download_modal_state();
   /// Sets the modal state (restarts, tests). Throws std::invalid_argument unless both have total_modes().
   void upload_modal_state(const ModalState& state);
+
+  /// Per-tree stochastic forcing of the unresolved turbulence (trees/UnresolvedTurbulence.hpp), off by
+  /// default (and then nothing of it runs: the results are bit for bit those without it). Uploads the series
+  /// table (6 floats a point) and every sample's offset once and zeroes the travelled distances. From then on
+  /// enqueue_wind_load adds delta f after the resolved forces (kernel tree_unresolved_load), and
+  /// enqueue_modal_step(dt) advances each tree's travelled distance by |v| dt, v its first sample's wind from
+  /// the last load (tree_unresolved_advance): a caller adds no call per step. Throws
+  /// std::invalid_argument("ForestStages: ...") for an intensity (sigma_u / U) that is not finite and >= 0.
+  void set_unresolved_turbulence(const trees::UnresolvedTurbulence& series, double intensity);
+  /// A new intensity for the forcing already set (std::invalid_argument when it is off or the value bad).
+  void set_unresolved_intensity(double intensity);
+  /// Turns the forcing off and releases its buffers.
+  void disable_unresolved_turbulence();
+  bool unresolved_turbulence() const { return unresolved_on_; }
+  /// Each instance's travelled distance X_k within the series' period, m (empty when the forcing is off).
+  std::vector<double> download_travelled();
 
   /// Device buffers, for coupling stages: forces (total_modes floats), state (2 floats per mode: q, qdot),
   /// sampled wind (3 per sample), displacements (3 per node), instances (FwTreeInstance each).
@@ -80,11 +108,25 @@ class ForestStages {
   ComputeContext& cc_;
   FwGrid grid_;
   trees::ModalIntegrator integrator_ = trees::ModalIntegrator::exact;
+  bool strong_wind_correction_ = true;
   int instance_count_ = 0, total_modes_ = 0, total_nodes_ = 0, total_samples_ = 0;
   cl::Buffer species_, instances_, node_shapes_, projections_, sample_points_, omega_, zeta_, mode_instance_,
       node_instance_;
+  cl::Buffer strong_v_, strong_w_, strong_b_;  // the strong-wind correction (trees/Forest.hpp, ForestPacking)
+  cl::Buffer walk_, rest_elements_;  // its length-restoring pass (ForestPacking::walk, rest_elements)
   cl::Buffer forces_, state_, sampled_wind_, displacements_;
-  Kernel wind_load_, step_exact_, step_semi_implicit_, deform_;
+  Kernel wind_load_, step_exact_, step_semi_implicit_, deform_, deform_strong_, restore_lengths_;
+  // Unresolved turbulence: wind samples per instance (for the offsets), the series' size, and its buffers:
+  // series table (6 N floats), offsets (an int per flat sample), travel (whole points, fraction and last
+  // step per instance).
+  cl::Program wind_load_program_;
+  std::vector<int> instance_samples_;
+  bool unresolved_on_ = false;
+  float unresolved_intensity_ = 0.0f;
+  int series_length_ = 0;
+  double series_spacing_ = 0.0;
+  cl::Buffer series_, sample_offsets_, travel_;
+  Kernel unresolved_load_, unresolved_advance_;
 };
 
 }  // namespace fw::host

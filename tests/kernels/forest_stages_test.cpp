@@ -3,6 +3,7 @@
 // species with various yaws and scales.
 #include <catch2/catch.hpp>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <random>
@@ -26,6 +27,14 @@ constexpr double kForceTolerance = 1e-4;
 constexpr double kStateTolerance = 2e-4;
 // deformation from the same q: a dot product of m terms and a rotation.
 constexpr double kDeformTolerance = 1e-5;
+// the strong-wind correction from the same q: float atan (a few ulps) and q~^2 w in the same sum, then the
+// length-restoring walk, whose float rounding adds up along each root-to-tip path (a few dozen elements
+// here) and which turns Diener's float error normal to each element into motion of the subtree; measured
+// 2.3e-7 on PoCL (2.5e-7 before the walk), the linear path's margin kept.
+constexpr double kStrongDeformTolerance = 1e-5;
+// Element lengths of the device's corrected frames against their rest lengths: float rounding of the
+// displacements (~1e-7 of the largest, a few m) over the shortest element; measured 1.9e-7 on PoCL.
+constexpr double kDeviceLengthTolerance = 1e-5;
 
 trees::SpeciesBasis small_species(const std::string& preset, double height, std::uint64_t seed,
                                   int iterations, int modes, int samples) {
@@ -198,6 +207,122 @@ TEST_CASE("tree_modal_step: 50 steps of both integrators match the reference", "
   }
 }
 
+// A storm's modal state: every instance-mode at up to its fitted range q_max
+// (trees/StrongWindCorrection.hpp), s^5/2 q_max in the instance's own coordinate, so that the arctan and the
+// q~^2 w terms matter.
+host::ModalState storm_state(const trees::Forest& forest, std::uint32_t seed) {
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<double> unit(-1.0, 1.0);
+  host::ModalState state;
+  for (int k = 0; k < forest.instance_count(); ++k) {
+    const double grown = std::pow(forest.instances()[std::size_t(k)].scale, 2.5);
+    for (const trees::StrongWindModeFit& fit : forest.species_of(k).strong_wind().fits()) {
+      state.q.push_back(float(grown * fit.q_max * unit(rng)));
+      state.qdot.push_back(0.0f);
+    }
+  }
+  return state;
+}
+
+// Max over instances of (max |device - expected| over the instance's nodes) / (max |expected| there): each
+// instance on its own, so that the small trees' errors do not hide behind the large ones' motion.
+double worst_instance_error(const trees::Forest& forest, const std::vector<float>& device,
+                            const Eigen::MatrixX3d& expected) {
+  REQUIRE(device.size() == std::size_t(3 * expected.rows()));
+  double worst = 0.0;
+  for (int k = 0; k < forest.instance_count(); ++k) {
+    double diff = 0.0, scale = 0.0;
+    for (int n = forest.node_offset(k); n < forest.node_offset(k + 1); ++n)
+      for (int a = 0; a < 3; ++a) {
+        diff = std::max(diff, std::abs(double(device[std::size_t(3 * n + a)]) - expected(n, a)));
+        scale = std::max(scale, std::abs(expected(n, a)));
+      }
+    worst = std::max(worst, diff / scale);
+  }
+  return worst;
+}
+
+// Max over every instance's elements of | |deformed| / |rest| - 1 |, the rest element s R (p_c - p_p) in
+// double, the deformed one that plus the device's u_c - u_p: what the length-restoring pass makes exact.
+double max_length_error(const trees::Forest& forest, const std::vector<float>& device) {
+  REQUIRE(device.size() == std::size_t(3 * forest.total_nodes()));
+  double worst = 0.0;
+  for (int k = 0; k < forest.instance_count(); ++k) {
+    const trees::Skeleton& skeleton = forest.species_of(k).skeleton();
+    const Eigen::Matrix3d grow = forest.instances()[std::size_t(k)].scale * forest.rotation(k);
+    auto u = [&](int node) {
+      const std::size_t at = 3 * std::size_t(forest.node_offset(k) + node);
+      return Eigen::Vector3d(device[at], device[at + 1], device[at + 2]);
+    };
+    for (const auto& [parent, child] : skeleton.elements()) {
+      const Eigen::Vector3d rest = grow * (skeleton.node(child).position - skeleton.node(parent).position);
+      worst = std::max(worst, std::abs((rest + u(child) - u(parent)).norm() / rest.norm() - 1.0));
+    }
+  }
+  return worst;
+}
+
+double max_length_error(const trees::Forest& forest, const Eigen::MatrixX3d& u) {
+  std::vector<float> flat;
+  for (int n = 0; n < u.rows(); ++n)
+    for (int a = 0; a < 3; ++a) flat.push_back(float(u(n, a)));
+  return max_length_error(forest, flat);
+}
+
+TEST_CASE("tree_deform_strong: the strong-wind correction matches the reference at every scale and yaw",
+          "[forest]") {
+  auto* cc = test::device_or_skip();
+  if (!cc) return;
+  ForestFixture f(*cc);
+  CHECK(f.stages.strong_wind_correction());  // on by default
+  const host::ModalState state = storm_state(f.forest, 23);
+  f.stages.upload_modal_state(state);
+  f.stages.enqueue_deform();
+  const std::vector<float> u = f.stages.download_displacements();
+  const Eigen::VectorXd q = to_eigen(state.q);
+  const Eigen::MatrixX3d expected = f.ref.displacements(q, true);
+  const double error = worst_instance_error(f.forest, u, expected);
+  const double correction =
+      (f.ref.displacements(q, false) - expected).cwiseAbs().maxCoeff() / expected.cwiseAbs().maxCoeff();
+  const double lengths = max_length_error(f.forest, u);
+  WARN("strong-wind deformation of 20 instances (scales 0.6-1.5, all yaws): max relative error per instance "
+       << error << "; the correction moves nodes by " << correction << " of the largest motion; element "
+       << "lengths off by " << lengths
+       << " (linear: " << max_length_error(f.forest, f.ref.displacements(q, false)) << ")");
+  CHECK(correction > 0.05);  // the amplitudes are large enough for the correction to matter
+  CHECK(error < kStrongDeformTolerance);
+  CHECK(lengths < kDeviceLengthTolerance);
+
+  // At rest every node stays exactly where it is: Diener's part is 0, and the pass's change has no term
+  // without delta (its lengths are those of the rounded rest elements themselves).
+  f.stages.reset_state();
+  f.stages.enqueue_deform();
+  const std::vector<float> rest = f.stages.download_displacements();
+  CHECK(std::all_of(rest.begin(), rest.end(), [](float x) { return x == 0.0f; }));
+}
+
+TEST_CASE("tree_deform: with the strong-wind correction off, frames are the linear modal sum", "[forest]") {
+  auto* cc = test::device_or_skip();
+  if (!cc) return;
+  ForestFixture f(*cc);
+  const host::ModalState state = storm_state(f.forest, 29);
+  f.stages.upload_modal_state(state);
+  f.stages.set_strong_wind_correction(false);
+  CHECK_FALSE(f.stages.strong_wind_correction());
+  f.stages.enqueue_deform();
+  const std::vector<float> off = f.stages.download_displacements();
+  CHECK(worst_instance_error(f.forest, off, f.ref.displacements(to_eigen(state.q), false)) <
+        kDeformTolerance);
+  // On and off again: the flag picks the kernel and leaves nothing behind, bit for bit.
+  f.stages.set_strong_wind_correction(true);
+  f.stages.enqueue_deform();
+  const std::vector<float> on = f.stages.download_displacements();
+  CHECK(on != off);
+  f.stages.set_strong_wind_correction(false);
+  f.stages.enqueue_deform();
+  CHECK(f.stages.download_displacements() == off);
+}
+
 TEST_CASE("tree_modal_step: a long exact run settles at the static response", "[forest]") {
   auto* cc = test::device_or_skip();
   if (!cc) return;
@@ -281,4 +406,76 @@ TEST_CASE("ForestStages: wind load + modal step timing", "[.][forest-bench]") {
        << forest.species()[0].skeleton().size() << " nodes: wind load + modal step " << ms << " ms ("
        << load_ms << " + " << step_ms << "), semi-implicit step " << semi_ms << " ms, deform " << deform_ms
        << " ms");
+}
+
+// Timing, not a check: `kernel_tests "[forest-bench]"`. The deformation of an output frame for 700 instances
+// of the default broadleaf (905 nodes, 20 modes) at storm amplitudes: linear, Diener's part alone, and the
+// whole correction (Diener's part, then the length-restoring pass), and the pass alone.
+TEST_CASE("ForestStages: deformation timing with and without the length-restoring pass",
+          "[.][forest-bench]") {
+  auto* cc = test::device_or_skip();
+  if (!cc) return;
+  constexpr int kInstances = 700, kModes = 20, kFrames = 20;
+  trees::GeneratorSettings g;
+  g.preset = "broadleaf";
+  trees::SpeciesSettings settings;
+  settings.modal.mode_count = kModes;
+  settings.wind.samples = 3;
+  std::vector<trees::SpeciesBasis> species = {
+      trees::SpeciesBasis::compute(trees::generate_tree(g), settings)};
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<double> pos(10.0, 246.0), yaw(-M_PI, M_PI), scale(0.8, 1.2);
+  std::vector<trees::TreeInstance> trees;
+  for (int k = 0; k < kInstances; ++k) trees.push_back({0, {pos(rng), pos(rng), 0.0}, yaw(rng), scale(rng)});
+  const trees::Forest forest(std::move(species), std::move(trees));
+  fluid::GridSpec spec;
+  spec.nx = spec.ny = 128;
+  spec.nz = 16;
+  spec.h = 2.0;
+  host::ForestStages stages(*cc, spec, forest);
+  stages.upload_modal_state(storm_state(forest, 31));
+
+  // Diener's part and the pass on their own, on the stages' state and displacement buffers.
+  const trees::ForestPacking p = forest.pack();
+  auto upload = [&](const auto& values) {
+    cl::Buffer buffer = cc->buffer(values.size() * sizeof(values[0]), CL_MEM_READ_ONLY);
+    cc->queue().enqueueWriteBuffer(buffer, CL_TRUE, 0, values.size() * sizeof(values[0]), values.data());
+    return buffer;
+  };
+  cl::Buffer species_buffer = upload(p.species), node_instance = upload(p.node_instance),
+             strong_v = upload(p.strong_v), strong_w = upload(p.strong_w), strong_b = upload(p.strong_b),
+             walk = upload(p.walk), rest_elements = upload(p.rest_elements);
+  const cl::Program program = cc->build("tree_deform.cl");
+  host::Kernel diener(program, "tree_deform_strong"), pass(program, "tree_restore_lengths");
+  const cl::NDRange blocks(cc->flat_items((std::size_t(p.total_nodes) + 7) / 8));
+  const cl::NDRange instances(cc->flat_items(std::size_t(kInstances)));
+
+  auto time_each = [&](auto&& enqueue) {
+    enqueue();  // warm-up (kernel compilation for the work sizes)
+    cc->finish();
+    const auto start = std::chrono::steady_clock::now();
+    for (int n = 0; n < kFrames; ++n) enqueue();
+    cc->finish();
+    return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count() /
+           kFrames;
+  };
+  stages.set_strong_wind_correction(false);
+  const double linear_ms = time_each([&] { stages.enqueue_deform(); });
+  stages.set_strong_wind_correction(true);
+  const double corrected_ms = time_each([&] { stages.enqueue_deform(); });
+  const double diener_ms = time_each([&] {
+    diener
+        .set_args(p.total_nodes, node_instance, stages.instances(), species_buffer, strong_v, strong_w,
+                  strong_b, stages.state(), stages.displacements())
+        .enqueue(*cc, blocks);
+  });
+  const double pass_ms = time_each([&] {
+    pass.set_args(kInstances, stages.instances(), species_buffer, walk, rest_elements, stages.displacements())
+        .enqueue(*cc, instances);
+  });
+  WARN(kInstances << " broadleaf instances x " << forest.species()[0].skeleton().size() << " nodes x "
+                  << kModes << " modes (" << p.total_nodes << " nodes) on '" << cc->device().device_name
+                  << "': deform linear " << linear_ms << " ms, Diener's part " << diener_ms
+                  << " ms, whole correction " << corrected_ms << " ms (the length-restoring pass alone "
+                  << pass_ms << " ms)");
 }

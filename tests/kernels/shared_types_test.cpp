@@ -19,26 +19,30 @@ namespace {
   X(FwLevel);                \
   X(FwStep);                 \
   X(FwGust)
-#define FW_SHARED_FIELDS(X) \
-  X(FwGrid, nx);            \
-  X(FwGrid, ny);            \
-  X(FwGrid, nz);            \
-  X(FwGrid, bc);            \
-  X(FwGrid, h);             \
-  X(FwGrid, origin);        \
-  X(FwLevel, nx);           \
-  X(FwLevel, ny);           \
-  X(FwLevel, nz);           \
-  X(FwLevel, periodic);     \
-  X(FwStep, dt);            \
-  X(FwStep, time);          \
-  X(FwStep, ambient);       \
-  X(FwGust, start);         \
-  X(FwGust, duration);      \
-  X(FwGust, peak_speed);    \
-  X(FwGust, radius);        \
-  X(FwGust, center);        \
-  X(FwGust, travel);        \
+#define FW_SHARED_FIELDS(X)      \
+  X(FwGrid, nx);                 \
+  X(FwGrid, ny);                 \
+  X(FwGrid, nz);                 \
+  X(FwGrid, bc);                 \
+  X(FwGrid, h);                  \
+  X(FwGrid, origin);             \
+  X(FwLevel, nx);                \
+  X(FwLevel, ny);                \
+  X(FwLevel, nz);                \
+  X(FwLevel, periodic);          \
+  X(FwStep, dt);                 \
+  X(FwStep, time);               \
+  X(FwStep, ambient);            \
+  X(FwStep, turbulence_sigma);   \
+  X(FwStep, turbulence_offset);  \
+  X(FwStep, turbulence_cells);   \
+  X(FwStep, turbulence_spacing); \
+  X(FwGust, start);              \
+  X(FwGust, duration);           \
+  X(FwGust, peak_speed);         \
+  X(FwGust, radius);             \
+  X(FwGust, center);             \
+  X(FwGust, travel);             \
   X(FwGust, direction)
 // The trees' structs (packed by trees/Forest.hpp), kept in their own lists.
 #define FW_TREE_STRUCTS(X) \
@@ -52,6 +56,7 @@ namespace {
   X(FwSpecies, projection_offset);   \
   X(FwSpecies, sample_point_offset); \
   X(FwSpecies, modal_offset);        \
+  X(FwSpecies, skeleton_offset);     \
   X(FwTreeInstance, species);        \
   X(FwTreeInstance, mode_offset);    \
   X(FwTreeInstance, node_offset);    \
@@ -100,10 +105,10 @@ std::string layout_kernel_source(const std::vector<LayoutEntry>& entries) {
 }  // namespace
 
 TEST_CASE("shared_types: host structs are packed 32-bit fields without padding") {
-  // Field counts: FwGrid 3 + 6 + 1 + 3, FwLevel 4, FwStep 2 + 3, FwGust 4 + 3 * 3.
+  // Field counts: FwGrid 3 + 6 + 1 + 3, FwLevel 4, FwStep 2 + 3 + 1 + 3 + 3 + 1, FwGust 4 + 3 * 3.
   CHECK(sizeof(FwGrid) == 13 * 4);
   CHECK(sizeof(FwLevel) == 4 * 4);
-  CHECK(sizeof(FwStep) == 5 * 4);
+  CHECK(sizeof(FwStep) == 13 * 4);
   CHECK(sizeof(FwGust) == 13 * 4);
   CHECK(alignof(FwGrid) == 4);
   CHECK(alignof(FwGust) == 4);
@@ -114,12 +119,13 @@ TEST_CASE("shared_types: host structs are packed 32-bit fields without padding")
 }
 
 TEST_CASE("shared_types: tree structs are packed 32-bit fields without padding", "[forest]") {
-  // FwSpecies 7 ints; FwTreeInstance 4 ints + 3 floats of position + cos, sin, scale.
-  CHECK(sizeof(FwSpecies) == 7 * 4);
+  // FwSpecies 8 ints; FwTreeInstance 4 ints + 3 floats of position + cos, sin, scale.
+  CHECK(sizeof(FwSpecies) == 8 * 4);
   CHECK(sizeof(FwTreeInstance) == 10 * 4);
   CHECK(alignof(FwSpecies) == 4);
   CHECK(alignof(FwTreeInstance) == 4);
   CHECK(offsetof(FwSpecies, modal_offset) == 24);
+  CHECK(offsetof(FwSpecies, skeleton_offset) == 28);
   CHECK(offsetof(FwTreeInstance, position) == 16);
   CHECK(offsetof(FwTreeInstance, cos_yaw) == 28);
   CHECK(offsetof(FwTreeInstance, scale) == 36);
@@ -129,7 +135,7 @@ TEST_CASE("shared_types: OpenCL C and the host agree on sizeof and offsetof of e
   auto* cc = fw::test::device_or_skip();
   if (!cc) return;
   const auto entries = host_layout();
-  REQUIRE(entries.size() == 4 + 20 + 2 + 15);
+  REQUIRE(entries.size() == 4 + 24 + 2 + 16);
   const std::string source = layout_kernel_source(entries);
   INFO(source);
 

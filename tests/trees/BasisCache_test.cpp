@@ -5,6 +5,8 @@
 #include "tests/support/ScopedEnv.hpp"
 #include "tests/support/TempDir.hpp"
 
+#include <cstdint>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <string>
@@ -44,6 +46,17 @@ void check_same(const SpeciesBasis& a, const SpeciesBasis& b) {
   CHECK(a.wind().projection_matrix() == b.wind().projection_matrix());
   CHECK(a.wind().sample_points() == b.wind().sample_points());
   CHECK(a.node_shapes() == b.node_shapes());
+  CHECK(a.strong_wind().linear_shapes() == b.strong_wind().linear_shapes());
+  CHECK(a.strong_wind().quadratic_shapes() == b.strong_wind().quadratic_shapes());
+  CHECK(a.strong_wind().b() == b.strong_wind().b());
+  REQUIRE(a.strong_wind().fits().size() == b.strong_wind().fits().size());
+  for (std::size_t i = 0; i < a.strong_wind().fits().size(); ++i) {
+    CHECK(a.strong_wind().fits()[i].q_max == b.strong_wind().fits()[i].q_max);
+    CHECK(a.strong_wind().fits()[i].relative_residual == b.strong_wind().fits()[i].relative_residual);
+    CHECK(a.strong_wind().fits()[i].linear_relative_residual ==
+          b.strong_wind().fits()[i].linear_relative_residual);
+    CHECK(a.strong_wind().fits()[i].shape_change == b.strong_wind().fits()[i].shape_change);
+  }
   CHECK(a.settings().wind.leaf_area_index == b.settings().wind.leaf_area_index);
   CHECK(a.settings().wind.leaf_drag_coefficient == b.settings().wind.leaf_drag_coefficient);
   CHECK(a.settings().wind.branch_drag_coefficient == b.settings().wind.branch_drag_coefficient);
@@ -58,6 +71,18 @@ std::vector<char> read_bytes(const std::filesystem::path& path) {
 void write_bytes(const std::filesystem::path& path, const std::vector<char>& bytes) {
   std::ofstream out(path, std::ios::binary | std::ios::trunc);
   out.write(bytes.data(), std::streamsize(bytes.size()));
+}
+
+// The entry's trailing checksum (64-bit FNV-1a of every byte before it), recomputed after an edit, so that
+// what the loader sees is a well-formed entry and not a corrupt one.
+void reseal(std::vector<char>& bytes) {
+  std::uint64_t hash = 0xcbf29ce484222325ULL;
+  const std::size_t body = bytes.size() - sizeof hash;
+  for (std::size_t i = 0; i < body; ++i) {
+    hash ^= static_cast<unsigned char>(bytes[i]);
+    hash *= 0x100000001b3ULL;
+  }
+  std::memcpy(bytes.data() + body, &hash, sizeof hash);
 }
 
 }  // namespace
@@ -122,6 +147,59 @@ TEST_CASE("BasisCache: the key changes with the skeleton, the material and every
   changed = base;
   changed.wind.leaf_drag_coefficient = 0.3;
   CHECK(BasisCache::key(tree, changed) != key);
+  // The strong-wind fit is stored, so its settings are in the key too.
+  changed = base;
+  changed.strong_wind.samples_per_side = 6;
+  CHECK(BasisCache::key(tree, changed) != key);
+  changed = base;
+  changed.strong_wind.reach = 0.4;
+  CHECK(BasisCache::key(tree, changed) != key);
+  changed = base;
+  changed.strong_wind.max_slope = 0.5;
+  CHECK(BasisCache::key(tree, changed) != key);
+  changed = base;
+  changed.strong_wind.search_points = 101;
+  CHECK(BasisCache::key(tree, changed) != key);
+  changed = base;
+  changed.strong_wind.beta_max = 3.0;
+  CHECK(BasisCache::key(tree, changed) != key);
+}
+
+TEST_CASE("BasisCache: an entry of format version 2 (no strong-wind correction) is recomputed, not misread") {
+  TempDir dir("fw_cache");
+  const BasisCache cache(dir.path());
+  const Skeleton tree = cached_tree();
+  const SpeciesBasis fresh = cache.load_or_compute(tree, cached_settings());
+  const auto path = cache.entry_path(BasisCache::key(tree, cached_settings()));
+  const std::vector<char> good = read_bytes(path);
+  REQUIRE(BasisCache::kFormatVersion == 3);
+  // What version 2 wrote: the same entry up to the sample points, then the checksum. The correction is
+  // v and w (3 n x m doubles each), b (m) and 4 fit values per mode.
+  const std::size_t n = std::size_t(tree.size()), m = std::size_t(cached_settings().modal.mode_count);
+  const std::size_t correction = (2 * 3 * n * m + m + 4 * m) * sizeof(double);
+  std::vector<char> old(good.begin(), good.end() - std::ptrdiff_t(correction + sizeof(std::uint64_t)));
+  old.resize(old.size() + sizeof(std::uint64_t));
+  const std::uint32_t version_2 = 2;
+  std::memcpy(old.data() + 8, &version_2, sizeof version_2);  // after the 8-byte magic
+  reseal(old);
+  // An old entry under this key could only appear by copying (the version is hashed into the key), but a
+  // reader that skipped the version check would take its checksum-valid bytes for a basis.
+  write_bytes(path, old);
+  std::string why;
+  CHECK_FALSE(cache.load(tree, cached_settings(), &why).has_value());
+  CHECK(why.find("another format version") != std::string::npos);
+  CacheOutcome outcome{};
+  const SpeciesBasis recomputed = cache.load_or_compute(tree, cached_settings(), &outcome);
+  CHECK(outcome == CacheOutcome::corrupt_recomputed);
+  check_same(fresh, recomputed);
+  CHECK(read_bytes(path) == good);
+
+  // And with the version patched to 3, the version 2 layout is too short: also rejected.
+  std::memcpy(old.data() + 8, &BasisCache::kFormatVersion, sizeof version_2);
+  reseal(old);
+  write_bytes(path, old);
+  CHECK_FALSE(cache.load(tree, cached_settings(), &why).has_value());
+  CHECK(why.find("truncated") != std::string::npos);
 }
 
 TEST_CASE("BasisCache: a corrupted entry is detected and recomputed") {
