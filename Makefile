@@ -1,11 +1,12 @@
 # The two set-up commands of the README:
 #   make demo   installs the Debian packages, builds, and runs the demo: scenarios/storm.yaml into out/storm
 #   make test   installs the Debian packages, builds, and runs every test through CTest
+#   make validate   builds and runs the long validations (tests/validation) that CI runs in short form
 BUILD_DIR ?= build
 BUILD_TYPE ?= Release
 SUDO := $(shell [ "$$(id -u)" -eq 0 ] || echo sudo)
 
-.PHONY: deps build test demo format clean
+.PHONY: deps build test validate demo format clean
 
 deps:
 	$(SUDO) bash scripts/install-deps.sh
@@ -16,6 +17,9 @@ build:
 
 test: deps build
 	ctest --test-dir $(BUILD_DIR) --output-on-failure
+
+validate: build
+	FORESTWIND_VALIDATION=full $(BUILD_DIR)/validation_tests "[validation]"
 
 demo: deps build
 	$(BUILD_DIR)/forestwind run scenarios/storm.yaml

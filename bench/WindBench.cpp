@@ -4,10 +4,12 @@
 
 #include <chrono>
 #include <cmath>
+#include <memory>
 
 #include "bench/StreamTriad.hpp"
 #include "fluid/ReferenceStages.hpp"
 #include "fluid/SolidMap.hpp"
+#include "fluid/TurbulenceBox.hpp"
 #include "io/JsonWriter.hpp"
 
 namespace fw::bench {
@@ -18,15 +20,47 @@ double ms_since(Clock::time_point t) {
   return std::chrono::duration<double, std::milli>(Clock::now() - t).count();
 }
 
+// What a timed run adds to the laminar wind tunnel: the cost of turbulence is the difference.
+enum class Turbulence {
+  none,
+  inflow,          // the synthetic inflow box swept through the inflow face
+  inflow_subgrid,  // and a Smagorinsky eddy viscosity and the rough-wall stress
+};
+
+// The turbulence cases of the bench: intensity 15% of the 10 m/s tunnel, L_u 16 cells, a box of points every
+// h/2 as long as the domain (as a run's plan builds it), C_s 0.16, z0 0.05 m.
+constexpr double kBenchSigma = 1.5, kBenchLength = 16.0, kBenchSmagorinsky = 0.16, kBenchRoughness = 0.05;
+
+host::WindGridSetup bench_setup(const std::array<int, 3>& grid, fluid::PressureSolverType solver,
+                                const WindBenchOptions& opt, Turbulence turbulence) {
+  host::WindGridSetup setup = wind_tunnel_setup(grid[0], grid[1], grid[2], solver, opt.jacobi_iterations);
+  if (turbulence == Turbulence::none) return setup;
+  fluid::TurbulenceBoxSpec box;
+  for (int a = 0; a < 3; ++a) box.cells[a] = 2 * grid[a];
+  box.spacing = 0.5 * setup.spec.h;
+  box.spectrum = {1.0, kBenchLength * setup.spec.h};
+  box.seed = 1;
+  setup.turbulence = std::make_shared<const fluid::TurbulenceBox>(box);
+  if (turbulence == Turbulence::inflow_subgrid) {
+    setup.settings.smagorinsky_constant = kBenchSmagorinsky;
+    setup.settings.wall_roughness_length = kBenchRoughness;
+  }
+  return setup;
+}
+
 SolverRun time_solver(host::ComputeContext& cc, const std::array<int, 3>& grid,
-                      fluid::PressureSolverType solver, const WindBenchOptions& opt) {
-  host::WindGrid wind(cc, wind_tunnel_setup(grid[0], grid[1], grid[2], solver, opt.jacobi_iterations));
+                      fluid::PressureSolverType solver, const WindBenchOptions& opt,
+                      Turbulence turbulence = Turbulence::none) {
+  host::WindGrid wind(cc, bench_setup(grid, solver, opt, turbulence));
+  if (turbulence != Turbulence::none) wind.set_turbulence_sigma(kBenchSigma);
   wind.initialise_ambient();
   for (int s = 0; s < opt.warmup_steps; ++s) wind.step();
   cc.finish();
   wind.set_stage_timing(true);
   SolverRun run;
-  run.solver = fluid::to_string(solver);
+  run.solver = fluid::to_string(solver) + (turbulence == Turbulence::inflow           ? "+turb"
+                                           : turbulence == Turbulence::inflow_subgrid ? "+turb+sgs"
+                                                                                      : "");
   const auto start = Clock::now();
   for (int s = 0; s < opt.steps; ++s) {
     const auto report = wind.step();
@@ -140,6 +174,10 @@ WindBenchResult run_wind_bench(host::ComputeContext& cc, const WindBenchOptions&
     for (auto solver : {fluid::PressureSolverType::cg, fluid::PressureSolverType::multigrid,
                         fluid::PressureSolverType::jacobi})
       c.runs.push_back(time_solver(cc, grid, solver, opt));
+    if (opt.turbulence) {
+      c.runs.push_back(time_solver(cc, grid, fluid::PressureSolverType::cg, opt, Turbulence::inflow));
+      c.runs.push_back(time_solver(cc, grid, fluid::PressureSolverType::cg, opt, Turbulence::inflow_subgrid));
+    }
     c.smoother_gb_s = measure_smoother_gb_s(cc, grid, true, 20);
     if (opt.reference && std::size_t(grid[0]) * grid[1] * grid[2] <= (std::size_t(1) << 18))
       c.reference_ms_per_step = time_reference_step(grid);
@@ -157,9 +195,9 @@ void print_wind_bench_table(const WindBenchResult& r, std::ostream& out) {
       r.roofline_grid[0], r.roofline_grid[1], r.roofline_grid[2], r.roofline_smoother_gb_s,
       100.0 * r.roofline_smoother_gb_s / r.triad_gb_s, r.roofline_jacobi_gb_s,
       100.0 * r.roofline_jacobi_gb_s / r.triad_gb_s);
-  out << fmt::format("{:<12} {:<10} {:>9} {:>8} {:>8} {:>9} {:>9} {:>8} {:>9} {:>10} {:>10} {:>12}\n", "grid",
-                     "solver", "ms/step", "advect", "bound.", "diverg.", "pressure", "gradient", "p-iters",
-                     "rel.res.", "max|div|", "Mcell*st/s");
+  out << fmt::format("{:<12} {:<11} {:>9} {:>8} {:>8} {:>8} {:>9} {:>9} {:>8} {:>9} {:>10} {:>10} {:>12}\n",
+                     "grid", "solver", "ms/step", "advect", "bound.", "sgs+wall", "diverg.", "pressure",
+                     "gradient", "p-iters", "rel.res.", "max|div|", "Mcell*st/s");
   for (const auto& c : r.cases) {
     const std::string grid = fmt::format("{}x{}x{}", c.grid[0], c.grid[1], c.grid[2]);
     const double base = c.runs.front().ms_per_step;
@@ -169,11 +207,12 @@ void print_wind_bench_table(const WindBenchResult& r, std::ostream& out) {
         return it == run.stages_ms.end() ? 0.0 : it->second;
       };
       out << fmt::format(
-          "{:<12} {:<10} {:>9.2f} {:>8.2f} {:>8.2f} {:>9.2f} {:>9.2f} {:>8.2f} {:>9.1f} {:>10.2e} "
+          "{:<12} {:<11} {:>9.2f} {:>8.2f} {:>8.2f} {:>8.2f} {:>9.2f} {:>9.2f} {:>8.2f} {:>9.1f} {:>10.2e} "
           "{:>10.2e} {:>12.1f}   x{:.2f}\n",
-          grid, run.solver, run.ms_per_step, stage("advect"), stage("boundaries"), stage("divergence"),
-          stage("pressure"), stage("gradient"), run.pressure_iterations, run.relative_residual,
-          run.max_divergence, run.cells_steps_per_s * 1e-6, run.ms_per_step / base);
+          grid, run.solver, run.ms_per_step, stage("advect"), stage("boundaries"),
+          stage("subgrid") + stage("wall"), stage("divergence"), stage("pressure"), stage("gradient"),
+          run.pressure_iterations, run.relative_residual, run.max_divergence, run.cells_steps_per_s * 1e-6,
+          run.ms_per_step / base);
     }
     out << fmt::format("{:<12} smoother {:.1f} GB/s ({:.0f}% of triad)", grid, c.smoother_gb_s,
                        100.0 * c.smoother_gb_s / r.triad_gb_s);
@@ -182,7 +221,8 @@ void print_wind_bench_table(const WindBenchResult& r, std::ostream& out) {
                          c.reference_ms_per_step, c.reference_ms_per_step / base);
     out << "\n";
   }
-  out << "ratios (x) are to the converging solver (cg) on the same grid\n";
+  out << "ratios (x) are to the converging solver (cg) on the same grid; +turb: with the inflow turbulence "
+         "box (15%, L_u 16 cells), +sgs: and Smagorinsky (C_s 0.16) and the rough-wall stress\n";
 }
 
 namespace {

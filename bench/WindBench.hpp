@@ -28,7 +28,8 @@ struct WindBenchOptions {
   int steps = 20;         // timed steps per solver
   int warmup_steps = 10;  // untimed steps first, so the wake has formed
   int jacobi_iterations = 40;
-  bool reference = true;                            // time one CPU-reference step on grids up to 64^3 cells
+  bool reference = true;   // time one CPU-reference step on grids up to 64^3 cells
+  bool turbulence = true;  // also time cg with the inflow turbulence, and with it Smagorinsky + wall stress
   std::array<int, 3> roofline_grid{256, 256, 128};  // smoother bandwidth, too large for cache
 };
 

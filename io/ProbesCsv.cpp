@@ -47,36 +47,46 @@ ProbesCsv::ProbesCsv(std::filesystem::path path, std::vector<std::string> probe_
 
 void ProbesCsv::append(double time, const std::vector<std::array<float, 3>>& probe_velocity,
                        const std::vector<std::array<double, 3>>& tip_displacement) {
-  if (probe_velocity.size() != probes_ || tip_displacement.size() != trees_) {
-    throw std::invalid_argument(
-        fmt::format("ProbesCsv: {}: expected {} probe velocities and {} tip displacements, got {} and {}",
-                    path_.string(), probes_, trees_, probe_velocity.size(), tip_displacement.size()));
-  }
-  std::string line = fmt::format("{:.12g}", time);
-  for (const auto& v : probe_velocity) line += fmt::format(",{:.9g},{:.9g},{:.9g}", v[0], v[1], v[2]);
-  for (const auto& d : tip_displacement) line += fmt::format(",{:.9g},{:.9g},{:.9g}", d[0], d[1], d[2]);
-  line += '\n';
+  append_rows({Row{time, &probe_velocity, &tip_displacement}});
+}
 
-  if (!appending_ && content_.size() + line.size() <= rewrite_limit_) {
-    content_ += line;
+void ProbesCsv::append_rows(const std::vector<Row>& rows) {
+  std::string lines;
+  for (const Row& row : rows) {
+    const auto& probe_velocity = *row.probe_velocity;
+    const auto& tip_displacement = *row.tip_displacement;
+    if (probe_velocity.size() != probes_ || tip_displacement.size() != trees_) {
+      throw std::invalid_argument(
+          fmt::format("ProbesCsv: {}: expected {} probe velocities and {} tip displacements, got {} and {}",
+                      path_.string(), probes_, trees_, probe_velocity.size(), tip_displacement.size()));
+    }
+    lines += fmt::format("{:.12g}", row.time);
+    for (const auto& v : probe_velocity) lines += fmt::format(",{:.9g},{:.9g},{:.9g}", v[0], v[1], v[2]);
+    for (const auto& d : tip_displacement) lines += fmt::format(",{:.9g},{:.9g},{:.9g}", d[0], d[1], d[2]);
+    lines += '\n';
+  }
+  if (rows.empty()) return;
+
+  if (!appending_ && content_.size() + lines.size() <= rewrite_limit_) {
+    content_ += lines;
     try {
       write_text_atomically("ProbesCsv", path_, content_);
     } catch (...) {
-      content_.resize(content_.size() - line.size());  // the file still holds the previous rows
+      content_.resize(content_.size() - lines.size());  // the file still holds the previous rows
       throw;
     }
-    ++rows_;
+    rows_ += rows.size();
     return;
   }
 
-  // Past the limit: one buffered fwrite of the whole line, flushed by fclose as a single write(2).
+  // Past the limit: one buffered fwrite of the whole batch, flushed by fclose.
   require_output_folder("ProbesCsv", path_);
   std::FILE* out = std::fopen(path_.c_str(), "ab");
   if (!out) {
     throw std::runtime_error(
         fmt::format("ProbesCsv: cannot write {}: {}", path_.string(), std::strerror(errno)));
   }
-  const bool written = std::fwrite(line.data(), 1, line.size(), out) == line.size();
+  const bool written = std::fwrite(lines.data(), 1, lines.size(), out) == lines.size();
   const int saved = errno;
   if (std::fclose(out) != 0 || !written) {
     throw std::runtime_error(fmt::format("ProbesCsv: cannot write {}: {}", path_.string(),
@@ -85,7 +95,7 @@ void ProbesCsv::append(double time, const std::vector<std::array<float, 3>>& pro
   appending_ = true;
   content_.clear();
   content_.shrink_to_fit();
-  ++rows_;
+  rows_ += rows.size();
 }
 
 }  // namespace fw::io

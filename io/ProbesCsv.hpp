@@ -1,5 +1,5 @@
-// probes.csv: one row per output frame with the wind velocity at named points and the tip displacement of a
-// few trees.
+// probes.csv: one row per probe sample (the probes' own interval) with the wind velocity at named points and
+// the tip displacement of a few trees.
 //
 //   fw::io::ProbesCsv probes("out/probes.csv", {"mast", "gap"}, {0, 7});   // writes the header line
 //   probes.append(t, {sample_velocity(spec, vel, mast), sample_velocity(spec, vel, gap)},
@@ -40,6 +40,14 @@ class ProbesCsv {
   /// written) and std::runtime_error naming the path on a write failure.
   void append(double time, const std::vector<std::array<float, 3>>& probe_velocity,
               const std::vector<std::array<double, 3>>& tip_displacement);
+  /// One row per sample, in order, with a single rewrite or append for the whole batch (probes sampled
+  /// every step arrive a frame's worth at a time). The same checks as append(), before anything is written.
+  struct Row {
+    double time = 0.0;
+    const std::vector<std::array<float, 3>>* probe_velocity = nullptr;
+    const std::vector<std::array<double, 3>>* tip_displacement = nullptr;
+  };
+  void append_rows(const std::vector<Row>& rows);
 
   const std::filesystem::path& path() const { return path_; }
   /// The header line, without the line end.

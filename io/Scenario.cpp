@@ -40,6 +40,8 @@ std::string to_string(BoundaryChoice choice) {
       return "no_slip";
     case BoundaryChoice::periodic:
       return "periodic";
+    case BoundaryChoice::rough:
+      return "rough";
   }
   return "?";
 }
@@ -115,9 +117,24 @@ fluid::GridSpec Scenario::grid_spec(double t) const {
       case BoundaryChoice::periodic:
         spec.boundary[face] = fluid::BoundaryType::periodic;
         break;
+      case BoundaryChoice::rough:  // a slip wall; the log-law wall stress is a stage of its own
+        spec.boundary[face] = fluid::BoundaryType::slip;
+        break;
     }
   }
   return spec;
+}
+
+std::optional<double> Scenario::resolved_probe_interval() const {
+  if (output.probe_interval) return output.probe_interval;
+  if (wind.turbulence) return std::nullopt;  // every solver step, for spectra
+  return output.interval;
+}
+
+std::array<double, 3> TurbulenceSettings::standard_deviations(double speed) const {
+  if (sigma) return *sigma;
+  const double sigma_u = intensity.value_or(0.0) * speed;
+  return {sigma_u, sigma_u, sigma_u};
 }
 
 fluid::WindSettings Scenario::wind_settings() const {
@@ -128,6 +145,8 @@ fluid::WindSettings Scenario::wind_settings() const {
   settings.pressure.max_iterations = solver.max_iterations;
   settings.pressure.jacobi_iterations = solver.jacobi_iterations;
   settings.vorticity_confinement = solver.vorticity_confinement;
+  settings.smagorinsky_constant = solver.smagorinsky_constant;
+  settings.wall_roughness_length = ground_roughness_length;
   if (time.dt) {
     settings.dt = *time.dt;
     settings.cfl = 0.0;
@@ -530,10 +549,29 @@ void read_boundaries(const Loader& loader, const Field& field, Scenario& scenari
   const std::vector<std::string> faces = schema::child_names("boundaries");  // in the order of FW_FACE_*
   const MapFields map(loader, field);
   std::array<std::optional<Field>, 6> given;
+  const std::string rough = to_string(BoundaryChoice::rough);
   for (int face = 0; face < 6; ++face) {
     given[face] = map.get(faces[face]);
-    if (given[face])
-      scenario.boundaries[face] = value(schema::kBoundaryWords, kBoundaryChoices, loader.word(*given[face]));
+    if (!given[face]) continue;
+    const Field& choice = *given[face];
+    if (face != FW_FACE_GROUND && choice.node.IsScalar() && choice.node.Scalar() == rough)
+      loader.expected(choice, schema::expected(key_of(choice)) + " (rough is for the ground only)");
+    scenario.boundaries[face] = value(schema::kBoundaryWords, kBoundaryChoices, loader.word(choice));
+  }
+  if (const auto roughness = map.get("roughness_length")) {
+    const double z0 = loader.number(*roughness);
+    if (scenario.boundaries[FW_FACE_GROUND] != BoundaryChoice::rough) {
+      loader.expected(*roughness, fmt::format("nothing unless boundaries.ground is rough (it is '{}')",
+                                              to_string(scenario.boundaries[FW_FACE_GROUND])));
+    }
+    const double first_centre = 0.5 * scenario.domain.cell_size;
+    if (!(z0 < first_centre)) {
+      loader.expected(*roughness,
+                      fmt::format("{} below cell_size / 2 = {} m (the log law is evaluated at the "
+                                  "first cell centre)",
+                                  schema::expected(key_of(*roughness)), first_centre));
+    }
+    scenario.ground_roughness_length = z0;
   }
   for (int axis = 0; axis < 3; ++axis) {
     const int low = 2 * axis, high = 2 * axis + 1;
@@ -569,6 +607,85 @@ void check_time_series(const Loader& loader, const Field& field, const Expressio
                                   non_negative ? " and >= 0" : "", end, value, t));
     }
   }
+}
+
+/// The largest turbulence box: 3 floats a point, indexed by 32-bit ints on the device (as
+/// fluid::TurbulenceBoxSpec::validate checks).
+constexpr double kMaxTurbulenceBoxPoints = double(std::numeric_limits<int>::max() / 3);
+constexpr double kMinTurbulenceBoxCells = 4.0;
+
+TurbulenceSettings read_turbulence(const Loader& loader, const Field& field, const Scenario& scenario) {
+  const MapFields map(loader, field);  // length_scale is required
+  TurbulenceSettings turbulence;
+  if (const auto model = map.get("model"))
+    turbulence.model = value(schema::kTurbulenceModelWords, kTurbulenceModels, loader.word(*model));
+
+  // Exactly one of intensity and sigma; with both, the one given second is blamed.
+  const auto intensity = map.get("intensity");
+  const auto sigma = map.get("sigma");
+  if (intensity && sigma) {
+    const bool sigma_second = std::find(map.given().begin(), map.given().end(), "sigma") >
+                              std::find(map.given().begin(), map.given().end(), "intensity");
+    const Field& second = sigma_second ? *sigma : *intensity;
+    const Field& first = sigma_second ? *intensity : *sigma;
+    loader.fail(second, fmt::format("exactly one of intensity and sigma expected, got both ({} on line {})",
+                                    sigma_second ? "intensity" : "sigma", first.line));
+  }
+  if (!intensity && !sigma) map.require("intensity", "or sigma (exactly one of intensity and sigma)");
+  if (intensity) turbulence.intensity = loader.number(*intensity);
+  if (sigma) turbulence.sigma = loader.vector<3>(*sigma);
+
+  turbulence.length_scale = loader.number(map.require("length_scale"));
+  turbulence.seed = scenario.seed;
+  if (const auto seed = map.get("seed")) turbulence.seed = loader.seed(*seed);
+  if (const auto unresolved = map.get("unresolved")) turbulence.unresolved = loader.boolean(*unresolved);
+  if (const auto cutoff = map.get("cutoff_cells")) turbulence.cutoff_cells = loader.number(*cutoff);
+
+  // The box's points are cell_size apart: a given size rounds to an even count of at least 4; the default
+  // takes powers of two (fast FFTs) that cover the domain and, along x and y, 8 length scales.
+  const double h = scenario.domain.cell_size;
+  const auto box_size = map.get("box_size");
+  std::array<double, 3> cells{};
+  if (box_size) {
+    const std::array<double, 3> size = loader.vector<3>(*box_size);
+    for (std::size_t axis = 0; axis < 3; ++axis)
+      cells[axis] = std::max(kMinTurbulenceBoxCells, 2.0 * std::round(size[axis] / (2.0 * h)));
+  } else {
+    for (std::size_t axis = 0; axis < 3; ++axis) {
+      double target = scenario.domain.cells[axis];
+      if (axis < 2) target = std::max(target, 8.0 * turbulence.length_scale / h);
+      double count = kMinTurbulenceBoxCells;
+      while (count < target && count <= kMaxTurbulenceBoxPoints) count *= 2.0;
+      cells[axis] = count;
+    }
+  }
+  const double points = cells[0] * cells[1] * cells[2];
+  if (!(points <= kMaxTurbulenceBoxPoints)) {
+    const std::string box = fmt::format("{:.0f} x {:.0f} x {:.0f} = {:.3g} points of {} m", cells[0],
+                                        cells[1], cells[2], points, h);
+    if (box_size) {
+      loader.expected(*box_size,
+                      fmt::format("{} of at most {:.0f} points in all (this box is {})",
+                                  schema::expected(key_of(*box_size)), kMaxTurbulenceBoxPoints, box));
+    }
+    const Field missing{field.node, field.key + ".box_size", field.line};
+    loader.fail(missing,
+                fmt::format("{} of at most {:.0f} points in all expected (required here: the default "
+                            "box, 8 length_scale along x and y, is {}), got nothing",
+                            schema::expected(key_of(missing)), kMaxTurbulenceBoxPoints, box));
+  }
+  for (std::size_t axis = 0; axis < 3; ++axis) {
+    turbulence.box_cells[axis] = int(cells[axis]);
+    turbulence.box_size[axis] = cells[axis] * h;
+  }
+  turbulence.box_size_given = box_size.has_value();
+  return turbulence;
+}
+
+bool sides_periodic(const Scenario& scenario) {
+  for (const int face : {FW_FACE_WEST, FW_FACE_EAST, FW_FACE_SOUTH, FW_FACE_NORTH})
+    if (scenario.boundaries[face] != BoundaryChoice::periodic) return false;
+  return true;
 }
 
 void read_wind(const Loader& loader, const Field& field, Scenario& scenario) {
@@ -611,6 +728,50 @@ void read_wind(const Loader& loader, const Field& field, Scenario& scenario) {
       }
     }
   }
+
+  if (const auto turbulence = map.get("turbulence"))
+    wind.turbulence = read_turbulence(loader, *turbulence, scenario);
+
+  // A domain without inflow (all four sides periodic) is driven by the mean forcing, given or not.
+  const bool periodic = sides_periodic(scenario);
+  if (const auto forcing_field = map.get("forcing")) {
+    if (!periodic) {
+      int open = FW_FACE_WEST;
+      while (scenario.boundaries[open] == BoundaryChoice::periodic) ++open;
+      const std::vector<std::string> faces = schema::child_names("boundaries");
+      loader.expected(
+          *forcing_field,
+          fmt::format("forcing only in a domain whose west, east, south and north are all periodic "
+                      "(boundaries.{} is '{}')",
+                      faces[open], to_string(scenario.boundaries[open])));
+    }
+    const MapFields forcing(loader, *forcing_field);
+    wind.forcing = ForcingSettings{};
+    if (const auto tau = forcing.get("relaxation_time")) wind.forcing->relaxation_time = loader.number(*tau);
+  } else if (periodic) {
+    wind.forcing = ForcingSettings{};
+  }
+}
+
+/// The roughness length of a rough ground that boundaries.roughness_length leaves out: the log profile's,
+/// else the schema's default; it too must lie below h / 2. `boundaries` is the file's boundaries map.
+void resolve_ground_roughness(const Loader& loader, const Field& boundaries, Scenario& scenario) {
+  if (scenario.boundaries[FW_FACE_GROUND] != BoundaryChoice::rough || scenario.ground_roughness_length > 0.0)
+    return;
+  const bool from_profile = scenario.wind.profile.type == fluid::InflowProfile::Type::log;
+  const double z0 = from_profile ? scenario.wind.profile.roughness_length
+                                 : schema::key("boundaries.roughness_length").number;
+  const double first_centre = 0.5 * scenario.domain.cell_size;
+  if (!(z0 < first_centre)) {
+    const Field missing{boundaries.node, "boundaries.roughness_length", boundaries.line};
+    const std::string default_text =
+        from_profile ? fmt::format("the default, wind.profile.roughness_length, is {} m", z0)
+                     : fmt::format("the default without a log profile is {} m", z0);
+    loader.fail(missing,
+                fmt::format("{} below cell_size / 2 = {} m expected (required here: {}), got nothing",
+                            schema::expected(key_of(missing)), first_centre, default_text));
+  }
+  scenario.ground_roughness_length = z0;
 }
 
 void read_events(const Loader& loader, const Field& field, Scenario& scenario) {
@@ -883,6 +1044,8 @@ void read_forest(const Loader& loader, const Field& field, Scenario& scenario) {
   if (const auto coupling = map.get("two_way_coupling")) forest.two_way_coupling = loader.boolean(*coupling);
   if (const auto integrator = map.get("integrator"))
     forest.integrator = value(schema::kIntegratorWords, schema::kIntegrators, loader.word(*integrator));
+  if (const auto correction = map.get("strong_wind_correction"))
+    forest.strong_wind_correction = loader.boolean(*correction);
   if (const auto species = map.get("species"))
     for (const Field& item : loader.items(*species))
       forest.species.push_back(read_species(loader, item, forest.species, scenario.seed));
@@ -905,6 +1068,11 @@ void read_solver(const Loader& loader, const Field& field, SolverSettings& solve
     solver.advection = value(schema::kAdvectionWords, schema::kAdvectionSchemes, loader.word(*advection));
   if (const auto epsilon = map.get("vorticity_confinement"))
     solver.vorticity_confinement = loader.number(*epsilon);
+  if (const auto smagorinsky = map.get("smagorinsky_constant")) {
+    solver.smagorinsky_constant = loader.number(*smagorinsky);
+    if (!(solver.smagorinsky_constant < 1.0))
+      loader.expected(*smagorinsky, schema::expected(key_of(*smagorinsky)) + " and < 1");
+  }
 }
 
 bool probe_name(const std::string& name) {
@@ -926,6 +1094,15 @@ void read_output(const Loader& loader, const Field& field, Scenario& scenario) {
   // Against the working directory, not the scenario folder: a run writes where it is started.
   output.directory = std::filesystem::absolute(std::filesystem::path(directory)).lexically_normal();
   if (const auto interval = map.get("interval")) output.interval = loader.number(*interval);
+  if (const auto probe_interval = map.get("probe_interval")) {
+    const Key& key = key_of(*probe_interval);
+    if (!(probe_interval->node.IsScalar() && probe_interval->node.Scalar() == key.word)) {  // the word: auto
+      const std::optional<double> every =
+          probe_interval->node.IsScalar() ? parse_double(probe_interval->node.Scalar()) : std::nullopt;
+      if (!every || !(*every > 0.0)) loader.expected(*probe_interval);
+      output.probe_interval = *every;
+    }
+  }
   if (const auto vtk_field = map.get("vtk")) {
     const MapFields vtk(loader, *vtk_field);
     if (const auto wind = vtk.get("wind")) output.vtk_wind = loader.boolean(*wind);
@@ -1023,8 +1200,10 @@ Scenario load_scenario(const std::filesystem::path& file) {
   if (const auto seed = top.get("seed")) scenario.seed = loader.seed(*seed);
   read_time(loader, top.require("time"), scenario.time);
   read_domain(loader, top.require("domain"), scenario.domain);
-  if (const auto boundaries = top.get("boundaries")) read_boundaries(loader, *boundaries, scenario);
+  const auto boundaries = top.get("boundaries");
+  if (boundaries) read_boundaries(loader, *boundaries, scenario);
   read_wind(loader, top.require("wind"), scenario);
+  if (boundaries) resolve_ground_roughness(loader, *boundaries, scenario);
   if (const auto events = top.get("events")) read_events(loader, *events, scenario);
   if (const auto obstacles = top.get("obstacles")) read_obstacles(loader, *obstacles, scenario);
   if (const auto terrain = top.get("terrain")) read_terrain(loader, *terrain, scenario);

@@ -66,14 +66,16 @@ class ScenarioError : public std::invalid_argument {
 };
 
 /// A face's boundary condition as written in the file. automatic ("auto", the four sides only): inflow where
-/// the ambient wind enters the domain, outflow where it leaves; see Scenario::grid_spec.
-enum class BoundaryChoice { automatic, inflow, outflow, slip, no_slip, periodic };
+/// the ambient wind enters the domain, outflow where it leaves; see Scenario::grid_spec. rough (the ground
+/// only): a slip wall whose lowest fluid cells feel the log-law wall stress of
+/// Scenario::ground_roughness_length.
+enum class BoundaryChoice { automatic, inflow, outflow, slip, no_slip, periodic, rough };
 std::string to_string(BoundaryChoice choice);  // the word used in the file
 
 /// In the order of schema::kBoundaryWords.
-inline constexpr BoundaryChoice kBoundaryChoices[] = {BoundaryChoice::automatic, BoundaryChoice::inflow,
-                                                      BoundaryChoice::outflow,   BoundaryChoice::slip,
-                                                      BoundaryChoice::no_slip,   BoundaryChoice::periodic};
+inline constexpr BoundaryChoice kBoundaryChoices[] = {
+    BoundaryChoice::automatic, BoundaryChoice::inflow,   BoundaryChoice::outflow, BoundaryChoice::slip,
+    BoundaryChoice::no_slip,   BoundaryChoice::periodic, BoundaryChoice::rough};
 
 /// The schema's default per face, indexed by FW_FACE_* (west, east, south, north, ground, top).
 constexpr std::array<BoundaryChoice, 6> default_boundaries() {
@@ -105,6 +107,45 @@ struct DomainSettings {
   }
 };
 
+/// The spectral model of wind.turbulence.
+enum class TurbulenceModel { von_karman };
+
+/// In the order of schema::kTurbulenceModelWords.
+inline constexpr TurbulenceModel kTurbulenceModels[] = {TurbulenceModel::von_karman};
+
+/// wind.turbulence: a periodic box of synthetic turbulence, swept through the inflow faces at the ambient
+/// wind (Taylor) and added to the initial field; plus, optionally, Stam's unresolved modal forcing per tree.
+struct TurbulenceSettings {
+  TurbulenceModel model = schema::value_of(schema::kTurbulenceModelWords, kTurbulenceModels,
+                                           schema::key("wind.turbulence.model").word);
+  /// sigma_u / wind.speed at reference_height, dimensionless, >= 0; sigma_v = sigma_w = sigma_u. Exactly one
+  /// of intensity and sigma is set.
+  std::optional<double> intensity;
+  /// [sigma_u, sigma_v, sigma_w], m/s, each > 0, fixed over time (along-wind, across-wind, vertical).
+  std::optional<std::array<double, 3>> sigma;
+  double length_scale = 0.0;  ///< L_u, the longitudinal integral length scale, m, > 0
+  /// The box's points along x, y, z, each even and >= 4, resolved at load (from box_size, else computed);
+  /// the points are domain.cell_size apart.
+  std::array<int, 3> box_cells{0, 0, 0};
+  /// box_cells * domain.cell_size, m: the box's period along x, y, z (a given box_size, rounded).
+  std::array<double, 3> box_size{0, 0, 0};
+  bool box_size_given = false;  ///< whether the file gave box_size
+  std::uint64_t seed = 0;       ///< the file's, else the scenario's top-level seed
+  bool unresolved = schema::key("wind.turbulence.unresolved").flag;  ///< Stam's modal forcing per tree
+  /// The smallest resolved eddy in cells (> 0): wavenumbers above 2 pi / (cutoff_cells h) are unresolved.
+  double cutoff_cells = schema::key("wind.turbulence.cutoff_cells").number;
+
+  /// [sigma_u, sigma_v, sigma_w], m/s, for the wind speed `speed` (m/s) at the reference height: intensity
+  /// times speed on all three, or sigma as given.
+  std::array<double, 3> standard_deviations(double speed) const;
+};
+
+/// wind.forcing: the mean body force of a domain whose four sides are all periodic (no inflow), a PI
+/// controller that holds the horizontal mean wind at reference_height at the ambient wind.
+struct ForcingSettings {
+  double relaxation_time = schema::key("wind.forcing.relaxation_time").number;  ///< tau, s, > 0
+};
+
 struct WindSource {
   Expression speed;      ///< m/s at reference_height, a function of t (s)
   Expression direction;  ///< degrees the wind blows FROM, clockwise from north, a function of t
@@ -112,6 +153,11 @@ struct WindSource {
   /// Vertical shape; profile.reference_height == reference_height. Defaults: the schema's wind.profile.*
   /// (roughness_length has none).
   fluid::InflowProfile profile;
+  /// Synthetic turbulence; nullopt (no wind.turbulence) for a laminar wind.
+  std::optional<TurbulenceSettings> turbulence;
+  /// Set exactly when west, east, south and north are all periodic (wind.forcing given or not); nullopt
+  /// otherwise (the file may give wind.forcing only then).
+  std::optional<ForcingSettings> forcing;
 };
 
 /// A gust: a Gaussian ball of extra wind with a 1-cos envelope over [start, start + duration].
@@ -194,6 +240,8 @@ struct ForestSettings {
   /// The modal time step: exact for the force held over a step, or Diener's semi-implicit Euler.
   trees::ModalIntegrator integrator =
       schema::value_of(schema::kIntegratorWords, schema::kIntegrators, schema::key("forest.integrator").word);
+  /// Diener's (2008, section 5.2) quadratic correction of the linear modal displacement on output frames.
+  bool strong_wind_correction = schema::key("forest.strong_wind_correction").flag;
   std::vector<Species> species;
   std::vector<Stand> stands;
   std::vector<PlacedTreeSettings> trees;
@@ -209,6 +257,8 @@ struct SolverSettings {
                                                       schema::key("solver.advection").word);
   /// epsilon, dimensionless, >= 0 (0: off)
   double vorticity_confinement = schema::key("solver.vorticity_confinement").number;
+  /// C_s of the eddy viscosity (C_s h)^2 |S|, dimensionless, in [0, 1) (0: off)
+  double smagorinsky_constant = schema::key("solver.smagorinsky_constant").number;
 };
 
 struct Probe {
@@ -219,6 +269,9 @@ struct Probe {
 struct OutputSettings {
   std::filesystem::path directory;  ///< absolute: the file's value (default out/<scenario>) against the cwd
   double interval = schema::key("output.interval").number;  ///< s of simulated time between frames, > 0
+  /// s of simulated time between probe samples, > 0, as the file gives it; nullopt for "auto" (see
+  /// Scenario::resolved_probe_interval).
+  std::optional<double> probe_interval;
   bool vtk_wind = schema::key("output.vtk.wind").flag;
   bool vtk_trees = schema::key("output.vtk.trees").flag;
   /// Subset of schema::kVtkFieldWords, in the file's order.
@@ -244,6 +297,9 @@ struct Scenario {
   DomainSettings domain;
   /// Indexed by FW_FACE_* (west, east, south, north, ground, top).
   std::array<BoundaryChoice, 6> boundaries = default_boundaries();
+  /// z0 of a rough ground, m, in (0, domain.cell_size / 2): boundaries.roughness_length, else the log
+  /// profile's roughness_length, else 0.1 m. 0 when the ground is not rough.
+  double ground_roughness_length = 0.0;
   WindSource wind;
   std::vector<GustEvent> events;
   std::vector<Obstacle> obstacles;
@@ -256,8 +312,12 @@ struct Scenario {
   /// direction + 180 degrees, so v = -speed * (sin theta, cos theta, 0). Direction 270 blows toward +x.
   std::array<double, 3> wind_vector(double t) const;
   /// The grid with "auto" faces resolved for the wind at time t: inflow where wind_vector(t) points into
-  /// the domain, outflow elsewhere (also where the wind runs parallel to the face).
+  /// the domain, outflow elsewhere (also where the wind runs parallel to the face). A rough ground is slip
+  /// (its wall stress is a separate stage).
   fluid::GridSpec grid_spec(double t) const;
+  /// Simulated time between probe samples, s: output.probe_interval when given; for auto, nullopt (every
+  /// solver step) with wind.turbulence, else output.interval.
+  std::optional<double> resolved_probe_interval() const;
   /// Advection, pressure solver and time step as fluid::WindSettings (auto dt: cfl > 0; fixed: cfl = 0).
   fluid::WindSettings wind_settings() const;
 };

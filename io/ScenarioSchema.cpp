@@ -154,7 +154,7 @@ std::string expected(const Key& key) {
     case Type::point3: {
       const int size = point_size(key.type);
       const std::string sign = sign_text(key.bound);
-      return fmt::format("a list of {} numbers {}{}{}", size, point_names(size),
+      return fmt::format("a list of {} numbers {}{}{}", size, key.noun.empty() ? point_names(size) : key.noun,
                          sign.empty() ? "" : ", each " + sign, unit_suffix(key));
     }
     case Type::point2_or_3:
@@ -201,7 +201,8 @@ std::string doc_type(const Key& key) {
       return "list of words";
     case Type::point2:
     case Type::point3:
-      return fmt::format("list of {} numbers `{}`", point_size(key.type), point_names(point_size(key.type)));
+      return fmt::format("list of {} numbers `{}`", point_size(key.type),
+                         key.noun.empty() ? point_names(point_size(key.type)) : std::string(key.noun));
     case Type::point2_or_3:
       return "list `[x, y]` or `[x, y, z]`";
     case Type::expression:

@@ -74,11 +74,13 @@ struct Key {
   Words words{};          ///< word, word_set: the vocabulary
   /// word: a vocabulary known only at run time (replaces words).
   std::vector<std::string> (*run_time_words)() = nullptr;
-  double number = 0.0;              ///< default of number, integer (and of every component of point3)
-  bool flag = false;                ///< default of boolean
-  std::string_view word{};          ///< default of word, number_or_auto, velocity_or_with_wind, directory
-  Words chosen{};                   ///< default of word_set
-  std::string_view noun{};          ///< text, file, directory, list: what the value is, in messages
+  double number = 0.0;      ///< default of number, integer (and of every component of point3)
+  bool flag = false;        ///< default of boolean
+  std::string_view word{};  ///< default of word, number_or_auto, velocity_or_with_wind, directory
+  Words chosen{};           ///< default of word_set
+  /// text, file, directory, list: what the value is, in messages; point2, point3: its components' names
+  /// ("[x, y, z]" when empty)
+  std::string_view noun{};
   std::string_view only_with{};     ///< the key applies only where its sibling `type` is this word
   std::string_view default_note{};  ///< docs: the default in words, where it is not a plain value
   std::string_view allowed{};       ///< docs: replaces the allowed values derived from the type
@@ -90,11 +92,16 @@ inline constexpr int kNoUpperLimit = std::numeric_limits<int>::max();
 
 // --- vocabularies ----------------------------------------------------------------------------------------
 
-/// In the order of io::BoundaryChoice; the ground and the top take all but the first ("auto").
-inline constexpr std::string_view kBoundaryWords[] = {"auto", "inflow",  "outflow",
-                                                      "slip", "no_slip", "periodic"};
-inline constexpr Words kSideBoundaryWords{kBoundaryWords};
-inline constexpr Words kCapBoundaryWords = Words(kBoundaryWords).subspan(1);
+/// In the order of io::BoundaryChoice. The four sides take all but the last ("rough"), the ground all but the
+/// first ("auto"), the top neither.
+inline constexpr std::string_view kBoundaryWords[] = {"auto",    "inflow",   "outflow", "slip",
+                                                      "no_slip", "periodic", "rough"};
+inline constexpr Words kSideBoundaryWords = Words(kBoundaryWords).first(6);
+inline constexpr Words kGroundBoundaryWords = Words(kBoundaryWords).subspan(1);
+inline constexpr Words kTopBoundaryWords = Words(kBoundaryWords).subspan(1, 5);
+
+/// In the order of io::TurbulenceModel.
+inline constexpr std::string_view kTurbulenceModelWords[] = {"von_karman"};
 
 inline constexpr std::string_view kProfileWords[] = {"uniform", "power", "log"};
 inline constexpr fluid::InflowProfile::Type kProfileTypes[] = {
@@ -210,16 +217,33 @@ inline constexpr Key kKeys[] = {
      .description = "North face (y maximum)."},
     {.path = "boundaries.ground",
      .type = Type::word,
-     .words = kCapBoundaryWords,
+     .words = kGroundBoundaryWords,
      .word = "no_slip",
      .constraint = "no `auto`",
-     .description = "Bottom face (z minimum)."},
+     .description =
+         "Bottom face (z minimum). `rough` (the ground only): a rough wall, whose drag on the air is "
+         "the log-law wall shear stress of `roughness_length` (see below the table)."},
     {.path = "boundaries.top",
      .type = Type::word,
-     .words = kCapBoundaryWords,
+     .words = kTopBoundaryWords,
      .word = "slip",
-     .constraint = "no `auto`",
+     .constraint = "no `auto`, no `rough`",
      .description = "Top face (z maximum)."},
+    {.path = "boundaries.roughness_length",
+     .type = Type::number,
+     .unit = "m",
+     .bound = Bound::positive,
+     .number = 0.1,
+     .default_note = "`wind.profile.roughness_length` with a `log` profile, else `0.1`",
+     .constraint = "below `domain.cell_size` / 2; only with `ground: rough`",
+     .description =
+         "Aerodynamic roughness length z0 of a `rough` ground. The first fluid cell above the ground, and "
+         "above terrain and other solid cells, feels the log law's wall shear stress `tau / rho = u*^2`, "
+         "`u* = kappa \\|U\\| / ln((h / 2) / z0)`, with \\|U\\| that cell's horizontal speed at its centre, "
+         "h / 2 above the surface (h = `domain.cell_size`, kappa = 0.41); so z0 must lie below h / 2. "
+         "Davenport-Wieringa classes: 0.03 m open flat land, 0.1 m low crops, 0.25 m high crops, 0.5 m "
+         "parkland, 1 m forest or suburbs. Under trees that the scenario resolves, give the floor's own "
+         "roughness (grass, litter), not the forest's: the trees' drag is already modelled."},
     // wind
     {.path = "wind", .required = true, .description = "The ambient wind."},
     {.path = "wind.speed",
@@ -275,6 +299,109 @@ inline constexpr Key kKeys[] = {
      .number = 0.0,
      .only_with = "log",
      .description = "Displacement height d (of a canopy, for example)."},
+    {.path = "wind.turbulence",
+     .default_note = "none (a laminar wind)",
+     .allowed = "keys `model`, `intensity` or `sigma`, `length_scale`, `box_size`, `seed`, `unresolved`, "
+                "`cutoff_cells`",
+     .description = "Synthetic turbulence in the wind. Without it the inflow is the laminar profile alone."},
+    {.path = "wind.turbulence.model",
+     .type = Type::word,
+     .words = kTurbulenceModelWords,
+     .word = "von_karman",
+     .description =
+         "`von_karman`: homogeneous isotropic turbulence with the von Kármán energy spectrum E(k) of "
+         "integral scale `length_scale`. Before the run, a periodic, divergence-free box of velocity "
+         "fluctuations is synthesised from random Fourier modes by FFT (FFTW), deterministic from `seed`. "
+         "The box is added to the initial wind field, and it is swept through the inflow faces at the "
+         "ambient wind (Taylor's frozen turbulence): at time t an inflow face point x carries the mean "
+         "profile plus the box's fluctuation at x - U t, U the ambient wind vector at `reference_height`. "
+         "The fluctuations' statistics are the same at every height."},
+    {.path = "wind.turbulence.intensity",
+     .type = Type::number,
+     .bound = Bound::non_negative,
+     .default_note = "required unless `sigma` is given",
+     .constraint = "exactly one of `intensity` and `sigma`",
+     .description = "Turbulence intensity I = sigma_u / U, with U the wind speed `wind.speed` at "
+                    "`reference_height`. sigma_u = I U follows `wind.speed` over time, and sigma_v = sigma_w "
+                    "= sigma_u (isotropic). For neutral wind over uniform ground, EN 1991-1-4 gives I = 1 / "
+                    "ln(z / z0) at height z: 0.17 at 10 m over grass (z0 = 0.03 m), 0.43 over forest (z0 "
+                    "= 1 m)."},
+    {.path = "wind.turbulence.sigma",
+     .type = Type::point3,
+     .unit = "m/s",
+     .bound = Bound::positive,
+     .noun = "[sigma_u, sigma_v, sigma_w]",
+     .default_note = "required unless `intensity` is given",
+     .allowed = "each > 0; exactly one of `intensity` and `sigma`",
+     .description =
+         "Standard deviations [sigma_u, sigma_v, sigma_w] of the along-wind, across-wind and "
+         "vertical fluctuations, fixed over time whatever `wind.speed` does. Unequal values scale "
+         "the components of the isotropic box, which leaves a small divergence that the pressure "
+         "projection removes; in the atmospheric surface layer sigma_v / sigma_u is about 0.75 and "
+         "sigma_w / sigma_u about 0.5."},
+    {.path = "wind.turbulence.length_scale",
+     .type = Type::number,
+     .unit = "m",
+     .required = true,
+     .bound = Bound::positive,
+     .description = "L_u, the longitudinal integral length scale: the integral of the along-wind "
+                    "fluctuation's autocorrelation along the wind. The premultiplied spectrum f S_u(f) peaks "
+                    "at f = 0.146 U / L_u. EN 1991-1-4 gives L_u = 300 m (z / 200 m)^(0.67 + 0.05 ln z0): "
+                    "about 40 m at 10 m over forest, 70 m over grass. The grid resolves eddies of "
+                    "`cutoff_cells` cells and more, so L_u should span many cells."},
+    {.path = "wind.turbulence.box_size",
+     .type = Type::point3,
+     .unit = "m",
+     .bound = Bound::positive,
+     .default_note = "computed: along x and y the smallest power-of-two cell count >= the domain's cells "
+                     "and >= 8 `length_scale` / `cell_size`; along z the smallest power of two >= the "
+                     "domain's cells; each at least 4",
+     .allowed = "each > 0; rounded to a whole, even number of cells, at least 4, per axis; at most (2^31 - "
+                "1) / 3 points in all",
+     .description =
+         "Extent of the periodic turbulence box along x, y and z. Its points are "
+         "`domain.cell_size` apart. Turbulence repeats with the box's period: a point fixed in the "
+         "inflow sees the same gusts again once the wind has carried the box one period past it, "
+         "and the box holds no wavelength longer than itself, so along the wind it should be "
+         "several L_u long."},
+    {.path = "wind.turbulence.seed",
+     .type = Type::seed,
+     .default_note = "global `seed`",
+     .description = "Seed of the box's random Fourier amplitudes and of the unresolved forcing. The same "
+                    "seed gives the same turbulence."},
+    {.path = "wind.turbulence.unresolved",
+     .type = Type::boolean,
+     .flag = true,
+     .description =
+         "With `true`, each tree also feels the turbulence the grid cannot resolve (wavelengths "
+         "below `cutoff_cells` cells): Stam's (1997) stochastic modal forcing, random modal forces "
+         "with the spectrum's unresolved part, synthesised in the frequency domain, deterministic "
+         "per tree from `seed`. With `false`, trees feel only the resolved wind."},
+    {.path = "wind.turbulence.cutoff_cells",
+     .type = Type::number,
+     .bound = Bound::positive,
+     .number = 2.0,
+     .description =
+         "The smallest eddy the grid resolves, in cells: wavelengths below `cutoff_cells` × "
+         "`cell_size` (wavenumbers above 2 pi / (`cutoff_cells` h)) belong to the unresolved "
+         "forcing. 2 is the grid's Nyquist limit; numerical diffusion damps eddies of a few cells, "
+         "so 4 to 8 can be closer to what the grid really carries."},
+    {.path = "wind.forcing",
+     .default_note = "none; on, with the defaults below, when the four sides are all `periodic`",
+     .allowed = "keys `relaxation_time`; only when `west`, `east`, `south` and `north` are all `periodic`",
+     .description =
+         "A mean body force for a domain whose four sides are all periodic, which has no inflow: "
+         "it holds the horizontal mean wind at `reference_height` at `wind.speed` from "
+         "`wind.direction`, as a pressure gradient drives the atmosphere, so that the flow neither "
+         "decays under the trees' and the ground's drag nor runs away."},
+    {.path = "wind.forcing.relaxation_time",
+     .type = Type::number,
+     .unit = "s",
+     .bound = Bound::positive,
+     .number = 10.0,
+     .description = "Time constant tau of the PI controller that sets the force from the difference between "
+                    "the target wind and the horizontal mean at `reference_height`. Shorter follows a "
+                    "changing `wind.speed` more closely; longer disturbs the turbulence less."},
     // events
     {.path = "events",
      .type = Type::choice_list,
@@ -427,6 +554,15 @@ inline constexpr Key kKeys[] = {
                     "held over the step, stable at any dt. `semi_implicit` is Diener's semi-implicit Euler, "
                     "stable only while dt² ω² + 2 γ dt < 4 for every mode; a run whose dt breaks that stops "
                     "with exit code 1 at that step."},
+    {.path = "forest.strong_wind_correction",
+     .type = Type::boolean,
+     .flag = true,
+     .description = "With `true`, output frames show each tree with Diener's (2008, §5.2) quadratic "
+                    "correction of its linear modal displacement, fitted per species and mode: a linear mode "
+                    "moves every node along a straight line, which stretches the branches as the tree bends "
+                    "far, and the correction keeps branch lengths nearly constant under strong wind. It "
+                    "changes the written geometry only; the modal dynamics stay linear. With `false`, frames "
+                    "show the linear displacement."},
     {.path = "forest.species",
      .type = Type::list,
      .noun = "a list of species",
@@ -663,6 +799,17 @@ inline constexpr Key kKeys[] = {
      .number = fluid::WindSettings{}.vorticity_confinement,
      .default_note = "`0` (off)",
      .description = "Vorticity confinement strength epsilon."},
+    {.path = "solver.smagorinsky_constant",
+     .type = Type::number,
+     .bound = Bound::non_negative,
+     .number = 0.0,
+     .default_note = "`0` (off)",
+     .constraint = "< 1",
+     .description =
+         "Smagorinsky constant C_s of the subgrid eddy viscosity `nu_t = (C_s h)^2 \\|S\\|`, h = "
+         "`domain.cell_size` and `\\|S\\| = sqrt(2 S_ij S_ij)` the resolved strain rate: the "
+         "stress of the eddies smaller than a cell, which drains energy at the grid scale. Typical "
+         "0.1 to 0.2 (0.17 for isotropic turbulence, Lilly 1967; smaller in shear near walls)."},
     // output
     {.path = "output", .description = "What to write, and where."},
     {.path = "output.directory",
@@ -677,6 +824,15 @@ inline constexpr Key kKeys[] = {
      .bound = Bound::positive,
      .number = 1.0,
      .description = "Simulated time between output frames."},
+    {.path = "output.probe_interval",
+     .type = Type::number_or_auto,
+     .unit = "s",
+     .bound = Bound::positive,
+     .word = "auto",
+     .default_note = "`auto`: every solver step with `wind.turbulence`, else `output.interval`",
+     .description = "Simulated time between the rows of `probes.csv`, independent of the frames, so that a "
+                    "probe's record is fine enough for spectra (its Nyquist frequency is 1 / (2 "
+                    "`probe_interval`))."},
     {.path = "output.vtk", .description = "ParaView output."},
     {.path = "output.vtk.wind",
      .type = Type::boolean,
@@ -705,7 +861,7 @@ inline constexpr Key kKeys[] = {
     {.path = "output.probes",
      .type = Type::list,
      .noun = "a list of probes",
-     .description = "Points where `probes.csv` records the wind velocity every frame."},
+     .description = "Points where `probes.csv` records the wind velocity every `probe_interval`."},
     {.path = "output.probes[].name",
      .type = Type::text,
      .required = true,

@@ -42,8 +42,16 @@ CoupledStep::CoupledStep(ComputeContext& cc, WindGridSetup wind, const trees::Fo
       tree_count_(forest.instance_count()) {
   if (!coupling.drag_density.empty()) wind_.set_canopy(std::move(coupling.drag_density));
   trees_.set_integrator(coupling.integrator);
+  trees_.set_strong_wind_correction(coupling.strong_wind_correction);
+  if (coupling.unresolved.enabled && has_trees())
+    trees_.set_unresolved_turbulence(trees::UnresolvedTurbulence(coupling.unresolved),
+                                     coupling.unresolved.intensity);
   if (coupling.integrator == trees::ModalIntegrator::semi_implicit)
     integrator_dt_limit_ = forest_semi_implicit_limit(forest);
+}
+
+void CoupledStep::set_unresolved_intensity(double intensity) {
+  if (trees_.unresolved_turbulence()) trees_.set_unresolved_intensity(intensity);
 }
 
 void CoupledStep::start(const std::array<double, 3>& ambient) {

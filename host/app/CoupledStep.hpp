@@ -33,6 +33,7 @@
 #include "host/stages/WindGrid.hpp"
 #include "trees/Forest.hpp"
 #include "trees/ModalIntegrator.hpp"
+#include "trees/UnresolvedTurbulence.hpp"
 
 namespace fw::host {
 
@@ -47,6 +48,11 @@ struct CouplingSettings {
   trees::ModalIntegrator integrator = trees::ModalIntegrator::exact;
   /// Per cell, the drag density k (1/m, fluid/CanopyField); empty = one-way coupling (the air feels no tree).
   std::vector<float> drag_density;
+  /// Diener's strong-wind correction of the deformation on output frames (trees/StrongWindCorrection).
+  bool strong_wind_correction = true;
+  /// Stam's forcing of every tree by the turbulence the grid cannot resolve (trees/UnresolvedTurbulence);
+  /// off unless `enabled`. Its intensity can follow the run (set_unresolved_intensity).
+  trees::UnresolvedTurbulenceSettings unresolved;
 };
 
 struct CoupledStepReport {
@@ -69,6 +75,8 @@ class CoupledStep {
   void start(const std::array<double, 3>& ambient);
   /// The ambient wind for the next step, m/s at the reference height.
   void set_ambient(const std::array<double, 3>& ambient) { wind_.set_ambient(ambient); }
+  /// sigma_u / U of the unresolved turbulence from now on (>= 0); ignored when it is off.
+  void set_unresolved_intensity(double intensity);
 
   /// One coupled step of at most max_dt seconds (the settings' dt otherwise). Throws SimulationError (see
   /// the header comment) before the step when a check fails.

@@ -37,7 +37,8 @@ io::RunManifest manifest_of(const SimulationPlan& plan, const DeviceInfo& device
 
 std::vector<std::unique_ptr<io::FrameWriter>> make_writers(const SimulationPlan& plan,
                                                            const std::filesystem::path& directory,
-                                                           const DeviceInfo& device, int tip_trees) {
+                                                           const DeviceInfo& device,
+                                                           const std::vector<int>& tip_trees) {
   const io::OutputSettings& out = plan.output;
   const bool trees_present = plan.forest.instance_count() > 0;
   std::vector<std::unique_ptr<io::FrameWriter>> writers;
@@ -53,12 +54,10 @@ std::vector<std::unique_ptr<io::FrameWriter>> make_writers(const SimulationPlan&
                                                           contains(out.vdb_grids, "vel"),
                                                           contains(out.vdb_grids, "speed")));
   }
-  std::vector<io::ProbePoint> probes;
-  for (const auto& probe : out.probes) probes.push_back({probe.name, probe.position});
-  if (!probes.empty() || (trees_present && tip_trees > 0)) {
-    writers.push_back(std::make_unique<io::ProbesWriter>(directory, plan.wind.spec, std::move(probes),
-                                                         plan.forest, tip_trees));
-  }
+  std::vector<std::string> probe_names;
+  for (const auto& probe : out.probes) probe_names.push_back(probe.name);
+  if (!probe_names.empty() || !tip_trees.empty())
+    writers.push_back(std::make_unique<io::ProbesWriter>(directory, std::move(probe_names), tip_trees));
   return writers;
 }
 

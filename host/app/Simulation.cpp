@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include <array>
 #include <chrono>
 #include <cmath>
 #include <exception>
@@ -9,6 +10,7 @@
 #include <utility>
 
 #include "host/app/OutputWriters.hpp"
+#include "host/app/ProbeSampler.hpp"
 #include "io/writers/OutputPipeline.hpp"
 
 namespace fw::host {
@@ -63,13 +65,28 @@ RunSummary Simulation::run(const RunOptions& options) {
 
   RunSummary summary;
   const auto wall_start = Clock::now();
-  io::OutputPipeline output(make_writers(plan_, directory_, cc_.device(), options.tip_trees));
+  std::vector<std::array<double, 3>> probe_points;
+  for (const auto& probe : plan_.output.probes) probe_points.push_back(probe.position);
+  ProbeSampler probes(cc_, plan_.wind.spec, probe_points, plan_.forest, options.tip_trees,
+                      plan_.coupling.strong_wind_correction);
+  io::OutputPipeline output(make_writers(plan_, directory_, cc_.device(), probes.tip_trees()));
   const io::FrameNeeds needs = output.needs();
-  double output_ms = 0.0;
+  double output_ms = 0.0, probe_ms = 0.0;
   int frames = 0;
+  // Probe samples since the last frame; they travel with the next frame (or a last batch of their own).
+  std::vector<io::ProbeSample> pending_samples;
+  auto take_probe_sample = [&] {
+    if (probes.empty()) return;
+    const auto start = Clock::now();
+    pending_samples.push_back(probes.sample(coupled));
+    probe_ms += ms_since(start);
+  };
   auto hand_over_frame = [&] {
     const auto start = Clock::now();
-    output.push(capture_frame(coupled, needs, frames++));
+    io::OutputFrame frame = capture_frame(coupled, needs, frames++);
+    frame.probe_samples = std::move(pending_samples);
+    pending_samples.clear();
+    output.push(std::move(frame));
     output_ms += ms_since(start);
   };
 
@@ -83,6 +100,13 @@ RunSummary Simulation::run(const RunOptions& options) {
     std::exception_ptr write_error;
     const auto drain_start = Clock::now();
     try {
+      if (!pending_samples.empty()) {
+        io::OutputFrame last;
+        last.probe_samples_only = true;
+        last.probe_samples = std::move(pending_samples);
+        pending_samples.clear();
+        output.push(std::move(last));
+      }
       output.drain();
     } catch (const std::exception& e) {
       write_error = std::current_exception();
@@ -96,6 +120,7 @@ RunSummary Simulation::run(const RunOptions& options) {
     outcome.simulated_time = summary.simulated_time = coupled.time();
     summary.stage_ms = coupled.stage_ms();
     summary.stage_ms["output"] = output_ms;
+    summary.stage_ms["probes"] = probe_ms;
     summary.stage_ms["output_write"] = output.write_ms();
     outcome.frames = summary.frames = output.frames_written();
     outcome.wall_seconds = summary.wall_seconds = ms_since(wall_start) * 1e-3;
@@ -108,9 +133,14 @@ RunSummary Simulation::run(const RunOptions& options) {
     std::filesystem::create_directories(directory_);
     output.begin();
     coupled.set_stage_timing(true);
+    if (plan_.turbulence_sigma) coupled.wind().set_turbulence_sigma(plan_.turbulence_sigma(0.0));
     coupled.start(plan_.ambient_wind(0.0));
+    take_probe_sample();
     hand_over_frame();
     double next_frame = interval;
+    // 0: every step. Like frames, a sample is due once the simulated time reaches its time.
+    const double probe_interval = plan_.probe_interval;
+    double next_probe = probe_interval;
     auto last_progress = Clock::now();
     while (coupled.time() < end - kTimeTolerance * interval) {
       if (options.stop && options.stop->load()) {
@@ -119,7 +149,15 @@ RunSummary Simulation::run(const RunOptions& options) {
       }
       output.check();
       coupled.set_ambient(plan_.ambient_wind(coupled.time()));
+      if (plan_.turbulence_sigma) coupled.wind().set_turbulence_sigma(plan_.turbulence_sigma(coupled.time()));
+      if (plan_.unresolved_intensity)
+        coupled.set_unresolved_intensity(plan_.unresolved_intensity(coupled.time()));
       const CoupledStepReport report = coupled.step(end - coupled.time());
+      if (!(probe_interval > 0.0) || report.wind.time >= next_probe - kTimeTolerance * probe_interval) {
+        take_probe_sample();
+        while (probe_interval > 0.0 && next_probe <= report.wind.time + kTimeTolerance * probe_interval)
+          next_probe += probe_interval;
+      }
       if (report.wind.time >= next_frame - kTimeTolerance * interval) {
         hand_over_frame();
         while (next_frame <= report.wind.time + kTimeTolerance * interval) next_frame += interval;

@@ -4,6 +4,7 @@
 
 #include <chrono>
 #include <cmath>
+#include <memory>
 #include <numbers>
 #include <stdexcept>
 
@@ -68,6 +69,31 @@ trees::Skeleton species_skeleton(const io::Species& species) {
   throw std::logic_error("species_skeleton: unknown skeleton source");
 }
 
+fluid::TurbulenceBoxSpec inflow_turbulence_spec(const io::TurbulenceSettings& turbulence, double h,
+                                                const std::array<double, 3>& wind_at_start) {
+  fluid::TurbulenceBoxSpec spec;
+  // Points every h/2: every face of an inflow plane (at whole cells along its normal, half cells across)
+  // then sits on a box point, so that the plane carries the box's values without interpolation.
+  for (int a = 0; a < 3; ++a) spec.cells[a] = kTurbulencePointsPerCell * turbulence.box_cells[a];
+  spec.spacing = h / kTurbulencePointsPerCell;
+  spec.spectrum = {1.0, turbulence.length_scale};  // unit sigma_u: the run scales it by sigma_u(t)
+  spec.seed = turbulence.seed;
+  // sigma = [along, across, vertical]: the box's x and y take the along- and across-wind values by the
+  // horizontal axis closer to the wind at t = 0 (equal values, the intensity form, need no such choice).
+  const auto sigma = turbulence.standard_deviations(1.0);
+  const bool along_x = std::abs(wind_at_start[0]) >= std::abs(wind_at_start[1]);
+  if (sigma[0] > 0.0) {
+    spec.component_scale = {(along_x ? sigma[0] : sigma[1]) / sigma[0],
+                            (along_x ? sigma[1] : sigma[0]) / sigma[0], sigma[2] / sigma[0]};
+  }
+  return spec;
+}
+
+fluid::TurbulenceBox inflow_turbulence_box(const io::TurbulenceSettings& turbulence, double h,
+                                           const std::array<double, 3>& wind_at_start) {
+  return fluid::TurbulenceBox(inflow_turbulence_spec(turbulence, h, wind_at_start));
+}
+
 FwGust to_device_gust(const io::GustEvent& event, const std::array<double, 3>& wind_at_start) {
   FwGust gust{};
   gust.start = float(event.start);
@@ -91,6 +117,7 @@ SimulationPlan plan_simulation(const io::Scenario& scenario, const trees::BasisC
   plan.end_time = scenario.time.end;
   plan.ambient_wind = [source = scenario.wind](double t) { return io::wind_vector(source, t); };
   plan.output = scenario.output;
+  plan.probe_interval = scenario.resolved_probe_interval().value_or(0.0);
 
   // --- the wind grid ---------------------------------------------------------------------------------------
   WindGridSetup& wind = plan.wind;
@@ -106,6 +133,15 @@ SimulationPlan plan_simulation(const io::Scenario& scenario, const trees::BasisC
   wind.solid = solids.cells();
   for (const auto& event : scenario.events) {
     wind.gusts.push_back(to_device_gust(event, scenario.wind_vector(event.start)));
+  }
+  if (scenario.wind.forcing) wind.forcing.relaxation_time = scenario.wind.forcing->relaxation_time;
+  if (scenario.wind.turbulence) {
+    wind.turbulence = std::make_shared<const fluid::TurbulenceBox>(
+        inflow_turbulence_box(*scenario.wind.turbulence, wind.spec.h, wind.ambient));
+    plan.turbulence_sigma = [turbulence = *scenario.wind.turbulence, source = scenario.wind](double t) {
+      const auto v = io::wind_vector(source, t);
+      return turbulence.standard_deviations(std::hypot(v[0], v[1], v[2]))[0];
+    };
   }
 
   // --- species ---------------------------------------------------------------------------------------------
@@ -175,6 +211,24 @@ SimulationPlan plan_simulation(const io::Scenario& scenario, const trees::BasisC
 
   plan.forest = trees::Forest(std::move(bases), std::move(instances));
   plan.coupling.integrator = scenario.forest.integrator;
+  plan.coupling.strong_wind_correction = scenario.forest.strong_wind_correction;
+  if (scenario.wind.turbulence && scenario.wind.turbulence->unresolved) {
+    const io::TurbulenceSettings& turbulence = *scenario.wind.turbulence;
+    trees::UnresolvedTurbulenceSettings& unresolved = plan.coupling.unresolved;
+    unresolved.enabled = true;
+    unresolved.cutoff_cells = turbulence.cutoff_cells;
+    unresolved.cell_size = wind.spec.h;
+    unresolved.integral_length = turbulence.length_scale;
+    unresolved.seed = turbulence.seed;
+    // sigma_u / U: the intensity as given, or sigma_u over the wind speed of the moment.
+    plan.unresolved_intensity = [turbulence, source = scenario.wind](double t) {
+      if (turbulence.intensity) return *turbulence.intensity;
+      const auto v = io::wind_vector(source, t);
+      const double speed = std::hypot(v[0], v[1], v[2]);
+      return speed > 0.0 ? turbulence.standard_deviations(speed)[0] / speed : 0.0;
+    };
+    unresolved.intensity = plan.unresolved_intensity(0.0);
+  }
 
   // --- canopy: every tree's frontal area on the grid, with the drag the trees receive ---------------------
   if (plan.forest.instance_count() > 0) {
@@ -187,7 +241,8 @@ SimulationPlan plan_simulation(const io::Scenario& scenario, const trees::BasisC
 
   plan.estimated_device_bytes = WindGrid::estimate_device_bytes(wind.spec, wind.settings, 1) +
                                 forest_device_bytes(plan.forest) +
-                                (plan.coupling.drag_density.size() * sizeof(float));
+                                (plan.coupling.drag_density.size() * sizeof(float)) +
+                                (wind.turbulence ? wind.turbulence->values().size() * sizeof(float) : 0);
   return plan;
 }
 

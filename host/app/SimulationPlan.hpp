@@ -47,6 +47,11 @@ struct SimulationPlan {
   /// The ambient wind at time t (s): m/s at the reference height, x east, y north.
   std::function<std::array<double, 3>(double)> ambient_wind;
   WindGridSetup wind;  ///< ambient set for t = 0
+  /// sigma_u of the inflow turbulence at time t (s), m/s; empty without wind.turbulence.
+  std::function<double(double)> turbulence_sigma;
+  /// sigma_u / U at time t (s) for the trees' unresolved turbulence; empty without it.
+  std::function<double(double)> unresolved_intensity;
+  double probe_interval = 0.0;  ///< s between probe samples; 0: every step
   CouplingSettings coupling;
   trees::Forest forest;
   std::vector<io::SpeciesSummary> species;
@@ -65,6 +70,16 @@ SimulationPlan plan_simulation(const io::Scenario& scenario, const trees::BasisC
 /// A species' skeleton: generated, or read from its .tree or TreeQSM file. A file that does not parse throws
 /// std::invalid_argument naming that file's line (an input error, exit code 2).
 trees::Skeleton species_skeleton(const io::Species& species);
+
+/// The turbulence box points per grid cell along each axis (the box's spacing is h / this).
+inline constexpr int kTurbulencePointsPerCell = 2;
+/// The unit-sigma_u inflow turbulence box of wind.turbulence on a grid of cell size h (m), points every h/2;
+/// unequal sigma_u, sigma_v, sigma_w scale the box's components (along-wind on the horizontal axis closer to
+/// the wind at t = 0).
+fluid::TurbulenceBoxSpec inflow_turbulence_spec(const io::TurbulenceSettings& turbulence, double h,
+                                                const std::array<double, 3>& wind_at_start);
+fluid::TurbulenceBox inflow_turbulence_box(const io::TurbulenceSettings& turbulence, double h,
+                                           const std::array<double, 3>& wind_at_start);
 
 /// The FwGust of a gust event (travel resolved, direction along the ambient wind at its start).
 FwGust to_device_gust(const io::GustEvent& event, const std::array<double, 3>& wind_at_start);

@@ -67,10 +67,23 @@ int run_check(const std::string& scenario_path) {
   static const char* faces[6] = {"west", "east", "south", "north", "ground", "top"};
   std::string boundaries;
   for (int f = 0; f < 6; ++f) {
-    boundaries +=
-        fmt::format("{}{} {}", f ? ", " : "", faces[f], fluid::to_string(spec.boundary[std::size_t(f)]));
+    // A rough ground is a slip wall for the grid plus the log-law stress; say what the file says.
+    const bool rough =
+        f == FW_FACE_GROUND && scenario.boundaries[std::size_t(f)] == io::BoundaryChoice::rough;
+    boundaries += fmt::format("{}{} {}", f ? ", " : "", faces[f],
+                              rough ? fmt::format("rough (z0 {} m)", scenario.ground_roughness_length)
+                                    : fluid::to_string(spec.boundary[std::size_t(f)]));
   }
   std::cout << "boundaries at t = 0: " << boundaries << "\n";
+  if (const auto& turbulence = scenario.wind.turbulence) {
+    const auto& n = turbulence->box_cells;
+    std::cout << fmt::format(
+        "turbulence: von Karman, L_u {} m, box {} x {} x {} cells ({} x {} x {} m, points every h/2), "
+        "{}\n",
+        turbulence->length_scale, n[0], n[1], n[2], turbulence->box_size[0], turbulence->box_size[1],
+        turbulence->box_size[2],
+        turbulence->unresolved ? "unresolved eddies force the trees" : "no unresolved forcing");
+  }
 
   std::vector<int> trees_per_species(scenario.forest.species.size(), 0);
   for (const auto& stand : scenario.forest.stands) {

@@ -13,6 +13,7 @@
 // collection (.pvd) lists a frame only once its file is complete.
 #pragma once
 
+#include <array>
 #include <map>
 #include <string>
 #include <vector>
@@ -20,6 +21,13 @@
 #include "fluid/MacVelocity.hpp"
 
 namespace fw::io {
+
+/// One probe sample (DESIGN.md, "probes.csv"): taken at the probes' own interval, not only on frames.
+struct ProbeSample {
+  double time = 0.0;                        ///< simulated time, s
+  std::vector<std::array<float, 3>> wind;   ///< per probe point, m/s
+  std::vector<std::array<double, 3>> tips;  ///< tip displacement per tracked tree, m, world frame
+};
 
 /// What a frame carries: the state copied back from the device. What never changes (grid, solids, canopy,
 /// the trees' rest geometry) the writers keep from their construction.
@@ -31,6 +39,11 @@ struct OutputFrame {
   std::vector<float> pressure;  ///< kinematic pressure p/rho per cell, m^2/s^2; empty unless needed
   std::vector<float>
       displacement;  ///< 3 per forest node (instance order, world frame), m; empty unless needed
+  /// The probe samples taken since the previous frame, this frame's time included, in time order.
+  std::vector<ProbeSample> probe_samples;
+  /// A last batch of probe samples after the last frame: only writers that need probe samples get it, and
+  /// it is not a frame (no files, not counted).
+  bool probe_samples_only = false;
 };
 
 /// Which optional parts of a frame a writer reads, so that the run copies back only those.
@@ -38,10 +51,12 @@ struct FrameNeeds {
   bool velocity = false;
   bool pressure = false;
   bool displacement = false;
+  bool probe_samples = false;
   FrameNeeds& operator|=(const FrameNeeds& other) {
     velocity = velocity || other.velocity;
     pressure = pressure || other.pressure;
     displacement = displacement || other.displacement;
+    probe_samples = probe_samples || other.probe_samples;
     return *this;
   }
 };

@@ -108,6 +108,7 @@ void OutputPipeline::run() {
     const auto start = Clock::now();
     std::exception_ptr failure;
     for (auto& writer : writers_) {
+      if (frame.probe_samples_only && !writer->needs().probe_samples) continue;
       try {
         writer->write(frame);
       } catch (const std::exception& e) {
@@ -123,7 +124,7 @@ void OutputPipeline::run() {
       if (failure) {
         error_ = failure;
         queue_.clear();  // later frames would be listed after a gap; the run stops instead
-      } else {
+      } else if (!frame.probe_samples_only) {
         ++frames_written_;
       }
     }

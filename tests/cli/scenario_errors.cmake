@@ -74,6 +74,19 @@ expect_bad(log_profile "${WORK}/log_profile.yaml:4" "wind.profile.displacement_h
            "wind: {speed: 5.0, direction: 270.0}"
            "wind: {speed: 5.0, direction: 270.0, profile: {type: log, roughness_length: 0.5, displacement_height: 12}}")
 
+# Turbulence needs its integral length scale; the map's line is blamed for the missing key.
+expect_bad(turbulence_length "${WORK}/turbulence_length.yaml:4" "wind.turbulence.length_scale"
+           "wind: {speed: 5.0, direction: 270.0}"
+           "wind: {speed: 5.0, direction: 270.0, turbulence: {intensity: 0.1}}")
+# The mean forcing drives a domain without inflow only: here the four sides are auto.
+expect_bad(forcing_open "${WORK}/forcing_open.yaml:4" "wind.forcing"
+           "wind: {speed: 5.0, direction: 270.0}"
+           "wind: {speed: 5.0, direction: 270.0, forcing: {relaxation_time: 5}}")
+# rough is a ground condition.
+expect_bad(rough_side "${WORK}/rough_side.yaml:4" "boundaries.west"
+           "domain: {origin: [0, 0, 0], size: [32, 16, 16], cell_size: 2.0}"
+           "domain: {origin: [0, 0, 0], size: [32, 16, 16], cell_size: 2.0}\nboundaries: {west: rough}")
+
 # The example scenarios are valid.
 file(GLOB examples "${SCENARIOS}/*.yaml")
 foreach(example ${examples})

@@ -94,7 +94,20 @@ TEST_CASE("schema: the loader's messages come from the key's type, bound and uni
   CHECK(schema::expected(schema::key("forest.species[].modes.count")) == "an integer >= 1");
   CHECK(schema::expected(schema::key("solver.pressure")) == "one of multigrid | cg | jacobi");
   CHECK(schema::expected(schema::key("boundaries.ground")) ==
+        "one of inflow | outflow | slip | no_slip | periodic | rough");
+  CHECK(schema::expected(schema::key("boundaries.top")) ==
         "one of inflow | outflow | slip | no_slip | periodic");
+  CHECK(schema::expected(schema::key("boundaries.west")) ==
+        "one of auto | inflow | outflow | slip | no_slip | periodic");
+  CHECK(schema::expected(schema::key("wind.turbulence.sigma")) ==
+        "a list of 3 numbers [sigma_u, sigma_v, sigma_w], each > 0 (m/s)");
+  CHECK(schema::expected(schema::key("output.probe_interval")) == "a number > 0 (s) or auto");
+  CHECK(schema::child_names("wind.turbulence") == std::vector<std::string>{"model", "intensity", "sigma",
+                                                                           "length_scale", "box_size", "seed",
+                                                                           "unresolved", "cutoff_cells"});
+  // boundaries' first six keys are the faces, in the order of FW_FACE_* (the loader indexes them so).
+  CHECK(schema::child_names("boundaries") ==
+        std::vector<std::string>{"west", "east", "south", "north", "ground", "top", "roughness_length"});
   CHECK(schema::expected(schema::key("forest.species[].skeleton")) ==
         "a map with exactly one of the keys generate, file, qsm");
   CHECK(schema::child_names("forest.species[].modes") ==

@@ -9,6 +9,7 @@
 #include <array>
 #include <cmath>
 #include <filesystem>
+#include <optional>
 #include <string>
 #include <variant>
 
@@ -577,6 +578,15 @@ forest:
   CHECK_FALSE(s.output.vdb_enabled);
   CHECK(s.output.vdb_grids == std::vector<std::string>{"vel", "speed"});
   CHECK(s.output.probes.empty());
+
+  // The turbulence keys' defaults: a laminar wind, no forcing, a smooth ground, no eddy viscosity.
+  CHECK_FALSE(s.wind.turbulence.has_value());
+  CHECK_FALSE(s.wind.forcing.has_value());
+  CHECK(s.ground_roughness_length == 0.0);
+  CHECK(s.solver.smagorinsky_constant == 0.0);
+  CHECK_FALSE(s.output.probe_interval.has_value());                  // auto
+  CHECK(s.resolved_probe_interval() == std::optional<double>(1.0));  // without turbulence: output.interval
+  CHECK(s.forest.strong_wind_correction);
 }
 
 TEST_CASE("Scenario::wind_vector: directions are where the wind comes from, clockwise from north",
@@ -850,7 +860,7 @@ TEST_CASE("load_scenario: unknown enum word lists the allowed words", "[scenario
                "one of multigrid | cg | jacobi expected, got 'sor'");
   // auto follows the horizontal wind, so the ground and the top do not take it.
   expect_error(dir, "ground_auto", kBase + "boundaries: {ground: auto}\n", 5, "boundaries.ground",
-               "one of inflow | outflow | slip | no_slip | periodic expected, got 'auto'");
+               "one of inflow | outflow | slip | no_slip | periodic | rough expected, got 'auto'");
   expect_error(dir, "profile",
                "scenario: errors\ntime: {end: 10.0}\ndomain: {size: [40, 20, 10], cell_size: 2.0}\n"
                "wind:\n  speed: 4\n  direction: 270\n  profile: {type: exponential}\n",
@@ -1097,4 +1107,233 @@ TEST_CASE("load_scenario: a PGM heightmap's south-west corner sits at the domain
   CHECK(map.height_at(-98.0, 60.0) == Approx(0.0).margin(1e-12));   // first pixel centre
   CHECK(map.height_at(-78.0, 60.0) == Approx(5.0).margin(1e-12));   // column 5 of 0..10
   CHECK(map.height_at(-58.0, 60.0) == Approx(10.0).margin(1e-12));  // the east column
+}
+
+namespace {
+
+// The first six lines of the turbulence error cases: a valid scenario with a block `wind` map to add to.
+const std::string kWindBase =
+    "scenario: errors\n"                              // 1
+    "time: {end: 10.0}\n"                             // 2
+    "domain: {size: [40, 20, 10], cell_size: 2.0}\n"  // 3
+    "wind:\n"                                         // 4
+    "  speed: 4.0\n"                                  // 5
+    "  direction: 270\n";                             // 6
+
+}  // namespace
+
+TEST_CASE("load_scenario: turbulence, a rough ground, the eddy viscosity and the probe interval are read",
+          "[scenario]") {
+  fw::test::TempDir dir("fw_scenario");
+  const Scenario s = fw::io::load_scenario(dir.write("turbulent.yaml", R"(scenario: turbulent
+seed: 5
+time: {end: 10.0}
+domain: {size: [40, 20, 10], cell_size: 2.0}
+boundaries: {ground: rough, roughness_length: 0.3}
+wind:
+  speed: "4 + t"
+  direction: 270
+  turbulence: {model: von_karman, intensity: 0.15, length_scale: 10, box_size: [50, 30, 7], seed: 9,
+               unresolved: false, cutoff_cells: 4}
+forest: {strong_wind_correction: false}
+solver: {smagorinsky_constant: 0.17}
+output: {interval: 0.5, probe_interval: 0.05}
+)"));
+  REQUIRE(s.wind.turbulence.has_value());
+  const fw::io::TurbulenceSettings& turbulence = *s.wind.turbulence;
+  CHECK(turbulence.model == fw::io::TurbulenceModel::von_karman);
+  CHECK(turbulence.intensity == std::optional<double>(0.15));
+  CHECK_FALSE(turbulence.sigma.has_value());
+  CHECK(turbulence.length_scale == 10.0);
+  // 25, 15 and 3.5 cells of 2 m, rounded to whole even counts of at least 4.
+  CHECK(turbulence.box_cells == std::array<int, 3>{26, 16, 4});
+  CHECK(turbulence.box_size == std::array<double, 3>{52, 32, 8});
+  CHECK(turbulence.box_size_given);
+  CHECK(turbulence.seed == 9);
+  CHECK_FALSE(turbulence.unresolved);
+  CHECK(turbulence.cutoff_cells == 4.0);
+  // sigma_u = I U follows the speed, 6 m/s at t = 2 s; isotropic. Tolerance: one multiplication, 1e-12 m/s.
+  check_vector(turbulence.standard_deviations(s.wind.speed(2.0)), {0.9, 0.9, 0.9}, 1e-12);
+
+  CHECK(s.boundaries[FW_FACE_GROUND] == BoundaryChoice::rough);
+  CHECK(fw::io::to_string(BoundaryChoice::rough) == "rough");
+  CHECK(s.ground_roughness_length == 0.3);
+  // A rough ground is a slip wall to the grid; the wall stress is a stage of its own.
+  CHECK(s.grid_spec(0.0).boundary[FW_FACE_GROUND] == BoundaryType::slip);
+  CHECK_FALSE(s.wind.forcing.has_value());  // the sides are not periodic
+
+  CHECK_FALSE(s.forest.strong_wind_correction);
+  CHECK(s.solver.smagorinsky_constant == 0.17);
+  CHECK(s.output.probe_interval == std::optional<double>(0.05));
+  CHECK(s.resolved_probe_interval() == std::optional<double>(0.05));
+}
+
+TEST_CASE("load_scenario: turbulence and a rough ground get the documented defaults", "[scenario]") {
+  fw::test::TempDir dir("fw_scenario");
+  const Scenario s = fw::io::load_scenario(dir.write("defaults.yaml", R"(scenario: turbulent_defaults
+seed: 5
+time: {end: 10.0}
+domain: {size: [40, 20, 10], cell_size: 2.0}
+boundaries: {ground: rough}
+wind:
+  speed: 4
+  direction: 270
+  profile: {type: log, roughness_length: 0.05}
+  turbulence: {sigma: [1.2, 0.9, 0.6], length_scale: 10}
+)"));
+  REQUIRE(s.wind.turbulence.has_value());
+  const fw::io::TurbulenceSettings& turbulence = *s.wind.turbulence;
+  CHECK(turbulence.model == fw::io::TurbulenceModel::von_karman);
+  CHECK_FALSE(turbulence.intensity.has_value());
+  CHECK(turbulence.sigma == std::optional<std::array<double, 3>>({1.2, 0.9, 0.6}));
+  CHECK(turbulence.standard_deviations(20.0) == std::array<double, 3>{1.2, 0.9, 0.6});  // fixed over time
+  // 20 x 10 x 5 cells; 8 length scales are 40 cells: x and y the power of two above 40, z the one above 5.
+  CHECK(turbulence.box_cells == std::array<int, 3>{64, 64, 8});
+  CHECK(turbulence.box_size == std::array<double, 3>{128, 128, 16});
+  CHECK_FALSE(turbulence.box_size_given);
+  CHECK(turbulence.seed == 5);  // the global seed
+  CHECK(turbulence.unresolved);
+  CHECK(turbulence.cutoff_cells == 2.0);
+  // The rough ground takes the log profile's roughness length.
+  CHECK(s.ground_roughness_length == 0.05);
+  // With turbulence, auto samples the probes at every solver step.
+  CHECK_FALSE(s.output.probe_interval.has_value());
+  CHECK_FALSE(s.resolved_probe_interval().has_value());
+
+  // A domain wider than 8 length scales: the box covers the domain (80 cells along x -> 128); a domain
+  // only 2 cells deep still gets 4 along z. Without a log profile the roughness length is 0.1 m.
+  const Scenario wide = fw::io::load_scenario(dir.write("wide.yaml", R"(scenario: wide
+time: {end: 10.0}
+domain: {size: [160, 20, 4], cell_size: 2.0}
+boundaries: {ground: rough}
+wind: {speed: 4, direction: 270, turbulence: {intensity: 0.2, length_scale: 1}}
+)"));
+  REQUIRE(wide.wind.turbulence.has_value());
+  CHECK(wide.wind.turbulence->box_cells == std::array<int, 3>{128, 16, 4});
+  CHECK(wide.wind.turbulence->seed == 0);
+  CHECK(wide.ground_roughness_length == 0.1);
+  // A given size below 4 cells becomes 4 cells.
+  const Scenario tiny = fw::io::load_scenario(dir.write(
+      "tiny.yaml", kWindBase + "  turbulence: {intensity: 0.2, length_scale: 1, box_size: [1, 2, 3]}\n"));
+  REQUIRE(tiny.wind.turbulence.has_value());
+  CHECK(tiny.wind.turbulence->box_cells == std::array<int, 3>{4, 4, 4});
+}
+
+TEST_CASE("load_scenario: four periodic sides switch the mean forcing on, with or without wind.forcing",
+          "[scenario]") {
+  fw::test::TempDir dir("fw_scenario");
+  const std::string periodic =
+      "boundaries: {west: periodic, east: periodic, south: periodic, north: periodic}\n";
+  const Scenario plain = fw::io::load_scenario(dir.write("plain.yaml", kWindBase + periodic));
+  REQUIRE(plain.wind.forcing.has_value());
+  CHECK(plain.wind.forcing->relaxation_time == 10.0);
+  const Scenario given = fw::io::load_scenario(
+      dir.write("given.yaml", kWindBase + "  forcing: {relaxation_time: 30}\n" + periodic));
+  REQUIRE(given.wind.forcing.has_value());
+  CHECK(given.wind.forcing->relaxation_time == 30.0);
+  // Two periodic sides leave inflow faces: no forcing.
+  const Scenario channel = fw::io::load_scenario(
+      dir.write("channel.yaml", kWindBase + "boundaries: {south: periodic, north: periodic}\n"));
+  CHECK_FALSE(channel.wind.forcing.has_value());
+}
+
+TEST_CASE("load_scenario: bad turbulence keys name the key and say what is expected", "[scenario]") {
+  fw::test::TempDir dir("fw_scenario");
+  expect_error(dir, "negative_intensity", kWindBase + "  turbulence: {intensity: -0.1, length_scale: 10}\n",
+               7, "wind.turbulence.intensity", "a number >= 0 expected, got '-0.1'");
+  expect_error(dir, "both",
+               kWindBase +
+                   "  turbulence:\n"          // 7
+                   "    intensity: 0.1\n"     // 8
+                   "    sigma: [1, 1, 1]\n"   // 9
+                   "    length_scale: 10\n",  // 10
+               9, "wind.turbulence.sigma",
+               "exactly one of intensity and sigma expected, got both (intensity on line 8)");
+  expect_error(
+      dir, "neither", kWindBase + "  turbulence: {length_scale: 10}\n", 7, "wind.turbulence.intensity",
+      "a number >= 0, or sigma (exactly one of intensity and sigma) expected (required), got nothing");
+  expect_error(dir, "no_length_scale", kWindBase + "  turbulence: {intensity: 0.1}\n", 7,
+               "wind.turbulence.length_scale", "a number > 0 (m) expected (required), got nothing");
+  expect_error(dir, "zero_sigma", kWindBase + "  turbulence: {sigma: [1, 0, 1], length_scale: 10}\n", 7,
+               "wind.turbulence.sigma[1]", "a number > 0 (m/s) expected, got '0'");
+  expect_error(dir, "sigma_pair", kWindBase + "  turbulence: {sigma: [1, 1], length_scale: 10}\n", 7,
+               "wind.turbulence.sigma",
+               "a list of 3 numbers [sigma_u, sigma_v, sigma_w], each > 0 (m/s) expected, got '[1, 1]'");
+  expect_error(
+      dir, "unknown_key", kWindBase + "  turbulence: {intensity: 0.1, length_scale: 10, spectrum: kaimal}\n",
+      7, "wind.turbulence.spectrum",
+      "one of the keys model, intensity, sigma, length_scale, box_size, seed, unresolved, cutoff_cells "
+      "expected, got 'spectrum'");
+  expect_error(dir, "model", kWindBase + "  turbulence: {model: mann, intensity: 0.1, length_scale: 10}\n", 7,
+               "wind.turbulence.model", "one of von_karman expected, got 'mann'");
+  expect_error(dir, "cutoff",
+               kWindBase + "  turbulence: {intensity: 0.1, length_scale: 10, cutoff_cells: 0}\n", 7,
+               "wind.turbulence.cutoff_cells", "a number > 0 expected, got '0'");
+  expect_error(dir, "unresolved",
+               kWindBase + "  turbulence: {intensity: 0.1, length_scale: 10, unresolved: 1}\n", 7,
+               "wind.turbulence.unresolved", "true or false expected, got '1'");
+  expect_error(dir, "box_negative",
+               kWindBase + "  turbulence: {intensity: 0.1, length_scale: 10, box_size: [64, -2, 8]}\n", 7,
+               "wind.turbulence.box_size[1]", "a number > 0 (m) expected, got '-2'");
+  // 8 length scales of a million metres in cells of 2 m: 2^22 cells along x and y is far too many.
+  expect_error(dir, "default_box_too_big",
+               kWindBase + "  turbulence: {intensity: 0.1, length_scale: 1.0e6}\n", 7,
+               "wind.turbulence.box_size",
+               "of at most 715827882 points in all expected (required here: the default box, 8 length_scale "
+               "along x and y, is 4194304 x 4194304 x 8");
+  expect_error(
+      dir, "box_too_big",
+      kWindBase + "  turbulence: {intensity: 0.1, length_scale: 10, box_size: [1.0e5, 1.0e5, 1000]}\n", 7,
+      "wind.turbulence.box_size", "points in all (this box is 50000 x 50000 x 500");
+}
+
+TEST_CASE("load_scenario: bad rough-ground, forcing, Smagorinsky and probe keys name the key", "[scenario]") {
+  fw::test::TempDir dir("fw_scenario");
+  // rough is a ground condition: a side or the top is told so.
+  expect_error(
+      dir, "rough_side", kBase + "boundaries: {west: rough}\n", 5, "boundaries.west",
+      "one of auto | inflow | outflow | slip | no_slip | periodic (rough is for the ground only) expected, "
+      "got 'rough'");
+  expect_error(dir, "rough_top", kBase + "boundaries: {top: rough}\n", 5, "boundaries.top",
+               "one of inflow | outflow | slip | no_slip | periodic (rough is for the ground only) expected");
+  expect_error(dir, "roughness_smooth", kBase + "boundaries: {roughness_length: 0.1}\n", 5,
+               "boundaries.roughness_length",
+               "nothing unless boundaries.ground is rough (it is 'no_slip') expected, got '0.1'");
+  expect_error(
+      dir, "roughness_high", kBase + "boundaries: {ground: rough, roughness_length: 1.0}\n", 5,
+      "boundaries.roughness_length",
+      "a number > 0 (m) below cell_size / 2 = 1 m (the log law is evaluated at the first cell centre) "
+      "expected, got '1.0'");
+  expect_error(dir, "roughness_zero", kBase + "boundaries: {ground: rough, roughness_length: 0}\n", 5,
+               "boundaries.roughness_length", "a number > 0 (m) expected, got '0'");
+  // The default from the log profile is checked too, and blamed on the missing key at the boundaries' line.
+  expect_error(dir, "roughness_default",
+               kWindBase + "  profile: {type: log, roughness_length: 1.5}\nboundaries: {ground: rough}\n", 8,
+               "boundaries.roughness_length",
+               "a number > 0 (m) below cell_size / 2 = 1 m expected (required here: the default, "
+               "wind.profile.roughness_length, is 1.5 m), got nothing");
+  expect_error(
+      dir, "forcing_open", kWindBase + "  forcing: {relaxation_time: 5}\n", 7, "wind.forcing",
+      "forcing only in a domain whose west, east, south and north are all periodic (boundaries.west is "
+      "'auto') expected, got a map");
+  expect_error(
+      dir, "forcing_channel",
+      kWindBase + "  forcing: {}\nboundaries: {west: periodic, east: periodic, south: slip, north: slip}\n",
+      7, "wind.forcing", "(boundaries.south is 'slip') expected, got a map");
+  expect_error(dir, "forcing_zero",
+               kWindBase + "  forcing: {relaxation_time: 0}\n" +
+                   "boundaries: {west: periodic, east: periodic, south: periodic, north: periodic}\n",
+               7, "wind.forcing.relaxation_time", "a number > 0 (s) expected, got '0'");
+  expect_error(dir, "smagorinsky_one", kBase + "solver: {smagorinsky_constant: 1}\n", 5,
+               "solver.smagorinsky_constant", "a number >= 0 and < 1 expected, got '1'");
+  expect_error(dir, "smagorinsky_negative", kBase + "solver: {smagorinsky_constant: -0.1}\n", 5,
+               "solver.smagorinsky_constant", "a number >= 0 expected, got '-0.1'");
+  expect_error(dir, "probe_zero", kBase + "output: {probe_interval: 0}\n", 5, "output.probe_interval",
+               "a number > 0 (s) or auto expected, got '0'");
+  expect_error(dir, "probe_negative", kBase + "output: {probe_interval: -0.5}\n", 5, "output.probe_interval",
+               "a number > 0 (s) or auto expected, got '-0.5'");
+  expect_error(dir, "probe_word", kBase + "output: {probe_interval: often}\n", 5, "output.probe_interval",
+               "got 'often'");
+  expect_error(dir, "correction", kBase + "forest: {strong_wind_correction: yes}\n", 5,
+               "forest.strong_wind_correction", "true or false expected, got 'yes'");
 }

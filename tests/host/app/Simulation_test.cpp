@@ -22,6 +22,7 @@
 #include <string>
 #include <vector>
 
+#include "fluid/FlowStatistics.hpp"
 #include "host/app/SimulationPlan.hpp"
 #include "io/Scenario.hpp"
 #include "tests/support/TempDir.hpp"
@@ -50,6 +51,9 @@ struct ScenarioText {
   std::string trees = "    - {species: shrub, position: [24, 16], yaw: 0.0}\n";
   std::string stands;
   std::string probes = "    - {name: centre, position: [24, 16, 2]}\n";
+  std::string turbulence;       // a flow map for wind.turbulence, or empty
+  double frame_interval = 2.0;  // s
+  std::string probe_interval;   // output.probe_interval, or empty for its default
 
   std::string yaml() const {
     std::ostringstream s;
@@ -58,7 +62,7 @@ struct ScenarioText {
       << "domain: {origin: [0, 0, 0], size: [48, 32, 16], cell_size: 2.0}\n"
       << "boundaries: {west: auto, east: auto, south: slip, north: slip, ground: slip, top: slip}\n"
       << "wind: {speed: " << speed << ", direction: " << direction << ", reference_height: 10.0, "
-      << "profile: {type: uniform}}\n";
+      << "profile: {type: uniform}" << (turbulence.empty() ? "" : ", turbulence: " + turbulence) << "}\n";
     if (!obstacles.empty()) s << "obstacles:\n" << obstacles;
     s << "forest:\n  two_way_coupling: " << (coupling ? "true" : "false") << "\n  integrator: " << integrator
       << "\n  species:\n"
@@ -67,7 +71,9 @@ struct ScenarioText {
       << "      canopy: {leaf_area_index: 4.0, drag_coefficient: 0.6}\n";
     if (!stands.empty()) s << "  stands:\n" << stands;
     if (!trees.empty()) s << "  trees:\n" << trees;
-    s << "output:\n  directory: out\n  interval: 2.0\n  vdb: {enabled: true, grids: [vel, speed]}\n";
+    s << "output:\n  directory: out\n  interval: " << frame_interval
+      << "\n  vdb: {enabled: true, grids: [vel, speed]}\n";
+    if (!probe_interval.empty()) s << "  probe_interval: " << probe_interval << "\n";
     if (!probes.empty()) s << "  probes:\n" << probes;
     return s.str();
   }
@@ -219,6 +225,7 @@ TEST_CASE("Simulation: the same scenario and seed give identical output files", 
   TempDir dir("fw_sim");
   ScenarioText text;
   text.end = 4.0;
+  text.turbulence = "{intensity: 0.2, length_scale: 6.0}";  // the seeded parts of a run too
   text.trees.clear();
   text.stands =
       "    - {species: shrub, region: {min: [14, 6], max: [34, 26]}, layout: poisson, spacing: 5.0, "
@@ -241,6 +248,65 @@ TEST_CASE("Simulation: the same scenario and seed give identical output files", 
     ++compared;
   }
   CHECK(compared >= 10);
+}
+
+namespace {
+
+// probes.csv as rows of numbers (header dropped).
+std::vector<std::vector<double>> probe_rows(const std::filesystem::path& out) {
+  std::istringstream csv(read_text(out / "probes.csv"));
+  std::string line;
+  std::getline(csv, line);
+  std::vector<std::vector<double>> rows;
+  while (std::getline(csv, line)) {
+    std::vector<double> values;
+    std::istringstream row(line);
+    std::string cell;
+    while (std::getline(row, cell, ',')) values.push_back(std::stod(cell));
+    rows.push_back(values);
+  }
+  return rows;
+}
+
+}  // namespace
+
+TEST_CASE("Simulation: with turbulence, probes sample every step and see the fluctuations", "[simulation]") {
+  auto* cc = fw::test::device_or_skip();
+  if (!cc) return;
+  TempDir dir("fw_sim");
+  ScenarioText text;
+  text.turbulence = "{intensity: 0.2, length_scale: 6.0}";
+  // Frames at 0 and 4 s only: the samples after t = 4 s reach probes.csv in a last batch of their own.
+  text.frame_interval = 4.0;
+  text.probes = "    - {name: inflow, position: [2, 16, 10]}\n";
+  fw::host::RunSummary summary;
+  const auto out = run_in(*cc, dir, text, "turbulent", &summary);
+  const auto rows = probe_rows(out);
+  CHECK(rows.size() == std::size_t(summary.steps) + 1);  // t = 0 and after every step
+  CHECK(rows.back()[0] == Approx(text.end));
+  std::vector<double> u;
+  for (const auto& row : rows) u.push_back(row[1]);
+  // One cell behind the inflow the requested sigma_u is 1.2 m/s (intensity 0.2 at 6 m/s); over 6 s (about
+  // six integral time scales) a realisation's sigma scatters, and the grid's advection damps the smallest
+  // eddies, so only ask for a clearly turbulent wind: more than a third of it.
+  CHECK(fw::fluid::standard_deviation(u) > 0.4);
+  CHECK(summary.frames == 2);
+}
+
+TEST_CASE("Simulation: probes at their own interval, independent of the frames", "[simulation]") {
+  auto* cc = fw::test::device_or_skip();
+  if (!cc) return;
+  TempDir dir("fw_sim");
+  ScenarioText text;
+  text.probe_interval = "0.5";
+  const auto out = run_in(*cc, dir, text, "half_second");
+  const auto rows = probe_rows(out);
+  REQUIRE(rows.size() == 13);  // 0, 0.5, ..., 6 s
+  // A sample is taken at the first step that reaches its due time, so it lies in [due, next due).
+  for (std::size_t n = 0; n < rows.size(); ++n) {
+    CHECK(rows[n][0] >= 0.5 * double(n) - 1e-9);
+    CHECK(rows[n][0] < 0.5 * double(n + 1));
+  }
 }
 
 TEST_CASE("Simulation: two-way coupling lowers the wind inside a stand", "[simulation]") {
