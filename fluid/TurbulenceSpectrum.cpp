@@ -20,7 +20,9 @@ void VonKarmanSpectrum::validate() const {
         fmt::format("VonKarmanSpectrum: integral_length must be > 0 m, got {}", integral_length));
 }
 
-double VonKarmanSpectrum::spectrum_length() const { return integral_length / von_karman_integral_ratio(); }
+double VonKarmanSpectrum::spectrum_length() const {
+  return integral_length / von_karman_integral_ratio();
+}
 
 double VonKarmanSpectrum::energy(double k) const {
   const double L = spectrum_length();

@@ -26,8 +26,9 @@ WindGridSetup validated(ComputeContext& cc, WindGridSetup setup) {
         "WindGrid: wall_roughness_length must be below h/2 = {} m (the first cell centre's height), got {} m",
         0.5 * setup.spec.h, z0));
   if (!(std::isfinite(setup.forcing.relaxation_time) && setup.forcing.relaxation_time >= 0.0))
-    throw std::invalid_argument(fmt::format("WindGrid: the mean forcing's relaxation time must be >= 0 s, got {}",
-                                            setup.forcing.relaxation_time));
+    throw std::invalid_argument(
+        fmt::format("WindGrid: the mean forcing's relaxation time must be >= 0 s, got {}",
+                    setup.forcing.relaxation_time));
   for (const FwGust& g : setup.gusts)
     if (!(g.duration > 0.0f) || !(g.radius > 0.0f))
       throw std::invalid_argument("WindGrid: a gust needs a positive duration and radius");
@@ -79,6 +80,7 @@ void WindGrid::check_fits_device(const fluid::GridSpec& spec, std::size_t bytes,
 WindGrid::WindGrid(ComputeContext& cc, WindGridSetup setup)
     : cc_(cc),
       setup_(validated(cc, std::move(setup))),
+      profile_shape_(setup_.profile.sample_cell_centres(setup_.spec.nz, setup_.spec.h)),
       stages_(cc, setup_.spec),
       pressure_(cc, setup_.spec, fluid::build_pressure_levels(setup_.spec, setup_.solid),
                 setup_.settings.pressure) {
@@ -134,7 +136,7 @@ void WindGrid::set_turbulence_sigma(double sigma) {
 fluid::InflowState WindGrid::inflow_state() const {
   fluid::InflowState state;
   for (int a = 0; a < 3; ++a) state.ambient[a] = static_cast<float>(setup_.ambient[a]);
-  state.profile = setup_.profile.sample_cell_centres(setup_.spec.nz, setup_.spec.h);
+  state.profile = profile_shape_;
   state.turbulence = setup_.turbulence;
   state.turbulence_sigma = static_cast<float>(turbulence_sigma_);
   for (int a = 0; a < 3; ++a) state.turbulence_offset[a] = static_cast<float>(turbulence_offset_[a]);
@@ -151,12 +153,13 @@ std::array<double, 2> WindGrid::reference_layer_mean() {
   for (int c = 0; c < 2; ++c) {
     const std::size_t ex = spec.nx + (c == 0), ey = spec.ny + (c == 1), layer = ex * ey;
     // The faces that are distinct (a periodic axis' last face repeats its first).
-    const std::size_t nx = c == 0 && spec.periodic(0) ? spec.nx : ex, ny = c == 1 && spec.periodic(1) ? spec.ny : ey;
+    const std::size_t nx = c == 0 && spec.periodic(0) ? spec.nx : ex,
+                      ny = c == 1 && spec.periodic(1) ? spec.ny : ey;
     std::vector<float> rows(2 * layer);
-    cc_.queue().enqueueReadBuffer(vel_.component(c), CL_FALSE, layer * k0 * sizeof(float), layer * sizeof(float),
-                                  rows.data());
-    cc_.queue().enqueueReadBuffer(vel_.component(c), CL_TRUE, layer * k1 * sizeof(float), layer * sizeof(float),
-                                  rows.data() + layer);
+    cc_.queue().enqueueReadBuffer(vel_.component(c), CL_FALSE, layer * k0 * sizeof(float),
+                                  layer * sizeof(float), rows.data());
+    cc_.queue().enqueueReadBuffer(vel_.component(c), CL_TRUE, layer * k1 * sizeof(float),
+                                  layer * sizeof(float), rows.data() + layer);
     double lower = 0.0, upper = 0.0;
     for (std::size_t j = 0; j < ny; ++j)
       for (std::size_t i = 0; i < nx; ++i) {
@@ -236,8 +239,8 @@ void WindGrid::apply_forces() {
   const bool any_body = body[0] != 0.0 || body[1] != 0.0 || body[2] != 0.0;
   if (any_body || !setup_.gusts.empty())
     for (int c = 0; c < 3; ++c)
-      stages_.enqueue_apply_forces(c, static_cast<float>(body[c]), gusts_, static_cast<int>(setup_.gusts.size()),
-                                   vel_.component(c));
+      stages_.enqueue_apply_forces(c, static_cast<float>(body[c]), gusts_,
+                                   static_cast<int>(setup_.gusts.size()), vel_.component(c));
   if (st.vorticity_confinement > 0.0) {
     stages_.enqueue_vorticity(vel_, omega_);
     for (int c = 0; c < 3; ++c)

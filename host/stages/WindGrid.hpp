@@ -150,12 +150,13 @@ class WindGrid {
 
   ComputeContext& cc_;
   WindGridSetup setup_;
+  std::vector<float> profile_shape_;  // the profile at the nz cell-centre heights, sampled once
   FluidStages stages_;
   PressureSolver pressure_;
   DeviceVelocity vel_, tmp_, back_, padded_, padded_forward_;
   cl::Buffer omega_, gusts_, profile_;
   double time_ = 0.0, last_dt_ = 0.0;
-  double turbulence_sigma_ = 0.0;                  // m/s
+  double turbulence_sigma_ = 0.0;                     // m/s
   std::array<double, 3> turbulence_offset_{0, 0, 0};  // m, within one box length
   std::array<double, 2> forcing_integral_{0, 0};      // integral of the error, m
   std::array<double, 2> forcing_acceleration_{0, 0};  // m/s^2
