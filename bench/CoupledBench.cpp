@@ -8,6 +8,7 @@
 #include <random>
 #include <stdexcept>
 
+#include "bench/BenchTurbulence.hpp"
 #include "bench/FmaPeak.hpp"
 #include "fluid/CanopyField.hpp"
 #include "host/app/CoupledStep.hpp"
@@ -107,17 +108,34 @@ CoupledBenchResult run_coupled_bench(host::ComputeContext& cc, const CoupledBenc
     // with the force the tree receives (trees/CanopyDrag.hpp).
     fluid::CanopyField canopy(forest_wind_setup(grid, options.cell_size, 0).spec);
     for (int k = 0; k < forest.instance_count(); ++k) trees::add_to_canopy(canopy, forest, k);
-    std::vector<int> jacobi_variants{0};
-    if (options.baseline_jacobi_iterations > 0) jacobi_variants.push_back(options.baseline_jacobi_iterations);
-    for (const int jacobi : jacobi_variants) {
+    // The converged case, then (when asked) the same with turbulence, then the Jacobi baseline.
+    struct Variant {
+      int jacobi = 0;
+      bool turbulent = false;
+    };
+    std::vector<Variant> variants{{0, false}};
+    if (options.turbulence) variants.push_back({0, true});
+    if (options.baseline_jacobi_iterations > 0)
+      variants.push_back({options.baseline_jacobi_iterations, false});
+    for (const auto [jacobi, turbulent] : variants) {
       CoupledBenchCase c;
       c.grid = grid;
       c.pressure = jacobi > 0 ? fmt::format("jacobi {}", jacobi) : "cg 1e-3";
+      c.turbulent = turbulent;
       host::WindGridSetup setup = forest_wind_setup(grid, options.cell_size, jacobi);
       const std::array<double, 3> ambient = setup.ambient;
       host::CouplingSettings coupling;
       coupling.drag_density = canopy.drag_density();
+      if (turbulent) {
+        // The inflow box, and Stam's forcing of every tree by the eddies below 2 cells.
+        add_bench_turbulence(setup, grid);
+        coupling.unresolved.enabled = true;
+        coupling.unresolved.cell_size = options.cell_size;
+        coupling.unresolved.intensity = kBenchTurbulenceIntensity;
+        coupling.unresolved.integral_length = kBenchTurbulenceLengthCells * options.cell_size;
+      }
       host::CoupledStep coupled(cc, std::move(setup), forest, std::move(coupling));
+      if (turbulent) coupled.wind().set_turbulence_sigma(kBenchTurbulenceSigma);
       coupled.start(ambient);
       for (int s = 0; s < options.warmup_steps; ++s) coupled.step();
       cc.finish();
@@ -146,6 +164,13 @@ CoupledBenchResult run_coupled_bench(host::ComputeContext& cc, const CoupledBenc
         for (int f = 0; f < options.deform_frames; ++f) trees.enqueue_deform();
         cc.finish();
         result.deform_ms = ms_since(deform_start) / options.deform_frames;
+        // The linear deformation alone, without the strong-wind correction (its cost is the difference).
+        trees.set_strong_wind_correction(false);
+        const auto linear_start = Clock::now();
+        for (int f = 0; f < options.deform_frames; ++f) trees.enqueue_deform();
+        cc.finish();
+        result.deform_linear_ms = ms_since(linear_start) / options.deform_frames;
+        trees.set_strong_wind_correction(true);
         result.deform_frames_per_s = 1e3 / result.deform_ms;
         result.node_modes_per_s = double(trees.total_nodes()) * options.modes * result.deform_frames_per_s;
 
@@ -175,19 +200,28 @@ void print_coupled_bench_table(const CoupledBenchResult& r, std::ostream& out) {
       "forestwind bench coupled on {}: {} trees x {} nodes x {} modes, {} wind samples per tree\n", r.device,
       r.trees, r.nodes_per_tree, r.modes, r.samples);
   out << fmt::format("species precomputation (host): {:.2f} s\n\n", r.species_seconds);
-  out << fmt::format("{:<12} {:<10} {:>9} {:>9} {:>9} {:>9} {:>9} {:>9} {:>9}\n", "grid", "pressure",
+  out << fmt::format("{:<12} {:<15} {:>9} {:>9} {:>9} {:>9} {:>9} {:>9} {:>9}\n", "grid", "pressure",
                      "ms/step", "fluid", "advect", "canopy", "pressure", "trees", "p-iters");
+  const CoupledBenchCase* converged = nullptr;  // the laminar cg case of the current grid
   for (const auto& c : r.cases) {
     auto stage = [&](const char* name) {
       auto it = c.stages_ms.find(name);
       return it == c.stages_ms.end() ? 0.0 : it->second;
     };
-    out << fmt::format("{:<12} {:<10} {:>9.2f} {:>9.2f} {:>9.2f} {:>9.2f} {:>9.2f} {:>9.2f} {:>9.1f}\n",
-                       fmt::format("{}x{}x{}", c.grid[0], c.grid[1], c.grid[2]), c.pressure, c.ms_per_step,
-                       c.fluid_ms, stage("advect"), stage("canopy"), stage("pressure"), c.trees_ms,
-                       c.pressure_iterations);
+    out << fmt::format("{:<12} {:<15} {:>9.2f} {:>9.2f} {:>9.2f} {:>9.2f} {:>9.2f} {:>9.2f} {:>9.1f}",
+                       fmt::format("{}x{}x{}", c.grid[0], c.grid[1], c.grid[2]),
+                       c.pressure + (c.turbulent ? " +turb" : ""), c.ms_per_step, c.fluid_ms, stage("advect"),
+                       stage("canopy"), stage("pressure"), c.trees_ms, c.pressure_iterations);
+    if (c.turbulent && converged)
+      out << fmt::format("   turbulence x{:.2f} (+{:.1f} ms)", c.ms_per_step / converged->ms_per_step,
+                         c.ms_per_step - converged->ms_per_step);
+    out << "\n";
+    if (!c.turbulent && c.pressure == "cg 1e-3") converged = &c;
   }
-  out << "(jacobi N: Oliapuram's fixed Jacobi sweeps, the baseline; divergence is not controlled)\n";
+  out << "(+turb: the inflow turbulence box (15%, L_u 16 cells) and Stam's forcing of the trees by the "
+         "eddies "
+         "below 2 cells; jacobi N: Oliapuram's fixed Jacobi sweeps, the baseline; divergence is not "
+         "controlled)\n";
   const CoupledBenchCase& head = r.cases.front();
   out << fmt::format(
       "trees' step on the device {:.2f} ms; CPU reference (double, 1 thread) {:.2f} ms: x{:.1f}\n",
@@ -195,6 +229,8 @@ void print_coupled_bench_table(const CoupledBenchResult& r, std::ostream& out) {
   out << fmt::format(
       "\ndeformation of all {} nodes (output frames): {:.2f} ms = {:.1f} frames/s, {:.3g} node*modes/s\n",
       r.trees * r.nodes_per_tree, r.deform_ms, r.deform_frames_per_s, r.node_modes_per_s);
+  out << fmt::format("of which the strong-wind correction {:.2f} ms (linear deformation alone {:.2f} ms)\n",
+                     r.deform_ms - r.deform_linear_ms, r.deform_linear_ms);
   out << fmt::format("CPU reference deformation (double, 1 thread): {:.1f} ms: the device is x{:.1f}\n",
                      r.deform_reference_ms, r.deform_reference_ms / r.deform_ms);
   out << fmt::format(
@@ -217,6 +253,7 @@ std::string coupled_bench_json(const CoupledBenchResult& r) {
   for (const auto& [stage, ms] : head.stages_ms) json.key(stage).value(ms);
   json.end_object();
   json.key("deform_ms").value(r.deform_ms);
+  json.key("deform_linear_ms").value(r.deform_linear_ms);
   json.key("deform_frames_per_s").value(r.deform_frames_per_s);
   json.key("node_modes_per_s").value(r.node_modes_per_s);
   json.key("fma_peak_gfma_s").value(r.fma_peak_gfma_s);
@@ -229,6 +266,7 @@ std::string coupled_bench_json(const CoupledBenchResult& r) {
     json.begin_object();
     json.key("grid").begin_array().value(c.grid[0]).value(c.grid[1]).value(c.grid[2]).end_array();
     json.key("pressure").value(c.pressure);
+    json.key("turbulent").value(c.turbulent);
     json.key("ms_per_step").value(c.ms_per_step);
     json.key("fluid_ms").value(c.fluid_ms);
     json.key("trees_ms").value(c.trees_ms);

@@ -10,6 +10,10 @@
 // `deform_frames` frames, and compared with the device's FMA peak measured in the same process
 // (kernels/bench_fma.cl): a node of a tree with m modes costs 3 m FMAs.
 //
+// With `turbulence`, each grid runs again with the inflow turbulence box and Stam's forcing of every tree by
+// the eddies the grid cannot resolve (bench/BenchTurbulence.hpp): the cost of turbulence is the difference.
+// The deformation is timed with the strong-wind correction (the default) and without it.
+//
 // Baselines run in the same process: each grid again with Oliapuram's pressure solve (a fixed
 // `baseline_jacobi_iterations` Jacobi sweeps, 4 in the paper, not converged), and the trees' step and the
 // deformation by the double-precision CPU reference (trees/ForestReference, one host thread).
@@ -42,11 +46,13 @@ struct CoupledBenchOptions {
   int deform_frames = 10;              // timed deformation frames
   double cell_size = 2.0;              // m
   int baseline_jacobi_iterations = 4;  // Oliapuram's fixed Jacobi sweeps; 0 skips the baseline rows
+  bool turbulence = true;              // also the converged case with turbulence (bench/BenchTurbulence.hpp)
 };
 
 struct CoupledBenchCase {
   std::array<int, 3> grid{};
   std::string pressure;                     // "cg 1e-3" or "jacobi 4" (the baseline)
+  bool turbulent = false;                   // with the inflow turbulence and Stam's unresolved forcing
   double ms_per_step = 0.0;                 // fluid + trees, per step
   std::map<std::string, double> stages_ms;  // per step: the wind grid's stages, "trees" (load + modal step)
   double fluid_ms = 0.0;                    // the wind grid's share of a step
@@ -60,8 +66,9 @@ struct CoupledBenchResult {
   int nodes_per_tree = 0;
   int modes = 0;
   int samples = 0;
-  double species_seconds = 0.0;  // assembly + modes + wind basis of the species, host
-  double deform_ms = 0.0;        // one output frame's deformation of every node
+  double species_seconds = 0.0;   // assembly + modes + wind basis of the species, host
+  double deform_ms = 0.0;         // one output frame's deformation of every node, strong-wind corrected
+  double deform_linear_ms = 0.0;  // the same, linear (the correction off)
   double deform_frames_per_s = 0.0;
   double node_modes_per_s = 0.0;  // nodes x modes deformed per second
   double fma_peak_gfma_s = 0.0;   // measured in the same process

@@ -4,12 +4,11 @@
 
 #include <chrono>
 #include <cmath>
-#include <memory>
 
+#include "bench/BenchTurbulence.hpp"
 #include "bench/StreamTriad.hpp"
 #include "fluid/ReferenceStages.hpp"
 #include "fluid/SolidMap.hpp"
-#include "fluid/TurbulenceBox.hpp"
 #include "io/JsonWriter.hpp"
 
 namespace fw::bench {
@@ -27,24 +26,12 @@ enum class Turbulence {
   inflow_subgrid,  // and a Smagorinsky eddy viscosity and the rough-wall stress
 };
 
-// The turbulence cases of the bench: intensity 15% of the 10 m/s tunnel, L_u 16 cells, a box of points every
-// h/2 as long as the domain (as a run's plan builds it), C_s 0.16, z0 0.05 m.
-constexpr double kBenchSigma = 1.5, kBenchLength = 16.0, kBenchSmagorinsky = 0.16, kBenchRoughness = 0.05;
-
 host::WindGridSetup bench_setup(const std::array<int, 3>& grid, fluid::PressureSolverType solver,
                                 const WindBenchOptions& opt, Turbulence turbulence) {
   host::WindGridSetup setup = wind_tunnel_setup(grid[0], grid[1], grid[2], solver, opt.jacobi_iterations);
   if (turbulence == Turbulence::none) return setup;
-  fluid::TurbulenceBoxSpec box;
-  for (int a = 0; a < 3; ++a) box.cells[a] = 2 * grid[a];
-  box.spacing = 0.5 * setup.spec.h;
-  box.spectrum = {1.0, kBenchLength * setup.spec.h};
-  box.seed = 1;
-  setup.turbulence = std::make_shared<const fluid::TurbulenceBox>(box);
-  if (turbulence == Turbulence::inflow_subgrid) {
-    setup.settings.smagorinsky_constant = kBenchSmagorinsky;
-    setup.settings.wall_roughness_length = kBenchRoughness;
-  }
+  add_bench_turbulence(setup, grid);
+  if (turbulence == Turbulence::inflow_subgrid) add_bench_subgrid_stress(setup);
   return setup;
 }
 
@@ -52,7 +39,7 @@ SolverRun time_solver(host::ComputeContext& cc, const std::array<int, 3>& grid,
                       fluid::PressureSolverType solver, const WindBenchOptions& opt,
                       Turbulence turbulence = Turbulence::none) {
   host::WindGrid wind(cc, bench_setup(grid, solver, opt, turbulence));
-  if (turbulence != Turbulence::none) wind.set_turbulence_sigma(kBenchSigma);
+  if (turbulence != Turbulence::none) wind.set_turbulence_sigma(kBenchTurbulenceSigma);
   wind.initialise_ambient();
   for (int s = 0; s < opt.warmup_steps; ++s) wind.step();
   cc.finish();

@@ -49,7 +49,8 @@ FW_INLINE float face_offset(int c, int a) {
 }
 
 /* Component c of the inflow turbulence at world position (x, y, z), m/s per unit sigma: the box after the
- * profile in `inflow` (interleaved u v w per point, x fastest), trilinear and periodic on every axis.
+ * profile in `inflow` (interleaved u v w per point, x slowest: host/stages/FluidStages.hpp
+ * inflow_buffer_values), trilinear and periodic on every axis.
  * Mirrors fluid/TurbulenceBox.cpp sample(). */
 FW_INLINE float turbulence_box_sample(const FwGrid* g, const FwStep* s, __global const float* inflow, int c,
                                       float x, float y, float z) {
@@ -67,7 +68,7 @@ FW_INLINE float turbulence_box_sample(const FwGrid* g, const FwStep* s, __global
     lo[a] = min((int)f, n - 1);
     hi[a] = lo[a] + 1 == n ? 0 : lo[a] + 1;
   }
-  const int sx = 3, sy = 3 * s->turbulence_cells[0], sz = sy * s->turbulence_cells[1];
+  const int sz = 3, sy = 3 * s->turbulence_cells[2], sx = sy * s->turbulence_cells[1];
   const int x0 = sx * lo[0], x1 = sx * hi[0], y0 = sy * lo[1], y1 = sy * hi[1], z0 = sz * lo[2],
             z1 = sz * hi[2];
   const float c00 = mix(box[c + x0 + y0 + z0], box[c + x1 + y0 + z0], t[0]);
@@ -96,31 +97,40 @@ FW_INLINE float inflow_face_value(const FwGrid* g, const FwStep* s, __global con
   return value;
 }
 
+/* Resolves the index *x of component c along axis a, which may lie outside the array, by the boundary
+ * rules of fetch_face: wrapped on a periodic axis, mirrored with a flipped *sign at a no-slip wall for a
+ * tangential component, else clamped to the edge value. Returns 1, leaving *x alone, where that side of the
+ * axis is an inflow (the value is then the prescribed one). */
+FW_INLINE int resolve_face_axis(const FwGrid* g, int c, int a, int* x, float* sign) {
+  const int ext = face_extent(g, c, a);
+  if (*x >= 0 && *x < ext) return 0;
+  const int low = *x < 0;
+  const int bc = g->bc[2 * a + (low ? 0 : 1)];
+  const int n = axis_cells(g, a);
+  if (bc == FW_BC_PERIODIC) {
+    *x = ((*x % n) + n) % n;
+    return 0;
+  }
+  if (bc == FW_BC_INFLOW) return 1;
+  if (bc == FW_BC_NO_SLIP && a != c) {
+    *x = low ? (-1 - *x) : (2 * ext - 1 - *x);
+    *sign = -*sign;
+  }
+  *x = clamp(*x, 0, ext - 1);
+  return 0;
+}
+
 /* Value of component c at face index (i,j,k), which may lie outside the array. Periodic axes wrap; an inflow
  * face gives the ambient profile (and the inflow turbulence); a no-slip wall mirrors tangential components
- * with a flipped sign (zero at the wall); other walls and outflow repeat the edge value. `profile` is the
- * inflow buffer of inflow_face_value. Mirrors fluid/ReferenceStages.cpp fetch(). */
+ * with a flipped sign (zero at the wall); other walls and outflow repeat the edge value. The axes resolve
+ * in order x, y, z. `profile` is the inflow buffer of inflow_face_value. Mirrors
+ * fluid/ReferenceStages.cpp fetch(). */
 FW_INLINE float fetch_face(__global const float* q, int c, int i, int j, int k, const FwGrid* g,
                            const FwStep* s, __global const float* profile) {
   int idx[3] = {i, j, k};
   float sign = 1.0f;
-  for (int a = 0; a < 3; ++a) {
-    const int ext = face_extent(g, c, a);
-    if (idx[a] >= 0 && idx[a] < ext) continue;
-    const int low = idx[a] < 0;
-    const int bc = g->bc[2 * a + (low ? 0 : 1)];
-    const int n = axis_cells(g, a);
-    if (bc == FW_BC_PERIODIC) {
-      idx[a] = ((idx[a] % n) + n) % n;
-      continue;
-    }
-    if (bc == FW_BC_INFLOW) return inflow_face_value(g, s, profile, c, i, j, k, idx[2]);
-    if (bc == FW_BC_NO_SLIP && a != c) {
-      idx[a] = low ? (-1 - idx[a]) : (2 * ext - 1 - idx[a]);
-      sign = -sign;
-    }
-    idx[a] = clamp(idx[a], 0, ext - 1);
-  }
+  for (int a = 0; a < 3; ++a)
+    if (resolve_face_axis(g, c, a, &idx[a], &sign)) return inflow_face_value(g, s, profile, c, i, j, k, k);
   return sign * q[face_index(g, c, idx[0], idx[1], idx[2])];
 }
 

@@ -36,11 +36,68 @@ FW_INLINE float centre_difference(__global const float* pq, int at, int own, int
   return 0.5f * ((pq[p] + pq[p + own]) - (pq[m] + pq[m + own])) * inverse;
 }
 
+/* The padded strides along y and z of u, v and w, and the padded index of each component's face (0, j, k). */
+typedef struct {
+  int yu, zu, yv, zv, yw, zw;
+  int row_u, row_v, row_w;
+} PaddedRows;
+
+FW_INLINE PaddedRows padded_rows(const FwGrid* g, int j, int k) {
+  PaddedRows r;
+  r.yu = padded_extent(g, 0, 0);
+  r.zu = r.yu * padded_extent(g, 0, 1);
+  r.yv = padded_extent(g, 1, 0);
+  r.zv = r.yv * padded_extent(g, 1, 1);
+  r.yw = padded_extent(g, 2, 0);
+  r.zw = r.yw * padded_extent(g, 2, 1);
+  r.row_u = padded_index(g, 0, 0, j, k);
+  r.row_v = padded_index(g, 1, 0, j, k);
+  r.row_w = padded_index(g, 2, 0, j, k);
+  return r;
+}
+
+/* 2 S_ij S_ij at cell i of a row, from central differences of the cell-centred padded velocity; the
+ * offsets and inverse spans along each axis come from difference_offsets. */
+FW_INLINE float strain_rate_squared(const PaddedRows* r, __global const float* pu, __global const float* pv,
+                                    __global const float* pw, int i, int px, int mx, float ix, int py, int my,
+                                    float iy, int pz, int mz, float iz) {
+  const int au = r->row_u + i, av = r->row_v + i, aw = r->row_w + i;
+  /* dc_a = d u_c / d x_a */
+  const float du_x = centre_difference(pu, au, 1, px, mx, ix);
+  const float du_y = centre_difference(pu, au, 1, py * r->yu, my * r->yu, iy);
+  const float du_z = centre_difference(pu, au, 1, pz * r->zu, mz * r->zu, iz);
+  const float dv_x = centre_difference(pv, av, r->yv, px, mx, ix);
+  const float dv_y = centre_difference(pv, av, r->yv, py * r->yv, my * r->yv, iy);
+  const float dv_z = centre_difference(pv, av, r->yv, pz * r->zv, mz * r->zv, iz);
+  const float dw_x = centre_difference(pw, aw, r->zw, px, mx, ix);
+  const float dw_y = centre_difference(pw, aw, r->zw, py * r->yw, my * r->yw, iy);
+  const float dw_z = centre_difference(pw, aw, r->zw, pz * r->zw, mz * r->zw, iz);
+  /* 2 S_ij S_ij: the diagonal twice, each off-diagonal pair (d_ij + d_ji)^2 once. */
+  const float sxy = du_y + dv_x, sxz = du_z + dw_x, syz = dv_z + dw_y;
+  return 2.0f * (du_x * du_x + dv_y * dv_y + dw_z * dw_z) + sxy * sxy + sxz * sxz + syz * syz;
+}
+
+/* nu of cell (i, j, k) with the offsets of difference_offsets on every axis: the general path, for the edge
+ * cells of a row. */
+FW_INLINE void edge_eddy_viscosity(const FwGrid* g, const PaddedRows* rows, __global const uchar* mask,
+                                   __global const float* pu, __global const float* pv,
+                                   __global const float* pw, __global float* nu, float cs_h_squared,
+                                   float cap, int i, int j, int k) {
+  int px, mx, py, my, pz, mz;
+  float ix, iy, iz;
+  difference_offsets(i, g->nx, axis_periodic(g, 0), g->h, &px, &mx, &ix);
+  difference_offsets(j, g->ny, axis_periodic(g, 1), g->h, &py, &my, &iy);
+  difference_offsets(k, g->nz, axis_periodic(g, 2), g->h, &pz, &mz, &iz);
+  const float s2 = strain_rate_squared(rows, pu, pv, pw, i, px, mx, ix, py, my, iy, pz, mz, iz);
+  const int id = cell_index(g, i, j, k);
+  nu[id] = (mask[id] & FW_MASK_FLUID) ? fmin(cs_h_squared * sqrt(s2), cap) : 0.0f;
+}
+
 /* nu = min((C_s h)^2 |S|, cap) per cell (m^2/s), 0 in solid cells; |S| = sqrt(2 S_ij S_ij) from central
  * differences of the cell-centred padded velocity (kernels/fluid_ghosts.cl pad_component, after the step's
  * forces), one-sided at non-periodic edges. cs_h_squared = (C_s h)^2, m^2; cap = kEddyDiffusionLimit h^2 /
- * dt. The y and z offsets are fixed for a row and the x ones are selects, so the row loop has no branch and
- * vectorises. Global range: rows over the cells. */
+ * dt. The y and z offsets are fixed for a row; along x only the two edge cells can differ, so the interior
+ * cells run with literal offsets and contiguous loads. Global range: rows over the cells. */
 __kernel void eddy_viscosity(const FwGrid g, const float cs_h_squared, const float cap,
                              __global const uchar* mask, __global const float* pu, __global const float* pv,
                              __global const float* pw, __global float* nu) {
@@ -50,34 +107,22 @@ __kernel void eddy_viscosity(const FwGrid g, const float cs_h_squared, const flo
   difference_offsets(j, g.ny, axis_periodic(&g, 1), g.h, &py, &my, &iy);
   difference_offsets(k, g.nz, axis_periodic(&g, 2), g.h, &pz, &mz, &iz);
   const int periodic_x = axis_periodic(&g, 0);
-  /* Padded strides along y and z of u, v and w. */
-  const int yu = padded_extent(&g, 0, 0), zu = yu * padded_extent(&g, 0, 1);
-  const int yv = padded_extent(&g, 1, 0), zv = yv * padded_extent(&g, 1, 1);
-  const int yw = padded_extent(&g, 2, 0), zw = yw * padded_extent(&g, 2, 1);
-  const int row_u = padded_index(&g, 0, 0, j, k), row_v = padded_index(&g, 1, 0, j, k),
-            row_w = padded_index(&g, 2, 0, j, k);
+  const PaddedRows rows = padded_rows(&g, j, k);
   const int row_cell = cell_index(&g, 0, j, k);
-  for (int i = FW_ROW_BEGIN; i < FW_ROW_END(g.nx); ++i) {
-    int px, mx;
-    float ix;
-    difference_offsets(i, g.nx, periodic_x, g.h, &px, &mx, &ix);
-    const int au = row_u + i, av = row_v + i, aw = row_w + i;
-    /* dc_a = d u_c / d x_a */
-    const float du_x = centre_difference(pu, au, 1, px, mx, ix);
-    const float du_y = centre_difference(pu, au, 1, py * yu, my * yu, iy);
-    const float du_z = centre_difference(pu, au, 1, pz * zu, mz * zu, iz);
-    const float dv_x = centre_difference(pv, av, yv, px, mx, ix);
-    const float dv_y = centre_difference(pv, av, yv, py * yv, my * yv, iy);
-    const float dv_z = centre_difference(pv, av, yv, pz * zv, mz * zv, iz);
-    const float dw_x = centre_difference(pw, aw, zw, px, mx, ix);
-    const float dw_y = centre_difference(pw, aw, zw, py * yw, my * yw, iy);
-    const float dw_z = centre_difference(pw, aw, zw, pz * zw, mz * zw, iz);
-    /* 2 S_ij S_ij: the diagonal twice, each off-diagonal pair (d_ij + d_ji)^2 once. */
-    const float sxy = du_y + dv_x, sxz = du_z + dw_x, syz = dv_z + dw_y;
-    const float s2 = 2.0f * (du_x * du_x + dv_y * dv_y + dw_z * dw_z) + sxy * sxy + sxz * sxz + syz * syz;
+  const int begin = FW_ROW_BEGIN, end = FW_ROW_END(g.nx);
+  /* Cells 1 .. nx-2 difference across both neighbours (as every cell does along a periodic axis). */
+  const int first = clamp(periodic_x ? 0 : 1, begin, end);
+  const int last = clamp(periodic_x ? g.nx : g.nx - 1, first, end);
+  const float ix_interior = 0.5f / g.h;
+  for (int i = begin; i < first; ++i)
+    edge_eddy_viscosity(&g, &rows, mask, pu, pv, pw, nu, cs_h_squared, cap, i, j, k);
+  for (int i = first; i < last; ++i) {
+    const float s2 = strain_rate_squared(&rows, pu, pv, pw, i, 1, 1, ix_interior, py, my, iy, pz, mz, iz);
     const int id = row_cell + i;
     nu[id] = (mask[id] & FW_MASK_FLUID) ? fmin(cs_h_squared * sqrt(s2), cap) : 0.0f;
   }
+  for (int i = last; i < end; ++i)
+    edge_eddy_viscosity(&g, &rows, mask, pu, pv, pw, nu, cs_h_squared, cap, i, j, k);
 }
 
 /* The cells sharing the faces of row (j, k) of component c (which may lie one row outside the array), as

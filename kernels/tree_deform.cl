@@ -15,7 +15,8 @@
  * u_node = s R sum_i (q~_i v_node_i + q~_i^2 w_node_i), q~_i = atan(b_i s^-5/2 q_i) / b_i: v and w are fitted
  * on the species at scale 1, whose modal coordinate is s^-5/2 times the instance's and whose displacement
  * is 1/s of it. Same work mapping; v and w share the layout (and FwSpecies.shape_offset) of the node shapes,
- * b the per-mode offset of omega. q~ is computed once per mode and block, so the arctan costs 1/8 per node.
+ * b the per-mode offset of omega. q~ is computed once per instance-mode beforehand (tree_strong_amplitudes,
+ * into a buffer laid out as the modal forces), so that the arctan is paid once per mode, not per node.
  *
  * tree_restore_lengths: the projection, in place on Diener's displacements. Parents before children, each
  * node goes to its parent's corrected position plus the rest length times the unit vector of Diener's
@@ -103,11 +104,26 @@ FW_INLINE void store_grown_displacement(__global float* displacements, const siz
   displacements[3 * n + 2] = s * z;
 }
 
+/* q~_j = atan(b s^-5/2 q_j) / b of every instance-mode j: the species' reparametrised coordinate, read by
+ * tree_deform_strong. One instance-mode per iteration. */
+__kernel void tree_strong_amplitudes(const int total_modes, __global const int* mode_instance,
+                                     __global const FwTreeInstance* instances,
+                                     __global const FwSpecies* species, __global const float* strong_b,
+                                     __global const float* state, __global float* amplitudes) {
+  FW_FLAT_FOR(j, total_modes) {
+    const FwTreeInstance tree = instances[mode_instance[j]];
+    const int i = (int)j - tree.mode_offset;
+    /* s^-5/2: the species' modal coordinate of the instance's. */
+    const float to_species = 1.0f / (tree.scale * tree.scale * sqrt(tree.scale));
+    amplitudes[j] =
+        strong_wind_amplitude(to_species * state[2 * j], strong_b[species[tree.species].modal_offset + i]);
+  }
+}
+
 __kernel void tree_deform_strong(const int total_nodes, __global const int* node_instance,
                                  __global const FwTreeInstance* instances, __global const FwSpecies* species,
                                  __global const float* strong_v, __global const float* strong_w,
-                                 __global const float* strong_b, __global const float* state,
-                                 __global float* displacements) {
+                                 __global const float* amplitudes, __global float* displacements) {
   const int blocks = (total_nodes + 7) / 8;
   FW_FLAT_FOR(b, blocks) {
     const int first = 8 * (int)b;
@@ -120,14 +136,10 @@ __kernel void tree_deform_strong(const int total_nodes, __global const int* node
       const int offset = sp.shape_offset + 3 * (first - tree.node_offset);
       __global const float* v = strong_v + offset;
       __global const float* w = strong_w + offset;
-      __global const float* bi = strong_b + sp.modal_offset;
-      __global const float* q = state + 2 * tree.mode_offset;
-      /* s^-5/2: the species' modal coordinate of the instance's. */
-      const float to_species = 1.0f / (tree.scale * tree.scale * sqrt(tree.scale));
+      __global const float* t = amplitudes + tree.mode_offset;
       float8 a0 = (float8)(0.0f), a1 = (float8)(0.0f), a2 = (float8)(0.0f);
       for (int i = 0; i < m; ++i) {
-        const float t = strong_wind_amplitude(to_species * q[2 * i], bi[i]);
-        const float8 ti = (float8)(t), t2 = (float8)(t * t);
+        const float8 ti = (float8)(t[i]), t2 = ti * ti;
         __global const float* pv = v + i * row;
         __global const float* pw = w + i * row;
         a0 = fma(vload8(0, pv), ti, fma(vload8(0, pw), t2, a0));
@@ -148,16 +160,14 @@ __kernel void tree_deform_strong(const int total_nodes, __global const int* node
         const FwSpecies sp = species[tree.species];
         const int m = sp.mode_count, row = 3 * sp.node_count;
         const int offset = sp.shape_offset + 3 * (n - tree.node_offset);
-        __global const float* bi = strong_b + sp.modal_offset;
-        __global const float* q = state + 2 * tree.mode_offset;
-        const float to_species = 1.0f / (tree.scale * tree.scale * sqrt(tree.scale));
+        __global const float* t = amplitudes + tree.mode_offset;
         float x = 0.0f, y = 0.0f, z = 0.0f;
         for (int i = 0; i < m; ++i) {
-          const float t = strong_wind_amplitude(to_species * q[2 * i], bi[i]), t2 = t * t;
+          const float ti = t[i], t2 = ti * ti;
           const int at = offset + i * row;
-          x += strong_v[at] * t + strong_w[at] * t2;
-          y += strong_v[at + 1] * t + strong_w[at + 1] * t2;
-          z += strong_v[at + 2] * t + strong_w[at + 2] * t2;
+          x += strong_v[at] * ti + strong_w[at] * t2;
+          y += strong_v[at + 1] * ti + strong_w[at + 1] * t2;
+          z += strong_v[at + 2] * ti + strong_w[at + 2] * t2;
         }
         store_grown_displacement(displacements, (size_t)n, &tree, x, y, z);
       }

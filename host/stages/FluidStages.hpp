@@ -37,7 +37,8 @@ struct CellBox {
 CellBox nonzero_cell_box(const fluid::GridSpec& spec, const std::vector<float>& values);
 
 /// The kernels' `inflow` buffer (kernels/common.cl inflow_face_value): the nz profile factors, then, when
-/// there is a turbulence box (at any sigma, 0 included), its values (3 floats a point).
+/// there is a turbulence box (at any sigma, 0 included), its values (3 floats a point) with x slowest:
+/// index 3 (k + n_z (j + n_y i)) + c.
 std::vector<float> inflow_buffer_values(const fluid::InflowState& inflow);
 /// FwStep's turbulence fields from `inflow`: sigma 0 (off) unless inflow.turbulent().
 void set_step_turbulence(FwStep& step, const fluid::InflowState& inflow);

@@ -58,6 +58,7 @@ ForestStages::ForestStages(ComputeContext& cc, const fluid::GridSpec& spec, cons
   rest_elements_ = upload_array(cc_, p.rest_elements, ro);
 
   forces_ = zeroed(cc_, std::size_t(total_modes_));
+  strong_amplitudes_buffer_ = zeroed(cc_, std::size_t(total_modes_));
   state_ = zeroed(cc_, 2 * std::size_t(total_modes_));
   sampled_wind_ = zeroed(cc_, 3 * std::size_t(total_samples_));
   displacements_ = zeroed(cc_, 3 * std::size_t(total_nodes_));
@@ -71,6 +72,7 @@ ForestStages::ForestStages(ComputeContext& cc, const fluid::GridSpec& spec, cons
   step_semi_implicit_ = Kernel(step, "tree_modal_step_semi_implicit");
   cl::Program deform = cc_.build("tree_deform.cl");
   deform_ = Kernel(deform, "tree_deform");
+  strong_amplitudes_ = Kernel(deform, "tree_strong_amplitudes");
   deform_strong_ = Kernel(deform, "tree_deform_strong");
   restore_lengths_ = Kernel(deform, "tree_restore_lengths");
 }
@@ -106,9 +108,13 @@ void ForestStages::enqueue_deform() {
   if (total_nodes_ == 0) return;
   const cl::NDRange blocks(cc_.flat_items((std::size_t(total_nodes_) + 7) / 8));  // blocks of 8 nodes
   if (strong_wind_correction_) {
+    strong_amplitudes_
+        .set_args(total_modes_, mode_instance_, instances_, species_, strong_b_, state_,
+                  strong_amplitudes_buffer_)
+        .enqueue(cc_, cl::NDRange(cc_.flat_items(std::size_t(total_modes_))));
     deform_strong_
-        .set_args(total_nodes_, node_instance_, instances_, species_, strong_v_, strong_w_, strong_b_, state_,
-                  displacements_)
+        .set_args(total_nodes_, node_instance_, instances_, species_, strong_v_, strong_w_,
+                  strong_amplitudes_buffer_, displacements_)
         .enqueue(cc_, blocks);
     // In place on Diener's displacements; the in-order queue runs it after them.
     restore_lengths_.set_args(instance_count_, instances_, species_, walk_, rest_elements_, displacements_)
