@@ -229,62 +229,33 @@ __kernel void diffuse_eddy_w(const FwGrid g, const FwStep s, const int wall_slip
   diffuse_eddy_rows(&g, s.dt, 2, wall_slip, mask, nu, pq, out);
 }
 
-/* 1 for a wall cell (fluid, with a solid cell right below, or on the ground when ground_wall), else 0.
- * Mirrors fluid/SubgridStress.cpp wall_cells. */
-FW_INLINE float wall_weight(const FwGrid* g, __global const uchar* mask, int ground_wall, int i, int j,
-                            int k) {
-  const int id = cell_index(g, i, j, k);
-  if (!(mask[id] & FW_MASK_FLUID)) return 0.0f;
-  if (k == 0) return ground_wall ? 1.0f : 0.0f;
-  return (mask[id - g->nx * g->ny] & FW_MASK_FLUID) ? 0.0f : 1.0f;
-}
-
-/* Implicit log-law wall stress on horizontal component c (0: u, 1: v):
- * out = q / (1 + dt (C_w / h) weight |U|), weight the mean wall_weight of the two cells sharing the face and
- * |U| = sqrt(q^2 + b^2) the horizontal speed, b the other horizontal component averaged from the four faces
- * of those two cells, all from the old u and v. drag_per_length = C_w / h, 1/m. On the faces first ..
- * first + count - 1 of component c only (the box of the wall cells, as for canopy_drag_*; the host copies
- * them back). Global range: (ceil(count.x / FW_ROW_CHUNK), count.y, count.z). */
-FW_INLINE void wall_stress_box(const FwGrid* g, const float dt, const int c, const int4 first,
-                               const int4 count, const float drag_per_length, const int ground_wall,
-                               __global const uchar* mask, __global const float* u, __global const float* v,
-                               __global float* out) {
-  const int j = first.y + (int)get_global_id(1), k = first.z + (int)get_global_id(2);
-  const int n = axis_cells(g, c), periodic = axis_periodic(g, c);
-  const int d = 1 - c; /* the other horizontal component */
-  __global const float* q = c == 0 ? u : v;
-  __global const float* b = c == 0 ? v : u;
-  for (int r = FW_ROW_BEGIN; r < FW_ROW_END(count.x); ++r) {
-    const int i = first.x + r;
-    int lo[3] = {i, j, k}, hi[3] = {i, j, k};
-    lo[c] = wrap_or_clamp(lo[c] - 1, n, periodic);
-    hi[c] = wrap_or_clamp(hi[c], n, periodic);
-    const float weight = 0.5f * (wall_weight(g, mask, ground_wall, lo[0], lo[1], lo[2]) +
-                                 wall_weight(g, mask, ground_wall, hi[0], hi[1], hi[2]));
-    const int face = face_index(g, c, i, j, k);
-    const float qf = q[face];
-    if (weight == 0.0f) { /* faces above the wall layer, or beside solids */
-      out[face] = qf;
-      continue;
-    }
-    int lo1[3] = {lo[0], lo[1], lo[2]}, hi1[3] = {hi[0], hi[1], hi[2]};
-    lo1[d] += 1;
-    hi1[d] += 1;
-    const float mb =
-        0.25f * (b[face_index(g, d, lo[0], lo[1], lo[2])] + b[face_index(g, d, lo1[0], lo1[1], lo1[2])] +
-                 b[face_index(g, d, hi[0], hi[1], hi[2])] + b[face_index(g, d, hi1[0], hi1[1], hi1[2])]);
-    out[face] = qf / (1.0f + dt * drag_per_length * weight * sqrt(qf * qf + mb * mb));
+/* Implicit log-law wall stress on the listed u and v faces (host/stages/WallFaces.hpp: entries below
+ * u_count are u faces, the rest v faces; 5 indices an entry, the face and the four faces of the other
+ * horizontal component):
+ * stressed[n] = q / (1 + dt (C_w / h) weight |U|), |U| = sqrt(q^2 + b^2) the horizontal speed, b the mean
+ * of the four faces, all from the old u and v. drag_per_length = C_w / h, 1/m. Out of place, so that each
+ * component's |U| sees the other one before the stress; wall_stress_store then writes the faces back.
+ * Mirrors fluid/ReferenceStages.cpp wall_stress. Flat over the entries. */
+__kernel void wall_stress_faces(const FwStep s, const int count, const int u_count,
+                                const float drag_per_length, __global const int* faces,
+                                __global const float* weights, __global const float* u,
+                                __global const float* v, __global float* stressed) {
+  FW_FLAT_FOR(n, count) {
+    const int is_v = (int)n >= u_count;
+    __global const float* q = is_v ? v : u;
+    __global const float* b = is_v ? u : v;
+    __global const int* entry = faces + 5 * n;
+    const float qf = q[entry[0]];
+    const float mb = 0.25f * (b[entry[1]] + b[entry[2]] + b[entry[3]] + b[entry[4]]);
+    stressed[n] = qf / (1.0f + s.dt * drag_per_length * weights[n] * sqrt(qf * qf + mb * mb));
   }
 }
 
-/* One kernel a component, so that c is a literal and the index arrays fold into registers. */
-__kernel void wall_stress_u(const FwGrid g, const FwStep s, const int4 first, const int4 count,
-                            const float drag_per_length, const int ground_wall, __global const uchar* mask,
-                            __global const float* u, __global const float* v, __global float* out) {
-  wall_stress_box(&g, s.dt, 0, first, count, drag_per_length, ground_wall, mask, u, v, out);
-}
-__kernel void wall_stress_v(const FwGrid g, const FwStep s, const int4 first, const int4 count,
-                            const float drag_per_length, const int ground_wall, __global const uchar* mask,
-                            __global const float* u, __global const float* v, __global float* out) {
-  wall_stress_box(&g, s.dt, 1, first, count, drag_per_length, ground_wall, mask, u, v, out);
+/* The listed faces take their stressed values. Flat over the entries. */
+__kernel void wall_stress_store(const int count, const int u_count, __global const int* faces,
+                                __global const float* stressed, __global float* u, __global float* v) {
+  FW_FLAT_FOR(n, count) {
+    __global float* q = (int)n >= u_count ? v : u;
+    q[faces[5 * n]] = stressed[n];
+  }
 }

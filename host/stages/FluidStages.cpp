@@ -29,7 +29,8 @@ std::vector<float> inflow_buffer_values(const fluid::InflowState& inflow) {
   for (int i = 0; i < n[0]; ++i)
     for (int j = 0; j < n[1]; ++j)
       for (int k = 0; k < n[2]; ++k) {
-        const std::size_t point = std::size_t(i) + std::size_t(n[0]) * (std::size_t(j) + std::size_t(n[1]) * k);
+        const std::size_t point =
+            std::size_t(i) + std::size_t(n[0]) * (std::size_t(j) + std::size_t(n[1]) * k);
         for (int c = 0; c < 3; ++c) values.push_back(source[3 * point + c]);
       }
   return values;
@@ -183,8 +184,8 @@ void FluidStages::build_subgrid_kernels() {
   cl::Program program = cc_.build("subgrid_stress.cl");
   eddy_viscosity_ = Kernel(program, "eddy_viscosity");
   for (int c = 0; c < 3; ++c) diffuse_eddy_[c] = Kernel(program, std::string("diffuse_eddy_") + "uvw"[c]);
-  wall_stress_[0] = Kernel(program, "wall_stress_u");
-  wall_stress_[1] = Kernel(program, "wall_stress_v");
+  wall_stress_faces_ = Kernel(program, "wall_stress_faces");
+  wall_stress_store_ = Kernel(program, "wall_stress_store");
   subgrid_built_ = true;
 }
 
@@ -204,37 +205,32 @@ void FluidStages::enqueue_diffuse_eddy(int c, bool wall_slip, cl::Buffer& mask, 
       .enqueue(cc_, component_rows(c));
 }
 
-void FluidStages::enqueue_wall_stress(float drag_coefficient, const CellBox& walls, cl::Buffer& mask,
-                                      DeviceVelocity& vel, DeviceVelocity& scratch) {
-  if (walls.empty()) return;
+FluidStages::DeviceWallFaces FluidStages::upload_wall_faces(const WallFaces& list) {
+  DeviceWallFaces walls;
+  walls.count = list.size();
+  walls.u_count = list.u_count;
+  if (walls.count == 0) return walls;
+  walls.faces = cc_.buffer(list.faces.size() * sizeof(std::int32_t));
+  walls.weights = cc_.buffer(list.weights.size() * sizeof(float));
+  walls.stressed = cc_.buffer(list.weights.size() * sizeof(float));
+  cc_.queue().enqueueWriteBuffer(walls.faces, CL_TRUE, 0, list.faces.size() * sizeof(std::int32_t),
+                                 list.faces.data());
+  cc_.queue().enqueueWriteBuffer(walls.weights, CL_TRUE, 0, list.weights.size() * sizeof(float),
+                                 list.weights.data());
+  return walls;
+}
+
+void FluidStages::enqueue_wall_stress(float drag_coefficient, DeviceWallFaces& walls, DeviceVelocity& vel) {
+  if (walls.count == 0) return;
   build_subgrid_kernels();
-  // Faces of component c next to the wall cells: one more along c. Across a periodic axis the face at the
-  // seam belongs to the last and the first cell, so there the box spans the whole axis.
-  auto face_box = [&](int c) {
-    cl_int4 first{}, count{};
-    for (int a = 0; a < 3; ++a) {
-      const int n = a == 0 ? spec_.nx : (a == 1 ? spec_.ny : spec_.nz);
-      const bool whole = spec_.periodic(a);
-      first.s[a] = whole ? 0 : walls.first[a];
-      count.s[a] = (whole ? n : walls.count[a]) + (a == c ? 1 : 0);
-    }
-    return std::pair{first, count};
-  };
   const float drag_per_length = drag_coefficient / static_cast<float>(spec_.h);
-  const int ground_wall = fluid::ground_is_wall(spec_) ? 1 : 0;
-  // Out of place: each component's |U| needs the other one before the stress touched it.
-  for (int c = 0; c < 2; ++c) {
-    const auto [first, count] = face_box(c);
-    wall_stress_[c]
-        .set_args(grid_, step_, first, count, drag_per_length, ground_wall, mask, vel.u, vel.v,
-                  scratch.component(c))
-        .enqueue(cc_, cc_.rows(count.s[0], count.s[1], count.s[2]));
-  }
-  for (int c = 0; c < 2; ++c) {
-    const auto [first, count] = face_box(c);
-    copy_face_box_.set_args(grid_, c, first, count, scratch.component(c), vel.component(c))
-        .enqueue(cc_, cc_.rows(count.s[0], count.s[1], count.s[2]));
-  }
+  const cl::NDRange entries(cc_.flat_items(std::size_t(walls.count)));
+  wall_stress_faces_
+      .set_args(step_, walls.count, walls.u_count, drag_per_length, walls.faces, walls.weights, vel.u, vel.v,
+                walls.stressed)
+      .enqueue(cc_, entries);
+  wall_stress_store_.set_args(walls.count, walls.u_count, walls.faces, walls.stressed, vel.u, vel.v)
+      .enqueue(cc_, entries);
 }
 
 CellBox nonzero_cell_box(const fluid::GridSpec& spec, const std::vector<float>& values) {

@@ -15,6 +15,7 @@
 #include "fluid/GridSpec.hpp"
 #include "fluid/InflowState.hpp"
 #include "host/runtime/ComputeContext.hpp"
+#include "host/stages/WallFaces.hpp"
 #include "kernels/shared_types.h"
 
 namespace fw::host {
@@ -85,11 +86,15 @@ class FluidStages {
   /// itself. wall_slip: no flux from a u or v face into the face below it when that one touches a solid.
   void enqueue_diffuse_eddy(int c, bool wall_slip, cl::Buffer& mask, cl::Buffer& nu_t, cl::Buffer& padded_q,
                             cl::Buffer& out);
+  /// The wall stress's face list on the device, uploaded once (upload_wall_faces).
+  struct DeviceWallFaces {
+    int count = 0, u_count = 0;
+    cl::Buffer faces, weights, stressed;  // WallFaces' arrays, and a float a face for the stressed values
+  };
+  DeviceWallFaces upload_wall_faces(const WallFaces& list);
   /// u, v <- the implicit log-law wall stress over step().dt, q / (1 + dt C_w weight |U| / h) (see
-  /// fluid::reference::wall_stress; drag_coefficient: C_w). `walls` must hold every wall cell
-  /// (nonzero_cell_box of fluid::wall_cells); only their faces are touched, through `scratch`.
-  void enqueue_wall_stress(float drag_coefficient, const CellBox& walls, cl::Buffer& mask,
-                           DeviceVelocity& vel, DeviceVelocity& scratch);
+  /// fluid::reference::wall_stress; drag_coefficient: C_w), on the listed faces only.
+  void enqueue_wall_stress(float drag_coefficient, DeviceWallFaces& walls, DeviceVelocity& vel);
   void enqueue_enforce_boundaries(int c, cl::Buffer& mask, cl::Buffer& q);
   void enqueue_divergence_rhs(cl::Buffer& mask, DeviceVelocity& vel, cl::Buffer& b);
   void enqueue_subtract_gradient(int c, cl::Buffer& mask, cl::Buffer& phi, cl::Buffer& q);
@@ -114,7 +119,7 @@ class FluidStages {
   std::vector<float> partial_host_;
   Kernel pad_, advect_[3], maccormack_[3], forces_, vorticity_, confinement_, diffuse_, boundaries_,
       divergence_, max_div_, gradient_, max_abs_, canopy_drag_[3], copy_face_box_;
-  Kernel eddy_viscosity_, diffuse_eddy_[3], wall_stress_[2];
+  Kernel eddy_viscosity_, diffuse_eddy_[3], wall_stress_faces_, wall_stress_store_;
   bool subgrid_built_ = false;
 };
 

@@ -97,7 +97,8 @@ WindGrid::WindGrid(ComputeContext& cc, WindGridSetup setup)
   if (wall_stress_enabled()) {
     wall_drag_coefficient_ =
         fluid::wall_drag_coefficient(setup_.spec.h, setup_.settings.wall_roughness_length);
-    wall_box_ = nonzero_cell_box(setup_.spec, fluid::wall_cells(setup_.spec, setup_.solid));
+    wall_faces_ =
+        stages_.upload_wall_faces(list_wall_faces(setup_.spec, fluid::wall_cells(setup_.spec, setup_.solid)));
   }
   if (!setup_.gusts.empty()) {
     gusts_ = cc_.buffer(setup_.gusts.size() * sizeof(FwGust));
@@ -290,8 +291,7 @@ void WindGrid::apply_subgrid_stress(double dt) {
 }
 
 void WindGrid::apply_wall_stress() {
-  stages_.enqueue_wall_stress(static_cast<float>(wall_drag_coefficient_), wall_box_, pressure_.mask(), vel_,
-                              tmp_);
+  stages_.enqueue_wall_stress(static_cast<float>(wall_drag_coefficient_), wall_faces_, vel_);
 }
 
 void WindGrid::enforce_boundaries() {

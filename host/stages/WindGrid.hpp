@@ -164,9 +164,9 @@ class WindGrid {
   cl::Buffer canopy_;   // drag density, one float a cell; valid while canopy_on_
   CellBox canopy_box_;  // the cells of non-zero drag density
   bool canopy_on_ = false;
-  cl::Buffer eddy_viscosity_;  // nu_t, one float a cell, m^2/s; valid while subgrid_enabled()
-  CellBox wall_box_;           // the wall cells (fluid::wall_cells); used while wall_stress_enabled()
-  double wall_drag_coefficient_ = 0.0;  // C_w of the log law at the first cell centre
+  cl::Buffer eddy_viscosity_;                // nu_t, one float a cell, m^2/s; valid while subgrid_enabled()
+  FluidStages::DeviceWallFaces wall_faces_;  // the faces of the wall cells; used while wall_stress_enabled()
+  double wall_drag_coefficient_ = 0.0;       // C_w of the log law at the first cell centre
   bool stage_timing_ = false;
   std::map<std::string, double> stage_ms_;
 };

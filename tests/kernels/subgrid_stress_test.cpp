@@ -356,14 +356,15 @@ TEST_CASE("wall: the wall stress kernels match the CPU reference over a terrain 
   const double dt = 0.6;
   f.set_dt(float(dt));
   const auto vel = shear_flow(f.spec, 21);
-  auto dvel = f.stages.allocate_velocity(), scratch = f.stages.allocate_velocity();
+  auto dvel = f.stages.allocate_velocity();
   test::upload(*cc, vel, dvel);
   const auto walls = fluid::wall_cells(f.spec, f.solid);
   const host::CellBox box = host::nonzero_cell_box(f.spec, walls);
   CHECK(box.first[2] == 0);
   CHECK(box.count[2] >= 6);  // the ground, the step's two levels and the box's roof near k = 6
   const double cw = fluid::wall_drag_coefficient(f.spec.h, kRoughness);
-  f.stages.enqueue_wall_stress(float(cw), box, f.mask, dvel, scratch);
+  auto list = f.stages.upload_wall_faces(host::list_wall_faces(f.spec, walls));
+  f.stages.enqueue_wall_stress(float(cw), list, dvel);
   const auto device = test::download(*cc, dvel, f.spec);
   const auto expected = ref::wall_stress(f.spec, f.solid, vel, cw, dt);
   std::size_t changed = 0;
@@ -400,14 +401,11 @@ TEST_CASE("wall: one step on a uniform wind removes rho u_star^2 x area x dt of 
   fluid::MacVelocity vel(spec);
   std::fill(vel.u.begin(), vel.u.end(), float(U[0]));
   std::fill(vel.v.begin(), vel.v.end(), float(U[1]));
-  const auto fine = fluid::build_fine_pressure_level(spec, {});
-  cl::Buffer mask = cc->buffer(fine.cell_count());
-  cc->queue().enqueueWriteBuffer(mask, CL_TRUE, 0, fine.cell_count(), fine.mask.data());
-  auto dvel = stages.allocate_velocity(), scratch = stages.allocate_velocity();
+  auto dvel = stages.allocate_velocity();
   test::upload(*cc, vel, dvel);
   const double cw = fluid::wall_drag_coefficient(spec.h, z0);
-  stages.enqueue_wall_stress(float(cw), host::nonzero_cell_box(spec, fluid::wall_cells(spec, {})), mask, dvel,
-                             scratch);
+  auto list = stages.upload_wall_faces(host::list_wall_faces(spec, fluid::wall_cells(spec, {})));
+  stages.enqueue_wall_stress(float(cw), list, dvel);
   const auto out = test::download(*cc, dvel, spec);
 
   const double speed = std::hypot(U[0], U[1]);
