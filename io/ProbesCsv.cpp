@@ -15,11 +15,12 @@
 namespace fw::io {
 
 ProbesCsv::ProbesCsv(std::filesystem::path path, std::vector<std::string> probe_names,
-                     std::vector<int> tree_ids, std::size_t rewrite_limit_bytes)
+                     std::vector<int> tree_ids, std::size_t rewrite_limit_bytes, bool leaf_counts)
     : path_(std::move(path)),
       probes_(probe_names.size()),
       trees_(tree_ids.size()),
-      rewrite_limit_(rewrite_limit_bytes) {
+      rewrite_limit_(rewrite_limit_bytes),
+      leaf_counts_(leaf_counts) {
   std::set<std::string> seen_names;
   for (const std::string& name : probe_names) {
     if (name.empty()) throw std::invalid_argument("ProbesCsv: expected a probe name, got an empty one");
@@ -41,6 +42,7 @@ ProbesCsv::ProbesCsv(std::filesystem::path path, std::vector<std::string> probe_
   header_ = "time_s";
   for (const std::string& name : probe_names) header_ += fmt::format(",{0}_u,{0}_v,{0}_w", name);
   for (int id : tree_ids) header_ += fmt::format(",tree{0}_tip_dx,tree{0}_tip_dy,tree{0}_tip_dz", id);
+  if (leaf_counts_) header_ += ",leaves_shed,leaves_flying,leaves_landed,leaves_exited";
   content_ = header_ + "\n";
   write_text_atomically("ProbesCsv", path_, content_);
 }
@@ -48,6 +50,12 @@ ProbesCsv::ProbesCsv(std::filesystem::path path, std::vector<std::string> probe_
 void ProbesCsv::append(double time, const std::vector<std::array<float, 3>>& probe_velocity,
                        const std::vector<std::array<double, 3>>& tip_displacement) {
   append_rows({Row{time, &probe_velocity, &tip_displacement}});
+}
+
+void ProbesCsv::append(double time, const std::vector<std::array<float, 3>>& probe_velocity,
+                       const std::vector<std::array<double, 3>>& tip_displacement,
+                       const trees::LeafCounts& leaf_counts) {
+  append_rows({Row{time, &probe_velocity, &tip_displacement, &leaf_counts}});
 }
 
 void ProbesCsv::append_rows(const std::vector<Row>& rows) {
@@ -60,9 +68,18 @@ void ProbesCsv::append_rows(const std::vector<Row>& rows) {
           fmt::format("ProbesCsv: {}: expected {} probe velocities and {} tip displacements, got {} and {}",
                       path_.string(), probes_, trees_, probe_velocity.size(), tip_displacement.size()));
     }
+    if (leaf_counts_ && !row.leaf_counts) {
+      throw std::invalid_argument(fmt::format(
+          "ProbesCsv: {}: the file has leaf count columns: expected leaf counts with every row, at time {}",
+          path_.string(), row.time));
+    }
     lines += fmt::format("{:.12g}", row.time);
     for (const auto& v : probe_velocity) lines += fmt::format(",{:.9g},{:.9g},{:.9g}", v[0], v[1], v[2]);
     for (const auto& d : tip_displacement) lines += fmt::format(",{:.9g},{:.9g},{:.9g}", d[0], d[1], d[2]);
+    if (leaf_counts_) {
+      const trees::LeafCounts& n = *row.leaf_counts;
+      lines += fmt::format(",{},{},{},{}", n.shed, n.flying, n.landed, n.exited);
+    }
     lines += '\n';
   }
   if (rows.empty()) return;

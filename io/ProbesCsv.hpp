@@ -6,9 +6,12 @@
 //                 {{0.12, -0.01, -0.003}, {0.08, 0.02, -0.001}});
 //
 // Columns: time_s, then <probe>_u,<probe>_v,<probe>_w for each probe (m/s), then
-// tree<id>_tip_dx,tree<id>_tip_dy,tree<id>_tip_dz for each tree (m). Comma-separated, '\n' line ends, no
+// tree<id>_tip_dx,tree<id>_tip_dy,tree<id>_tip_dz for each tree (m), then, in runs with leaves only,
+// leaves_shed,leaves_flying,leaves_landed,leaves_exited (counts over all leaves at the sample's time,
+// docs/leaves.md "States and counts"). Comma-separated, '\n' line ends, no
 // quoting (names with a comma, quote or line break are refused). Numbers: time with 12 significant digits,
-// every other value with 9 (enough to read a float32 back exactly); non-finite values print as nan / inf.
+// counts as integers, every other value with 9 (enough to read a float32 back exactly); non-finite values
+// print as nan / inf.
 //
 // Writing: every append() leaves a complete file whose last line is a complete row. While the file is
 // smaller than `rewrite_limit_bytes` it is rewritten in full through AtomicFile (temporary + rename), so no
@@ -23,29 +26,39 @@
 #include <string>
 #include <vector>
 
+#include "trees/LeafState.hpp"
+
 namespace fw::io {
 
 class ProbesCsv {
  public:
   static constexpr std::size_t kDefaultRewriteLimit = 256 * 1024;
 
-  /// Writes the header line to `path` (replacing any old file). Throws std::invalid_argument for an empty
-  /// probe name, a name with a comma, quote or line break, or duplicate probe names or tree ids;
-  /// std::runtime_error naming the path if the folder does not exist or the file cannot be written.
+  /// Writes the header line to `path` (replacing any old file). leaf_counts: add the four leaf count
+  /// columns (without it the file has none). Throws std::invalid_argument for an empty probe name, a name
+  /// with a comma, quote or line break, or duplicate probe names or tree ids; std::runtime_error naming the
+  /// path if the folder does not exist or the file cannot be written.
   ProbesCsv(std::filesystem::path path, std::vector<std::string> probe_names, std::vector<int> tree_ids,
-            std::size_t rewrite_limit_bytes = kDefaultRewriteLimit);
+            std::size_t rewrite_limit_bytes = kDefaultRewriteLimit, bool leaf_counts = false);
 
   /// Appends one row. probe_velocity: one (u, v, w) per probe, m/s; tip_displacement: one (dx, dy, dz) per
-  /// tree, m, both in constructor order. Throws std::invalid_argument for the wrong counts (nothing is
-  /// written) and std::runtime_error naming the path on a write failure.
+  /// tree, m, both in constructor order. Throws std::invalid_argument for the wrong counts or, in a file
+  /// with leaf count columns, for a row without leaf counts (nothing is written), and std::runtime_error
+  /// naming the path on a write failure.
   void append(double time, const std::vector<std::array<float, 3>>& probe_velocity,
               const std::vector<std::array<double, 3>>& tip_displacement);
+  /// The same with the leaf counts at `time` (ignored in a file without leaf count columns).
+  void append(double time, const std::vector<std::array<float, 3>>& probe_velocity,
+              const std::vector<std::array<double, 3>>& tip_displacement,
+              const trees::LeafCounts& leaf_counts);
   /// One row per sample, in order, with a single rewrite or append for the whole batch (probes sampled
   /// every step arrive a frame's worth at a time). The same checks as append(), before anything is written.
   struct Row {
     double time = 0.0;
     const std::vector<std::array<float, 3>>* probe_velocity = nullptr;
     const std::vector<std::array<double, 3>>* tip_displacement = nullptr;
+    /// Required in a file with leaf count columns, ignored in one without.
+    const trees::LeafCounts* leaf_counts = nullptr;
   };
   void append_rows(const std::vector<Row>& rows);
 
@@ -59,6 +72,7 @@ class ProbesCsv {
   std::filesystem::path path_;
   std::size_t probes_ = 0, trees_ = 0;
   std::size_t rewrite_limit_ = kDefaultRewriteLimit;
+  bool leaf_counts_ = false;
   std::string header_;
   std::string content_;  // the whole file while it is rewritten; cleared once appending takes over
   bool appending_ = false;

@@ -1,17 +1,24 @@
 #include "io/VdbWriter.hpp"
 
 #include "io/AtomicFile.hpp"
+#include "io/LeavesVtk.hpp"
 
 #include <fmt/format.h>
 
 #include <openvdb/io/File.h>
 #include <openvdb/openvdb.h>
+#include <openvdb/points/PointAttribute.h>
+#include <openvdb/points/PointConversion.h>
+#include <openvdb/points/PointDataGrid.h>
+#include <openvdb/tools/PointIndexGrid.h>
 
 #include <cmath>
+#include <cstdint>
 #include <mutex>
 #include <optional>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 namespace fw::io {
 namespace {
@@ -31,18 +38,62 @@ openvdb::math::Transform::Ptr cell_centred_transform(const WindFrame& frame) {
   return transform;
 }
 
+// Adds attribute `name` to every leaf node of `points` and fills it from `values` (one per point, input
+// order), looked up through the index grid the points were partitioned with.
+template <typename T>
+void add_point_attribute(openvdb::points::PointDataTree& points, const openvdb::tools::PointIndexTree& index,
+                         const std::string& name, const std::vector<T>& values) {
+  openvdb::points::appendAttribute<T>(points, name);
+  openvdb::points::populateAttribute(points, index, name, openvdb::points::PointAttributeVector<T>(values));
+}
+
+openvdb::points::PointDataGrid::Ptr leaves_grid(const LeafFrame& leaves,
+                                                const openvdb::math::Transform& transform, double time) {
+  const std::size_t n = leaves.size_written();
+  std::vector<openvdb::Vec3d> position(n);
+  std::vector<openvdb::Vec3f> normal(n);
+  std::vector<std::int32_t> state(n);
+  std::vector<float> pscale(n);
+  for (std::size_t k = 0; k < n; ++k) {
+    const auto& p = leaves.position[k];
+    const auto& v = leaves.normal[k];
+    position[k] = openvdb::Vec3d(p[0], p[1], p[2]);
+    normal[k] = openvdb::Vec3f(v[0], v[1], v[2]);
+    state[k] = leaves.state[k];
+    // Houdini's pscale is a point's radius: half the blade side.
+    pscale[k] = 0.5f * leaves.size[k];
+  }
+  // P is stored as float32 offsets within each voxel (NullCodec: no quantisation), so a position keeps
+  // float precision relative to its cell rather than to the world origin.
+  const openvdb::points::PointAttributeVector<openvdb::Vec3d> positions(position);
+  const auto index =
+      openvdb::tools::createPointIndexGrid<openvdb::tools::PointIndexGrid>(positions, transform);
+  auto grid =
+      openvdb::points::createPointDataGrid<openvdb::points::NullCodec, openvdb::points::PointDataGrid>(
+          *index, positions, transform);
+  add_point_attribute(grid->tree(), index->tree(), "N", normal);
+  add_point_attribute(grid->tree(), index->tree(), "state", state);
+  add_point_attribute(grid->tree(), index->tree(), "tree_id", leaves.tree_id);
+  add_point_attribute(grid->tree(), index->tree(), "pscale", pscale);
+  grid->setName("leaves");
+  grid->insertMeta("time_s", openvdb::DoubleMetadata(time));
+  return grid;
+}
+
 }  // namespace
 
-void write_wind_vdb(const std::filesystem::path& path, const WindFrame& frame, bool vel, bool speed) {
-  if (!vel && !speed) {
-    throw std::invalid_argument(
-        fmt::format("write_wind_vdb: {}: no grid selected (expected vel, speed or both)", path.string()));
+void write_wind_vdb(const std::filesystem::path& path, const WindFrame& frame, bool vel, bool speed,
+                    const LeafFrame* leaves) {
+  if (!vel && !speed && !leaves) {
+    throw std::invalid_argument(fmt::format(
+        "write_wind_vdb: {}: no grid selected (expected vel, speed, leaves or several)", path.string()));
   }
   try {
     frame.validate();
   } catch (const std::invalid_argument& error) {
     throw std::invalid_argument(std::string("write_wind_vdb: ") + error.what());
   }
+  if (leaves) validate_leaf_frame("write_wind_vdb", *leaves);
   require_output_folder("write_wind_vdb", path);
   initialize_openvdb();
 
@@ -93,6 +144,7 @@ void write_wind_vdb(const std::filesystem::path& path, const WindFrame& frame, b
   openvdb::GridPtrVec grids;
   if (vel_grid) grids.push_back(vel_grid);
   if (speed_grid) grids.push_back(speed_grid);
+  if (leaves) grids.push_back(leaves_grid(*leaves, *transform, frame.time));
   openvdb::MetaMap file_meta;
   file_meta.insertMeta("time_s", openvdb::DoubleMetadata(frame.time));
   file_meta.insertMeta("step", openvdb::Int64Metadata(frame.step));

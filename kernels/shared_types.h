@@ -124,4 +124,52 @@ typedef struct FwTreeInstance {
   float scale; /* s > 0: lengths times s, frequencies over s */
 } FwTreeInstance;
 
+/* Leaves (docs/leaves.md). State of a leaf, one byte each (trees/LeafState.hpp). */
+#define FW_LEAF_ATTACHED 0
+#define FW_LEAF_FLYING 1
+#define FW_LEAF_LANDED 2
+#define FW_LEAF_EXITED 3
+/* Flutter models (trees/LeafSettings.hpp FlutterModel). */
+#define FW_FLUTTER_NONE 0
+#define FW_FLUTTER_PSEUDO_BRANCH 1
+#define FW_FLUTTER_STOCHASTIC 2
+/* Leaf counters, one fw_int each in the counters buffer. */
+#define FW_LEAF_COUNT_SHED 0
+#define FW_LEAF_COUNT_LANDED 1
+#define FW_LEAF_COUNT_EXITED 2
+#define FW_LEAF_COUNTERS 3
+
+/* A species' leaf parameters at scale 1 (an instance of scale s: side, lever times s, area, mass times s^2).
+ */
+typedef struct FwLeafSpecies {
+  fw_int model;          /* FW_FLUTTER_* */
+  fw_int leaf_offset;    /* first of its leaves in the rest-leaf table */
+  fw_int leaf_count;     /* leaves of one instance */
+  float side;            /* l, m */
+  float lever;           /* r, anchor to blade centre, m */
+  float area;            /* a, m^2 */
+  float mass;            /* m, kg */
+  float omega;           /* flutter angular frequency, rad/s */
+  float damping_ratio;   /* zeta */
+  float amplitude[3];    /* W_H, W_V, W_R, rad */
+  float roll_coupling;   /* a */
+  float reference_speed; /* U_ref, m/s */
+  float flight_drag;     /* k = rho C_D / (2 sigma), 1/m */
+} FwLeafSpecies;
+
+/* One leaf of a species at rest, in the skeleton frame (trees/SpeciesLeaves.hpp RestLeaf). */
+typedef struct FwRestLeaf {
+  float anchor[3];      /* m */
+  float petiole[3];     /* unit */
+  float hinge[3];       /* unit */
+  float normal[3];      /* unit */
+  float tumble_axis[3]; /* unit */
+  float phase[3];       /* rad */
+  float frequency[3];   /* Hz */
+  float along;          /* t along the element, parent node to child node */
+  float strength;       /* petiole strength, N */
+  fw_int parent_node;   /* the element's nodes, species-local */
+  fw_int child_node;
+} FwRestLeaf;
+
 #endif

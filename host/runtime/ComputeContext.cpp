@@ -41,6 +41,12 @@ cl::Program ComputeContext::build(const std::string& file, const std::string& ex
   return program;
 }
 
+cl::Buffer ComputeContext::zero_floats(std::size_t count) {
+  cl::Buffer b = buffer(count * sizeof(float));
+  if (count > 0) queue_.enqueueFillBuffer(b, 0.0f, 0, count * sizeof(float));
+  return b;
+}
+
 cl::NDRange ComputeContext::rows(int extent_x, int ny, int nz) const {
   const int items_x = (extent_x + row_chunk_ - 1) / row_chunk_;
   return cl::NDRange(static_cast<std::size_t>(items_x), static_cast<std::size_t>(ny),

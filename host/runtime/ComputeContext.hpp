@@ -15,6 +15,7 @@
 #include <cstddef>
 #include <memory>
 #include <string>
+#include <vector>
 
 #include "host/runtime/Device.hpp"
 #include "host/runtime/Profiler.hpp"
@@ -44,6 +45,15 @@ class ComputeContext {
   std::size_t flat_items(std::size_t n) const;
 
   cl::Buffer buffer(std::size_t bytes, cl_mem_flags flags = CL_MEM_READ_WRITE);
+  /// A buffer holding `values` (blocking write; an empty vector gives an allocated but unwritten buffer).
+  template <typename T>
+  cl::Buffer upload(const std::vector<T>& values, cl_mem_flags flags = CL_MEM_READ_WRITE) {
+    cl::Buffer b = buffer(values.size() * sizeof(T), flags);
+    if (!values.empty()) queue_.enqueueWriteBuffer(b, CL_TRUE, 0, values.size() * sizeof(T), values.data());
+    return b;
+  }
+  /// A buffer of `count` zero floats.
+  cl::Buffer zero_floats(std::size_t count);
   void finish() { queue_.finish(); }
 
  private:

@@ -8,22 +8,8 @@
 namespace fw::host {
 namespace {
 
-template <typename T>
-cl::Buffer upload_array(ComputeContext& cc, const std::vector<T>& values, cl_mem_flags flags) {
-  cl::Buffer buffer = cc.buffer(values.size() * sizeof(T), flags);
-  if (!values.empty())
-    cc.queue().enqueueWriteBuffer(buffer, CL_TRUE, 0, values.size() * sizeof(T), values.data());
-  return buffer;
-}
-
 // Per instance in the unresolved turbulence's travel buffer: whole points, fraction, last step (points).
 constexpr std::size_t kTravelFloats = 3;
-
-cl::Buffer zeroed(ComputeContext& cc, std::size_t floats) {
-  cl::Buffer buffer = cc.buffer(floats * sizeof(float));
-  if (floats > 0) cc.queue().enqueueFillBuffer(buffer, 0.0f, 0, floats * sizeof(float));
-  return buffer;
-}
 
 }  // namespace
 
@@ -42,26 +28,26 @@ ForestStages::ForestStages(ComputeContext& cc, const fluid::GridSpec& spec, cons
   total_samples_ = p.total_samples;
 
   constexpr cl_mem_flags ro = CL_MEM_READ_ONLY;
-  species_ = upload_array(cc_, p.species, ro);
-  instances_ = upload_array(cc_, p.instances, ro);
-  node_shapes_ = upload_array(cc_, p.node_shapes, ro);
-  projections_ = upload_array(cc_, p.projections, ro);
-  sample_points_ = upload_array(cc_, p.sample_points, ro);
-  omega_ = upload_array(cc_, p.omega, ro);
-  zeta_ = upload_array(cc_, p.damping_ratios, ro);
-  mode_instance_ = upload_array(cc_, p.mode_instance, ro);
-  node_instance_ = upload_array(cc_, p.node_instance, ro);
-  strong_v_ = upload_array(cc_, p.strong_v, ro);
-  strong_w_ = upload_array(cc_, p.strong_w, ro);
-  strong_b_ = upload_array(cc_, p.strong_b, ro);
-  walk_ = upload_array(cc_, p.walk, ro);
-  rest_elements_ = upload_array(cc_, p.rest_elements, ro);
+  species_ = cc_.upload(p.species, ro);
+  instances_ = cc_.upload(p.instances, ro);
+  node_shapes_ = cc_.upload(p.node_shapes, ro);
+  projections_ = cc_.upload(p.projections, ro);
+  sample_points_ = cc_.upload(p.sample_points, ro);
+  omega_ = cc_.upload(p.omega, ro);
+  zeta_ = cc_.upload(p.damping_ratios, ro);
+  mode_instance_ = cc_.upload(p.mode_instance, ro);
+  node_instance_ = cc_.upload(p.node_instance, ro);
+  strong_v_ = cc_.upload(p.strong_v, ro);
+  strong_w_ = cc_.upload(p.strong_w, ro);
+  strong_b_ = cc_.upload(p.strong_b, ro);
+  walk_ = cc_.upload(p.walk, ro);
+  rest_elements_ = cc_.upload(p.rest_elements, ro);
 
-  forces_ = zeroed(cc_, std::size_t(total_modes_));
-  strong_amplitudes_buffer_ = zeroed(cc_, std::size_t(total_modes_));
-  state_ = zeroed(cc_, 2 * std::size_t(total_modes_));
-  sampled_wind_ = zeroed(cc_, 3 * std::size_t(total_samples_));
-  displacements_ = zeroed(cc_, 3 * std::size_t(total_nodes_));
+  forces_ = cc_.zero_floats(std::size_t(total_modes_));
+  strong_amplitudes_buffer_ = cc_.zero_floats(std::size_t(total_modes_));
+  state_ = cc_.zero_floats(2 * std::size_t(total_modes_));
+  sampled_wind_ = cc_.zero_floats(3 * std::size_t(total_samples_));
+  displacements_ = cc_.zero_floats(3 * std::size_t(total_nodes_));
 
   wind_load_program_ = cc_.build("tree_wind_load.cl");
   wind_load_ = Kernel(wind_load_program_, "tree_wind_load");
@@ -191,9 +177,9 @@ void ForestStages::set_unresolved_turbulence(const trees::UnresolvedTurbulence& 
   for (int k = 0; k < instance_count_; ++k)
     for (int s = 0; s < instance_samples_[std::size_t(k)]; ++s) offsets[flat++] = series.offset(k, s);
   constexpr cl_mem_flags ro = CL_MEM_READ_ONLY;
-  series_ = upload_array(cc_, series.device_table(), ro);
-  sample_offsets_ = upload_array(cc_, offsets, ro);
-  travel_ = zeroed(cc_, kTravelFloats * std::size_t(instance_count_));
+  series_ = cc_.upload(series.device_table(), ro);
+  sample_offsets_ = cc_.upload(offsets, ro);
+  travel_ = cc_.zero_floats(kTravelFloats * std::size_t(instance_count_));
   series_length_ = series.length();
   series_spacing_ = series.spacing();
   unresolved_intensity_ = float(intensity);

@@ -14,11 +14,13 @@
 #pragma once
 
 #include <array>
+#include <cstdint>
 #include <map>
 #include <string>
 #include <vector>
 
 #include "fluid/MacVelocity.hpp"
+#include "trees/LeafState.hpp"
 
 namespace fw::io {
 
@@ -27,6 +29,19 @@ struct ProbeSample {
   double time = 0.0;                        ///< simulated time, s
   std::vector<std::array<float, 3>> wind;   ///< per probe point, m/s
   std::vector<std::array<double, 3>> tips;  ///< tip displacement per tracked tree, m, world frame
+  trees::LeafCounts leaf_counts;            ///< at the sample's time; written only in runs with leaves
+};
+
+/// The leaves of a frame (docs/leaves.md): the written leaves (attached ones thinned or left out as the output
+/// settings ask; exited ones never), one entry each in every array, and the counts over all leaves.
+struct LeafFrame {
+  std::vector<std::array<float, 3>> position;  ///< blade centre, m, world frame
+  std::vector<std::array<float, 3>> normal;    ///< blade normal, unit
+  std::vector<std::uint8_t> state;             ///< trees::LeafState: 0 attached, 1 flying, 2 landed
+  std::vector<std::int32_t> tree_id;           ///< instance index of the tree the leaf grew on
+  std::vector<float> size;                     ///< blade side l = sqrt(area), m
+  trees::LeafCounts counts;                    ///< over every leaf of the run, written or not
+  std::size_t size_written() const { return position.size(); }
 };
 
 /// What a frame carries: the state copied back from the device. What never changes (grid, solids, canopy,
@@ -39,6 +54,7 @@ struct OutputFrame {
   std::vector<float> pressure;  ///< kinematic pressure p/rho per cell, m^2/s^2; empty unless needed
   std::vector<float>
       displacement;  ///< 3 per forest node (instance order, world frame), m; empty unless needed
+  LeafFrame leaves;  ///< empty unless a writer needs the leaves
   /// The probe samples taken since the previous frame, this frame's time included, in time order.
   std::vector<ProbeSample> probe_samples;
   /// A last batch of probe samples after the last frame: only writers that need probe samples get it, and
@@ -52,11 +68,13 @@ struct FrameNeeds {
   bool pressure = false;
   bool displacement = false;
   bool probe_samples = false;
+  bool leaves = false;
   FrameNeeds& operator|=(const FrameNeeds& other) {
     velocity = velocity || other.velocity;
     pressure = pressure || other.pressure;
     displacement = displacement || other.displacement;
     probe_samples = probe_samples || other.probe_samples;
+    leaves = leaves || other.leaves;
     return *this;
   }
 };

@@ -29,6 +29,12 @@ void ManifestWriter::begin() {
                           manifest_.scenario_text);
 }
 
+void ManifestWriter::write(const OutputFrame& frame) {
+  if (!manifest_.leaves) return;
+  leaf_counts_ = frame.leaves.counts;
+  leaf_counts_time_ = frame.time;
+}
+
 void ManifestWriter::finish(const RunOutcome& outcome) {
   const RunManifest& m = manifest_;
   JsonWriter json;
@@ -68,6 +74,22 @@ void ManifestWriter::finish(const RunOutcome& outcome) {
   json.key("stages_ms").begin_object();
   for (const auto& [stage, ms] : outcome.stage_ms) json.key(stage).value(ms);
   json.end_object();
+  if (m.leaves) {
+    json.key("leaves");
+    if (leaf_counts_) {
+      const trees::LeafCounts& n = *leaf_counts_;
+      json.begin_object();
+      json.key("shed").value(std::int64_t(n.shed));
+      json.key("flying").value(std::int64_t(n.flying));
+      json.key("landed").value(std::int64_t(n.landed));
+      json.key("exited").value(std::int64_t(n.exited));
+      json.key("attached").value(std::int64_t(n.attached));
+      json.key("time_s").value(leaf_counts_time_);
+      json.end_object();
+    } else {
+      json.null();  // no frame was written: no counts to report
+    }
+  }
   json.end_object();
   write_text_atomically("ManifestWriter", directory_ / "run.json", json.str() + "\n");
 }

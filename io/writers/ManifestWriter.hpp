@@ -6,17 +6,21 @@
 // run.json keys: version, scenario, scenario_file, scenario_hash (64-bit FNV-1a of the scenario text), seed,
 // device, platform, status ("completed", "interrupted", "failed"), message (when failed), grid, cell_size_m,
 // trees, species (name, nodes, modes, wind_samples, trees, first_hz, cache), two_way_coupling, steps,
-// simulated_time_s, frames, interrupted, wall_seconds, ms_per_step, stages_ms. It is written once, when
-// the run ends, through AtomicFile.
+// simulated_time_s, frames, interrupted, wall_seconds, ms_per_step, stages_ms, and in runs with leaves
+// (RunManifest::leaves) "leaves": {shed, flying, landed, exited, attached, time_s}, the counts over all
+// leaves (docs/leaves.md, "States and counts") of the last frame written, at its time_s; null when no frame
+// was written. It is written once, when the run ends, through AtomicFile.
 #pragma once
 
 #include <array>
 #include <cstdint>
 #include <filesystem>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "io/writers/FrameWriter.hpp"
+#include "trees/LeafState.hpp"
 
 namespace fw::io {
 
@@ -44,6 +48,7 @@ struct RunManifest {
   int trees = 0;
   std::vector<SpeciesSummary> species;
   bool two_way_coupling = false;
+  bool leaves = false;  ///< the run has leaves: run.json reports their counts
 };
 
 /// 64-bit FNV-1a of a text, as 16 hex digits (the scenario hash in run.json).
@@ -54,15 +59,20 @@ class ManifestWriter : public FrameWriter {
   ManifestWriter(std::filesystem::path directory, RunManifest manifest);
 
   std::string name() const override { return "run.json"; }
+  /// The leaves' counts travel with the frames' leaves.
+  FrameNeeds needs() const override { return {.leaves = manifest_.leaves}; }
   /// Writes the scenario copy.
   void begin() override;
-  void write(const OutputFrame& /*frame*/) override {}
+  /// Keeps the frame's leaf counts (runs with leaves).
+  void write(const OutputFrame& frame) override;
   /// Writes run.json.
   void finish(const RunOutcome& outcome) override;
 
  private:
   std::filesystem::path directory_;
   RunManifest manifest_;
+  std::optional<trees::LeafCounts> leaf_counts_;  // of the last frame written
+  double leaf_counts_time_ = 0.0;                 // s
 };
 
 }  // namespace fw::io

@@ -5,20 +5,22 @@
 namespace fw::io {
 
 ProbesWriter::ProbesWriter(std::filesystem::path directory, std::vector<std::string> probe_names,
-                           std::vector<int> tip_trees)
+                           std::vector<int> tip_trees, bool leaf_counts)
     : directory_(std::move(directory)),
       probe_names_(std::move(probe_names)),
-      tip_trees_(std::move(tip_trees)) {}
+      tip_trees_(std::move(tip_trees)),
+      leaf_counts_(leaf_counts) {}
 
 void ProbesWriter::begin() {
-  csv_.emplace(directory_ / "probes.csv", probe_names_, tip_trees_);
+  csv_.emplace(directory_ / "probes.csv", probe_names_, tip_trees_, ProbesCsv::kDefaultRewriteLimit,
+               leaf_counts_);
 }
 
 void ProbesWriter::write(const OutputFrame& frame) {
   std::vector<ProbesCsv::Row> rows;
   rows.reserve(frame.probe_samples.size());
   for (const ProbeSample& sample : frame.probe_samples)
-    rows.push_back({sample.time, &sample.wind, &sample.tips});
+    rows.push_back({sample.time, &sample.wind, &sample.tips, &sample.leaf_counts});
   csv_->append_rows(rows);
 }
 

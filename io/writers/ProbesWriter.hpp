@@ -1,8 +1,10 @@
 // probes.csv: the wind at named points and the tip displacement of the first trees, one row per probe
 // sample (io/ProbesCsv.hpp has the columns). The samples are taken by the run loop at the probes' own
-// interval (host/app/ProbeSampler) and reach this writer in batches, with each frame.
+// interval (host/app/ProbeSampler) and reach this writer in batches, with each frame. In runs with leaves
+// each sample's leaf counts (ProbeSample::leaf_counts) follow as four more columns.
 //
 //   fw::io::ProbesWriter probes("out/storm", {"mast", "edge"}, /*tip_trees=*/{0, 1, 2, 3});
+//   fw::io::ProbesWriter probes("out/storm", {"mast"}, {0}, /*leaf_counts=*/true);
 #pragma once
 
 #include <filesystem>
@@ -17,9 +19,10 @@ namespace fw::io {
 
 class ProbesWriter : public FrameWriter {
  public:
-  /// probe_names: the columns' probe names; tip_trees: the instance ids whose tip columns follow.
+  /// probe_names: the columns' probe names; tip_trees: the instance ids whose tip columns follow;
+  /// leaf_counts: add the leaf count columns (a run with leaves).
   ProbesWriter(std::filesystem::path directory, std::vector<std::string> probe_names,
-               std::vector<int> tip_trees);
+               std::vector<int> tip_trees, bool leaf_counts = false);
 
   std::string name() const override { return "probes"; }
   FrameNeeds needs() const override { return {.probe_samples = true}; }
@@ -31,6 +34,7 @@ class ProbesWriter : public FrameWriter {
   std::filesystem::path directory_;
   std::vector<std::string> probe_names_;
   std::vector<int> tip_trees_;
+  bool leaf_counts_ = false;
   std::optional<ProbesCsv> csv_;
 };
 

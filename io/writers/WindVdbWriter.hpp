@@ -1,7 +1,7 @@
 // vdb/wind.NNNN.vdb: the wind grid of every frame as OpenVDB grids, for Houdini and Blender (io/VdbWriter.hpp
-// has the layout).
+// has the layout), and with leaves on the frame's leaves as the points grid "leaves".
 //
-//   fw::io::WindVdbWriter vdb("out/storm", spec, solid, /*vel=*/true, /*speed=*/true);
+//   fw::io::WindVdbWriter vdb("out/storm", spec, solid, /*vel=*/true, /*speed=*/true, /*leaves=*/true);
 #pragma once
 
 #include <cstdint>
@@ -16,12 +16,13 @@ namespace fw::io {
 
 class WindVdbWriter : public FrameWriter {
  public:
-  /// solid: 1 byte a cell (empty = none); solid cells are inactive voxels.
+  /// solid: 1 byte a cell (empty = none); solid cells are inactive voxels. leaves: write each frame's
+  /// leaves (OutputFrame::leaves) as the points grid "leaves", also when a frame has none.
   WindVdbWriter(std::filesystem::path directory, fluid::GridSpec spec, std::vector<std::uint8_t> solid,
-                bool vel, bool speed);
+                bool vel, bool speed, bool leaves = false);
 
   std::string name() const override { return "VDB"; }
-  FrameNeeds needs() const override { return {.velocity = true}; }
+  FrameNeeds needs() const override { return {.velocity = true, .leaves = leaves_}; }
   void begin() override;
   void write(const OutputFrame& frame) override;
 
@@ -29,7 +30,7 @@ class WindVdbWriter : public FrameWriter {
   std::filesystem::path directory_;
   fluid::GridSpec spec_;
   std::vector<std::uint8_t> solid_;
-  bool vel_ = true, speed_ = true;
+  bool vel_ = true, speed_ = true, leaves_ = false;
 };
 
 }  // namespace fw::io

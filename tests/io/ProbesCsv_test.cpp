@@ -1,6 +1,7 @@
 #include "io/ProbesCsv.hpp"
 
 #include "io/WindFrame.hpp"
+#include "io/writers/ProbesWriter.hpp"
 #include "tests/support/TempDir.hpp"
 
 #include <catch2/catch.hpp>
@@ -118,6 +119,76 @@ TEST_CASE("ProbesCsv: past the rewrite limit rows are appended, with the same co
   }
   CHECK(probes.rows() == 6);
   CHECK_FALSE(has_temporary(dir.path()));
+}
+
+TEST_CASE("ProbesCsv: leaf count columns follow the existing columns only when asked", "[output]") {
+  fw::test::TempDir dir("fw_out");
+  const fs::path path = fs::path(dir.path()) / "probes.csv";
+  const std::string leaf_columns = ",leaves_shed,leaves_flying,leaves_landed,leaves_exited";
+  // A limit of the header plus about two rows: rewritten rows and appended rows both carry the counts.
+  fw::io::ProbesCsv probes(path, {"mast", "gap"}, {0, 17}, kHeader.size() + leaf_columns.size() + 220,
+                           /*leaf_counts=*/true);
+  CHECK(probes.header() == kHeader + leaf_columns);
+  for (int n = 0; n < 5; ++n) {
+    const fw::trees::LeafCounts counts{
+        .shed = 10L * n + 3, .flying = 7L * n, .landed = 2L * n + 3, .exited = n, .attached = 1000 - n};
+    if (n % 2 == 0) {
+      probes.append(0.1 * n, velocities(n), tips(n), counts);
+    } else {
+      const auto v = velocities(n);
+      const auto d = tips(n);
+      probes.append_rows({{0.1 * n, &v, &d, &counts}});
+    }
+  }
+  CHECK(probes.rows() == 5);
+  const auto lines = lines_of(path);
+  REQUIRE(lines.size() == 6);
+  CHECK(lines[0] == kHeader + leaf_columns);
+  for (int n = 0; n < 5; ++n) {
+    INFO("row " << n << ": " << lines[std::size_t(n) + 1]);
+    const auto cells = split(lines[std::size_t(n) + 1]);
+    REQUIRE(cells.size() == 17);
+    CHECK(std::strtof(cells[1].c_str(), nullptr) == velocities(n)[0][0]);
+    // The counts as integers, after the tip columns; attached is not a column.
+    CHECK(cells[13] == std::to_string(10 * n + 3));
+    CHECK(cells[14] == std::to_string(7 * n));
+    CHECK(cells[15] == std::to_string(2 * n + 3));
+    CHECK(cells[16] == std::to_string(n));
+  }
+
+  // A row without counts in a file with count columns writes nothing.
+  CHECK_THROWS_AS(probes.append(1.0, velocities(0), tips(0)), std::invalid_argument);
+  CHECK(lines_of(path).size() == 6);
+
+  // Without the flag the counts are ignored and the file is exactly as before.
+  const fs::path plain_path = fs::path(dir.path()) / "plain.csv";
+  fw::io::ProbesCsv plain(plain_path, {"mast", "gap"}, {0, 17});
+  CHECK(plain.header() == kHeader);
+  for (int n = 0; n < 3; ++n) plain.append(0.1 * n, velocities(n), tips(n), fw::trees::LeafCounts{.shed = 9});
+  check_rows(plain_path, 3);
+  CHECK_FALSE(has_temporary(dir.path()));
+}
+
+TEST_CASE("probes writer: with leaf counts on, each sample's counts end its row", "[output]") {
+  fw::test::TempDir dir("fw_out");
+  const fs::path out(dir.path());
+  fw::io::ProbesWriter writer(out, {"mast"}, {}, /*leaf_counts=*/true);
+  CHECK(writer.needs().probe_samples);
+  writer.begin();
+  fw::io::OutputFrame frame;
+  for (int n = 0; n < 2; ++n) {
+    fw::io::ProbeSample sample;
+    sample.time = 0.5 * n;
+    sample.wind = {{1.0f, 2.0f, 3.0f}};
+    sample.leaf_counts = {.shed = 4L + n, .flying = 2L + n, .landed = 1, .exited = 1, .attached = 96L - n};
+    frame.probe_samples.push_back(sample);
+  }
+  writer.write(frame);
+  const auto lines = lines_of(out / "probes.csv");
+  REQUIRE(lines.size() == 3);
+  CHECK(lines[0] == "time_s,mast_u,mast_v,mast_w,leaves_shed,leaves_flying,leaves_landed,leaves_exited");
+  CHECK(lines[1] == "0,1,2,3,4,2,1,1");
+  CHECK(lines[2] == "0.5,1,2,3,5,3,1,1");
 }
 
 TEST_CASE("ProbesCsv: probes sampled on the MAC grid go in as m/s", "[output]") {

@@ -10,6 +10,7 @@
 
 #include "host/stages/ForestStages.hpp"
 #include "tests/support/Fields.hpp"
+#include "tests/support/SmallSpecies.hpp"
 #include "tests/support/TestDevice.hpp"
 #include "trees/ForestReference.hpp"
 #include "trees/TreeGenerator.hpp"
@@ -35,21 +36,6 @@ constexpr double kStrongDeformTolerance = 1e-5;
 // Element lengths of the device's corrected frames against their rest lengths: float rounding of the
 // displacements (~1e-7 of the largest, a few m) over the shortest element; measured 1.9e-7 on PoCL.
 constexpr double kDeviceLengthTolerance = 1e-5;
-
-trees::SpeciesBasis small_species(const std::string& preset, double height, std::uint64_t seed,
-                                  int iterations, int modes, int samples) {
-  trees::GeneratorSettings g;
-  g.preset = preset;
-  g.height = height;
-  g.seed = seed;
-  g.iterations = iterations;
-  g.max_element_length = height;  // one element per drawn segment: a few dozen nodes
-  trees::SpeciesSettings settings;
-  settings.modal.mode_count = modes;
-  settings.modal.damping = trees::Damping::modal_ratio(0.03);
-  settings.wind.samples = samples;
-  return trees::SpeciesBasis::compute(trees::generate_tree(g), settings);
-}
 
 // 32 x 24 x 14 cells of 1 m; the origin off zero so that the kernels must use it.
 fluid::GridSpec forest_grid() {
@@ -95,8 +81,8 @@ fluid::MacVelocity smooth_wind(const fluid::GridSpec& spec, std::uint32_t seed) 
 // 20 instances of two species, yaws all round, scales 0.6 .. 1.5, roots inside the grid; the last one stands
 // high enough that its crown leaves the domain (clamped sampling).
 trees::Forest test_forest() {
-  std::vector<trees::SpeciesBasis> species = {small_species("broadleaf", 6.0, 1, 5, 8, 3),
-                                              small_species("conifer", 5.0, 2, 4, 10, 2)};
+  std::vector<trees::SpeciesBasis> species = {test::small_species("broadleaf", 6.0, 1, 5, 8, 3),
+                                              test::small_species("conifer", 5.0, 2, 4, 10, 2)};
   std::mt19937 rng(5);
   std::uniform_real_distribution<double> x(-1.0, 26.0), y(5.0, 25.0), yaw(-M_PI, M_PI), scale(0.6, 1.5);
   std::vector<trees::TreeInstance> trees;
@@ -361,7 +347,7 @@ TEST_CASE("ForestStages: wind load + modal step timing", "[.][forest-bench]") {
   spec.ny = 128;
   spec.nz = 32;
   spec.h = 2.0;
-  std::vector<trees::SpeciesBasis> species = {small_species("broadleaf", 12.0, 4, 5, 25, 3)};
+  std::vector<trees::SpeciesBasis> species = {test::small_species("broadleaf", 12.0, 4, 5, 25, 3)};
   std::mt19937 rng(9);
   std::uniform_real_distribution<double> pos(10.0, 246.0), yaw(-M_PI, M_PI), scale(0.8, 1.2);
   std::vector<trees::TreeInstance> trees;

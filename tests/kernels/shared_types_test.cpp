@@ -65,6 +65,35 @@ namespace {
   X(FwTreeInstance, cos_yaw);        \
   X(FwTreeInstance, sin_yaw);        \
   X(FwTreeInstance, scale)
+// The leaves' structs (packed by host/stages/LeafStages).
+#define FW_LEAF_STRUCTS(X) \
+  X(FwLeafSpecies);        \
+  X(FwRestLeaf)
+#define FW_LEAF_FIELDS(X)            \
+  X(FwLeafSpecies, model);           \
+  X(FwLeafSpecies, leaf_offset);     \
+  X(FwLeafSpecies, leaf_count);      \
+  X(FwLeafSpecies, side);            \
+  X(FwLeafSpecies, lever);           \
+  X(FwLeafSpecies, area);            \
+  X(FwLeafSpecies, mass);            \
+  X(FwLeafSpecies, omega);           \
+  X(FwLeafSpecies, damping_ratio);   \
+  X(FwLeafSpecies, amplitude);       \
+  X(FwLeafSpecies, roll_coupling);   \
+  X(FwLeafSpecies, reference_speed); \
+  X(FwLeafSpecies, flight_drag);     \
+  X(FwRestLeaf, anchor);             \
+  X(FwRestLeaf, petiole);            \
+  X(FwRestLeaf, hinge);              \
+  X(FwRestLeaf, normal);             \
+  X(FwRestLeaf, tumble_axis);        \
+  X(FwRestLeaf, phase);              \
+  X(FwRestLeaf, frequency);          \
+  X(FwRestLeaf, along);              \
+  X(FwRestLeaf, strength);           \
+  X(FwRestLeaf, parent_node);        \
+  X(FwRestLeaf, child_node)
 
 struct LayoutEntry {
   std::string what;    // "sizeof(FwGrid)" or "offsetof(FwGrid, bc)"
@@ -82,6 +111,8 @@ std::vector<LayoutEntry> host_layout() {
   FW_SHARED_FIELDS(FW_OFFSET_ENTRY);
   FW_TREE_STRUCTS(FW_SIZE_ENTRY);
   FW_TREE_FIELDS(FW_OFFSET_ENTRY);
+  FW_LEAF_STRUCTS(FW_SIZE_ENTRY);
+  FW_LEAF_FIELDS(FW_OFFSET_ENTRY);
 #undef FW_SIZE_ENTRY
 #undef FW_OFFSET_ENTRY
   return entries;
@@ -95,6 +126,7 @@ std::string layout_kernel_source(const std::vector<LayoutEntry>& entries) {
 #define FW_PRIVATE_INSTANCE(T) source += "  " #T " v_" #T ";\n"
   FW_SHARED_STRUCTS(FW_PRIVATE_INSTANCE);
   FW_TREE_STRUCTS(FW_PRIVATE_INSTANCE);
+  FW_LEAF_STRUCTS(FW_PRIVATE_INSTANCE);
 #undef FW_PRIVATE_INSTANCE
   for (std::size_t n = 0; n < entries.size(); ++n)
     source += fmt::format("  out[{}] = {};\n", n, entries[n].device);
@@ -122,6 +154,9 @@ TEST_CASE("shared_types: tree structs are packed 32-bit fields without padding",
   // FwSpecies 8 ints; FwTreeInstance 4 ints + 3 floats of position + cos, sin, scale.
   CHECK(sizeof(FwSpecies) == 8 * 4);
   CHECK(sizeof(FwTreeInstance) == 10 * 4);
+  // FwLeafSpecies 3 ints + 9 floats + 3 amplitudes; FwRestLeaf 7 x 3 floats + 2 floats + 2 ints.
+  CHECK(sizeof(FwLeafSpecies) == 15 * 4);
+  CHECK(sizeof(FwRestLeaf) == 25 * 4);
   CHECK(alignof(FwSpecies) == 4);
   CHECK(alignof(FwTreeInstance) == 4);
   CHECK(offsetof(FwSpecies, modal_offset) == 24);
@@ -135,7 +170,8 @@ TEST_CASE("shared_types: OpenCL C and the host agree on sizeof and offsetof of e
   auto* cc = fw::test::device_or_skip();
   if (!cc) return;
   const auto entries = host_layout();
-  REQUIRE(entries.size() == 4 + 24 + 2 + 16);
+  // Shared structs and fields, the trees', the leaves' (2 structs, 13 + 11 fields).
+  REQUIRE(entries.size() == 4 + 24 + 2 + 16 + 2 + 24);
   const std::string source = layout_kernel_source(entries);
   INFO(source);
 

@@ -1,0 +1,72 @@
+// The leaves of a forest on the device (DESIGN.md, "Data flow" 4; docs/leaves.md): flutter of attached
+// leaves, shedding, flight in the resolved wind, landing and exits, one kernel over all leaves per step; and
+// on output frames the attached leaves at their deformed anchors.
+//
+//   host::LeafStages leaves(cc, spec, forest, species_leaves);   // every instance's leaves, attached
+//   leaves.enqueue_step(wind.stages().step(), mask, velocity);    // after the wind step, before the next
+//   trees.enqueue_deform();                                       // output frame: the trees' displacements
+//   leaves.enqueue_frame(trees.displacements());                  // attached leaves follow them
+//   host::LeafSnapshot snap = leaves.download();                  // positions, normals, states
+//   trees::LeafCounts counts = leaves.counts();                   // reads 3 counters back
+//
+// Kernels: kernels/leaves.cl (one leaf per iteration). The CPU oracle is trees/LeafReference. Flat leaf j:
+// instances in order, each instance's species leaves in order.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "fluid/GridSpec.hpp"
+#include "host/runtime/ComputeContext.hpp"
+#include "host/stages/FluidStages.hpp"
+#include "kernels/shared_types.h"
+#include "trees/Forest.hpp"
+#include "trees/LeafState.hpp"
+#include "trees/SpeciesLeaves.hpp"
+
+namespace fw::host {
+
+/// Every leaf's state copied back: 3 floats a leaf for position (m, world) and normal, a byte for the state
+/// (trees::LeafState), the instance per leaf and the blade side (m).
+struct LeafSnapshot {
+  std::vector<float> position, normal;
+  std::vector<std::uint8_t> state;
+  std::vector<std::int32_t> tree_id;
+  std::vector<float> side;
+};
+
+class LeafStages {
+ public:
+  /// Packs the leaves of every instance of `forest` (species_leaves: one per forest species, possibly empty)
+  /// and uploads them, all attached at rest. Throws std::invalid_argument("LeafStages: ...") for an invalid
+  /// grid, a species count that differs from the forest's, or more leaves than 32-bit indexing holds.
+  LeafStages(ComputeContext& cc, const fluid::GridSpec& spec, const trees::Forest& forest,
+             const std::vector<trees::SpeciesLeaves>& species_leaves);
+
+  int leaf_count() const { return leaf_count_; }
+
+  /// One step of every leaf over step.dt, ending at step.time + step.dt, in the wind `vel` (the step's end
+  /// velocity); mask: the pressure mask (FW_MASK_FLUID marks fluid cells).
+  void enqueue_step(const FwStep& step, cl::Buffer& mask, DeviceVelocity& vel);
+  /// Output frames: the attached leaves moved with the trees' displacements (3 floats per flat node, world
+  /// frame: ForestStages::displacements() after enqueue_deform); download() then returns these positions.
+  void enqueue_frame(cl::Buffer& displacements);
+  /// Blocks. Positions are the frame's (enqueue_frame) when one was enqueued since the last step, else the
+  /// step's (attached leaves at their rest anchors).
+  LeafSnapshot download();
+  /// Blocks: shed, landed and exited from the device counters; flying and attached follow.
+  trees::LeafCounts counts();
+
+ private:
+  ComputeContext& cc_;
+  FwGrid grid_{};
+  int leaf_count_ = 0;
+  bool frame_ready_ = false;
+  std::vector<std::int32_t> leaf_instance_host_;
+  std::vector<float> side_host_;
+  cl::Buffer leaf_instance_, first_leaf_, instances_, leaf_species_, rest_leaves_;
+  cl::Buffer state_, position_, velocity_, normal_, frame_position_, counters_;
+  Kernel step_, frame_;
+};
+
+}  // namespace fw::host

@@ -1,0 +1,31 @@
+// leaves.pvd + leaves/leaves_NNNNNN.vtp: the written leaves of every frame as points with their normal,
+// state, tree and size, for ParaView (io/LeavesVtk.hpp has the layout and the Glyph settings that draw the
+// blades). The leaves that are written change from frame to frame (shedding, thinning), so each file is built
+// anew.
+//
+//   fw::io::LeavesVtkWriter leaves("out/storm");
+#pragma once
+
+#include <filesystem>
+#include <string>
+
+#include "io/PvdCollection.hpp"
+#include "io/writers/FrameWriter.hpp"
+
+namespace fw::io {
+
+class LeavesVtkWriter : public FrameWriter {
+ public:
+  explicit LeavesVtkWriter(std::filesystem::path directory);
+
+  std::string name() const override { return "leaves VTK"; }
+  FrameNeeds needs() const override { return {.leaves = true}; }
+  void begin() override;
+  void write(const OutputFrame& frame) override;
+
+ private:
+  std::filesystem::path directory_;
+  PvdCollection collection_;
+};
+
+}  // namespace fw::io

@@ -1,0 +1,62 @@
+// The leaves of one species, generated on its leaf-bearing elements (docs/leaves.md, "A leaf" and
+// "Generation"): as many as the foliage's one-sided leaf area holds leaves of the species' size (times
+// LeafSettings::fraction), each anchored on an element, deterministic from LeafSettings::seed.
+//
+//   const auto foliage = fw::trees::Foliage::of(skeleton, 3.0);
+//   fw::trees::SpeciesLeaves leaves = fw::trees::SpeciesLeaves::generate(skeleton, foliage, settings);
+//   leaves.count();                          // N = round(fraction x foliage.leaf_area / settings.area)
+//   leaves.leaf(k).anchor;                   // m, skeleton frame
+//
+// Shapes and units: every vector is in the species' skeleton frame (a tree at scale 1), m; directions unit.
+#pragma once
+
+#include <Eigen/Core>
+#include <array>
+#include <vector>
+
+#include "trees/Foliage.hpp"
+#include "trees/LeafSettings.hpp"
+#include "trees/Skeleton.hpp"
+
+namespace fw::trees {
+
+struct RestLeaf {
+  int element = 0;          ///< index into skeleton.elements()
+  double along = 0.0;       ///< t in [0, 1] from the element's parent node to its child node
+  Eigen::Vector3d anchor;   ///< the petiole's point on the element, m
+  Eigen::Vector3d petiole;  ///< unit, anchor -> blade centre
+  Eigen::Vector3d hinge;    ///< unit, the flutter axis (the element's direction, perpendicular to petiole)
+  Eigen::Vector3d normal;   ///< unit, the blade's normal at rest (n.z >= 0)
+  double strength = 0.0;    ///< petiole strength S, N
+  std::array<double, 3> phase{};      ///< phi_H, phi_V, phi_R of the stochastic model, rad
+  std::array<double, 3> frequency{};  ///< f_H, f_V, f_R, Hz (the species' frequency +-20%)
+  Eigen::Vector3d tumble_axis;        ///< unit, horizontal: the axis the blade turns about in flight
+};
+
+class SpeciesLeaves {
+ public:
+  SpeciesLeaves() = default;  ///< no leaves
+
+  /// Throws std::invalid_argument("SpeciesLeaves: ...") when the settings are invalid
+  /// (LeafSettings::validate) or the foliage does not belong to the skeleton (element count).
+  static SpeciesLeaves generate(const Skeleton& skeleton, const Foliage& foliage,
+                                const LeafSettings& settings);
+
+  const LeafSettings& settings() const { return settings_; }
+  int count() const { return int(leaves_.size()); }
+  const RestLeaf& leaf(int k) const { return leaves_.at(std::size_t(k)); }
+  const std::vector<RestLeaf>& leaves() const { return leaves_; }
+
+  double side() const;   ///< l = sqrt(a), m
+  double lever() const;  ///< r = l_p + l / 2 from the anchor to the blade's centre, m
+  double mass() const;   ///< m = sigma a, kg
+  /// Expected count before rounding and thinning: foliage.leaf_area / settings.area (the real leaves).
+  double foliage_leaf_count() const { return foliage_leaf_count_; }
+
+ private:
+  LeafSettings settings_;
+  std::vector<RestLeaf> leaves_;
+  double foliage_leaf_count_ = 0.0;
+};
+
+}  // namespace fw::trees
