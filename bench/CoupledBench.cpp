@@ -14,10 +14,12 @@
 #include "host/app/CoupledStep.hpp"
 #include "io/JsonWriter.hpp"
 #include "trees/CanopyDrag.hpp"
+#include "trees/Foliage.hpp"
 #include "trees/Forest.hpp"
 #include "trees/ForestReference.hpp"
 #include "trees/LSystem.hpp"
 #include "trees/SpeciesBasis.hpp"
+#include "trees/SpeciesLeaves.hpp"
 #include "trees/TreeGenerator.hpp"
 
 namespace fw::bench {
@@ -101,6 +103,16 @@ CoupledBenchResult run_coupled_bench(host::ComputeContext& cc, const CoupledBenc
       trees::generate_tree_with_nodes(generator, options.nodes_per_tree), settings);
   result.species_seconds = ms_since(species_start) * 1e-3;
   result.nodes_per_tree = species.skeleton().size();
+  // The leaves of the species in full leaf (LAI kLeafAreaIndex, leaves of the default size), simulated as a
+  // sample of leaves_per_tree of them (LeafSettings::fraction).
+  const trees::Foliage foliage = trees::Foliage::of(species.skeleton(), kLeafAreaIndex);
+  trees::LeafSettings leaf_settings;
+  const double real_leaves = foliage.leaf_area / leaf_settings.area;
+  leaf_settings.fraction = std::min(1.0, options.leaves_per_tree / std::max(real_leaves, 1.0));
+  const trees::SpeciesLeaves leaves =
+      options.leaves_per_tree > 0 ? trees::SpeciesLeaves::generate(species.skeleton(), foliage, leaf_settings)
+                                  : trees::SpeciesLeaves();
+  result.real_leaves_per_tree = real_leaves;
 
   for (const auto& grid : options.grids) {
     const trees::Forest forest({species}, forest_instances(options.trees, grid, options.cell_size));
@@ -108,16 +120,19 @@ CoupledBenchResult run_coupled_bench(host::ComputeContext& cc, const CoupledBenc
     // with the force the tree receives (trees/CanopyDrag.hpp).
     fluid::CanopyField canopy(forest_wind_setup(grid, options.cell_size, 0).spec);
     for (int k = 0; k < forest.instance_count(); ++k) trees::add_to_canopy(canopy, forest, k);
-    // The converged case, then (when asked) the same with turbulence, then the Jacobi baseline.
+    // The converged case, then (when asked) the same with turbulence and with leaves, then the Jacobi
+    // baseline.
     struct Variant {
       int jacobi = 0;
       bool turbulent = false;
+      bool leaves = false;
     };
-    std::vector<Variant> variants{{0, false}};
-    if (options.turbulence) variants.push_back({0, true});
+    std::vector<Variant> variants{{0, false, false}};
+    if (options.turbulence) variants.push_back({0, true, false});
+    if (options.leaves_per_tree > 0) variants.push_back({0, false, true});
     if (options.baseline_jacobi_iterations > 0)
-      variants.push_back({options.baseline_jacobi_iterations, false});
-    for (const auto [jacobi, turbulent] : variants) {
+      variants.push_back({options.baseline_jacobi_iterations, false, false});
+    for (const auto [jacobi, turbulent, with_leaves] : variants) {
       CoupledBenchCase c;
       c.grid = grid;
       c.pressure = jacobi > 0 ? fmt::format("jacobi {}", jacobi) : "cg 1e-3";
@@ -134,7 +149,9 @@ CoupledBenchResult run_coupled_bench(host::ComputeContext& cc, const CoupledBenc
         coupling.unresolved.intensity = kBenchTurbulenceIntensity;
         coupling.unresolved.integral_length = kBenchTurbulenceLengthCells * options.cell_size;
       }
+      if (with_leaves) coupling.leaves = {leaves};
       host::CoupledStep coupled(cc, std::move(setup), forest, std::move(coupling));
+      if (with_leaves) c.leaves = coupled.leaves().leaf_count();
       if (turbulent) coupled.wind().set_turbulence_sigma(kBenchTurbulenceSigma);
       coupled.start(ambient);
       for (int s = 0; s < options.warmup_steps; ++s) coupled.step();
@@ -149,7 +166,7 @@ CoupledBenchResult run_coupled_bench(host::ComputeContext& cc, const CoupledBenc
       c.pressure_iterations /= options.steps;
       for (const auto& [stage, ms] : coupled.stage_ms()) {
         c.stages_ms[stage] = ms / options.steps;
-        if (stage != "trees") c.fluid_ms += ms / options.steps;
+        if (stage != "trees" && stage != "leaves") c.fluid_ms += ms / options.steps;
       }
       c.trees_ms = c.stages_ms["trees"];
       result.cases.push_back(c);
@@ -210,14 +227,23 @@ void print_coupled_bench_table(const CoupledBenchResult& r, std::ostream& out) {
     };
     out << fmt::format("{:<12} {:<15} {:>9.2f} {:>9.2f} {:>9.2f} {:>9.2f} {:>9.2f} {:>9.2f} {:>9.1f}",
                        fmt::format("{}x{}x{}", c.grid[0], c.grid[1], c.grid[2]),
-                       c.pressure + (c.turbulent ? " +turb" : ""), c.ms_per_step, c.fluid_ms, stage("advect"),
-                       stage("canopy"), stage("pressure"), c.trees_ms, c.pressure_iterations);
+                       c.pressure + (c.turbulent ? " +turb" : "") + (c.leaves > 0 ? " +leaves" : ""),
+                       c.ms_per_step, c.fluid_ms, stage("advect"), stage("canopy"), stage("pressure"),
+                       c.trees_ms, c.pressure_iterations);
     if (c.turbulent && converged)
       out << fmt::format("   turbulence x{:.2f} (+{:.1f} ms)", c.ms_per_step / converged->ms_per_step,
                          c.ms_per_step - converged->ms_per_step);
+    if (c.leaves > 0)
+      out << fmt::format("   {} leaves: {:.2f} ms = {:.1f}% of the step", c.leaves, stage("leaves"),
+                         100.0 * stage("leaves") / c.ms_per_step);
     out << "\n";
-    if (!c.turbulent && c.pressure == "cg 1e-3") converged = &c;
+    if (!c.turbulent && c.leaves == 0 && c.pressure == "cg 1e-3") converged = &c;
   }
+  if (r.real_leaves_per_tree > 0)
+    out << fmt::format(
+        "(+leaves: the forest in full leaf, {:.0f} leaves of 40 cm^2 a tree, a sample of them "
+        "simulated)\n",
+        r.real_leaves_per_tree);
   out << "(+turb: the inflow turbulence box (15%, L_u 16 cells) and Stam's forcing of the trees by the "
          "eddies "
          "below 2 cells; jacobi N: Oliapuram's fixed Jacobi sweeps, the baseline; divergence is not "
@@ -267,6 +293,7 @@ std::string coupled_bench_json(const CoupledBenchResult& r) {
     json.key("grid").begin_array().value(c.grid[0]).value(c.grid[1]).value(c.grid[2]).end_array();
     json.key("pressure").value(c.pressure);
     json.key("turbulent").value(c.turbulent);
+    json.key("leaves").value(c.leaves);
     json.key("ms_per_step").value(c.ms_per_step);
     json.key("fluid_ms").value(c.fluid_ms);
     json.key("trees_ms").value(c.trees_ms);

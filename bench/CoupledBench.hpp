@@ -12,7 +12,9 @@
 //
 // With `turbulence`, each grid runs again with the inflow turbulence box and Stam's forcing of every tree by
 // the eddies the grid cannot resolve (bench/BenchTurbulence.hpp): the cost of turbulence is the difference.
-// The deformation is timed with the strong-wind correction (the default) and without it.
+// The deformation is timed with the strong-wind correction (the default) and without it. With
+// `leaves_per_tree`, each grid runs once more with the forest in full leaf (docs/leaves.md), a sample of that
+// many leaves simulated per tree: the leaves' stage is timed on its own.
 //
 // Baselines run in the same process: each grid again with Oliapuram's pressure solve (a fixed
 // `baseline_jacobi_iterations` Jacobi sweeps, 4 in the paper, not converged), and the trees' step and the
@@ -47,12 +49,14 @@ struct CoupledBenchOptions {
   double cell_size = 2.0;              // m
   int baseline_jacobi_iterations = 4;  // Oliapuram's fixed Jacobi sweeps; 0 skips the baseline rows
   bool turbulence = true;              // also the converged case with turbulence (bench/BenchTurbulence.hpp)
+  int leaves_per_tree = 1000;          // also the converged case with leaves (0: not)
 };
 
 struct CoupledBenchCase {
   std::array<int, 3> grid{};
   std::string pressure;                     // "cg 1e-3" or "jacobi 4" (the baseline)
   bool turbulent = false;                   // with the inflow turbulence and Stam's unresolved forcing
+  long leaves = 0;                          // simulated leaves (the case with leaves)
   double ms_per_step = 0.0;                 // fluid + trees, per step
   std::map<std::string, double> stages_ms;  // per step: the wind grid's stages, "trees" (load + modal step)
   double fluid_ms = 0.0;                    // the wind grid's share of a step
@@ -66,9 +70,10 @@ struct CoupledBenchResult {
   int nodes_per_tree = 0;
   int modes = 0;
   int samples = 0;
-  double species_seconds = 0.0;   // assembly + modes + wind basis of the species, host
-  double deform_ms = 0.0;         // one output frame's deformation of every node, strong-wind corrected
-  double deform_linear_ms = 0.0;  // the same, linear (the correction off)
+  double species_seconds = 0.0;       // assembly + modes + wind basis of the species, host
+  double real_leaves_per_tree = 0.0;  // the foliage's leaves of one tree at scale 1
+  double deform_ms = 0.0;             // one output frame's deformation of every node, strong-wind corrected
+  double deform_linear_ms = 0.0;      // the same, linear (the correction off)
   double deform_frames_per_s = 0.0;
   double node_modes_per_s = 0.0;  // nodes x modes deformed per second
   double fma_peak_gfma_s = 0.0;   // measured in the same process

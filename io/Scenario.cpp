@@ -896,7 +896,61 @@ int species_index(const Loader& loader, const Field& field, const std::vector<Sp
       field, names.empty() ? what + " (forest.species is empty)" : what + ", one of " + join(names, ", "));
 }
 
-// global_seed + 1 + its index seeds a species' generator unless the file gives a seed.
+/// A number key's "... expected" with an upper limit as well, the unit last: "a number > 0 and <= 1 (m)".
+std::string number_up_to(const Key& key, std::string_view limit) {
+  const std::string unit = key.unit.empty() ? "" : fmt::format(" ({})", key.unit);
+  return schema::expected(Key{.path = key.path, .type = schema::Type::number, .bound = key.bound}) + " and " +
+         std::string(limit) + unit;
+}
+
+/// forest.species[].leaves over trees::LeafSettings' defaults (the schema's); `seed` unless the file gives
+/// one.
+trees::LeafSettings read_leaves(const Loader& loader, const Field& field, std::uint64_t seed) {
+  const MapFields map(loader, field);
+  trees::LeafSettings leaves;
+  if (const auto model = map.get("model"))
+    leaves.model = value(schema::kLeafModelWords, schema::kLeafModels, loader.word(*model));
+  const auto number = [&](const char* name, double& target) {
+    const auto given = map.get(name);
+    if (given) target = loader.number(*given);
+    return given;
+  };
+  number("area", leaves.area);
+  if (const auto fraction = number("fraction", leaves.fraction);
+      fraction && !(leaves.fraction <= schema::kMaxLeafFraction))
+    loader.expected(*fraction, number_up_to(key_of(*fraction), "<= 1"));
+  number("mass_per_area", leaves.mass_per_area);
+  number("frequency", leaves.frequency);
+  if (const auto zeta = number("damping_ratio", leaves.damping_ratio);
+      zeta && !(leaves.damping_ratio < schema::kMaxLeafDampingRatio))
+    loader.expected(*zeta, number_up_to(key_of(*zeta), "< 1"));
+  number("petiole_strength", leaves.petiole_strength);
+  number("strength_spread", leaves.strength_spread);
+  number("flight_drag_coefficient", leaves.flight_drag_coefficient);
+  if (const auto amplitudes = map.get("amplitudes")) {
+    leaves.amplitudes_deg = loader.vector<3>(*amplitudes);
+    for (std::size_t i = 0; i < 3; ++i) {
+      if (!(leaves.amplitudes_deg[i] <= schema::kMaxLeafAmplitudeDeg)) {
+        loader.expected(
+            loader.child(*amplitudes, amplitudes->node[i], fmt::format("{}[{}]", amplitudes->key, i)),
+            number_up_to(key_of(*amplitudes), "<= 90"));
+      }
+    }
+  }
+  number("roll_coupling", leaves.roll_coupling);
+  number("reference_speed", leaves.reference_speed);
+  leaves.seed = seed;
+  if (const auto given = map.get("seed")) leaves.seed = loader.seed(*given);
+  try {
+    leaves.validate();  // passes while the checks above are LeafSettings' (tests/io/ScenarioSchema_test.cpp)
+  } catch (const std::invalid_argument& error) {
+    loader.expected(field, fmt::format("leaf settings trees::LeafSettings accepts ({})", error.what()));
+  }
+  return leaves;
+}
+
+// global_seed + 1 + its index seeds a species' generator, global_seed + kLeafSeedOffset + its index its
+// leaves, unless the file gives a seed.
 Species read_species(const Loader& loader, const Field& item, const std::vector<Species>& earlier,
                      std::uint64_t global_seed) {
   const MapFields map(loader, item);
@@ -939,11 +993,33 @@ Species read_species(const Loader& loader, const Field& item, const std::vector<
     if (const auto samples = modes.get("wind_samples")) species.modes.wind_samples = loader.integer(*samples);
   }
   if (const auto drag = map.get("drag_coefficient")) species.drag_coefficient = loader.number(*drag);
-  if (const auto canopy_field = map.get("canopy")) {
+  const auto canopy_field = map.get("canopy");
+  std::optional<Field> lai;
+  if (canopy_field) {
     const MapFields canopy(loader, *canopy_field);
-    if (const auto lai = canopy.get("leaf_area_index")) species.canopy.leaf_area_index = loader.number(*lai);
+    lai = canopy.get("leaf_area_index");
+    if (lai) species.canopy.leaf_area_index = loader.number(*lai);
     if (const auto drag = canopy.get("drag_coefficient"))
       species.canopy.drag_coefficient = loader.number(*drag);
+  }
+  species.leaves.seed = global_seed + kLeafSeedOffset + earlier.size();
+  if (const auto leaves = map.get("leaves")) {
+    species.leaves = read_leaves(loader, *leaves, species.leaves.seed);
+    // The leaves sit on the canopy's foliage (trees/Foliage.hpp): without leaf area there would be none.
+    if (species.leaves.has_leaves() && !(species.canopy.leaf_area_index > 0.0)) {
+      const Field missing =
+          lai ? *lai
+              : Field{canopy_field ? canopy_field->node : item.node, item.key + ".canopy.leaf_area_index",
+                      canopy_field ? canopy_field->line : item.line};
+      const Key& key = key_of(missing);
+      const std::string what = schema::expected(
+          Key{.path = key.path, .type = schema::Type::number, .unit = key.unit, .bound = Bound::positive});
+      const std::string reason =
+          fmt::format("leaves need a leaf area index > 0; {} is on line {}", leaves->key, leaves->line);
+      if (lai) loader.expected(*lai, fmt::format("{} ({})", what, reason));
+      loader.fail(missing, fmt::format("{} expected (required here: {}, and the default is {}), got nothing",
+                                       what, reason, key.number));
+    }
   }
   return species;
 }
@@ -1113,6 +1189,26 @@ void read_output(const Loader& loader, const Field& field, Scenario& scenario) {
     const MapFields vdb(loader, *vdb_field);
     if (const auto enabled = vdb.get("enabled")) output.vdb_enabled = loader.boolean(*enabled);
     if (const auto grids = vdb.get("grids")) output.vdb_grids = loader.word_set(*grids);
+  }
+  if (const auto leaves_field = map.get("leaves")) {
+    const MapFields leaves(loader, *leaves_field);
+    if (const auto attached = leaves.get("attached")) {
+      // A word (all, none) or a stride N >= 1.
+      const Key& key = key_of(*attached);
+      const std::vector<std::string> words = schema::words(key);
+      const bool word = attached->node.IsScalar() &&
+                        std::find(words.begin(), words.end(), attached->node.Scalar()) != words.end();
+      if (word) {
+        output.leaves_attached_stride =
+            value(schema::kLeafStrideWords, schema::kLeafStrides, loader.word(*attached));
+      } else {
+        const auto stride =
+            attached->node.IsScalar() ? parse_integer<long long>(attached->node.Scalar()) : std::nullopt;
+        if (!stride || *stride < key.lowest || *stride > key.highest) loader.expected(*attached);
+        output.leaves_attached_stride = int(*stride);
+      }
+    }
+    if (const auto vtk = leaves.get("vtk")) output.vtk_leaves = loader.boolean(*vtk);
   }
   if (const auto probes = map.get("probes")) {
     for (const Field& item : loader.items(*probes)) {

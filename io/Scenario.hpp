@@ -40,6 +40,7 @@
 #include "io/Expression.hpp"
 #include "io/ScenarioSchema.hpp"
 #include "trees/ForestLayout.hpp"
+#include "trees/LeafSettings.hpp"
 #include "trees/Material.hpp"
 #include "trees/ModalIntegrator.hpp"
 #include "trees/TreeGenerator.hpp"
@@ -206,6 +207,10 @@ struct CanopySettings {
   double drag_coefficient = schema::key("forest.species[].canopy.drag_coefficient").number;
 };
 
+/// A species' leaves seed when the file gives none: the global seed + kLeafSeedOffset + the species' index
+/// (apart from the stands' seed + k and the skeletons' seed + 1 + k).
+inline constexpr std::uint64_t kLeafSeedOffset = std::uint64_t(1) << 32;
+
 struct Species {
   std::string name;  ///< unique among the species
   SkeletonSource skeleton;
@@ -217,6 +222,10 @@ struct Species {
   /// C_D of the branches (cylinders in cross flow) per frontal area, >= 0.
   double drag_coefficient = schema::key("forest.species[].drag_coefficient").number;
   CanopySettings canopy;
+  /// forest.species[].leaves: the file's keys over trees::LeafSettings' defaults (the schema's), seed
+  /// resolved (kLeafSeedOffset). Model none (no leaves) when the file has no `leaves`; with leaves,
+  /// canopy.leaf_area_index > 0.
+  trees::LeafSettings leaves{.model = trees::FlutterModel::none};
 };
 
 /// A stand: trees placed by trees::place_stand (yaws uniform at random, scales uniform in [min, max]).
@@ -277,8 +286,13 @@ struct OutputSettings {
   /// Subset of schema::kVtkFieldWords, in the file's order.
   std::vector<std::string> vtk_fields = schema::strings(schema::key("output.vtk.fields").chosen);
   bool vdb_enabled = schema::key("output.vdb.enabled").flag;
-  /// Subset of schema::kVdbGridWords, in the file's order.
+  /// Subset of schema::kVdbGridWords, in the file's order ("leaves": a points grid, in runs with leaves).
   std::vector<std::string> vdb_grids = schema::strings(schema::key("output.vdb.grids").chosen);
+  bool vtk_leaves = schema::key("output.leaves.vtk").flag;  ///< leaves.pvd, in runs with leaves
+  /// output.leaves.attached: the frames hold every N-th attached leaf; 1 all, 0 none. Flying and landed
+  /// leaves are always written.
+  int leaves_attached_stride = schema::value_of(schema::kLeafStrideWords, schema::kLeafStrides,
+                                                schema::key("output.leaves.attached").word);
   std::vector<Probe> probes;
 };
 

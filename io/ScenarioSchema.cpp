@@ -142,6 +142,11 @@ std::string expected(const Key& key) {
     case Type::integer:
       return key.highest == kNoUpperLimit ? fmt::format("an integer >= {}", key.lowest)
                                           : fmt::format("an integer {}..{}", key.lowest, key.highest);
+    case Type::integer_or_word:
+      return fmt::format(
+          "one of {} or {}", join(words(key), " | "),
+          expected(
+              Key{.path = key.path, .type = Type::integer, .lowest = key.lowest, .highest = key.highest}));
     case Type::seed:
       return fmt::format("an integer 0..{}", std::numeric_limits<std::uint64_t>::max());
     case Type::boolean:
@@ -193,6 +198,8 @@ std::string doc_type(const Key& key) {
     case Type::integer:
     case Type::seed:
       return "integer";
+    case Type::integer_or_word:
+      return "word or integer";
     case Type::boolean:
       return "boolean";
     case Type::word:
@@ -230,6 +237,11 @@ std::string doc_default(const Key& key) {
     case Type::integer:
       return fmt::format("`{}`", number_text(key.number));
     case Type::point3: {
+      if (!key.components.empty()) {
+        std::vector<std::string> components;
+        for (const double component : key.components) components.push_back(number_text(component));
+        return fmt::format("`[{}]`", join(components, ", "));
+      }
       const std::string component = number_text(key.number);
       return fmt::format("`[{0}, {0}, {0}]`", component);
     }
@@ -237,6 +249,7 @@ std::string doc_default(const Key& key) {
       return key.flag ? "`true`" : "`false`";
     case Type::word:
     case Type::number_or_auto:
+    case Type::integer_or_word:
     case Type::velocity_or_with_wind:
     case Type::directory:
       return fmt::format("`{}`", key.word);
@@ -285,6 +298,11 @@ std::string doc_allowed(const Key& key) {
     case Type::integer:
       allowed = key.highest == kNoUpperLimit ? fmt::format(">= {}", key.lowest)
                                              : fmt::format("{}..{}", key.lowest, key.highest);
+      break;
+    case Type::integer_or_word:
+      allowed = fmt::format("{}, or an integer {}", join(words(key), " \\| ", "`"),
+                            key.highest == kNoUpperLimit ? fmt::format(">= {}", key.lowest)
+                                                         : fmt::format("{}..{}", key.lowest, key.highest));
       break;
     case Type::seed:
       allowed = fmt::format("0..{}", std::numeric_limits<std::uint64_t>::max());

@@ -13,7 +13,8 @@
 // key "forest.species[2].modes" is generic_path'd to "forest.species[].modes" before a lookup. Defaults that
 // belong to another part of the program (the pressure tolerance of fluid::PressureSettings, the wood of
 // trees::kDefaultWood, the drag coefficients of trees::WindBasisSettings, the modal defaults of
-// trees::ModalSettings) are taken from there, so that each value is written once.
+// trees::ModalSettings, the leaves of trees::LeafSettings) are taken from there, so that each value is
+// written once.
 #pragma once
 
 #include <array>
@@ -28,6 +29,7 @@
 #include "fluid/WindSettings.hpp"
 #include "kernels/shared_types.h"
 #include "trees/ForestLayout.hpp"
+#include "trees/LeafSettings.hpp"
 #include "trees/Material.hpp"
 #include "trees/ModalBasis.hpp"
 #include "trees/ModalIntegrator.hpp"
@@ -47,6 +49,7 @@ enum class Type {
   number,                 ///< a finite decimal number
   number_or_auto,         ///< a number, or the word auto (no number)
   integer,                ///< a whole number within [lowest, highest]
+  integer_or_word,        ///< a whole number within [lowest, highest], or one of words
   seed,                   ///< an unsigned 64-bit integer
   boolean,                ///< true or false
   word,                   ///< one of words
@@ -74,10 +77,12 @@ struct Key {
   Words words{};          ///< word, word_set: the vocabulary
   /// word: a vocabulary known only at run time (replaces words).
   std::vector<std::string> (*run_time_words)() = nullptr;
-  double number = 0.0;      ///< default of number, integer (and of every component of point3)
-  bool flag = false;        ///< default of boolean
-  std::string_view word{};  ///< default of word, number_or_auto, velocity_or_with_wind, directory
-  Words chosen{};           ///< default of word_set
+  double number = 0.0;                   ///< default of number, integer (and of every component of point3)
+  std::span<const double> components{};  ///< default of point3 per component, where they differ (not number)
+  bool flag = false;                     ///< default of boolean
+  /// default of word, number_or_auto, integer_or_word, velocity_or_with_wind, directory
+  std::string_view word{};
+  Words chosen{};  ///< default of word_set
   /// text, file, directory, list: what the value is, in messages; point2, point3: its components' names
   /// ("[x, y, z]" when empty)
   std::string_view noun{};
@@ -124,7 +129,24 @@ inline constexpr fluid::AdvectionScheme kAdvectionSchemes[] = {fluid::AdvectionS
 
 inline constexpr std::string_view kVtkFieldWords[] = {"velocity",  "pressure", "speed",
                                                       "vorticity", "solid",    "canopy_density"};
-inline constexpr std::string_view kVdbGridWords[] = {"vel", "speed"};
+inline constexpr std::string_view kVdbGridWords[] = {"vel", "speed", "leaves"};
+
+/// In the order of trees::FlutterModel (trees::to_string gives the same words).
+inline constexpr std::string_view kLeafModelWords[] = {"none", "pseudo_branch", "stochastic"};
+inline constexpr trees::FlutterModel kLeafModels[] = {
+    trees::FlutterModel::none, trees::FlutterModel::pseudo_branch, trees::FlutterModel::stochastic};
+
+/// The words of output.leaves.attached and the stride each stands for (io::OutputSettings).
+inline constexpr std::string_view kLeafStrideWords[] = {"all", "none"};
+inline constexpr int kLeafStrides[] = {1, 0};
+
+/// The word of `value` in a vocabulary and its values, aligned by position (a default owned elsewhere).
+template <typename Enum, std::size_t N>
+constexpr std::string_view word_of(const std::string_view (&words)[N], const Enum (&values)[N], Enum value) {
+  for (std::size_t i = 0; i < N; ++i)
+    if (values[i] == value) return words[i];
+  throw "not a value of the vocabulary";
+}
 
 /// The generator's presets (trees::preset_names), known at run time.
 std::vector<std::string> preset_words();
@@ -134,6 +156,13 @@ std::vector<std::string> preset_words();
 // Each map's keys in the order the loader's messages and the docs list them. Defaults owned elsewhere:
 inline constexpr fluid::PressureSettings kPressureDefaults{};
 inline constexpr trees::WindBasisSettings kDragDefaults{};
+inline constexpr trees::LeafSettings kLeafDefaults{};
+// The upper limits of the leaf keys, as trees::LeafSettings::validate has them
+// (tests/io/ScenarioSchema_test.cpp checks that they agree): fraction <= 1, damping_ratio < 1, each amplitude
+// <= 90 degrees.
+inline constexpr double kMaxLeafFraction = 1.0;
+inline constexpr double kMaxLeafDampingRatio = 1.0;
+inline constexpr double kMaxLeafAmplitudeDeg = 90.0;
 
 inline constexpr Key kKeys[] = {
     // top level
@@ -147,7 +176,8 @@ inline constexpr Key kKeys[] = {
     {.path = "seed",
      .type = Type::seed,
      .description = "Global seed, recorded in `run.json`. Seeds the file does not give derive from it: stand "
-                    "k is laid out with `seed + k`, species k generates its skeleton with `seed + 1 + k`."},
+                    "k is laid out with `seed + k`, species k generates its skeleton with `seed + 1 + k` and "
+                    "its leaves with `seed + 2^32 + k`."},
     // time
     {.path = "time", .required = true, .description = "Simulated time span and time step."},
     {.path = "time.end",
@@ -662,7 +692,8 @@ inline constexpr Key kKeys[] = {
          "Drag coefficient C_D of the branches, as cylinders in cross flow: the drag is 1/2 rho_air "
          "C_D D L \\|u\\| u per element of diameter D and length L, with air density 1.225 kg/m^3. "
          "Used for the wind load on the tree and for its drag on the wind."},
-    {.path = "forest.species[].canopy", .description = "Leaves."},
+    {.path = "forest.species[].canopy",
+     .description = "Foliage: its leaf area and drag. The single leaves of `leaves` sit on it."},
     {.path = "forest.species[].canopy.leaf_area_index",
      .type = Type::number,
      .unit = "m^2/m^2",
@@ -679,6 +710,110 @@ inline constexpr Key kKeys[] = {
                     "`drag_coefficient`: the drag is 1/2 rho_air C_D A \\|u\\| u per one-sided leaf area A. "
                     "The default 0.4 makes 1/2 C_D = 0.2, the canopy drag coefficient C_d of canopy LES in "
                     "the form C_d a \\|u\\| u (Shaw & Schumann 1992)."},
+    {.path = "forest.species[].leaves",
+     .default_note = "none (no leaves)",
+     .description =
+         "Single leaves that flutter in the wind, shed when it pulls harder than their petioles hold, "
+         "and fly until they land or leave the domain (docs/leaves.md has the model). They sit on the "
+         "canopy's foliage, so the species needs `canopy.leaf_area_index` > 0. Without `leaves` the "
+         "species has no single leaves; the canopy's drag is the same either way."},
+    {.path = "forest.species[].leaves.model",
+     .type = Type::word,
+     .words = kLeafModelWords,
+     .word = word_of(kLeafModelWords, kLeafModels, kLeafDefaults.model),
+     .description =
+         "How attached leaves flutter. `pseudo_branch`: each leaf turns about its branch, a damped "
+         "oscillator driven by the wind normal to the blade (Oliapuram 2010). `stochastic`: three "
+         "sine angles per leaf whose amplitudes grow with the wind speed (Ota et al. 2004). `none`: "
+         "no leaves (a winter tree)."},
+    {.path = "forest.species[].leaves.area",
+     .type = Type::number,
+     .unit = "m^2",
+     .bound = Bound::positive,
+     .number = kLeafDefaults.area,
+     .description =
+         "One-sided area a of one leaf (a square blade of side sqrt(a) on a petiole half as long). "
+         "The species holds N = round(`fraction` × A_leaf / a) leaves, where A_leaf = "
+         "`canopy.leaf_area_index` × the crown's ground area is its one-sided leaf area; every tree "
+         "of the species carries the same leaves, scaled and turned with it."},
+    {.path = "forest.species[].leaves.fraction",
+     .type = Type::number,
+     .bound = Bound::positive,
+     .number = kLeafDefaults.fraction,
+     .constraint = "<= 1",
+     .description = "Share of the foliage's leaves that are simulated. Below 1, a thinned sample of the same "
+                    "leaves, each of the real size, for big forests."},
+    {.path = "forest.species[].leaves.mass_per_area",
+     .type = Type::number,
+     .unit = "kg/m^2",
+     .bound = Bound::positive,
+     .number = kLeafDefaults.mass_per_area,
+     .description = "Leaf mass per area sigma: a leaf's mass is sigma a."},
+    {.path = "forest.species[].leaves.frequency",
+     .type = Type::number,
+     .unit = "Hz",
+     .bound = Bound::positive,
+     .number = kLeafDefaults.frequency,
+     .description = "Flutter frequency f_leaf: the natural frequency of the `pseudo_branch` oscillator; for "
+                    "`stochastic`, the angles' frequency, with a jitter of ±20% per leaf and angle."},
+    {.path = "forest.species[].leaves.damping_ratio",
+     .type = Type::number,
+     .bound = Bound::non_negative,
+     .number = kLeafDefaults.damping_ratio,
+     .constraint = "< 1",
+     .description = "Damping ratio zeta of the `pseudo_branch` oscillator. Low, so that leaves flutter; the "
+                    "air damps their motion too."},
+    {.path = "forest.species[].leaves.petiole_strength",
+     .type = Type::number,
+     .unit = "N",
+     .bound = Bound::positive,
+     .number = kLeafDefaults.petiole_strength,
+     .description =
+         "Median petiole strength S. Each leaf draws its own S from a log-normal distribution and "
+         "sheds when the wind's normal force on its blade, 1/2 rho C_n a \\|u . n\\| \\|u\\| (C_n = "
+         "1.2), exceeds it."},
+    {.path = "forest.species[].leaves.strength_spread",
+     .type = Type::number,
+     .bound = Bound::non_negative,
+     .number = kLeafDefaults.strength_spread,
+     .description =
+         "Log-standard deviation of the petiole strengths: the wider, the more gradually the leaves "
+         "shed as the wind rises (0: all at once)."},
+    {.path = "forest.species[].leaves.flight_drag_coefficient",
+     .type = Type::number,
+     .bound = Bound::positive,
+     .number = kLeafDefaults.flight_drag_coefficient,
+     .description =
+         "Drag coefficient C_D of a tumbling leaf in flight, per one-sided area. In still air a leaf "
+         "falls at sqrt(2 sigma g / (rho C_D)), 1.28 m/s at the defaults."},
+    {.path = "forest.species[].leaves.amplitudes",
+     .type = Type::point3,
+     .unit = "degrees",
+     .bound = Bound::non_negative,
+     .components = kLeafDefaults.amplitudes_deg,
+     .noun = "[W_H, W_V, W_R]",
+     .constraint = "each <= 90",
+     .description = "`stochastic` only: the amplitudes of the three angles at and above `reference_speed`, "
+                    "about the vertical (W_H), about the branch (W_V) and about the petiole (W_R)."},
+    {.path = "forest.species[].leaves.roll_coupling",
+     .type = Type::number,
+     .number = kLeafDefaults.roll_coupling,
+     .description = "`stochastic` only: a, the roll angle's share of the horizontal angle (theta_R gains a "
+                    "theta_H)."},
+    {.path = "forest.species[].leaves.reference_speed",
+     .type = Type::number,
+     .unit = "m/s",
+     .bound = Bound::positive,
+     .number = kLeafDefaults.reference_speed,
+     .description =
+         "`stochastic` only: U_ref. The angles' amplitudes scale with min(1, \\|u\\| / U_ref), u the "
+         "wind at the leaf."},
+    {.path = "forest.species[].leaves.seed",
+     .type = Type::seed,
+     .default_note = "global `seed` + 2^32 + species index",
+     .description =
+         "Seed of the leaves' positions, angles and petiole strengths. The same seed gives the same "
+         "leaves on every machine."},
     // forest.stands
     {.path = "forest.stands[].species",
      .type = Type::text,
@@ -857,7 +992,25 @@ inline constexpr Key kKeys[] = {
      .type = Type::word_set,
      .words = kVdbGridWords,
      .chosen = kVdbGridWords,
-     .description = "Grids in each VDB file: `vel` (Vec3s, m/s), `speed` (float, m/s)."},
+     .description =
+         "Grids in each VDB file: `vel` (Vec3s, m/s), `speed` (float, m/s), `leaves` (a points grid "
+         "of the written leaves with `P`, `N`, `state`, `tree_id` and `pscale`; in runs with "
+         "leaves, ignored in runs without)."},
+    {.path = "output.leaves", .description = "Leaves in the frames (runs whose species have `leaves`)."},
+    {.path = "output.leaves.attached",
+     .type = Type::integer_or_word,
+     .lowest = 1,
+     .highest = kNoUpperLimit,
+     .words = kLeafStrideWords,
+     .word = "all",
+     .description = "Which attached leaves the frames hold (`leaves.pvd` and the VDB `leaves` grid): `all`, "
+                    "`none`, or every N-th attached leaf in the flat leaf order (trees in order, each tree's "
+                    "leaves in order), to keep the files of a big forest small. Flying and landed leaves are "
+                    "always written, leaves that left the domain never."},
+    {.path = "output.leaves.vtk",
+     .type = Type::boolean,
+     .flag = true,
+     .description = "Write `leaves.pvd` with `leaves/leaves_NNNNNN.vtp` (when the run has leaves)."},
     {.path = "output.probes",
      .type = Type::list,
      .noun = "a list of probes",

@@ -48,6 +48,21 @@ CoupledStep::CoupledStep(ComputeContext& cc, WindGridSetup wind, const trees::Fo
                                      coupling.unresolved.intensity);
   if (coupling.integrator == trees::ModalIntegrator::semi_implicit)
     integrator_dt_limit_ = forest_semi_implicit_limit(forest);
+  const bool any_leaves = std::any_of(coupling.leaves.begin(), coupling.leaves.end(),
+                                      [](const trees::SpeciesLeaves& l) { return l.count() > 0; });
+  if (any_leaves && has_trees())
+    leaves_ = std::make_unique<LeafStages>(cc, wind_.spec(), forest, coupling.leaves);
+}
+
+LeafStages& CoupledStep::leaves() {
+  if (!leaves_) throw std::logic_error("CoupledStep: this forest has no leaves");
+  return *leaves_;
+}
+
+void CoupledStep::enqueue_frame_deformation() {
+  if (!has_trees()) return;
+  trees_.enqueue_deform();
+  if (leaves_) leaves_->enqueue_frame(trees_.displacements());
 }
 
 void CoupledStep::set_unresolved_intensity(double intensity) {
@@ -92,6 +107,15 @@ CoupledStepReport CoupledStep::step(double max_dt) {
       trees_ms_ += std::chrono::duration<double, std::milli>(Clock::now() - trees_start).count();
     }
   }
+  if (leaves_) {
+    const auto leaves_start = Clock::now();
+    // The wind grid's FwStep of this step: dt, and the time at its start.
+    leaves_->enqueue_step(wind_.stages().step(), wind_.pressure().mask(), wind_.velocity());
+    if (stage_timing_) {
+      cc_.finish();
+      leaves_ms_ += std::chrono::duration<double, std::milli>(Clock::now() - leaves_start).count();
+    }
+  }
   return report;
 }
 
@@ -103,12 +127,14 @@ void CoupledStep::set_stage_timing(bool on) {
 std::map<std::string, double> CoupledStep::stage_ms() const {
   std::map<std::string, double> ms = wind_.stage_ms();
   if (has_trees()) ms["trees"] += trees_ms_;
+  if (leaves_) ms["leaves"] += leaves_ms_;
   return ms;
 }
 
 void CoupledStep::reset_stage_ms() {
   wind_.reset_stage_ms();
   trees_ms_ = 0.0;
+  leaves_ms_ = 0.0;
 }
 
 }  // namespace fw::host

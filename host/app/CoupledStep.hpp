@@ -8,11 +8,12 @@
 //     coupled.set_ambient(wind_at(coupled.time()));
 //     fw::host::CoupledStepReport r = coupled.step(end - coupled.time());   // never steps past `end`
 //   }
-//   coupled.trees().enqueue_deform();         // an output frame: u = Phi q per instance
+//   coupled.enqueue_frame_deformation();      // an output frame: u = Phi q per instance, leaves with it
 //
 // A step: choose dt (fixed, or the CFL number from max|u|, capped to land on the caller's limit) -> check it
 // -> wind grid step (advect, forces and gusts, canopy drag, projection) -> sample the wind at every tree's
-// sample points -> modal forces -> modal step. Only the scalars of reductions come back to the host.
+// sample points -> modal forces -> modal step -> leaves in the step's new wind (flutter, shedding, flight;
+// when there are any). Only the scalars of reductions come back to the host.
 //
 // Checks, every step, before anything moves (a SimulationError names the step, the time and the field):
 //   - the velocity is finite (max|u| is read back each step: the CFL time step needs it, and a fixed dt
@@ -24,15 +25,18 @@
 #include <array>
 #include <limits>
 #include <map>
+#include <memory>
 #include <stdexcept>
 #include <string>
 #include <vector>
 
 #include "host/runtime/ComputeContext.hpp"
 #include "host/stages/ForestStages.hpp"
+#include "host/stages/LeafStages.hpp"
 #include "host/stages/WindGrid.hpp"
 #include "trees/Forest.hpp"
 #include "trees/ModalIntegrator.hpp"
+#include "trees/SpeciesLeaves.hpp"
 #include "trees/UnresolvedTurbulence.hpp"
 
 namespace fw::host {
@@ -53,6 +57,9 @@ struct CouplingSettings {
   /// Stam's forcing of every tree by the turbulence the grid cannot resolve (trees/UnresolvedTurbulence);
   /// off unless `enabled`. Its intensity can follow the run (set_unresolved_intensity).
   trees::UnresolvedTurbulenceSettings unresolved;
+  /// The leaves of each species (docs/leaves.md), one per forest species; empty, or none with leaves: no
+  /// leaf stage.
+  std::vector<trees::SpeciesLeaves> leaves;
 };
 
 struct CoupledStepReport {
@@ -97,15 +104,23 @@ class CoupledStep {
 
   WindGrid& wind() { return wind_; }
   ForestStages& trees() { return trees_; }
+  bool has_leaves() const { return leaves_ != nullptr; }
+  /// The leaf stage; throws std::logic_error without leaves (has_leaves()).
+  LeafStages& leaves();
+  /// An output frame's deformation: the trees' displacements (u = Phi q, strong-wind corrected as set), and
+  /// the attached leaves moved with them.
+  void enqueue_frame_deformation();
 
  private:
   ComputeContext& cc_;
   WindGrid wind_;
   ForestStages trees_;
+  std::unique_ptr<LeafStages> leaves_;  // null without leaves
   int tree_count_ = 0;
   double integrator_dt_limit_ = std::numeric_limits<double>::infinity();
   bool stage_timing_ = false;
   double trees_ms_ = 0.0;
+  double leaves_ms_ = 0.0;
 };
 
 }  // namespace fw::host

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <string>
 
+#include "io/writers/LeavesVtkWriter.hpp"
 #include "io/writers/ProbesWriter.hpp"
 #include "io/writers/TreesVtkWriter.hpp"
 #include "io/writers/WindVdbWriter.hpp"
@@ -30,6 +31,7 @@ io::RunManifest manifest_of(const SimulationPlan& plan, const DeviceInfo& device
   m.trees = plan.forest.instance_count();
   m.species = plan.species;
   m.two_way_coupling = !plan.coupling.drag_density.empty();
+  m.leaves = plan.leaf_count > 0;
   return m;
 }
 
@@ -41,6 +43,7 @@ std::vector<std::unique_ptr<io::FrameWriter>> make_writers(const SimulationPlan&
                                                            const std::vector<int>& tip_trees) {
   const io::OutputSettings& out = plan.output;
   const bool trees_present = plan.forest.instance_count() > 0;
+  const bool leaves_present = plan.leaf_count > 0;
   std::vector<std::unique_ptr<io::FrameWriter>> writers;
   writers.push_back(std::make_unique<io::ManifestWriter>(directory, manifest_of(plan, device)));
   if (out.vtk_wind) {
@@ -49,15 +52,17 @@ std::vector<std::unique_ptr<io::FrameWriter>> make_writers(const SimulationPlan&
   }
   if (out.vtk_trees && trees_present)
     writers.push_back(std::make_unique<io::TreesVtkWriter>(directory, plan.forest));
+  if (out.vtk_leaves && leaves_present) writers.push_back(std::make_unique<io::LeavesVtkWriter>(directory));
   if (out.vdb_enabled) {
-    writers.push_back(std::make_unique<io::WindVdbWriter>(directory, plan.wind.spec, plan.wind.solid,
-                                                          contains(out.vdb_grids, "vel"),
-                                                          contains(out.vdb_grids, "speed")));
+    writers.push_back(std::make_unique<io::WindVdbWriter>(
+        directory, plan.wind.spec, plan.wind.solid, contains(out.vdb_grids, "vel"),
+        contains(out.vdb_grids, "speed"), leaves_present && contains(out.vdb_grids, "leaves")));
   }
   std::vector<std::string> probe_names;
   for (const auto& probe : out.probes) probe_names.push_back(probe.name);
   if (!probe_names.empty() || !tip_trees.empty())
-    writers.push_back(std::make_unique<io::ProbesWriter>(directory, std::move(probe_names), tip_trees));
+    writers.push_back(
+        std::make_unique<io::ProbesWriter>(directory, std::move(probe_names), tip_trees, leaves_present));
   return writers;
 }
 

@@ -47,6 +47,7 @@ io::ProbeSample ProbeSampler::sample(CoupledStep& coupled) {
         reference_.instance_displacements(k, q, strong_wind_correction_).row(tip_nodes_[t]).transpose();
     out.tips.push_back({world.x(), world.y(), world.z()});
   }
+  if (coupled.has_leaves()) out.leaf_counts = coupled.leaves().counts();
   return out;
 }
 

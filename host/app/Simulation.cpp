@@ -34,18 +34,42 @@ std::string format_duration(double seconds) {
   return fmt::format("{}s", s);
 }
 
+// The leaves the writers get: flying and landed ones always, every attached_stride-th attached one (none for
+// 0), exited ones never (they are outside the domain).
+io::LeafFrame leaf_frame(const LeafSnapshot& snap, const trees::LeafCounts& counts, int attached_stride) {
+  io::LeafFrame out;
+  out.counts = counts;
+  long attached_seen = 0;
+  for (std::size_t j = 0; j < snap.state.size(); ++j) {
+    const auto state = static_cast<trees::LeafState>(snap.state[j]);
+    if (state == trees::LeafState::exited) continue;
+    if (state == trees::LeafState::attached &&
+        (attached_stride <= 0 || attached_seen++ % attached_stride != 0))
+      continue;
+    out.position.push_back({snap.position[3 * j], snap.position[3 * j + 1], snap.position[3 * j + 2]});
+    out.normal.push_back({snap.normal[3 * j], snap.normal[3 * j + 1], snap.normal[3 * j + 2]});
+    out.state.push_back(snap.state[j]);
+    out.tree_id.push_back(snap.tree_id[j]);
+    out.size.push_back(snap.side[j]);
+  }
+  return out;
+}
+
 // What the writers need of the device's state, copied back now (blocking reads on the loop's thread).
-io::OutputFrame capture_frame(CoupledStep& coupled, const io::FrameNeeds& needs, int index) {
+io::OutputFrame capture_frame(CoupledStep& coupled, const io::FrameNeeds& needs, int attached_stride,
+                              int index) {
   io::OutputFrame frame;
   frame.index = index;
   frame.time = coupled.time();
   frame.step = coupled.steps();
   if (needs.velocity) frame.velocity = coupled.wind().download_velocity();
   if (needs.pressure) frame.pressure = coupled.wind().download_pressure();
-  if (needs.displacement && coupled.has_trees()) {
-    coupled.trees().enqueue_deform();
+  const bool leaves = needs.leaves && coupled.has_leaves();
+  if ((needs.displacement || leaves) && coupled.has_trees()) coupled.enqueue_frame_deformation();
+  if (needs.displacement && coupled.has_trees())
     frame.displacement = coupled.trees().download_displacements();
-  }
+  if (leaves)
+    frame.leaves = leaf_frame(coupled.leaves().download(), coupled.leaves().counts(), attached_stride);
   return frame;
 }
 
@@ -83,7 +107,7 @@ RunSummary Simulation::run(const RunOptions& options) {
   };
   auto hand_over_frame = [&] {
     const auto start = Clock::now();
-    io::OutputFrame frame = capture_frame(coupled, needs, frames++);
+    io::OutputFrame frame = capture_frame(coupled, needs, plan_.output.leaves_attached_stride, frames++);
     frame.probe_samples = std::move(pending_samples);
     pending_samples.clear();
     output.push(std::move(frame));

@@ -176,9 +176,19 @@ SimulationPlan plan_simulation(const io::Scenario& scenario, const trees::BasisC
     summary.modes = bases.back().modes().mode_count();
     summary.samples = bases.back().wind().sample_count();
     summary.first_hz = bases.back().modes().frequencies_hz()(0);
+    // The leaves on the basis' own skeleton and foliage, so that their elements are the forest's.
+    const trees::Skeleton& basis_skeleton = bases.back().skeleton();
+    plan.leaves.push_back(species.leaves.has_leaves()
+                              ? trees::SpeciesLeaves::generate(
+                                    basis_skeleton,
+                                    trees::Foliage::of(basis_skeleton, species.canopy.leaf_area_index),
+                                    species.leaves)
+                              : trees::SpeciesLeaves());
+    const int leaves = plan.leaves.back().count();
     if (log) {
-      *log << fmt::format("species {}: {} nodes, {} modes from {:.3f} Hz, {} wind samples ({}, {:.2f} s)\n",
+      *log << fmt::format("species {}: {} nodes, {} modes from {:.3f} Hz, {} wind samples{} ({}, {:.2f} s)\n",
                           summary.name, summary.nodes, summary.modes, summary.first_hz, summary.samples,
+                          species.leaves.has_leaves() ? fmt::format(", {} leaves", leaves) : "",
                           summary.cache, summary.seconds);
     }
     plan.species.push_back(summary);
@@ -208,9 +218,13 @@ SimulationPlan plan_simulation(const io::Scenario& scenario, const trees::BasisC
     instances.push_back(tree);
   }
   for (const auto& tree : instances) ++plan.species[std::size_t(tree.species)].trees;
+  for (const auto& tree : instances) plan.leaf_count += plan.leaves[std::size_t(tree.species)].count();
+  std::size_t species_leaf_count = 0;
+  for (const auto& leaves : plan.leaves) species_leaf_count += std::size_t(leaves.count());
 
   plan.forest = trees::Forest(std::move(bases), std::move(instances));
   plan.coupling.integrator = scenario.forest.integrator;
+  plan.coupling.leaves = plan.leaves;
   plan.coupling.strong_wind_correction = scenario.forest.strong_wind_correction;
   if (scenario.wind.turbulence && scenario.wind.turbulence->unresolved) {
     const io::TurbulenceSettings& turbulence = *scenario.wind.turbulence;
@@ -239,10 +253,11 @@ SimulationPlan plan_simulation(const io::Scenario& scenario, const trees::BasisC
     if (scenario.forest.two_way_coupling) plan.coupling.drag_density = canopy.drag_density();
   }
 
-  plan.estimated_device_bytes = WindGrid::estimate_device_bytes(wind.spec, wind.settings, 1) +
-                                forest_device_bytes(plan.forest) +
-                                (plan.coupling.drag_density.size() * sizeof(float)) +
-                                (wind.turbulence ? wind.turbulence->values().size() * sizeof(float) : 0);
+  plan.estimated_device_bytes =
+      WindGrid::estimate_device_bytes(wind.spec, wind.settings, 1) + forest_device_bytes(plan.forest) +
+      (plan.coupling.drag_density.size() * sizeof(float)) +
+      (wind.turbulence ? wind.turbulence->values().size() * sizeof(float) : 0) +
+      std::size_t(plan.leaf_count) * kDeviceBytesPerLeaf + species_leaf_count * kDeviceBytesPerSpeciesLeaf;
   return plan;
 }
 

@@ -1,12 +1,13 @@
 // Everything a run needs, resolved on the host from a validated scenario before the device is touched: the
 // wind grid's setup (grid, solids, profile, gusts), the ambient wind over time, every species' modal and wind
-// basis (through the disk cache), the placed tree instances, the canopy drag of two-way coupling and the
-// output settings. Nothing past the plan reads the scenario.
+// basis (through the disk cache), every species' leaves, the placed tree instances, the canopy drag of
+// two-way coupling and the output settings. Nothing past the plan reads the scenario.
 //
 //   fw::io::Scenario scenario = fw::io::load_scenario("scenarios/gust.yaml");
 //   fw::trees::BasisCache cache(fw::trees::BasisCache::default_directory());
 //   fw::host::SimulationPlan plan = fw::host::plan_simulation(scenario, &cache, &std::cerr);
 //   plan.forest.instance_count();   plan.wind.spec.cell_count();   plan.ambient_wind(30.0);
+//   plan.leaves[0].count();         plan.leaf_count;                // species 0's leaves, all trees' leaves
 //
 // Conventions where DESIGN.md leaves a choice: "auto" boundaries are resolved once, for the wind at t = 0; a
 // tree's root stands on the ground under it (the terrain's height, else the domain floor) unless the file
@@ -28,8 +29,10 @@
 #include "host/stages/WindGrid.hpp"
 #include "io/Scenario.hpp"
 #include "io/writers/ManifestWriter.hpp"
+#include "kernels/shared_types.h"
 #include "trees/BasisCache.hpp"
 #include "trees/Forest.hpp"
+#include "trees/SpeciesLeaves.hpp"
 
 namespace fw::host {
 
@@ -55,6 +58,10 @@ struct SimulationPlan {
   CouplingSettings coupling;
   trees::Forest forest;
   std::vector<io::SpeciesSummary> species;
+  /// Per forest species, in forest order: its leaves (docs/leaves.md) on the skeleton of its basis, in the
+  /// skeleton frame; default-constructed (none) for a species without. coupling.leaves holds the same.
+  std::vector<trees::SpeciesLeaves> leaves;
+  long leaf_count = 0;                ///< leaves of all instances: the sum over trees of their species' count
   std::vector<float> canopy_density;  ///< per cell, frontal area density a (1/m); empty without trees
   double canopy_dropped_area = 0.0;   ///< m^2 of frontal area outside the domain
   io::OutputSettings output;          ///< folder, frame interval, which writers and fields
@@ -70,6 +77,11 @@ SimulationPlan plan_simulation(const io::Scenario& scenario, const trees::BasisC
 /// A species' skeleton: generated, or read from its .tree or TreeQSM file. A file that does not parse throws
 /// std::invalid_argument naming that file's line (an input error, exit code 2).
 trees::Skeleton species_skeleton(const io::Species& species);
+
+/// Device memory of the leaves (host/stages/LeafStages): per leaf its state (1 byte), position, velocity and
+/// normal (float4 each), its frame position (float4) and its instance (int); per species leaf its FwRestLeaf.
+inline constexpr std::size_t kDeviceBytesPerLeaf = 1 + 3 * 16 + 16 + 4;
+inline constexpr std::size_t kDeviceBytesPerSpeciesLeaf = sizeof(FwRestLeaf);
 
 /// The turbulence box points per grid cell along each axis (the box's spacing is h / this).
 inline constexpr int kTurbulencePointsPerCell = 2;

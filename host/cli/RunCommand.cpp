@@ -15,7 +15,9 @@
 #include "host/runtime/Device.hpp"
 #include "io/Scenario.hpp"
 #include "trees/BasisCache.hpp"
+#include "trees/Foliage.hpp"
 #include "trees/ForestLayout.hpp"
+#include "trees/SpeciesLeaves.hpp"
 
 namespace fw::cli {
 
@@ -90,24 +92,39 @@ int run_check(const std::string& scenario_path) {
     trees_per_species[std::size_t(stand.layout.species)] += int(trees::place_stand(stand.layout).size());
   }
   for (const auto& tree : scenario.forest.trees) ++trees_per_species[std::size_t(tree.species_index)];
-  std::size_t forest_floats = 0;
+  std::size_t forest_floats = 0, leaf_bytes = 0;
+  long leaf_total = 0;
   int tree_count = 0;
   for (std::size_t i = 0; i < scenario.forest.species.size(); ++i) {
     const io::Species& species = scenario.forest.species[i];
-    const int nodes = host::species_skeleton(species).size();
+    const trees::Skeleton skeleton = host::species_skeleton(species);
+    const int nodes = skeleton.size();
     io::check_species_skeleton(scenario, int(i), nodes);
     const int modes = species.modes.count;
-    std::cout << fmt::format("species {}: {} nodes, {} modes, {} wind samples, {} trees\n", species.name,
-                             nodes, modes, species.modes.wind_samples, trees_per_species[i]);
+    std::string leaves;
+    if (species.leaves.has_leaves()) {
+      const int per_tree =
+          trees::SpeciesLeaves::generate(
+              skeleton, trees::Foliage::of(skeleton, species.canopy.leaf_area_index), species.leaves)
+              .count();
+      leaves = fmt::format(", {} leaves a tree ({})", per_tree, trees::to_string(species.leaves.model));
+      leaf_bytes += std::size_t(per_tree) * (std::size_t(trees_per_species[i]) * host::kDeviceBytesPerLeaf +
+                                             host::kDeviceBytesPerSpeciesLeaf);
+      leaf_total += long(per_tree) * trees_per_species[i];
+    }
+    std::cout << fmt::format("species {}: {} nodes, {} modes, {} wind samples, {} trees{}\n", species.name,
+                             nodes, modes, species.modes.wind_samples, trees_per_species[i], leaves);
     forest_floats += std::size_t(3) * std::size_t(nodes) * std::size_t(modes) +
                      std::size_t(trees_per_species[i]) * (4 * std::size_t(modes) + 4 * std::size_t(nodes));
     tree_count += trees_per_species[i];
   }
-  std::cout << fmt::format("trees: {}, obstacles: {}, gusts: {}, terrain: {}, two-way coupling: {}\n",
-                           tree_count, scenario.obstacles.size(), scenario.events.size(),
-                           scenario.terrain ? "yes" : "no", scenario.forest.two_way_coupling ? "on" : "off");
+  std::cout << fmt::format(
+      "trees: {}, leaves: {}, obstacles: {}, gusts: {}, terrain: {}, two-way coupling: {}\n", tree_count,
+      leaf_total, scenario.obstacles.size(), scenario.events.size(), scenario.terrain ? "yes" : "no",
+      scenario.forest.two_way_coupling ? "on" : "off");
   const std::size_t bytes = host::WindGrid::estimate_device_bytes(spec, scenario.wind_settings(), 1) +
-                            forest_floats * sizeof(float) + (tree_count > 0 ? spec.cell_count() * 4 : 0);
+                            forest_floats * sizeof(float) + (tree_count > 0 ? spec.cell_count() * 4 : 0) +
+                            leaf_bytes;
   std::cout << "estimated device memory: " << megabytes(bytes) << "\n";
   if (scenario.time.dt) {
     std::cout << fmt::format("steps: {} (dt {} s to t = {} s)\n",

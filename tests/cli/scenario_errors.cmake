@@ -86,6 +86,15 @@ expect_bad(forcing_open "${WORK}/forcing_open.yaml:4" "wind.forcing"
 expect_bad(rough_side "${WORK}/rough_side.yaml:4" "boundaries.west"
            "domain: {origin: [0, 0, 0], size: [32, 16, 16], cell_size: 2.0}"
            "domain: {origin: [0, 0, 0], size: [32, 16, 16], cell_size: 2.0}\nboundaries: {west: rough}")
+# Leaves: a bad model word; leaves without foliage (no leaf area index, blamed at the species entry); a stride
+# of attached leaves below 1.
+expect_bad(leaves_model "${WORK}/leaves_model.yaml:10" "forest.species[0].leaves.model"
+           "modes: {count: 4}" "modes: {count: 4}\n      leaves: {model: flutter}")
+expect_bad(leaves_without_foliage "${WORK}/leaves_without_foliage.yaml:7"
+           "forest.species[0].canopy.leaf_area_index"
+           "modes: {count: 4}" "modes: {count: 4}\n      leaves: {}")
+expect_bad(leaves_attached "${WORK}/leaves_attached.yaml:12" "output.leaves.attached"
+           "interval: 1.0}" "interval: 1.0, leaves: {attached: 0}}")
 
 # The example scenarios are valid.
 file(GLOB examples "${SCENARIOS}/*.yaml")

@@ -11,6 +11,7 @@
 
 #include "fluid/WindSettings.hpp"
 #include "io/Scenario.hpp"
+#include "trees/LeafSettings.hpp"
 
 namespace schema = fw::io::schema;
 
@@ -114,6 +115,12 @@ TEST_CASE("schema: the loader's messages come from the key's type, bound and uni
         std::vector<std::string>{"count", "damping_ratio", "wind_samples"});
   CHECK(schema::generic_path("forest.species[12].modes.count") == "forest.species[].modes.count");
   CHECK(schema::generic_path("output.vtk.fields[1]") == "output.vtk.fields[]");
+  CHECK(schema::expected(schema::key("forest.species[].leaves.amplitudes")) ==
+        "a list of 3 numbers [W_H, W_V, W_R], each >= 0 (degrees)");
+  CHECK(schema::expected(schema::key("forest.species[].leaves.model")) ==
+        "one of none | pseudo_branch | stochastic");
+  CHECK(schema::expected(schema::key("output.leaves.attached")) == "one of all | none or an integer >= 1");
+  CHECK(schema::child_names("output.leaves") == std::vector<std::string>{"attached", "vtk"});
 }
 
 TEST_CASE("schema: defaults owned elsewhere are read from their owner, once", "[schema]") {
@@ -136,6 +143,58 @@ TEST_CASE("schema: defaults owned elsewhere are read from their owner, once", "[
   // Foliage drag per one-sided leaf area, as the branches': 1/2 C_D = 0.2, the canopy LES C_d.
   CHECK(fw::io::CanopySettings{}.drag_coefficient == fw::trees::WindBasisSettings::kFoliageDragCoefficient);
   CHECK(fw::io::Species{}.drag_coefficient == fw::trees::WindBasisSettings::kCylinderDragCoefficient);
+}
+
+TEST_CASE("schema: the leaf keys take trees::LeafSettings' defaults, words and limits", "[schema]") {
+  const fw::trees::LeafSettings leaves;
+  const auto number = [](const char* name) {
+    return schema::find(std::string("forest.species[].leaves.") + name)->number;
+  };
+  CHECK(fw::trees::flutter_model_from_string(
+            std::string(schema::key("forest.species[].leaves.model").word)) == leaves.model);
+  CHECK(number("area") == leaves.area);
+  CHECK(number("fraction") == leaves.fraction);
+  CHECK(number("mass_per_area") == leaves.mass_per_area);
+  CHECK(number("frequency") == leaves.frequency);
+  CHECK(number("damping_ratio") == leaves.damping_ratio);
+  CHECK(number("petiole_strength") == leaves.petiole_strength);
+  CHECK(number("strength_spread") == leaves.strength_spread);
+  CHECK(number("flight_drag_coefficient") == leaves.flight_drag_coefficient);
+  CHECK(number("roll_coupling") == leaves.roll_coupling);
+  CHECK(number("reference_speed") == leaves.reference_speed);
+  const auto amplitudes = schema::key("forest.species[].leaves.amplitudes").components;
+  CHECK(std::vector<double>(amplitudes.begin(), amplitudes.end()) ==
+        std::vector<double>(leaves.amplitudes_deg.begin(), leaves.amplitudes_deg.end()));
+  // The model words are trees' own, in the order of the enum.
+  for (std::size_t i = 0; i < std::size(schema::kLeafModels); ++i)
+    CHECK(fw::trees::to_string(schema::kLeafModels[i]) == schema::kLeafModelWords[i]);
+  // No `leaves` in a species: no leaves.
+  CHECK_FALSE(fw::io::Species{}.leaves.has_leaves());
+
+  // The loader's upper limits are LeafSettings::validate's: the limit itself in or out as it says.
+  const auto valid = [](auto change) {
+    fw::trees::LeafSettings settings;
+    change(settings);
+    try {
+      settings.validate();
+      return true;
+    } catch (const std::invalid_argument&) {
+      return false;
+    }
+  };
+  const double above = 1.0 + 1e-12;
+  CHECK(valid([](auto& s) { s.fraction = schema::kMaxLeafFraction; }));
+  CHECK_FALSE(valid([&](auto& s) { s.fraction = schema::kMaxLeafFraction * above; }));
+  CHECK(valid([](auto& s) { s.damping_ratio = schema::kMaxLeafDampingRatio * (1.0 - 1e-12); }));
+  CHECK_FALSE(valid([](auto& s) { s.damping_ratio = schema::kMaxLeafDampingRatio; }));
+  CHECK(valid([](auto& s) { s.amplitudes_deg = {schema::kMaxLeafAmplitudeDeg, 0.0, 0.0}; }));
+  CHECK_FALSE(valid([&](auto& s) { s.amplitudes_deg = {0.0, schema::kMaxLeafAmplitudeDeg * above, 0.0}; }));
+
+  // The output keys' defaults: every attached leaf, leaves.pvd, and the leaves grid among the VDB grids.
+  const fw::io::OutputSettings output;
+  CHECK(output.leaves_attached_stride == 1);
+  CHECK(output.vtk_leaves);
+  CHECK(output.vdb_grids == std::vector<std::string>{"vel", "speed", "leaves"});
 }
 
 TEST_CASE("schema: a page whose tables leave a key out, or leave a table open, is refused", "[schema]") {

@@ -8,6 +8,7 @@
 
 #include <array>
 #include <cmath>
+#include <cstdint>
 #include <filesystem>
 #include <optional>
 #include <string>
@@ -552,6 +553,9 @@ forest:
   CHECK(oak.drag_coefficient == 1.2);
   CHECK(oak.canopy.leaf_area_index == 0.0);
   CHECK(oak.canopy.drag_coefficient == 0.4);  // per one-sided leaf area: 1/2 C_D = 0.2, canopy LES's C_d
+  // No `leaves`: no single leaves, so the run is the one without them.
+  CHECK(oak.leaves.model == fw::trees::FlutterModel::none);
+  CHECK_FALSE(oak.leaves.has_leaves());
   REQUIRE(s.forest.stands.size() == 1);
   CHECK(s.forest.stands[0].layout.layout == fw::trees::StandLayout::poisson);
   CHECK(s.forest.stands[0].layout.scale_min == 1.0);
@@ -576,7 +580,9 @@ forest:
   CHECK(s.output.vtk_fields ==
         std::vector<std::string>{"velocity", "pressure", "speed", "vorticity", "solid", "canopy_density"});
   CHECK_FALSE(s.output.vdb_enabled);
-  CHECK(s.output.vdb_grids == std::vector<std::string>{"vel", "speed"});
+  CHECK(s.output.vdb_grids == std::vector<std::string>{"vel", "speed", "leaves"});
+  CHECK(s.output.vtk_leaves);
+  CHECK(s.output.leaves_attached_stride == 1);  // all
   CHECK(s.output.probes.empty());
 
   // The turbulence keys' defaults: a laminar wind, no forcing, a smooth ground, no eddy viscosity.
@@ -1336,4 +1342,200 @@ TEST_CASE("load_scenario: bad rough-ground, forcing, Smagorinsky and probe keys 
                "got 'often'");
   expect_error(dir, "correction", kBase + "forest: {strong_wind_correction: yes}\n", 5,
                "forest.strong_wind_correction", "true or false expected, got 'yes'");
+}
+
+namespace {
+
+// A species with foliage on lines 7-9 and its `leaves` on line 10 (leaves_line), on the first lines of kBase.
+std::string leafy_species(const std::string& leaves_line,
+                          const std::string& canopy_line = "      canopy: {leaf_area_index: 3.0}\n") {
+  return kBase +
+         "forest:\n"                                            // 5
+         "  species:\n"                                         // 6
+         "    - name: oak\n"                                    // 7
+         "      skeleton: {generate: {preset: broadleaf}}\n" +  // 8
+         canopy_line +                                          // 9
+         leaves_line;                                           // 10
+}
+
+}  // namespace
+
+TEST_CASE("load_scenario: species leaves are read, and leaves: {} gets LeafSettings' defaults",
+          "[scenario]") {
+  fw::test::TempDir dir("fw_scenario");
+  const Scenario s = fw::io::load_scenario(dir.write("leaves.yaml", R"(scenario: leaves
+seed: 7
+time: {end: 10.0}
+domain: {size: [40, 20, 10], cell_size: 2.0}
+wind: {speed: 4.0, direction: 270}
+forest:
+  species:
+    - name: oak
+      skeleton: {generate: {preset: broadleaf}}
+      canopy: {leaf_area_index: 3.0}
+      leaves:
+        model: stochastic
+        area: 0.0025
+        fraction: 0.5
+        mass_per_area: 0.08
+        frequency: 4.5
+        damping_ratio: 0.1
+        petiole_strength: 0.7
+        strength_spread: 0.3
+        flight_drag_coefficient: 1.4
+        amplitudes: [10, 25, 90]
+        roll_coupling: -0.25
+        reference_speed: 8
+        seed: 123
+    - name: birch
+      skeleton: {generate: {preset: weeping}}
+      canopy: {leaf_area_index: 2.0}
+      leaves: {}
+    - name: pine
+      skeleton: {generate: {preset: conifer}}
+      leaves: {model: none}
+    - name: palm
+      skeleton: {generate: {preset: palm}}
+)"));
+  REQUIRE(s.forest.species.size() == 4);
+  const fw::trees::LeafSettings& oak = s.forest.species[0].leaves;
+  CHECK(oak.model == fw::trees::FlutterModel::stochastic);
+  CHECK(oak.area == 0.0025);
+  CHECK(oak.fraction == 0.5);
+  CHECK(oak.mass_per_area == 0.08);
+  CHECK(oak.frequency == 4.5);
+  CHECK(oak.damping_ratio == 0.1);
+  CHECK(oak.petiole_strength == 0.7);
+  CHECK(oak.strength_spread == 0.3);
+  CHECK(oak.flight_drag_coefficient == 1.4);
+  CHECK(oak.amplitudes_deg == std::array<double, 3>{10, 25, 90});
+  CHECK(oak.roll_coupling == -0.25);
+  CHECK(oak.reference_speed == 8.0);
+  CHECK(oak.seed == 123);
+
+  // leaves: {} is every default of trees::LeafSettings, the seed from the global seed and the species index.
+  const fw::trees::LeafSettings defaults;
+  const fw::trees::LeafSettings& birch = s.forest.species[1].leaves;
+  CHECK(birch.model == fw::trees::FlutterModel::pseudo_branch);
+  CHECK(birch.model == defaults.model);
+  CHECK(birch.area == defaults.area);
+  CHECK(birch.fraction == defaults.fraction);
+  CHECK(birch.mass_per_area == defaults.mass_per_area);
+  CHECK(birch.frequency == defaults.frequency);
+  CHECK(birch.damping_ratio == defaults.damping_ratio);
+  CHECK(birch.petiole_strength == defaults.petiole_strength);
+  CHECK(birch.strength_spread == defaults.strength_spread);
+  CHECK(birch.flight_drag_coefficient == defaults.flight_drag_coefficient);
+  CHECK(birch.amplitudes_deg == defaults.amplitudes_deg);
+  CHECK(birch.roll_coupling == defaults.roll_coupling);
+  CHECK(birch.reference_speed == defaults.reference_speed);
+  CHECK(birch.seed == 7 + fw::io::kLeafSeedOffset + 1);
+  CHECK(birch.seed == 7 + (std::uint64_t(1) << 32) + 1);  // as docs/scenario.md says: seed + 2^32 + k
+
+  // model none needs no foliage; no `leaves` at all is model none too.
+  CHECK_FALSE(s.forest.species[2].leaves.has_leaves());
+  CHECK_FALSE(s.forest.species[3].leaves.has_leaves());
+  CHECK(s.forest.species[3].leaves.seed == 7 + fw::io::kLeafSeedOffset + 3);
+}
+
+TEST_CASE("load_scenario: bad leaf keys name the key and say what is expected", "[scenario]") {
+  fw::test::TempDir dir("fw_scenario");
+  const std::string key = "forest.species[0].leaves.";
+  expect_error(dir, "leaf_area_type", leafy_species("      leaves: {area: big}\n"), 10, key + "area",
+               "a number > 0 (m^2) expected, got 'big'");
+  expect_error(dir, "leaf_area_zero", leafy_species("      leaves: {area: 0}\n"), 10, key + "area",
+               "a number > 0 (m^2) expected, got '0'");
+  expect_error(dir, "leaf_fraction", leafy_species("      leaves: {fraction: 1.5}\n"), 10, key + "fraction",
+               "a number > 0 and <= 1 expected, got '1.5'");
+  expect_error(dir, "leaf_fraction_zero", leafy_species("      leaves: {fraction: 0}\n"), 10,
+               key + "fraction", "a number > 0 expected, got '0'");
+  expect_error(dir, "leaf_mass", leafy_species("      leaves: {mass_per_area: -0.1}\n"), 10,
+               key + "mass_per_area", "a number > 0 (kg/m^2) expected, got '-0.1'");
+  expect_error(dir, "leaf_frequency", leafy_species("      leaves: {frequency: [3]}\n"), 10,
+               key + "frequency", "a number > 0 (Hz) expected, got '[3]'");
+  expect_error(dir, "leaf_damping", leafy_species("      leaves: {damping_ratio: 1}\n"), 10,
+               key + "damping_ratio", "a number >= 0 and < 1 expected, got '1'");
+  expect_error(dir, "leaf_strength", leafy_species("      leaves: {petiole_strength: 0}\n"), 10,
+               key + "petiole_strength", "a number > 0 (N) expected, got '0'");
+  expect_error(dir, "leaf_spread", leafy_species("      leaves: {strength_spread: -1}\n"), 10,
+               key + "strength_spread", "a number >= 0 expected, got '-1'");
+  expect_error(dir, "leaf_drag", leafy_species("      leaves: {flight_drag_coefficient: 0}\n"), 10,
+               key + "flight_drag_coefficient", "a number > 0 expected, got '0'");
+  expect_error(dir, "leaf_roll", leafy_species("      leaves: {roll_coupling: .inf}\n"), 10,
+               key + "roll_coupling", "a number expected, got '.inf'");
+  expect_error(dir, "leaf_reference_speed", leafy_species("      leaves: {reference_speed: 0}\n"), 10,
+               key + "reference_speed", "a number > 0 (m/s) expected, got '0'");
+  expect_error(dir, "leaf_seed", leafy_species("      leaves: {seed: -1}\n"), 10, key + "seed",
+               "an integer 0..18446744073709551615 expected, got '-1'");
+  expect_error(dir, "leaf_model", leafy_species("      leaves: {model: flutter}\n"), 10, key + "model",
+               "one of none | pseudo_branch | stochastic expected, got 'flutter'");
+  expect_error(dir, "leaf_amplitudes_pair", leafy_species("      leaves: {amplitudes: [20, 30]}\n"), 10,
+               key + "amplitudes",
+               "a list of 3 numbers [W_H, W_V, W_R], each >= 0 (degrees) expected, got '[20, 30]'");
+  expect_error(dir, "leaf_amplitudes_four", leafy_species("      leaves: {amplitudes: [20, 30, 15, 5]}\n"),
+               10, key + "amplitudes", "a list of 3 numbers [W_H, W_V, W_R], each >= 0 (degrees) expected");
+  expect_error(dir, "leaf_amplitude_high", leafy_species("      leaves: {amplitudes: [20, 95, 15]}\n"), 10,
+               key + "amplitudes[1]", "a number >= 0 and <= 90 (degrees) expected, got '95'");
+  expect_error(dir, "leaf_amplitude_negative", leafy_species("      leaves: {amplitudes: [20, 30, -5]}\n"),
+               10, key + "amplitudes[2]", "a number >= 0 (degrees) expected, got '-5'");
+  expect_error(dir, "leaf_unknown_key", leafy_species("      leaves: {colour: green}\n"), 10, key + "colour",
+               "one of the keys model, area, fraction, mass_per_area, frequency, damping_ratio, "
+               "petiole_strength, strength_spread, flight_drag_coefficient, amplitudes, roll_coupling, "
+               "reference_speed, seed expected, got 'colour'");
+  expect_error(dir, "leaves_not_a_map", leafy_species("      leaves: true\n"), 10, "forest.species[0].leaves",
+               "a map with the keys model, area, fraction");
+
+  // Leaves sit on the canopy's foliage: a leaf area index of 0 (given or the default) is blamed on the key.
+  const std::string lai = "forest.species[0].canopy.leaf_area_index";
+  expect_error(
+      dir, "leaves_lai_zero", leafy_species("      leaves: {}\n", "      canopy: {leaf_area_index: 0}\n"), 9,
+      lai,
+      "a number > 0 (m^2/m^2) (leaves need a leaf area index > 0; forest.species[0].leaves is on line "
+      "10) expected, got '0'");
+  expect_error(dir, "leaves_lai_default",
+               leafy_species("      leaves: {area: 0.01}\n", "      canopy: {drag_coefficient: 0.4}\n"), 9,
+               lai,
+               "a number > 0 (m^2/m^2) expected (required here: leaves need a leaf area index > 0; "
+               "forest.species[0].leaves is on line 10, and the default is 0), got nothing");
+  expect_error(dir, "leaves_no_canopy", leafy_species("      leaves: {}\n", ""), 7, lai,
+               "(required here: leaves need a leaf area index > 0; forest.species[0].leaves is on line 9");
+  // Without leaves (model none) a bare crown is fine.
+  CHECK_NOTHROW(
+      fw::io::load_scenario(dir.write("winter.yaml", leafy_species("      leaves: {model: none}\n", ""))));
+}
+
+TEST_CASE("load_scenario: output.leaves takes all, none or a stride, and vtk", "[scenario]") {
+  fw::test::TempDir dir("fw_scenario");
+  const auto stride = [&](const std::string& name, const std::string& attached) {
+    return fw::io::load_scenario(
+               dir.write(name + ".yaml", kBase + "output: {leaves: {attached: " + attached + "}}\n"))
+        .output.leaves_attached_stride;
+  };
+  CHECK(stride("all", "all") == 1);
+  CHECK(stride("none", "none") == 0);
+  CHECK(stride("every_one", "1") == 1);
+  CHECK(stride("every_tenth", "10") == 10);
+  const Scenario off = fw::io::load_scenario(
+      dir.write("off.yaml", kBase + "output: {leaves: {vtk: false}, vdb: {grids: [leaves]}}\n"));
+  CHECK_FALSE(off.output.vtk_leaves);
+  CHECK(off.output.leaves_attached_stride == 1);  // the default, all
+  CHECK(off.output.vdb_grids == std::vector<std::string>{"leaves"});
+
+  const std::string what = "one of all | none or an integer >= 1 expected";
+  expect_error(dir, "attached_zero", kBase + "output: {leaves: {attached: 0}}\n", 5, "output.leaves.attached",
+               what + ", got '0'");
+  expect_error(dir, "attached_negative", kBase + "output: {leaves: {attached: -3}}\n", 5,
+               "output.leaves.attached", what + ", got '-3'");
+  expect_error(dir, "attached_fraction", kBase + "output: {leaves: {attached: 2.5}}\n", 5,
+               "output.leaves.attached", what + ", got '2.5'");
+  expect_error(dir, "attached_word", kBase + "output: {leaves: {attached: some}}\n", 5,
+               "output.leaves.attached", what + ", got 'some'");
+  expect_error(dir, "attached_list", kBase + "output: {leaves: {attached: [1]}}\n", 5,
+               "output.leaves.attached", what + ", got '[1]'");
+  expect_error(dir, "leaves_vtk", kBase + "output: {leaves: {vtk: yes}}\n", 5, "output.leaves.vtk",
+               "true or false expected, got 'yes'");
+  expect_error(dir, "leaves_unknown", kBase + "output: {leaves: {flying: all}}\n", 5, "output.leaves.flying",
+               "one of the keys attached, vtk expected, got 'flying'");
+  expect_error(dir, "vdb_grid", kBase + "output: {vdb: {grids: [vel, leaf]}}\n", 5, "output.vdb.grids[1]",
+               "one of vel | speed | leaves expected, got 'leaf'");
 }
