@@ -153,6 +153,7 @@ int run_scenario(const RunOptions& options, const GlobalOptions& global) {
   std::ostream* log = options.quiet ? nullptr : &std::cerr;
   trees::BasisCache cache(trees::BasisCache::default_directory());
   host::SimulationPlan plan = host::plan_simulation(scenario, &cache, log);
+  const bool leaves = plan.leaf_count > 0;
 
   host::ComputeContext cc(host::select_device(host::device_filter_from_env(global.device_filter)),
                           global.profile);
@@ -177,13 +178,16 @@ int run_scenario(const RunOptions& options, const GlobalOptions& global) {
                              summary.frames, summary.interrupted ? " (interrupted)" : "");
     std::cout << fmt::format("outputs in {}\n", directory.string());
     std::cout << fmt::format(
-        "  ParaView: paraview {0}/wind.pvd {0}/trees.pvd   (color the wind by speed, slice it; trees are "
-        "polylines: "
-        "Tube filter by radius)\n",
-        directory.string());
+        "  ParaView: paraview {0}/wind.pvd {0}/trees.pvd{1}   (color the wind by speed, slice it; trees are "
+        "polylines: Tube filter by radius{2})\n",
+        directory.string(), leaves ? fmt::format(" {}/leaves.pvd", directory.string()) : "",
+        leaves ? "; leaves are points: Glyph filter, docs/leaves.md" : "");
     if (scenario.output.vdb_enabled) {
-      std::cout << fmt::format("  Houdini / Blender: {}/vdb/wind.####.vdb (grids vel, speed)\n",
-                               directory.string());
+      std::string grids;
+      for (const auto& grid : scenario.output.vdb_grids)
+        if (grid != "leaves" || leaves) grids += (grids.empty() ? "" : ", ") + grid;
+      std::cout << fmt::format("  Houdini / Blender: {}/vdb/wind.####.vdb (grids {})\n", directory.string(),
+                               grids);
     }
     std::cout << fmt::format("  probes: {0}/probes.csv   timings: {0}/run.json\n", directory.string());
   }
