@@ -15,6 +15,7 @@
 #include <vtkXMLImageDataReader.h>
 #include <vtkXMLPolyDataReader.h>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -54,6 +55,7 @@ struct ScenarioText {
   std::string turbulence;       // a flow map for wind.turbulence, or empty
   double frame_interval = 2.0;  // s
   std::string probe_interval;   // output.probe_interval, or empty for its default
+  std::string leaves;           // a flow map for the shrub's leaves, or empty (none)
 
   std::string yaml() const {
     std::ostringstream s;
@@ -69,6 +71,7 @@ struct ScenarioText {
       << "    - name: shrub\n      skeleton: {file: shrub.tree}\n"
       << "      modes: {count: 6, damping_ratio: 0.05, wind_samples: 2}\n"
       << "      canopy: {leaf_area_index: 4.0, drag_coefficient: 0.6}\n";
+    if (!leaves.empty()) s << "      leaves: " << leaves << "\n";
     if (!stands.empty()) s << "  stands:\n" << stands;
     if (!trees.empty()) s << "  trees:\n" << trees;
     s << "output:\n  directory: out\n  interval: " << frame_interval
@@ -230,9 +233,10 @@ TEST_CASE("Simulation: the same scenario and seed give identical output files", 
   text.stands =
       "    - {species: shrub, region: {min: [14, 6], max: [34, 26]}, layout: poisson, spacing: 5.0, "
       "scale: {min: 0.8, max: 1.2}, seed: 9}\n";
+  text.leaves = "{area: 0.01, petiole_strength: 0.05}";  // weak petioles: leaves come off and fly
   const auto a = run_in(*cc, dir, text, "first");
   const auto b = run_in(*cc, dir, text, "second");
-  int compared = 0;
+  int compared = 0, leaf_files = 0;
   for (const auto& entry : std::filesystem::recursive_directory_iterator(a)) {
     if (!entry.is_regular_file()) continue;
     const auto relative = std::filesystem::relative(entry.path(), a);
@@ -246,8 +250,27 @@ TEST_CASE("Simulation: the same scenario and seed give identical output files", 
       CHECK(read_text(entry.path()) == read_text(b / relative));
     }
     ++compared;
+    if (relative.parent_path() == "leaves") ++leaf_files;
   }
   CHECK(compared >= 10);
+  CHECK(leaf_files == 3);  // frames at 0, 2 and 4 s
+  // The leaves moved: some came off by the end (probes.csv's count column, the same in both runs as
+  // compared above).
+  std::istringstream probes(read_text(a / "probes.csv"));
+  std::string header, row, last;
+  std::getline(probes, header);
+  while (std::getline(probes, row)) last = row;
+  const auto cells = [](const std::string& line) {
+    std::vector<std::string> out;
+    std::istringstream in(line);
+    for (std::string cell; std::getline(in, cell, ',');) out.push_back(cell);
+    return out;
+  };
+  const auto names = cells(header), values = cells(last);
+  const auto shed = std::find(names.begin(), names.end(), "leaves_shed");
+  REQUIRE(shed != names.end());
+  REQUIRE(values.size() == names.size());
+  CHECK(std::stol(values[std::size_t(shed - names.begin())]) > 0);
 }
 
 namespace {
