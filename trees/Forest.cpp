@@ -89,6 +89,25 @@ Eigen::Matrix3d Forest::rotation(int instance) const {
   return r;
 }
 
+std::vector<FwTreeInstance> Forest::pack_instances() const {
+  std::vector<FwTreeInstance> rows;
+  rows.reserve(instances_.size());
+  for (int k = 0; k < instance_count(); ++k) {
+    const TreeInstance& t = instances_[std::size_t(k)];
+    FwTreeInstance row{};
+    row.species = t.species;
+    row.mode_offset = mode_offset(k);
+    row.node_offset = node_offset(k);
+    row.sample_offset = sample_offset(k);
+    for (int a = 0; a < 3; ++a) row.position[a] = float(t.position(a));
+    row.cos_yaw = float(std::cos(t.yaw_rad));
+    row.sin_yaw = float(std::sin(t.yaw_rad));
+    row.scale = float(t.scale);
+    rows.push_back(row);
+  }
+  return rows;
+}
+
 ForestPacking Forest::pack() const {
   ForestPacking p;
   for (const SpeciesBasis& sp : species_) {
@@ -142,18 +161,8 @@ ForestPacking Forest::pack() const {
     }
   }
 
+  p.instances = pack_instances();
   for (int k = 0; k < instance_count(); ++k) {
-    const TreeInstance& t = instances_[std::size_t(k)];
-    FwTreeInstance row{};
-    row.species = t.species;
-    row.mode_offset = mode_offset(k);
-    row.node_offset = node_offset(k);
-    row.sample_offset = sample_offset(k);
-    for (int a = 0; a < 3; ++a) row.position[a] = float(t.position(a));
-    row.cos_yaw = float(std::cos(t.yaw_rad));
-    row.sin_yaw = float(std::sin(t.yaw_rad));
-    row.scale = float(t.scale);
-    p.instances.push_back(row);
     p.mode_instance.insert(p.mode_instance.end(), std::size_t(mode_offset(k + 1) - mode_offset(k)), k);
     p.node_instance.insert(p.node_instance.end(), std::size_t(node_offset(k + 1) - node_offset(k)), k);
   }

@@ -89,6 +89,8 @@ class Forest {
 
   /// The float32 arrays of the device stage (host/ForestStages) in the layout of kernels/shared_types.h.
   ForestPacking pack() const;
+  /// Only the instance table of pack() (ForestPacking::instances), for stages that need no shapes.
+  std::vector<FwTreeInstance> pack_instances() const;
 
  private:
   std::vector<SpeciesBasis> species_;

@@ -91,7 +91,6 @@ LeafStages::LeafStages(ComputeContext& cc, const fluid::GridSpec& spec, const tr
   }
 
   // Flat leaves: per instance its species' leaves, at rest (blade centre and normal in the world).
-  const trees::ForestPacking packing = forest.pack();
   std::vector<std::int32_t> first_leaf;
   std::vector<float> position, normal;
   long long total = 0;
@@ -121,7 +120,7 @@ LeafStages::LeafStages(ComputeContext& cc, const fluid::GridSpec& spec, const tr
   constexpr cl_mem_flags ro = CL_MEM_READ_ONLY;
   leaf_instance_ = cc_.upload(leaf_instance_host_, ro);
   first_leaf_ = cc_.upload(first_leaf, ro);
-  instances_ = cc_.upload(packing.instances, ro);
+  instances_ = cc_.upload(forest.pack_instances(), ro);
   leaf_species_ = cc_.upload(packed_species, ro);
   rest_leaves_ = cc_.upload(rest, ro);
   state_ = cc_.upload(std::vector<std::uint8_t>(std::size_t(leaf_count_), FW_LEAF_ATTACHED));

@@ -32,8 +32,8 @@ struct ProbeSample {
   trees::LeafCounts leaf_counts;            ///< at the sample's time; written only in runs with leaves
 };
 
-/// The leaves of a frame (docs/leaves.md): the written leaves (attached ones thinned or left out as the output
-/// settings ask; exited ones never), one entry each in every array, and the counts over all leaves.
+/// The leaves of a frame (docs/leaves.md): the written leaves (attached ones thinned or left out as the
+/// output settings ask; exited ones never), one entry each in every array, and the counts over all leaves.
 struct LeafFrame {
   std::vector<std::array<float, 3>> position;  ///< blade centre, m, world frame
   std::vector<std::array<float, 3>> normal;    ///< blade normal, unit

@@ -84,7 +84,8 @@ TEST_CASE("coupled leaves: shed leaves land on the ground or the block's roof, n
   // 8 m/s: a leaf falling at ~1.3 m/s from the crowns (4-8 m) comes down within the domain's 48 m.
   const LeafRun setup(8.0);
   const auto [snap, counts] = run(*cc, 8.0, 12.0);
-  INFO("shed " << counts.shed << " flying " << counts.flying << " landed " << counts.landed << " exited " << counts.exited);
+  INFO("shed " << counts.shed << " flying " << counts.flying << " landed " << counts.landed << " exited "
+               << counts.exited);
   REQUIRE(counts.landed > 0);
   const auto& spec = setup.wind.spec;
   long checked = 0;
