@@ -1,5 +1,5 @@
 /* One exact step of a damped oscillator x'' + gamma x' + omega^2 x = f with f held over the step: the trees'
- * modes (tree_modal_step.cl) and the leaves' pseudo-branch (leaves.cl). Reference:
+ * modes (tree_modal_step.cl). Reference:
  * trees/ForestReference.cpp exact_modal_step.
  *
  * y = x - f/omega^2 is a free damped oscillator, a = gamma/2, d = omega^2 - a^2,

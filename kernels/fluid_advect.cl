@@ -2,19 +2,12 @@
  * pass of clamped MacCormack. Reference: fluid/ReferenceStages.cpp advect_semi_lagrangian, advect_maccormack.
  *
  * Every input is a padded copy (kernels/fluid_ghosts.cl), so interpolation has no boundary logic. Each
- * work-item advects FW_LANES consecutive faces of one x-row at once in float8 arithmetic: the coordinate and
+ * work-item advects FW_LANES consecutive faces of one x-row at once in vector arithmetic: the coordinate and
  * weight computations run as SIMD on CPUs, and only the loads of the interpolation corners stay scalar
  * (gathers). Global range: (ceil(extent_x / FW_LANES), extent_y, extent_z) of the component's faces.
  */
 #include "common.cl"
-
-#define FW_LANES 8
-typedef float8 lanef;
-typedef int8 lanei;
-
-FW_INLINE lanef gather(__global const float* q, lanei at) {
-  return (lanef)(q[at.s0], q[at.s1], q[at.s2], q[at.s3], q[at.s4], q[at.s5], q[at.s6], q[at.s7]);
-}
+#include "lanes.cl"
 
 /* Lower interpolation index and fraction along axis a of component c, for positions p (cell units):
  * periodic axes wrap p into [0, n) (a back-trace moves less than one period), other axes clamp to the ghost
@@ -30,9 +23,9 @@ FW_INLINE void lane_coordinate(const FwGrid* g, int c, int a, lanef p, lanei* i0
     q = clamp(p - face_offset(c, a), -1.0f, (float)face_extent(g, c, a));
   }
   /* q >= -1, so truncating q + 4 gives floor(q) + 4. */
-  const lanei fl = convert_int8(q + 4.0f) - 4;
+  const lanei fl = convert_lanei(q + 4.0f) - 4;
   *i0 = fl;
-  *fraction = q - convert_float8(fl);
+  *fraction = q - convert_lanef(fl);
 }
 
 /* Trilinear interpolation of component c's padded copy qp at positions (X, Y, Z). */
@@ -84,7 +77,7 @@ FW_INLINE lanei lane_padded_index(const FwGrid* g, int a, lanei i, int j, int k)
 FW_INLINE void backtrace_lanes(const FwGrid* g, int c, lanei i, int j, int k, float dt,
                                __global const float* up, __global const float* vp, __global const float* wp,
                                lanef* X, lanef* Y, lanef* Z) {
-  const lanef Px = convert_float8(i) + face_offset(c, 0);
+  const lanef Px = convert_lanef(i) + face_offset(c, 0);
   const lanef Py = (lanef)((float)j + face_offset(c, 1));
   const lanef Pz = (lanef)((float)k + face_offset(c, 2));
   const float scale = dt / g->h; /* m/s -> cells */
@@ -100,17 +93,6 @@ FW_INLINE void backtrace_lanes(const FwGrid* g, int c, lanei i, int j, int k, fl
   *Z = Pz - scale * sample_lanes(wp, 2, Mx, My, Mz, g);
 }
 
-/* Writes the lanes that lie inside the row. */
-FW_INLINE void store_lanes(__global float* out, int first, int valid, lanef value) {
-  if (valid == FW_LANES) {
-    vstore8(value, 0, out + first);
-    return;
-  }
-  const float lanes[FW_LANES] = {value.s0, value.s1, value.s2, value.s3,
-                                 value.s4, value.s5, value.s6, value.s7};
-  for (int l = 0; l < valid; ++l) out[first + l] = lanes[l];
-}
-
 /* This work-item's faces: first index, count inside the row, and the clamped lane indices. */
 #define FW_LANE_SETUP(c)                                \
   const int j = get_global_id(1), k = get_global_id(2); \
@@ -118,7 +100,7 @@ FW_INLINE void store_lanes(__global float* out, int first, int valid, lanef valu
   const int i0 = (int)get_global_id(0) * FW_LANES;      \
   if (i0 >= ex) return;                                 \
   const int valid = min(FW_LANES, ex - i0);             \
-  const lanei i = min((lanei)(i0) + (lanei)(0, 1, 2, 3, 4, 5, 6, 7), (lanei)(ex - 1));
+  const lanei i = min((lanei)(i0) + FW_LANE_OFFSETS, (lanei)(ex - 1));
 
 /* out = qp sampled at the back-traced position of each face (c is a literal in each kernel below, so the
  * compiler folds the component logic away). */

@@ -16,6 +16,9 @@ typedef std::int32_t fw_int;
 typedef std::uint32_t fw_uint;
 #endif
 
+/* Values per work-item in the lane kernels (kernels/lanes.cl: float8 arithmetic). */
+#define FW_LANES 16
+
 /* Boundary condition of one domain face. */
 #define FW_BC_INFLOW 0   /* velocity prescribed by the ambient wind profile */
 #define FW_BC_OUTFLOW 1  /* open: pressure 0 in the ghost cell, zero-gradient velocity */
@@ -157,19 +160,22 @@ typedef struct FwLeafSpecies {
   float flight_drag;     /* k = rho C_D / (2 sigma), 1/m */
 } FwLeafSpecies;
 
-/* One leaf of a species at rest, in the skeleton frame (trees/SpeciesLeaves.hpp RestLeaf). */
-typedef struct FwRestLeaf {
-  float anchor[3];      /* m */
-  float petiole[3];     /* unit */
-  float hinge[3];       /* unit */
-  float normal[3];      /* unit */
-  float tumble_axis[3]; /* unit */
-  float phase[3];       /* rad */
-  float frequency[3];   /* Hz */
-  float along;          /* t along the element, parent node to child node */
-  float strength;       /* petiole strength, N */
-  fw_int parent_node;   /* the element's nodes, species-local */
-  fw_int child_node;
-} FwRestLeaf;
+/* The rest leaves of every species on the device, one table of floats, field-major: field f of rest leaf r
+ * at f * stride + r, so that consecutive leaves' fields load as vectors (kernels/lanes.cl). The stride is
+ * the rest-leaf count plus FW_LANES, so that the last leaves' lanes may load past the end. Skeleton frame
+ * (trees/SpeciesLeaves.hpp RestLeaf); a vector field takes 3 rows (x, y, z). */
+#define FW_REST_ANCHOR 0        /* m */
+#define FW_REST_PETIOLE 3       /* unit: from the anchor to the blade centre */
+#define FW_REST_HINGE 6         /* unit: the pseudo-branch's axis, normal to the petiole */
+#define FW_REST_NORMAL 9        /* unit: the blade's normal */
+#define FW_REST_SWING 12        /* hinge x normal: the way the normal turns as theta grows */
+#define FW_REST_TUMBLE_AXIS 15  /* unit: the horizontal axis a flying blade tumbles about */
+#define FW_REST_PHASE 18        /* 3 rows: the stochastic angles' phases, rad */
+#define FW_REST_FREQUENCY 21    /* 3 rows: their frequencies, Hz */
+#define FW_REST_HINGE_NORMAL 24 /* hinge . normal */
+#define FW_REST_KAPPA 25 /* (hinge x petiole) . normal: the blade's lever factor, the same at every theta */
+#define FW_REST_ALONG 26 /* t along the element, parent node to child node */
+#define FW_REST_STRENGTH 27 /* petiole strength, N */
+#define FW_REST_FIELDS 28
 
 #endif

@@ -53,6 +53,23 @@ Eigen::Vector3d sample_mac_velocity(const fluid::GridSpec& spec, const fluid::Ma
   return v;
 }
 
+Eigen::Vector3d cell_centred_velocity(const fluid::GridSpec& spec, const fluid::MacVelocity& velocity,
+                                      const Eigen::Vector3d& world) {
+  const int n[3] = {spec.nx, spec.ny, spec.nz};
+  int cell[3];
+  for (int a = 0; a < 3; ++a)
+    cell[a] = std::clamp(int(std::floor((world(a) - spec.origin[std::size_t(a)]) / spec.h)), 0, n[a] - 1);
+  Eigen::Vector3d v;
+  for (int c = 0; c < 3; ++c) {
+    int next[3] = {cell[0], cell[1], cell[2]};
+    ++next[c];
+    const auto& q = velocity.component(c);
+    v(c) = 0.5 * (double(q[fluid::reference::face_index(spec, c, cell[0], cell[1], cell[2])]) +
+                  q[fluid::reference::face_index(spec, c, next[0], next[1], next[2])]);
+  }
+  return v;
+}
+
 void exact_modal_step(double& q, double& qdot, double f, double omega, double gamma, double dt) {
   // x = q - f/omega^2 obeys x'' + 2a x' + omega^2 x = 0, a = gamma/2, d = omega^2 - a^2. With
   // C(t), S(t) = cos(w t), sin(w t)/w (d = w^2 > 0), cosh(k t), sinh(k t)/k (d = -k^2 < 0), or their common

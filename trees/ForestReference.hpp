@@ -39,6 +39,10 @@ struct TreeTravel;
 /// Trilinear sample of the face velocities at a world position (m), m/s, with the clamping described above.
 Eigen::Vector3d sample_mac_velocity(const fluid::GridSpec& spec, const fluid::MacVelocity& velocity,
                                     const Eigen::Vector3d& world);
+/// The velocity of the cell that holds a world position (m), m/s: at the cell's centre, each component the
+/// mean of the cell's two faces along its axis. Positions outside the grid take the nearest cell.
+Eigen::Vector3d cell_centred_velocity(const fluid::GridSpec& spec, const fluid::MacVelocity& velocity,
+                                      const Eigen::Vector3d& world);
 
 /// One exact step of q'' + gamma q' + omega^2 q = f over dt, f constant: x = q - f / omega^2 decays as a free
 /// damped oscillator, written so that it stays accurate through critical damping. omega > 0, gamma >= 0.

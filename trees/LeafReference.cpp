@@ -8,7 +8,7 @@
 #include <numbers>
 #include <stdexcept>
 
-#include "trees/ForestReference.hpp"  // sample_mac_velocity, exact_modal_step
+#include "trees/ForestReference.hpp"  // sample_mac_velocity, cell_centred_velocity
 
 namespace fw::trees {
 namespace {
@@ -135,8 +135,8 @@ void flutter_pseudo_branch(WorldLeaf& leaf, const LeafSettings& settings, const 
   const double inertia = leaf.mass * (r * r + leaf.side * leaf.side / 12.0);
   const double omega = 2.0 * kPi * settings.frequency;
   const double held = (tau0 + damping * leaf.theta_rate + stiffness * leaf.theta) / inertia;
-  exact_modal_step(leaf.theta, leaf.theta_rate, held, std::sqrt(omega * omega + stiffness / inertia),
-                   2.0 * settings.damping_ratio * omega + damping / inertia, dt);
+  radau_oscillator_step(leaf.theta, leaf.theta_rate, held, omega * omega + stiffness / inertia,
+                        2.0 * settings.damping_ratio * omega + damping / inertia, dt);
   if (std::abs(leaf.theta) > kMaxFlutterAngle) {  // the stop: the blade rests against it
     leaf.theta = std::copysign(kMaxFlutterAngle, leaf.theta);
     leaf.theta_rate = 0.0;
@@ -180,6 +180,20 @@ void fly(WorldLeaf& leaf, const LeafSettings& settings, const Terrain& terrain, 
 }
 
 }  // namespace
+
+void radau_oscillator_step(double& x, double& v, double f, double w2, double gamma, double dt) {
+  // y = (x - f/w2, dt v) obeys y' = M y / dt with M = [[0, 1], [-p, -g]]; the step is y1 = D^-1 N y0 with
+  // N = I + M/3 and D = I - 2M/3 + M^2/6, R(z) = (1 + z/3) / (1 - 2z/3 + z^2/6).
+  const double p = w2 * dt * dt, g = gamma * dt;
+  const double x_rest = f / w2;
+  const double y0 = x - x_rest, y1 = dt * v;
+  const double b0 = y0 + y1 / 3.0, b1 = -p / 3.0 * y0 + (1.0 - g / 3.0) * y1;
+  const double d00 = 1.0 - p / 6.0, d01 = -2.0 / 3.0 - g / 6.0;
+  const double d10 = 2.0 * p / 3.0 + p * g / 6.0, d11 = 1.0 + 2.0 * g / 3.0 + (g * g - p) / 6.0;
+  const double det = d00 * d11 - d01 * d10;
+  x = x_rest + (d11 * b0 - d01 * b1) / det;
+  v = (d00 * b1 - d10 * b0) / det / dt;
+}
 
 double terminal_speed(const LeafSettings& settings) {
   return std::sqrt(2.0 * settings.mass_per_area * kGravity /
@@ -259,15 +273,19 @@ void LeafReference::step(const fluid::GridSpec& spec, const std::vector<std::uin
       continue;
     }
     if (leaf.state != LeafState::attached) continue;  // landed and exited leaves never move again
-    const Eigen::Vector3d u = sample_mac_velocity(spec, wind, leaf.anchor + leaf.lever * leaf.petiole);
-    if (settings.model == FlutterModel::pseudo_branch) flutter_pseudo_branch(leaf, settings, u, dt);
-    if (settings.model == FlutterModel::stochastic) flutter_stochastic(leaf, settings, u, time + dt);
-    // Shed on the force at the step's new orientation; the leaf flies from the next step on, from where it
-    // is, at rest.
+    // The wind of the cell that holds the rest blade centre: the grid resolves nothing below two cells, and
+    // one value per cell is what lets the device step a million attached leaves cheaply (docs/leaves.md).
+    const Eigen::Vector3d u = cell_centred_velocity(spec, wind, leaf.anchor + leaf.lever * leaf.petiole);
+    // Shed on the step's wind's force on the blade in its pose at the step's start (the stochastic angles at
+    // `time`, scaled by this wind); the leaf flies from the next step on, from that pose, at rest.
+    if (settings.model == FlutterModel::stochastic) flutter_stochastic(leaf, settings, u, time);
     if (blade_force(leaf.area, leaf.normal, u) > leaf.strength) {
       leaf.state = LeafState::flying;
       leaf.velocity.setZero();
+      continue;
     }
+    if (settings.model == FlutterModel::pseudo_branch) flutter_pseudo_branch(leaf, settings, u, dt);
+    if (settings.model == FlutterModel::stochastic) flutter_stochastic(leaf, settings, u, time + dt);
   }
 }
 

@@ -39,6 +39,11 @@ struct WorldLeaf {
   Eigen::Vector3d normal;                              ///< blade normal now, unit
 };
 
+/// One step of x'' + gamma x' + w2 x = f over dt (s), f held, w2 > 0, gamma >= 0: the two-stage Radau IIA
+/// method (third order, L-stable), which for this linear system is y1 = R(M) y0 with R(z) = (1 + z/3) /
+/// (1 - 2z/3 + z^2/6) on y = (x - f/w2, dt x'). No exponential, sine or square root, which the exact step
+/// (exact_modal_step) needs per leaf and step; motions far faster than the step are damped, not rung.
+void radau_oscillator_step(double& x, double& v, double f, double w2, double gamma, double dt);
 /// v_t = sqrt(2 sigma g / (rho C_D)), m/s: the still-air fall speed of the flight model.
 double terminal_speed(const LeafSettings& settings);
 /// The normal pressure force on a blade of area a, normal n, in wind u: 1/2 rho C_n a |u.n| |u|, N.
@@ -55,9 +60,10 @@ class LeafReference {
   WorldLeaf& leaf(int j) { return leaves_.at(std::size_t(j)); }
   LeafCounts counts() const;
 
-  /// One step of dt (s) ending at time + dt: attached leaves flutter in the wind at their rest centre and
-  /// are shed where the force exceeds their strength (starting to fly from where they are, at rest
-  /// velocity); flying leaves move, land or exit. `solid`: one byte a cell, non-zero = solid, or empty.
+  /// One step of dt (s) ending at time + dt: attached leaves, in the wind of the cell that holds their rest
+  /// centre (cell_centred_velocity), are shed where that wind's force on the blade in its pose at the step's
+  /// start exceeds their strength (they fly from that pose, at rest, from the next step on), and the others
+  /// flutter; flying leaves move, land or exit. `solid`: one byte a cell, non-zero = solid, or empty.
   void step(const fluid::GridSpec& spec, const std::vector<std::uint8_t>& solid,
             const fluid::MacVelocity& wind, double time, double dt);
 

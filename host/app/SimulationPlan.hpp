@@ -78,10 +78,12 @@ SimulationPlan plan_simulation(const io::Scenario& scenario, const trees::BasisC
 /// std::invalid_argument naming that file's line (an input error, exit code 2).
 trees::Skeleton species_skeleton(const io::Species& species);
 
-/// Device memory of the leaves (host/stages/LeafStages): per leaf its state (1 byte), position, velocity and
-/// normal (float4 each), its frame position (float4) and its instance (int); per species leaf its FwRestLeaf.
-inline constexpr std::size_t kDeviceBytesPerLeaf = 1 + 3 * 16 + 16 + 4;
-inline constexpr std::size_t kDeviceBytesPerSpeciesLeaf = sizeof(FwRestLeaf);
+/// Device memory of the leaves (host/stages/LeafStages): per leaf its state (1 byte), angle and rate (2
+/// floats), site and instance (2 ints), position, velocity, normal and the frame's position and normal
+/// (float4 each), and at most one site (its cell and its wind: 4 values); per species leaf its FW_REST_FIELDS
+/// floats of the rest table and its element's 2 nodes.
+inline constexpr std::size_t kDeviceBytesPerLeaf = 1 + 2 * 4 + 2 * 4 + 5 * 16 + 4 * 4;
+inline constexpr std::size_t kDeviceBytesPerSpeciesLeaf = (FW_REST_FIELDS + 2) * 4;
 
 /// The turbulence box points per grid cell along each axis (the box's spacing is h / this).
 inline constexpr int kTurbulencePointsPerCell = 2;

@@ -13,8 +13,6 @@
 namespace fw::host {
 namespace {
 constexpr int kPad = 2;  // FW_PAD in kernels/common.cl
-// Advection is compute-bound: each work-item advects FW_LANES = 8 faces in float8 (kernels/fluid_advect.cl).
-constexpr int kAdvectLanes = 8;
 }  // namespace
 
 std::vector<float> inflow_buffer_values(const fluid::InflowState& inflow) {
@@ -102,7 +100,7 @@ std::size_t FluidStages::padded_count(int c) const {
 
 cl::NDRange FluidStages::advect_rows(int c) const {
   const int ex = spec_.nx + (c == 0);
-  return cl::NDRange(std::size_t((ex + kAdvectLanes - 1) / kAdvectLanes), std::size_t(spec_.ny + (c == 1)),
+  return cl::NDRange(std::size_t((ex + FW_LANES - 1) / FW_LANES), std::size_t(spec_.ny + (c == 1)),
                      std::size_t(spec_.nz + (c == 2)));
 }
 

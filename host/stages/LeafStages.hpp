@@ -1,6 +1,6 @@
 // The leaves of a forest on the device (DESIGN.md, "Data flow" 4; docs/leaves.md): flutter of attached
-// leaves, shedding, flight in the resolved wind, landing and exits, one kernel over all leaves per step; and
-// on output frames the attached leaves at their deformed anchors.
+// leaves, shedding, flight in the resolved wind, landing and exits, every step; and on output frames every
+// leaf's blade, the attached ones at their deformed anchors.
 //
 //   host::LeafStages leaves(cc, spec, forest, species_leaves);   // every instance's leaves, attached
 //   leaves.enqueue_step(wind.stages().step(), mask, velocity);    // after the wind step, before the next
@@ -9,8 +9,9 @@
 //   host::LeafSnapshot snap = leaves.download();                  // positions, normals, states
 //   trees::LeafCounts counts = leaves.counts();                   // reads 3 counters back
 //
-// Kernels: kernels/leaves.cl (one leaf per iteration). The CPU oracle is trees/LeafReference. Flat leaf j:
-// instances in order, each instance's species leaves in order.
+// Kernels: kernels/leaves.cl. A step samples the wind once per site (a cell that holds the rest centre of
+// a leaf), steps the flying leaves one at a time, then the attached ones FW_LANES at a time. The CPU oracle
+// is trees/LeafReference. Flat leaf j: instances in order, each instance's species leaves in order.
 #pragma once
 
 #include <cstdint>
@@ -51,22 +52,30 @@ class LeafStages {
   /// Output frames: the attached leaves moved with the trees' displacements (3 floats per flat node, world
   /// frame: ForestStages::displacements() after enqueue_deform); download() then returns these positions.
   void enqueue_frame(cl::Buffer& displacements);
-  /// Blocks. Positions are the frame's (enqueue_frame) when one was enqueued since the last step, else the
-  /// step's (attached leaves at their rest anchors).
+  /// Blocks. The blades at the last step's end: attached leaves at their deformed anchors when enqueue_frame
+  /// ran since that step, else at their rest anchors.
   LeafSnapshot download();
   /// Blocks: shed, landed and exited from the device counters; flying and attached follow.
   trees::LeafCounts counts();
 
  private:
+  /// The frame kernel: every leaf's blade at the last step's end into frame_position_ and frame_normal_.
+  void enqueue_blades(cl::Buffer& displacements, bool displaced);
+
   ComputeContext& cc_;
   FwGrid grid_{};
-  int leaf_count_ = 0;
+  int leaf_count_ = 0, instance_count_ = 0;
+  int block_count_ = 0;  // blocks of FW_LANES leaves of one instance (kernels/leaves.cl)
+  int rest_stride_ = 0, site_count_ = 0, site_stride_ = 0;
+  float time_ = 0.0f;  // the last step's end, s
   bool frame_ready_ = false;
   std::vector<std::int32_t> leaf_instance_host_;
   std::vector<float> side_host_;
-  cl::Buffer leaf_instance_, first_leaf_, instances_, leaf_species_, rest_leaves_;
-  cl::Buffer state_, position_, velocity_, normal_, frame_position_, counters_;
-  Kernel step_, frame_;
+  cl::Buffer leaf_instance_, first_leaf_, first_block_, instances_, leaf_species_, rest_, rest_nodes_;
+  cl::Buffer leaf_site_, site_cells_, site_wind_;
+  cl::Buffer state_, theta_, theta_rate_, position_, velocity_, normal_, frame_position_, frame_normal_;
+  cl::Buffer counters_, no_displacements_;
+  Kernel site_wind_kernel_, flying_, attached_, frame_;
 };
 
 }  // namespace fw::host

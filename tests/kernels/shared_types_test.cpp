@@ -66,9 +66,7 @@ namespace {
   X(FwTreeInstance, sin_yaw);        \
   X(FwTreeInstance, scale)
 // The leaves' structs (packed by host/stages/LeafStages).
-#define FW_LEAF_STRUCTS(X) \
-  X(FwLeafSpecies);        \
-  X(FwRestLeaf)
+#define FW_LEAF_STRUCTS(X) X(FwLeafSpecies)
 #define FW_LEAF_FIELDS(X)            \
   X(FwLeafSpecies, model);           \
   X(FwLeafSpecies, leaf_offset);     \
@@ -82,18 +80,7 @@ namespace {
   X(FwLeafSpecies, amplitude);       \
   X(FwLeafSpecies, roll_coupling);   \
   X(FwLeafSpecies, reference_speed); \
-  X(FwLeafSpecies, flight_drag);     \
-  X(FwRestLeaf, anchor);             \
-  X(FwRestLeaf, petiole);            \
-  X(FwRestLeaf, hinge);              \
-  X(FwRestLeaf, normal);             \
-  X(FwRestLeaf, tumble_axis);        \
-  X(FwRestLeaf, phase);              \
-  X(FwRestLeaf, frequency);          \
-  X(FwRestLeaf, along);              \
-  X(FwRestLeaf, strength);           \
-  X(FwRestLeaf, parent_node);        \
-  X(FwRestLeaf, child_node)
+  X(FwLeafSpecies, flight_drag)
 
 struct LayoutEntry {
   std::string what;    // "sizeof(FwGrid)" or "offsetof(FwGrid, bc)"
@@ -154,9 +141,8 @@ TEST_CASE("shared_types: tree structs are packed 32-bit fields without padding",
   // FwSpecies 8 ints; FwTreeInstance 4 ints + 3 floats of position + cos, sin, scale.
   CHECK(sizeof(FwSpecies) == 8 * 4);
   CHECK(sizeof(FwTreeInstance) == 10 * 4);
-  // FwLeafSpecies 3 ints + 9 floats + 3 amplitudes; FwRestLeaf 7 x 3 floats + 2 floats + 2 ints.
+  // FwLeafSpecies 3 ints + 9 floats + 3 amplitudes.
   CHECK(sizeof(FwLeafSpecies) == 15 * 4);
-  CHECK(sizeof(FwRestLeaf) == 25 * 4);
   CHECK(alignof(FwSpecies) == 4);
   CHECK(alignof(FwTreeInstance) == 4);
   CHECK(offsetof(FwSpecies, modal_offset) == 24);
@@ -166,12 +152,24 @@ TEST_CASE("shared_types: tree structs are packed 32-bit fields without padding",
   CHECK(offsetof(FwTreeInstance, scale) == 36);
 }
 
+TEST_CASE("shared_types: the rest-leaf table's fields take one row each, vectors three, none overlapping",
+          "[forest]") {
+  // In the order of shared_types.h: 6 vectors, the 3 phases and 3 frequencies, then 4 scalars.
+  const int rows[] = {FW_REST_ANCHOR,       FW_REST_PETIOLE,     FW_REST_HINGE, FW_REST_NORMAL,
+                      FW_REST_SWING,        FW_REST_TUMBLE_AXIS, FW_REST_PHASE, FW_REST_FREQUENCY,
+                      FW_REST_HINGE_NORMAL, FW_REST_KAPPA,       FW_REST_ALONG, FW_REST_STRENGTH,
+                      FW_REST_FIELDS};
+  const int width[] = {3, 3, 3, 3, 3, 3, 3, 3, 1, 1, 1, 1};
+  CHECK(rows[0] == 0);
+  for (int f = 0; f < 12; ++f) CHECK(rows[f + 1] == rows[f] + width[f]);
+}
+
 TEST_CASE("shared_types: OpenCL C and the host agree on sizeof and offsetof of every struct and field") {
   auto* cc = fw::test::device_or_skip();
   if (!cc) return;
   const auto entries = host_layout();
-  // Shared structs and fields, the trees', the leaves' (2 structs, 13 + 11 fields).
-  REQUIRE(entries.size() == 4 + 24 + 2 + 16 + 2 + 24);
+  // Shared structs and fields, the trees', the leaves' (1 struct, 13 fields).
+  REQUIRE(entries.size() == 4 + 24 + 2 + 16 + 1 + 13);
   const std::string source = layout_kernel_source(entries);
   INFO(source);
 

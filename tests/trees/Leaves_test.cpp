@@ -10,6 +10,7 @@
 #include <numbers>
 
 #include "trees/Foliage.hpp"
+#include "trees/ForestReference.hpp"
 #include "trees/LeafReference.hpp"
 #include "trees/LeafSettings.hpp"
 #include "trees/SpeciesLeaves.hpp"
@@ -509,7 +510,7 @@ TEST_CASE("leaves: the pseudo-branch settles at its static balance for any dt", 
     const double linear = torque(leaf.rest_normal) / (inertia * omega * omega);
     INFO("leaf " << j << ": theta " << leaf.theta << ", balance " << balance << ", linear " << linear);
     CHECK(std::abs(leaf.theta_rate) < 1e-12);                          // at rest, up to round-off
-    CHECK(leaf.theta == Approx(balance).epsilon(1e-9).margin(1e-15));  // the fixed point of the exact step
+    CHECK(leaf.theta == Approx(balance).epsilon(1e-9).margin(1e-15));  // the fixed point of the step
     // The wind's turning of the blade (the aerodynamic stiffness, ~ 2% of I omega^2 at 0.2 m/s) moves the
     // balance off the rest torque's: 5% bounds it.
     CHECK(leaf.theta == Approx(linear).epsilon(0.05).margin(1e-15));
@@ -547,4 +548,41 @@ TEST_CASE("leaves: a pseudo-branch swings freely at the leaf frequency", "[leave
     // decays) lowers the frequency by a few tenths of a percent: 1% bounds it.
     CHECK(measured == Approx(damped).epsilon(0.01));
   }
+}
+
+TEST_CASE("leaves: the Radau step is third order and damps motions far faster than the step", "[leaves]") {
+  // x'' + gamma x' + w2 x = f over one second, against the exact step (exact_modal_step is exact for a held
+  // f): the error at the end falls as dt^3.
+  constexpr double kOmega = 2.0 * std::numbers::pi * 3.0, kGamma = 2.0 * 0.05 * kOmega, kForce = 4.0;
+  auto error_after_one_second = [&](int steps) {
+    const double dt = 1.0 / steps;
+    double x = 0.1, v = 0.0, xe = 0.1, ve = 0.0;
+    for (int n = 0; n < steps; ++n) {
+      trees::radau_oscillator_step(x, v, kForce, kOmega * kOmega, kGamma, dt);
+      trees::exact_modal_step(xe, ve, kForce, kOmega, kGamma, dt);
+    }
+    return std::abs(x - xe);
+  };
+  const double coarse = error_after_one_second(100), fine = error_after_one_second(200);
+  INFO("error " << coarse << " at dt 10 ms, " << fine << " at 5 ms");
+  // A third-order method: halving dt divides the error by 8; 6..10 allows the next order's share.
+  CHECK(coarse / fine > 6.0);
+  CHECK(coarse / fine < 10.0);
+
+  // Free swing at w dt = 0.4 (a 3 Hz leaf at the storm's 21 ms step): the amplitude lost per step is the
+  // method's damping, |R(0.4 i)| = 0.99966, below 1e-3 of the amplitude.
+  double x = 1.0, v = 0.0;
+  const double dt = 0.4 / kOmega;
+  const int per_period = int(std::round(2.0 * std::numbers::pi / 0.4));
+  for (int n = 0; n < 10 * per_period; ++n) trees::radau_oscillator_step(x, v, 0.0, kOmega * kOmega, 0.0, dt);
+  const double amplitude = std::sqrt(x * x + v * v / (kOmega * kOmega));
+  CHECK(std::pow(amplitude, 1.0 / (10 * per_period)) > 1.0 - 1e-3);
+  CHECK(amplitude <= 1.0);  // it never gains energy
+
+  // A motion 100 times faster than the step: one step leaves |R(100 i)| ~ 2/100 of it, where the
+  // trapezoidal rule would keep all of it and flip its sign (ringing). 0.03 bounds 0.02.
+  double stiff_x = 1.0, stiff_v = 0.0;
+  trees::radau_oscillator_step(stiff_x, stiff_v, 0.0, 1e4, 0.0, 1.0);
+  CHECK(std::abs(stiff_x) < 0.03);
+  CHECK(std::abs(stiff_v) < 0.03 * 100.0);
 }

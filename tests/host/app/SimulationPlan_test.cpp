@@ -94,14 +94,15 @@ TEST_CASE("SimulationPlan: a species with leaves gets round(fraction x leaf area
   CHECK_THAT(log.str(), Contains(", " + std::to_string(expected) + " leaves ("));
   CHECK(log.str().find("leaves") == log.str().rfind("leaves"));  // once: bare has none
 
-  // Device memory: 69 bytes per leaf of every tree (state, position, velocity, normal, frame position,
-  // instance) and 100 per species leaf.
+  // Device memory: 113 bytes per leaf of every tree (state; angle and rate; site and instance; position,
+  // velocity, normal, frame position and normal; a site's cell and wind) and 120 per species leaf (28 rest
+  // fields and 2 nodes).
   const auto bare = plan_of(dir, "no_leaves", "");
   CHECK(bare.leaf_count == 0);
   CHECK(bare.leaves.size() == 2);
   CHECK(bare.leaves[0].count() == 0);
   CHECK(plan.estimated_device_bytes - bare.estimated_device_bytes ==
-        std::size_t(plan.leaf_count) * 69 + std::size_t(expected) * 100);
+        std::size_t(plan.leaf_count) * 113 + std::size_t(expected) * 120);
 }
 
 TEST_CASE("SimulationPlan: the same scenario twice gives identical leaves, another seed other leaves",
