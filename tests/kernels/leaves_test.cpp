@@ -64,14 +64,17 @@ trees::SpeciesLeaves leaves_of(const trees::SpeciesBasis& species, trees::Flutte
 }
 
 // Tolerances, float32 kernels against the double oracle:
-// attached leaves: positions are rest geometry turned by theta, a few float ulps of ~20 m (measured 2e-6);
+// attached leaves: positions are rest geometry turned by theta, a few float ulps of ~20 m (measured 1.3e-6);
 constexpr double kAttachedTolerance = 1e-4;  // m
 // flying leaves after tens of steps of implicit drag: the float error of the wind and the drag relaxes
 // instead of growing (the drag pulls every leaf towards the wind), so it stays at the level of a few steps'
 // rounding (measured 1.1e-5 m after 4 s); leaves whose state differs (a load within rounding of its
-// strength, a landing decided by a rounding of the height) are left out and counted instead (measured: none
-// of 17,121 in either model).
-constexpr double kFlyingTolerance = 1e-3;  // m
+// strength, a landing decided by a rounding of the height) are left out and counted instead, and so are
+// leaves a sub-step apart (a sub-step count or a wall contact decided by a rounding: at most half a cell
+// off). Measured: no leaf in another state; one leaf (stochastic model) a sub-step apart, 8.8e-4 m, stopped
+// at a wall one sub-step earlier.
+constexpr double kFlyingTolerance = 1e-4;  // m
+constexpr double kMaxSubStep = 0.5;        // cells: FW_MAX_SUB_STEP_CELLS
 constexpr double kDifferentStateShare = 0.01;
 
 }  // namespace
@@ -123,7 +126,7 @@ TEST_CASE("leaves: the device step matches the CPU reference through shedding, f
     CHECK(expected.shed > ref.count() / 10);  // the case exercises shedding ...
     CHECK(expected.landed > 0);               // ... landing ...
     CHECK(expected.exited > 0);               // ... and exits
-    int different = 0;
+    int different = 0, decided_apart = 0;
     double attached_error = 0.0, flying_error = 0.0;
     for (int j = 0; j < ref.count(); ++j) {
       const trees::WorldLeaf& leaf = ref.leaf(j);
@@ -135,10 +138,15 @@ TEST_CASE("leaves: the device step matches the CPU reference through shedding, f
       double error = 0.0;
       for (int a = 0; a < 3; ++a)
         error = std::max(error, std::abs(snap.position[3 * std::size_t(j) + a] - leaf.position[a]));
-      if (leaf.state == trees::LeafState::attached)
+      if (leaf.state == trees::LeafState::attached) {
         attached_error = std::max(attached_error, error);
-      else
+      } else if (error > kFlyingTolerance) {
+        // A sub-step count (or a wall contact) decided by a rounding: the leaf moves by at most a sub-step.
+        ++decided_apart;
+        CHECK(error <= kMaxSubStep * spec.h);
+      } else {
         flying_error = std::max(flying_error, error);
+      }
       // No leaf inside a solid cell, on either side.
       const int i = int(std::floor((leaf.position[0] - spec.origin[0]) / spec.h));
       const int jj = int(std::floor((leaf.position[1] - spec.origin[1]) / spec.h));
@@ -147,10 +155,11 @@ TEST_CASE("leaves: the device step matches the CPU reference through shedding, f
         CHECK(solid[std::size_t(i + spec.nx * (jj + spec.ny * k))] == 0);
     }
     INFO("attached error " << attached_error << " m, flying and landed " << flying_error << " m, "
-                           << different << " leaves in another state");
+                           << different << " leaves in another state, " << decided_apart
+                           << " a sub-step apart");
     CHECK(attached_error < kAttachedTolerance);
     CHECK(flying_error < kFlyingTolerance);
-    CHECK(different <= int(kDifferentStateShare * ref.count()) + 1);
+    CHECK(different + decided_apart <= int(kDifferentStateShare * ref.count()) + 1);
     CHECK(std::abs(device.shed - expected.shed) <= long(kDifferentStateShare * ref.count()) + 1);
   }
 }
