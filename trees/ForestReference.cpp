@@ -53,12 +53,18 @@ Eigen::Vector3d sample_mac_velocity(const fluid::GridSpec& spec, const fluid::Ma
   return v;
 }
 
+std::array<int, 3> cell_holding(const fluid::GridSpec& spec, const Eigen::Vector3d& world) {
+  const int n[3] = {spec.nx, spec.ny, spec.nz};
+  std::array<int, 3> cell{};
+  for (int a = 0; a < 3; ++a)
+    cell[std::size_t(a)] =
+        std::clamp(int(std::floor((world(a) - spec.origin[std::size_t(a)]) / spec.h)), 0, n[a] - 1);
+  return cell;
+}
+
 Eigen::Vector3d cell_centred_velocity(const fluid::GridSpec& spec, const fluid::MacVelocity& velocity,
                                       const Eigen::Vector3d& world) {
-  const int n[3] = {spec.nx, spec.ny, spec.nz};
-  int cell[3];
-  for (int a = 0; a < 3; ++a)
-    cell[a] = std::clamp(int(std::floor((world(a) - spec.origin[std::size_t(a)]) / spec.h)), 0, n[a] - 1);
+  const std::array<int, 3> cell = cell_holding(spec, world);
   Eigen::Vector3d v;
   for (int c = 0; c < 3; ++c) {
     int next[3] = {cell[0], cell[1], cell[2]};

@@ -23,6 +23,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <array>
 
 #include <vector>
 
@@ -39,8 +40,11 @@ struct TreeTravel;
 /// Trilinear sample of the face velocities at a world position (m), m/s, with the clamping described above.
 Eigen::Vector3d sample_mac_velocity(const fluid::GridSpec& spec, const fluid::MacVelocity& velocity,
                                     const Eigen::Vector3d& world);
-/// The velocity of the cell that holds a world position (m), m/s: at the cell's centre, each component the
-/// mean of the cell's two faces along its axis. Positions outside the grid take the nearest cell.
+/// The cell (i, j, k) that holds a world position (m); positions outside the grid take the nearest cell.
+std::array<int, 3> cell_holding(const fluid::GridSpec& spec, const Eigen::Vector3d& world);
+/// The velocity of the cell that holds a world position (m), m/s (cell_holding): at the cell's centre, each
+/// component the mean of the cell's two faces along its axis. Positions outside the grid take the nearest
+/// cell.
 Eigen::Vector3d cell_centred_velocity(const fluid::GridSpec& spec, const fluid::MacVelocity& velocity,
                                       const Eigen::Vector3d& world);
 

@@ -2,12 +2,14 @@
 
 #include <fmt/format.h>
 
-#include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 #include <numbers>
 #include <stdexcept>
 #include <unordered_map>
+
+#include "trees/ForestReference.hpp"  // cell_holding: the oracle's rule for a leaf's cell
 
 namespace fw::host {
 namespace {
@@ -82,15 +84,6 @@ class RestTable {
   std::vector<float> values_;
 };
 
-// The cell that holds a world point, clamped to the grid (trees::cell_centred_velocity's rule).
-int cell_of(const fluid::GridSpec& spec, const Eigen::Vector3d& x) {
-  const int n[3] = {spec.nx, spec.ny, spec.nz};
-  int cell[3];
-  for (int a = 0; a < 3; ++a)
-    cell[a] = std::clamp(int(std::floor((x[a] - spec.origin[std::size_t(a)]) / spec.h)), 0, n[a] - 1);
-  return cell[0] + spec.nx * (cell[1] + spec.ny * cell[2]);
-}
-
 }  // namespace
 
 LeafStages::LeafStages(ComputeContext& cc, const fluid::GridSpec& spec, const trees::Forest& forest,
@@ -145,7 +138,9 @@ LeafStages::LeafStages(ComputeContext& cc, const fluid::GridSpec& spec, const tr
     for (const auto& leaf : leaves.leaves()) {
       const Eigen::Vector3d centre =
           tree.position + tree.scale * R * (leaf.anchor + leaves.lever() * leaf.petiole);
-      const auto [site, added] = site_of_cell.try_emplace(cell_of(spec, centre), int(site_cells.size()));
+      const std::array<int, 3> cell = trees::cell_holding(spec, centre);
+      const int cell_index = cell[0] + spec.nx * (cell[1] + spec.ny * cell[2]);
+      const auto [site, added] = site_of_cell.try_emplace(cell_index, int(site_cells.size()));
       if (added) site_cells.push_back(site->first);
       leaf_site.push_back(site->second);
       leaf_instance_host_.push_back(k);

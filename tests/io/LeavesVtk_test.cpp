@@ -2,6 +2,7 @@
 #include "io/LeavesVtk.hpp"
 
 #include "io/writers/LeavesVtkWriter.hpp"
+#include "tests/support/OutputFiles.hpp"
 #include "tests/support/TempDir.hpp"
 
 #include <catch2/catch.hpp>
@@ -34,6 +35,11 @@ using fw::io::LeafFrame;
 
 namespace {
 
+using fw::test::file_text;
+using fw::test::has_temporary;
+using fw::test::pvd_datasets;
+using fw::test::read_vtp;
+
 // Four leaves of two trees in every state a run writes (and one exited, which the format accepts), with
 // values that need all of a float's bits.
 LeafFrame four_leaves() {
@@ -51,35 +57,11 @@ LeafFrame four_leaves() {
   return leaves;
 }
 
-vtkSmartPointer<vtkPolyData> read_vtp(const fs::path& path) {
-  REQUIRE(fs::is_regular_file(path));
-  vtkNew<vtkXMLPolyDataReader> reader;
-  REQUIRE(reader->CanReadFile(path.string().c_str()) == 1);
-  reader->SetFileName(path.string().c_str());
-  reader->Update();
-  REQUIRE(reader->GetErrorCode() == 0);
-  vtkSmartPointer<vtkPolyData> data = reader->GetOutput();
-  REQUIRE(data != nullptr);
-  return data;
-}
-
-bool has_temporary(const fs::path& folder) {
-  for (const auto& entry : fs::directory_iterator(folder)) {
-    if (entry.path().filename().string().find(".tmp-") != std::string::npos) return true;
-  }
-  return false;
-}
-
 // The (timestep, file) attributes of every <DataSet> of a .pvd, in file order.
 std::vector<std::pair<double, std::string>> pvd_entries(const fs::path& path) {
-  std::ifstream in(path);
-  const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  const std::string text = file_text(path);
   REQUIRE(text.find("<VTKFile type=\"Collection\"") != std::string::npos);
-  const std::regex dataset(R"re(<DataSet timestep="([^"]*)" group="" part="0" file="([^"]*)"/>)re");
-  std::vector<std::pair<double, std::string>> entries;
-  for (auto it = std::sregex_iterator(text.begin(), text.end(), dataset); it != std::sregex_iterator(); ++it)
-    entries.emplace_back(std::stod((*it)[1].str()), (*it)[2].str());
-  return entries;
+  return pvd_datasets(text);
 }
 
 }  // namespace

@@ -2,6 +2,7 @@
 
 #include "io/WindFrame.hpp"
 #include "io/writers/ProbesWriter.hpp"
+#include "tests/support/OutputFiles.hpp"
 #include "tests/support/TempDir.hpp"
 
 #include <catch2/catch.hpp>
@@ -23,6 +24,8 @@ namespace fs = std::filesystem;
 
 namespace {
 
+using fw::test::has_temporary;
+
 std::vector<std::string> lines_of(const fs::path& path) {
   std::ifstream in(path, std::ios::binary);
   std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
@@ -39,13 +42,6 @@ std::vector<std::string> split(const std::string& line) {
   std::istringstream stream(line);
   for (std::string cell; std::getline(stream, cell, ',');) cells.push_back(cell);
   return cells;
-}
-
-bool has_temporary(const fs::path& folder) {
-  for (const auto& entry : fs::directory_iterator(folder)) {
-    if (entry.path().filename().string().find(".tmp-") != std::string::npos) return true;
-  }
-  return false;
 }
 
 const std::string kHeader =

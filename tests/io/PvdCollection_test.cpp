@@ -1,6 +1,7 @@
 #include "io/PvdCollection.hpp"
 
 #include "io/WindVtk.hpp"
+#include "tests/support/OutputFiles.hpp"
 #include "tests/support/TempDir.hpp"
 
 #include <catch2/catch.hpp>
@@ -24,10 +25,9 @@ namespace fs = std::filesystem;
 
 namespace {
 
-std::string file_text(const fs::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
-}
+using fw::test::file_text;
+using fw::test::has_temporary;
+using fw::test::pvd_datasets;
 
 // The (timestep, file) attributes of every <DataSet> of a .pvd, in file order; checks the envelope too.
 std::vector<std::pair<double, std::string>> datasets(const fs::path& path) {
@@ -37,20 +37,7 @@ std::vector<std::pair<double, std::string>> datasets(const fs::path& path) {
   CHECK(text.find("<Collection>") != std::string::npos);
   REQUIRE(text.size() >= 25);
   CHECK(text.substr(text.size() - 25) == "</Collection>\n</VTKFile>\n");
-  std::vector<std::pair<double, std::string>> out;
-  const std::regex dataset(R"re(<DataSet timestep="([^"]*)" group="" part="0" file="([^"]*)"/>)re");
-  for (auto it = std::sregex_iterator(text.begin(), text.end(), dataset); it != std::sregex_iterator();
-       ++it) {
-    out.emplace_back(std::stod((*it)[1].str()), (*it)[2].str());
-  }
-  return out;
-}
-
-bool has_temporary(const fs::path& folder) {
-  for (const auto& entry : fs::directory_iterator(folder)) {
-    if (entry.path().filename().string().find(".tmp-") != std::string::npos) return true;
-  }
-  return false;
+  return pvd_datasets(text);
 }
 
 using List = std::vector<std::pair<double, std::string>>;

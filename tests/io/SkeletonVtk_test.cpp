@@ -1,5 +1,6 @@
 #include "io/SkeletonVtk.hpp"
 
+#include "tests/support/OutputFiles.hpp"
 #include "tests/support/TempDir.hpp"
 
 #include <catch2/catch.hpp>
@@ -32,6 +33,10 @@ namespace fs = std::filesystem;
 
 namespace {
 
+using fw::test::file_text;
+using fw::test::has_temporary;
+using fw::test::read_vtp;
+
 // A Y-shaped tree listed with children before parents, so that elements() order differs from node order.
 // Height 4 m (root at z = 0, highest tip at z = 4).
 Skeleton y_tree() {
@@ -56,35 +61,11 @@ Eigen::MatrixX3d synthetic_shape(const Skeleton& skeleton, int mode, double size
   return size * u;
 }
 
-vtkSmartPointer<vtkPolyData> read_vtp(const fs::path& path) {
-  REQUIRE(fs::is_regular_file(path));
-  vtkNew<vtkXMLPolyDataReader> reader;
-  REQUIRE(reader->CanReadFile(path.string().c_str()) == 1);
-  reader->SetFileName(path.string().c_str());
-  reader->Update();
-  REQUIRE(reader->GetErrorCode() == 0);
-  vtkSmartPointer<vtkPolyData> data = reader->GetOutput();
-  REQUIRE(data != nullptr);
-  return data;
-}
-
-std::string file_text(const fs::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
-}
-
 // Names of everything in `folder` (the test's own folder, so nothing else lives there).
 std::vector<std::string> entries(const fs::path& folder) {
   std::vector<std::string> names;
   for (const auto& entry : fs::directory_iterator(folder)) names.push_back(entry.path().filename().string());
   return names;
-}
-
-bool has_temporary(const fs::path& folder) {
-  for (const std::string& name : entries(folder)) {
-    if (name.find(".tmp-") != std::string::npos) return true;
-  }
-  return false;
 }
 
 // Checks the geometry, topology and node/element arrays of `data` against the skeleton.

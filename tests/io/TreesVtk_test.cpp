@@ -1,5 +1,6 @@
 #include "io/TreesVtk.hpp"
 
+#include "tests/support/OutputFiles.hpp"
 #include "tests/support/TempDir.hpp"
 
 #include <catch2/catch.hpp>
@@ -27,6 +28,9 @@ using fw::io::TreesFrame;
 
 namespace {
 
+using fw::test::has_temporary;
+using fw::test::read_vtp;
+
 // Tree A (id 7, species 0): root 0 -> 1 -> {2, 3}. Tree B (id 12, species 1): listed child first, 1 -> 0.
 TreesFrame two_trees() {
   TreesFrame frame;
@@ -51,25 +55,6 @@ TreesFrame two_trees() {
   b.displacement << 0.125, 0.0, -0.0625, 0.0, 0.0, 0.0;
   frame.trees = {a, b};
   return frame;
-}
-
-vtkSmartPointer<vtkPolyData> read_vtp(const fs::path& path) {
-  REQUIRE(fs::is_regular_file(path));
-  vtkNew<vtkXMLPolyDataReader> reader;
-  REQUIRE(reader->CanReadFile(path.string().c_str()) == 1);
-  reader->SetFileName(path.string().c_str());
-  reader->Update();
-  REQUIRE(reader->GetErrorCode() == 0);
-  vtkSmartPointer<vtkPolyData> data = reader->GetOutput();
-  REQUIRE(data != nullptr);
-  return data;
-}
-
-bool has_temporary(const fs::path& folder) {
-  for (const auto& entry : fs::directory_iterator(folder)) {
-    if (entry.path().filename().string().find(".tmp-") != std::string::npos) return true;
-  }
-  return false;
 }
 
 }  // namespace

@@ -1,5 +1,6 @@
 #include "io/VdbWriter.hpp"
 
+#include "tests/support/OutputFiles.hpp"
 #include "tests/support/TempDir.hpp"
 
 #include <catch2/catch.hpp>
@@ -18,6 +19,8 @@ namespace fs = std::filesystem;
 
 namespace {
 
+using fw::test::has_temporary;
+
 // A 5x4x3 frame, h = 0.4 m, origin (2, -1, 0.5), with cells (1,2,0) and (4,0,2) solid.
 fw::io::WindFrame sample_frame() {
   fw::io::WindFrame frame;
@@ -34,13 +37,6 @@ fw::io::WindFrame sample_frame() {
   frame.solid[frame.cell_index(1, 2, 0)] = 1;
   frame.solid[frame.cell_index(4, 0, 2)] = 1;
   return frame;
-}
-
-bool has_temporary(const fs::path& folder) {
-  for (const auto& entry : fs::directory_iterator(folder)) {
-    if (entry.path().filename().string().find(".tmp-") != std::string::npos) return true;
-  }
-  return false;
 }
 
 struct ReadBack {

@@ -1,5 +1,6 @@
 #include "io/WindVtk.hpp"
 
+#include "tests/support/OutputFiles.hpp"
 #include "tests/support/TempDir.hpp"
 
 #include <catch2/catch.hpp>
@@ -26,6 +27,8 @@
 namespace fs = std::filesystem;
 
 namespace {
+
+using fw::test::has_temporary;
 
 // A 4x3x2 frame with distinct values in every cell and component, cells 5 and 17 solid.
 fw::io::WindFrame sample_frame() {
@@ -60,13 +63,6 @@ vtkSmartPointer<vtkImageData> read_vti(const fs::path& path) {
   vtkSmartPointer<vtkImageData> image = reader->GetOutput();
   REQUIRE(image != nullptr);
   return image;
-}
-
-bool has_temporary(const fs::path& folder) {
-  for (const auto& entry : fs::directory_iterator(folder)) {
-    if (entry.path().filename().string().find(".tmp-") != std::string::npos) return true;
-  }
-  return false;
 }
 
 template <typename T>

@@ -5,21 +5,12 @@
 #include <cmath>
 #include <functional>
 
+#include "tests/support/SmallSpecies.hpp"
 #include "trees/ForestReference.hpp"
 
 using namespace fw;
 
 namespace {
-
-// An asymmetric 11-node tree, 4.8 m tall: trunk along +z and four side branches.
-trees::Skeleton small_skeleton() {
-  std::vector<trees::SkeletonNode> nodes = {
-      {-1, {0.0, 0.0, 0.0}, 0.12}, {0, {0.0, 0.0, 1.0}, 0.10},  {1, {0.0, 0.0, 2.0}, 0.08},
-      {2, {0.0, 0.0, 3.0}, 0.06},  {3, {0.0, 0.0, 4.0}, 0.04},  {2, {1.0, 0.3, 3.0}, 0.04},
-      {5, {1.8, 0.5, 3.6}, 0.02},  {3, {-0.6, 0.8, 3.8}, 0.03}, {7, {-1.0, 1.4, 4.3}, 0.02},
-      {4, {0.2, -0.5, 4.8}, 0.02}, {1, {0.5, -0.7, 1.6}, 0.03}};
-  return trees::Skeleton::from_nodes(std::move(nodes));
-}
 
 trees::SpeciesSettings small_settings(int modes = 8, int samples = 3) {
   trees::SpeciesSettings settings;
@@ -30,7 +21,7 @@ trees::SpeciesSettings small_settings(int modes = 8, int samples = 3) {
 }
 
 trees::SpeciesBasis small_species(int modes = 8, int samples = 3) {
-  return trees::SpeciesBasis::compute(small_skeleton(), small_settings(modes, samples));
+  return trees::SpeciesBasis::compute(test::asymmetric_skeleton(), small_settings(modes, samples));
 }
 
 // 20 x 20 x 12 cells of 1 m, the domain centred on x = y = 0.
@@ -294,7 +285,7 @@ TEST_CASE("ForestReference: an instance of scale s behaves as the species scaled
     // A species solved afresh from the grown skeleton: same frequencies, and the same static deflection
     // (which does not depend on the sign each fresh mode happens to get).
     const auto fresh = trees::SpeciesBasis::compute(
-        small_skeleton().transformed(Eigen::Matrix3d::Identity(), Eigen::Vector3d::Zero(), s),
+        test::asymmetric_skeleton().transformed(Eigen::Matrix3d::Identity(), Eigen::Vector3d::Zero(), s),
         small_settings());
     const trees::Forest solved({fresh}, {{0, {0.5, 0.25, 0.0}, 0.8, 1.0}});
     const trees::ForestReference c(solved);

@@ -5,28 +5,19 @@
 #include <limits>
 #include <string>
 
+#include "tests/support/SmallSpecies.hpp"
 #include "trees/Forest.hpp"
 
 using namespace fw;
 
 namespace {
 
-// An asymmetric 11-node tree, 4.8 m tall: trunk along +z and four side branches.
-trees::Skeleton small_skeleton() {
-  std::vector<trees::SkeletonNode> nodes = {
-      {-1, {0.0, 0.0, 0.0}, 0.12}, {0, {0.0, 0.0, 1.0}, 0.10},  {1, {0.0, 0.0, 2.0}, 0.08},
-      {2, {0.0, 0.0, 3.0}, 0.06},  {3, {0.0, 0.0, 4.0}, 0.04},  {2, {1.0, 0.3, 3.0}, 0.04},
-      {5, {1.8, 0.5, 3.6}, 0.02},  {3, {-0.6, 0.8, 3.8}, 0.03}, {7, {-1.0, 1.4, 4.3}, 0.02},
-      {4, {0.2, -0.5, 4.8}, 0.02}, {1, {0.5, -0.7, 1.6}, 0.03}};
-  return trees::Skeleton::from_nodes(std::move(nodes));
-}
-
 trees::SpeciesBasis small_species(int modes, int samples) {
   trees::SpeciesSettings settings;
   settings.modal.mode_count = modes;
   settings.modal.damping = trees::Damping::modal_ratio(0.04);
   settings.wind.samples = samples;
-  return trees::SpeciesBasis::compute(small_skeleton(), settings);
+  return trees::SpeciesBasis::compute(test::asymmetric_skeleton(), settings);
 }
 
 template <typename F>

@@ -9,6 +9,7 @@
 #include <functional>
 #include <numbers>
 
+#include "tests/support/SmallSpecies.hpp"
 #include "trees/Foliage.hpp"
 #include "trees/ForestReference.hpp"
 #include "trees/LeafReference.hpp"
@@ -25,33 +26,12 @@ constexpr double kLai = 3.0;  // leaf area index of the test trees
 constexpr double kGeometry = 1e-12;
 constexpr double kDt = 0.05;  // s, the step of the coupled simulation's typical wind grid
 
-// A small generated broadleaf: 6 m, 5 iterations, 0.3 m elements (as in StrongWindCorrection_test).
-trees::Skeleton broadleaf() {
-  trees::GeneratorSettings g;
-  g.preset = "broadleaf";
-  g.height = 6.0;
-  g.seed = 1;
-  g.iterations = 5;
-  g.max_element_length = 0.3;
-  return trees::generate_tree(g);
-}
-
-// An asymmetric 11-node tree, 4.8 m tall: trunk along +z and four side branches (as in ForestReference_test).
-trees::Skeleton small_skeleton() {
-  std::vector<trees::SkeletonNode> nodes = {
-      {-1, {0.0, 0.0, 0.0}, 0.12}, {0, {0.0, 0.0, 1.0}, 0.10},  {1, {0.0, 0.0, 2.0}, 0.08},
-      {2, {0.0, 0.0, 3.0}, 0.06},  {3, {0.0, 0.0, 4.0}, 0.04},  {2, {1.0, 0.3, 3.0}, 0.04},
-      {5, {1.8, 0.5, 3.6}, 0.02},  {3, {-0.6, 0.8, 3.8}, 0.03}, {7, {-1.0, 1.4, 4.3}, 0.02},
-      {4, {0.2, -0.5, 4.8}, 0.02}, {1, {0.5, -0.7, 1.6}, 0.03}};
-  return trees::Skeleton::from_nodes(std::move(nodes));
-}
-
 trees::SpeciesBasis small_species() {
   trees::SpeciesSettings settings;
   settings.modal.mode_count = 4;
   settings.wind.samples = 3;
   settings.wind.leaf_area_index = kLai;
-  return trees::SpeciesBasis::compute(small_skeleton(), settings);
+  return trees::SpeciesBasis::compute(test::asymmetric_skeleton(), settings);
 }
 
 trees::SpeciesLeaves leaves_of(const trees::Skeleton& skeleton, const trees::LeafSettings& settings) {
@@ -61,7 +41,7 @@ trees::SpeciesLeaves leaves_of(const trees::Skeleton& skeleton, const trees::Lea
 // One small tree at the origin with the given leaves.
 trees::LeafReference small_forest(const trees::LeafSettings& settings) {
   const trees::Forest forest({small_species()}, {{0, Eigen::Vector3d::Zero(), 0.0, 1.0}});
-  return trees::LeafReference(forest, {leaves_of(small_skeleton(), settings)});
+  return trees::LeafReference(forest, {leaves_of(test::asymmetric_skeleton(), settings)});
 }
 
 fluid::GridSpec grid(int nx, int ny, int nz, const std::array<double, 3>& origin) {
@@ -103,7 +83,7 @@ double distance_to_segment(const Eigen::Vector3d& p, const Eigen::Vector3d& a, c
 }  // namespace
 
 TEST_CASE("leaves: generation follows the foliage", "[leaves]") {
-  const trees::Skeleton tree = broadleaf();
+  const trees::Skeleton tree = test::small_broadleaf();
   const trees::Foliage foliage = trees::Foliage::of(tree, kLai);
   const trees::LeafSettings settings;
   const trees::SpeciesLeaves leaves = trees::SpeciesLeaves::generate(tree, foliage, settings);
@@ -145,7 +125,7 @@ TEST_CASE("leaves: generation follows the foliage", "[leaves]") {
 }
 
 TEST_CASE("leaves: generation is deterministic from the seed", "[leaves]") {
-  const trees::Skeleton tree = broadleaf();
+  const trees::Skeleton tree = test::small_broadleaf();
   trees::LeafSettings settings;
   settings.seed = 42;
   const trees::SpeciesLeaves a = leaves_of(tree, settings), b = leaves_of(tree, settings);
@@ -170,7 +150,7 @@ TEST_CASE("leaves: generation is deterministic from the seed", "[leaves]") {
 }
 
 TEST_CASE("leaves: a winter tree or a bare crown has no leaves", "[leaves]") {
-  const trees::Skeleton tree = broadleaf();
+  const trees::Skeleton tree = test::small_broadleaf();
   trees::LeafSettings settings;
   settings.model = trees::FlutterModel::none;
   CHECK(leaves_of(tree, settings).count() == 0);
@@ -180,7 +160,7 @@ TEST_CASE("leaves: a winter tree or a bare crown has no leaves", "[leaves]") {
 }
 
 TEST_CASE("leaves: a fraction thins the leaves", "[leaves]") {
-  const trees::Skeleton tree = broadleaf();
+  const trees::Skeleton tree = test::small_broadleaf();
   trees::LeafSettings settings;
   const int all = leaves_of(tree, settings).count();
   settings.fraction = 0.5;
@@ -210,7 +190,7 @@ TEST_CASE("leaves: validate names the key", "[leaves]") {
     trees::LeafSettings settings;
     edit(settings);
     CHECK_THROWS_WITH(settings.validate(), Catch::Contains("LeafSettings: " + key + " must"));
-    CHECK_THROWS_WITH(leaves_of(broadleaf(), settings),
+    CHECK_THROWS_WITH(leaves_of(test::small_broadleaf(), settings),
                       Catch::Contains("SpeciesLeaves: LeafSettings: " + key));
   }
   CHECK_NOTHROW(trees::LeafSettings{}.validate());
@@ -220,9 +200,10 @@ TEST_CASE("leaves: validate names the key", "[leaves]") {
     CHECK(trees::flutter_model_from_string(trees::to_string(model)) == model);
   CHECK_THROWS_WITH(trees::flutter_model_from_string("flapping"), Catch::Contains("pseudo_branch"));
 
-  const trees::Skeleton tree = broadleaf();
-  CHECK_THROWS_WITH(trees::SpeciesLeaves::generate(tree, trees::Foliage::of(small_skeleton(), kLai), {}),
-                    Catch::Contains("SpeciesLeaves: the foliage"));
+  const trees::Skeleton tree = test::small_broadleaf();
+  CHECK_THROWS_WITH(
+      trees::SpeciesLeaves::generate(tree, trees::Foliage::of(test::asymmetric_skeleton(), kLai), {}),
+      Catch::Contains("SpeciesLeaves: the foliage"));
   const trees::Forest forest({small_species()}, {{0, Eigen::Vector3d::Zero(), 0.0, 1.0}});
   CHECK_THROWS_WITH(trees::LeafReference(forest, {}), Catch::Contains("LeafReference: 0 species leaves"));
 }
@@ -230,7 +211,7 @@ TEST_CASE("leaves: validate names the key", "[leaves]") {
 TEST_CASE("leaves: instances scale and turn the species leaves", "[leaves]") {
   trees::LeafSettings settings;
   settings.fraction = 0.1;
-  const trees::SpeciesLeaves species = leaves_of(small_skeleton(), settings);
+  const trees::SpeciesLeaves species = leaves_of(test::asymmetric_skeleton(), settings);
   const double yaw = 0.7, scale = 1.3;
   const Eigen::Vector3d at(5.0, 3.0, 0.5);
   const trees::Forest forest({small_species()},

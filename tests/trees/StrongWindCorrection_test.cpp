@@ -12,6 +12,7 @@
 #include <string>
 #include <vector>
 
+#include "tests/support/SmallSpecies.hpp"
 #include "trees/Forest.hpp"
 #include "trees/ForestReference.hpp"
 #include "trees/SpeciesBasis.hpp"
@@ -44,17 +45,6 @@ trees::Skeleton cantilever() {
                      {0.0, 0.0, kLength * k / kElements},
                      kBaseRadius + (kTipRadius - kBaseRadius) * k / kElements});
   return trees::Skeleton::from_nodes(std::move(nodes));
-}
-
-// A small generated broadleaf: 6 m, 5 iterations, 0.3 m elements (138 nodes).
-trees::Skeleton broadleaf() {
-  trees::GeneratorSettings g;
-  g.preset = "broadleaf";
-  g.height = 6.0;
-  g.seed = 1;
-  g.iterations = 5;
-  g.max_element_length = 0.3;
-  return trees::generate_tree(g);
 }
 
 trees::SpeciesBasis species_of(const trees::Skeleton& skeleton, int modes) {
@@ -101,7 +91,7 @@ double relative(const Eigen::MatrixXd& a, const Eigen::MatrixXd& b) {
 }  // namespace
 
 TEST_CASE("StrongWindCorrection: the corrected walk keeps every element's rest length", "[strong-wind]") {
-  const trees::Skeleton tree = broadleaf();
+  const trees::Skeleton tree = test::small_broadleaf();
   const trees::SpeciesBasis sp = species_of(tree, 6);
   const Eigen::VectorXd q = Eigen::VectorXd::LinSpaced(6, 1.0, -0.5) * sp.strong_wind().fits()[0].q_max;
   const Eigen::VectorXd linear = sp.node_shapes() * q;
@@ -122,7 +112,7 @@ TEST_CASE(
     "within 1%",
     "[strong-wind]") {
   for (const auto& [name, tree] :
-       {std::pair{"cantilever", cantilever()}, std::pair{"broadleaf", broadleaf()}}) {
+       {std::pair{"cantilever", cantilever()}, std::pair{"broadleaf", test::small_broadleaf()}}) {
     const trees::SpeciesBasis sp = species_of(tree, 10);
     const int tip = highest_node(tree);
     for (int mode : {0, 1}) {  // the two sway modes
@@ -149,8 +139,8 @@ TEST_CASE("StrongWindCorrection: a uniform wind that bends the tip by 30% keeps 
   // the cantilever and 3-5% on the broadleaf; its bound below holds that measured improvement over the
   // linear pose with margin, so that a regression of the fit shows. The length-restoring pass then brings
   // every element back to its rest length, and moves nodes little: the pose stays Diener's.
-  for (const auto& [name, tree, modes, bound] :
-       {std::tuple{"cantilever", cantilever(), 6, 0.25}, std::tuple{"broadleaf", broadleaf(), 10, 0.6}}) {
+  for (const auto& [name, tree, modes, bound] : {std::tuple{"cantilever", cantilever(), 6, 0.25},
+                                                 std::tuple{"broadleaf", test::small_broadleaf(), 10, 0.6}}) {
     const trees::SpeciesBasis sp = species_of(tree, modes);
     const int tip = highest_node(tree);
     for (const Eigen::Vector3d& wind : {Eigen::Vector3d(8.0, 0.0, 0.0), Eigen::Vector3d(6.0, 6.0, 0.0)}) {
@@ -176,7 +166,7 @@ TEST_CASE("StrongWindCorrection: a uniform wind that bends the tip by 30% keeps 
 
 TEST_CASE("StrongWindCorrection: at small amplitudes the correction is q v + q^2 w, v within 5% of phi",
           "[strong-wind]") {
-  const trees::Skeleton tree = broadleaf();
+  const trees::Skeleton tree = test::small_broadleaf();
   const trees::SpeciesBasis sp = species_of(tree, 10);
   const StrongWindCorrection& c = sp.strong_wind();
   for (int i = 0; i < c.mode_count(); ++i) {
@@ -202,7 +192,7 @@ TEST_CASE("StrongWindCorrection: at small amplitudes the correction is q v + q^2
 
 TEST_CASE("StrongWindCorrection: the fit matches the corrected trajectories far better than the linear modes",
           "[strong-wind]") {
-  const trees::Skeleton tree = broadleaf();
+  const trees::Skeleton tree = test::small_broadleaf();
   const auto start = std::chrono::steady_clock::now();
   const trees::SpeciesBasis sp = species_of(tree, 10);
   const double total = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
@@ -242,7 +232,7 @@ TEST_CASE("StrongWindCorrection: a mode without translations gets v = w = 0 and 
 
 TEST_CASE("StrongWindCorrection: the scaled correction equals a fresh fit on the scaled species",
           "[strong-wind]") {
-  const trees::SpeciesBasis sp = species_of(broadleaf(), 6);
+  const trees::SpeciesBasis sp = species_of(test::small_broadleaf(), 6);
   for (double s : {0.6, 1.45}) {
     INFO("scale " << s);
     const trees::SpeciesBasis grown = sp.scaled(s);  // carries sp.strong_wind().scaled(s)
@@ -263,7 +253,7 @@ TEST_CASE(
     "ForestReference: the corrected deformation of an instance of scale s and yaw psi is the grown "
     "species' turned by psi",
     "[strong-wind]") {
-  const trees::SpeciesBasis sp = species_of(broadleaf(), 6);
+  const trees::SpeciesBasis sp = species_of(test::small_broadleaf(), 6);
   for (auto [s, yaw] : {std::pair{0.6, 0.8}, std::pair{1.45, -2.3}}) {
     INFO("scale " << s << ", yaw " << yaw);
     const trees::Forest instance({sp}, {{0, {3.0, -1.0, 0.0}, yaw, s}});
@@ -282,8 +272,8 @@ TEST_CASE(
 
     // A species solved afresh from the grown skeleton (its modes may differ in sign: q, v flip, w and b do
     // not) deflects the same under a uniform wind, corrected as well.
-    const trees::SpeciesBasis fresh =
-        species_of(broadleaf().transformed(Eigen::Matrix3d::Identity(), Eigen::Vector3d::Zero(), s), 6);
+    const trees::SpeciesBasis fresh = species_of(
+        test::small_broadleaf().transformed(Eigen::Matrix3d::Identity(), Eigen::Vector3d::Zero(), s), 6);
     const Eigen::Vector3d wind(9.0, 3.0, 0.0);
     const Eigen::VectorXd q_fresh = static_uniform_wind(fresh, wind);
     const Eigen::VectorXd q_grown = static_uniform_wind(grown.species()[0], wind);
@@ -295,7 +285,7 @@ TEST_CASE(
 }
 
 TEST_CASE("Forest::pack: the strong-wind arrays follow the node shapes' layout", "[strong-wind]") {
-  const trees::SpeciesBasis a = species_of(cantilever(), 4), b = species_of(broadleaf(), 6);
+  const trees::SpeciesBasis a = species_of(cantilever(), 4), b = species_of(test::small_broadleaf(), 6);
   const trees::Forest forest({a, b}, {{1, {0.0, 0.0, 0.0}, 0.0, 1.0}});
   const trees::ForestPacking p = forest.pack();
   REQUIRE(p.strong_v.size() == p.node_shapes.size());
