@@ -48,53 +48,44 @@ FW_INLINE float face_offset(int c, int a) {
   return c == a ? 0.0f : 0.5f;
 }
 
-/* Component c of the inflow turbulence at world position (x, y, z), m/s per unit sigma: the box after the
- * profile in `inflow` (interleaved u v w per point, x slowest: host/stages/FluidStages.hpp
- * inflow_buffer_values), trilinear and periodic on every axis.
- * Mirrors fluid/TurbulenceBox.cpp sample(). */
-FW_INLINE float turbulence_box_sample(const FwGrid* g, const FwStep* s, __global const float* inflow, int c,
-                                      float x, float y, float z) {
-  __global const float* box = inflow + g->nz;
-  const float p[3] = {(x - s->turbulence_offset[0]) / s->turbulence_spacing,
-                      (y - s->turbulence_offset[1]) / s->turbulence_spacing,
-                      (z - s->turbulence_offset[2]) / s->turbulence_spacing};
-  int lo[3], hi[3];
-  float t[3];
-  for (int a = 0; a < 3; ++a) {
-    const int n = s->turbulence_cells[a];
-    const float wrapped = p[a] - (float)n * floor(p[a] / (float)n); /* [0, n], n only by rounding */
-    const float f = floor(wrapped);
-    t[a] = wrapped - f;
-    lo[a] = min((int)f, n - 1);
-    hi[a] = lo[a] + 1 == n ? 0 : lo[a] + 1;
-  }
-  const int sz = 3, sy = 3 * s->turbulence_cells[2], sx = sy * s->turbulence_cells[1];
-  const int x0 = sx * lo[0], x1 = sx * hi[0], y0 = sy * lo[1], y1 = sy * hi[1], z0 = sz * lo[2],
-            z1 = sz * hi[2];
-  const float c00 = mix(box[c + x0 + y0 + z0], box[c + x1 + y0 + z0], t[0]);
-  const float c10 = mix(box[c + x0 + y1 + z0], box[c + x1 + y1 + z0], t[0]);
-  const float c01 = mix(box[c + x0 + y0 + z1], box[c + x1 + y0 + z1], t[0]);
-  const float c11 = mix(box[c + x0 + y1 + z1], box[c + x1 + y1 + z1], t[0]);
-  return mix(mix(c00, c10, t[1]), mix(c01, c11, t[1]), t[2]);
+/* The inflow profile factor at height index k (clamped to the array). */
+FW_INLINE float inflow_shape(const FwGrid* g, __global const float* inflow, int k) {
+  return inflow[clamp(k, 0, g->nz - 1)];
 }
 
-/* The prescribed value of component c at inflow face index (i,j,k) (inside the array or a ghost): the
- * ambient profile at the height index `level`, plus, when on, the turbulence at the face's world position,
- * its sigma tapered to 0 where the mean wind is (below z0 + d of a log law, in a canopy's displacement
- * layer). `inflow` holds the nz profile factors, then the turbulence box. Mirrors
- * fluid::InflowState::value(). */
+/* Where the prescribed shell (kernels/shared_types.h) starts in `inflow`: after the profile and the box. */
+FW_INLINE int inflow_shell_start(const FwGrid* g, const FwStep* s) {
+  return g->nz + 3 * s->turbulence_cells[0] * s->turbulence_cells[1] * s->turbulence_cells[2];
+}
+
+/* The shell index of face index (i, j, k) of component c in the blocks of domain face f, or -1 where they do
+ * not hold it. */
+FW_INLINE int inflow_shell_index(const FwGrid* g, int f, int c, int i, int j, int k) {
+  const int a = f / 2, b1 = a == 0 ? 1 : 0, b2 = a == 2 ? 1 : 2;
+  const int at[3] = {i, j, k};
+  const int layer = (f & 1) ? at[a] - (face_extent(g, c, a) - 1) : at[a] + FW_PAD;
+  const int t1 = at[b1] + FW_PAD, t2 = at[b2] + FW_PAD;
+  const int span1 = fw_shell_span(axis_cells(g, b1)), span2 = fw_shell_span(axis_cells(g, b2));
+  if (layer < 0 || layer >= FW_SHELL_LAYERS || t1 < 0 || t1 >= span1 || t2 < 0 || t2 >= span2) return -1;
+  return fw_shell_face_offset(g->nx, g->ny, g->nz, f) + c * fw_shell_block(g->nx, g->ny, g->nz, a) + t1 +
+         span1 * (t2 + span2 * layer);
+}
+
+/* The prescribed value of component c at face index (i, j, k) (an inflow face of the normal component, or a
+ * ghost beyond an inflow face): the ambient profile at height index k, plus, with the turbulence on, its
+ * sample at the face, read from the shell of the first inflow face (in x, y, z order) that holds the face
+ * (kernels/inflow_shell.cl fills it once per step). Every face a kernel asks for lies within FW_PAD of the
+ * array, which the shell holds; one it does not hold comes back NaN, so that the blow-up check names it.
+ * Mirrors fluid::InflowState::value(). */
 FW_INLINE float inflow_face_value(const FwGrid* g, const FwStep* s, __global const float* inflow, int c,
-                                  int i, int j, int k, int level) {
-  const float shape = inflow[clamp(level, 0, g->nz - 1)];
-  float value = s->ambient[c] * shape;
-  if (s->turbulence_sigma != 0.0f) {
-    const float x = g->origin[0] + g->h * ((float)i + face_offset(c, 0));
-    const float y = g->origin[1] + g->h * ((float)j + face_offset(c, 1));
-    const float z = g->origin[2] + g->h * ((float)k + face_offset(c, 2));
-    const float taper = clamp(shape / FW_TURBULENCE_FULL_SHAPE, 0.0f, 1.0f);
-    value += s->turbulence_sigma * taper * turbulence_box_sample(g, s, inflow, c, x, y, z);
+                                  int i, int j, int k) {
+  if (s->turbulence_sigma == 0.0f) return s->ambient[c] * inflow_shape(g, inflow, k);
+  for (int f = 0; f < 6; ++f) {
+    if (g->bc[f] != FW_BC_INFLOW) continue;
+    const int at = inflow_shell_index(g, f, c, i, j, k);
+    if (at >= 0) return inflow[inflow_shell_start(g, s) + at];
   }
-  return value;
+  return NAN;
 }
 
 /* Resolves the index *x of component c along axis a, which may lie outside the array, by the boundary
@@ -130,7 +121,7 @@ FW_INLINE float fetch_face(__global const float* q, int c, int i, int j, int k, 
   int idx[3] = {i, j, k};
   float sign = 1.0f;
   for (int a = 0; a < 3; ++a)
-    if (resolve_face_axis(g, c, a, &idx[a], &sign)) return inflow_face_value(g, s, profile, c, i, j, k, k);
+    if (resolve_face_axis(g, c, a, &idx[a], &sign)) return inflow_face_value(g, s, profile, c, i, j, k);
   return sign * q[face_index(g, c, idx[0], idx[1], idx[2])];
 }
 
@@ -212,9 +203,9 @@ FW_INLINE void interior_face_span(const FwGrid* g, int c, int j, int k, int begi
 #define FW_FLAT_FOR(idx, n) for (size_t idx = get_global_id(0); idx < (size_t)(n); idx += get_global_size(0))
 #endif
 
-/* Padded copies of a velocity component carry FW_PAD ghost layers on every side, filled by fetch_face's
- * rules (kernels/fluid_ghosts.cl), so that interpolation needs no boundary logic in its inner loop. */
-#define FW_PAD 2
+/* Padded copies of a velocity component carry FW_PAD (kernels/shared_types.h) ghost layers on every side,
+ * filled by fetch_face's rules (kernels/fluid_ghosts.cl), so that interpolation needs no boundary logic in
+ * its inner loop. */
 
 FW_INLINE int padded_extent(const FwGrid* g, int c, int a) {
   return face_extent(g, c, a) + 2 * FW_PAD;

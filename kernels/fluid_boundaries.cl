@@ -20,7 +20,7 @@ FW_INLINE float boundary_face(const FwGrid* g, const FwStep* s, int c, __global 
   if ((own == 0 || own == n) && !periodic) {
     const int face = 2 * c + (own == 0 ? 0 : 1);
     const int fluid = mask[face_cell(g, c, i, j, k)] & FW_MASK_FLUID;
-    if (g->bc[face] == FW_BC_INFLOW && fluid) return inflow_face_value(g, s, inflow, c, i, j, k, k);
+    if (g->bc[face] == FW_BC_INFLOW && fluid) return inflow_face_value(g, s, inflow, c, i, j, k);
   }
   return 0.0f;
 }

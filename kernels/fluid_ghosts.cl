@@ -13,7 +13,7 @@ FW_INLINE float x_ghost_value(const FwGrid* g, const FwStep* s, __global const f
                               int j, int k, __global const float* source, float row_sign) {
   int x = i;
   float sign = row_sign;
-  if (resolve_face_axis(g, c, 0, &x, &sign)) return inflow_face_value(g, s, profile, c, i, j, k, k);
+  if (resolve_face_axis(g, c, 0, &x, &sign)) return inflow_face_value(g, s, profile, c, i, j, k);
   return sign * source[x];
 }
 
@@ -27,8 +27,7 @@ __kernel void pad_component(const FwGrid g, const FwStep s, __global const float
   const int inflow_row =
       resolve_face_axis(&g, c, 1, &source_j, &row_sign) || resolve_face_axis(&g, c, 2, &source_k, &row_sign);
   if (inflow_row) {
-    for (int ip = begin; ip < end; ++ip)
-      row[ip] = inflow_face_value(&g, &s, profile, c, ip - FW_PAD, j, k, k);
+    for (int ip = begin; ip < end; ++ip) row[ip] = inflow_face_value(&g, &s, profile, c, ip - FW_PAD, j, k);
     return;
   }
   __global const float* source = q + face_index(&g, c, 0, source_j, source_k);

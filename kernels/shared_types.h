@@ -79,6 +79,38 @@ typedef struct FwStep {
   float turbulence_spacing;   /* box point spacing, m */
 } FwStep;
 
+/* Ghost layers on every side of a padded velocity copy (kernels/fluid_ghosts.cl, host/stages/FluidStages). */
+#define FW_PAD 2
+
+/* The prescribed inflow shell: with the inflow turbulence on, every prescribed face value of a step (the
+ * inflow faces of the normal component and the ghosts beyond an inflow face) is sampled once per step
+ * (kernels/fluid_boundaries.cl fill_inflow_shell) into this shell, which follows the turbulence box in the
+ * kernels' `inflow` buffer, so that the kernels reading those values (kernels/common.cl inflow_face_value)
+ * do not each sample the box (a random access per value into a box far larger than the caches).
+ * Layout: for each domain face f (FW_FACE_* order, normal to axis a = f / 2) and each component c, a block
+ * of FW_SHELL_LAYERS layers along a (own face index -FW_PAD .. 0 on a low face, extent - 1 .. extent - 1 +
+ * FW_PAD on a high one), each layer the face indices -FW_PAD .. n + FW_PAD of the other two axes (n their
+ * cells; the lower-numbered axis fastest). Blocks of every face are laid out, filled only on inflow faces. */
+#define FW_SHELL_LAYERS (FW_PAD + 1)
+
+/* Face indices the shell holds along an axis of `cells` cells. */
+static inline fw_int fw_shell_span(fw_int cells) {
+  return cells + 1 + 2 * FW_PAD;
+}
+
+/* Floats of one component's block on a face normal to axis a, on a grid of nx * ny * nz cells. */
+static inline fw_int fw_shell_block(fw_int nx, fw_int ny, fw_int nz, fw_int a) {
+  const fw_int b1 = a == 0 ? ny : nx, b2 = a == 2 ? ny : nz;
+  return FW_SHELL_LAYERS * fw_shell_span(b1) * fw_shell_span(b2);
+}
+
+/* Where the blocks of face f start in the shell (f = 6: the shell's length). */
+static inline fw_int fw_shell_face_offset(fw_int nx, fw_int ny, fw_int nz, fw_int f) {
+  fw_int offset = 0;
+  for (fw_int before = 0; before < f; ++before) offset += 3 * fw_shell_block(nx, ny, nz, before / 2);
+  return offset;
+}
+
 /* A gust: a Gaussian ball of extra velocity with a 1-cos envelope in time, travelling at a constant
  * velocity. A parcel moving with the ball sees its velocity rise by peak_speed * 0.5 * (1 - cos(2 pi tau/T))
  * * exp(-(r/radius)^2) along `direction` and fall back to zero at tau = T. */

@@ -11,11 +11,9 @@
 #include "fluid/SubgridStress.hpp"
 
 namespace fw::host {
-namespace {
-constexpr int kPad = 2;  // FW_PAD in kernels/common.cl
-}  // namespace
+namespace {}  // namespace
 
-std::vector<float> inflow_buffer_values(const fluid::InflowState& inflow) {
+std::vector<float> inflow_buffer_values(const fluid::InflowState& inflow, const fluid::GridSpec& spec) {
   std::vector<float> values = inflow.profile;
   if (!inflow.turbulence) return values;
   // Whatever sigma is now (it may be raised later), the box goes in with x slowest: the inflow plane is swept
@@ -31,8 +29,20 @@ std::vector<float> inflow_buffer_values(const fluid::InflowState& inflow) {
             std::size_t(i) + std::size_t(n[0]) * (std::size_t(j) + std::size_t(n[1]) * k);
         for (int c = 0; c < 3; ++c) values.push_back(source[3 * point + c]);
       }
+  values.resize(values.size() + std::size_t(fw_shell_face_offset(spec.nx, spec.ny, spec.nz, 6)), 0.0f);
   return values;
 }
+
+namespace {
+// Whether two steps prescribe the same inflow (the fields kernels/inflow_shell.cl reads).
+bool same_inflow(const FwStep& a, const FwStep& b) {
+  bool same = a.turbulence_sigma == b.turbulence_sigma && a.turbulence_spacing == b.turbulence_spacing;
+  for (int n = 0; n < 3; ++n)
+    same = same && a.ambient[n] == b.ambient[n] && a.turbulence_offset[n] == b.turbulence_offset[n] &&
+           a.turbulence_cells[n] == b.turbulence_cells[n];
+  return same;
+}
+}  // namespace
 
 void set_step_turbulence(FwStep& step, const fluid::InflowState& inflow) {
   step.turbulence_sigma = inflow.turbulent() ? inflow.turbulence_sigma : 0.0f;
@@ -71,11 +81,45 @@ FluidStages::FluidStages(ComputeContext& cc, const fluid::GridSpec& spec)
   for (int c = 0; c < 3; ++c) canopy_drag_[c] = Kernel(forces, std::string("canopy_drag_") + "uvw"[c]);
   copy_face_box_ = Kernel(forces, "copy_face_box");
   boundaries_ = Kernel(cc_.build("fluid_boundaries.cl"), "enforce_boundaries");
+  fill_inflow_shell_ = Kernel(cc_.build("inflow_shell.cl"), "fill_inflow_shell");
   cl::Program project = cc_.build("fluid_project.cl");
   divergence_ = Kernel(project, "divergence_rhs");
   max_div_ = Kernel(project, "max_divergence");
   gradient_ = Kernel(project, "subtract_gradient");
   max_abs_ = Kernel(project, "max_abs");
+}
+
+void FluidStages::set_step(const FwStep& step) {
+  shell_fresh_ = shell_fresh_ && same_inflow(step, step_);
+  step_ = step;
+  refresh_inflow_shell();
+}
+
+void FluidStages::set_profile(cl::Buffer inflow) {
+  profile_ = std::move(inflow);
+  shell_fresh_ = false;
+  refresh_inflow_shell();
+}
+
+void FluidStages::refresh_inflow_shell() {
+  if (step_.turbulence_sigma == 0.0f || shell_fresh_) return;
+  const std::size_t box =
+      3 * std::size_t(step_.turbulence_cells[0]) * step_.turbulence_cells[1] * step_.turbulence_cells[2];
+  const std::size_t needed =
+      std::size_t(spec_.nz) + box + std::size_t(fw_shell_face_offset(spec_.nx, spec_.ny, spec_.nz, 6));
+  const std::size_t held = profile_.getInfo<CL_MEM_SIZE>() / sizeof(float);
+  if (held < needed)
+    throw std::invalid_argument(fmt::format(
+        "FluidStages: the inflow buffer holds {} floats; the turbulence needs {} (profile, box and shell: "
+        "inflow_buffer_values)",
+        held, needed));
+  for (int f = 0; f < 6; ++f) {
+    if (grid_.bc[f] != FW_BC_INFLOW) continue;
+    const int a = f / 2, b1_cells = a == 0 ? spec_.ny : spec_.nx;
+    const std::size_t lines = std::size_t(fw_shell_span(b1_cells)) * FW_SHELL_LAYERS;
+    fill_inflow_shell_.set_args(grid_, step_, f, profile_).enqueue(cc_, cl::NDRange(lines, 3));
+  }
+  shell_fresh_ = true;
 }
 
 DeviceVelocity FluidStages::allocate_velocity() {
@@ -94,8 +138,8 @@ cl::NDRange FluidStages::component_rows(int c) const {
 }
 
 std::size_t FluidStages::padded_count(int c) const {
-  return std::size_t(spec_.nx + (c == 0) + 2 * kPad) * (spec_.ny + (c == 1) + 2 * kPad) *
-         (spec_.nz + (c == 2) + 2 * kPad);
+  return std::size_t(spec_.nx + (c == 0) + 2 * FW_PAD) * (spec_.ny + (c == 1) + 2 * FW_PAD) *
+         (spec_.nz + (c == 2) + 2 * FW_PAD);
 }
 
 cl::NDRange FluidStages::advect_rows(int c) const {
@@ -115,8 +159,8 @@ DeviceVelocity FluidStages::allocate_padded_velocity() {
 
 void FluidStages::enqueue_pad(int c, cl::Buffer& q, cl::Buffer& padded) {
   pad_.set_args(grid_, step_, profile_, c, q, padded)
-      .enqueue(cc_, cc_.rows(spec_.nx + (c == 0) + 2 * kPad, spec_.ny + (c == 1) + 2 * kPad,
-                             spec_.nz + (c == 2) + 2 * kPad));
+      .enqueue(cc_, cc_.rows(spec_.nx + (c == 0) + 2 * FW_PAD, spec_.ny + (c == 1) + 2 * FW_PAD,
+                             spec_.nz + (c == 2) + 2 * FW_PAD));
 }
 
 void FluidStages::enqueue_pad(DeviceVelocity& vel, DeviceVelocity& padded) {
@@ -188,19 +232,20 @@ void FluidStages::build_subgrid_kernels() {
 }
 
 void FluidStages::enqueue_eddy_viscosity(float smagorinsky_constant, float cap, cl::Buffer& mask,
-                                         DeviceVelocity& padded, cl::Buffer& nu_t) {
+                                         DeviceVelocity& vel, cl::Buffer& nu_t) {
   build_subgrid_kernels();
   const float cs_h = smagorinsky_constant * static_cast<float>(spec_.h);
-  eddy_viscosity_.set_args(grid_, cs_h * cs_h, cap, mask, padded.u, padded.v, padded.w, nu_t)
+  eddy_viscosity_.set_args(grid_, cs_h * cs_h, cap, mask, vel.u, vel.v, vel.w, nu_t)
       .enqueue(cc_, cc_.rows(spec_.nx, spec_.ny, spec_.nz));
 }
 
-void FluidStages::enqueue_diffuse_eddy(int c, bool wall_slip, cl::Buffer& mask, cl::Buffer& nu_t,
-                                       cl::Buffer& padded_q, cl::Buffer& out) {
+void FluidStages::enqueue_diffuse_eddy(bool wall_slip, cl::Buffer& mask, cl::Buffer& nu_t,
+                                       DeviceVelocity& vel, DeviceVelocity& out) {
   build_subgrid_kernels();
-  diffuse_eddy_[c]
-      .set_args(grid_, step_, int(wall_slip), mask, nu_t, padded_q, out)
-      .enqueue(cc_, component_rows(c));
+  for (int c = 0; c < 3; ++c)
+    diffuse_eddy_[c]
+        .set_args(grid_, step_, profile_, int(wall_slip), mask, nu_t, vel.component(c), out.component(c))
+        .enqueue(cc_, component_rows(c));
 }
 
 FluidStages::DeviceWallFaces FluidStages::upload_wall_faces(const WallFaces& list) {

@@ -37,10 +37,11 @@ struct CellBox {
 /// all are zero. Throws std::invalid_argument when the size is not spec.cell_count().
 CellBox nonzero_cell_box(const fluid::GridSpec& spec, const std::vector<float>& values);
 
-/// The kernels' `inflow` buffer (kernels/common.cl inflow_face_value): the nz profile factors, then, when
-/// there is a turbulence box (at any sigma, 0 included), its values (3 floats a point) with x slowest:
-/// index 3 (k + n_z (j + n_y i)) + c.
-std::vector<float> inflow_buffer_values(const fluid::InflowState& inflow);
+/// The kernels' `inflow` buffer (kernels/common.cl inflow_face_value) for a grid `spec`: the nz profile
+/// factors, then, when there is a turbulence box (at any sigma, 0 included), its values (3 floats a point)
+/// with x slowest: index 3 (k + n_z (j + n_y i)) + c, then room for the prescribed shell
+/// (kernels/shared_types.h), which FluidStages fills on the device.
+std::vector<float> inflow_buffer_values(const fluid::InflowState& inflow, const fluid::GridSpec& spec);
 /// FwStep's turbulence fields from `inflow`: sigma 0 (off) unless inflow.turbulent().
 void set_step_turbulence(FwStep& step, const fluid::InflowState& inflow);
 
@@ -49,9 +50,12 @@ class FluidStages {
   FluidStages(ComputeContext& cc, const fluid::GridSpec& spec);
 
   /// What each step passes: dt, time, the ambient wind and the inflow turbulence (FwStep), and the inflow
-  /// buffer (inflow_buffer_values: the profile's nz floats, then the turbulence box).
-  void set_step(const FwStep& step) { step_ = step; }
-  void set_profile(cl::Buffer inflow) { profile_ = std::move(inflow); }
+  /// buffer (inflow_buffer_values: the profile's nz floats, then the turbulence box and the shell). While
+  /// the turbulence is on, a new step's inflow or a new buffer re-samples the prescribed shell on the
+  /// device (once per step: every kernel then reads prescribed values from it). Throws
+  /// std::invalid_argument when the buffer is too short for the step's turbulence.
+  void set_step(const FwStep& step);
+  void set_profile(cl::Buffer inflow);
   const FwStep& step() const { return step_; }
 
   DeviceVelocity allocate_velocity();
@@ -77,15 +81,15 @@ class FluidStages {
   void enqueue_canopy_drag(cl::Buffer& drag_density, const CellBox& box, DeviceVelocity& vel,
                            DeviceVelocity& scratch);
   /// Smagorinsky eddy viscosity (fluid/SubgridStress.hpp) into nu_t (one float a cell, m^2/s):
-  /// min((C_s h)^2 |S|, cap), 0 in the solid cells of the pressure mask. Reads the padded velocity
-  /// (enqueue_pad first). cap: fluid::eddy_viscosity_cap(h, step().dt).
-  void enqueue_eddy_viscosity(float smagorinsky_constant, float cap, cl::Buffer& mask, DeviceVelocity& padded,
+  /// min((C_s h)^2 |S|, cap), 0 in the solid cells of the pressure mask, from the velocity vel (unpadded:
+  /// the strain reads no ghost but a periodic twin). cap: fluid::eddy_viscosity_cap(h, step().dt).
+  void enqueue_eddy_viscosity(float smagorinsky_constant, float cap, cl::Buffer& mask, DeviceVelocity& vel,
                               cl::Buffer& nu_t);
-  /// out = q + step().dt div(nu grad q) for component c in flux form (fluid::reference::diffuse_eddy), read
-  /// from its padded copy padded_q (the ghost rules of enqueue_diffuse); out may be the unpadded component
-  /// itself. wall_slip: no flux from a u or v face into the face below it when that one touches a solid.
-  void enqueue_diffuse_eddy(int c, bool wall_slip, cl::Buffer& mask, cl::Buffer& nu_t, cl::Buffer& padded_q,
-                            cl::Buffer& out);
+  /// out = vel + step().dt div(nu grad vel) for each component in flux form (fluid::reference::diffuse_eddy),
+  /// the ghosts by the rules of enqueue_diffuse; out must be other buffers than vel. wall_slip: no flux from
+  /// a u or v face into the face below it when that one touches a solid.
+  void enqueue_diffuse_eddy(bool wall_slip, cl::Buffer& mask, cl::Buffer& nu_t, DeviceVelocity& vel,
+                            DeviceVelocity& out);
   /// The wall stress's face list on the device, uploaded once (upload_wall_faces).
   struct DeviceWallFaces {
     int count = 0, u_count = 0;
@@ -110,6 +114,7 @@ class FluidStages {
  private:
   double max_partials(std::size_t count);
   void build_subgrid_kernels();  // on first use: a run without the subgrid or wall stage never builds them
+  void refresh_inflow_shell();   // the shell's blocks on every inflow face, unless already fresh
 
   ComputeContext& cc_;
   fluid::GridSpec spec_;
@@ -118,9 +123,10 @@ class FluidStages {
   cl::Buffer profile_, partial_;
   std::vector<float> partial_host_;
   Kernel pad_, advect_[3], maccormack_[3], forces_, vorticity_, confinement_, diffuse_, boundaries_,
-      divergence_, max_div_, gradient_, max_abs_, canopy_drag_[3], copy_face_box_;
+      divergence_, max_div_, gradient_, max_abs_, canopy_drag_[3], copy_face_box_, fill_inflow_shell_;
   Kernel eddy_viscosity_, diffuse_eddy_[3], wall_stress_faces_, wall_stress_store_;
   bool subgrid_built_ = false;
+  bool shell_fresh_ = false;  // the shell holds step_'s prescribed values
 };
 
 }  // namespace fw::host

@@ -107,7 +107,7 @@ WindGrid::WindGrid(ComputeContext& cc, WindGridSetup setup)
   } else {
     gusts_ = cc_.buffer(sizeof(FwGust));
   }
-  const auto inflow = inflow_buffer_values(inflow_state());
+  const auto inflow = inflow_buffer_values(inflow_state(), setup_.spec);
   profile_ = cc_.buffer(inflow.size() * sizeof(float));
   cc_.queue().enqueueWriteBuffer(profile_, CL_TRUE, 0, inflow.size() * sizeof(float), inflow.data());
   stages_.set_profile(profile_);
@@ -279,15 +279,13 @@ void WindGrid::apply_canopy_drag() {
 }
 
 void WindGrid::apply_subgrid_stress(double dt) {
-  // The padded copies are free once advection is done: one pad of the forced velocity feeds both the strain
-  // and the diffusion's ghosts, and the diffusion can then write the faces in place.
-  stages_.enqueue_pad(vel_, padded_);
+  // The strain and the diffusion read the forced velocity with the boundary rules for ghosts; the
+  // diffusion writes out of place (into tmp_, free once advection is done), then the fields swap.
   const auto cap = static_cast<float>(fluid::eddy_viscosity_cap(setup_.spec.h, dt));
   stages_.enqueue_eddy_viscosity(static_cast<float>(setup_.settings.smagorinsky_constant), cap,
-                                 pressure_.mask(), padded_, eddy_viscosity_);
-  for (int c = 0; c < 3; ++c)
-    stages_.enqueue_diffuse_eddy(c, wall_stress_enabled(), pressure_.mask(), eddy_viscosity_,
-                                 padded_.component(c), vel_.component(c));
+                                 pressure_.mask(), vel_, eddy_viscosity_);
+  stages_.enqueue_diffuse_eddy(wall_stress_enabled(), pressure_.mask(), eddy_viscosity_, vel_, tmp_);
+  std::swap(vel_, tmp_);
 }
 
 void WindGrid::apply_wall_stress() {

@@ -15,6 +15,7 @@
 
 using namespace fw;
 namespace ref = fw::fluid::reference;
+using B = fluid::BoundaryType;
 
 namespace {
 
@@ -31,8 +32,9 @@ struct StageFixture {
   host::FluidStages stages{cc, spec};
   cl::Buffer mask = cc.buffer(fine.cell_count());
 
-  explicit StageFixture(host::ComputeContext& c) : cc(c) {
-    stages.set_profile(test::upload_profile(cc, inflow));
+  explicit StageFixture(host::ComputeContext& c, fluid::GridSpec grid = test::mixed_boundary_spec())
+      : cc(c), spec(grid) {
+    stages.set_profile(test::upload_profile(cc, inflow, spec));
     cc.queue().enqueueWriteBuffer(mask, CL_TRUE, 0, fine.cell_count(), fine.mask.data());
     set_step(0.4f, 3.0f);
   }
@@ -55,19 +57,10 @@ struct StageFixture {
           expected.push_back(float(ref::fetch(spec, inflow, vel.component(c), c, i, j, k)));
     return expected;
   }
-  /// Inflow turbulence through the west face: a small box whose spacing (2.5 m) differs from the grid's
-  /// (2 m) and whose offset is not a whole number of points, so that every interpolation weight and the
-  /// periodic wrap (the grid is longer than the box) are exercised.
+  /// Inflow turbulence through the inflow faces (test::add_small_turbulence).
   void make_turbulent() {
-    fluid::TurbulenceBoxSpec box;
-    box.cells = {8, 8, 6};
-    box.spacing = 2.5;
-    box.spectrum = {1.0, 5.0};
-    box.seed = 3;
-    inflow.turbulence = std::make_shared<const fluid::TurbulenceBox>(box);
-    inflow.turbulence_sigma = 1.7f;
-    inflow.turbulence_offset = {13.3f, -4.1f, 0.7f};
-    stages.set_profile(test::upload_profile(cc, inflow));
+    test::add_small_turbulence(inflow);
+    stages.set_profile(test::upload_profile(cc, inflow, spec));
     set_step(0.4f, 3.0f);
   }
 };
@@ -113,6 +106,54 @@ TEST_CASE("ghosts: inflow turbulence in the ghost layers matches the reference")
       }
   }
   CHECK(largest_turbulence > 0.5);  // the ghosts do carry turbulence (sigma 1.7 m/s)
+}
+
+TEST_CASE(
+    "ghosts: the prescribed shell serves inflow on three faces, corners included, and follows the box") {
+  // Inflow west, south and top: a ghost beyond two of them (a corner) lies in two faces' shells, and the
+  // lookup must find it in one; each later step (a new box offset) must re-sample the shell.
+  auto* cc = test::device_or_skip();
+  if (!cc) return;
+  auto spec = test::mixed_boundary_spec();
+  spec.boundary[FW_FACE_SOUTH] = B::inflow;
+  spec.boundary[FW_FACE_NORTH] = B::slip;
+  spec.boundary[FW_FACE_TOP] = B::inflow;
+  StageFixture f(*cc, spec);
+  f.make_turbulent();
+  const auto vel = test::random_velocity(f.spec, 3.0, 2);
+  auto dvel = f.stages.allocate_velocity();
+  auto padded = f.stages.allocate_padded_velocity();
+  test::upload(*cc, vel, dvel);
+  for (int step = 0; step < 2; ++step) {
+    INFO("step " << step);
+    if (step == 1) {  // the box travels on
+      f.inflow.turbulence_offset = {17.9f, -2.2f, 0.7f};
+      f.set_step(0.4f, 3.4f);
+    }
+    f.stages.enqueue_pad(dvel, padded);
+    for (int c = 0; c < 3; ++c) {
+      const auto device = test::download(*cc, padded.component(c), f.stages.padded_count(c));
+      // As in the single-face test: a float trilinear sample of the box against double.
+      CHECK(test::relative_error(device, f.expected_padded(vel, c)) < 1e-5);
+    }
+    for (int c = 0; c < 3; ++c) f.stages.enqueue_enforce_boundaries(c, f.mask, dvel.component(c));
+    auto expected = vel;
+    ref::enforce_boundaries(f.spec, f.fine, f.inflow, expected);
+    CHECK(test::relative_error(test::download(*cc, dvel, f.spec), expected) < 1e-5);
+    test::upload(*cc, vel, dvel);
+  }
+}
+
+TEST_CASE("ghosts: an inflow buffer without room for the shell is refused with the class name") {
+  auto* cc = test::device_or_skip();
+  if (!cc) return;
+  StageFixture f(*cc);
+  auto turbulent = f.inflow;
+  test::add_small_turbulence(turbulent);
+  FwStep s = f.stages.step();
+  host::set_step_turbulence(s, turbulent);
+  // The fixture's buffer holds the profile only: a step with the turbulence on cannot be served.
+  CHECK_THROWS_WITH(f.stages.set_step(s), Catch::Contains("FluidStages") && Catch::Contains("inflow buffer"));
 }
 
 TEST_CASE("advect: semi-Lagrangian RK2 kernel matches the CPU reference on random fields") {

@@ -106,7 +106,7 @@ void check_projection(fluid::PressureSolverType type, const fluid::GridSpec& spe
   host::PressureSolver solver(*cc, spec, fluid::build_pressure_levels(spec, solid), settings);
   host::FluidStages stages(*cc, spec);
   const auto inflow = test::test_inflow(spec);
-  stages.set_profile(test::upload_profile(*cc, inflow));
+  stages.set_profile(test::upload_profile(*cc, inflow, spec));
   FwStep step{};
   for (int a = 0; a < 3; ++a) step.ambient[a] = inflow.ambient[a];
   stages.set_step(step);

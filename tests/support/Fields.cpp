@@ -2,8 +2,10 @@
 
 #include <algorithm>
 #include <cmath>
+#include <memory>
 
 #include "fluid/SolidMap.hpp"
+#include "fluid/TurbulenceBox.hpp"
 
 namespace fw::test {
 
@@ -96,8 +98,20 @@ fluid::MacVelocity download(host::ComputeContext& cc, host::DeviceVelocity& devi
   return out;
 }
 
-cl::Buffer upload_profile(host::ComputeContext& cc, const fluid::InflowState& inflow) {
-  const std::vector<float> values = host::inflow_buffer_values(inflow);
+void add_small_turbulence(fluid::InflowState& inflow) {
+  fluid::TurbulenceBoxSpec box;
+  box.cells = {8, 8, 6};
+  box.spacing = 2.5;
+  box.spectrum = {1.0, 5.0};
+  box.seed = 3;
+  inflow.turbulence = std::make_shared<const fluid::TurbulenceBox>(box);
+  inflow.turbulence_sigma = 1.7f;
+  inflow.turbulence_offset = {13.3f, -4.1f, 0.7f};
+}
+
+cl::Buffer upload_profile(host::ComputeContext& cc, const fluid::InflowState& inflow,
+                          const fluid::GridSpec& spec) {
+  const std::vector<float> values = host::inflow_buffer_values(inflow, spec);
   cl::Buffer buf = cc.buffer(values.size() * sizeof(float));
   upload(cc, values, buf);
   return buf;

@@ -35,7 +35,12 @@ std::vector<float> download(host::ComputeContext& cc, cl::Buffer& device, std::s
 void upload(host::ComputeContext& cc, const fluid::MacVelocity& host, host::DeviceVelocity& device);
 fluid::MacVelocity download(host::ComputeContext& cc, host::DeviceVelocity& device,
                             const fluid::GridSpec& spec);
-cl::Buffer upload_profile(host::ComputeContext& cc, const fluid::InflowState& inflow);
+/// Inflow turbulence for the kernel tests: a small box whose spacing (2.5 m) differs from the test grids'
+/// (2 m) and whose offset is not a whole number of points, so that every interpolation weight and the
+/// periodic wrap (the grids are longer than the box) are exercised; sigma 1.7 m/s.
+void add_small_turbulence(fluid::InflowState& inflow);
+cl::Buffer upload_profile(host::ComputeContext& cc, const fluid::InflowState& inflow,
+                          const fluid::GridSpec& spec);
 
 /// max |a - b| / max(max |b|, floor): the relative error of a against reference b.
 double relative_error(const std::vector<float>& a, const std::vector<float>& b, double floor = 1e-30);
