@@ -111,6 +111,16 @@ FW_INLINE int resolve_face_axis(const FwGrid* g, int c, int a, int* x, float* si
   return 0;
 }
 
+/* The index of face (0, jy, kz) of component c, the y and z indices resolved by fetch_face's rules: in the
+ * array, or wrapped on a periodic axis (*sign = -1 where a no-slip wall mirrors the row, else 1). Returns 1
+ * where the row lies across an inflow face (its values are then prescribed, inflow_face_value). */
+FW_INLINE int resolve_face_row(const FwGrid* g, int c, int jy, int kz, int* row, float* sign) {
+  *sign = 1.0f;
+  if (resolve_face_axis(g, c, 1, &jy, sign) || resolve_face_axis(g, c, 2, &kz, sign)) return 1;
+  *row = face_index(g, c, 0, jy, kz);
+  return 0;
+}
+
 /* Value of component c at face index (i,j,k), which may lie outside the array. Periodic axes wrap; an inflow
  * face gives the ambient profile (and the inflow turbulence); a no-slip wall mirrors tangential components
  * with a flipped sign (zero at the wall); other walls and outflow repeat the edge value. The axes resolve

@@ -1,7 +1,7 @@
 /* Ghost layers: a padded copy of one velocity component, FW_PAD extra layers on every side, filled by the
  * boundary rules of fetch_face (periodic wrap, inflow profile, no-slip mirror, edge repeat).
  *
- * A padded row (j, k) resolves its y and z indices once (resolve_face_axis, in fetch_face's order), so that
+ * A padded row (j, k) resolves its y and z indices once (resolve_face_row, in fetch_face's order), so that
  * the part of the row inside the array along x is a plain signed copy of one source row, which streams with
  * vector loads; only the FW_PAD ghosts at either end of a row resolve x per value. This gives exactly
  * fetch_face's value everywhere. Global range: rows over the padded array. */
@@ -22,15 +22,13 @@ __kernel void pad_component(const FwGrid g, const FwStep s, __global const float
   const int j = (int)get_global_id(1) - FW_PAD, k = (int)get_global_id(2) - FW_PAD;
   const int begin = FW_ROW_BEGIN, end = FW_ROW_END(padded_extent(&g, c, 0));
   __global float* row = padded + padded_index(&g, c, -FW_PAD, j, k);
-  int source_j = j, source_k = k;
-  float row_sign = 1.0f;
-  const int inflow_row =
-      resolve_face_axis(&g, c, 1, &source_j, &row_sign) || resolve_face_axis(&g, c, 2, &source_k, &row_sign);
-  if (inflow_row) {
+  int source_row = 0;
+  float row_sign;
+  if (resolve_face_row(&g, c, j, k, &source_row, &row_sign)) {
     for (int ip = begin; ip < end; ++ip) row[ip] = inflow_face_value(&g, &s, profile, c, ip - FW_PAD, j, k);
     return;
   }
-  __global const float* source = q + face_index(&g, c, 0, source_j, source_k);
+  __global const float* source = q + source_row;
   const int copy_lo = clamp(FW_PAD, begin, end),
             copy_hi = clamp(FW_PAD + face_extent(&g, c, 0), copy_lo, end);
   for (int ip = begin; ip < copy_lo; ++ip)

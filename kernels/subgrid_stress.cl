@@ -27,16 +27,6 @@ FW_INLINE void difference_offsets(int x, int n, int periodic, float h, int* plus
   *inverse = span > 0 ? 1.0f / ((float)span * h) : 0.0f;
 }
 
-/* The index of face (0, jy, kz) of component c, the y and z indices resolved by fetch_face's rules: in the
- * array, or wrapped on a periodic axis (*sign = -1 where a no-slip wall mirrors the row, else 1). Returns 1
- * where the row lies across an inflow face (its values are then prescribed, inflow_face_value). */
-FW_INLINE int resolve_face_row(const FwGrid* g, int c, int jy, int kz, int* row, float* sign) {
-  *sign = 1.0f;
-  if (resolve_face_axis(g, c, 1, &jy, sign) || resolve_face_axis(g, c, 2, &kz, sign)) return 1;
-  *row = face_index(g, c, 0, jy, kz);
-  return 0;
-}
-
 /* The x index of a face of component c up to two faces outside its row: wrapped on a periodic x axis
  * (one step of nx, without the integer division of a general modulo). The strain's differences never
  * leave a row along a non-periodic axis. */
