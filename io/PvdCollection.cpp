@@ -9,7 +9,10 @@
 #include <cmath>
 #include <cstdio>
 #include <cstring>
+#include <fstream>
 #include <memory>
+#include <regex>
+#include <sstream>
 #include <stdexcept>
 #include <system_error>
 #include <utility>
@@ -44,7 +47,54 @@ std::string xml_escape(std::string_view text) {
   return out;
 }
 
+std::string xml_unescape(std::string_view text) {
+  static const std::pair<std::string_view, char> entities[] = {
+      {"&amp;", '&'}, {"&lt;", '<'}, {"&gt;", '>'}, {"&quot;", '"'}, {"&apos;", '\''}};
+  std::string out;
+  for (std::size_t n = 0; n < text.size();) {
+    bool replaced = false;
+    for (const auto& [entity, c] : entities)
+      if (text.substr(n, entity.size()) == entity) {
+        out += c, n += entity.size(), replaced = true;
+        break;
+      }
+    if (!replaced) out += text[n++];
+  }
+  return out;
+}
+
 }  // namespace detail
+
+std::vector<PvdCollection::Entry> read_pvd(const std::filesystem::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw std::runtime_error(fmt::format("read_pvd: {}: cannot open the file", path.string()));
+  std::ostringstream text;
+  text << in.rdbuf();
+  const std::string content = text.str();
+  // One DataSet element per frame, attributes in any order (PvdCollection writes timestep, group, part,
+  // file).
+  const std::regex element(R"re(<DataSet\s([^>]*)/>)re");
+  const std::regex timestep(R"re(\btimestep="([^"]*)")re"), file(R"re(\bfile="([^"]*)")re");
+  std::vector<PvdCollection::Entry> entries;
+  for (auto it = std::sregex_iterator(content.begin(), content.end(), element); it != std::sregex_iterator();
+       ++it) {
+    const std::string attributes = (*it)[1].str();
+    std::smatch t, f;
+    if (!std::regex_search(attributes, t, timestep) || !std::regex_search(attributes, f, file) ||
+        f[1].str().empty())
+      throw std::runtime_error(fmt::format("read_pvd: {}: DataSet {}: expected timestep and file attributes",
+                                           path.string(), entries.size()));
+    char* end = nullptr;
+    const std::string time_text = t[1].str();
+    const double time = std::strtod(time_text.c_str(), &end);
+    if (end == time_text.c_str() || *end != '\0' || !std::isfinite(time))
+      throw std::runtime_error(
+          fmt::format("read_pvd: {}: DataSet {}: timestep: expected a finite number, got '{}'", path.string(),
+                      entries.size(), time_text));
+    entries.push_back({time, detail::xml_unescape(f[1].str())});
+  }
+  return entries;
+}
 
 PvdCollection::PvdCollection(std::filesystem::path path) : path_(std::move(path)) {}
 

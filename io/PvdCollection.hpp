@@ -45,7 +45,15 @@ class PvdCollection {
   std::vector<Entry> entries_;
 };
 
+/// The entries of a .pvd written by PvdCollection (its DataSet elements' timestep and file, in file order),
+/// for the readers of a run folder (viz/). Throws std::runtime_error("read_pvd: PATH: ...") when the file
+/// cannot be read or a DataSet lacks a finite timestep or a file.
+std::vector<PvdCollection::Entry> read_pvd(const std::filesystem::path& path);
+
 namespace detail {
+
+/// The inverse of xml_escape for the five entities it writes.
+std::string xml_unescape(std::string_view text);
 
 /// `text` with &, <, >, " and ' replaced by XML entities, for attribute values.
 std::string xml_escape(std::string_view text);

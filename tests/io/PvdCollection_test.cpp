@@ -121,3 +121,24 @@ TEST_CASE("PvdCollection: a missing folder throws runtime_error naming the path"
   CHECK(datasets(path) == List{{0.0, "trees/trees_000000.vtp"}});
   CHECK_FALSE(has_temporary(path.parent_path()));
 }
+
+TEST_CASE("PvdCollection: read_pvd gives back what add wrote, times bit for bit and names unescaped",
+          "[output]") {
+  fw::test::TempDir dir("fw_out");
+  const fs::path path = fs::path(dir.path()) / "trees.pvd";
+  fw::io::PvdCollection pvd(path);
+  pvd.add(0.1, "trees/a&b<'\">.vtp");
+  pvd.add(1.0 / 3.0, "trees/trees_000001.vtp");
+  const auto entries = fw::io::read_pvd(path);
+  REQUIRE(entries.size() == 2);
+  CHECK(entries[0].time == 0.1);  // exact: the shortest round-trip text
+  CHECK(entries[0].file == "trees/a&b<'\">.vtp");
+  CHECK(entries[1].time == 1.0 / 3.0);
+  CHECK(entries[1].file == "trees/trees_000001.vtp");
+
+  std::ofstream(path)
+      << "<VTKFile><Collection><DataSet timestep=\"soon\" file=\"x.vti\"/></Collection></VTKFile>";
+  CHECK_THROWS_WITH(fw::io::read_pvd(path),
+                    Catch::Contains("timestep: expected a finite number, got 'soon'"));
+  CHECK_THROWS_WITH(fw::io::read_pvd(fs::path(dir.path()) / "none.pvd"), Catch::Contains("cannot open"));
+}
