@@ -44,6 +44,8 @@ packages=(
   libeigen3-dev libspectra-dev libglm-dev libmuparser-dev libfftw3-dev
   # output: VTK for ParaView, OpenVDB for Houdini/Blender (its CMake module needs boost-iostreams)
   libvtk9-dev libopenvdb-dev libboost-iostreams-dev
+  # pictures (viz/): cairo draws without an X server or GL; DejaVu is the face of their text
+  libcairo2-dev fonts-dejavu-core
   # command line, config, logging, tests
   libcli11-dev libyaml-cpp-dev libfmt-dev libspdlog-dev catch2
 )

@@ -1,6 +1,8 @@
 #include "host/app/OutputWriters.hpp"
 
 #include <algorithm>
+#include <array>
+#include <cmath>
 #include <string>
 
 #include "io/writers/LeavesVtkWriter.hpp"
@@ -8,6 +10,7 @@
 #include "io/writers/TreesVtkWriter.hpp"
 #include "io/writers/WindVdbWriter.hpp"
 #include "io/writers/WindVtkWriter.hpp"
+#include "viz/ViewScriptWriter.hpp"
 
 namespace fw::host {
 
@@ -33,6 +36,28 @@ io::RunManifest manifest_of(const SimulationPlan& plan, const DeviceInfo& device
   m.two_way_coupling = !plan.coupling.drag_density.empty();
   m.leaves = plan.leaf_count > 0;
   return m;
+}
+
+// view.py's domain, slice and speed scale; which collections it opens is decided by make_writers.
+viz::ViewScriptSettings view_of(const SimulationPlan& plan) {
+  const fluid::GridSpec& spec = plan.wind.spec;
+  viz::ViewScriptSettings v;
+  v.scenario_name = plan.scenario.name;
+  v.origin = spec.origin;
+  v.size = {spec.nx * spec.h, spec.ny * spec.h, spec.nz * spec.h};
+  v.cell_size = spec.h;
+  v.slice_height = viz::default_slice_height(v.origin, v.size, v.cell_size);
+  // The speed scale starts at 0 to the ambient wind's peak over the run (at its reference height).
+  if (plan.ambient_wind) {
+    constexpr int kSamples = 256;
+    double peak = 0.0;  // m/s
+    for (int n = 0; n <= kSamples; ++n) {
+      const std::array<double, 3> u = plan.ambient_wind(plan.end_time * n / kSamples);
+      peak = std::max(peak, std::sqrt(u[0] * u[0] + u[1] * u[1] + u[2] * u[2]));
+    }
+    if (peak > 0.0) v.speed_range = std::array<double, 2>{0.0, peak};
+  }
+  return v;
 }
 
 }  // namespace
@@ -63,6 +88,11 @@ std::vector<std::unique_ptr<io::FrameWriter>> make_writers(const SimulationPlan&
   if (!probe_names.empty() || !tip_trees.empty())
     writers.push_back(
         std::make_unique<io::ProbesWriter>(directory, std::move(probe_names), tip_trees, leaves_present));
+  viz::ViewScriptSettings view = view_of(plan);
+  view.wind = out.vtk_wind;
+  view.trees = out.vtk_trees && trees_present;
+  view.leaves = out.vtk_leaves && leaves_present;
+  writers.push_back(std::make_unique<viz::ViewScriptWriter>(directory, std::move(view)));
   return writers;
 }
 

@@ -15,8 +15,9 @@
 
 namespace fw::host {
 
-/// In order: the manifest (run.json, scenario copy), wind VTK, trees VTK, VDB, probes; each only when the
-/// settings enable it (probes when there are probe points or tracked trees: tip_trees, the instance ids).
+/// In order: the manifest (run.json, scenario copy), wind VTK, trees VTK, VDB, probes, view.py; each only
+/// when the settings enable it (probes when there are probe points or tracked trees: tip_trees, the instance
+/// ids).
 std::vector<std::unique_ptr<io::FrameWriter>> make_writers(const SimulationPlan& plan,
                                                            const std::filesystem::path& directory,
                                                            const DeviceInfo& device,

@@ -4,7 +4,9 @@
 
 #include <array>
 #include <cstdint>
+#include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "trees/Material.hpp"
@@ -65,6 +67,38 @@ struct RunOptions {
 int run_scenario(const RunOptions& options, const GlobalOptions& global);
 /// `forestwind check`: validates and summarises without a device.
 int run_check(const std::string& scenario_path);
+
+struct RenderOptions {
+  std::string folder;                 // DIR: a run's output folder
+  std::optional<int> frame;           // --frame K (0-based); default: the last complete frame
+  std::optional<double> time;         // --time T, s: the nearest frame
+  std::string view = "top";           // --view top|side|perspective
+  std::string field = "speed";        // --field NAME
+  std::optional<double> height;       // --height Z, m: the slice's height (world z)
+  std::vector<double> range;          // --range LO HI: the field's colour range
+  bool arrows = false;                // --arrows
+  bool all = false;                   // --all: every frame, -o is a folder
+  bool mp4 = false;                   // --mp4 (with --all): also a movie, when ffmpeg is installed
+  int width = 1280, height_px = 800;  // --size WxH, px
+  std::string output;                 // -o FILE.png (or DIR with --all)
+  bool quiet = false;
+};
+
+/// `forestwind render`: 0 written, 2 bad input (folder, frame, field, view), 1 a frame that does not read.
+int run_render(const RenderOptions& options);
+
+struct PlotOptions {
+  std::string folder;     // DIR: a run's output folder
+  bool spectrum = false;  // --spectrum: add the probes' power spectra
+  std::string output;     // -o FILE.png
+  bool quiet = false;
+};
+
+/// `forestwind plot`: 0 written, 2 bad input (no probes.csv, too few samples for spectra).
+int run_plot(const PlotOptions& options);
+
+/// Parses "WxH" (e.g. "1280x800"), px. Throws std::invalid_argument naming the text.
+std::pair<int, int> parse_size(const std::string& text);
 
 /// Parses "NXxNYxNZ" (e.g. "128x128x64"). Throws std::invalid_argument naming the text.
 std::array<int, 3> parse_grid(const std::string& text);

@@ -178,10 +178,11 @@ int run_scenario(const RunOptions& options, const GlobalOptions& global) {
                              summary.frames, summary.interrupted ? " (interrupted)" : "");
     std::cout << fmt::format("outputs in {}\n", directory.string());
     std::cout << fmt::format(
-        "  ParaView: paraview {0}/wind.pvd {0}/trees.pvd{1}   (color the wind by speed, slice it; trees are "
-        "polylines: Tube filter by radius{2})\n",
-        directory.string(), leaves ? fmt::format(" {}/leaves.pvd", directory.string()) : "",
-        leaves ? "; leaves are points: Glyph filter, docs/leaves.md" : "");
+        "  ParaView: paraview --script={}/view.py   (a speed slice, the trees as tubes{})\n",
+        directory.string(), leaves ? ", the leaves as points" : "");
+    std::cout << fmt::format(
+        "  pictures: forestwind render {0} -o {0}/frame.png   forestwind plot {0} -o {0}/probes.png\n",
+        directory.string());
     if (scenario.output.vdb_enabled) {
       std::string grids;
       for (const auto& grid : scenario.output.vdb_grids)

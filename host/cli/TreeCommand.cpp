@@ -18,6 +18,7 @@
 #include "trees/Skeleton.hpp"
 #include "trees/TreeFile.hpp"
 #include "trees/TreeGenerator.hpp"
+#include "viz/ModeShapes.hpp"
 
 namespace fw::cli {
 
@@ -104,6 +105,8 @@ int run_tree_modes(const TreeModesOptions& options) {
     for (int i = 0; i < modes.mode_count(); ++i)
       shapes.push_back({hz(i), zeta(i), displacements[std::size_t(i)]});
     io::write_modes_vtp(dir / "modes.vtp", skeleton, shapes);
+    viz::draw_mode_shapes(skeleton, shapes, std::filesystem::path(options.file).filename().string())
+        .write_png(dir / "modes.png");
   }
 
   const trees::ModalStatus& status = modes.status();
@@ -151,8 +154,8 @@ int run_tree_modes(const TreeModesOptions& options) {
       status.converged, status.requested, status.iterations, status.operations, status.max_residual, seconds);
   if (!options.output_dir.empty()) {
     std::cout << fmt::format(
-        "wrote {0}/skeleton.vtp and {0}/modes.vtp; in ParaView open modes.vtp, apply Warp By Vector and pick "
-        "mode_01, mode_02, ... as the vectors\n",
+        "wrote {0}/skeleton.vtp, {0}/modes.vtp and {0}/modes.png; in ParaView open modes.vtp, apply Warp By "
+        "Vector and pick mode_01, mode_02, ... as the vectors\n",
         options.output_dir);
   }
   return 0;

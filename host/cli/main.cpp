@@ -4,6 +4,7 @@
 
 #include <iostream>
 #include <stdexcept>
+#include <tuple>
 
 #include "host/cli/Commands.hpp"
 #include "host/runtime/ClError.hpp"
@@ -89,6 +90,38 @@ int main(int argc, char** argv) {
   tree_modes->add_flag("--json", modes.json, "one JSON object on stdout");
   tree_modes->add_option("-o,--output", modes.output_dir, "folder for skeleton.vtp and modes.vtp");
 
+  cli::RenderOptions render;
+  std::string render_size;
+  auto* render_cmd = app.add_subcommand(
+      "render", "a picture of a run's frame: a wind slice, the trees, the leaves and the solids (PNG)");
+  render_cmd->add_option("folder", render.folder, "DIR: the run's output folder")->required();
+  auto* render_frame =
+      render_cmd->add_option("--frame", render.frame, "frame number, 0-based (default: the last)");
+  render_cmd->add_option("--time", render.time, "simulated time, s: the nearest frame")
+      ->excludes(render_frame);
+  render_cmd->add_option("--view", render.view, "top | side | perspective")->capture_default_str();
+  render_cmd->add_option("--field", render.field, "wind field: speed, velocity_x, pressure, vorticity, ...")
+      ->capture_default_str();
+  render_cmd->add_option("--height", render.height,
+                         "height of the horizontal slice, m (default: 10 m above the floor)");
+  render_cmd->add_option("--range", render.range, "colour range of the field: LO HI")->expected(2);
+  render_cmd->add_flag("--arrows", render.arrows, "draw the wind in the slice's plane as arrows");
+  auto* render_all =
+      render_cmd->add_flag("--all", render.all, "every frame: -o names a folder of frame_NNNNNN.png");
+  render_cmd->add_flag("--mp4", render.mp4, "with --all: also an MP4 when ffmpeg is installed")
+      ->needs(render_all);
+  render_cmd->add_option("--size", render_size, "picture size WxH, px (default 1280x800)");
+  render_cmd->add_option("-o,--output", render.output, "FILE.png, or DIR with --all")->required();
+  render_cmd->add_flag("--quiet", render.quiet, "no summary line");
+
+  cli::PlotOptions plot;
+  auto* plot_cmd =
+      app.add_subcommand("plot", "a run's probes and tracked tree tips over time, and spectra (PNG)");
+  plot_cmd->add_option("folder", plot.folder, "DIR: the run's output folder")->required();
+  plot_cmd->add_flag("--spectrum", plot.spectrum, "add the power spectrum of each probe's wind speed");
+  plot_cmd->add_option("-o,--output", plot.output, "FILE.png")->required();
+  plot_cmd->add_flag("--quiet", plot.quiet, "no summary line");
+
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -102,6 +135,11 @@ int main(int argc, char** argv) {
     if (check_cmd->parsed()) return cli::run_check(check_path);
     if (tree_generate->parsed()) return cli::run_tree_generate(generate);
     if (tree_modes->parsed()) return cli::run_tree_modes(modes);
+    if (plot_cmd->parsed()) return cli::run_plot(plot);
+    if (render_cmd->parsed()) {
+      if (!render_size.empty()) std::tie(render.width, render.height_px) = cli::parse_size(render_size);
+      return cli::run_render(render);
+    }
     if (bench_cmd->parsed()) {
       for (const auto& g : grids) bench.grids.push_back(cli::parse_grid(g));
       return cli::run_bench(bench, global);

@@ -2,7 +2,8 @@
 # bash interrupt.sh FORESTWIND WORK
 #
 # Ctrl-C during `forestwind run`: the run stops after the current step with exit code 130, run.json says
-# "interrupted", and every frame the .pvd files list is a whole VTK file (it ends with </VTKFile>).
+# "interrupted", and every frame the .pvd files list is a whole VTK file (it ends with </VTKFile>);
+# `forestwind render` draws the folder's last frame.
 set -u
 forestwind=$1
 work=$2
@@ -13,23 +14,7 @@ fail() {
   exit 1
 }
 
-# Long enough (simulated time) that it is still running when the signal comes.
-cat >"$work/long.yaml" <<'EOF'
-scenario: long_run
-time: {end: 100000.0, dt: 0.05}
-domain: {size: [32, 16, 16], cell_size: 2.0}
-wind: {speed: 5.0, direction: 270.0}
-forest:
-  species:
-    - name: palm
-      skeleton: {generate: {preset: palm, height: 8.0}}
-      modes: {count: 6}
-  trees:
-    - {species: palm, position: [12, 8]}
-output: {interval: 0.1}
-EOF
-
-"$forestwind" run "$work/long.yaml" -o "$work/out" --quiet >"$work/stdout" 2>"$work/stderr" &
+"$forestwind" run "$(dirname "$0")/palm_run.yaml" -o "$work/out" --quiet >"$work/stdout" 2>"$work/stderr" &
 pid=$!
 # Wait for three frames, so the signal lands mid-run (at most 300 s on a slow machine).
 for _ in $(seq 1 3000); do
@@ -57,5 +42,11 @@ done
 # No temporary file is left behind.
 leftovers=$(find "$work/out" -name '*.tmp*' | head -n 1)
 [ -z "$leftovers" ] || fail "a temporary file is left: $leftovers"
+# The interrupted folder renders: its last listed frame is complete, so that is the one drawn.
+frames=$(grep -c 'DataSet ' "$work/out/wind.pvd")
+"$forestwind" render "$work/out" -o "$work/last.png" >"$work/render_out" 2>"$work/render_err" ||
+  fail "render of the interrupted folder failed: $(cat "$work/render_err")"
+grep -q "frame $((frames - 1))," "$work/render_out" || fail "render did not draw the last frame: $(cat "$work/render_out")"
+[ -s "$work/last.png" ] || fail "render wrote no picture"
 echo "interrupted with code 130; $(grep -c 'DataSet ' "$work/out/wind.pvd") complete wind frames"
 rm -rf "$work"

@@ -1,0 +1,50 @@
+// `forestwind plot`: a run's probes over time, and their spectra (DESIGN.md, "Command line";
+// viz/ProbePlots.hpp).
+#include <fmt/format.h>
+
+#include <filesystem>
+#include <iostream>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "host/cli/Commands.hpp"
+#include "io/PvdCollection.hpp"
+#include "viz/ProbePlots.hpp"
+#include "viz/ProbeTable.hpp"
+#include "viz/RunFolder.hpp"
+
+namespace fw::cli {
+
+int run_plot(const PlotOptions& options) {
+  namespace fs = std::filesystem;
+  const fs::path folder = options.folder;
+  if (!fs::is_directory(folder))
+    throw std::invalid_argument(fmt::format("plot: {}: expected a run's output folder", folder.string()));
+  const fs::path csv = folder / "probes.csv";
+  if (!fs::is_regular_file(csv))
+    throw std::invalid_argument(fmt::format(
+        "plot: {}: no probes.csv: the scenario has no output.probes and tracks no trees", folder.string()));
+  const viz::ProbeTable table = viz::read_probe_table(csv);
+  // The frames' times, from whichever collection the run wrote.
+  std::vector<double> frame_times;
+  std::string scenario = fs::absolute(folder).lexically_normal().filename().string();
+  try {
+    const viz::RunFolder run(folder);
+    scenario = run.scenario_name();
+    for (const auto& frame : run.frames()) frame_times.push_back(frame.time);
+  } catch (const std::invalid_argument&) {
+    // probes without frames: nothing to mark
+  }
+  viz::PlotSettings settings;
+  settings.spectrum = options.spectrum;
+  const viz::ProbePlot plot = viz::plot_probes(table, frame_times, scenario, settings);
+  plot.canvas.write_png(options.output);
+  if (!options.quiet)
+    std::cout << fmt::format("wrote {} ({} x {} px: {} probes, {} trees, {} samples{})\n", options.output,
+                             plot.canvas.width(), plot.canvas.height(), table.probes.size(),
+                             table.tips.size(), table.time.size(), options.spectrum ? ", spectra" : "");
+  return 0;
+}
+
+}  // namespace fw::cli

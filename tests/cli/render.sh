@@ -1,0 +1,52 @@
+#!/usr/bin/env bash
+# bash render.sh FORESTWIND WORK
+#
+# `forestwind render` and `forestwind plot` on a real (short) run: pictures written, and bad input exiting
+# with code 2, a message that lists what there is, and no picture.
+set -u
+forestwind=$1
+work=$2
+rm -rf "$work"
+mkdir -p "$work"
+fail() {
+  echo "FAIL: $*" >&2
+  exit 1
+}
+# expect CODE NEEDLE ARGS...: forestwind ARGS exits with CODE and its output (stdout and stderr) holds NEEDLE.
+expect() {
+  local code=$1 needle=$2
+  shift 2
+  "$forestwind" "$@" >"$work/out.txt" 2>&1
+  local got=$?
+  [ "$got" -eq "$code" ] || fail "forestwind $* exited with $got, expected $code: $(cat "$work/out.txt")"
+  grep -qF -- "$needle" "$work/out.txt" || fail "forestwind $* did not say '$needle': $(cat "$work/out.txt")"
+}
+
+"$forestwind" run "$(dirname "$0")/palm_run.yaml" --end 1.0 -o "$work/out" --quiet || fail "the run failed"
+
+# Pictures.
+expect 0 "frame 4, t = 1 s" render "$work/out" -o "$work/last.png"
+[ -s "$work/last.png" ] || fail "render wrote no picture"
+for view in top side perspective; do
+  expect 0 "wrote" render "$work/out" --view "$view" --arrows --frame 2 -o "$work/$view.png"
+done
+expect 0 "frame 1, t = 0.25 s" render "$work/out" --time 0.3 --field velocity_z --size 800x600 -o "$work/w.png"
+expect 0 "wrote 5 pictures" render "$work/out" --all -o "$work/frames"
+[ -s "$work/frames/frame_000004.png" ] || fail "render --all did not write the last frame"
+if command -v ffmpeg >/dev/null; then
+  expect 0 "palm_run.mp4" render "$work/out" --all --mp4 -o "$work/movie"
+else
+  expect 0 "ffmpeg is not installed" render "$work/out" --all --mp4 -o "$work/movie"
+fi
+expect 0 "1 probes, 1 trees, 5 samples" plot "$work/out" -o "$work/probes.png"
+[ -s "$work/probes.png" ] || fail "plot wrote no picture"
+
+# Bad input: exit 2, what there is, nothing written.
+expect 2 "frames 0..4 (t = 0 .. 1 s)" render "$work/out" --frame 5 -o "$work/bad.png"
+expect 2 "choose one of velocity, velocity_x" render "$work/out" --field temperature -o "$work/bad.png"
+expect 2 "choose one of top, side, perspective" render "$work/out" --view diagonal -o "$work/bad.png"
+expect 2 "expected a run's output folder" render "$work/nowhere" -o "$work/bad.png"
+expect 2 "a spectrum needs at least 256" plot "$work/out" --spectrum -o "$work/bad.png"
+[ ! -e "$work/bad.png" ] || fail "a refused command wrote a picture"
+echo "render and plot: pictures written, bad input refused"
+rm -rf "$work"
