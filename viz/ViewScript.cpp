@@ -15,7 +15,6 @@ namespace fw::viz {
 
 namespace {
 
-// The anemometer height above the ground (WMO): where wind speeds are usually quoted.
 // A double as a Python literal: the shortest text that reads back as the same double.
 std::string python_number(double value, const char* what) {
   if (!std::isfinite(value))
@@ -310,7 +309,6 @@ Render(view)
 )PY";
 
 }  // namespace
-
 
 std::string python_string_literal(std::string_view text) {
   std::string out = "'";
