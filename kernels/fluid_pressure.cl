@@ -3,7 +3,8 @@
  *
  * (A phi)_c = popcount(open) phi_c - sum over open faces of phi_neighbour, with phi = 0 across outflow
  * faces and wrap-around on periodic axes (see fluid/PressureLevels.hpp). Reductions write one partial
- * value per work-item; the host adds them in double precision, in a fixed order (deterministic).
+ * value per work-group (common.cl); the host adds them in double precision, in a fixed order
+ * (deterministic).
  * Reference: fluid/ReferenceStages.cpp apply_operator, residual, jacobi_sweep, red_black_sweep (as passes),
  * restrict_residual, prolong_add.
  */
@@ -130,11 +131,12 @@ FW_INLINE float residual_cell(const FwLevel* L, __global const uchar* mask, __gl
   return b[id] - (diagonal(m) * phi[id] - open_neighbour_sum(L, phi, i, j, k, id, m));
 }
 
-/* r = b - A phi; partial[item] = sum of r^2 over the item's cells. */
+/* r = b - A phi; partial[group] = sum of r^2 over the item's cells. */
 __kernel void residual(const FwLevel L, __global const uchar* mask, __global const float* b,
                        __global const float* phi, __global float* r, __global float* partial) {
+  FW_GROUP_SCRATCH;
   const int j = get_global_id(1), k = get_global_id(2);
-  const int begin = FW_ROW_BEGIN, end = FW_ROW_END(L.nx);
+  const int begin = FW_ROW_BEGIN, end = row_inside(L.ny) ? FW_ROW_END(L.nx) : begin;
   int lo, hi;
   interior_span(&L, j, k, begin, end, &lo, &hi);
   float sum = 0.0f;
@@ -156,7 +158,7 @@ __kernel void residual(const FwLevel L, __global const uchar* mask, __global con
     r[level_index(&L, i, j, k)] = res;
     sum += res * res;
   }
-  partial[row_item_index()] = sum;
+  FW_GROUP_SUM(sum, partial);
 }
 
 /* (A d) of one cell with the general neighbour sum. */
@@ -168,11 +170,12 @@ FW_INLINE float operator_cell(const FwLevel* L, __global const uchar* mask, __gl
   return diagonal(m) * d[id] - open_neighbour_sum(L, d, i, j, k, id, m);
 }
 
-/* q = A d; partial[item] = sum of d q. */
+/* q = A d; partial[group] = sum of d q. */
 __kernel void apply_operator_dot(const FwLevel L, __global const uchar* mask, __global const float* d,
                                  __global float* q, __global float* partial) {
+  FW_GROUP_SCRATCH;
   const int j = get_global_id(1), k = get_global_id(2);
-  const int begin = FW_ROW_BEGIN, end = FW_ROW_END(L.nx);
+  const int begin = FW_ROW_BEGIN, end = row_inside(L.ny) ? FW_ROW_END(L.nx) : begin;
   int lo, hi;
   interior_span(&L, j, k, begin, end, &lo, &hi);
   float sum = 0.0f;
@@ -195,7 +198,7 @@ __kernel void apply_operator_dot(const FwLevel L, __global const uchar* mask, __
     q[id] = out;
     sum += d[id] * out;
   }
-  partial[row_item_index()] = sum;
+  FW_GROUP_SUM(sum, partial);
 }
 
 /* Coarse right-hand side: scale * mean of the fine residual r (from the residual kernel) over each coarse
@@ -233,19 +236,21 @@ __kernel void prolong_add(const FwLevel F, const FwLevel C, __global const uchar
   }
 }
 
-/* x += alpha d; r -= alpha q; partial[item] = sum of r^2. */
+/* x += alpha d; r -= alpha q; partial[group] = sum of r^2. */
 __kernel void cg_update(const FwLevel L, const float alpha, __global const float* d, __global const float* q,
                         __global float* x, __global float* r, __global float* partial) {
+  FW_GROUP_SCRATCH;
   const int j = get_global_id(1), k = get_global_id(2);
+  const int end = row_inside(L.ny) ? FW_ROW_END(L.nx) : FW_ROW_BEGIN;
   float sum = 0.0f;
-  for (int i = FW_ROW_BEGIN; i < FW_ROW_END(L.nx); ++i) {
+  for (int i = FW_ROW_BEGIN; i < end; ++i) {
     const int id = level_index(&L, i, j, k);
     x[id] += alpha * d[id];
     const float res = r[id] - alpha * q[id];
     r[id] = res;
     sum += res * res;
   }
-  partial[row_item_index()] = sum;
+  FW_GROUP_SUM(sum, partial);
 }
 
 /* d = z + beta d. */
@@ -257,16 +262,18 @@ __kernel void cg_direction(const FwLevel L, const float beta, __global const flo
   }
 }
 
-/* partial[item] = sum of a b. */
+/* partial[group] = sum of a b. */
 __kernel void dot_product(const FwLevel L, __global const float* a, __global const float* b,
                           __global float* partial) {
+  FW_GROUP_SCRATCH;
   const int j = get_global_id(1), k = get_global_id(2);
+  const int end = row_inside(L.ny) ? FW_ROW_END(L.nx) : FW_ROW_BEGIN;
   float sum = 0.0f;
-  for (int i = FW_ROW_BEGIN; i < FW_ROW_END(L.nx); ++i) {
+  for (int i = FW_ROW_BEGIN; i < end; ++i) {
     const int id = level_index(&L, i, j, k);
     sum += a[id] * b[id];
   }
-  partial[row_item_index()] = sum;
+  FW_GROUP_SUM(sum, partial);
 }
 
 /* x += value on fluid cells (removes the mean of b when A is singular). */
@@ -279,14 +286,16 @@ __kernel void add_on_fluid(const FwLevel L, __global const uchar* mask, const fl
   }
 }
 
-/* partial[item] = sum of x over fluid cells. */
+/* partial[group] = sum of x over fluid cells. */
 __kernel void sum_on_fluid(const FwLevel L, __global const uchar* mask, __global const float* x,
                            __global float* partial) {
+  FW_GROUP_SCRATCH;
   const int j = get_global_id(1), k = get_global_id(2);
+  const int end = row_inside(L.ny) ? FW_ROW_END(L.nx) : FW_ROW_BEGIN;
   float sum = 0.0f;
-  for (int i = FW_ROW_BEGIN; i < FW_ROW_END(L.nx); ++i) {
+  for (int i = FW_ROW_BEGIN; i < end; ++i) {
     const int id = level_index(&L, i, j, k);
     if (mask[id] & FW_MASK_FLUID) sum += x[id];
   }
-  partial[row_item_index()] = sum;
+  FW_GROUP_SUM(sum, partial);
 }

@@ -20,15 +20,17 @@ __kernel void divergence_rhs(const FwGrid g, __global const uchar* mask, __globa
   }
 }
 
-/* partial[item] = max over this work-item's fluid cells of |div u|, 1/s. */
+/* partial[group] = max over the work-group's fluid cells of |div u|, 1/s. */
 __kernel void max_divergence(const FwGrid g, __global const uchar* mask, __global const float* u,
                              __global const float* v, __global const float* w, __global float* partial) {
+  FW_GROUP_SCRATCH;
   const int j = get_global_id(1), k = get_global_id(2);
+  const int end = row_inside(g.ny) ? FW_ROW_END(g.nx) : FW_ROW_BEGIN;
   float m = 0.0f;
-  for (int i = FW_ROW_BEGIN; i < FW_ROW_END(g.nx); ++i)
+  for (int i = FW_ROW_BEGIN; i < end; ++i)
     if (mask[cell_index(&g, i, j, k)] & FW_MASK_FLUID)
       m = fmax(m, fabs(net_outflow(&g, u, v, w, i, j, k)) / g.h);
-  partial[row_item_index()] = m;
+  FW_GROUP_MAX(m, partial);
 }
 
 /* q (component c) -= (phi_high - phi_low) / h on faces open in the mask. Outside the domain phi is the
@@ -72,14 +74,15 @@ __kernel void subtract_gradient(const FwGrid g, const int c, __global const ucha
   for (int i = hi; i < end; ++i) q[face_index(&g, c, i, j, k)] -= gradient_face(&g, c, mask, phi, i, j, k);
 }
 
-/* partial[item] = max |q| over this work-item's run of an extent_x * ny * nz array (NaN propagates). */
-__kernel void max_abs(const int extent_x, __global const float* q, __global float* partial) {
+/* partial[group] = max |q| over the work-group's runs of an extent_x * extent_y * nz array (NaN propagates). */
+__kernel void max_abs(const int extent_x, const int extent_y, __global const float* q, __global float* partial) {
+  FW_GROUP_SCRATCH;
   const int j = get_global_id(1), k = get_global_id(2);
-  const int ny = get_global_size(1);
+  const int end = row_inside(extent_y) ? FW_ROW_END(extent_x) : FW_ROW_BEGIN;
   float m = 0.0f;
-  for (int i = FW_ROW_BEGIN; i < FW_ROW_END(extent_x); ++i) {
-    const float a = fabs(q[i + extent_x * (j + ny * k)]);
+  for (int i = FW_ROW_BEGIN; i < end; ++i) {
+    const float a = fabs(q[i + extent_x * (j + extent_y * k)]);
     m = (a > m || isnan(a)) ? a : m;
   }
-  partial[row_item_index()] = m;
+  FW_GROUP_MAX(m, partial);
 }

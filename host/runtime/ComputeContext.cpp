@@ -2,12 +2,40 @@
 
 #include <fmt/format.h>
 
+#include <cstdlib>
+#include <stdexcept>
+#include <string>
+
 #include "host/runtime/ClError.hpp"
 #include "host/runtime/KernelSources.hpp"
 
 namespace fw::host {
 
-ComputeContext::ComputeContext(DeviceInfo device, bool profiling) : device_(std::move(device)) {
+namespace {
+
+// Work-group shape of the reductions (header): 8 rows on the rows mapping (few groups, so PoCL's per-group
+// cost stays small), 64 cells on the cells mapping (two warps, a common GPU reduction width). Powers of two:
+// the group is summed as a tree.
+constexpr int kRowsPerGroup = 8, kCellsPerGroup = 64;
+
+std::size_t round_up(std::size_t n, std::size_t to) {
+  return (n + to - 1) / to * to;
+}
+
+}  // namespace
+
+std::optional<WorkMapping> work_mapping_from_env() {
+  const char* value = std::getenv("FORESTWIND_WORK_MAPPING");
+  if (!value || !*value) return std::nullopt;
+  const std::string text = value;
+  if (text == "rows") return WorkMapping::rows;
+  if (text == "cells") return WorkMapping::cells;
+  throw std::invalid_argument(
+      fmt::format("FORESTWIND_WORK_MAPPING: expected rows or cells (or unset), got '{}'", text));
+}
+
+ComputeContext::ComputeContext(DeviceInfo device, bool profiling, std::optional<WorkMapping> mapping)
+    : device_(std::move(device)) {
   try {
     context_ = cl::Context(device_.device);
     queue_ = cl::CommandQueue(context_, device_.device, profiling ? CL_QUEUE_PROFILING_ENABLE : 0);
@@ -15,15 +43,19 @@ ComputeContext::ComputeContext(DeviceInfo device, bool profiling) : device_(std:
     throw ClError(fmt::format("creating a context on '{}' ({})", device_.device_name, e.what()), e.err());
   }
   if (profiling) profiler_ = std::make_unique<Profiler>();
-  // A whole x-row per work-item on CPUs (see header); rows are never longer than this.
-  row_chunk_ = is_cpu() ? (1 << 20) : 1;
+  mapping_ = mapping ? *mapping
+                     : work_mapping_from_env().value_or(is_cpu() ? WorkMapping::rows : WorkMapping::cells);
+  // A whole x-row per work-item on the rows mapping (see header); rows are never longer than this.
+  row_chunk_ = mapping_ == WorkMapping::rows ? (1 << 20) : 1;
 }
 
 cl::Program ComputeContext::build(const std::string& file, const std::string& extra_options) {
   const std::string source = kernel_source(file);
   cl::Program program(context_, source);
-  const std::string options = fmt::format("-cl-std=CL1.2 -DFW_ROW_CHUNK={} -DFW_CPU_LAYOUT={} {}", row_chunk_,
-                                          is_cpu() ? 1 : 0, extra_options);
+  const bool rows = mapping_ == WorkMapping::rows;
+  const std::string options = fmt::format(
+      "-cl-std=CL1.2 -DFW_ROW_CHUNK={} -DFW_CPU_LAYOUT={} -DFW_GROUP_X={} -DFW_GROUP_Y={} {}", row_chunk_,
+      rows ? 1 : 0, rows ? 1 : kCellsPerGroup, rows ? kRowsPerGroup : 1, extra_options);
   try {
     program.build({device_.device}, options.c_str());
   } catch (const cl::BuildError& e) {
@@ -53,10 +85,19 @@ cl::NDRange ComputeContext::rows(int extent_x, int ny, int nz) const {
                      static_cast<std::size_t>(nz));
 }
 
+ReductionRange ComputeContext::reduction_rows(int extent_x, int ny, int nz) const {
+  const bool rows = mapping_ == WorkMapping::rows;
+  const std::size_t group_x = rows ? 1 : kCellsPerGroup, group_y = rows ? kRowsPerGroup : 1;
+  const cl::NDRange r = this->rows(extent_x, ny, nz);
+  const std::size_t gx = round_up(r[0], group_x), gy = round_up(r[1], group_y);
+  return {cl::NDRange(gx, gy, r[2]), cl::NDRange(group_x, group_y, 1),
+          (gx / group_x) * (gy / group_y) * r[2]};
+}
+
 std::size_t ComputeContext::flat_items(std::size_t n) const {
-  // CPU: a few contiguous blocks per core; GPU: enough items to fill the device, each striding.
-  const std::size_t items =
-      is_cpu() ? std::size_t(device_.compute_units) * 64 : std::size_t(device_.compute_units) * 2048;
+  // Rows mapping: a few contiguous blocks per core; cells: enough items to fill the device, each striding.
+  const std::size_t items = mapping_ == WorkMapping::rows ? std::size_t(device_.compute_units) * 64
+                                                          : std::size_t(device_.compute_units) * 2048;
   return std::max<std::size_t>(1, std::min(n, items));
 }
 

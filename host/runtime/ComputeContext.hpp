@@ -6,14 +6,21 @@
 //   Kernel divergence(prog, "divergence_rhs");
 //   divergence.set_args(grid, mask, u, v, w, b).enqueue(cc, cc.rows(nx, ny, nz));
 //
-// Kernels that sweep the grid give each work-item a run of `row_chunk()` consecutive cells along x. On a
-// CPU (PoCL) that is the whole x-row, which streams memory best; on a GPU it is one cell, for coalescing.
-// The chunk reaches the kernels as the macro FW_ROW_CHUNK. (Advection sets its own range: 8 faces per
-// work-item in float8, see host/FluidStages.)
+// Work mapping. Kernels that sweep the grid give each work-item a run of `row_chunk()` consecutive cells
+// along x: on a CPU (PoCL) the whole x-row (WorkMapping::rows), which streams memory best; on a GPU one cell
+// (WorkMapping::cells), for coalescing. The device type picks the mapping; FORESTWIND_WORK_MAPPING=rows|cells
+// (or the constructor) forces one, so that CI runs the GPU mapping on PoCL. The chunk and the layout reach
+// the kernels as the macros FW_ROW_CHUNK and FW_CPU_LAYOUT. (Advection sets its own range, see
+// host/stages/FluidStages.)
+//
+// Reductions (sums, maxima) leave one partial per work-group, reduced in local memory: reduction_rows()
+// gives their range, padded to whole groups of FW_GROUP_X x FW_GROUP_Y items (1 x 8 rows, or 64 x 1 cells),
+// and the number of partials the host then adds in a fixed order.
 #pragma once
 
 #include <cstddef>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -23,14 +30,29 @@
 
 namespace fw::host {
 
+enum class WorkMapping { rows, cells };
+
+/// FORESTWIND_WORK_MAPPING: "rows", "cells", or unset/empty (none). Throws std::invalid_argument naming the
+/// variable for another value.
+std::optional<WorkMapping> work_mapping_from_env();
+
+/// The range of a reduction kernel: global padded to whole work-groups, the group, and how many groups
+/// (= partials) there are.
+struct ReductionRange {
+  cl::NDRange global, local;
+  std::size_t groups = 0;
+};
+
 class ComputeContext {
  public:
-  ComputeContext(DeviceInfo device, bool profiling);
+  /// mapping: forced, else work_mapping_from_env(), else rows on a CPU and cells on anything else.
+  ComputeContext(DeviceInfo device, bool profiling, std::optional<WorkMapping> mapping = std::nullopt);
 
   const DeviceInfo& device() const { return device_; }
   cl::Context& context() { return context_; }
   cl::CommandQueue& queue() { return queue_; }
   bool is_cpu() const { return device_.type == "CPU"; }
+  WorkMapping mapping() const { return mapping_; }
   int row_chunk() const { return row_chunk_; }
   bool profiling() const { return profiler_ != nullptr; }
   Profiler* profiler() { return profiler_.get(); }
@@ -40,6 +62,9 @@ class ComputeContext {
 
   /// Global range for a row-sweeping kernel over an array of extent_x * ny * nz values.
   cl::NDRange rows(int extent_x, int ny, int nz) const;
+  /// The same sweep for a reduction kernel (see above): items past the array do no work but take part in
+  /// their group's reduction.
+  ReductionRange reduction_rows(int extent_x, int ny, int nz) const;
 
   /// Number of work-items a flat (1D) kernel over n values uses, and the values each handles.
   std::size_t flat_items(std::size_t n) const;
@@ -61,6 +86,7 @@ class ComputeContext {
   cl::Context context_;
   cl::CommandQueue queue_;
   std::unique_ptr<Profiler> profiler_;
+  WorkMapping mapping_;
   int row_chunk_;
 };
 

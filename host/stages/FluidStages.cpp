@@ -55,11 +55,10 @@ void set_step_turbulence(FwStep& step, const fluid::InflowState& inflow) {
 
 FluidStages::FluidStages(ComputeContext& cc, const fluid::GridSpec& spec)
     : cc_(cc), spec_(spec), grid_(spec.to_device()) {
-  std::size_t most = 0;
-  for (int c = 0; c < 3; ++c) {
-    const auto r = component_rows(c);
-    most = std::max(most, r[0] * r[1] * r[2]);
-  }
+  std::size_t most = cc_.reduction_rows(spec_.nx, spec_.ny, spec_.nz).groups;  // max_divergence's partials
+  for (int c = 0; c < 3; ++c)
+    most = std::max(most,
+                    cc_.reduction_rows(spec_.nx + (c == 0), spec_.ny + (c == 1), spec_.nz + (c == 2)).groups);
   partial_host_.resize(most);
   partial_ = cc_.buffer(most * sizeof(float));
   std::vector<float> flat(static_cast<std::size_t>(spec.nz), 1.0f);
@@ -325,17 +324,18 @@ double FluidStages::max_partials(std::size_t count) {
 }
 
 double FluidStages::max_divergence(cl::Buffer& mask, DeviceVelocity& vel) {
-  const auto r = cc_.rows(spec_.nx, spec_.ny, spec_.nz);
-  max_div_.set_args(grid_, mask, vel.u, vel.v, vel.w, partial_).enqueue(cc_, r);
-  return max_partials(r[0] * r[1] * r[2]);
+  const ReductionRange r = cc_.reduction_rows(spec_.nx, spec_.ny, spec_.nz);
+  max_div_.set_args(grid_, mask, vel.u, vel.v, vel.w, partial_).enqueue(cc_, r.global, r.local);
+  return max_partials(r.groups);
 }
 
 double FluidStages::max_speed_component(DeviceVelocity& vel) {
   double m = 0.0;
   for (int c = 0; c < 3; ++c) {
-    const auto r = component_rows(c);
-    max_abs_.set_args(int(spec_.nx + (c == 0)), vel.component(c), partial_).enqueue(cc_, r);
-    const double mc = max_partials(r[0] * r[1] * r[2]);
+    const int extent_x = spec_.nx + (c == 0), extent_y = spec_.ny + (c == 1), extent_z = spec_.nz + (c == 2);
+    const ReductionRange r = cc_.reduction_rows(extent_x, extent_y, extent_z);
+    max_abs_.set_args(extent_x, extent_y, vel.component(c), partial_).enqueue(cc_, r.global, r.local);
+    const double mc = max_partials(r.groups);
     if (std::isnan(mc)) return NAN;
     m = std::max(m, mc);
   }

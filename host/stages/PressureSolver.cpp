@@ -58,7 +58,7 @@ PressureSolver::PressureSolver(ComputeContext& cc, const fluid::GridSpec& spec,
     *buf = cc_.buffer(n * sizeof(float));
     cc_.queue().enqueueFillBuffer(*buf, 0.0f, 0, n * sizeof(float));
   }
-  partial_host_.resize(items(0));
+  partial_host_.resize(reduction(0).groups);  // the finest level has the most groups
   partial_ = cc_.buffer(partial_host_.size() * sizeof(float));
 
   cl::Program program = cc_.build("fluid_pressure.cl", kPressureBuildOptions);
@@ -83,10 +83,16 @@ float PressureSolver::correction_scale() const {
   return settings_.solver == fluid::PressureSolverType::cg ? 4.0f : 2.0f;
 }
 
-std::size_t PressureSolver::items(int level) const {
+ReductionRange PressureSolver::reduction(int level) const {
   const auto& L = host_levels_[level];
-  const auto r = cc_.rows(L.nx, L.ny, L.nz);
-  return r[0] * r[1] * r[2];
+  return cc_.reduction_rows(L.nx, L.ny, L.nz);
+}
+
+double PressureSolver::dot(cl::Buffer& a, cl::Buffer& b) {
+  auto& L = levels_[0];
+  const ReductionRange range = reduction(0);
+  dot_.set_args(L.dims, a, b, partial_).enqueue(cc_, range.global, range.local);
+  return sum_partials(range.groups);
 }
 
 double PressureSolver::sum_partials(std::size_t count) {
@@ -112,9 +118,9 @@ void PressureSolver::enqueue_red_black_pass(int level, cl::Buffer& b, cl::Buffer
 
 double PressureSolver::residual_norm2(int level, cl::Buffer& b, cl::Buffer& phi, cl::Buffer& r) {
   auto& L = levels_[level];
-  residual_.set_args(L.dims, L.mask, b, phi, r, partial_)
-      .enqueue(cc_, cc_.rows(L.dims.nx, L.dims.ny, L.dims.nz));
-  return sum_partials(items(level));
+  const ReductionRange range = reduction(level);
+  residual_.set_args(L.dims, L.mask, b, phi, r, partial_).enqueue(cc_, range.global, range.local);
+  return sum_partials(range.groups);
 }
 
 void PressureSolver::enqueue_restrict_residual(int fine_level, cl::Buffer& b, cl::Buffer& phi) {
@@ -122,8 +128,8 @@ void PressureSolver::enqueue_restrict_residual(int fine_level, cl::Buffer& b, cl
   auto& C = levels_[fine_level + 1];
   // The residual kernel's branch-free interior run is much faster than recomputing the residual inside the
   // restriction; the scratch buffer is free at this point of the cycle.
-  residual_.set_args(F.dims, F.mask, b, phi, F.scratch, partial_)
-      .enqueue(cc_, cc_.rows(F.dims.nx, F.dims.ny, F.dims.nz));
+  const ReductionRange range = reduction(fine_level);
+  residual_.set_args(F.dims, F.mask, b, phi, F.scratch, partial_).enqueue(cc_, range.global, range.local);
   restrict_.set_args(F.dims, C.dims, C.mask, F.scratch, C.b, C.phi, correction_scale())
       .enqueue(cc_, cc_.rows(C.dims.nx, C.dims.ny, C.dims.nz));
 }
@@ -177,10 +183,11 @@ void PressureSolver::vcycle_level(int l, cl::Buffer& b, cl::Buffer& phi) {
 
 void PressureSolver::remove_mean(cl::Buffer& b) {
   auto& L = levels_[0];
-  const auto range = cc_.rows(L.dims.nx, L.dims.ny, L.dims.nz);
-  sum_.set_args(L.dims, L.mask, b, partial_).enqueue(cc_, range);
-  const double mean = fluid_cells_ ? sum_partials(items(0)) / double(fluid_cells_) : 0.0;
-  add_.set_args(L.dims, L.mask, static_cast<float>(-mean), b).enqueue(cc_, range);
+  const ReductionRange sum_range = reduction(0);
+  sum_.set_args(L.dims, L.mask, b, partial_).enqueue(cc_, sum_range.global, sum_range.local);
+  const double mean = fluid_cells_ ? sum_partials(sum_range.groups) / double(fluid_cells_) : 0.0;
+  add_.set_args(L.dims, L.mask, static_cast<float>(-mean), b)
+      .enqueue(cc_, cc_.rows(L.dims.nx, L.dims.ny, L.dims.nz));
 }
 
 PressureSolveStatus PressureSolver::solve() {
@@ -200,9 +207,7 @@ PressureSolveStatus PressureSolver::solve_jacobi() {
   auto& L = levels_[0];
   PressureSolveStatus st;
   st.solver = "jacobi";
-  const auto range = cc_.rows(L.dims.nx, L.dims.ny, L.dims.nz);
-  dot_.set_args(L.dims, L.b, L.b, partial_).enqueue(cc_, range);
-  const double bnorm = std::sqrt(sum_partials(items(0)));
+  const double bnorm = std::sqrt(dot(L.b, L.b));
   // Ping-pong between phi and scratch; an even count of sweeps ends in phi.
   const int sweeps = settings_.jacobi_iterations + (settings_.jacobi_iterations % 2);
   for (int s = 0; s < sweeps; s += 2) {
@@ -219,9 +224,7 @@ PressureSolveStatus PressureSolver::solve_multigrid() {
   auto& L = levels_[0];
   PressureSolveStatus st;
   st.solver = "multigrid";
-  const auto range = cc_.rows(L.dims.nx, L.dims.ny, L.dims.nz);
-  dot_.set_args(L.dims, L.b, L.b, partial_).enqueue(cc_, range);
-  const double bnorm = std::sqrt(sum_partials(items(0)));
+  const double bnorm = std::sqrt(dot(L.b, L.b));
   if (bnorm == 0.0) {
     cc_.queue().enqueueFillBuffer(L.phi, 0.0f, 0, host_levels_[0].cell_count() * sizeof(float));
     st.converged = true;
@@ -247,10 +250,9 @@ PressureSolveStatus PressureSolver::solve_cg() {
   st.solver = "cg";
   const std::size_t bytes = host_levels_[0].cell_count() * sizeof(float);
   const auto range = cc_.rows(L.dims.nx, L.dims.ny, L.dims.nz);
-  const std::size_t n_items = items(0);
+  const ReductionRange reduce = reduction(0);
 
-  dot_.set_args(L.dims, L.b, L.b, partial_).enqueue(cc_, range);
-  const double bnorm = std::sqrt(sum_partials(n_items));
+  const double bnorm = std::sqrt(dot(L.b, L.b));
   if (bnorm == 0.0) {
     cc_.queue().enqueueFillBuffer(L.phi, 0.0f, 0, bytes);
     st.converged = true;
@@ -262,22 +264,21 @@ PressureSolveStatus PressureSolver::solve_cg() {
   if (std::sqrt(rr) > target) {
     cc_.queue().enqueueFillBuffer(z_, 0.0f, 0, bytes);
     vcycle(r_, z_);
-    dot_.set_args(L.dims, r_, z_, partial_).enqueue(cc_, range);
-    double rho = sum_partials(n_items);
+    double rho = dot(r_, z_);
     cc_.queue().enqueueCopyBuffer(z_, d_, 0, 0, bytes);
     while (st.iterations < settings_.max_iterations) {
-      apply_dot_.set_args(L.dims, L.mask, d_, q_, partial_).enqueue(cc_, range);
-      const double dq = sum_partials(n_items);
+      apply_dot_.set_args(L.dims, L.mask, d_, q_, partial_).enqueue(cc_, reduce.global, reduce.local);
+      const double dq = sum_partials(reduce.groups);
       if (!(dq > 0.0)) break;  // breakdown: direction has no energy left (or NaN)
       const float alpha = static_cast<float>(rho / dq);
-      cg_update_.set_args(L.dims, alpha, d_, q_, L.phi, r_, partial_).enqueue(cc_, range);
-      rr = sum_partials(n_items);
+      cg_update_.set_args(L.dims, alpha, d_, q_, L.phi, r_, partial_)
+          .enqueue(cc_, reduce.global, reduce.local);
+      rr = sum_partials(reduce.groups);
       ++st.iterations;
       if (std::sqrt(rr) <= target || !std::isfinite(rr)) break;
       cc_.queue().enqueueFillBuffer(z_, 0.0f, 0, bytes);
       vcycle(r_, z_);
-      dot_.set_args(L.dims, r_, z_, partial_).enqueue(cc_, range);
-      const double rho_new = sum_partials(n_items);
+      const double rho_new = dot(r_, z_);
       const float beta = static_cast<float>(rho_new / rho);
       rho = rho_new;
       cg_direction_.set_args(L.dims, beta, z_, d_).enqueue(cc_, range);

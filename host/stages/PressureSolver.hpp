@@ -76,7 +76,10 @@ class PressureSolver {
   void vcycle_level(int l, cl::Buffer& b, cl::Buffer& phi);
   void smooth(int l, cl::Buffer& b, cl::Buffer& phi, int sweeps, bool after_correction);
   double sum_partials(std::size_t count);
-  std::size_t items(int level) const;
+  /// The range of a reduction kernel on `level`, and its number of partials.
+  ReductionRange reduction(int level) const;
+  /// sum of a b over the finest level (the dot_product kernel and its partials).
+  double dot(cl::Buffer& a, cl::Buffer& b);
   void remove_mean(cl::Buffer& b);
   PressureSolveStatus solve_jacobi();
   PressureSolveStatus solve_multigrid();
