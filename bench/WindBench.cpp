@@ -6,6 +6,8 @@
 #include <cmath>
 
 #include "bench/BenchTurbulence.hpp"
+#include "bench/GatherThroughput.hpp"
+#include "bench/StageTraffic.hpp"
 #include "bench/StreamTriad.hpp"
 #include "fluid/ReferenceStages.hpp"
 #include "fluid/SolidMap.hpp"
@@ -48,6 +50,7 @@ SolverRun time_solver(host::ComputeContext& cc, const std::array<int, 3>& grid,
   run.solver = fluid::to_string(solver) + (turbulence == Turbulence::inflow           ? "+turb"
                                            : turbulence == Turbulence::inflow_subgrid ? "+turb+sgs"
                                                                                       : "");
+  const double traffic_before = wind.pressure().traffic_bytes();
   const auto start = Clock::now();
   for (int s = 0; s < opt.steps; ++s) {
     const auto report = wind.step();
@@ -64,6 +67,20 @@ SolverRun time_solver(host::ComputeContext& cc, const std::array<int, 3>& grid,
   const double vmax = wind.max_speed_component();
   run.divergence_ratio = vmax > 0 ? run.max_divergence * wind.spec().h / vmax : 0.0;
   run.cells_steps_per_s = double(wind.spec().cell_count()) * opt.steps / (total_ms * 1e-3);
+  // Throughput of the stages against their limits: per-step traffic over per-step time.
+  const auto& spec = wind.spec();
+  const double cells = double(spec.cell_count());
+  const double faces = double(spec.u_count() + spec.v_count() + spec.w_count());
+  auto per_second = [&](double amount, const char* stage) {
+    const auto it = run.stages_ms.find(stage);
+    return it == run.stages_ms.end() || it->second <= 0.0 ? 0.0 : amount / (it->second * 1e-3);
+  };
+  run.advect_loads_per_s =
+      per_second(faces * advection_loads_per_face(wind.setup().settings.advection), "advect");
+  run.divergence_gb_s = per_second(cells * kDivergenceBytesPerCell, "divergence") * 1e-9;
+  run.gradient_gb_s = per_second(cells * kGradientBytesPerCell, "gradient") * 1e-9;
+  run.pressure_gb_s =
+      per_second((wind.pressure().traffic_bytes() - traffic_before) / opt.steps, "pressure") * 1e-9;
   return run;
 }
 
@@ -152,6 +169,7 @@ WindBenchResult run_wind_bench(host::ComputeContext& cc, const WindBenchOptions&
   result.device = cc.device().device_name;
   result.steps = opt.steps;
   result.triad_gb_s = measure_stream_triad(cc, std::size_t(32) << 20, 10);
+  result.gather_loads_per_s = measure_gather_rate(cc, opt.roofline_grid, 10);
   result.roofline_grid = opt.roofline_grid;
   result.roofline_smoother_gb_s = measure_smoother_gb_s(cc, opt.roofline_grid, true, 20);
   result.roofline_jacobi_gb_s = measure_smoother_gb_s(cc, opt.roofline_grid, false, 20);
@@ -210,6 +228,26 @@ void print_wind_bench_table(const WindBenchResult& r, std::ostream& out) {
   }
   out << "ratios (x) are to the converging solver (cg) on the same grid; +turb: with the inflow turbulence "
          "box (15%, L_u 16 cells), +sgs: and Smagorinsky (C_s 0.16) and the rough-wall stress\n";
+  out << fmt::format(
+      "\nagainst the limit that binds each stage: gathers {:.2f} Gload/s (eight-corner loads, {}x{}x{}), "
+      "STREAM triad {:.1f} GB/s\n",
+      r.gather_loads_per_s * 1e-9, r.roofline_grid[0], r.roofline_grid[1], r.roofline_grid[2], r.triad_gb_s);
+  out << fmt::format("{:<12} {:<11} {:>22} {:>22} {:>22} {:>22}\n", "grid", "solver", "advect Gload/s",
+                     "divergence GB/s", "pressure GB/s", "gradient GB/s");
+  for (const auto& c : r.cases) {
+    const std::string grid = fmt::format("{}x{}x{}", c.grid[0], c.grid[1], c.grid[2]);
+    auto share = [](double value, double limit) { return limit > 0.0 ? 100.0 * value / limit : 0.0; };
+    for (const auto& run : c.runs)
+      out << fmt::format(
+          "{:<12} {:<11} {:>13.2f} ({:>3.0f}%) {:>14.1f} ({:>3.0f}%) {:>14.1f} ({:>3.0f}%) {:>14.1f} "
+          "({:>3.0f}%)\n",
+          grid, run.solver, run.advect_loads_per_s * 1e-9,
+          share(run.advect_loads_per_s, r.gather_loads_per_s), run.divergence_gb_s,
+          share(run.divergence_gb_s, r.triad_gb_s), run.pressure_gb_s, share(run.pressure_gb_s, r.triad_gb_s),
+          run.gradient_gb_s, share(run.gradient_gb_s, r.triad_gb_s));
+  }
+  out << "(%: of the gather rate for advection, of the triad for the rest; traffic per "
+         "bench/StageTraffic.hpp)\n";
 }
 
 namespace {
@@ -227,7 +265,17 @@ void write_case(io::JsonWriter& json, const WindBenchCase& c, const WindBenchRes
   json.key("divergence_ratio").value(head.divergence_ratio);
   json.key("cells_steps_per_s").value(head.cells_steps_per_s);
   json.key("triad_gb_s").value(r.triad_gb_s);
+  json.key("gather_loads_per_s").value(r.gather_loads_per_s);
   json.key("smoother_gb_s").value(c.smoother_gb_s);
+  json.key("limits").begin_object();
+  json.key("advect_loads_per_s").value(head.advect_loads_per_s);
+  json.key("advect_gather_fraction")
+      .value(r.gather_loads_per_s > 0 ? head.advect_loads_per_s / r.gather_loads_per_s : 0.0);
+  json.key("divergence_gb_s").value(head.divergence_gb_s);
+  json.key("pressure_gb_s").value(head.pressure_gb_s);
+  json.key("gradient_gb_s").value(head.gradient_gb_s);
+  json.key("pressure_triad_fraction").value(r.triad_gb_s > 0 ? head.pressure_gb_s / r.triad_gb_s : 0.0);
+  json.end_object();
   if (c.reference_ms_per_step > 0) json.key("reference_ms_per_step").value(c.reference_ms_per_step);
   json.key("solvers").begin_array();
   for (const auto& run : c.runs) {

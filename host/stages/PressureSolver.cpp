@@ -83,6 +83,27 @@ float PressureSolver::correction_scale() const {
   return settings_.solver == fluid::PressureSolverType::cg ? 4.0f : 2.0f;
 }
 
+// Bytes each kernel streams per cell of its level (the memory-traffic model behind traffic_bytes(): every
+// array element a kernel reads or writes counted once, neighbours taken as cached, masks 1 byte, floats 4).
+namespace traffic {
+constexpr double kSmoothPass = 13;      // mask, b, phi read; phi written (a Jacobi sweep or a colour pass)
+constexpr double kResidual = 13;        // mask, b, phi read; r written
+constexpr double kRestrictFine = 4;     // the fine residual read ...
+constexpr double kRestrictCoarse = 9;   // ... coarse mask read, coarse b and phi written
+constexpr double kProlongFine = 9;      // fine mask read, fine phi read and written ...
+constexpr double kProlongCoarse = 4;    // ... coarse phi read
+constexpr double kDot = 8;              // a, b read
+constexpr double kApplyDot = 9;         // mask, d read; q written
+constexpr double kCgUpdate = 24;        // d, q, x, r read; x, r written
+constexpr double kCgDirection = 12;     // z, d read; d written
+constexpr double kFill = 4, kCopy = 8;  // a fill writes, a copy reads and writes
+constexpr double kSumOnFluid = 5, kAddOnFluid = 9;
+}  // namespace traffic
+
+void PressureSolver::count_traffic(int level, double bytes_per_cell) {
+  traffic_bytes_ += bytes_per_cell * double(host_levels_[level].cell_count());
+}
+
 ReductionRange PressureSolver::reduction(int level) const {
   const auto& L = host_levels_[level];
   return cc_.reduction_rows(L.nx, L.ny, L.nz);
@@ -92,6 +113,7 @@ double PressureSolver::dot(cl::Buffer& a, cl::Buffer& b) {
   auto& L = levels_[0];
   const ReductionRange range = reduction(0);
   dot_.set_args(L.dims, a, b, partial_).enqueue(cc_, range.global, range.local);
+  count_traffic(0, traffic::kDot);
   return sum_partials(range.groups);
 }
 
@@ -107,6 +129,7 @@ void PressureSolver::enqueue_jacobi_sweep(int level, cl::Buffer& b, cl::Buffer& 
   auto& L = levels_[level];
   jacobi_.set_args(L.dims, L.mask, b, phi, phi_out, omega)
       .enqueue(cc_, cc_.rows(L.dims.nx, L.dims.ny, L.dims.nz));
+  count_traffic(level, traffic::kSmoothPass);
 }
 
 void PressureSolver::enqueue_red_black_pass(int level, cl::Buffer& b, cl::Buffer& phi, cl::Buffer& phi_out,
@@ -114,12 +137,14 @@ void PressureSolver::enqueue_red_black_pass(int level, cl::Buffer& b, cl::Buffer
   auto& L = levels_[level];
   red_black_.set_args(L.dims, L.mask, b, phi, phi_out, colour)
       .enqueue(cc_, cc_.rows(L.dims.nx, L.dims.ny, L.dims.nz));
+  count_traffic(level, traffic::kSmoothPass);
 }
 
 double PressureSolver::residual_norm2(int level, cl::Buffer& b, cl::Buffer& phi, cl::Buffer& r) {
   auto& L = levels_[level];
   const ReductionRange range = reduction(level);
   residual_.set_args(L.dims, L.mask, b, phi, r, partial_).enqueue(cc_, range.global, range.local);
+  count_traffic(level, traffic::kResidual);
   return sum_partials(range.groups);
 }
 
@@ -130,8 +155,11 @@ void PressureSolver::enqueue_restrict_residual(int fine_level, cl::Buffer& b, cl
   // restriction; the scratch buffer is free at this point of the cycle.
   const ReductionRange range = reduction(fine_level);
   residual_.set_args(F.dims, F.mask, b, phi, F.scratch, partial_).enqueue(cc_, range.global, range.local);
+  count_traffic(fine_level, traffic::kResidual);
   restrict_.set_args(F.dims, C.dims, C.mask, F.scratch, C.b, C.phi, correction_scale())
       .enqueue(cc_, cc_.rows(C.dims.nx, C.dims.ny, C.dims.nz));
+  count_traffic(fine_level, traffic::kRestrictFine);
+  count_traffic(fine_level + 1, traffic::kRestrictCoarse);
 }
 
 void PressureSolver::enqueue_prolong_add(int fine_level, cl::Buffer& phi) {
@@ -139,6 +167,8 @@ void PressureSolver::enqueue_prolong_add(int fine_level, cl::Buffer& phi) {
   auto& C = levels_[fine_level + 1];
   prolong_.set_args(F.dims, C.dims, F.mask, C.phi, phi)
       .enqueue(cc_, cc_.rows(F.dims.nx, F.dims.ny, F.dims.nz));
+  count_traffic(fine_level, traffic::kProlongFine);
+  count_traffic(fine_level + 1, traffic::kProlongCoarse);
 }
 
 void PressureSolver::vcycle(cl::Buffer& b, cl::Buffer& phi) {
@@ -185,6 +215,7 @@ void PressureSolver::remove_mean(cl::Buffer& b) {
   auto& L = levels_[0];
   const ReductionRange sum_range = reduction(0);
   sum_.set_args(L.dims, L.mask, b, partial_).enqueue(cc_, sum_range.global, sum_range.local);
+  count_traffic(0, traffic::kSumOnFluid + traffic::kAddOnFluid);
   const double mean = fluid_cells_ ? sum_partials(sum_range.groups) / double(fluid_cells_) : 0.0;
   add_.set_args(L.dims, L.mask, static_cast<float>(-mean), b)
       .enqueue(cc_, cc_.rows(L.dims.nx, L.dims.ny, L.dims.nz));
@@ -266,8 +297,10 @@ PressureSolveStatus PressureSolver::solve_cg() {
     vcycle(r_, z_);
     double rho = dot(r_, z_);
     cc_.queue().enqueueCopyBuffer(z_, d_, 0, 0, bytes);
+    count_traffic(0, traffic::kFill + traffic::kCopy);
     while (st.iterations < settings_.max_iterations) {
       apply_dot_.set_args(L.dims, L.mask, d_, q_, partial_).enqueue(cc_, reduce.global, reduce.local);
+      count_traffic(0, traffic::kApplyDot);
       const double dq = sum_partials(reduce.groups);
       if (!(dq > 0.0)) break;  // breakdown: direction has no energy left (or NaN)
       const float alpha = static_cast<float>(rho / dq);
@@ -277,11 +310,13 @@ PressureSolveStatus PressureSolver::solve_cg() {
       ++st.iterations;
       if (std::sqrt(rr) <= target || !std::isfinite(rr)) break;
       cc_.queue().enqueueFillBuffer(z_, 0.0f, 0, bytes);
+      count_traffic(0, traffic::kFill);
       vcycle(r_, z_);
       const double rho_new = dot(r_, z_);
       const float beta = static_cast<float>(rho_new / rho);
       rho = rho_new;
       cg_direction_.set_args(L.dims, beta, z_, d_).enqueue(cc_, range);
+      count_traffic(0, traffic::kCgDirection);
     }
   }
   // The recursively updated residual drifts in float: report the true one.

@@ -48,6 +48,9 @@ class PressureSolver {
   cl::Buffer& solution() { return levels_[0].phi; }  // phi = p dt / rho, m^2/s
   cl::Buffer& mask() { return levels_[0].mask; }
   const fluid::PressureSettings& settings() const { return settings_; }
+  /// Device memory traffic of every kernel this solver has enqueued so far, bytes: each kernel's arrays per
+  /// cell of its level, counted once (the model in PressureSolver.cpp), for the benchmark's bandwidth.
+  double traffic_bytes() const { return traffic_bytes_; }
   void set_settings(const fluid::PressureSettings& s) { settings_ = s; }
   int level_count() const { return static_cast<int>(levels_.size()); }
   const fluid::PressureLevel& level(int l) const { return host_levels_[l]; }
@@ -76,6 +79,7 @@ class PressureSolver {
   void vcycle_level(int l, cl::Buffer& b, cl::Buffer& phi);
   void smooth(int l, cl::Buffer& b, cl::Buffer& phi, int sweeps, bool after_correction);
   double sum_partials(std::size_t count);
+  void count_traffic(int level, double bytes_per_cell);
   /// The range of a reduction kernel on `level`, and its number of partials.
   ReductionRange reduction(int level) const;
   /// sum of a b over the finest level (the dot_product kernel and its partials).
@@ -92,6 +96,7 @@ class PressureSolver {
   std::vector<DeviceLevel> levels_;
   cl::Buffer r_, z_, d_, q_, scratch_, partial_;
   std::vector<float> partial_host_;
+  double traffic_bytes_ = 0.0;
   std::size_t fluid_cells_ = 0;
   Kernel jacobi_, red_black_, residual_, apply_dot_, restrict_, prolong_, cg_update_, cg_direction_, dot_,
       add_, sum_;
