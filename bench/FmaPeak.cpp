@@ -1,7 +1,6 @@
 #include "bench/FmaPeak.hpp"
 
-#include <algorithm>
-#include <chrono>
+#include "bench/BestTime.hpp"
 
 namespace fw::bench {
 
@@ -12,15 +11,7 @@ double measure_fma_peak(host::ComputeContext& cc, int repetitions) {
   cl::Buffer out = cc.buffer(items * sizeof(float));
   host::Kernel kernel(cc.build("bench_fma.cl"), "fma_peak");
   kernel.set_args(out, iterations);
-  kernel.enqueue(cc, cl::NDRange(items));
-  cc.finish();
-  double best = 1e30;
-  for (int r = 0; r < repetitions; ++r) {
-    const auto start = std::chrono::steady_clock::now();
-    kernel.enqueue(cc, cl::NDRange(items));
-    cc.finish();
-    best = std::min(best, std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
-  }
+  const double best = best_seconds(cc, repetitions, [&] { kernel.enqueue(cc, cl::NDRange(items)); });
   const double fmas = double(items) * double(iterations) * 8.0 * 8.0;  // 8 chains of float8
   return fmas / best * 1e-9;
 }

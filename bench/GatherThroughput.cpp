@@ -1,9 +1,6 @@
 #include "bench/GatherThroughput.hpp"
 
-#include <algorithm>
-#include <chrono>
-#include <vector>
-
+#include "bench/BestTime.hpp"
 #include "kernels/shared_types.h"
 
 namespace fw::bench {
@@ -22,15 +19,7 @@ double measure_gather_rate(host::ComputeContext& cc, const std::array<int, 3>& g
   host::Kernel gather(cc.build("bench_gather.cl"), "gather_corners");
   gather.set_args(nx, ny, nz, q, out);
   const cl::NDRange range(std::size_t((nx + FW_LANES - 1) / FW_LANES), std::size_t(ny), std::size_t(nz));
-  gather.enqueue(cc, range);  // warm-up: first touch and the build
-  cc.finish();
-  double best = 1e30;
-  for (int r = 0; r < repetitions; ++r) {
-    const auto start = std::chrono::steady_clock::now();
-    gather.enqueue(cc, range);
-    cc.finish();
-    best = std::min(best, std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
-  }
+  const double best = best_seconds(cc, repetitions, [&] { gather.enqueue(cc, range); });
   return kLoadsPerPosition * double(cells) / best;
 }
 

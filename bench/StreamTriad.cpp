@@ -1,7 +1,6 @@
 #include "bench/StreamTriad.hpp"
 
-#include <algorithm>
-#include <chrono>
+#include "bench/BestTime.hpp"
 
 namespace fw::bench {
 
@@ -14,15 +13,7 @@ double measure_stream_triad(host::ComputeContext& cc, std::size_t elements, int 
   host::Kernel triad(cc.build("bench_stream.cl"), "stream_triad");
   triad.set_args(cl_ulong(elements), a, b, c, 3.0f);
   const cl::NDRange range(cc.flat_items(elements));
-  triad.enqueue(cc, range);  // warm-up: page faults and first-touch
-  cc.finish();
-  double best = 1e30;
-  for (int r = 0; r < repetitions; ++r) {
-    const auto start = std::chrono::steady_clock::now();
-    triad.enqueue(cc, range);
-    cc.finish();
-    best = std::min(best, std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
-  }
+  const double best = best_seconds(cc, repetitions, [&] { triad.enqueue(cc, range); });
   return 3.0 * double(bytes) / best * 1e-9;
 }
 

@@ -4,15 +4,9 @@
 # Ctrl-C during `forestwind run`: the run stops after the current step with exit code 130, run.json says
 # "interrupted", and every frame the .pvd files list is a whole VTK file (it ends with </VTKFile>);
 # `forestwind render` draws the folder's last frame.
-set -u
 forestwind=$1
 work=$2
-rm -rf "$work"
-mkdir -p "$work"
-fail() {
-  echo "FAIL: $*" >&2
-  exit 1
-}
+. "$(dirname "$0")/common.sh"
 
 "$forestwind" run "$(dirname "$0")/palm_run.yaml" -o "$work/out" --quiet >"$work/stdout" 2>"$work/stderr" &
 pid=$!

@@ -3,15 +3,9 @@
 #
 # `forestwind render` and `forestwind plot` on a real (short) run: pictures written, and bad input exiting
 # with code 2, a message that lists what there is, and no picture.
-set -u
 forestwind=$1
 work=$2
-rm -rf "$work"
-mkdir -p "$work"
-fail() {
-  echo "FAIL: $*" >&2
-  exit 1
-}
+. "$(dirname "$0")/common.sh"
 # expect CODE NEEDLE ARGS...: forestwind ARGS exits with CODE and its output (stdout and stderr) holds NEEDLE.
 expect() {
   local code=$1 needle=$2
