@@ -97,6 +97,20 @@ void Canvas::line(const std::vector<Point2>& points, Rgb colour, double line_wid
   cairo_set_dash(cr, nullptr, 0, 0.0);
 }
 
+void Canvas::segments(const std::vector<std::array<Point2, 2>>& segments, Rgb colour, double line_width) {
+  if (segments.empty()) return;
+  cairo_t* cr = cairo_->context;
+  cairo_->set_colour(colour);
+  cairo_set_line_width(cr, line_width);
+  cairo_set_line_cap(cr, CAIRO_LINE_CAP_ROUND);
+  cairo_new_path(cr);
+  for (const auto& [a, b] : segments) {
+    cairo_move_to(cr, a.x, a.y);
+    cairo_line_to(cr, b.x, b.y);
+  }
+  cairo_stroke(cr);
+}
+
 void Canvas::disc(Point2 centre, double radius, Rgb colour) {
   cairo_t* cr = cairo_->context;
   cairo_->set_colour(colour);

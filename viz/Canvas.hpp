@@ -56,6 +56,9 @@ class Canvas {
   void fill_polygon(const std::vector<Point2>& points, Rgb colour, bool antialias = true);
   /// An open polyline (at least 2 points), round caps and joins; `dash` > 0 draws it dashed (px).
   void line(const std::vector<Point2>& points, Rgb colour, double line_width, double dash = 0.0);
+  /// Separate straight segments (each a pair of end points) stroked at once in one colour and width, round
+  /// caps: many segments cost about one stroke.
+  void segments(const std::vector<std::array<Point2, 2>>& segments, Rgb colour, double line_width);
   /// A filled circle.
   void disc(Point2 centre, double radius, Rgb colour);
   /// Text whose baseline starts (left), centres or ends (right) at `anchor`; `angle` in degrees,

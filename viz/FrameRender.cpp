@@ -221,38 +221,62 @@ double displacement_scale(std::vector<double> displacement) {
   return displacement[rank];
 }
 
-// Tree segments in painting order (far first); `below` / `above` the slice in the perspective view.
-std::vector<std::size_t> segments_in_order(const TreeLines& t, const Camera& camera,
-                                           std::optional<bool> below, double slice_z) {
-  std::vector<std::size_t> order;
-  std::vector<double> depth(t.segments.size());
-  for (std::size_t n = 0; n < t.segments.size(); ++n) {
-    const auto& p = t.points[std::size_t(t.segments[n][0])];
-    const auto& q = t.points[std::size_t(t.segments[n][1])];
-    const glm::dvec3 mid = 0.5 * (glm::dvec3(p[0], p[1], p[2]) + glm::dvec3(q[0], q[1], q[2]));
-    if (below && ((mid.z < slice_z) != *below)) continue;
-    depth[n] = camera.depth(mid);
-    order.push_back(n);
-  }
-  std::stable_sort(order.begin(), order.end(),
-                   [&](std::size_t a, std::size_t b) { return depth[a] > depth[b]; });
-  return order;
-}
+// The trees are drawn as strokes of many segments at once: a forest has about a million, and one stroke
+// each cost seconds. Segments are painted far to near in layers kDepthLayer deep; within a layer, segments of
+// the same colour step (kColourSteps along the map) and width step (kWidthStep px) go into one stroke. A
+// layer is thin enough that what overlaps within it is the same branch.
+constexpr double kDepthLayer = 0.5;  // m
+constexpr int kColourSteps = 64;
+constexpr double kWidthStep = 0.25;  // px
 
-void draw_trees(Canvas& canvas, const Camera& camera, const TreeLines& t,
-                const std::vector<std::size_t>& order, double largest_displacement) {
-  const ColourMap& map = ColourMap::named("displacement");
+struct TreeStroke {
+  long layer = 0;  // painting order: far layers first
+  int colour = 0, width = 0;
+  Point2 a, b;
+};
+
+// The segments of the trees as strokes in painting order (all of them, or those `below` / above the slice
+// in the perspective view), grouped as above.
+std::vector<TreeStroke> tree_strokes(const TreeLines& t, const Camera& camera, std::optional<bool> below,
+                                     double slice_z, double largest_displacement) {
   const double ppm = camera.pixels_per_metre();
-  for (std::size_t n : order) {
-    const int i = t.segments[n][0], j = t.segments[n][1];
+  std::vector<TreeStroke> strokes;
+  strokes.reserve(t.segments.size());
+  for (const auto& [i, j] : t.segments) {
     const auto& p = t.points[std::size_t(i)];
     const auto& q = t.points[std::size_t(j)];
-    const Point2 a = camera.to_pixel({p[0], p[1], p[2]}), b = camera.to_pixel({q[0], q[1], q[2]});
+    const glm::dvec3 pa(p[0], p[1], p[2]), pb(q[0], q[1], q[2]);
+    const glm::dvec3 mid = 0.5 * (pa + pb);
+    if (below && ((mid.z < slice_z) != *below)) continue;
     const double width =
         std::max(kThinnestBranch, (t.radius[std::size_t(i)] + t.radius[std::size_t(j)]) * ppm);
     const double d = 0.5 * (t.displacement[std::size_t(i)] + t.displacement[std::size_t(j)]);
-    if (width >= kEdgedBranch) canvas.line({a, b}, kBranchShade, width + kBranchEdge);
-    canvas.line({a, b}, map.colour(d, 0.0, largest_displacement), width);
+    const double fraction = largest_displacement > 0.0 ? std::clamp(d / largest_displacement, 0.0, 1.0) : 0.0;
+    strokes.push_back({-long(std::floor(camera.depth(mid) / kDepthLayer)),
+                       int(std::lround(fraction * (kColourSteps - 1))), int(std::lround(width / kWidthStep)),
+                       camera.to_pixel(pa), camera.to_pixel(pb)});
+  }
+  std::stable_sort(strokes.begin(), strokes.end(), [](const TreeStroke& x, const TreeStroke& y) {
+    if (x.layer != y.layer) return x.layer < y.layer;
+    if (x.width != y.width) return x.width < y.width;
+    return x.colour < y.colour;
+  });
+  return strokes;
+}
+
+void draw_trees(Canvas& canvas, const std::vector<TreeStroke>& strokes) {
+  const ColourMap& map = ColourMap::named("displacement");
+  std::vector<std::array<Point2, 2>> batch;
+  for (std::size_t first = 0; first < strokes.size();) {
+    std::size_t last = first;
+    batch.clear();
+    while (last < strokes.size() && strokes[last].layer == strokes[first].layer &&
+           strokes[last].width == strokes[first].width && strokes[last].colour == strokes[first].colour)
+      batch.push_back({strokes[last].a, strokes[last].b}), ++last;
+    const double width = strokes[first].width * kWidthStep;
+    if (width >= kEdgedBranch) canvas.segments(batch, kBranchShade, width + kBranchEdge);
+    canvas.segments(batch, map.colour(double(strokes[first].colour) / (kColourSteps - 1)), width);
+    first = last;
   }
 }
 
@@ -351,8 +375,7 @@ FrameRender::FrameRender(const FrameData& frame, const std::string& scenario, co
   if (perspective) draw_box(canvas_, camera_, domain);
   // Perspective: what lies below the slice is painted first, so the slice hides it.
   if (perspective && frame.trees)
-    draw_trees(canvas_, camera_, *frame.trees,
-               segments_in_order(*frame.trees, camera_, true, slice_position_), displacement_range_);
+    draw_trees(canvas_, tree_strokes(*frame.trees, camera_, true, slice_position_, displacement_range_));
   if (perspective && frame.leaves) draw_leaves(canvas_, camera_, *frame.leaves, true, slice_position_);
   if (slice) {
     const WindGrid& g = *frame.wind;
@@ -367,10 +390,9 @@ FrameRender::FrameRender(const FrameData& frame, const std::string& scenario, co
                  camera_.viewport().height);
   }
   if (frame.trees)
-    draw_trees(canvas_, camera_, *frame.trees,
-               segments_in_order(*frame.trees, camera_,
-                                 perspective ? std::optional<bool>(false) : std::nullopt, slice_position_),
-               displacement_range_);
+    draw_trees(canvas_,
+               tree_strokes(*frame.trees, camera_, perspective ? std::optional<bool>(false) : std::nullopt,
+                            slice_position_, displacement_range_));
   if (frame.leaves)
     draw_leaves(canvas_, camera_, *frame.leaves, perspective ? std::optional<bool>(false) : std::nullopt,
                 slice_position_);
