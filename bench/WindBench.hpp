@@ -44,6 +44,8 @@ struct SolverRun {
   double max_divergence = 0.0;              // max |div u| after the last projection, 1/s
   double divergence_ratio = 0.0;            // max|div u| h / max|u|
   double cells_steps_per_s = 0.0;
+  double startup_ms_per_step = 0.0;          // the first steps from the uniform start (kStartupSteps)
+  double startup_pressure_iterations = 0.0;  // mean over those steps
   // What the stages reach against the limit that binds them (bench/StageTraffic.hpp):
   double advect_loads_per_s =
       0.0;  ///< gathered loads of the advection kernels (padding included in the time)
