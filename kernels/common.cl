@@ -40,9 +40,10 @@ FW_INLINE int group_index(void) {
          (int)get_num_groups(0) * ((int)get_group_id(1) + (int)get_num_groups(1) * (int)get_group_id(2));
 }
 
-/* This item's row j and layer k, and whether the row lies inside an array of ny x nz rows (the range's y is
- * padded to whole groups). */
-FW_INLINE int row_inside(int ny) { return (int)get_global_id(1) < ny; }
+/* One past the last x index of this item's run in a reduction kernel: its run (FW_ROW_END), or an empty one
+ * when its row j lies past the array's extent_y rows (the range's y is padded to whole groups). */
+#define FW_REDUCTION_ROW_END(extent_x, extent_y) \
+  ((int)get_global_id(1) < (extent_y) ? FW_ROW_END(extent_x) : FW_ROW_BEGIN)
 
 /* Writes to partial[group] the sum (is_max 0) or the maximum (is_max 1; NaN wins, so a blow-up is seen) of
  * every item's value, as a tree in a fixed order: deterministic on a given device. */

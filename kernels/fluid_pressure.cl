@@ -131,12 +131,12 @@ FW_INLINE float residual_cell(const FwLevel* L, __global const uchar* mask, __gl
   return b[id] - (diagonal(m) * phi[id] - open_neighbour_sum(L, phi, i, j, k, id, m));
 }
 
-/* r = b - A phi; partial[group] = sum of r^2 over the item's cells. */
+/* r = b - A phi; partial[group] = sum of r^2 over the group's cells. */
 __kernel void residual(const FwLevel L, __global const uchar* mask, __global const float* b,
                        __global const float* phi, __global float* r, __global float* partial) {
   FW_GROUP_SCRATCH;
   const int j = get_global_id(1), k = get_global_id(2);
-  const int begin = FW_ROW_BEGIN, end = row_inside(L.ny) ? FW_ROW_END(L.nx) : begin;
+  const int begin = FW_ROW_BEGIN, end = FW_REDUCTION_ROW_END(L.nx, L.ny);
   int lo, hi;
   interior_span(&L, j, k, begin, end, &lo, &hi);
   float sum = 0.0f;
@@ -175,7 +175,7 @@ __kernel void apply_operator_dot(const FwLevel L, __global const uchar* mask, __
                                  __global float* q, __global float* partial) {
   FW_GROUP_SCRATCH;
   const int j = get_global_id(1), k = get_global_id(2);
-  const int begin = FW_ROW_BEGIN, end = row_inside(L.ny) ? FW_ROW_END(L.nx) : begin;
+  const int begin = FW_ROW_BEGIN, end = FW_REDUCTION_ROW_END(L.nx, L.ny);
   int lo, hi;
   interior_span(&L, j, k, begin, end, &lo, &hi);
   float sum = 0.0f;
@@ -241,7 +241,7 @@ __kernel void cg_update(const FwLevel L, const float alpha, __global const float
                         __global float* x, __global float* r, __global float* partial) {
   FW_GROUP_SCRATCH;
   const int j = get_global_id(1), k = get_global_id(2);
-  const int end = row_inside(L.ny) ? FW_ROW_END(L.nx) : FW_ROW_BEGIN;
+  const int end = FW_REDUCTION_ROW_END(L.nx, L.ny);
   float sum = 0.0f;
   for (int i = FW_ROW_BEGIN; i < end; ++i) {
     const int id = level_index(&L, i, j, k);
@@ -267,7 +267,7 @@ __kernel void dot_product(const FwLevel L, __global const float* a, __global con
                           __global float* partial) {
   FW_GROUP_SCRATCH;
   const int j = get_global_id(1), k = get_global_id(2);
-  const int end = row_inside(L.ny) ? FW_ROW_END(L.nx) : FW_ROW_BEGIN;
+  const int end = FW_REDUCTION_ROW_END(L.nx, L.ny);
   float sum = 0.0f;
   for (int i = FW_ROW_BEGIN; i < end; ++i) {
     const int id = level_index(&L, i, j, k);
@@ -291,7 +291,7 @@ __kernel void sum_on_fluid(const FwLevel L, __global const uchar* mask, __global
                            __global float* partial) {
   FW_GROUP_SCRATCH;
   const int j = get_global_id(1), k = get_global_id(2);
-  const int end = row_inside(L.ny) ? FW_ROW_END(L.nx) : FW_ROW_BEGIN;
+  const int end = FW_REDUCTION_ROW_END(L.nx, L.ny);
   float sum = 0.0f;
   for (int i = FW_ROW_BEGIN; i < end; ++i) {
     const int id = level_index(&L, i, j, k);

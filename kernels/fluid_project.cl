@@ -25,7 +25,7 @@ __kernel void max_divergence(const FwGrid g, __global const uchar* mask, __globa
                              __global const float* v, __global const float* w, __global float* partial) {
   FW_GROUP_SCRATCH;
   const int j = get_global_id(1), k = get_global_id(2);
-  const int end = row_inside(g.ny) ? FW_ROW_END(g.nx) : FW_ROW_BEGIN;
+  const int end = FW_REDUCTION_ROW_END(g.nx, g.ny);
   float m = 0.0f;
   for (int i = FW_ROW_BEGIN; i < end; ++i)
     if (mask[cell_index(&g, i, j, k)] & FW_MASK_FLUID)
@@ -74,11 +74,13 @@ __kernel void subtract_gradient(const FwGrid g, const int c, __global const ucha
   for (int i = hi; i < end; ++i) q[face_index(&g, c, i, j, k)] -= gradient_face(&g, c, mask, phi, i, j, k);
 }
 
-/* partial[group] = max |q| over the work-group's runs of an extent_x * extent_y * nz array (NaN propagates). */
-__kernel void max_abs(const int extent_x, const int extent_y, __global const float* q, __global float* partial) {
+/* partial[group] = max |q| over the work-group's runs of an extent_x * extent_y * nz array (NaN propagates).
+ */
+__kernel void max_abs(const int extent_x, const int extent_y, __global const float* q,
+                      __global float* partial) {
   FW_GROUP_SCRATCH;
   const int j = get_global_id(1), k = get_global_id(2);
-  const int end = row_inside(extent_y) ? FW_ROW_END(extent_x) : FW_ROW_BEGIN;
+  const int end = FW_REDUCTION_ROW_END(extent_x, extent_y);
   float m = 0.0f;
   for (int i = FW_ROW_BEGIN; i < end; ++i) {
     const float a = fabs(q[i + extent_x * (j + extent_y * k)]);

@@ -332,6 +332,13 @@ void draw_box(Canvas& canvas, const Camera& camera, const Box& d) {
 
 }  // namespace
 
+std::array<double, 2> slice_range(const FrameData& frame, const RenderSettings& settings) {
+  if (settings.range) return *settings.range;
+  if (!frame.wind) return {0.0, 1.0};
+  const WindGrid& g = *frame.wind;
+  return field_range(g.field(settings.field), slice_of(g, settings.view, settings.height), g);
+}
+
 ViewKind parse_view(const std::string& name) {
   for (ViewKind kind : {ViewKind::top, ViewKind::side, ViewKind::perspective})
     if (name == view_name(kind)) return kind;

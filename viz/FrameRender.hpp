@@ -69,6 +69,10 @@ class FrameRender {
   const ColourMap* field_map_ = nullptr;
 };
 
+/// The colour range FrameRender gives the field of `frame` (settings.range, else the slice's, as above),
+/// without drawing; for one scale over many frames. Throws as FrameRender for a field the frame lacks.
+std::array<double, 2> slice_range(const FrameData& frame, const RenderSettings& settings);
+
 /// "top", "side", "perspective" -> ViewKind. Throws std::invalid_argument naming the choices.
 ViewKind parse_view(const std::string& name);
 

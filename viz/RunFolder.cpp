@@ -211,7 +211,9 @@ std::string json_string_value(const std::string& json, const std::string& key) {
   return out;
 }
 
-std::string read_scenario_name(const fs::path& folder) {
+}  // namespace
+
+std::string scenario_name_of(const fs::path& folder) {
   if (std::ifstream json(folder / "run.json"); json) {
     std::ostringstream text;
     text << json.rdbuf();
@@ -228,8 +230,6 @@ std::string read_scenario_name(const fs::path& folder) {
   }
   return fs::absolute(folder).lexically_normal().filename().string();
 }
-
-}  // namespace
 
 std::vector<std::string> WindGrid::field_names() const {
   std::vector<std::string> names;
@@ -291,7 +291,7 @@ RunFolder::RunFolder(fs::path folder) : folder_(std::move(folder)) {
     frame.leaves = file_at(folder_, leaves, entry.time);
     frames_.push_back(frame);
   }
-  scenario_name_ = read_scenario_name(folder_);
+  scenario_name_ = scenario_name_of(folder_);
 }
 
 std::string describe_frames(const std::vector<RunFolder::Frame>& frames) {

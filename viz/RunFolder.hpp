@@ -111,6 +111,10 @@ class RunFolder {
   std::vector<Frame> frames_;
 };
 
+/// A run folder's scenario name: run.json's "scenario", else the scenario copy's "scenario" key, else the
+/// folder's name (a folder without frames too).
+std::string scenario_name_of(const std::filesystem::path& folder);
+
 /// "frames 0..N-1 (t = A .. B s)": what a folder offers, for messages.
 std::string describe_frames(const std::vector<RunFolder::Frame>& frames);
 

@@ -9,7 +9,6 @@
 #include <vector>
 
 #include "host/cli/Commands.hpp"
-#include "io/PvdCollection.hpp"
 #include "viz/ProbePlots.hpp"
 #include "viz/ProbeTable.hpp"
 #include "viz/RunFolder.hpp"
@@ -28,17 +27,15 @@ int run_plot(const PlotOptions& options) {
   const viz::ProbeTable table = viz::read_probe_table(csv);
   // The frames' times, from whichever collection the run wrote.
   std::vector<double> frame_times;
-  std::string scenario = fs::absolute(folder).lexically_normal().filename().string();
   try {
     const viz::RunFolder run(folder);
-    scenario = run.scenario_name();
     for (const auto& frame : run.frames()) frame_times.push_back(frame.time);
   } catch (const std::invalid_argument&) {
     // probes without frames: nothing to mark
   }
   viz::PlotSettings settings;
   settings.spectrum = options.spectrum;
-  const viz::ProbePlot plot = viz::plot_probes(table, frame_times, scenario, settings);
+  const viz::ProbePlot plot = viz::plot_probes(table, frame_times, viz::scenario_name_of(folder), settings);
   plot.canvas.write_png(options.output);
   if (!options.quiet)
     std::cout << fmt::format("wrote {} ({} x {} px: {} probes, {} trees, {} samples{})\n", options.output,

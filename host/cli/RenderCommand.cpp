@@ -92,12 +92,17 @@ int render_all(const viz::RunFolder& run, const RenderOptions& options, viz::Ren
   std::string note;
   const viz::FrameData last = run.load_last_complete(frames.back(), &note);
   if (!note.empty()) std::cerr << "forestwind: " << note << "\n";
-  if (!settings.range) settings.range = viz::FrameRender(last, run.scenario_name(), settings).range();
+  settings.range = viz::slice_range(last, settings);
   const fs::path folder = options.output;
   fs::create_directories(folder);
   int written = 0;
+  auto write = [&](const viz::FrameData& data) {
+    viz::FrameRender(data, run.scenario_name(), settings)
+        .canvas()
+        .write_png(folder / fmt::format("frame_{:06d}.png", written++));
+  };
   for (const auto& frame : frames) {
-    if (frame.index > last.index) break;
+    if (frame.index >= last.index) break;
     viz::FrameData data;
     try {
       data = run.load(frame);
@@ -105,10 +110,9 @@ int render_all(const viz::RunFolder& run, const RenderOptions& options, viz::Ren
       std::cerr << "forestwind: skipping frame " << frame.index << ": " << e.what() << "\n";
       continue;
     }
-    viz::FrameRender(data, run.scenario_name(), settings)
-        .canvas()
-        .write_png(folder / fmt::format("frame_{:06d}.png", written++));
+    write(data);
   }
+  write(last);  // already read
   const double seconds = seconds_since(start);
   if (!options.quiet)
     std::cout << fmt::format("wrote {} pictures to {} ({:.2f} s each)\n", written, folder.string(),

@@ -52,10 +52,10 @@ ComputeContext::ComputeContext(DeviceInfo device, bool profiling, std::optional<
 cl::Program ComputeContext::build(const std::string& file, const std::string& extra_options) {
   const std::string source = kernel_source(file);
   cl::Program program(context_, source);
-  const bool rows = mapping_ == WorkMapping::rows;
-  const std::string options = fmt::format(
-      "-cl-std=CL1.2 -DFW_ROW_CHUNK={} -DFW_CPU_LAYOUT={} -DFW_GROUP_X={} -DFW_GROUP_Y={} {}", row_chunk_,
-      rows ? 1 : 0, rows ? 1 : kCellsPerGroup, rows ? kRowsPerGroup : 1, extra_options);
+  const auto [group_x, group_y] = reduction_group();
+  const std::string options =
+      fmt::format("-cl-std=CL1.2 -DFW_ROW_CHUNK={} -DFW_CPU_LAYOUT={} -DFW_GROUP_X={} -DFW_GROUP_Y={} {}",
+                  row_chunk_, mapping_ == WorkMapping::rows ? 1 : 0, group_x, group_y, extra_options);
   try {
     program.build({device_.device}, options.c_str());
   } catch (const cl::BuildError& e) {
@@ -85,9 +85,13 @@ cl::NDRange ComputeContext::rows(int extent_x, int ny, int nz) const {
                      static_cast<std::size_t>(nz));
 }
 
+std::array<std::size_t, 2> ComputeContext::reduction_group() const {
+  return mapping_ == WorkMapping::rows ? std::array<std::size_t, 2>{1, kRowsPerGroup}
+                                       : std::array<std::size_t, 2>{kCellsPerGroup, 1};
+}
+
 ReductionRange ComputeContext::reduction_rows(int extent_x, int ny, int nz) const {
-  const bool rows = mapping_ == WorkMapping::rows;
-  const std::size_t group_x = rows ? 1 : kCellsPerGroup, group_y = rows ? kRowsPerGroup : 1;
+  const auto [group_x, group_y] = reduction_group();
   const cl::NDRange r = this->rows(extent_x, ny, nz);
   const std::size_t gx = round_up(r[0], group_x), gy = round_up(r[1], group_y);
   return {cl::NDRange(gx, gy, r[2]), cl::NDRange(group_x, group_y, 1),

@@ -18,6 +18,7 @@
 // and the number of partials the host then adds in a fixed order.
 #pragma once
 
+#include <array>
 #include <cstddef>
 #include <memory>
 #include <optional>
@@ -68,6 +69,9 @@ class ComputeContext {
 
   /// Number of work-items a flat (1D) kernel over n values uses, and the values each handles.
   std::size_t flat_items(std::size_t n) const;
+
+  /// The reductions' work-group, x by y items (FW_GROUP_X, FW_GROUP_Y in the kernels).
+  std::array<std::size_t, 2> reduction_group() const;
 
   cl::Buffer buffer(std::size_t bytes, cl_mem_flags flags = CL_MEM_READ_WRITE);
   /// A buffer holding `values` (blocking write; an empty vector gives an allocated but unwritten buffer).
