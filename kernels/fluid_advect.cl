@@ -28,27 +28,57 @@ FW_INLINE void lane_coordinate(const FwGrid* g, int c, int a, lanef p, lanei* i0
   *fraction = q - convert_lanef(fl);
 }
 
-/* Trilinear interpolation of component c's padded copy qp at positions (X, Y, Z). */
-FW_INLINE lanef sample_lanes(__global const float* qp, int c, lanef X, lanef Y, lanef Z, const FwGrid* g) {
+/* The eight interpolation corners v[a + 2b + 4c] = qp[base + a + sy b + sz c] of every lane: windowed loads
+ * (kernels/lanes.cl) where the lanes' cells lie along one row, as they do in a smooth flow, else gathers. */
+FW_INLINE void cell_corners(__global const float* qp, lanei base, int sy, int sz, lanef v[8]) {
+  LaneWindow w;
+  if (lane_window(base, &w)) {
+    window_pair(qp, &w, 0, &v[0], &v[1]);
+    window_pair(qp, &w, sy, &v[2], &v[3]);
+    window_pair(qp, &w, sz, &v[4], &v[5]);
+    window_pair(qp, &w, sz + sy, &v[6], &v[7]);
+    return;
+  }
+  /* Written out: PoCL leaves a loop over the corners rolled, which doubles the cost of the kernel. */
+  v[0] = gather(qp, base);
+  v[1] = gather(qp, base + 1);
+  v[2] = gather(qp, base + sy);
+  v[3] = gather(qp, base + sy + 1);
+  v[4] = gather(qp, base + sz);
+  v[5] = gather(qp, base + sz + 1);
+  v[6] = gather(qp, base + sz + sy);
+  v[7] = gather(qp, base + sz + sy + 1);
+}
+
+/* Lower corner (padded index) and fractions of the cells of component c's padded copy that hold (X, Y, Z). */
+FW_INLINE lanei corner_base(const FwGrid* g, int c, lanef X, lanef Y, lanef Z, lanef* fx, lanef* fy,
+                            lanef* fz) {
   lanei i0, j0, k0;
-  lanef fx, fy, fz;
-  lane_coordinate(g, c, 0, X, &i0, &fx);
-  lane_coordinate(g, c, 1, Y, &j0, &fy);
-  lane_coordinate(g, c, 2, Z, &k0, &fz);
+  lane_coordinate(g, c, 0, X, &i0, fx);
+  lane_coordinate(g, c, 1, Y, &j0, fy);
+  lane_coordinate(g, c, 2, Z, &k0, fz);
   const int sy = padded_extent(g, c, 0);
   const int sz = sy * padded_extent(g, c, 1);
-  const lanei base = (i0 + FW_PAD) + sy * (j0 + FW_PAD) + sz * (k0 + FW_PAD);
-  const lanef v000 = gather(qp, base), v100 = gather(qp, base + 1);
-  const lanef v010 = gather(qp, base + sy), v110 = gather(qp, base + sy + 1);
-  const lanef v001 = gather(qp, base + sz), v101 = gather(qp, base + sz + 1);
-  const lanef v011 = gather(qp, base + sz + sy), v111 = gather(qp, base + sz + sy + 1);
-  const lanef x00 = v000 + fx * (v100 - v000);
-  const lanef x10 = v010 + fx * (v110 - v010);
-  const lanef x01 = v001 + fx * (v101 - v001);
-  const lanef x11 = v011 + fx * (v111 - v011);
+  return (i0 + FW_PAD) + sy * (j0 + FW_PAD) + sz * (k0 + FW_PAD);
+}
+
+/* Trilinear blend of the corners v (cell_corners' order) at fractions (fx, fy, fz). */
+FW_INLINE lanef trilinear(const lanef v[8], lanef fx, lanef fy, lanef fz) {
+  const lanef x00 = v[0] + fx * (v[1] - v[0]);
+  const lanef x10 = v[2] + fx * (v[3] - v[2]);
+  const lanef x01 = v[4] + fx * (v[5] - v[4]);
+  const lanef x11 = v[6] + fx * (v[7] - v[6]);
   const lanef y0 = x00 + fy * (x10 - x00);
   const lanef y1 = x01 + fy * (x11 - x01);
   return y0 + fz * (y1 - y0);
+}
+
+/* Trilinear interpolation of component c's padded copy qp at positions (X, Y, Z). */
+FW_INLINE lanef sample_lanes(__global const float* qp, int c, lanef X, lanef Y, lanef Z, const FwGrid* g) {
+  lanef fx, fy, fz, v[8];
+  const int sy = padded_extent(g, c, 0);
+  cell_corners(qp, corner_base(g, c, X, Y, Z, &fx, &fy, &fz), sy, sy * padded_extent(g, c, 1), v);
+  return trilinear(v, fx, fy, fz);
 }
 
 /* Stride of component a's padded copy along axis `axis`. */
@@ -60,10 +90,11 @@ FW_INLINE int padded_stride(const FwGrid* g, int a, int axis) {
 /* Component a (a != c) at the faces `at` (padded indices of component a at the same (i,j,k)) of component c:
  * the mean of its four nearest faces, which is trilinear interpolation at that point (fractions of one half
  * on axes a and c, zero on the third). */
-FW_INLINE lanef cross_component(const FwGrid* g, __global const float* ap, int a, int c, lanei at) {
+FW_INLINE lanef cross_component(const FwGrid* g, __global const float* ap, int a, int c, lanei at,
+                                int valid) {
   const int step_c = padded_stride(g, a, c), step_a = padded_stride(g, a, a);
-  return 0.25f * ((gather(ap, at - step_c) + gather(ap, at)) +
-                  (gather(ap, at - step_c + step_a) + gather(ap, at + step_a)));
+  return 0.25f * ((row_lanes(ap, at - step_c, valid) + row_lanes(ap, at, valid)) +
+                  (row_lanes(ap, at - step_c + step_a, valid) + row_lanes(ap, at + step_a, valid)));
 }
 
 /* The lanes of one work-item: faces i = i0 .. i0 + 7 of row (j, k), clamped to the row (tail lanes repeat the
@@ -74,32 +105,36 @@ FW_INLINE lanei lane_padded_index(const FwGrid* g, int a, lanei i, int j, int k)
 
 /* Back-traced positions of faces (i, j, k) of component c through the padded velocity over dt (explicit
  * midpoint; negative dt traces forward). The first stage reads the velocity at the faces themselves. */
-FW_INLINE void backtrace_lanes(const FwGrid* g, int c, lanei i, int j, int k, float dt,
+FW_INLINE void backtrace_lanes(const FwGrid* g, int c, lanei i, int valid, int j, int k, float dt,
                                __global const float* up, __global const float* vp, __global const float* wp,
                                lanef* X, lanef* Y, lanef* Z) {
   const lanef Px = convert_lanef(i) + face_offset(c, 0);
   const lanef Py = (lanef)((float)j + face_offset(c, 1));
   const lanef Pz = (lanef)((float)k + face_offset(c, 2));
   const float scale = dt / g->h; /* m/s -> cells */
-  const lanef Vu = c == 0 ? gather(up, lane_padded_index(g, 0, i, j, k))
-                          : cross_component(g, up, 0, c, lane_padded_index(g, 0, i, j, k));
-  const lanef Vv = c == 1 ? gather(vp, lane_padded_index(g, 1, i, j, k))
-                          : cross_component(g, vp, 1, c, lane_padded_index(g, 1, i, j, k));
-  const lanef Vw = c == 2 ? gather(wp, lane_padded_index(g, 2, i, j, k))
-                          : cross_component(g, wp, 2, c, lane_padded_index(g, 2, i, j, k));
+  const lanei at_u = lane_padded_index(g, 0, i, j, k), at_v = lane_padded_index(g, 1, i, j, k),
+              at_w = lane_padded_index(g, 2, i, j, k);
+  const lanef Vu = c == 0 ? row_lanes(up, at_u, valid) : cross_component(g, up, 0, c, at_u, valid);
+  const lanef Vv = c == 1 ? row_lanes(vp, at_v, valid) : cross_component(g, vp, 1, c, at_v, valid);
+  const lanef Vw = c == 2 ? row_lanes(wp, at_w, valid) : cross_component(g, wp, 2, c, at_w, valid);
   const lanef Mx = Px - 0.5f * scale * Vu, My = Py - 0.5f * scale * Vv, Mz = Pz - 0.5f * scale * Vw;
   *X = Px - scale * sample_lanes(up, 0, Mx, My, Mz, g);
   *Y = Py - scale * sample_lanes(vp, 1, Mx, My, Mz, g);
   *Z = Pz - scale * sample_lanes(wp, 2, Mx, My, Mz, g);
 }
 
-/* This work-item's faces: first index, count inside the row, and the clamped lane indices. */
-#define FW_LANE_SETUP(c)                                \
-  const int j = get_global_id(1), k = get_global_id(2); \
-  const int ex = face_extent(&g, c, 0);                 \
-  const int i0 = (int)get_global_id(0) * FW_LANES;      \
-  if (i0 >= ex) return;                                 \
-  const int valid = min(FW_LANES, ex - i0);             \
+/* This work-item's faces: FW_LANES consecutive faces of row (j, k) from i0, of which it stores the lanes
+ * `skip` .. `valid` - 1. The last item of a row that does not fill its lanes moves back to end at the row's
+ * end, redoing faces of the item before it without storing them: its lanes then stay contiguous, for vector
+ * and windowed loads. Rows shorter than FW_LANES clamp the lanes past the row to its last face. */
+#define FW_LANE_SETUP(c)                                  \
+  const int j = get_global_id(1), k = get_global_id(2);   \
+  const int ex = face_extent(&g, c, 0);                   \
+  const int own_first = (int)get_global_id(0) * FW_LANES; \
+  if (own_first >= ex) return;                            \
+  const int i0 = max(0, min(own_first, ex - FW_LANES));   \
+  const int skip = own_first - i0;                        \
+  const int valid = min(FW_LANES, ex - i0);               \
   const lanei i = min((lanei)(i0) + FW_LANE_OFFSETS, (lanei)(ex - 1));
 
 /* out = qp sampled at the back-traced position of each face (c is a literal in each kernel below, so the
@@ -109,39 +144,32 @@ FW_INLINE void advect_lanes(const FwGrid g, const int c, const float dt, __globa
                             __global float* out) {
   FW_LANE_SETUP(c)
   lanef X, Y, Z;
-  backtrace_lanes(&g, c, i, j, k, dt, up, vp, wp, &X, &Y, &Z);
-  store_lanes(out, face_index(&g, c, i0, j, k), valid, sample_lanes(qp, c, X, Y, Z, &g));
+  backtrace_lanes(&g, c, i, valid, j, k, dt, up, vp, wp, &X, &Y, &Z);
+  store_lane_span(out, face_index(&g, c, i0, j, k), skip, valid, sample_lanes(qp, c, X, Y, Z, &g));
 }
 
 /* out = forward + (q - back) / 2, unless that leaves the range of the eight values of q the forward step
- * interpolated between, where out = forward (no new extrema). qp is q's padded copy; out may alias back. */
+ * interpolated between, where out = forward (no new extrema). qp is q's padded copy; out may alias back (a
+ * face's lane reads back only at that face, and only the item that stores the face keeps its lane). */
 FW_INLINE void maccormack_lanes(const FwGrid g, const int c, const float dt, __global const float* up,
                                 __global const float* vp, __global const float* wp, __global const float* qp,
                                 __global const float* forward, __global const float* back,
                                 __global float* out) {
   FW_LANE_SETUP(c)
   lanef X, Y, Z;
-  backtrace_lanes(&g, c, i, j, k, dt, up, vp, wp, &X, &Y, &Z);
-  lanei a0, b0, c0;
-  lanef fx, fy, fz;
-  lane_coordinate(&g, c, 0, X, &a0, &fx);
-  lane_coordinate(&g, c, 1, Y, &b0, &fy);
-  lane_coordinate(&g, c, 2, Z, &c0, &fz);
+  backtrace_lanes(&g, c, i, valid, j, k, dt, up, vp, wp, &X, &Y, &Z);
+  lanef fx, fy, fz, v[8];
   const int sy = padded_extent(&g, c, 0);
-  const int sz = sy * padded_extent(&g, c, 1);
-  const lanei base = (a0 + FW_PAD) + sy * (b0 + FW_PAD) + sz * (c0 + FW_PAD);
-  const lanef v000 = gather(qp, base), v100 = gather(qp, base + 1);
-  const lanef v010 = gather(qp, base + sy), v110 = gather(qp, base + sy + 1);
-  const lanef v001 = gather(qp, base + sz), v101 = gather(qp, base + sz + 1);
-  const lanef v011 = gather(qp, base + sz + sy), v111 = gather(qp, base + sz + sy + 1);
-  const lanef lo = fmin(fmin(fmin(v000, v100), fmin(v010, v110)), fmin(fmin(v001, v101), fmin(v011, v111)));
-  const lanef hi = fmax(fmax(fmax(v000, v100), fmax(v010, v110)), fmax(fmax(v001, v101), fmax(v011, v111)));
+  cell_corners(qp, corner_base(&g, c, X, Y, Z, &fx, &fy, &fz), sy, sy * padded_extent(&g, c, 1), v);
+  const lanef lo = fmin(fmin(fmin(v[0], v[1]), fmin(v[2], v[3])), fmin(fmin(v[4], v[5]), fmin(v[6], v[7])));
+  const lanef hi = fmax(fmax(fmax(v[0], v[1]), fmax(v[2], v[3])), fmax(fmax(v[4], v[5]), fmax(v[6], v[7])));
   const int first = face_index(&g, c, i0, j, k);
-  const lanef fwd = gather(forward, (lanei)(first) + (i - (lanei)(i0)));
-  const lanef bwd = gather(back, (lanei)(first) + (i - (lanei)(i0)));
-  const lanef q = gather(qp, lane_padded_index(&g, c, i, j, k));
+  const lanei at = (lanei)(first) + (i - (lanei)(i0));
+  const lanef fwd = row_lanes(forward, at, valid);
+  const lanef bwd = row_lanes(back, at, valid);
+  const lanef q = row_lanes(qp, lane_padded_index(&g, c, i, j, k), valid);
   const lanef corrected = fwd + 0.5f * (q - bwd);
-  store_lanes(out, first, valid, select(corrected, fwd, (corrected < lo) | (corrected > hi)));
+  store_lane_span(out, first, skip, valid, select(corrected, fwd, (corrected < lo) | (corrected > hi)));
 }
 
 __kernel void advect_u(const FwGrid g, const float dt, __global const float* up, __global const float* vp,

@@ -21,6 +21,17 @@ typedef int8 lanei;
 FW_INLINE lanef gather(__global const float* q, lanei at) {
   return (lanef)(q[at.s0], q[at.s1], q[at.s2], q[at.s3], q[at.s4], q[at.s5], q[at.s6], q[at.s7]);
 }
+/* The smallest and the largest lane. */
+FW_INLINE int lane_min(lanei v) {
+  const int4 a = min(v.lo, v.hi);
+  const int2 b = min(a.lo, a.hi);
+  return min(b.x, b.y);
+}
+FW_INLINE int lane_max(lanei v) {
+  const int4 a = max(v.lo, v.hi);
+  const int2 b = max(a.lo, a.hi);
+  return max(b.x, b.y);
+}
 #elif FW_LANES == 16
 typedef float16 lanef;
 typedef int16 lanei;
@@ -34,20 +45,78 @@ FW_INLINE lanef gather(__global const float* q, lanei at) {
   return (lanef)(q[at.s0], q[at.s1], q[at.s2], q[at.s3], q[at.s4], q[at.s5], q[at.s6], q[at.s7], q[at.s8],
                  q[at.s9], q[at.sa], q[at.sb], q[at.sc], q[at.sd], q[at.se], q[at.sf]);
 }
+FW_INLINE int lane_min(lanei v) {
+  const int8 a = min(v.lo, v.hi);
+  const int4 b = min(a.lo, a.hi);
+  const int2 c = min(b.lo, b.hi);
+  return min(c.x, c.y);
+}
+FW_INLINE int lane_max(lanei v) {
+  const int8 a = max(v.lo, v.hi);
+  const int4 b = max(a.lo, a.hi);
+  const int2 c = max(b.lo, b.hi);
+  return max(c.x, c.y);
+}
 #else
 #error "FW_LANES must be 8 or 16"
 #endif
 
-/* out[first + l] = value lane l for the first `valid` lanes: the lanes past the end of a row or a range are
- * not stored. */
-FW_INLINE void store_lanes(__global float* out, int first, int valid, lanef value) {
-  if (valid == FW_LANES) {
+/* Windowed loads: lanes whose indices nearly follow the lanes, at[l] = l + shift[l] with every shift within
+ * FW_WINDOW_SHIFTS of the smallest, as the back-traced corners of consecutive faces in a smooth flow are.
+ * Such a gather is FW_WINDOW_SHIFTS contiguous vector loads, one per shift, blended lane by lane: on a CPU a
+ * few vector instructions instead of FW_LANES scalar loads, and the same values. A window reads up to
+ * FW_WINDOW_SLACK (kernels/shared_types.h) values past the highest index a lane asks for, so buffers read
+ * this way are that much longer, and up to FW_WINDOW_SHIFTS - 1 before the lowest. */
+#if FW_WINDOW_SHIFTS != 3
+#error "LaneWindow blends three shifts"
+#endif
+typedef struct {
+  int first;       /* the smallest shift */
+  lanei at_second; /* lanes whose shift is first + 1 (all bits set), ... */
+  lanei at_third;  /* ... and first + 2 */
+} LaneWindow;
+
+/* Whether the indices `at` fit one window; if so, *w describes it. */
+FW_INLINE int lane_window(lanei at, LaneWindow* w) {
+  const lanei shift = at - FW_LANE_OFFSETS;
+  w->first = lane_min(shift);
+  w->at_second = shift == w->first + 1;
+  w->at_third = shift == w->first + 2;
+  return lane_max(shift) - w->first < FW_WINDOW_SHIFTS;
+}
+
+/* q[at + offset] in *low and q[at + offset + 1] in *high for every lane of window w: the two x-neighbours
+ * of a row of interpolation corners share their loads. */
+FW_INLINE void window_pair(__global const float* q, const LaneWindow* w, int offset, lanef* low,
+                           lanef* high) {
+  __global const float* p = q + w->first + offset;
+  const lanef s0 = lane_load(0, p), s1 = lane_load(0, p + 1), s2 = lane_load(0, p + 2),
+              s3 = lane_load(0, p + 3);
+  *low = select(select(s0, s1, w->at_second), s2, w->at_third);
+  *high = select(select(s1, s2, w->at_second), s3, w->at_third);
+}
+
+/* q[at] for the lanes of one run, at[l] = at[0] + l for its `valid` lanes and clamped past them: one vector
+ * load where every lane is valid, else a gather. */
+FW_INLINE lanef row_lanes(__global const float* q, lanei at, int valid) {
+  return valid == FW_LANES ? lane_load(0, q + at.s0) : gather(q, at);
+}
+
+/* out[first + l] = value lane l for the lanes begin <= l < end. */
+FW_INLINE void store_lane_span(__global float* out, int first, int begin, int end, lanef value) {
+  if (begin == 0 && end == FW_LANES) {
     lane_store(value, 0, out + first);
     return;
   }
   float lanes[FW_LANES];
   lane_store(value, 0, lanes);
-  for (int l = 0; l < valid; ++l) out[first + l] = lanes[l];
+  for (int l = begin; l < end; ++l) out[first + l] = lanes[l];
+}
+
+/* out[first + l] = value lane l for the first `valid` lanes: the lanes past the end of a row or a range are
+ * not stored. */
+FW_INLINE void store_lanes(__global float* out, int first, int valid, lanef value) {
+  store_lane_span(out, first, 0, valid, value);
 }
 
 /* sin r, and cos r in *cosine, for |r| <= pi/2: Taylor series to r^11 and r^12 (error below 6e-8 at pi/2).

@@ -16,8 +16,13 @@ typedef std::int32_t fw_int;
 typedef std::uint32_t fw_uint;
 #endif
 
-/* Values per work-item in the lane kernels (kernels/lanes.cl: float8 arithmetic). */
+/* Values per work-item in the lane kernels (kernels/lanes.cl: vector arithmetic of FW_LANES floats). */
 #define FW_LANES 16
+
+/* Windowed loads (kernels/lanes.cl) blend contiguous loads at up to FW_WINDOW_SHIFTS shifts, and so read up
+ * to FW_WINDOW_SLACK values past the last one a lane needs: buffers read that way carry that many more. */
+#define FW_WINDOW_SHIFTS 3
+#define FW_WINDOW_SLACK (FW_WINDOW_SHIFTS - 1)
 
 /* Boundary condition of one domain face. */
 #define FW_BC_INFLOW 0   /* velocity prescribed by the ambient wind profile */

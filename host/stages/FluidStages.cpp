@@ -150,8 +150,10 @@ cl::NDRange FluidStages::advect_rows(int c) const {
 DeviceVelocity FluidStages::allocate_padded_velocity() {
   DeviceVelocity vel;
   for (int c = 0; c < 3; ++c) {
-    vel.component(c) = cc_.buffer(padded_count(c) * sizeof(float));
-    cc_.queue().enqueueFillBuffer(vel.component(c), 0.0f, 0, padded_count(c) * sizeof(float));
+    // Advection reads the copies through windowed loads (kernels/lanes.cl), which run a little past the end.
+    const std::size_t bytes = (padded_count(c) + FW_WINDOW_SLACK) * sizeof(float);
+    vel.component(c) = cc_.buffer(bytes);
+    cc_.queue().enqueueFillBuffer(vel.component(c), 0.0f, 0, bytes);
   }
   return vel;
 }
