@@ -59,6 +59,30 @@ fluid::MacVelocity random_velocity(const fluid::GridSpec& spec, double amplitude
   return vel;
 }
 
+fluid::MacVelocity smooth_velocity(const fluid::GridSpec& spec, const std::array<double, 3>& mean,
+                                   const std::array<double, 3>& ripple) {
+  constexpr double kTwoPi = 6.283185307179586;
+  fluid::MacVelocity vel;
+  const int n[3] = {spec.nx, spec.ny, spec.nz};
+  for (int c = 0; c < 3; ++c) {
+    const int ex = fluid::reference::extent(spec, c, 0), ey = fluid::reference::extent(spec, c, 1),
+              ez = fluid::reference::extent(spec, c, 2);
+    auto& q = vel.component(c);
+    q.resize(std::size_t(ex) * ey * ez);
+    for (int k = 0; k < ez; ++k)
+      for (int j = 0; j < ey; ++j)
+        for (int i = 0; i < ex; ++i) {
+          const int at[3] = {i, j, k};
+          double wave = 0.0;
+          for (int a = 0; a < 3; ++a)
+            wave += std::sin(kTwoPi * (at[a] + (a == c ? 0.0 : 0.5)) / n[a] + a + c);
+          q[std::size_t(i) + std::size_t(ex) * (j + std::size_t(ey) * k)] =
+              static_cast<float>(mean[c] + ripple[c] * wave / 3.0);
+        }
+  }
+  return vel;
+}
+
 void match_periodic_faces(const fluid::GridSpec& spec, fluid::MacVelocity& vel) {
   for (int c = 0; c < 3; ++c) {
     if (!spec.periodic(c)) continue;

@@ -1,6 +1,7 @@
 // Helpers for tests that compare device fields with the CPU reference.
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <random>
 #include <vector>
@@ -25,6 +26,10 @@ fluid::InflowState test_inflow(const fluid::GridSpec& spec);
 
 /// Uniform random face velocities in [-amplitude, amplitude] m/s.
 fluid::MacVelocity random_velocity(const fluid::GridSpec& spec, double amplitude, std::uint32_t seed);
+/// A smooth wind: component c is mean[c] m/s plus a long-wave ripple of amplitude ripple[c] m/s (the mean of
+/// sines of the face's position, one wavelength across the grid along each axis).
+fluid::MacVelocity smooth_velocity(const fluid::GridSpec& spec, const std::array<double, 3>& mean,
+                                   const std::array<double, 3>& ripple);
 /// Copies the low face of every periodic axis onto its high twin (the solver keeps them equal; advection's
 /// first RK2 stage reads the high face directly while interpolation wraps to the low one).
 void match_periodic_faces(const fluid::GridSpec& spec, fluid::MacVelocity& vel);
