@@ -4,10 +4,10 @@
 // others, dt = 0.05 s, and a box obstacle over x 0.4375-0.5625 and y, z 0.375-0.625 of the domain. The
 // pressure uses the converging solver (multigrid-preconditioned CG) to a relative residual of 1e-3;
 // multigrid V-cycles and fixed-count Jacobi (the seed's method) run the same steps for comparison.
-// Baselines measured in the same process: a STREAM triad on the device (roofline), the gather rate of
-// scattered eight-corner loads (advection's limit), the smoother's bandwidth on a grid too large for cache,
-// and one step of the CPU reference (fluid/ReferenceStages). Each stage's throughput is reported as a
-// fraction of the limit that binds it (bench/StageTraffic.hpp).
+// Baselines measured in the same process: a STREAM triad on the device (roofline), the rates of advection's
+// eight-corner loads, scattered (gathers) and windowed (a smooth flow's back-traces), the smoother's
+// bandwidth on a grid too large for cache, and one step of the CPU reference (fluid/ReferenceStages). Each
+// stage's throughput is reported as a fraction of the limit that binds it (bench/StageTraffic.hpp).
 //
 //   WindBenchOptions opt;                 // default grids 128x128x64, 64x64x32, 256x256x16
 //   WindBenchResult r = run_wind_bench(cc, opt);
@@ -19,6 +19,8 @@
 #include <ostream>
 #include <string>
 #include <vector>
+
+#include "bench/GatherThroughput.hpp"
 
 #include "host/runtime/ComputeContext.hpp"
 #include "host/stages/WindGrid.hpp"
@@ -47,8 +49,7 @@ struct SolverRun {
   double startup_ms_per_step = 0.0;          // the first steps from the uniform start (kStartupSteps)
   double startup_pressure_iterations = 0.0;  // mean over those steps
   // What the stages reach against the limit that binds them (bench/StageTraffic.hpp):
-  double advect_loads_per_s =
-      0.0;  ///< gathered loads of the advection kernels (padding included in the time)
+  double advect_loads_per_s = 0.0;  ///< corner loads of the advection kernels (padding included in the time)
   double divergence_gb_s = 0.0, pressure_gb_s = 0.0, gradient_gb_s = 0.0;
 };
 
@@ -62,7 +63,7 @@ struct WindBenchCase {
 struct WindBenchResult {
   std::string device;
   double triad_gb_s = 0.0;
-  double gather_loads_per_s = 0.0;      // eight-corner gathers (bench/GatherThroughput) on roofline_grid
+  CornerLoadRates corner_loads;         // eight-corner loads (bench/GatherThroughput) on roofline_grid
   double roofline_smoother_gb_s = 0.0;  // red-black pass on roofline_grid
   double roofline_jacobi_gb_s = 0.0;    // Jacobi sweep on roofline_grid
   std::array<int, 3> roofline_grid{};

@@ -28,28 +28,6 @@ FW_INLINE void lane_coordinate(const FwGrid* g, int c, int a, lanef p, lanei* i0
   *fraction = q - convert_lanef(fl);
 }
 
-/* The eight interpolation corners v[a + 2b + 4c] = qp[base + a + sy b + sz c] of every lane: windowed loads
- * (kernels/lanes.cl) where the lanes' cells lie along one row, as they do in a smooth flow, else gathers. */
-FW_INLINE void cell_corners(__global const float* qp, lanei base, int sy, int sz, lanef v[8]) {
-  LaneWindow w;
-  if (lane_window(base, &w)) {
-    window_pair(qp, &w, 0, &v[0], &v[1]);
-    window_pair(qp, &w, sy, &v[2], &v[3]);
-    window_pair(qp, &w, sz, &v[4], &v[5]);
-    window_pair(qp, &w, sz + sy, &v[6], &v[7]);
-    return;
-  }
-  /* Written out: PoCL leaves a loop over the corners rolled, which doubles the cost of the kernel. */
-  v[0] = gather(qp, base);
-  v[1] = gather(qp, base + 1);
-  v[2] = gather(qp, base + sy);
-  v[3] = gather(qp, base + sy + 1);
-  v[4] = gather(qp, base + sz);
-  v[5] = gather(qp, base + sz + 1);
-  v[6] = gather(qp, base + sz + sy);
-  v[7] = gather(qp, base + sz + sy + 1);
-}
-
 /* Lower corner (padded index) and fractions of the cells of component c's padded copy that hold (X, Y, Z). */
 FW_INLINE lanei corner_base(const FwGrid* g, int c, lanef X, lanef Y, lanef Z, lanef* fx, lanef* fy,
                             lanef* fz) {
@@ -60,17 +38,6 @@ FW_INLINE lanei corner_base(const FwGrid* g, int c, lanef X, lanef Y, lanef Z, l
   const int sy = padded_extent(g, c, 0);
   const int sz = sy * padded_extent(g, c, 1);
   return (i0 + FW_PAD) + sy * (j0 + FW_PAD) + sz * (k0 + FW_PAD);
-}
-
-/* Trilinear blend of the corners v (cell_corners' order) at fractions (fx, fy, fz). */
-FW_INLINE lanef trilinear(const lanef v[8], lanef fx, lanef fy, lanef fz) {
-  const lanef x00 = v[0] + fx * (v[1] - v[0]);
-  const lanef x10 = v[2] + fx * (v[3] - v[2]);
-  const lanef x01 = v[4] + fx * (v[5] - v[4]);
-  const lanef x11 = v[6] + fx * (v[7] - v[6]);
-  const lanef y0 = x00 + fy * (x10 - x00);
-  const lanef y1 = x01 + fy * (x11 - x01);
-  return y0 + fz * (y1 - y0);
 }
 
 /* Trilinear interpolation of component c's padded copy qp at positions (X, Y, Z). */

@@ -102,6 +102,40 @@ FW_INLINE lanef row_lanes(__global const float* q, lanei at, int valid) {
   return valid == FW_LANES ? lane_load(0, q + at.s0) : gather(q, at);
 }
 
+/* The eight corners v[a + 2b + 4c] = qp[base + a + sy b + sz c] of every lane's cell of a 3D array (x stride
+ * 1, y stride sy, z stride sz): windowed loads where the lanes' cells lie along one row, as the back-traced
+ * cells of a smooth flow do, else gathers. */
+FW_INLINE void cell_corners(__global const float* qp, lanei base, int sy, int sz, lanef v[8]) {
+  LaneWindow w;
+  if (lane_window(base, &w)) {
+    window_pair(qp, &w, 0, &v[0], &v[1]);
+    window_pair(qp, &w, sy, &v[2], &v[3]);
+    window_pair(qp, &w, sz, &v[4], &v[5]);
+    window_pair(qp, &w, sz + sy, &v[6], &v[7]);
+    return;
+  }
+  /* Written out: PoCL leaves a loop over the corners rolled, which doubles the cost of the kernel. */
+  v[0] = gather(qp, base);
+  v[1] = gather(qp, base + 1);
+  v[2] = gather(qp, base + sy);
+  v[3] = gather(qp, base + sy + 1);
+  v[4] = gather(qp, base + sz);
+  v[5] = gather(qp, base + sz + 1);
+  v[6] = gather(qp, base + sz + sy);
+  v[7] = gather(qp, base + sz + sy + 1);
+}
+
+/* Trilinear blend of the corners v (cell_corners' order) at fractions (fx, fy, fz). */
+FW_INLINE lanef trilinear(const lanef v[8], lanef fx, lanef fy, lanef fz) {
+  const lanef x00 = v[0] + fx * (v[1] - v[0]);
+  const lanef x10 = v[2] + fx * (v[3] - v[2]);
+  const lanef x01 = v[4] + fx * (v[5] - v[4]);
+  const lanef x11 = v[6] + fx * (v[7] - v[6]);
+  const lanef y0 = x00 + fy * (x10 - x00);
+  const lanef y1 = x01 + fy * (x11 - x01);
+  return y0 + fz * (y1 - y0);
+}
+
 /* out[first + l] = value lane l for the lanes begin <= l < end. */
 FW_INLINE void store_lane_span(__global float* out, int first, int begin, int end, lanef value) {
   if (begin == 0 && end == FW_LANES) {
