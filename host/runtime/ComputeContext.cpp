@@ -139,4 +139,12 @@ void Kernel::enqueue(ComputeContext& cc, const cl::NDRange& global, const cl::ND
   }
 }
 
+std::size_t Kernel::max_group_size(const ComputeContext& cc) const {
+  try {
+    return kernel_.getWorkGroupInfo<CL_KERNEL_WORK_GROUP_SIZE>(cc.device().device);
+  } catch (const cl::Error& e) {
+    throw ClError(fmt::format("kernel {}: querying its work-group size", name_), e.err());
+  }
+}
+
 }  // namespace fw::host

@@ -120,6 +120,9 @@ class Kernel {
 
   void enqueue(ComputeContext& cc, const cl::NDRange& global, const cl::NDRange& local = cl::NullRange);
 
+  /// The largest work-group this kernel can run with on cc's device (CL_KERNEL_WORK_GROUP_SIZE).
+  std::size_t max_group_size(const ComputeContext& cc) const;
+
  private:
   [[noreturn]] void throw_arg_error(cl_uint index, int status) const;
   cl::Kernel kernel_;

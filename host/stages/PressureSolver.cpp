@@ -14,6 +14,11 @@ constexpr float kJacobiDamping = 6.0f / 7.0f;
 // Lets the compiler reassociate the per-row sums of the reductions, which is what allows it to vectorise
 // them. Results stay deterministic on a given device; no kernel here tests for NaN.
 constexpr const char* kPressureBuildOptions = "-cl-unsafe-math-optimizations";
+// The work-group of red_black_sweeps: under the GPU work mapping enough items for a compute unit; under the
+// CPU's rows mapping one item, as a CPU runs a group on one core whatever its size and one item spares PoCL
+// the barriers (a group of 256 items took 5x as long). The mapping, not the device, decides, so that CI
+// runs the GPU's group on PoCL.
+constexpr std::size_t kOneGroupItemsGpu = 256;
 
 FwLevel level_dims(const fluid::PressureLevel& L, const fluid::GridSpec& spec) {
   FwLevel d{};
@@ -64,6 +69,10 @@ PressureSolver::PressureSolver(ComputeContext& cc, const fluid::GridSpec& spec,
   cl::Program program = cc_.build("fluid_pressure.cl", kPressureBuildOptions);
   jacobi_ = Kernel(program, "jacobi_sweep");
   red_black_ = Kernel(program, "red_black_pass");
+  red_black_sweeps_ = Kernel(program, "red_black_sweeps");
+  one_group_items_ = cc_.mapping() == WorkMapping::rows
+                         ? 1
+                         : std::min(kOneGroupItemsGpu, red_black_sweeps_.max_group_size(cc_));
   residual_ = Kernel(program, "residual");
   apply_dot_ = Kernel(program, "apply_operator_dot");
   restrict_ = Kernel(program, "restrict_residual");
@@ -140,6 +149,14 @@ void PressureSolver::enqueue_red_black_pass(int level, cl::Buffer& b, cl::Buffer
   count_traffic(level, traffic::kSmoothPass);
 }
 
+void PressureSolver::enqueue_red_black_sweeps(int level, cl::Buffer& b, cl::Buffer& phi, int sweeps,
+                                              int first_colour) {
+  auto& L = levels_[level];
+  red_black_sweeps_.set_args(L.dims, L.mask, b, phi, L.scratch, sweeps, first_colour)
+      .enqueue(cc_, cl::NDRange(one_group_items_), cl::NDRange(one_group_items_));
+  count_traffic(level, 2.0 * sweeps * traffic::kSmoothPass);
+}
+
 double PressureSolver::residual_norm2(int level, cl::Buffer& b, cl::Buffer& phi, cl::Buffer& r) {
   auto& L = levels_[level];
   const ReductionRange range = reduction(level);
@@ -186,8 +203,12 @@ void PressureSolver::smooth(int l, cl::Buffer& b, cl::Buffer& phi, int sweeps, b
     return;
   }
   // Red-black Gauss-Seidel, one colour per pass (phi -> scratch -> phi); reversing the colour order after
-  // the correction keeps the cycle symmetric.
+  // the correction keeps the cycle symmetric. Small levels take all their passes in one launch.
   const int first = after_correction ? 1 : 0;
+  if (host_levels_[l].cell_count() <= kOneGroupCells) {
+    enqueue_red_black_sweeps(l, b, phi, sweeps, first);
+    return;
+  }
   for (int s = 0; s < sweeps; ++s) {
     enqueue_red_black_pass(l, b, phi, levels_[l].scratch, first);
     enqueue_red_black_pass(l, b, levels_[l].scratch, phi, 1 - first);

@@ -59,6 +59,13 @@ class PressureSolver {
   void enqueue_jacobi_sweep(int level, cl::Buffer& b, cl::Buffer& phi, cl::Buffer& phi_out, float omega);
   /// One colour of red-black Gauss-Seidel, out of place: phi_out = phi with the colour's cells updated.
   void enqueue_red_black_pass(int level, cl::Buffer& b, cl::Buffer& phi, cl::Buffer& phi_out, int colour);
+  /// `sweeps` red-black sweeps (colour first_colour, then the other) in one launch by one work-group: the
+  /// same values as 2 * sweeps enqueue_red_black_pass; smooth() uses it on levels of at most
+  /// kOneGroupCells cells.
+  void enqueue_red_black_sweeps(int level, cl::Buffer& b, cl::Buffer& phi, int sweeps, int first_colour);
+  /// Under PoCL a launch costs about 0.1 ms, more than one core takes for a colour pass over this many cells
+  /// (16,384 cells, one more level, came out slower on one core than in parallel).
+  static constexpr std::size_t kOneGroupCells = 4096;
   /// r = b - A phi and returns ||r||^2 (blocks).
   double residual_norm2(int level, cl::Buffer& b, cl::Buffer& phi, cl::Buffer& r);
   /// Coarse rhs = correction_scale() * mean of the children's residual; coarse solution zeroed.
@@ -96,10 +103,11 @@ class PressureSolver {
   std::vector<DeviceLevel> levels_;
   cl::Buffer r_, z_, d_, q_, scratch_, partial_;
   std::vector<float> partial_host_;
+  std::size_t one_group_items_ = 1;  // red_black_sweeps' work-group
   double traffic_bytes_ = 0.0;
   std::size_t fluid_cells_ = 0;
-  Kernel jacobi_, red_black_, residual_, apply_dot_, restrict_, prolong_, cg_update_, cg_direction_, dot_,
-      add_, sum_;
+  Kernel jacobi_, red_black_, red_black_sweeps_, residual_, apply_dot_, restrict_, prolong_, cg_update_,
+      cg_direction_, dot_, add_, sum_;
 };
 
 }  // namespace fw::host

@@ -89,6 +89,32 @@ TEST_CASE("pressure kernels: Jacobi, red-black, residual, restriction and prolon
   CHECK(test::relative_error(test::download(*cc, dphi, f.n(0)), expected_phi) < kKernelTolerance);
 }
 
+TEST_CASE("pressure kernels: red-black sweeps in one work-group match the reference's sweeps") {
+  auto* cc = test::device_or_skip();
+  if (!cc) return;
+  SolverFixture f(*cc);
+  // The finest level (24 x 16 x 12: edges, periodic y, the solid box) and the coarsest, in both colour orders
+  // (before and after the coarse correction).
+  for (const int l : {0, int(f.levels.size()) - 1}) {
+    for (const int first : {0, 1}) {
+      INFO("level " << l << ", first colour " << first);
+      const auto b = test::random_cells(f.n(l), 1.0, 15 + l);
+      const auto phi = test::random_cells(f.n(l), 1.0, 16 + l);
+      cl::Buffer db = cc->buffer(f.n(l) * 4), dphi = cc->buffer(f.n(l) * 4);
+      test::upload(*cc, b, db);
+      test::upload(*cc, phi, dphi);
+      constexpr int kSweeps = 3;
+      f.solver.enqueue_red_black_sweeps(l, db, dphi, kSweeps, first);
+      auto expected = phi;
+      for (int s = 0; s < kSweeps; ++s) {
+        ref::red_black_sweep(f.spec, f.levels[l], b, expected, first);
+        ref::red_black_sweep(f.spec, f.levels[l], b, expected, 1 - first);
+      }
+      CHECK(test::relative_error(test::download(*cc, dphi, f.n(l)), expected) < kKernelTolerance);
+    }
+  }
+}
+
 namespace {
 
 // Projects a random velocity field with `solver` on the device and checks divergence and residual.
