@@ -35,7 +35,7 @@ __kernel void corner_loads(const int nx, const int ny, const int nz, const int w
   const lanei y = (lanei)(j) + displacement(windowed ? item : i, j, k, 1);
   const lanei z = (lanei)(k) + displacement(windowed ? item : i, j, k, 2);
   lanef v[8];
-  cell_corners(q, x + sy * y + sz * z, sy, sz, v);
+  cell_corners(q, x, y, z, sy, sz, v);
   const lanef sum = ((v[0] + v[1]) + (v[2] + v[3])) + ((v[4] + v[5]) + (v[6] + v[7]));
   store_lanes(out, i0 + nx * (j + ny * k), valid, sum);
 }

@@ -28,23 +28,21 @@ FW_INLINE void lane_coordinate(const FwGrid* g, int c, int a, lanef p, lanei* i0
   *fraction = q - convert_lanef(fl);
 }
 
-/* Lower corner (padded index) and fractions of the cells of component c's padded copy that hold (X, Y, Z). */
-FW_INLINE lanei corner_base(const FwGrid* g, int c, lanef X, lanef Y, lanef Z, lanef* fx, lanef* fy,
-                            lanef* fz) {
+/* The eight interpolation corners of component c's padded copy qp around positions (X, Y, Z) (cell_corners'
+ * order), and the fractions within their cells. */
+FW_INLINE void interpolation_corners(const FwGrid* g, __global const float* qp, int c, lanef X, lanef Y,
+                                     lanef Z, lanef v[8], lanef* fx, lanef* fy, lanef* fz) {
   lanei i0, j0, k0;
   lane_coordinate(g, c, 0, X, &i0, fx);
   lane_coordinate(g, c, 1, Y, &j0, fy);
   lane_coordinate(g, c, 2, Z, &k0, fz);
   const int sy = padded_extent(g, c, 0);
-  const int sz = sy * padded_extent(g, c, 1);
-  return (i0 + FW_PAD) + sy * (j0 + FW_PAD) + sz * (k0 + FW_PAD);
+  cell_corners(qp, i0 + FW_PAD, j0 + FW_PAD, k0 + FW_PAD, sy, sy * padded_extent(g, c, 1), v);
 }
-
 /* Trilinear interpolation of component c's padded copy qp at positions (X, Y, Z). */
 FW_INLINE lanef sample_lanes(__global const float* qp, int c, lanef X, lanef Y, lanef Z, const FwGrid* g) {
   lanef fx, fy, fz, v[8];
-  const int sy = padded_extent(g, c, 0);
-  cell_corners(qp, corner_base(g, c, X, Y, Z, &fx, &fy, &fz), sy, sy * padded_extent(g, c, 1), v);
+  interpolation_corners(g, qp, c, X, Y, Z, v, &fx, &fy, &fz);
   return trilinear(v, fx, fy, fz);
 }
 
@@ -126,8 +124,7 @@ FW_INLINE void maccormack_lanes(const FwGrid g, const int c, const float dt, __g
   lanef X, Y, Z;
   backtrace_lanes(&g, c, i, valid, j, k, dt, up, vp, wp, &X, &Y, &Z);
   lanef fx, fy, fz, v[8];
-  const int sy = padded_extent(&g, c, 0);
-  cell_corners(qp, corner_base(&g, c, X, Y, Z, &fx, &fy, &fz), sy, sy * padded_extent(&g, c, 1), v);
+  interpolation_corners(&g, qp, c, X, Y, Z, v, &fx, &fy, &fz);
   const lanef lo = fmin(fmin(fmin(v[0], v[1]), fmin(v[2], v[3])), fmin(fmin(v[4], v[5]), fmin(v[6], v[7])));
   const lanef hi = fmax(fmax(fmax(v[0], v[1]), fmax(v[2], v[3])), fmax(fmax(v[4], v[5]), fmax(v[6], v[7])));
   const int first = face_index(&g, c, i0, j, k);

@@ -102,27 +102,55 @@ FW_INLINE lanef row_lanes(__global const float* q, lanei at, int valid) {
   return valid == FW_LANES ? lane_load(0, q + at.s0) : gather(q, at);
 }
 
-/* The eight corners v[a + 2b + 4c] = qp[base + a + sy b + sz c] of every lane's cell of a 3D array (x stride
- * 1, y stride sy, z stride sz): windowed loads where the lanes' cells lie along one row, as the back-traced
- * cells of a smooth flow do, else gathers. */
-FW_INLINE void cell_corners(__global const float* qp, lanei base, int sy, int sz, lanef v[8]) {
+/* The x-pair of window_pair at row offset `at`, and, where `stepping`, at `at + step` for the lanes in
+ * `stepped`. The flags are scalars: OpenCL's any() on the lane masks made PoCL's code twice as slow. */
+FW_INLINE void stepped_pair(__global const float* q, const LaneWindow* w, int at, int step, int stepping,
+                            lanei stepped, lanef* low, lanef* high) {
+  window_pair(q, w, at, low, high);
+  if (!stepping) return;
+  lanef low_next, high_next;
+  window_pair(q, w, at + step, &low_next, &high_next);
+  *low = select(*low, low_next, stepped);
+  *high = select(*high, high_next, stepped);
+}
+/* The x-pair at row offset `at`, plus sy for the lanes in y_stepped and plus sz for those in z_stepped. */
+FW_INLINE void row_pair(__global const float* q, const LaneWindow* w, int at, int sy, int sz, int y_spread,
+                        lanei y_stepped, int z_spread, lanei z_stepped, lanef* low, lanef* high) {
+  stepped_pair(q, w, at, sy, y_spread, y_stepped, low, high);
+  if (!z_spread) return;
+  lanef low_next, high_next;
+  stepped_pair(q, w, at + sz, sy, y_spread, y_stepped, &low_next, &high_next);
+  *low = select(*low, low_next, z_stepped);
+  *high = select(*high, high_next, z_stepped);
+}
+/* The eight corners v[a + 2b + 4c] = q[x + a + sy (y + b) + sz (z + c)] of every lane's cell (x, y, z) of a
+ * 3D array (x stride 1, y stride sy, z stride sz). Windowed loads where the lanes' cells lie along one row,
+ * or straddle two neighbouring rows in y or z, as the back-traced cells of a smooth or turbulent flow do (a
+ * back-trace crosses a row boundary across a work-item wherever a cross-stream velocity changes sign);
+ * gathers elsewhere. */
+FW_INLINE void cell_corners(__global const float* q, lanei x, lanei y, lanei z, int sy, int sz, lanef v[8]) {
   LaneWindow w;
-  if (lane_window(base, &w)) {
-    window_pair(qp, &w, 0, &v[0], &v[1]);
-    window_pair(qp, &w, sy, &v[2], &v[3]);
-    window_pair(qp, &w, sz, &v[4], &v[5]);
-    window_pair(qp, &w, sz + sy, &v[6], &v[7]);
+  const int y_low = lane_min(y), z_low = lane_min(z);
+  const int y_spread = lane_max(y) - y_low, z_spread = lane_max(z) - z_low;
+  if (lane_window(x, &w) && y_spread <= 1 && z_spread <= 1) {
+    const lanei y_stepped = y != y_low, z_stepped = z != z_low;
+    const int at = sy * y_low + sz * z_low;
+    row_pair(q, &w, at, sy, sz, y_spread, y_stepped, z_spread, z_stepped, &v[0], &v[1]);
+    row_pair(q, &w, at + sy, sy, sz, y_spread, y_stepped, z_spread, z_stepped, &v[2], &v[3]);
+    row_pair(q, &w, at + sz, sy, sz, y_spread, y_stepped, z_spread, z_stepped, &v[4], &v[5]);
+    row_pair(q, &w, at + sz + sy, sy, sz, y_spread, y_stepped, z_spread, z_stepped, &v[6], &v[7]);
     return;
   }
+  const lanei base = x + sy * y + sz * z;
   /* Written out: PoCL leaves a loop over the corners rolled, which doubles the cost of the kernel. */
-  v[0] = gather(qp, base);
-  v[1] = gather(qp, base + 1);
-  v[2] = gather(qp, base + sy);
-  v[3] = gather(qp, base + sy + 1);
-  v[4] = gather(qp, base + sz);
-  v[5] = gather(qp, base + sz + 1);
-  v[6] = gather(qp, base + sz + sy);
-  v[7] = gather(qp, base + sz + sy + 1);
+  v[0] = gather(q, base);
+  v[1] = gather(q, base + 1);
+  v[2] = gather(q, base + sy);
+  v[3] = gather(q, base + sy + 1);
+  v[4] = gather(q, base + sz);
+  v[5] = gather(q, base + sz + 1);
+  v[6] = gather(q, base + sz + sy);
+  v[7] = gather(q, base + sz + sy + 1);
 }
 
 /* Trilinear blend of the corners v (cell_corners' order) at fractions (fx, fy, fz). */
