@@ -7,6 +7,18 @@
 
 #include "common.cl"
 
+/* The smallest and the largest of eight ints, by halves. */
+FW_INLINE int min_of_eight(int8 v) {
+  const int4 a = min(v.lo, v.hi);
+  const int2 b = min(a.lo, a.hi);
+  return min(b.x, b.y);
+}
+FW_INLINE int max_of_eight(int8 v) {
+  const int4 a = max(v.lo, v.hi);
+  const int2 b = max(a.lo, a.hi);
+  return max(b.x, b.y);
+}
+
 /* The lane types and their vector built-ins for FW_LANES (kernels/shared_types.h) values. */
 #if FW_LANES == 8
 typedef float8 lanef;
@@ -23,14 +35,10 @@ FW_INLINE lanef gather(__global const float* q, lanei at) {
 }
 /* The smallest and the largest lane. */
 FW_INLINE int lane_min(lanei v) {
-  const int4 a = min(v.lo, v.hi);
-  const int2 b = min(a.lo, a.hi);
-  return min(b.x, b.y);
+  return min_of_eight(v);
 }
 FW_INLINE int lane_max(lanei v) {
-  const int4 a = max(v.lo, v.hi);
-  const int2 b = max(a.lo, a.hi);
-  return max(b.x, b.y);
+  return max_of_eight(v);
 }
 #elif FW_LANES == 16
 typedef float16 lanef;
@@ -46,16 +54,10 @@ FW_INLINE lanef gather(__global const float* q, lanei at) {
                  q[at.s9], q[at.sa], q[at.sb], q[at.sc], q[at.sd], q[at.se], q[at.sf]);
 }
 FW_INLINE int lane_min(lanei v) {
-  const int8 a = min(v.lo, v.hi);
-  const int4 b = min(a.lo, a.hi);
-  const int2 c = min(b.lo, b.hi);
-  return min(c.x, c.y);
+  return min_of_eight(min(v.lo, v.hi));
 }
 FW_INLINE int lane_max(lanei v) {
-  const int8 a = max(v.lo, v.hi);
-  const int4 b = max(a.lo, a.hi);
-  const int2 c = max(b.lo, b.hi);
-  return max(c.x, c.y);
+  return max_of_eight(max(v.lo, v.hi));
 }
 #else
 #error "FW_LANES must be 8 or 16"

@@ -57,6 +57,26 @@ struct StageFixture {
           expected.push_back(float(ref::fetch(spec, inflow, vel.component(c), c, i, j, k)));
     return expected;
   }
+  struct MacCormackResult {
+    fluid::MacVelocity forward, corrected;
+  };
+  /// WindGrid::advect's MacCormack sequence on the device over dt: the forward semi-Lagrangian step, the
+  /// backward step from the forward's padded copy, and the correction in place.
+  MacCormackResult maccormack(const fluid::MacVelocity& vel, float dt) {
+    auto dvel = stages.allocate_velocity(), fwd = stages.allocate_velocity(),
+         back = stages.allocate_velocity();
+    auto padded = stages.allocate_padded_velocity(), padded_fwd = stages.allocate_padded_velocity();
+    test::upload(cc, vel, dvel);
+    stages.enqueue_pad(dvel, padded);
+    for (int c = 0; c < 3; ++c) stages.enqueue_advect(c, dt, padded, padded.component(c), fwd.component(c));
+    stages.enqueue_pad(fwd, padded_fwd);
+    for (int c = 0; c < 3; ++c)
+      stages.enqueue_advect(c, -dt, padded, padded_fwd.component(c), back.component(c));
+    for (int c = 0; c < 3; ++c)
+      stages.enqueue_maccormack_correct(c, padded, padded.component(c), fwd.component(c), back.component(c),
+                                        back.component(c));
+    return {test::download(cc, fwd, spec), test::download(cc, back, spec)};
+  }
   /// Inflow turbulence through the inflow faces (test::add_small_turbulence).
   void make_turbulent() {
     test::add_small_turbulence(inflow);
@@ -182,19 +202,7 @@ TEST_CASE("advect: clamped MacCormack kernels match the CPU reference on random 
   StageFixture f(*cc);
   auto vel = test::random_velocity(f.spec, 8.0, 21);
   test::match_periodic_faces(f.spec, vel);
-  auto dvel = f.stages.allocate_velocity(), fwd = f.stages.allocate_velocity(),
-       back = f.stages.allocate_velocity();
-  auto padded = f.stages.allocate_padded_velocity(), padded_fwd = f.stages.allocate_padded_velocity();
-  test::upload(*cc, vel, dvel);
-  f.stages.enqueue_pad(dvel, padded);
-  for (int c = 0; c < 3; ++c) f.stages.enqueue_advect(c, 0.4f, padded, padded.component(c), fwd.component(c));
-  f.stages.enqueue_pad(fwd, padded_fwd);
-  for (int c = 0; c < 3; ++c)
-    f.stages.enqueue_advect(c, -0.4f, padded, padded_fwd.component(c), back.component(c));
-  for (int c = 0; c < 3; ++c)
-    f.stages.enqueue_maccormack_correct(c, padded, padded.component(c), fwd.component(c), back.component(c),
-                                        back.component(c));
-  const auto device = test::download(*cc, back, f.spec);
+  const auto device = f.maccormack(vel, 0.4f).corrected;
   const auto expected = ref::advect_maccormack(f.spec, f.inflow, vel, vel, 0.4);
   // The clamp is a switch: where the corrected value sits within rounding of the limit, float and double
   // may pick different branches. Such faces must be rare, and every other face must agree closely.
@@ -214,21 +222,8 @@ TEST_CASE("advect: semi-Lagrangian and MacCormack kernels match the CPU referenc
   StageFixture f(*cc);
   auto vel = test::smooth_velocity(f.spec, {3.75, 1.25, -1.25}, {1.5, 0.2, 0.2});
   test::match_periodic_faces(f.spec, vel);
-  auto dvel = f.stages.allocate_velocity(), fwd = f.stages.allocate_velocity(),
-       back = f.stages.allocate_velocity();
-  auto padded = f.stages.allocate_padded_velocity(), padded_fwd = f.stages.allocate_padded_velocity();
-  test::upload(*cc, vel, dvel);
-  f.stages.enqueue_pad(dvel, padded);
-  for (int c = 0; c < 3; ++c) f.stages.enqueue_advect(c, 0.4f, padded, padded.component(c), fwd.component(c));
-  const auto forward = test::download(*cc, fwd, f.spec);
+  const auto [forward, corrected] = f.maccormack(vel, 0.4f);
   const auto expected_forward = ref::advect_semi_lagrangian(f.spec, f.inflow, vel, vel, 0.4);
-  f.stages.enqueue_pad(fwd, padded_fwd);
-  for (int c = 0; c < 3; ++c)
-    f.stages.enqueue_advect(c, -0.4f, padded, padded_fwd.component(c), back.component(c));
-  for (int c = 0; c < 3; ++c)
-    f.stages.enqueue_maccormack_correct(c, padded, padded.component(c), fwd.component(c), back.component(c),
-                                        back.component(c));
-  const auto corrected = test::download(*cc, back, f.spec);
   const auto expected_corrected = ref::advect_maccormack(f.spec, f.inflow, vel, vel, 0.4);
   for (int c = 0; c < 3; ++c) {
     INFO("component " << c);
