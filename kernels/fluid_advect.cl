@@ -39,6 +39,7 @@ FW_INLINE void interpolation_corners(const FwGrid* g, __global const float* qp, 
   const int sy = padded_extent(g, c, 0);
   cell_corners(qp, i0 + FW_PAD, j0 + FW_PAD, k0 + FW_PAD, sy, sy * padded_extent(g, c, 1), v);
 }
+
 /* Trilinear interpolation of component c's padded copy qp at positions (X, Y, Z). */
 FW_INLINE lanef sample_lanes(__global const float* qp, int c, lanef X, lanef Y, lanef Z, const FwGrid* g) {
   lanef fx, fy, fz, v[8];
@@ -62,8 +63,8 @@ FW_INLINE lanef cross_component(const FwGrid* g, __global const float* ap, int a
                   (row_lanes(ap, at - step_c + step_a, valid) + row_lanes(ap, at + step_a, valid)));
 }
 
-/* The lanes of one work-item: faces i = i0 .. i0 + 7 of row (j, k), clamped to the row (tail lanes repeat the
- * last face and are not stored). Returns the padded index of component a at those faces. */
+/* The padded index of component a at the lanes' faces i of row (j, k) (FW_LANE_SETUP's lanes: consecutive,
+ * or in a row shorter than FW_LANES clamped to its last face). */
 FW_INLINE lanei lane_padded_index(const FwGrid* g, int a, lanei i, int j, int k) {
   return (i + FW_PAD) + padded_extent(g, a, 0) * ((j + FW_PAD) + padded_extent(g, a, 1) * (k + FW_PAD));
 }

@@ -115,6 +115,7 @@ FW_INLINE void stepped_pair(__global const float* q, const LaneWindow* w, int at
   *low = select(*low, low_next, stepped);
   *high = select(*high, high_next, stepped);
 }
+
 /* The x-pair at row offset `at`, plus sy for the lanes in y_stepped and plus sz for those in z_stepped. */
 FW_INLINE void row_pair(__global const float* q, const LaneWindow* w, int at, int sy, int sz, int y_spread,
                         lanei y_stepped, int z_spread, lanei z_stepped, lanef* low, lanef* high) {
@@ -125,6 +126,7 @@ FW_INLINE void row_pair(__global const float* q, const LaneWindow* w, int at, in
   *low = select(*low, low_next, z_stepped);
   *high = select(*high, high_next, z_stepped);
 }
+
 /* The eight corners v[a + 2b + 4c] = q[x + a + sy (y + b) + sz (z + c)] of every lane's cell (x, y, z) of a
  * 3D array (x stride 1, y stride sy, z stride sz). Windowed loads where the lanes' cells lie along one row,
  * or straddle two neighbouring rows in y or z, as the back-traced cells of a smooth or turbulent flow do (a

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <memory>
+#include <numbers>
 
 #include "fluid/SolidMap.hpp"
 #include "fluid/TurbulenceBox.hpp"
@@ -61,7 +62,6 @@ fluid::MacVelocity random_velocity(const fluid::GridSpec& spec, double amplitude
 
 fluid::MacVelocity smooth_velocity(const fluid::GridSpec& spec, const std::array<double, 3>& mean,
                                    const std::array<double, 3>& ripple) {
-  constexpr double kTwoPi = 6.283185307179586;
   fluid::MacVelocity vel;
   const int n[3] = {spec.nx, spec.ny, spec.nz};
   for (int c = 0; c < 3; ++c) {
@@ -75,7 +75,7 @@ fluid::MacVelocity smooth_velocity(const fluid::GridSpec& spec, const std::array
           const int at[3] = {i, j, k};
           double wave = 0.0;
           for (int a = 0; a < 3; ++a)
-            wave += std::sin(kTwoPi * (at[a] + (a == c ? 0.0 : 0.5)) / n[a] + a + c);
+            wave += std::sin(2.0 * std::numbers::pi * (at[a] + (a == c ? 0.0 : 0.5)) / n[a] + a + c);
           q[std::size_t(i) + std::size_t(ex) * (j + std::size_t(ey) * k)] =
               static_cast<float>(mean[c] + ripple[c] * wave / 3.0);
         }
