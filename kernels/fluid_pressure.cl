@@ -14,112 +14,197 @@ FW_INLINE int level_index(const FwLevel* L, int i, int j, int k) {
   return i + L->nx * (j + L->ny * k);
 }
 
-/* Sum of phi over the open faces of cell (i,j,k) (index id, mask m). */
-FW_INLINE float open_neighbour_sum(const FwLevel* L, __global const float* phi, int i, int j, int k, int id,
-                                   uchar m) {
-  const int sy = L->nx, sz = L->nx * L->ny;
+FW_INLINE int plane_cells(const FwLevel* L) {
+  return L->nx * L->ny;
+}
+
+/* Plane k of an array on the level and its z neighbours, each a pointer to nx * ny values, wrapped on a
+ * periodic z axis. Where a neighbour plane does not exist the pointer repeats `here` and `faces` drops that
+ * face, so the loads stay valid and branch-free (and the planes of k = 0 and nz - 1 take the vectorised
+ * runs too). */
+typedef struct FwPlanes {
+  __global const float* below;
+  __global const float* here;
+  __global const float* above;
+  uchar faces; /* the FW_MASK_OPEN bits the planes can serve */
+} FwPlanes;
+
+/* Whether plane k has a neighbour plane below (side 0) or above (side 1), and its index. */
+FW_INLINE int neighbour_plane(const FwLevel* L, int k, int side, int* plane) {
+  const int periodic_z = L->periodic & 4;
+  if (side == 0) {
+    *plane = k > 0 ? k - 1 : L->nz - 1;
+    return k > 0 || periodic_z;
+  }
+  *plane = k < L->nz - 1 ? k + 1 : 0;
+  return k < L->nz - 1 || periodic_z;
+}
+
+/* The planes of `values` around plane k. */
+FW_INLINE FwPlanes level_planes(const FwLevel* L, __global const float* values, int k) {
+  FwPlanes P;
+  int kb, ka;
+  const int has_below = neighbour_plane(L, k, 0, &kb), has_above = neighbour_plane(L, k, 1, &ka);
+  P.here = values + k * plane_cells(L);
+  P.below = has_below ? values + kb * plane_cells(L) : P.here;
+  P.above = has_above ? values + ka * plane_cells(L) : P.here;
+  P.faces = 15 | (has_below ? 16 : 0) | (has_above ? 32 : 0);
+  return P;
+}
+
+/* Sum of the planes' values over the open faces (mask m) of cell (i, j) of the plane, index p in the plane:
+ * any cell, wrap-around in x and y where periodic. */
+FW_INLINE float edge_neighbour_sum(const FwLevel* L, const FwPlanes* P, int i, int j, int p, uchar m) {
+  const int sy = L->nx;
+  __global const float* here = P->here;
+  m &= P->faces;
   float sum = 0.0f;
-  if (m & 1) sum += i > 0 ? phi[id - 1] : ((L->periodic & 1) ? phi[id + (L->nx - 1)] : 0.0f);
-  if (m & 2) sum += i < L->nx - 1 ? phi[id + 1] : ((L->periodic & 1) ? phi[id - (L->nx - 1)] : 0.0f);
-  if (m & 4) sum += j > 0 ? phi[id - sy] : ((L->periodic & 2) ? phi[id + sy * (L->ny - 1)] : 0.0f);
-  if (m & 8) sum += j < L->ny - 1 ? phi[id + sy] : ((L->periodic & 2) ? phi[id - sy * (L->ny - 1)] : 0.0f);
-  if (m & 16) sum += k > 0 ? phi[id - sz] : ((L->periodic & 4) ? phi[id + sz * (L->nz - 1)] : 0.0f);
-  if (m & 32) sum += k < L->nz - 1 ? phi[id + sz] : ((L->periodic & 4) ? phi[id - sz * (L->nz - 1)] : 0.0f);
+  if (m & 1) sum += i > 0 ? here[p - 1] : ((L->periodic & 1) ? here[p + (L->nx - 1)] : 0.0f);
+  if (m & 2) sum += i < L->nx - 1 ? here[p + 1] : ((L->periodic & 1) ? here[p - (L->nx - 1)] : 0.0f);
+  if (m & 4) sum += j > 0 ? here[p - sy] : ((L->periodic & 2) ? here[p + sy * (L->ny - 1)] : 0.0f);
+  if (m & 8) sum += j < L->ny - 1 ? here[p + sy] : ((L->periodic & 2) ? here[p - sy * (L->ny - 1)] : 0.0f);
+  if (m & 16) sum += P->below[p];
+  if (m & 32) sum += P->above[p];
   return sum;
 }
 
-/* Sum over open faces for a cell whose six neighbours all lie inside the level: the loads are
- * unconditional and the mask only selects, so the compiler can vectorise. Same order as above. */
-FW_INLINE float interior_neighbour_sum(const FwLevel* L, __global const float* phi, int id, uchar m) {
-  const int sy = L->nx, sz = L->nx * L->ny;
-  const float xm = phi[id - 1], xp = phi[id + 1], ym = phi[id - sy], yp = phi[id + sy], zm = phi[id - sz],
-              zp = phi[id + sz];
+/* The same sum for a cell whose four in-plane neighbours lie inside the plane: the loads are unconditional
+ * and the mask only selects, so the compiler can vectorise. Same order as above. */
+FW_INLINE float interior_neighbour_sum(const FwLevel* L, const FwPlanes* P, int p, uchar m) {
+  const int sy = L->nx;
+  __global const float* here = P->here;
+  m &= P->faces;
+  const float xm = here[p - 1], xp = here[p + 1], ym = here[p - sy], yp = here[p + sy], zm = P->below[p],
+              zp = P->above[p];
   return ((m & 1) ? xm : 0.0f) + ((m & 2) ? xp : 0.0f) + ((m & 4) ? ym : 0.0f) + ((m & 8) ? yp : 0.0f) +
          ((m & 16) ? zm : 0.0f) + ((m & 32) ? zp : 0.0f);
-}
-
-/* Either sum, by where the cell is. */
-FW_INLINE float neighbour_sum(const FwLevel* L, __global const float* phi, int i, int j, int k, int id,
-                              uchar m) {
-  if (i > 0 && i < L->nx - 1 && j > 0 && j < L->ny - 1 && k > 0 && k < L->nz - 1)
-    return interior_neighbour_sum(L, phi, id, m);
-  return open_neighbour_sum(L, phi, i, j, k, id, m);
-}
-
-/* Splits this work-item's run of row (j, k) into [begin, lo) and [hi, end), whose cells may touch the
- * level's edge, and [lo, hi), whose cells have all six neighbours inside (empty for an edge row). */
-FW_INLINE void interior_span(const FwLevel* L, int j, int k, int begin, int end, int* lo, int* hi) {
-  const int interior_row = j > 0 && j < L->ny - 1 && k > 0 && k < L->nz - 1;
-  *lo = interior_row ? clamp(1, begin, end) : end;
-  *hi = interior_row ? clamp(L->nx - 1, *lo, end) : end;
 }
 
 FW_INLINE float diagonal(uchar m) {
   return (float)popcount((uint)(m & FW_MASK_OPEN_ALL));
 }
 
-/* phi_out = (1 - omega) phi + omega (b + sum phi_nb) / diag. */
-/* Jacobi update of one cell with the general (edge-aware) neighbour sum. */
-FW_INLINE float jacobi_cell(const FwLevel* L, __global const uchar* mask, __global const float* b,
-                            __global const float* phi, float omega, int i, int j, int k) {
-  const int id = level_index(L, i, j, k);
-  const uchar m = mask[id];
-  const float d = diagonal(m);
-  if (!(m & FW_MASK_FLUID) || d == 0.0f) return 0.0f;
-  return (1.0f - omega) * phi[id] + omega * (b[id] + open_neighbour_sum(L, phi, i, j, k, id, m)) / d;
+/* A fluid cell with all six faces open: most cells of a level, whose update needs no mask arithmetic. */
+#define FW_MASK_OPEN_FLUID (FW_MASK_FLUID | FW_MASK_OPEN_ALL)
+
+/* How a run of cells along x is computed. Edge: any cell (wrap-around, masks). Interior: the in-plane
+ * neighbours lie inside, so the loads are unconditional and the masks only select (vectorises). Open: an
+ * interior run of open fluid cells whose planes serve all six faces: plain six-point sums, diagonal 6
+ * (half the arithmetic of an interior run, and the passes are bound by their arithmetic under PoCL). A
+ * constant at each use, so the choices below fold away. */
+#define FW_RUN_EDGE 0
+#define FW_RUN_INTERIOR 1
+#define FW_RUN_OPEN 2
+
+FW_INLINE float run_neighbour_sum(const FwLevel* L, const FwPlanes* P, int i, int j, int p, uchar m,
+                                  int run) {
+  if (run == FW_RUN_EDGE) return edge_neighbour_sum(L, P, i, j, p, m);
+  if (run == FW_RUN_INTERIOR) return interior_neighbour_sum(L, P, p, m);
+  const int sy = L->nx;
+  return P->here[p - 1] + P->here[p + 1] + P->here[p - sy] + P->here[p + sy] + P->below[p] + P->above[p];
+}
+
+FW_INLINE float run_diagonal(uchar m, int run) {
+  return run == FW_RUN_OPEN ? 6.0f : diagonal(m);
+}
+
+FW_INLINE int run_fluid(uchar m, int run) {
+  return run == FW_RUN_OPEN || (m & FW_MASK_FLUID);
+}
+
+/* The runs of this work-item's cells [begin, end) of row j (mask_row: the row's masks): [begin, lo) and
+ * [hi, end) edge runs, [lo, hi) interior (empty for an edge row), and whether that interior run is open. */
+typedef struct FwRowRuns {
+  int begin, lo, hi, end, open;
+} FwRowRuns;
+
+FW_INLINE FwRowRuns row_runs(const FwLevel* L, const FwPlanes* P, __global const uchar* mask_row, int j,
+                             int begin, int end) {
+  FwRowRuns R;
+  const int interior_row = j > 0 && j < L->ny - 1;
+  R.begin = begin;
+  R.end = end;
+  R.lo = interior_row ? clamp(1, begin, end) : end;
+  R.hi = interior_row ? clamp(L->nx - 1, R.lo, end) : end;
+  int open = P->faces == FW_MASK_OPEN_ALL;
+  for (int i = R.lo; i < R.hi; ++i) open &= mask_row[i] == FW_MASK_OPEN_FLUID;
+  R.open = open;
+  return R;
+}
+
+/* Runs `body` (a statement of i and the constant run) for every i of the runs R, each run in its own loop
+ * with its own constant, so that each loop compiles to its kind of code. */
+#define FW_FOR_RUNS(R, body)                   \
+  do {                                         \
+    for (int i = (R).begin; i < (R).lo; ++i) { \
+      const int run = FW_RUN_EDGE;             \
+      body;                                    \
+    }                                          \
+    if ((R).open) {                            \
+      for (int i = (R).lo; i < (R).hi; ++i) {  \
+        const int run = FW_RUN_OPEN;           \
+        body;                                  \
+      }                                        \
+    } else {                                   \
+      for (int i = (R).lo; i < (R).hi; ++i) {  \
+        const int run = FW_RUN_INTERIOR;       \
+        body;                                  \
+      }                                        \
+    }                                          \
+    for (int i = (R).hi; i < (R).end; ++i) {   \
+      const int run = FW_RUN_EDGE;             \
+      body;                                    \
+    }                                          \
+  } while (0)
+
+/* The Jacobi value of cell (i, j) at index p of its plane: (1 - omega) phi + omega (b + sum phi_nb) / diag
+ * on fluid cells, 0 elsewhere. mask and b point at the plane; branch-free. */
+FW_INLINE float jacobi_value(const FwLevel* L, __global const uchar* mask, __global const float* b,
+                             const FwPlanes* P, float omega, int i, int j, int p, int run) {
+  const uchar m = mask[p];
+  const float d = run_diagonal(m, run);
+  const float out =
+      (1.0f - omega) * P->here[p] + omega * (b[p] + run_neighbour_sum(L, P, i, j, p, m, run)) / d;
+  return (run_fluid(m, run) && d > 0.0f) ? out : 0.0f;
 }
 
 __kernel void jacobi_sweep(const FwLevel L, __global const uchar* mask, __global const float* b,
                            __global const float* phi, __global float* phi_out, const float omega) {
-  const int j = get_global_id(1), k = get_global_id(2);
-  const int begin = FW_ROW_BEGIN, end = FW_ROW_END(L.nx);
-  int lo, hi;
-  interior_span(&L, j, k, begin, end, &lo, &hi);
-  for (int i = begin; i < lo; ++i)
-    phi_out[level_index(&L, i, j, k)] = jacobi_cell(&L, mask, b, phi, omega, i, j, k);
-  /* Interior run: branch-free (selects only), so it vectorises. */
-  for (int i = lo; i < hi; ++i) {
-    const int id = level_index(&L, i, j, k);
-    const uchar m = mask[id];
-    const float d = diagonal(m);
-    const float out = (1.0f - omega) * phi[id] + omega * (b[id] + interior_neighbour_sum(&L, phi, id, m)) / d;
-    phi_out[id] = ((m & FW_MASK_FLUID) && d > 0.0f) ? out : 0.0f;
-  }
-  for (int i = hi; i < end; ++i)
-    phi_out[level_index(&L, i, j, k)] = jacobi_cell(&L, mask, b, phi, omega, i, j, k);
+  const int j = get_global_id(1), k = get_global_id(2), plane = k * plane_cells(&L), row = j * L.nx;
+  const FwPlanes P = level_planes(&L, phi, k);
+  mask += plane, b += plane, phi_out += plane;
+  const FwRowRuns R = row_runs(&L, &P, mask + row, j, FW_ROW_BEGIN, FW_ROW_END(L.nx));
+  FW_FOR_RUNS(R, phi_out[row + i] = jacobi_value(&L, mask, b, &P, omega, i, j, row + i, run));
 }
 
-/* One colour of red-black Gauss-Seidel, out of place: cells with (i + j + k) % 2 == colour get the
- * Gauss-Seidel value computed from phi (their neighbours all have the other colour, so this equals the
- * in-place update), every other cell is copied. Writing each cell once to a second buffer keeps the loop
- * free of dependences, so it streams and vectorises like a Jacobi sweep. */
-FW_INLINE float red_black_cell(const FwLevel* L, __global const uchar* mask, __global const float* b,
-                               __global const float* phi, int colour, int i, int j, int k) {
-  const int id = level_index(L, i, j, k);
-  const uchar m = mask[id];
-  const float d = diagonal(m);
-  if (((i + j + k) & 1) != colour || !(m & FW_MASK_FLUID) || d == 0.0f) return phi[id];
-  return (b[id] + open_neighbour_sum(L, phi, i, j, k, id, m)) / d;
+/* Red-black Gauss-Seidel, one colour per pass and out of place: cells with (i + j + k) % 2 == colour get the
+ * Gauss-Seidel value computed from the planes P (their neighbours all have the other colour, so this equals
+ * the in-place update), every other cell is copied. Writing each cell once to a second buffer keeps the
+ * loop free of dependences, so it streams and vectorises like a Jacobi sweep. parity = (j + k) % 2. */
+FW_INLINE float red_black_value(const FwLevel* L, __global const uchar* mask, __global const float* b,
+                                const FwPlanes* P, int colour, int parity, int i, int j, int p, int run) {
+  const uchar m = mask[p];
+  const float d = run_diagonal(m, run);
+  const float updated = (b[p] + run_neighbour_sum(L, P, i, j, p, m, run)) / d;
+  const int active = ((i + parity) & 1) == colour && run_fluid(m, run) && d > 0.0f;
+  return active ? updated : P->here[p];
+}
+
+/* One colour pass over cells [begin, end) of row j of plane k; mask, b and out point at the plane. */
+FW_INLINE void red_black_row(const FwLevel* L, __global const uchar* mask, __global const float* b,
+                             const FwPlanes* P, __global float* out, int colour, int j, int k, int begin,
+                             int end) {
+  const int row = j * L->nx, parity = (j + k) & 1;
+  const FwRowRuns R = row_runs(L, P, mask + row, j, begin, end);
+  FW_FOR_RUNS(R, out[row + i] = red_black_value(L, mask, b, P, colour, parity, i, j, row + i, run));
 }
 
 __kernel void red_black_pass(const FwLevel L, __global const uchar* mask, __global const float* b,
                              __global const float* phi, __global float* phi_out, const int colour) {
-  const int j = get_global_id(1), k = get_global_id(2);
-  const int begin = FW_ROW_BEGIN, end = FW_ROW_END(L.nx);
-  int lo, hi;
-  interior_span(&L, j, k, begin, end, &lo, &hi);
-  for (int i = begin; i < lo; ++i)
-    phi_out[level_index(&L, i, j, k)] = red_black_cell(&L, mask, b, phi, colour, i, j, k);
-  for (int i = lo; i < hi; ++i) { /* interior: branch-free */
-    const int id = level_index(&L, i, j, k);
-    const uchar m = mask[id];
-    const float d = diagonal(m);
-    const float updated = (b[id] + interior_neighbour_sum(&L, phi, id, m)) / d;
-    const int active = ((i + j + k) & 1) == colour && (m & FW_MASK_FLUID) && d > 0.0f;
-    phi_out[id] = active ? updated : phi[id];
-  }
-  for (int i = hi; i < end; ++i)
-    phi_out[level_index(&L, i, j, k)] = red_black_cell(&L, mask, b, phi, colour, i, j, k);
+  const int j = get_global_id(1), k = get_global_id(2), plane = k * plane_cells(&L);
+  const FwPlanes P = level_planes(&L, phi, k);
+  red_black_row(&L, mask + plane, b + plane, &P, phi_out + plane, colour, j, k, FW_ROW_BEGIN,
+                FW_ROW_END(L.nx));
 }
 
 /* `sweeps` red-black sweeps of a small level in one launch by one work-group: each sweep the pass of colour
@@ -137,90 +222,61 @@ __kernel void red_black_sweeps(const FwLevel L, __global const uchar* mask, __gl
     __global const float* from = (pass & 1) ? scratch : phi;
     __global float* to = (pass & 1) ? phi : scratch;
     for (int row = item; row < rows; row += items) {
-      const int j = row % L.ny, k = row / L.ny;
-      for (int i = 0; i < L.nx; ++i)
-        to[level_index(&L, i, j, k)] = red_black_cell(&L, mask, b, from, colour, i, j, k);
+      const int j = row % L.ny, k = row / L.ny, plane = k * plane_cells(&L);
+      const FwPlanes P = level_planes(&L, from, k);
+      red_black_row(&L, mask + plane, b + plane, &P, to + plane, colour, j, k, 0, L.nx);
     }
     barrier(CLK_GLOBAL_MEM_FENCE);
   }
 }
 
-/* Residual of one cell with the general (edge-aware) neighbour sum. */
-FW_INLINE float residual_cell(const FwLevel* L, __global const uchar* mask, __global const float* b,
-                              __global const float* phi, int i, int j, int k) {
-  const int id = level_index(L, i, j, k);
-  const uchar m = mask[id];
-  if (!(m & FW_MASK_FLUID)) return 0.0f;
-  return b[id] - (diagonal(m) * phi[id] - open_neighbour_sum(L, phi, i, j, k, id, m));
+/* r = b - A phi of cell (i, j) at index p of its plane, 0 off the fluid. */
+FW_INLINE float residual_value(const FwLevel* L, __global const uchar* mask, __global const float* b,
+                               const FwPlanes* P, int i, int j, int p, int run) {
+  const uchar m = mask[p];
+  const float res = b[p] - (run_diagonal(m, run) * P->here[p] - run_neighbour_sum(L, P, i, j, p, m, run));
+  return run_fluid(m, run) ? res : 0.0f;
 }
 
 /* r = b - A phi; partial[group] = sum of r^2 over the group's cells. */
 __kernel void residual(const FwLevel L, __global const uchar* mask, __global const float* b,
                        __global const float* phi, __global float* r, __global float* partial) {
   FW_GROUP_SCRATCH;
-  const int j = get_global_id(1), k = get_global_id(2);
-  const int begin = FW_ROW_BEGIN, end = FW_REDUCTION_ROW_END(L.nx, L.ny);
-  int lo, hi;
-  interior_span(&L, j, k, begin, end, &lo, &hi);
+  const int j = get_global_id(1), k = get_global_id(2), plane = k * plane_cells(&L), row = j * L.nx;
+  const FwPlanes P = level_planes(&L, phi, k);
+  mask += plane, b += plane, r += plane;
+  const FwRowRuns R = row_runs(&L, &P, mask + row, j, FW_ROW_BEGIN, FW_REDUCTION_ROW_END(L.nx, L.ny));
   float sum = 0.0f;
-  for (int i = begin; i < lo; ++i) {
-    const float res = residual_cell(&L, mask, b, phi, i, j, k);
-    r[level_index(&L, i, j, k)] = res;
+  FW_FOR_RUNS(R, {
+    const float res = residual_value(&L, mask, b, &P, i, j, row + i, run);
+    r[row + i] = res;
     sum += res * res;
-  }
-  for (int i = lo; i < hi; ++i) { /* branch-free interior run */
-    const int id = level_index(&L, i, j, k);
-    const uchar m = mask[id];
-    const float res = b[id] - (diagonal(m) * phi[id] - interior_neighbour_sum(&L, phi, id, m));
-    const float kept = (m & FW_MASK_FLUID) ? res : 0.0f;
-    r[id] = kept;
-    sum += kept * kept;
-  }
-  for (int i = hi; i < end; ++i) {
-    const float res = residual_cell(&L, mask, b, phi, i, j, k);
-    r[level_index(&L, i, j, k)] = res;
-    sum += res * res;
-  }
+  });
   FW_GROUP_SUM(sum, partial);
 }
 
-/* (A d) of one cell with the general neighbour sum. */
-FW_INLINE float operator_cell(const FwLevel* L, __global const uchar* mask, __global const float* d, int i,
-                              int j, int k) {
-  const int id = level_index(L, i, j, k);
-  const uchar m = mask[id];
-  if (!(m & FW_MASK_FLUID)) return 0.0f;
-  return diagonal(m) * d[id] - open_neighbour_sum(L, d, i, j, k, id, m);
+/* (A d) of cell (i, j) at index p of its plane, 0 off the fluid. */
+FW_INLINE float operator_value(const FwLevel* L, __global const uchar* mask, const FwPlanes* D, int i, int j,
+                               int p, int run) {
+  const uchar m = mask[p];
+  const float out = run_diagonal(m, run) * D->here[p] - run_neighbour_sum(L, D, i, j, p, m, run);
+  return run_fluid(m, run) ? out : 0.0f;
 }
 
 /* q = A d; partial[group] = sum of d q. */
 __kernel void apply_operator_dot(const FwLevel L, __global const uchar* mask, __global const float* d,
                                  __global float* q, __global float* partial) {
   FW_GROUP_SCRATCH;
-  const int j = get_global_id(1), k = get_global_id(2);
-  const int begin = FW_ROW_BEGIN, end = FW_REDUCTION_ROW_END(L.nx, L.ny);
-  int lo, hi;
-  interior_span(&L, j, k, begin, end, &lo, &hi);
+  const int j = get_global_id(1), k = get_global_id(2), plane = k * plane_cells(&L), row = j * L.nx;
+  const FwPlanes D = level_planes(&L, d, k);
+  mask += plane, q += plane;
+  const FwRowRuns R = row_runs(&L, &D, mask + row, j, FW_ROW_BEGIN, FW_REDUCTION_ROW_END(L.nx, L.ny));
   float sum = 0.0f;
-  for (int i = begin; i < lo; ++i) {
-    const int id = level_index(&L, i, j, k);
-    const float out = operator_cell(&L, mask, d, i, j, k);
-    q[id] = out;
-    sum += d[id] * out;
-  }
-  for (int i = lo; i < hi; ++i) { /* branch-free interior run */
-    const int id = level_index(&L, i, j, k);
-    const uchar m = mask[id];
-    const float out = (m & FW_MASK_FLUID) ? diagonal(m) * d[id] - interior_neighbour_sum(&L, d, id, m) : 0.0f;
-    q[id] = out;
-    sum += d[id] * out;
-  }
-  for (int i = hi; i < end; ++i) {
-    const int id = level_index(&L, i, j, k);
-    const float out = operator_cell(&L, mask, d, i, j, k);
-    q[id] = out;
-    sum += d[id] * out;
-  }
+  FW_FOR_RUNS(R, {
+    const float out = operator_value(&L, mask, &D, i, j, row + i, run);
+    q[row + i] = out;
+    sum += D.here[row + i] * out;
+  });
   FW_GROUP_SUM(sum, partial);
 }
 
