@@ -29,26 +29,16 @@ typedef struct FwPlanes {
   uchar faces; /* the FW_MASK_OPEN bits the planes can serve */
 } FwPlanes;
 
-/* Whether plane k has a neighbour plane below (side 0) or above (side 1), and its index. */
-FW_INLINE int neighbour_plane(const FwLevel* L, int k, int side, int* plane) {
-  const int periodic_z = L->periodic & 4;
-  if (side == 0) {
-    *plane = k > 0 ? k - 1 : L->nz - 1;
-    return k > 0 || periodic_z;
-  }
-  *plane = k < L->nz - 1 ? k + 1 : 0;
-  return k < L->nz - 1 || periodic_z;
-}
-
 /* The planes of `values` around plane k. */
 FW_INLINE FwPlanes level_planes(const FwLevel* L, __global const float* values, int k) {
+  const int cells = plane_cells(L), periodic_z = L->periodic & 4;
+  const int has_below = k > 0 || periodic_z, has_above = k < L->nz - 1 || periodic_z;
   FwPlanes P;
-  int kb, ka;
-  const int has_below = neighbour_plane(L, k, 0, &kb), has_above = neighbour_plane(L, k, 1, &ka);
-  P.here = values + k * plane_cells(L);
-  P.below = has_below ? values + kb * plane_cells(L) : P.here;
-  P.above = has_above ? values + ka * plane_cells(L) : P.here;
-  P.faces = 15 | (has_below ? 16 : 0) | (has_above ? 32 : 0);
+  P.here = values + k * cells;
+  P.below = has_below ? values + (k > 0 ? k - 1 : L->nz - 1) * cells : P.here;
+  P.above = has_above ? values + (k < L->nz - 1 ? k + 1 : 0) * cells : P.here;
+  P.faces = (FW_MASK_OPEN_ALL & ~((1 << FW_FACE_GROUND) | (1 << FW_FACE_TOP))) |
+            (has_below ? 1 << FW_FACE_GROUND : 0) | (has_above ? 1 << FW_FACE_TOP : 0);
   return P;
 }
 
@@ -230,12 +220,18 @@ __kernel void red_black_sweeps(const FwLevel L, __global const uchar* mask, __gl
   }
 }
 
+/* (A d) of cell (i, j) at index p of its plane, 0 off the fluid. */
+FW_INLINE float operator_value(const FwLevel* L, __global const uchar* mask, const FwPlanes* D, int i, int j,
+                               int p, int run) {
+  const uchar m = mask[p];
+  const float out = run_diagonal(m, run) * D->here[p] - run_neighbour_sum(L, D, i, j, p, m, run);
+  return run_fluid(m, run) ? out : 0.0f;
+}
+
 /* r = b - A phi of cell (i, j) at index p of its plane, 0 off the fluid. */
 FW_INLINE float residual_value(const FwLevel* L, __global const uchar* mask, __global const float* b,
                                const FwPlanes* P, int i, int j, int p, int run) {
-  const uchar m = mask[p];
-  const float res = b[p] - (run_diagonal(m, run) * P->here[p] - run_neighbour_sum(L, P, i, j, p, m, run));
-  return run_fluid(m, run) ? res : 0.0f;
+  return run_fluid(mask[p], run) ? b[p] - operator_value(L, mask, P, i, j, p, run) : 0.0f;
 }
 
 /* r = b - A phi; partial[group] = sum of r^2 over the group's cells. */
@@ -253,14 +249,6 @@ __kernel void residual(const FwLevel L, __global const uchar* mask, __global con
     sum += res * res;
   });
   FW_GROUP_SUM(sum, partial);
-}
-
-/* (A d) of cell (i, j) at index p of its plane, 0 off the fluid. */
-FW_INLINE float operator_value(const FwLevel* L, __global const uchar* mask, const FwPlanes* D, int i, int j,
-                               int p, int run) {
-  const uchar m = mask[p];
-  const float out = run_diagonal(m, run) * D->here[p] - run_neighbour_sum(L, D, i, j, p, m, run);
-  return run_fluid(m, run) ? out : 0.0f;
 }
 
 /* q = A d; partial[group] = sum of d q. */
