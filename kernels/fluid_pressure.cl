@@ -199,15 +199,17 @@ __kernel void red_black_pass(const FwLevel L, __global const uchar* mask, __glob
 
 /* `sweeps` red-black sweeps of a small level in one launch by one work-group: each sweep the pass of colour
  * `first` (phi -> scratch), then the other (scratch -> phi), the same passes and values as red_black_pass
- * launched 2 * sweeps times. The group's items share out the rows, a barrier between passes. On small
+ * launched 2 * sweeps times. Passes before first_pass are skipped: first_pass = 1 continues a smoothing
+ * whose first pass (into scratch) was written by smoothing_start or restrict_residual. The group's items
+ * share out the rows, a barrier between passes. On small
  * levels the launches, not the cells, cost the time (about 0.1 ms each under PoCL). Global range: one
  * group, of any size. */
 __kernel void red_black_sweeps(const FwLevel L, __global const uchar* mask, __global const float* b,
                                __global float* phi, __global float* scratch, const int sweeps,
-                               const int first) {
+                               const int first, const int first_pass) {
   const int rows = L.ny * L.nz;
   const int item = get_local_id(0), items = get_local_size(0);
-  for (int pass = 0; pass < 2 * sweeps; ++pass) {
+  for (int pass = first_pass; pass < 2 * sweeps; ++pass) {
     const int colour = (pass & 1) ? 1 - first : first;
     __global const float* from = (pass & 1) ? scratch : phi;
     __global float* to = (pass & 1) ? phi : scratch;
@@ -268,39 +270,89 @@ __kernel void apply_operator_dot(const FwLevel L, __global const uchar* mask, __
   FW_GROUP_SUM(sum, partial);
 }
 
+/* The first smoothing pass from a zero guess, which needs no neighbours: omega b / diag on the fluid cells
+ * the pass updates, 0 elsewhere. colour: the colour a red-black pass updates (omega = 1), or
+ * FW_SMOOTH_ALL_CELLS for a damped Jacobi sweep; cell_colour = (i + j + k) % 2. The same value as
+ * red_black_value or jacobi_value with phi = 0. */
+FW_INLINE float smoothing_start_value(uchar m, float b, float omega, int colour, int cell_colour) {
+  const float d = diagonal(m);
+  const int active =
+      (colour == FW_SMOOTH_ALL_CELLS || cell_colour == colour) && (m & FW_MASK_FLUID) && d > 0.0f;
+  return active ? omega * b / d : 0.0f;
+}
+
+/* out = the first smoothing pass of A phi = b from phi = 0 (a fill and a pass in one, reading no
+ * neighbours). */
+__kernel void smoothing_start(const FwLevel L, __global const uchar* mask, __global const float* b,
+                              __global float* out, const float omega, const int colour) {
+  const int j = get_global_id(1), k = get_global_id(2), row = level_index(&L, 0, j, k), parity = (j + k) & 1;
+  mask += row, b += row, out += row;
+  for (int i = FW_ROW_BEGIN; i < FW_ROW_END(L.nx); ++i)
+    out[i] = smoothing_start_value(mask[i], b[i], omega, colour, (i + parity) & 1);
+}
+
 /* Coarse right-hand side: scale * mean of the fine residual r (from the residual kernel) over each coarse
- * cell's children; the coarse solution starts at 0. The coarse operator has unit couplings at spacing 2h,
- * so scale = 4 is the rediscretised equation and scale = 2 the Galerkin one (see PressureSolver).
- * Rows over the coarse level. */
+ * cell's children, and the coarse level's first smoothing pass from a zero guess (as smoothing_start, into
+ * coarse_start). The coarse operator has unit couplings at spacing 2h, so scale = 4 is the rediscretised
+ * equation and scale = 2 the Galerkin one (see PressureSolver).
+ * A coarse cell with one child along an axis (an odd fine extent) reads that child twice, so every cell
+ * sums eight values and the mean is sum / 8 without counting. Pairs along x are read with stride 2, which
+ * vectorises. Rows over the coarse level. */
 __kernel void restrict_residual(const FwLevel F, const FwLevel C, __global const uchar* coarse_mask,
-                                __global const float* r, __global float* coarse_b, __global float* coarse_phi,
-                                const float scale) {
-  const int J = get_global_id(1), K = get_global_id(2);
-  for (int I = FW_ROW_BEGIN; I < FW_ROW_END(C.nx); ++I) {
-    float sum = 0.0f;
-    int children = 0;
-    for (int dk = 0; dk < 2; ++dk)
-      for (int dj = 0; dj < 2; ++dj)
-        for (int di = 0; di < 2; ++di) {
-          const int i = 2 * I + di, j = 2 * J + dj, k = 2 * K + dk;
-          if (i >= F.nx || j >= F.ny || k >= F.nz) continue;
-          ++children;
-          sum += r[level_index(&F, i, j, k)];
-        }
-    const int cid = level_index(&C, I, J, K);
-    coarse_b[cid] = (coarse_mask[cid] & FW_MASK_FLUID) ? scale * sum / (float)children : 0.0f;
-    coarse_phi[cid] = 0.0f;
+                                __global const float* r, __global float* coarse_b,
+                                __global float* coarse_start, const float scale, const float omega,
+                                const int colour) {
+  const int J = get_global_id(1), K = get_global_id(2), j = 2 * J, k = 2 * K, plane = plane_cells(&F);
+  /* The four fine rows of the coarse row: (j, k), (j + 1, k), (j, k + 1), (j + 1, k + 1). */
+  __global const float* r00 = r + level_index(&F, 0, j, k);
+  __global const float* r10 = j + 1 < F.ny ? r00 + F.nx : r00;
+  __global const float* r01 = k + 1 < F.nz ? r00 + plane : r00;
+  __global const float* r11 = k + 1 < F.nz ? r10 + plane : r10;
+  const int row = level_index(&C, 0, J, K), parity = (J + K) & 1;
+  coarse_mask += row, coarse_b += row, coarse_start += row;
+  const float weight = 0.125f * scale;
+  const int begin = FW_ROW_BEGIN, end = FW_ROW_END(C.nx), pairs = F.nx / 2; /* I < pairs: two children */
+  for (int I = begin; I < min(end, pairs); ++I) {
+    const int i = 2 * I;
+    const float sum =
+        (r00[i] + r00[i + 1]) + (r10[i] + r10[i + 1]) + (r01[i] + r01[i + 1]) + (r11[i] + r11[i + 1]);
+    const uchar m = coarse_mask[I];
+    const float bc = (m & FW_MASK_FLUID) ? weight * sum : 0.0f;
+    coarse_b[I] = bc;
+    coarse_start[I] = smoothing_start_value(m, bc, omega, colour, (I + parity) & 1);
+  }
+  for (int I = max(begin, pairs); I < end; ++I) {
+    const int i = 2 * I;
+    const float sum = 2.0f * ((r00[i] + r10[i]) + (r01[i] + r11[i]));
+    const uchar m = coarse_mask[I];
+    const float bc = (m & FW_MASK_FLUID) ? weight * sum : 0.0f;
+    coarse_b[I] = bc;
+    coarse_start[I] = smoothing_start_value(m, bc, omega, colour, (I + parity) & 1);
   }
 }
 
-/* phi += e_coarse on every fluid cell (piecewise-constant prolongation). Rows over the fine level. */
+/* phi += e_coarse on every fluid cell (piecewise-constant prolongation). Rows over the fine level: the
+ * children pairs (2I, 2I + 1) of the row's cells [begin, end) share one coarse load (an interleaved store,
+ * which vectorises, where phi[i] += e[i / 2] would not), the cells without their pair partner in the
+ * range are added one by one. */
+FW_INLINE void prolong_cell(__global const uchar* fine_mask, __global float* phi, float e, int i) {
+  phi[i] += (fine_mask[i] & FW_MASK_FLUID) ? e : 0.0f;
+}
+
 __kernel void prolong_add(const FwLevel F, const FwLevel C, __global const uchar* fine_mask,
                           __global const float* coarse_e, __global float* phi) {
-  const int j = get_global_id(1), k = get_global_id(2);
-  for (int i = FW_ROW_BEGIN; i < FW_ROW_END(F.nx); ++i) {
-    const int id = level_index(&F, i, j, k);
-    if (fine_mask[id] & FW_MASK_FLUID) phi[id] += coarse_e[level_index(&C, i / 2, j / 2, k / 2)];
+  const int j = get_global_id(1), k = get_global_id(2), row = level_index(&F, 0, j, k);
+  fine_mask += row, phi += row;
+  __global const float* e = coarse_e + level_index(&C, 0, j / 2, k / 2);
+  const int begin = FW_ROW_BEGIN, end = FW_ROW_END(F.nx);
+  const int pair_lo = (begin + 1) / 2, pair_hi = end / 2; /* pairs wholly inside [begin, end) */
+  for (int i = begin; i < min(end, 2 * pair_lo); ++i) prolong_cell(fine_mask, phi, e[i / 2], i);
+  for (int I = pair_lo; I < pair_hi; ++I) {
+    const float e_pair = e[I];
+    prolong_cell(fine_mask, phi, e_pair, 2 * I);
+    prolong_cell(fine_mask, phi, e_pair, 2 * I + 1);
   }
+  for (int i = max(begin, 2 * pair_hi); i < end; ++i) prolong_cell(fine_mask, phi, e[i / 2], i);
 }
 
 /* x += alpha d; r -= alpha q; partial[group] = sum of r^2. */

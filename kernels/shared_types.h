@@ -46,6 +46,10 @@ typedef std::uint32_t fw_uint;
 #define FW_MASK_OPEN_ALL 63
 #define FW_MASK_FLUID 64
 
+/* The colour argument of the pressure kernels that start a smoothing from a zero guess for a Jacobi
+ * smoother, whose sweep updates every cell (a red-black pass passes its colour, 0 or 1). */
+#define FW_SMOOTH_ALL_CELLS (-1)
+
 /* The wind grid: a MAC grid of nx*ny*nz cubic cells of size h.
  * Storage is x-fastest. u lives on x-faces ((nx+1)*ny*nz values), v on y-faces (nx*(ny+1)*nz),
  * w on z-faces (nx*ny*(nz+1)); pressure and masks at cell centres (nx*ny*nz). */

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
+#include <utility>
 
 namespace fw::host {
 namespace {
@@ -70,6 +71,7 @@ PressureSolver::PressureSolver(ComputeContext& cc, const fluid::GridSpec& spec,
   jacobi_ = Kernel(program, "jacobi_sweep");
   red_black_ = Kernel(program, "red_black_pass");
   red_black_sweeps_ = Kernel(program, "red_black_sweeps");
+  smoothing_start_ = Kernel(program, "smoothing_start");
   one_group_items_ = cc_.mapping() == WorkMapping::rows
                          ? 1
                          : std::min(kOneGroupItemsGpu, red_black_sweeps_.max_group_size(cc_));
@@ -95,17 +97,17 @@ float PressureSolver::correction_scale() const {
 // Bytes each kernel streams per cell of its level (the memory-traffic model behind traffic_bytes(): every
 // array element a kernel reads or writes counted once, neighbours taken as cached, masks 1 byte, floats 4).
 namespace traffic {
-constexpr double kSmoothPass = 13;      // mask, b, phi read; phi written (a Jacobi sweep or a colour pass)
-constexpr double kResidual = 13;        // mask, b, phi read; r written
-constexpr double kRestrictFine = 4;     // the fine residual read ...
-constexpr double kRestrictCoarse = 9;   // ... coarse mask read, coarse b and phi written
-constexpr double kProlongFine = 9;      // fine mask read, fine phi read and written ...
-constexpr double kProlongCoarse = 4;    // ... coarse phi read
-constexpr double kDot = 8;              // a, b read
-constexpr double kApplyDot = 9;         // mask, d read; q written
-constexpr double kCgUpdate = 24;        // d, q, x, r read; x, r written
-constexpr double kCgDirection = 12;     // z, d read; d written
-constexpr double kFill = 4, kCopy = 8;  // a fill writes, a copy reads and writes
+constexpr double kSmoothPass = 13;     // mask, b, phi read; phi written (a Jacobi sweep or a colour pass)
+constexpr double kResidual = 13;       // mask, b, phi read; r written
+constexpr double kRestrictFine = 4;    // the fine residual read ...
+constexpr double kRestrictCoarse = 9;  // ... coarse mask read, coarse b and first pass written
+constexpr double kProlongFine = 9;     // fine mask read, fine phi read and written ...
+constexpr double kProlongCoarse = 4;   // ... coarse phi read
+constexpr double kDot = 8;             // a, b read
+constexpr double kApplyDot = 9;        // mask, d read; q written
+constexpr double kCgUpdate = 24;       // d, q, x, r read; x, r written
+constexpr double kCgDirection = 12;    // z, d read; d written
+constexpr double kSmoothingStart = 9;  // mask, b read; the first pass written
 constexpr double kSumOnFluid = 5, kAddOnFluid = 9;
 }  // namespace traffic
 
@@ -150,11 +152,26 @@ void PressureSolver::enqueue_red_black_pass(int level, cl::Buffer& b, cl::Buffer
 }
 
 void PressureSolver::enqueue_red_black_sweeps(int level, cl::Buffer& b, cl::Buffer& phi, int sweeps,
-                                              int first_colour) {
+                                              int first_colour, int first_pass) {
   auto& L = levels_[level];
-  red_black_sweeps_.set_args(L.dims, L.mask, b, phi, L.scratch, sweeps, first_colour)
+  red_black_sweeps_.set_args(L.dims, L.mask, b, phi, L.scratch, sweeps, first_colour, first_pass)
       .enqueue(cc_, cl::NDRange(one_group_items_), cl::NDRange(one_group_items_));
-  count_traffic(level, 2.0 * sweeps * traffic::kSmoothPass);
+  count_traffic(level, (2.0 * sweeps - first_pass) * traffic::kSmoothPass);
+}
+
+float PressureSolver::start_damping() const {
+  return settings_.smoother == fluid::MultigridSmoother::jacobi ? kJacobiDamping : 1.0f;
+}
+
+int PressureSolver::start_colour() const {
+  return settings_.smoother == fluid::MultigridSmoother::jacobi ? FW_SMOOTH_ALL_CELLS : 0;
+}
+
+void PressureSolver::enqueue_smoothing_start(int level, cl::Buffer& b, cl::Buffer& out) {
+  auto& L = levels_[level];
+  smoothing_start_.set_args(L.dims, L.mask, b, out, start_damping(), start_colour())
+      .enqueue(cc_, cc_.rows(L.dims.nx, L.dims.ny, L.dims.nz));
+  count_traffic(level, traffic::kSmoothingStart);
 }
 
 double PressureSolver::residual_norm2(int level, cl::Buffer& b, cl::Buffer& phi, cl::Buffer& r) {
@@ -173,7 +190,9 @@ void PressureSolver::enqueue_restrict_residual(int fine_level, cl::Buffer& b, cl
   const ReductionRange range = reduction(fine_level);
   residual_.set_args(F.dims, F.mask, b, phi, F.scratch, partial_).enqueue(cc_, range.global, range.local);
   count_traffic(fine_level, traffic::kResidual);
-  restrict_.set_args(F.dims, C.dims, C.mask, F.scratch, C.b, C.phi, correction_scale())
+  restrict_
+      .set_args(F.dims, C.dims, C.mask, F.scratch, C.b, C.scratch, correction_scale(), start_damping(),
+                start_colour())
       .enqueue(cc_, cc_.rows(C.dims.nx, C.dims.ny, C.dims.nz));
   count_traffic(fine_level, traffic::kRestrictFine);
   count_traffic(fine_level + 1, traffic::kRestrictCoarse);
@@ -189,47 +208,53 @@ void PressureSolver::enqueue_prolong_add(int fine_level, cl::Buffer& phi) {
 }
 
 void PressureSolver::vcycle(cl::Buffer& b, cl::Buffer& phi) {
-  vcycle_level(0, b, phi);
+  vcycle_level(0, b, phi, false);
 }
 
-void PressureSolver::smooth(int l, cl::Buffer& b, cl::Buffer& phi, int sweeps, bool after_correction) {
+void PressureSolver::vcycle_from_zero(cl::Buffer& b, cl::Buffer& phi) {
+  enqueue_smoothing_start(0, b, levels_[0].scratch);
+  vcycle_level(0, b, phi, true);
+}
+
+void PressureSolver::smooth(int l, cl::Buffer& b, cl::Buffer& phi, int sweeps, bool after_correction,
+                            bool started) {
+  // Passes alternate phi -> scratch -> phi, so pass p reads phi when p is even and every smoothing ends in
+  // phi. A started smoothing (only ever before the correction) has its pass 0 in scratch already.
+  auto& scratch = levels_[l].scratch;
+  const int first_pass = started ? 1 : 0;
   if (settings_.smoother == fluid::MultigridSmoother::jacobi) {
-    // Damped Jacobi in pairs (phi -> scratch -> phi, so an odd count rounds up); the same before and after
-    // the correction, so the cycle is symmetric.
-    for (int s = 0; s < sweeps; s += 2) {
-      enqueue_jacobi_sweep(l, b, phi, levels_[l].scratch, kJacobiDamping);
-      enqueue_jacobi_sweep(l, b, levels_[l].scratch, phi, kJacobiDamping);
-    }
+    // Damped Jacobi, an odd count rounded up to pairs; the same before and after the correction, so the
+    // cycle is symmetric.
+    for (int p = first_pass; p < sweeps + sweeps % 2; ++p)
+      enqueue_jacobi_sweep(l, b, p % 2 ? scratch : phi, p % 2 ? phi : scratch, kJacobiDamping);
     return;
   }
-  // Red-black Gauss-Seidel, one colour per pass (phi -> scratch -> phi); reversing the colour order after
-  // the correction keeps the cycle symmetric. Small levels take all their passes in one launch.
+  // Red-black Gauss-Seidel, one colour per pass; reversing the colour order after the correction keeps the
+  // cycle symmetric. Small levels take all their passes in one launch.
   const int first = after_correction ? 1 : 0;
   if (host_levels_[l].cell_count() <= kOneGroupCells) {
-    enqueue_red_black_sweeps(l, b, phi, sweeps, first);
+    enqueue_red_black_sweeps(l, b, phi, sweeps, first, first_pass);
     return;
   }
-  for (int s = 0; s < sweeps; ++s) {
-    enqueue_red_black_pass(l, b, phi, levels_[l].scratch, first);
-    enqueue_red_black_pass(l, b, levels_[l].scratch, phi, 1 - first);
-  }
+  for (int p = first_pass; p < 2 * sweeps; ++p)
+    enqueue_red_black_pass(l, b, p % 2 ? scratch : phi, p % 2 ? phi : scratch, p % 2 ? 1 - first : first);
 }
 
-void PressureSolver::vcycle_level(int l, cl::Buffer& b, cl::Buffer& phi) {
+void PressureSolver::vcycle_level(int l, cl::Buffer& b, cl::Buffer& phi, bool started) {
   const int last = level_count() - 1;
   if (l == last) {
     // Coarsest level: enough symmetric sweeps to carry information across it.
     const auto& L = host_levels_[l];
     const int sweeps = std::max(4, std::max({L.nx, L.ny, L.nz}));
-    smooth(l, b, phi, sweeps, false);
-    smooth(l, b, phi, sweeps, true);
+    smooth(l, b, phi, sweeps, false, started);
+    smooth(l, b, phi, sweeps, true, false);
     return;
   }
-  smooth(l, b, phi, settings_.smoothing_sweeps, false);
+  smooth(l, b, phi, settings_.smoothing_sweeps, false, started);
   enqueue_restrict_residual(l, b, phi);
-  vcycle_level(l + 1, levels_[l + 1].b, levels_[l + 1].phi);
+  vcycle_level(l + 1, levels_[l + 1].b, levels_[l + 1].phi, true);
   enqueue_prolong_add(l, phi);
-  smooth(l, b, phi, settings_.smoothing_sweeps, true);
+  smooth(l, b, phi, settings_.smoothing_sweeps, true, false);
 }
 
 void PressureSolver::remove_mean(cl::Buffer& b) {
@@ -314,11 +339,9 @@ PressureSolveStatus PressureSolver::solve_cg() {
   st.initial_residual = std::sqrt(rr) / bnorm;
   const double target = settings_.tolerance * bnorm;
   if (std::sqrt(rr) > target) {
-    cc_.queue().enqueueFillBuffer(z_, 0.0f, 0, bytes);
-    vcycle(r_, z_);
+    vcycle_from_zero(r_, z_);
     double rho = dot(r_, z_);
-    cc_.queue().enqueueCopyBuffer(z_, d_, 0, 0, bytes);
-    count_traffic(0, traffic::kFill + traffic::kCopy);
+    std::swap(z_, d_);  // d = z without a copy: the next preconditioning writes all of z
     while (st.iterations < settings_.max_iterations) {
       apply_dot_.set_args(L.dims, L.mask, d_, q_, partial_).enqueue(cc_, reduce.global, reduce.local);
       count_traffic(0, traffic::kApplyDot);
@@ -330,9 +353,7 @@ PressureSolveStatus PressureSolver::solve_cg() {
       rr = sum_partials(reduce.groups);
       ++st.iterations;
       if (std::sqrt(rr) <= target || !std::isfinite(rr)) break;
-      cc_.queue().enqueueFillBuffer(z_, 0.0f, 0, bytes);
-      count_traffic(0, traffic::kFill);
-      vcycle(r_, z_);
+      vcycle_from_zero(r_, z_);
       const double rho_new = dot(r_, z_);
       const float beta = static_cast<float>(rho_new / rho);
       rho = rho_new;

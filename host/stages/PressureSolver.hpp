@@ -11,7 +11,10 @@
 //   cg         conjugate gradients preconditioned by one V-cycle, same stopping rule (the default).
 // The V-cycle smooths with damped Jacobi or red-black Gauss-Seidel (both symmetric, so it is a valid CG
 // preconditioner),
-// restricts the residual by averaging, and prolongs piecewise-constant. When no face is an outflow the
+// restricts the residual by averaging, and prolongs piecewise-constant. Where a level starts from a zero
+// guess (every coarse level, and level 0 in CG's preconditioner) the smoother's first pass needs no
+// neighbours and is written directly: by the restriction on coarse levels, by smoothing_start on level 0.
+// When no face is an outflow the
 // operator is singular, and the mean of b over fluid cells is removed before solving.
 #pragma once
 
@@ -60,22 +63,31 @@ class PressureSolver {
   /// One colour of red-black Gauss-Seidel, out of place: phi_out = phi with the colour's cells updated.
   void enqueue_red_black_pass(int level, cl::Buffer& b, cl::Buffer& phi, cl::Buffer& phi_out, int colour);
   /// `sweeps` red-black sweeps (colour first_colour, then the other) in one launch by one work-group: the
-  /// same values as 2 * sweeps enqueue_red_black_pass; smooth() uses it on levels of at most
-  /// kOneGroupCells cells.
-  void enqueue_red_black_sweeps(int level, cl::Buffer& b, cl::Buffer& phi, int sweeps, int first_colour);
+  /// same values as 2 * sweeps enqueue_red_black_pass (phi -> scratch -> phi); smooth() uses it on levels of
+  /// at most kOneGroupCells cells. first_pass = 1 skips the first pass, whose result is already in the
+  /// level's scratch (enqueue_smoothing_start, enqueue_restrict_residual).
+  void enqueue_red_black_sweeps(int level, cl::Buffer& b, cl::Buffer& phi, int sweeps, int first_colour,
+                                int first_pass = 0);
+  /// out = the smoother's first pass of A phi = b from phi = 0 (a red-black pass of colour 0, or a damped
+  /// Jacobi sweep), without the fill of phi and without reading neighbours.
+  void enqueue_smoothing_start(int level, cl::Buffer& b, cl::Buffer& out);
   /// Under PoCL a launch costs about 0.1 ms, more than one core takes for a colour pass over this many cells
   /// (16,384 cells, one more level, came out slower on one core than in parallel).
   static constexpr std::size_t kOneGroupCells = 4096;
   /// r = b - A phi and returns ||r||^2 (blocks).
   double residual_norm2(int level, cl::Buffer& b, cl::Buffer& phi, cl::Buffer& r);
-  /// Coarse rhs = correction_scale() * mean of the children's residual; coarse solution zeroed.
+  /// Coarse rhs = correction_scale() * mean of the children's residual, and the coarse level's first
+  /// smoothing pass from a zero guess in level_scratch(fine_level + 1).
   void enqueue_restrict_residual(int fine_level, cl::Buffer& b, cl::Buffer& phi);
   float correction_scale() const;
   void enqueue_prolong_add(int fine_level, cl::Buffer& phi);
   /// One V-cycle on level 0 for A phi = b, starting from phi's content.
   void vcycle(cl::Buffer& b, cl::Buffer& phi);
+  /// phi = one V-cycle on level 0 for A phi = b from phi = 0 (CG's preconditioner); phi is only written.
+  void vcycle_from_zero(cl::Buffer& b, cl::Buffer& phi);
   cl::Buffer& level_rhs(int level) { return levels_[level].b; }
   cl::Buffer& level_solution(int level) { return levels_[level].phi; }
+  cl::Buffer& level_scratch(int level) { return levels_[level].scratch; }
 
  private:
   struct DeviceLevel {
@@ -83,8 +95,13 @@ class PressureSolver {
     cl::Buffer mask, b, phi, scratch;
   };
 
-  void vcycle_level(int l, cl::Buffer& b, cl::Buffer& phi);
-  void smooth(int l, cl::Buffer& b, cl::Buffer& phi, int sweeps, bool after_correction);
+  /// started: the first smoothing pass from phi = 0 is already in the level's scratch.
+  void vcycle_level(int l, cl::Buffer& b, cl::Buffer& phi, bool started);
+  void smooth(int l, cl::Buffer& b, cl::Buffer& phi, int sweeps, bool after_correction, bool started);
+  /// The smoother's first pass as the start kernels take it: its damping and its colour (or
+  /// FW_SMOOTH_ALL_CELLS).
+  float start_damping() const;
+  int start_colour() const;
   double sum_partials(std::size_t count);
   void count_traffic(int level, double bytes_per_cell);
   /// The range of a reduction kernel on `level`, and its number of partials.
@@ -106,8 +123,8 @@ class PressureSolver {
   std::size_t one_group_items_ = 1;  // red_black_sweeps' work-group
   double traffic_bytes_ = 0.0;
   std::size_t fluid_cells_ = 0;
-  Kernel jacobi_, red_black_, red_black_sweeps_, residual_, apply_dot_, restrict_, prolong_, cg_update_,
-      cg_direction_, dot_, add_, sum_;
+  Kernel jacobi_, red_black_, red_black_sweeps_, smoothing_start_, residual_, apply_dot_, restrict_, prolong_,
+      cg_update_, cg_direction_, dot_, add_, sum_;
 };
 
 }  // namespace fw::host
