@@ -201,9 +201,8 @@ __kernel void red_black_pass(const FwLevel L, __global const uchar* mask, __glob
  * `first` (phi -> scratch), then the other (scratch -> phi), the same passes and values as red_black_pass
  * launched 2 * sweeps times. Passes before first_pass are skipped: first_pass = 1 continues a smoothing
  * whose first pass (into scratch) was written by smoothing_start or restrict_residual. The group's items
- * share out the rows, a barrier between passes. On small
- * levels the launches, not the cells, cost the time (about 0.1 ms each under PoCL). Global range: one
- * group, of any size. */
+ * share out the rows, a barrier between passes. On small levels the launches, not the cells, cost the time
+ * (about 0.1 ms each under PoCL). Global range: one group, of any size. */
 __kernel void red_black_sweeps(const FwLevel L, __global const uchar* mask, __global const float* b,
                                __global float* phi, __global float* scratch, const int sweeps,
                                const int first, const int first_pass) {
@@ -298,6 +297,17 @@ __kernel void smoothing_start(const FwLevel L, __global const uchar* mask, __glo
  * A coarse cell with one child along an axis (an odd fine extent) reads that child twice, so every cell
  * sums eight values and the mean is sum / 8 without counting. Pairs along x are read with stride 2, which
  * vectorises. Rows over the coarse level. */
+/* Coarse cell I of the row (coarse_mask, coarse_b and coarse_start point at it): its right-hand side
+ * (restricted, off the fluid 0) and its first smoothing pass from a zero guess. */
+FW_INLINE void store_coarse_cell(__global const uchar* coarse_mask, __global float* coarse_b,
+                                 __global float* coarse_start, int I, float restricted, float omega,
+                                 int colour, int parity) {
+  const uchar m = coarse_mask[I];
+  const float bc = (m & FW_MASK_FLUID) ? restricted : 0.0f;
+  coarse_b[I] = bc;
+  coarse_start[I] = smoothing_start_value(m, bc, omega, colour, (I + parity) & 1);
+}
+
 __kernel void restrict_residual(const FwLevel F, const FwLevel C, __global const uchar* coarse_mask,
                                 __global const float* r, __global float* coarse_b,
                                 __global float* coarse_start, const float scale, const float omega,
@@ -316,18 +326,12 @@ __kernel void restrict_residual(const FwLevel F, const FwLevel C, __global const
     const int i = 2 * I;
     const float sum =
         (r00[i] + r00[i + 1]) + (r10[i] + r10[i + 1]) + (r01[i] + r01[i + 1]) + (r11[i] + r11[i + 1]);
-    const uchar m = coarse_mask[I];
-    const float bc = (m & FW_MASK_FLUID) ? weight * sum : 0.0f;
-    coarse_b[I] = bc;
-    coarse_start[I] = smoothing_start_value(m, bc, omega, colour, (I + parity) & 1);
+    store_coarse_cell(coarse_mask, coarse_b, coarse_start, I, weight * sum, omega, colour, parity);
   }
   for (int I = max(begin, pairs); I < end; ++I) {
     const int i = 2 * I;
     const float sum = 2.0f * ((r00[i] + r10[i]) + (r01[i] + r11[i]));
-    const uchar m = coarse_mask[I];
-    const float bc = (m & FW_MASK_FLUID) ? weight * sum : 0.0f;
-    coarse_b[I] = bc;
-    coarse_start[I] = smoothing_start_value(m, bc, omega, colour, (I + parity) & 1);
+    store_coarse_cell(coarse_mask, coarse_b, coarse_start, I, weight * sum, omega, colour, parity);
   }
 }
 

@@ -10,12 +10,11 @@
 //   multigrid  geometric multigrid V-cycles until the relative residual is below the tolerance;
 //   cg         conjugate gradients preconditioned by one V-cycle, same stopping rule (the default).
 // The V-cycle smooths with damped Jacobi or red-black Gauss-Seidel (both symmetric, so it is a valid CG
-// preconditioner),
-// restricts the residual by averaging, and prolongs piecewise-constant. Where a level starts from a zero
-// guess (every coarse level, and level 0 in CG's preconditioner) the smoother's first pass needs no
-// neighbours and is written directly: by the restriction on coarse levels, by smoothing_start on level 0.
-// When no face is an outflow the
-// operator is singular, and the mean of b over fluid cells is removed before solving.
+// preconditioner), restricts the residual by averaging, and prolongs piecewise-constant. Where a level
+// starts from a zero guess (every coarse level, and level 0 in CG's preconditioner) the smoother's first
+// pass needs no neighbours and is written directly: by the restriction on coarse levels, by
+// smoothing_start on level 0. When no face is an outflow the operator is singular, and the mean of b over
+// fluid cells is removed before solving.
 #pragma once
 
 #include <string>
