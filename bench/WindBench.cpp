@@ -144,7 +144,7 @@ host::WindGridSetup wind_tunnel_setup(int nx, int ny, int nz, fluid::PressureSol
   return setup;
 }
 
-double measure_smoother_gb_s(host::ComputeContext& cc, const std::array<int, 3>& grid, bool red_black,
+double measure_smoother_gb_s(host::ComputeContext& cc, const std::array<int, 3>& grid, SmootherPass kind,
                              int passes) {
   fluid::GridSpec spec;
   spec.nx = grid[0];
@@ -156,12 +156,16 @@ double measure_smoother_gb_s(host::ComputeContext& cc, const std::array<int, 3>&
   host::PressureSolver solver(cc, spec, std::move(fine), fluid::PressureSettings{});
   cl::Buffer other = cc.buffer(spec.cell_count() * sizeof(float));
   auto pass = [&](int n) {
-    if (red_black)
-      solver.enqueue_red_black_pass(0, solver.rhs(), (n & 1) ? other : solver.solution(),
-                                    (n & 1) ? solver.solution() : other, n & 1);
-    else
-      solver.enqueue_jacobi_sweep(0, solver.rhs(), (n & 1) ? other : solver.solution(),
-                                  (n & 1) ? solver.solution() : other, 1.0f);
+    cl::Buffer& from = (n & 1) ? other : solver.solution();
+    cl::Buffer& to = (n & 1) ? solver.solution() : other;
+    switch (kind) {
+      case SmootherPass::red_black_in_place:
+        return solver.enqueue_red_black_update(0, solver.rhs(), solver.solution(), n & 1);
+      case SmootherPass::red_black_out_of_place:
+        return solver.enqueue_red_black_pass(0, solver.rhs(), from, to, n & 1);
+      case SmootherPass::jacobi:
+        return solver.enqueue_jacobi_sweep(0, solver.rhs(), from, to, 1.0f);
+    }
   };
   pass(0), pass(1);
   cc.finish();
@@ -184,8 +188,11 @@ WindBenchResult run_wind_bench(host::ComputeContext& cc, const WindBenchOptions&
   result.triad_gb_s = measure_stream_triad(cc, std::size_t(32) << 20, 10);
   result.corner_loads = measure_corner_load_rates(cc, opt.roofline_grid, 10);
   result.roofline_grid = opt.roofline_grid;
-  result.roofline_smoother_gb_s = measure_smoother_gb_s(cc, opt.roofline_grid, true, 20);
-  result.roofline_jacobi_gb_s = measure_smoother_gb_s(cc, opt.roofline_grid, false, 20);
+  result.roofline_smoother_gb_s =
+      measure_smoother_gb_s(cc, opt.roofline_grid, SmootherPass::red_black_in_place, 20);
+  result.roofline_out_of_place_gb_s =
+      measure_smoother_gb_s(cc, opt.roofline_grid, SmootherPass::red_black_out_of_place, 20);
+  result.roofline_jacobi_gb_s = measure_smoother_gb_s(cc, opt.roofline_grid, SmootherPass::jacobi, 20);
   for (const auto& grid : opt.grids) {
     WindBenchCase c;
     c.grid = grid;
@@ -196,7 +203,7 @@ WindBenchResult run_wind_bench(host::ComputeContext& cc, const WindBenchOptions&
       c.runs.push_back(time_solver(cc, grid, fluid::PressureSolverType::cg, opt, Turbulence::inflow));
       c.runs.push_back(time_solver(cc, grid, fluid::PressureSolverType::cg, opt, Turbulence::inflow_subgrid));
     }
-    c.smoother_gb_s = measure_smoother_gb_s(cc, grid, true, 20);
+    c.smoother_gb_s = measure_smoother_gb_s(cc, grid, SmootherPass::red_black_in_place, 20);
     if (opt.reference && std::size_t(grid[0]) * grid[1] * grid[2] <= (std::size_t(1) << 18))
       c.reference_ms_per_step = time_reference_step(grid);
     result.cases.push_back(std::move(c));
@@ -207,12 +214,13 @@ WindBenchResult run_wind_bench(host::ComputeContext& cc, const WindBenchOptions&
 void print_wind_bench_table(const WindBenchResult& r, std::ostream& out) {
   out << fmt::format("forestwind bench wind on {}: {} timed steps per solver\n", r.device, r.steps);
   out << fmt::format("STREAM triad (device, same process): {:.1f} GB/s\n", r.triad_gb_s);
-  out << fmt::format(
-      "smoother on {}x{}x{}: red-black pass {:.1f} GB/s ({:.0f}% of triad), Jacobi sweep {:.1f} GB/s "
-      "({:.0f}% of triad)\n\n",
-      r.roofline_grid[0], r.roofline_grid[1], r.roofline_grid[2], r.roofline_smoother_gb_s,
-      100.0 * r.roofline_smoother_gb_s / r.triad_gb_s, r.roofline_jacobi_gb_s,
-      100.0 * r.roofline_jacobi_gb_s / r.triad_gb_s);
+  auto of_triad = [&](double gb_s) {
+    return fmt::format("{:.1f} GB/s ({:.0f}% of triad)", gb_s, 100.0 * gb_s / r.triad_gb_s);
+  };
+  out << fmt::format("smoother on {}x{}x{}: red-black pass in place {}, out of place {}, Jacobi sweep {}\n\n",
+                     r.roofline_grid[0], r.roofline_grid[1], r.roofline_grid[2],
+                     of_triad(r.roofline_smoother_gb_s), of_triad(r.roofline_out_of_place_gb_s),
+                     of_triad(r.roofline_jacobi_gb_s));
   out << fmt::format("{:<12} {:<11} {:>9} {:>8} {:>8} {:>8} {:>9} {:>9} {:>8} {:>9} {:>10} {:>10} {:>12}\n",
                      "grid", "solver", "ms/step", "advect", "bound.", "sgs+wall", "diverg.", "pressure",
                      "gradient", "p-iters", "rel.res.", "max|div|", "Mcell*st/s");
@@ -232,8 +240,7 @@ void print_wind_bench_table(const WindBenchResult& r, std::ostream& out) {
           run.pressure_iterations, run.relative_residual, run.max_divergence, run.cells_steps_per_s * 1e-6,
           run.ms_per_step / base);
     }
-    out << fmt::format("{:<12} smoother {:.1f} GB/s ({:.0f}% of triad)", grid, c.smoother_gb_s,
-                       100.0 * c.smoother_gb_s / r.triad_gb_s);
+    out << fmt::format("{:<12} smoother (in place) {}", grid, of_triad(c.smoother_gb_s));
     if (c.reference_ms_per_step > 0)
       out << fmt::format("; CPU reference step {:.0f} ms = x{:.1f} the device's cg step",
                          c.reference_ms_per_step, c.reference_ms_per_step / base);
@@ -336,6 +343,7 @@ std::string wind_bench_json(const WindBenchResult& r) {
       .value(r.roofline_grid[2])
       .end_array();
   json.key("red_black_gb_s").value(r.roofline_smoother_gb_s);
+  json.key("red_black_out_of_place_gb_s").value(r.roofline_out_of_place_gb_s);
   json.key("jacobi_gb_s").value(r.roofline_jacobi_gb_s);
   json.end_object();
   json.key("cases").begin_array();

@@ -56,16 +56,17 @@ struct SolverRun {
 struct WindBenchCase {
   std::array<int, 3> grid{};
   std::vector<SolverRun> runs;         // converging solver first
-  double smoother_gb_s = 0.0;          // red-black Gauss-Seidel pass on this grid
+  double smoother_gb_s = 0.0;          // in-place red-black Gauss-Seidel pass (the solver's) on this grid
   double reference_ms_per_step = 0.0;  // 0 when not measured
 };
 
 struct WindBenchResult {
   std::string device;
   double triad_gb_s = 0.0;
-  CornerLoadRates corner_loads;         // eight-corner loads (bench/GatherThroughput) on roofline_grid
-  double roofline_smoother_gb_s = 0.0;  // red-black pass on roofline_grid
-  double roofline_jacobi_gb_s = 0.0;    // Jacobi sweep on roofline_grid
+  CornerLoadRates corner_loads;             // eight-corner loads (bench/GatherThroughput) on roofline_grid
+  double roofline_smoother_gb_s = 0.0;      // in-place red-black pass on roofline_grid
+  double roofline_out_of_place_gb_s = 0.0;  // out-of-place red-black pass on roofline_grid
+  double roofline_jacobi_gb_s = 0.0;        // Jacobi sweep on roofline_grid
   std::array<int, 3> roofline_grid{};
   int steps = 0;
   std::vector<WindBenchCase> cases;
@@ -79,10 +80,13 @@ WindBenchResult run_wind_bench(host::ComputeContext& cc, const WindBenchOptions&
 void print_wind_bench_table(const WindBenchResult& result, std::ostream& out);
 std::string wind_bench_json(const WindBenchResult& result);
 
-/// Bandwidth of the pressure smoother on a grid, GB/s: the best of `passes` timed passes (a red-black colour
-/// pass if red_black, else one Jacobi sweep), counting the bytes each pass streams: mask 1 + b 4 + phi read
-/// 4 + phi write 4 per cell.
-double measure_smoother_gb_s(host::ComputeContext& cc, const std::array<int, 3>& grid, bool red_black,
+/// The smoother passes the benchmark times: a red-black colour pass in place (the solver's on large levels)
+/// or out of place (through a second buffer), or one Jacobi sweep.
+enum class SmootherPass { red_black_in_place, red_black_out_of_place, jacobi };
+
+/// Bandwidth of a pressure smoother pass on a grid, GB/s: the best of `passes` timed passes, counting the
+/// bytes each pass streams: mask 1 + b 4 + phi read 4 + phi write 4 per cell.
+double measure_smoother_gb_s(host::ComputeContext& cc, const std::array<int, 3>& grid, SmootherPass kind,
                              int passes);
 
 }  // namespace fw::bench

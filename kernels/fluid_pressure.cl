@@ -197,6 +197,90 @@ __kernel void red_black_pass(const FwLevel L, __global const uchar* mask, __glob
                 FW_ROW_END(L.nx));
 }
 
+/* Red-black Gauss-Seidel in place: the pass of `colour` overwrites the cells of that colour in phi. It moves
+ * 13 bytes a cell where red_black_pass moves 17 (a store to a second buffer first reads its line). Every
+ * neighbour of a cell has the other colour (the hierarchy keeps periodic extents even or 1, see
+ * fluid/PressureLevels.hpp), so no item reads a cell another item changes, and the values equal
+ * red_black_pass's.
+ * Under the CPU layout the interior runs take explicit FW_COLOUR_LANES-wide vectors, since the compiler will
+ * not vectorise a loop that stores values later iterations load. A chunk stores all its lanes, the other
+ * colour's with the values it loaded: those cells do not change, so no item reads a changing value. Each
+ * chunk's x - 1 neighbours are loaded before the previous chunk's store, because a load overlapping a store
+ * in flight cannot take its data from the store buffer and stalls (about 0.1 ms a pass on 128x128x64). */
+#define FW_COLOUR_LANES 16
+#define FW_COLOUR_LANE_INDEX ((int16)(0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15))
+
+/* interior_neighbour_sum or the open run's sum for the FW_COLOUR_LANES cells from index p of the plane; m:
+ * their masks, xm: their x - 1 neighbours. Same order of additions as the scalar sums. */
+FW_INLINE float16 chunk_neighbour_sum(const FwLevel* L, const FwPlanes* P, int16 m, float16 xm, int p,
+                                      int run) {
+  const int sy = L->nx;
+  __global const float* here = P->here;
+  const float16 xp = vload16(0, here + p + 1), ym = vload16(0, here + p - sy),
+                yp = vload16(0, here + p + sy), zm = vload16(0, P->below + p), zp = vload16(0, P->above + p);
+  if (run == FW_RUN_OPEN) return xm + xp + ym + yp + zm + zp;
+  const float16 none = 0.0f;
+  m &= (int)P->faces;
+  return select(none, xm, (m & 1) != 0) + select(none, xp, (m & 2) != 0) + select(none, ym, (m & 4) != 0) +
+         select(none, yp, (m & 8) != 0) + select(none, zm, (m & 16) != 0) + select(none, zp, (m & 32) != 0);
+}
+
+/* The in-place pass over the FW_COLOUR_LANES cells from column i (index p of the plane) of an interior or
+ * open run; phi points at the plane. */
+FW_INLINE void red_black_chunk(const FwLevel* L, __global const uchar* mask, __global const float* b,
+                               const FwPlanes* P, __global float* phi, float16 xm, int colour, int parity,
+                               int i, int p, int run) {
+  const int16 m = convert_int16(vload16(0, mask + p));
+  const float16 d = run == FW_RUN_OPEN ? (float16)6.0f : convert_float16(popcount(m & FW_MASK_OPEN_ALL));
+  const float16 updated = (vload16(0, b + p) + chunk_neighbour_sum(L, P, m, xm, p, run)) / d;
+  int16 active = ((FW_COLOUR_LANE_INDEX + (i + parity)) & 1) == colour;
+  if (run != FW_RUN_OPEN) active &= ((m & FW_MASK_FLUID) != 0) & (d > 0.0f);
+  vstore16(select(vload16(0, phi + p), updated, active), 0, phi + p);
+}
+
+/* The in-place pass of one cell: written only where it changes (on a GPU, half the stores). */
+FW_INLINE void red_black_cell(const FwLevel* L, __global const uchar* mask, __global const float* b,
+                              const FwPlanes* P, __global float* phi, int colour, int parity, int i, int j,
+                              int p, int run) {
+  const uchar m = mask[p];
+  const float d = run_diagonal(m, run);
+  if (((i + parity) & 1) == colour && run_fluid(m, run) && d > 0.0f)
+    phi[p] = (b[p] + run_neighbour_sum(L, P, i, j, p, m, run)) / d;
+}
+
+/* The in-place pass over cells [begin, end) of row j (first index row of the plane), all of one run. */
+FW_INLINE void red_black_update_run(const FwLevel* L, __global const uchar* mask, __global const float* b,
+                                    const FwPlanes* P, __global float* phi, int colour, int parity, int j,
+                                    int row, int begin, int end, int run) {
+  int i = begin;
+  if (run != FW_RUN_EDGE && FW_ROW_CHUNK >= FW_COLOUR_LANES && end - begin >= FW_COLOUR_LANES) {
+    float16 xm = vload16(0, phi + row + i - 1);
+    for (; i + FW_COLOUR_LANES <= end; i += FW_COLOUR_LANES) {
+      /* The next chunk's start, or this one's on the last (its load is then unused but valid). */
+      const int next = min(i + FW_COLOUR_LANES, end - FW_COLOUR_LANES);
+      const float16 next_xm = vload16(0, phi + row + next - 1);
+      red_black_chunk(L, mask, b, P, phi, xm, colour, parity, i, row + i, run);
+      xm = next_xm;
+    }
+  }
+  for (; i < end; ++i) red_black_cell(L, mask, b, P, phi, colour, parity, i, j, row + i, run);
+}
+
+__kernel void red_black_update(const FwLevel L, __global const uchar* mask, __global const float* b,
+                               __global float* phi, const int colour) {
+  const int j = get_global_id(1), k = get_global_id(2), plane = k * plane_cells(&L), row = j * L.nx;
+  const int parity = (j + k) & 1;
+  const FwPlanes P = level_planes(&L, phi, k);
+  mask += plane, b += plane, phi += plane;
+  const FwRowRuns R = row_runs(&L, &P, mask + row, j, FW_ROW_BEGIN, FW_ROW_END(L.nx));
+  red_black_update_run(&L, mask, b, &P, phi, colour, parity, j, row, R.begin, R.lo, FW_RUN_EDGE);
+  if (R.open)
+    red_black_update_run(&L, mask, b, &P, phi, colour, parity, j, row, R.lo, R.hi, FW_RUN_OPEN);
+  else
+    red_black_update_run(&L, mask, b, &P, phi, colour, parity, j, row, R.lo, R.hi, FW_RUN_INTERIOR);
+  red_black_update_run(&L, mask, b, &P, phi, colour, parity, j, row, R.hi, R.end, FW_RUN_EDGE);
+}
+
 /* `sweeps` red-black sweeps of a small level in one launch by one work-group: each sweep the pass of colour
  * `first` (phi -> scratch), then the other (scratch -> phi), the same passes and values as red_black_pass
  * launched 2 * sweeps times. Passes before first_pass are skipped: first_pass = 1 continues a smoothing

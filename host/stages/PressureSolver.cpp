@@ -70,6 +70,7 @@ PressureSolver::PressureSolver(ComputeContext& cc, const fluid::GridSpec& spec,
   cl::Program program = cc_.build("fluid_pressure.cl", kPressureBuildOptions);
   jacobi_ = Kernel(program, "jacobi_sweep");
   red_black_ = Kernel(program, "red_black_pass");
+  red_black_update_ = Kernel(program, "red_black_update");
   red_black_sweeps_ = Kernel(program, "red_black_sweeps");
   smoothing_start_ = Kernel(program, "smoothing_start");
   one_group_items_ = cc_.mapping() == WorkMapping::rows
@@ -151,6 +152,22 @@ void PressureSolver::enqueue_red_black_pass(int level, cl::Buffer& b, cl::Buffer
   count_traffic(level, traffic::kSmoothPass);
 }
 
+void PressureSolver::enqueue_red_black_update(int level, cl::Buffer& b, cl::Buffer& phi, int colour) {
+  auto& L = levels_[level];
+  red_black_update_.set_args(L.dims, L.mask, b, phi, colour)
+      .enqueue(cc_, cc_.rows(L.dims.nx, L.dims.ny, L.dims.nz));
+  count_traffic(level, traffic::kSmoothPass);
+}
+
+bool PressureSolver::updates_in_place(int level) const {
+  return settings_.smoother == fluid::MultigridSmoother::red_black &&
+         host_levels_[level].cell_count() > kOneGroupCells;
+}
+
+cl::Buffer& PressureSolver::first_pass_buffer(int l, cl::Buffer& phi) {
+  return updates_in_place(l) ? phi : levels_[l].scratch;
+}
+
 void PressureSolver::enqueue_red_black_sweeps(int level, cl::Buffer& b, cl::Buffer& phi, int sweeps,
                                               int first_colour, int first_pass) {
   auto& L = levels_[level];
@@ -191,8 +208,8 @@ void PressureSolver::enqueue_restrict_residual(int fine_level, cl::Buffer& b, cl
   residual_.set_args(F.dims, F.mask, b, phi, F.scratch, partial_).enqueue(cc_, range.global, range.local);
   count_traffic(fine_level, traffic::kResidual);
   restrict_
-      .set_args(F.dims, C.dims, C.mask, F.scratch, C.b, C.scratch, correction_scale(), start_damping(),
-                start_colour())
+      .set_args(F.dims, C.dims, C.mask, F.scratch, C.b, level_first_pass(fine_level + 1), correction_scale(),
+                start_damping(), start_colour())
       .enqueue(cc_, cc_.rows(C.dims.nx, C.dims.ny, C.dims.nz));
   count_traffic(fine_level, traffic::kRestrictFine);
   count_traffic(fine_level + 1, traffic::kRestrictCoarse);
@@ -212,19 +229,18 @@ void PressureSolver::vcycle(cl::Buffer& b, cl::Buffer& phi) {
 }
 
 void PressureSolver::vcycle_from_zero(cl::Buffer& b, cl::Buffer& phi) {
-  enqueue_smoothing_start(0, b, levels_[0].scratch);
+  enqueue_smoothing_start(0, b, first_pass_buffer(0, phi));
   vcycle_level(0, b, phi, true);
 }
 
 void PressureSolver::smooth(int l, cl::Buffer& b, cl::Buffer& phi, int sweeps, bool after_correction,
                             bool started) {
-  // Passes alternate phi -> scratch -> phi, so pass p reads phi when p is even and every smoothing ends in
-  // phi. A started smoothing (only ever before the correction) has its pass 0 in scratch already.
+  // A started smoothing (only ever before the correction) has its pass 0 in first_pass_buffer already.
   auto& scratch = levels_[l].scratch;
   const int first_pass = started ? 1 : 0;
   if (settings_.smoother == fluid::MultigridSmoother::jacobi) {
-    // Damped Jacobi, an odd count rounded up to pairs; the same before and after the correction, so the
-    // cycle is symmetric.
+    // Damped Jacobi, phi -> scratch -> phi, an odd count rounded up to pairs; the same before and after the
+    // correction, so the cycle is symmetric.
     for (int p = first_pass; p < sweeps + sweeps % 2; ++p)
       enqueue_jacobi_sweep(l, b, p % 2 ? scratch : phi, p % 2 ? phi : scratch, kJacobiDamping);
     return;
@@ -232,12 +248,19 @@ void PressureSolver::smooth(int l, cl::Buffer& b, cl::Buffer& phi, int sweeps, b
   // Red-black Gauss-Seidel, one colour per pass; reversing the colour order after the correction keeps the
   // cycle symmetric. Small levels take all their passes in one launch.
   const int first = after_correction ? 1 : 0;
+  const auto colour = [first](int pass) { return pass % 2 ? 1 - first : first; };
   if (host_levels_[l].cell_count() <= kOneGroupCells) {
     enqueue_red_black_sweeps(l, b, phi, sweeps, first, first_pass);
     return;
   }
+  if (updates_in_place(l)) {
+    for (int p = first_pass; p < 2 * sweeps; ++p) enqueue_red_black_update(l, b, phi, colour(p));
+    return;
+  }
+  // Out of place, passes alternate phi -> scratch -> phi: pass p reads phi when p is even and every
+  // smoothing ends in phi.
   for (int p = first_pass; p < 2 * sweeps; ++p)
-    enqueue_red_black_pass(l, b, p % 2 ? scratch : phi, p % 2 ? phi : scratch, p % 2 ? 1 - first : first);
+    enqueue_red_black_pass(l, b, p % 2 ? scratch : phi, p % 2 ? phi : scratch, colour(p));
 }
 
 void PressureSolver::vcycle_level(int l, cl::Buffer& b, cl::Buffer& phi, bool started) {

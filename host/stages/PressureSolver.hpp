@@ -13,8 +13,9 @@
 // preconditioner), restricts the residual by averaging, and prolongs piecewise-constant. Where a level
 // starts from a zero guess (every coarse level, and level 0 in CG's preconditioner) the smoother's first
 // pass needs no neighbours and is written directly: by the restriction on coarse levels, by
-// smoothing_start on level 0. When no face is an outflow the operator is singular, and the mean of b over
-// fluid cells is removed before solving.
+// smoothing_start on level 0. Red-black passes update phi in place where the colouring allows it
+// (updates_in_place), else out of place through the level's scratch. When no face is an outflow the operator
+// is singular, and the mean of b over fluid cells is removed before solving.
 #pragma once
 
 #include <string>
@@ -61,6 +62,13 @@ class PressureSolver {
   void enqueue_jacobi_sweep(int level, cl::Buffer& b, cl::Buffer& phi, cl::Buffer& phi_out, float omega);
   /// One colour of red-black Gauss-Seidel, out of place: phi_out = phi with the colour's cells updated.
   void enqueue_red_black_pass(int level, cl::Buffer& b, cl::Buffer& phi, cl::Buffer& phi_out, int colour);
+  /// One colour of red-black Gauss-Seidel in place: the values of enqueue_red_black_pass, fewer bytes moved.
+  /// Relies on every neighbour of a cell having the other colour, which the hierarchy guarantees (periodic
+  /// extents stay even or 1, see fluid/PressureLevels.hpp).
+  void enqueue_red_black_update(int level, cl::Buffer& b, cl::Buffer& phi, int colour);
+  /// Whether smooth() updates this level in place: the red-black smoother on a level of more than
+  /// kOneGroupCells cells (smaller ones take enqueue_red_black_sweeps, out of place).
+  bool updates_in_place(int level) const;
   /// `sweeps` red-black sweeps (colour first_colour, then the other) in one launch by one work-group: the
   /// same values as 2 * sweeps enqueue_red_black_pass (phi -> scratch -> phi); smooth() uses it on levels of
   /// at most kOneGroupCells cells. first_pass = 1 skips the first pass, whose result is already in the
@@ -76,7 +84,7 @@ class PressureSolver {
   /// r = b - A phi and returns ||r||^2 (blocks).
   double residual_norm2(int level, cl::Buffer& b, cl::Buffer& phi, cl::Buffer& r);
   /// Coarse rhs = correction_scale() * mean of the children's residual, and the coarse level's first
-  /// smoothing pass from a zero guess in level_scratch(fine_level + 1).
+  /// smoothing pass from a zero guess in level_first_pass(fine_level + 1).
   void enqueue_restrict_residual(int fine_level, cl::Buffer& b, cl::Buffer& phi);
   float correction_scale() const;
   void enqueue_prolong_add(int fine_level, cl::Buffer& phi);
@@ -87,6 +95,9 @@ class PressureSolver {
   cl::Buffer& level_rhs(int level) { return levels_[level].b; }
   cl::Buffer& level_solution(int level) { return levels_[level].phi; }
   cl::Buffer& level_scratch(int level) { return levels_[level].scratch; }
+  /// Where a smoothing started from a zero guess finds its first pass: the level's solution when it
+  /// updates in place, else its scratch.
+  cl::Buffer& level_first_pass(int level) { return first_pass_buffer(level, levels_[level].phi); }
 
  private:
   struct DeviceLevel {
@@ -94,13 +105,15 @@ class PressureSolver {
     cl::Buffer mask, b, phi, scratch;
   };
 
-  /// started: the first smoothing pass from phi = 0 is already in the level's scratch.
+  /// started: the first smoothing pass from phi = 0 is already in first_pass_buffer(l, phi).
   void vcycle_level(int l, cl::Buffer& b, cl::Buffer& phi, bool started);
   void smooth(int l, cl::Buffer& b, cl::Buffer& phi, int sweeps, bool after_correction, bool started);
   /// The smoother's first pass as the start kernels take it: its damping and its colour (or
   /// FW_SMOOTH_ALL_CELLS).
   float start_damping() const;
   int start_colour() const;
+  /// phi where level l updates in place, else the level's scratch.
+  cl::Buffer& first_pass_buffer(int l, cl::Buffer& phi);
   double sum_partials(std::size_t count);
   void count_traffic(int level, double bytes_per_cell);
   /// The range of a reduction kernel on `level`, and its number of partials.
@@ -122,8 +135,8 @@ class PressureSolver {
   std::size_t one_group_items_ = 1;  // red_black_sweeps' work-group
   double traffic_bytes_ = 0.0;
   std::size_t fluid_cells_ = 0;
-  Kernel jacobi_, red_black_, red_black_sweeps_, smoothing_start_, residual_, apply_dot_, restrict_, prolong_,
-      cg_update_, cg_direction_, dot_, add_, sum_;
+  Kernel jacobi_, red_black_, red_black_update_, red_black_sweeps_, smoothing_start_, residual_, apply_dot_,
+      restrict_, prolong_, cg_update_, cg_direction_, dot_, add_, sum_;
 };
 
 }  // namespace fw::host
