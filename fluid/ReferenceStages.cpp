@@ -477,14 +477,23 @@ std::vector<float> restrict_residual(const GridSpec& spec, const PressureLevel& 
   return bc;
 }
 
-void prolong_add(const PressureLevel& fine, const PressureLevel& coarse, const std::vector<float>& e,
-                 std::vector<float>& phi) {
+void prolong_add(const GridSpec& spec, const PressureLevel& fine, const PressureLevel& coarse,
+                 const std::vector<float>& e, double slope, std::vector<float>& phi) {
   for (int k = 0; k < fine.nz; ++k)
     for (int j = 0; j < fine.ny; ++j)
       for (int i = 0; i < fine.nx; ++i) {
         const std::size_t id = cell_index(fine.nx, fine.ny, i, j, k);
         if (!(fine.mask[id] & FW_MASK_FLUID)) continue;
-        phi[id] = float(double(phi[id]) + e[cell_index(coarse.nx, coarse.ny, i / 2, j / 2, k / 2)]);
+        const int I = i / 2, J = j / 2, K = k / 2, child[3] = {i, j, k};
+        const std::size_t parent = cell_index(coarse.nx, coarse.ny, I, J, K);
+        const std::uint8_t m = coarse.mask[parent];
+        const double ep = e[parent];
+        double correction = ep;
+        for (int a = 0; a < 3; ++a) {
+          const int face = 2 * a + (child[a] % 2);  // the face on the child's side
+          if (m & (1u << face)) correction += slope * (neighbour_phi(spec, coarse, e, I, J, K, face) - ep);
+        }
+        phi[id] = float(double(phi[id]) + correction);
       }
 }
 

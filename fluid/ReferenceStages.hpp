@@ -132,14 +132,19 @@ void red_black_sweep(const GridSpec& spec, const PressureLevel& level, const std
 
 /// Coarse right-hand side: scale * mean of the fine residual over the coarse cell's children. scale = 4
 /// matches the rediscretised coarse equation (H^2 = 4 h^2), scale = 2 the Galerkin operator P^T A P of
-/// piecewise-constant prolongation.
+/// piecewise-constant prolongation (the solver uses 4).
 std::vector<float> restrict_residual(const GridSpec& spec, const PressureLevel& fine,
                                      const PressureLevel& coarse, const std::vector<float>& b,
                                      const std::vector<float>& phi, double scale);
 
-/// phi_fine += e_coarse on every fluid child (piecewise-constant prolongation).
-void prolong_add(const PressureLevel& fine, const PressureLevel& coarse, const std::vector<float>& e_coarse,
-                 std::vector<float>& phi_fine);
+/// phi_fine += the interpolated e_coarse on every fluid child: e_P + slope * sum over the axes of
+/// (e_N - e_P), with P the parent and N its neighbour on the child's side along the axis. slope = 1/4 is
+/// linear interpolation (the child sits a quarter of the coarse spacing from P's centre towards N), 0
+/// piecewise constant. Across an open face N wraps on a periodic axis and is 0 beyond an outflow face (the
+/// operator's ghost); across a closed face N = P (zero gradient). A lone child of an odd fine extent takes
+/// the lower side.
+void prolong_add(const GridSpec& spec, const PressureLevel& fine, const PressureLevel& coarse,
+                 const std::vector<float>& e_coarse, double slope, std::vector<float>& phi_fine);
 
 /// Subtracts grad(phi) from every face that is open in the pressure mask.
 void subtract_gradient(const GridSpec& spec, const PressureLevel& fine, const std::vector<float>& phi,

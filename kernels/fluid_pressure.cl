@@ -377,7 +377,7 @@ __kernel void smoothing_start(const FwLevel L, __global const uchar* mask, __glo
 /* Coarse right-hand side: scale * mean of the fine residual r (from the residual kernel) over each coarse
  * cell's children, and the coarse level's first smoothing pass from a zero guess (as smoothing_start, into
  * coarse_start). The coarse operator has unit couplings at spacing 2h, so scale = 4 is the rediscretised
- * equation and scale = 2 the Galerkin one (see PressureSolver).
+ * equation (see PressureSolver).
  * A coarse cell with one child along an axis (an odd fine extent) reads that child twice, so every cell
  * sums eight values and the mean is sum / 8 without counting. Pairs along x are read with stride 2, which
  * vectorises. Rows over the coarse level. */
@@ -419,28 +419,90 @@ __kernel void restrict_residual(const FwLevel F, const FwLevel C, __global const
   }
 }
 
-/* phi += e_coarse on every fluid cell (piecewise-constant prolongation). Rows over the fine level: the
- * children pairs (2I, 2I + 1) of the row's cells [begin, end) share one coarse load (an interleaved store,
- * which vectorises, where phi[i] += e[i / 2] would not), the cells without their pair partner in the
- * range are added one by one. */
-FW_INLINE void prolong_cell(__global const uchar* fine_mask, __global float* phi, float e, int i) {
-  phi[i] += (fine_mask[i] & FW_MASK_FLUID) ? e : 0.0f;
+/* phi += the interpolated coarse correction e on every fluid cell: e_P + slope * sum over the axes of
+ * (e_N - e_P), P the parent, N its neighbour on the child's side along the axis. slope = 1/4 is linear
+ * interpolation (a child sits a quarter of the coarse spacing from P towards N), slope = 0 piecewise
+ * constant. Across an open coarse face N wraps on a periodic axis and is 0 beyond the domain (an outflow's
+ * ghost); across a closed face N = P. Linear interpolation makes stand-alone V-cycles converge with the
+ * rediscretised coarse equation (orders 2 + 1 of interpolation and restriction exceed the operator's 2;
+ * piecewise constant, 1 + 1, diverged); CG takes piecewise constant, the transpose of the averaging
+ * restriction, which keeps its preconditioner symmetric.
+ * Rows over the fine level: a fine row's y and z sides are the same for all its cells, so each row reads
+ * three coarse rows. */
+typedef struct FwCoarseRows {
+  __global const float* parent; /* e on coarse row (J, K) */
+  __global const float* side_y; /* e on the row beside it on the fine row's y side, wrapped */
+  __global const float* side_z; /* ... and z side */
+  float weight_y, weight_z;     /* 0 where that side lies beyond the domain (the ghost's 0), else 1 */
+  float slope;                  /* 1/4: linear interpolation, 0: piecewise constant */
+  uchar face_y, face_z;         /* the coarse faces towards side_y and side_z */
+} FwCoarseRows;
+
+/* The coarse row beside row `at` of an axis of n coarse rows (stride apart) on `side` (1: above), wrapped
+ * where periodic; *weight = 0 and the row itself where it lies beyond the domain. */
+FW_INLINE __global const float* side_row(__global const float* row, int at, int n, int stride, int side,
+                                         int periodic, float* weight) {
+  const int to = side ? at + 1 : at - 1;
+  *weight = 1.0f;
+  if (to >= 0 && to < n) return row + (to - at) * stride;
+  if (periodic) return row + ((to + n) % n - at) * stride;
+  *weight = 0.0f;
+  return row;
+}
+
+FW_INLINE FwCoarseRows coarse_rows(const FwLevel* C, __global const float* e, int j, int k, float slope) {
+  const int J = j / 2, K = k / 2, side_y = j & 1, side_z = k & 1;
+  FwCoarseRows R;
+  R.slope = slope;
+  R.parent = e + level_index(C, 0, J, K);
+  R.side_y = side_row(R.parent, J, C->ny, C->nx, side_y, C->periodic & 2, &R.weight_y);
+  R.side_z = side_row(R.parent, K, C->nz, plane_cells(C), side_z, C->periodic & 4, &R.weight_z);
+  R.face_y = 1 << (FW_FACE_SOUTH + side_y);
+  R.face_z = 1 << (FW_FACE_GROUND + side_z);
+  return R;
+}
+
+/* The interpolated correction of the child on x side `side_x` of coarse cell I (mask m), given its x
+ * neighbour's value e_x. */
+FW_INLINE float linear_correction(const FwCoarseRows* R, uchar m, int I, int side_x, float e_x) {
+  const float p = R->parent[I];
+  const float dx = (m & (1 << (FW_FACE_WEST + side_x))) ? e_x - p : 0.0f;
+  const float dy = (m & R->face_y) ? R->weight_y * R->side_y[I] - p : 0.0f;
+  const float dz = (m & R->face_z) ? R->weight_z * R->side_z[I] - p : 0.0f;
+  return p + R->slope * ((dx + dy) + dz);
+}
+
+/* Fine cell i of the row, any position: its x neighbour wrapped or beyond the domain. */
+FW_INLINE void prolong_edge_cell(const FwLevel* C, const FwCoarseRows* R, __global const uchar* coarse_mask,
+                                 __global const uchar* fine_mask, __global float* phi, int i) {
+  const int I = i / 2, side_x = i & 1, to = side_x ? I + 1 : I - 1;
+  const float e_x = (to >= 0 && to < C->nx) ? R->parent[to]
+                    : (C->periodic & 1)     ? R->parent[(to + C->nx) % C->nx]
+                                            : 0.0f;
+  if (fine_mask[i] & FW_MASK_FLUID) phi[i] += linear_correction(R, coarse_mask[I], I, side_x, e_x);
 }
 
 __kernel void prolong_add(const FwLevel F, const FwLevel C, __global const uchar* fine_mask,
-                          __global const float* coarse_e, __global float* phi) {
+                          __global const uchar* coarse_mask, __global const float* coarse_e,
+                          __global float* phi, const float slope) {
   const int j = get_global_id(1), k = get_global_id(2), row = level_index(&F, 0, j, k);
   fine_mask += row, phi += row;
-  __global const float* e = coarse_e + level_index(&C, 0, j / 2, k / 2);
+  coarse_mask += level_index(&C, 0, j / 2, k / 2);
+  const FwCoarseRows R = coarse_rows(&C, coarse_e, j, k, slope);
   const int begin = FW_ROW_BEGIN, end = FW_ROW_END(F.nx);
-  const int pair_lo = (begin + 1) / 2, pair_hi = end / 2; /* pairs wholly inside [begin, end) */
-  for (int i = begin; i < min(end, 2 * pair_lo); ++i) prolong_cell(fine_mask, phi, e[i / 2], i);
+  /* Interior pairs (2I, 2I + 1), wholly in [begin, end) with both x neighbours inside the coarse row: one
+   * parent load for both children, stride-2 stores (vectorises); every other cell one by one. */
+  const int pair_lo = max((begin + 1) / 2, 1), pair_hi = max(pair_lo, min(end / 2, C.nx - 1));
+  const int head_end = min(end, 2 * pair_lo), tail_begin = max(head_end, 2 * pair_hi);
+  for (int i = begin; i < head_end; ++i) prolong_edge_cell(&C, &R, coarse_mask, fine_mask, phi, i);
   for (int I = pair_lo; I < pair_hi; ++I) {
-    const float e_pair = e[I];
-    prolong_cell(fine_mask, phi, e_pair, 2 * I);
-    prolong_cell(fine_mask, phi, e_pair, 2 * I + 1);
+    const uchar m = coarse_mask[I];
+    const float lo = linear_correction(&R, m, I, 0, R.parent[I - 1]);
+    const float hi = linear_correction(&R, m, I, 1, R.parent[I + 1]);
+    phi[2 * I] += (fine_mask[2 * I] & FW_MASK_FLUID) ? lo : 0.0f;
+    phi[2 * I + 1] += (fine_mask[2 * I + 1] & FW_MASK_FLUID) ? hi : 0.0f;
   }
-  for (int i = max(begin, 2 * pair_hi); i < end; ++i) prolong_cell(fine_mask, phi, e[i / 2], i);
+  for (int i = tail_begin; i < end; ++i) prolong_edge_cell(&C, &R, coarse_mask, fine_mask, phi, i);
 }
 
 /* x += alpha d; r -= alpha q; partial[group] = sum of r^2. */

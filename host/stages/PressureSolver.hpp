@@ -10,7 +10,8 @@
 //   multigrid  geometric multigrid V-cycles until the relative residual is below the tolerance;
 //   cg         conjugate gradients preconditioned by one V-cycle, same stopping rule (the default).
 // The V-cycle smooths with damped Jacobi or red-black Gauss-Seidel (both symmetric, so it is a valid CG
-// preconditioner), restricts the residual by averaging, and prolongs piecewise-constant. Where a level
+// preconditioner), restricts the residual by averaging, and prolongs linearly (stand-alone cycles) or
+// piecewise-constant (in CG, where the cycle must be symmetric). Where a level
 // starts from a zero guess (every coarse level, and level 0 in CG's preconditioner) the smoother's first
 // pass needs no neighbours and is written directly: by the restriction on coarse levels, by
 // smoothing_start on level 0. Red-black passes update phi in place where the colouring allows it
@@ -87,7 +88,11 @@ class PressureSolver {
   /// smoothing pass from a zero guess in level_first_pass(fine_level + 1).
   void enqueue_restrict_residual(int fine_level, cl::Buffer& b, cl::Buffer& phi);
   float correction_scale() const;
+  /// phi += the coarse correction of level fine_level + 1, interpolated with prolongation_slope().
   void enqueue_prolong_add(int fine_level, cl::Buffer& phi);
+  /// prolong_add's slope: 1/4 (linear interpolation) for stand-alone V-cycles, 0 (piecewise constant) for
+  /// CG's preconditioner, which must stay symmetric.
+  float prolongation_slope() const;
   /// One V-cycle on level 0 for A phi = b, starting from phi's content.
   void vcycle(cl::Buffer& b, cl::Buffer& phi);
   /// phi = one V-cycle on level 0 for A phi = b from phi = 0 (CG's preconditioner); phi is only written.

@@ -96,8 +96,35 @@ TEST_CASE("pressure kernels: Jacobi, red-black, residual, restriction and prolon
   reset();
   f.solver.enqueue_prolong_add(0, dphi);
   auto expected_phi = phi;
-  ref::prolong_add(f.levels[0], f.levels[1], e, expected_phi);
+  ref::prolong_add(f.spec, f.levels[0], f.levels[1], e, f.solver.prolongation_slope(), expected_phi);
   CHECK(test::relative_error(test::download(*cc, dphi, f.n(0)), expected_phi) < kKernelTolerance);
+}
+
+TEST_CASE("pressure kernels: linear and piecewise-constant prolongation match the reference") {
+  auto* cc = test::device_or_skip();
+  if (!cc) return;
+  // Odd fine extents (lone children), periodic y, the outflow face (ghost 0) and the box's closed faces.
+  auto spec = test::mixed_boundary_spec();
+  spec.nx = 25;
+  spec.nz = 11;
+  const auto levels = fluid::build_pressure_levels(spec, test::box_solid(spec), 64);
+  REQUIRE(levels.size() >= 2);
+  const auto phi = test::random_cells(levels[0].cell_count(), 1.0, 8);
+  const auto e = test::random_cells(levels[1].cell_count(), 1.0, 9);
+  for (const auto solver_type : {fluid::PressureSolverType::multigrid, fluid::PressureSolverType::cg}) {
+    fluid::PressureSettings settings;
+    settings.solver = solver_type;
+    host::PressureSolver solver(*cc, spec, levels, settings);
+    INFO("slope " << solver.prolongation_slope());
+    cl::Buffer dphi = cc->buffer(levels[0].cell_count() * 4);
+    test::upload(*cc, phi, dphi);
+    test::upload(*cc, e, solver.level_solution(1));
+    solver.enqueue_prolong_add(0, dphi);
+    auto expected = phi;
+    ref::prolong_add(spec, levels[0], levels[1], e, solver.prolongation_slope(), expected);
+    CHECK(test::relative_error(test::download(*cc, dphi, levels[0].cell_count()), expected) <
+          kKernelTolerance);
+  }
 }
 
 TEST_CASE("pressure kernels: in-place red-black passes match the reference's passes") {
@@ -253,6 +280,39 @@ TEST_CASE("PressureSolver: multigrid-preconditioned CG projects to max|div u| h 
 TEST_CASE("PressureSolver: multigrid V-cycles project to max|div u| h / max|u| < 1e-4") {
   check_projection(fluid::PressureSolverType::multigrid, test::mixed_boundary_spec(),
                    test::box_solid(test::mixed_boundary_spec()), 102);
+}
+
+TEST_CASE("PressureSolver: every stand-alone V-cycle contracts the residual, without a divergence guard") {
+  auto* cc = test::device_or_skip();
+  if (!cc) return;
+  // Both smoothers, on the mixed boundaries with the box, from phi = 0 and a random b. The worst ratio of
+  // successive residuals over six cycles is 0.33 (red-black) and 0.63 (damped Jacobi) with linear
+  // prolongation and the rediscretised scale; piecewise-constant prolongation with the Galerkin scale, the
+  // only stable pair before, gave 0.69 and 0.71, and with the rediscretised scale it diverged.
+  const std::pair<fluid::MultigridSmoother, double> cases[] = {{fluid::MultigridSmoother::red_black, 0.45},
+                                                               {fluid::MultigridSmoother::jacobi, 0.68}};
+  for (const auto& [smoother, bound] : cases) {
+    INFO("smoother " << int(smoother));
+    fluid::PressureSettings settings;
+    settings.solver = fluid::PressureSolverType::multigrid;
+    settings.smoother = smoother;
+    SolverFixture f(*cc, settings);
+    const auto b = test::random_cells(f.n(0), 1.0, 51);
+    test::upload(*cc, b, f.solver.rhs());
+    test::upload(*cc, std::vector<float>(f.n(0), 0.0f), f.solver.solution());
+    cl::Buffer r = cc->buffer(f.n(0) * 4);
+    double norm = std::sqrt(f.solver.residual_norm2(0, f.solver.rhs(), f.solver.solution(), r));
+    double worst = 0.0;
+    constexpr int kCycles = 6;  // down to about 1e-5 of ||b||, above the float32 floor
+    for (int c = 0; c < kCycles; ++c) {
+      f.solver.vcycle(f.solver.rhs(), f.solver.solution());
+      const double next = std::sqrt(f.solver.residual_norm2(0, f.solver.rhs(), f.solver.solution(), r));
+      worst = std::max(worst, next / norm);
+      norm = next;
+    }
+    INFO("worst residual ratio a V-cycle: " << worst);
+    CHECK(worst < bound);
+  }
 }
 
 TEST_CASE("PressureSolver: a closed, periodic domain (singular operator) still converges") {
