@@ -171,13 +171,17 @@ __kernel void jacobi_sweep(const FwLevel L, __global const uchar* mask, __global
  * Gauss-Seidel value computed from the planes P (their neighbours all have the other colour, so this equals
  * the in-place update), every other cell is copied. Writing each cell once to a second buffer keeps the
  * loop free of dependences, so it streams and vectorises like a Jacobi sweep. parity = (j + k) % 2. */
+/* Whether the pass of `colour` updates cell i of a row of that parity (mask m, diagonal d). */
+FW_INLINE int red_black_updates(uchar m, float d, int colour, int parity, int i, int run) {
+  return ((i + parity) & 1) == colour && run_fluid(m, run) && d > 0.0f;
+}
+
 FW_INLINE float red_black_value(const FwLevel* L, __global const uchar* mask, __global const float* b,
                                 const FwPlanes* P, int colour, int parity, int i, int j, int p, int run) {
   const uchar m = mask[p];
   const float d = run_diagonal(m, run);
   const float updated = (b[p] + run_neighbour_sum(L, P, i, j, p, m, run)) / d;
-  const int active = ((i + parity) & 1) == colour && run_fluid(m, run) && d > 0.0f;
-  return active ? updated : P->here[p];
+  return red_black_updates(m, d, colour, parity, i, run) ? updated : P->here[p];
 }
 
 /* One colour pass over cells [begin, end) of row j of plane k; mask, b and out point at the plane. */
@@ -216,8 +220,8 @@ FW_INLINE float16 chunk_neighbour_sum(const FwLevel* L, const FwPlanes* P, int16
                                       int run) {
   const int sy = L->nx;
   __global const float* here = P->here;
-  const float16 xp = vload16(0, here + p + 1), ym = vload16(0, here + p - sy),
-                yp = vload16(0, here + p + sy), zm = vload16(0, P->below + p), zp = vload16(0, P->above + p);
+  const float16 xp = vload16(0, here + p + 1), ym = vload16(0, here + p - sy), yp = vload16(0, here + p + sy),
+                zm = vload16(0, P->below + p), zp = vload16(0, P->above + p);
   if (run == FW_RUN_OPEN) return xm + xp + ym + yp + zm + zp;
   const float16 none = 0.0f;
   m &= (int)P->faces;
@@ -244,7 +248,7 @@ FW_INLINE void red_black_cell(const FwLevel* L, __global const uchar* mask, __gl
                               int p, int run) {
   const uchar m = mask[p];
   const float d = run_diagonal(m, run);
-  if (((i + parity) & 1) == colour && run_fluid(m, run) && d > 0.0f)
+  if (red_black_updates(m, d, colour, parity, i, run))
     phi[p] = (b[p] + run_neighbour_sum(L, P, i, j, p, m, run)) / d;
 }
 

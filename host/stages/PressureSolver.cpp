@@ -246,31 +246,24 @@ void PressureSolver::vcycle_from_zero(cl::Buffer& b, cl::Buffer& phi) {
 void PressureSolver::smooth(int l, cl::Buffer& b, cl::Buffer& phi, int sweeps, bool after_correction,
                             bool started) {
   // A started smoothing (only ever before the correction) has its pass 0 in first_pass_buffer already.
-  auto& scratch = levels_[l].scratch;
   const int first_pass = started ? 1 : 0;
   if (settings_.smoother == fluid::MultigridSmoother::jacobi) {
     // Damped Jacobi, phi -> scratch -> phi, an odd count rounded up to pairs; the same before and after the
     // correction, so the cycle is symmetric.
+    auto& scratch = levels_[l].scratch;
     for (int p = first_pass; p < sweeps + sweeps % 2; ++p)
       enqueue_jacobi_sweep(l, b, p % 2 ? scratch : phi, p % 2 ? phi : scratch, kJacobiDamping);
     return;
   }
   // Red-black Gauss-Seidel, one colour per pass; reversing the colour order after the correction keeps the
-  // cycle symmetric. Small levels take all their passes in one launch.
+  // cycle symmetric. Small levels take all their passes in one launch, large ones update in place.
   const int first = after_correction ? 1 : 0;
-  const auto colour = [first](int pass) { return pass % 2 ? 1 - first : first; };
-  if (host_levels_[l].cell_count() <= kOneGroupCells) {
+  if (!updates_in_place(l)) {
     enqueue_red_black_sweeps(l, b, phi, sweeps, first, first_pass);
     return;
   }
-  if (updates_in_place(l)) {
-    for (int p = first_pass; p < 2 * sweeps; ++p) enqueue_red_black_update(l, b, phi, colour(p));
-    return;
-  }
-  // Out of place, passes alternate phi -> scratch -> phi: pass p reads phi when p is even and every
-  // smoothing ends in phi.
   for (int p = first_pass; p < 2 * sweeps; ++p)
-    enqueue_red_black_pass(l, b, p % 2 ? scratch : phi, p % 2 ? phi : scratch, colour(p));
+    enqueue_red_black_update(l, b, phi, p % 2 ? 1 - first : first);
 }
 
 void PressureSolver::vcycle_level(int l, cl::Buffer& b, cl::Buffer& phi, bool started) {

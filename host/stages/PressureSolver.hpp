@@ -14,9 +14,9 @@
 // piecewise-constant (in CG, where the cycle must be symmetric). Where a level
 // starts from a zero guess (every coarse level, and level 0 in CG's preconditioner) the smoother's first
 // pass needs no neighbours and is written directly: by the restriction on coarse levels, by
-// smoothing_start on level 0. Red-black passes update phi in place where the colouring allows it
-// (updates_in_place), else out of place through the level's scratch. When no face is an outflow the operator
-// is singular, and the mean of b over fluid cells is removed before solving.
+// smoothing_start on level 0. Red-black passes update phi in place on large levels (updates_in_place);
+// small levels take all their passes in one launch, out of place through the level's scratch. When no face is
+// an outflow the operator is singular, and the mean of b over fluid cells is removed before solving.
 #pragma once
 
 #include <string>
@@ -99,7 +99,6 @@ class PressureSolver {
   void vcycle_from_zero(cl::Buffer& b, cl::Buffer& phi);
   cl::Buffer& level_rhs(int level) { return levels_[level].b; }
   cl::Buffer& level_solution(int level) { return levels_[level].phi; }
-  cl::Buffer& level_scratch(int level) { return levels_[level].scratch; }
   /// Where a smoothing started from a zero guess finds its first pass: the level's solution when it
   /// updates in place, else its scratch.
   cl::Buffer& level_first_pass(int level) { return first_pass_buffer(level, levels_[level].phi); }
