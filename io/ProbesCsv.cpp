@@ -1,6 +1,6 @@
 #include "io/ProbesCsv.hpp"
 
-#include "io/AtomicFile.hpp"
+#include "base/AtomicFile.hpp"
 
 #include <fmt/format.h>
 
@@ -44,7 +44,7 @@ ProbesCsv::ProbesCsv(std::filesystem::path path, std::vector<std::string> probe_
   for (int id : tree_ids) header_ += fmt::format(",tree{0}_tip_dx,tree{0}_tip_dy,tree{0}_tip_dz", id);
   if (leaf_counts_) header_ += ",leaves_shed,leaves_flying,leaves_landed,leaves_exited";
   content_ = header_ + "\n";
-  write_text_atomically("ProbesCsv", path_, content_);
+  base::write_text_atomically("ProbesCsv", path_, content_);
 }
 
 void ProbesCsv::append(double time, const std::vector<std::array<float, 3>>& probe_velocity,
@@ -87,7 +87,7 @@ void ProbesCsv::append_rows(const std::vector<Row>& rows) {
   if (!appending_ && content_.size() + lines.size() <= rewrite_limit_) {
     content_ += lines;
     try {
-      write_text_atomically("ProbesCsv", path_, content_);
+      base::write_text_atomically("ProbesCsv", path_, content_);
     } catch (...) {
       content_.resize(content_.size() - lines.size());  // the file still holds the previous rows
       throw;
@@ -97,7 +97,7 @@ void ProbesCsv::append_rows(const std::vector<Row>& rows) {
   }
 
   // Past the limit: one buffered fwrite of the whole batch, flushed by fclose.
-  require_output_folder("ProbesCsv", path_);
+  base::require_output_folder("ProbesCsv", path_);
   std::FILE* out = std::fopen(path_.c_str(), "ab");
   if (!out) {
     throw std::runtime_error(

@@ -1,6 +1,6 @@
 #include "io/PvdCollection.hpp"
 
-#include "io/AtomicFile.hpp"
+#include "base/AtomicFile.hpp"
 
 #include <fmt/format.h>
 
@@ -123,7 +123,7 @@ void PvdCollection::write() const {
   text +=
       "  </Collection>\n"
       "</VTKFile>\n";
-  write_text_atomically("PvdCollection", path_, text);
+  base::write_text_atomically("PvdCollection", path_, text);
 }
 
 }  // namespace fw::io

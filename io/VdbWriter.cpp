@@ -1,6 +1,6 @@
 #include "io/VdbWriter.hpp"
 
-#include "io/AtomicFile.hpp"
+#include "base/AtomicFile.hpp"
 #include "io/LeavesVtk.hpp"
 
 #include <fmt/format.h>
@@ -61,7 +61,7 @@ openvdb::points::PointDataGrid::Ptr leaves_grid(const LeafFrame& leaves,
     normal[k] = openvdb::Vec3f(v[0], v[1], v[2]);
     state[k] = leaves.state[k];
     // Houdini's pscale is a point's radius: half the blade side.
-    pscale[k] = 0.5f * leaves.size[k];
+    pscale[k] = 0.5f * leaves.side[k];
   }
   // P is stored as float32 offsets within each voxel (NullCodec: no quantisation), so a position keeps
   // float precision relative to its cell rather than to the world origin.
@@ -94,7 +94,7 @@ void write_wind_vdb(const std::filesystem::path& path, const WindFrame& frame, b
     throw std::invalid_argument(std::string("write_wind_vdb: ") + error.what());
   }
   if (leaves) validate_leaf_frame("write_wind_vdb", *leaves);
-  require_output_folder("write_wind_vdb", path);
+  base::require_output_folder("write_wind_vdb", path);
   initialize_openvdb();
 
   const auto transform = cell_centred_transform(frame);
@@ -149,7 +149,7 @@ void write_wind_vdb(const std::filesystem::path& path, const WindFrame& frame, b
   file_meta.insertMeta("time_s", openvdb::DoubleMetadata(frame.time));
   file_meta.insertMeta("step", openvdb::Int64Metadata(frame.step));
 
-  AtomicFile file(path);
+  base::AtomicFile file(path);
   try {
     openvdb::io::File out(file.temporary_path().string());
     out.write(grids, file_meta);

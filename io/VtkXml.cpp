@@ -13,7 +13,7 @@
 #include <stdexcept>
 #include <string>
 
-#include "io/AtomicFile.hpp"
+#include "base/AtomicFile.hpp"
 
 namespace fw::io {
 namespace {
@@ -46,8 +46,8 @@ std::string error_code_text(unsigned long code) {
 }  // namespace
 
 void write_vtk_xml(const char* function, const std::filesystem::path& path, vtkXMLWriter* writer) {
-  require_output_folder(function, path);
-  AtomicFile file(path);
+  base::require_output_folder(function, path);
+  base::AtomicFile file(path);
   const std::string temporary = file.temporary_path().string();
   writer->SetFileName(temporary.c_str());
   writer->SetDataModeToAppended();

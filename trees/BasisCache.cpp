@@ -1,7 +1,6 @@
 #include "trees/BasisCache.hpp"
 
 #include <fmt/format.h>
-#include <unistd.h>
 
 #include <cstdlib>
 #include <cstring>
@@ -12,31 +11,16 @@
 #include <system_error>
 #include <vector>
 
+#include "base/AtomicFile.hpp"
+#include "base/Fnv1a.hpp"
+
 namespace fw::trees {
 
 namespace {
 
 constexpr char kMagic[8] = {'F', 'W', 'B', 'A', 'S', 'I', 'S', '\0'};
 
-// 64-bit FNV-1a: simple, stable across platforms and plenty for a per-machine cache key and checksum.
-class Fnv1a {
- public:
-  void bytes(const void* data, std::size_t size) {
-    const auto* p = static_cast<const unsigned char*>(data);
-    for (std::size_t i = 0; i < size; ++i) {
-      hash_ ^= p[i];
-      hash_ *= 0x100000001b3ULL;
-    }
-  }
-  template <typename T>
-  void value(const T& v) {
-    bytes(&v, sizeof v);
-  }
-  std::uint64_t digest() const { return hash_; }
-
- private:
-  std::uint64_t hash_ = 0xcbf29ce484222325ULL;
-};
+using base::Fnv1a;
 
 // Appends plain values to a byte buffer.
 class Writer {
@@ -278,24 +262,8 @@ void BasisCache::store(const SpeciesBasis& species) const {
     throw std::runtime_error(fmt::format("BasisCache: cannot create the cache folder {}: {}",
                                          directory_.string(), error.message()));
   }
-  auto temporary = path;
-  temporary += fmt::format(".tmp-{}", static_cast<long>(::getpid()));
-  {
-    std::ofstream out(temporary, std::ios::binary | std::ios::trunc);
-    out.write(writer.buffer().data(), std::streamsize(writer.buffer().size()));
-    out.close();
-    if (!out) {
-      std::filesystem::remove(temporary, error);
-      throw std::runtime_error(fmt::format("BasisCache: cannot write {}", temporary.string()));
-    }
-  }
-  std::filesystem::rename(temporary, path, error);
-  if (error) {
-    std::error_code ignored;
-    std::filesystem::remove(temporary, ignored);
-    throw std::runtime_error(fmt::format("BasisCache: cannot rename {} to {}: {}", temporary.string(),
-                                         path.string(), error.message()));
-  }
+  base::write_text_atomically("BasisCache", path,
+                              std::string_view(writer.buffer().data(), writer.buffer().size()));
 }
 
 SpeciesBasis BasisCache::load_or_compute(const Skeleton& skeleton, const SpeciesSettings& settings,

@@ -1,5 +1,6 @@
 #include "trees/QsmImport.hpp"
 
+#include "base/SourceError.hpp"
 #include "trees/TreeFile.hpp"
 
 #include <fmt/format.h>
@@ -33,11 +34,6 @@ struct Cylinder {
   int parent = 0;                                  // 1-based, 0 for none
   Eigen::Vector3d end() const { return start + length * axis; }
 };
-
-[[noreturn]] void fail(const std::string& path, int line, std::string_view column, std::string_view expected,
-                       std::string_view got_quoted) {
-  throw std::runtime_error(fmt::format("{}:{}: {}: {}, got {}", path, line, column, expected, got_quoted));
-}
 
 std::string quoted(std::string_view token) {
   return fmt::format("'{}'", printable(token));
@@ -102,30 +98,34 @@ Skeleton read_qsm_cylinders(const std::string& path, QsmImportInfo* info) {
     cylinder.line = line_number;
     for (std::size_t c = 0; c < kRequired; ++c) {
       if (c >= fields.size())
-        fail(path, line_number, kColumns[c], fmt::format("expected a number ({})", kLayout), "end of line");
+        throw base::SourceError(path, line_number, kColumns[c],
+                                fmt::format("expected a number ({})", kLayout), "end of line");
       cylinder.tokens[c] = fields[c];
     }
     double values[kRequired];
     for (std::size_t c = 0; c < kRequired; ++c) {
       const auto value = detail::parse_number(cylinder.tokens[c]);
       if (!value)
-        fail(path, line_number, kColumns[c], "expected a finite number", quoted(cylinder.tokens[c]));
+        throw base::SourceError(path, line_number, kColumns[c], "expected a finite number",
+                                quoted(cylinder.tokens[c]));
       values[c] = *value;
     }
     if (values[0] <= 0.0)
-      fail(path, line_number, "radius", "expected a positive radius in metres", quoted(cylinder.tokens[0]));
+      throw base::SourceError(path, line_number, "radius", "expected a positive radius in metres",
+                              quoted(cylinder.tokens[0]));
     if (values[1] <= 0.0)
-      fail(path, line_number, "length", "expected a positive length in metres", quoted(cylinder.tokens[1]));
+      throw base::SourceError(path, line_number, "length", "expected a positive length in metres",
+                              quoted(cylinder.tokens[1]));
     const Eigen::Vector3d axis(values[5], values[6], values[7]);
     const double norm = axis.norm();
     if (!(norm > 0.0) || !std::isfinite(norm))
-      fail(path, line_number, "axis x y z", "expected a non-zero axis direction",
-           fmt::format("'{} {} {}'", printable(cylinder.tokens[5]), printable(cylinder.tokens[6]),
-                       printable(cylinder.tokens[7])));
+      throw base::SourceError(path, line_number, "axis x y z", "expected a non-zero axis direction",
+                              fmt::format("'{} {} {}'", printable(cylinder.tokens[5]),
+                                          printable(cylinder.tokens[6]), printable(cylinder.tokens[7])));
     if (values[8] != std::floor(values[8]) || values[8] < 0.0)
-      fail(path, line_number, "parent",
-           "expected the row number of the parent cylinder (1..m), or 0 for none",
-           quoted(cylinder.tokens[8]));
+      throw base::SourceError(path, line_number, "parent",
+                              "expected the row number of the parent cylinder (1..m), or 0 for none",
+                              quoted(cylinder.tokens[8]));
     cylinder.radius = values[0];
     cylinder.length = values[1];
     cylinder.start = Eigen::Vector3d(values[2], values[3], values[4]);
@@ -134,8 +134,8 @@ Skeleton read_qsm_cylinders(const std::string& path, QsmImportInfo* info) {
     cylinders.push_back(cylinder);
   }
   if (cylinders.empty())
-    fail(path, std::max(line_number, 1), "radius",
-         fmt::format("expected at least one cylinder row ({})", kLayout), "end of file");
+    throw base::SourceError(path, std::max(line_number, 1), "radius",
+                            fmt::format("expected at least one cylinder row ({})", kLayout), "end of file");
 
   // Parents in range and exactly one base cylinder.
   const int m = int(cylinders.size());
@@ -143,23 +143,25 @@ Skeleton read_qsm_cylinders(const std::string& path, QsmImportInfo* info) {
   for (int k = 0; k < m; ++k) {
     const Cylinder& cylinder = cylinders[std::size_t(k)];
     if (cylinder.parent < 0 || cylinder.parent > m)
-      fail(path, cylinder.line, "parent",
-           fmt::format("expected the row number of the parent cylinder in 1..{}, or 0 for none", m),
-           quoted(cylinder.tokens[8]));
+      throw base::SourceError(
+          path, cylinder.line, "parent",
+          fmt::format("expected the row number of the parent cylinder in 1..{}, or 0 for none", m),
+          quoted(cylinder.tokens[8]));
     if (cylinder.parent == 0) {
       if (base >= 0)
-        fail(path, cylinder.line, "parent",
-             fmt::format(
-                 "expected exactly one cylinder with parent 0, but cylinder {} on line {} already has it",
-                 base + 1, cylinders[std::size_t(base)].line),
-             quoted(cylinder.tokens[8]));
+        throw base::SourceError(
+            path, cylinder.line, "parent",
+            fmt::format(
+                "expected exactly one cylinder with parent 0, but cylinder {} on line {} already has it",
+                base + 1, cylinders[std::size_t(base)].line),
+            quoted(cylinder.tokens[8]));
       base = k;
     }
   }
   if (base < 0)
-    fail(path, cylinders.front().line, "parent",
-         "expected exactly one cylinder with parent 0 (the base of the stem), found none",
-         quoted(cylinders.front().tokens[8]));
+    throw base::SourceError(path, cylinders.front().line, "parent",
+                            "expected exactly one cylinder with parent 0 (the base of the stem), found none",
+                            quoted(cylinders.front().tokens[8]));
 
   // Nodes: 0 is the root, k is the end of cylinder k (1-based).
   std::vector<SkeletonNode> nodes(std::size_t(m) + 1);
@@ -187,18 +189,19 @@ Skeleton read_qsm_cylinders(const std::string& path, QsmImportInfo* info) {
     const Cylinder& cylinder = cylinders[std::size_t(row)];
     switch (error.field()) {
       case SkeletonError::Field::parent:
-        fail(path, cylinder.line, "parent", error.expected(), quoted(cylinder.tokens[8]));
+        throw base::SourceError(path, cylinder.line, "parent", error.expected(), quoted(cylinder.tokens[8]));
       case SkeletonError::Field::radius:
-        fail(path, cylinder.line, "radius", error.expected(), quoted(cylinder.tokens[0]));
+        throw base::SourceError(path, cylinder.line, "radius", error.expected(), quoted(cylinder.tokens[0]));
       case SkeletonError::Field::position:
       case SkeletonError::Field::nodes:
         break;
     }
-    fail(path, cylinder.line, "length",
-         fmt::format(
-             "expected the cylinder's end point (start + length * axis) to differ from its parent's: {}",
-             error.expected()),
-         quoted(cylinder.tokens[1]));
+    throw base::SourceError(
+        path, cylinder.line, "length",
+        fmt::format(
+            "expected the cylinder's end point (start + length * axis) to differ from its parent's: {}",
+            error.expected()),
+        quoted(cylinder.tokens[1]));
   }
   if (info) *info = counts;
   return skeleton;

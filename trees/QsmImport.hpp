@@ -27,10 +27,10 @@
 // it, the cylinder is still attached to the parent's end node (its start point is dropped): such gaps are
 // common in QSM output and not an error. QsmImportInfo counts them.
 //
-// Every error throws std::runtime_error("FILE:LINE: COLUMN: what was expected, got 'TOKEN'"), COLUMN being
-// one of radius, length, start x|y|z, axis x|y|z, "axis x y z", parent: a bad number, too few columns, a
-// parent outside 0..m (m cylinders) or not an integer, no or several cylinders with parent 0, a radius or
-// length
+// Every error throws base::SourceError (an input error, std::invalid_argument: "FILE:LINE: COLUMN: what was
+// expected, got 'TOKEN'"), COLUMN being one of radius, length, start x|y|z, axis x|y|z, "axis x y z", parent:
+// a bad number, too few columns, a parent outside 0..m (m cylinders) or not an integer, no or several
+// cylinders with parent 0, a radius or length
 // <= 0, a zero axis, and the structure found by Skeleton (a cycle of parents, a cylinder that is its own
 // parent, an end point at its parent's end: a zero-length element) on the offending cylinder's line.
 #pragma once

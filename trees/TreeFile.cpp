@@ -1,5 +1,8 @@
 #include "trees/TreeFile.hpp"
 
+#include "base/AtomicFile.hpp"
+#include "base/SourceError.hpp"
+
 #include <fmt/format.h>
 
 #include <array>
@@ -21,9 +24,9 @@ namespace detail {
 
 std::string read_text_file(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
-  if (!in) throw std::runtime_error(fmt::format("{}: cannot open: {}", path, std::strerror(errno)));
+  if (!in) throw base::SourceError::unreadable(path, fmt::format("cannot open: {}", std::strerror(errno)));
   std::string data((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-  if (in.bad()) throw std::runtime_error(fmt::format("{}: read error", path));
+  if (in.bad()) throw base::SourceError::unreadable(path, "read error");
   return data;
 }
 
@@ -78,11 +81,6 @@ bool is_blank(char c) {
   return c == ' ' || c == '\t' || c == '\r' || c == '\v' || c == '\f';
 }
 
-[[noreturn]] void fail(const std::string& path, int line, std::string_view key, std::string_view expected,
-                       std::string_view got_quoted) {
-  throw std::runtime_error(fmt::format("{}:{}: {}: {}, got {}", path, line, key, expected, got_quoted));
-}
-
 std::string quoted(std::string_view token) {
   return fmt::format("'{}'", printable(token));
 }
@@ -114,19 +112,21 @@ Skeleton read_tree_file(const std::string& path) {
       while (stop < text.size() && !is_blank(text[stop])) ++stop;
       const std::string_view token = text.substr(k, stop - k);
       if (count == kColumns.size())
-        fail(path, line_number, kColumns.back(),
-             fmt::format("expected end of line after the radius ({})", kLayout), quoted(token));
+        throw base::SourceError(path, line_number, kColumns.back(),
+                                fmt::format("expected end of line after the radius ({})", kLayout),
+                                quoted(token));
       node.tokens[count++] = token;
       k = stop;
     }
     if (count == 0) continue;
     if (count < kColumns.size())
-      fail(path, line_number, kColumns[count], fmt::format("expected a value ({})", kLayout), "end of line");
+      throw base::SourceError(path, line_number, kColumns[count],
+                              fmt::format("expected a value ({})", kLayout), "end of line");
     lines.push_back(node);
   }
   if (lines.empty())
-    fail(path, std::max(line_number, 1), "id", fmt::format("expected at least one node line ({})", kLayout),
-         "end of file");
+    throw base::SourceError(path, std::max(line_number, 1), "id",
+                            fmt::format("expected at least one node line ({})", kLayout), "end of file");
 
   // Numbers, and ids that are unique and cover 0..n-1.
   const long long n = static_cast<long long>(lines.size());
@@ -137,21 +137,25 @@ Skeleton read_tree_file(const std::string& path) {
   for (std::size_t k = 0; k < lines.size(); ++k) {
     const NodeLine& node = lines[k];
     const auto id = detail::parse_integer(node.tokens[0]);
-    if (!id) fail(path, node.line, "id", "expected an integer node id", quoted(node.tokens[0]));
+    if (!id)
+      throw base::SourceError(path, node.line, "id", "expected an integer node id", quoted(node.tokens[0]));
     if (const auto [it, inserted] = seen.emplace(*id, node.line); !inserted)
-      fail(path, node.line, "id",
-           fmt::format("expected a unique id (id {} is already on line {})", *id, it->second),
-           quoted(node.tokens[0]));
+      throw base::SourceError(
+          path, node.line, "id",
+          fmt::format("expected a unique id (id {} is already on line {})", *id, it->second),
+          quoted(node.tokens[0]));
     const auto parent = detail::parse_integer(node.tokens[1]);
     if (!parent)
-      fail(path, node.line, "parent", "expected an integer: -1 (root) or a node id", quoted(node.tokens[1]));
+      throw base::SourceError(path, node.line, "parent", "expected an integer: -1 (root) or a node id",
+                              quoted(node.tokens[1]));
     double values[4];
     for (int c = 0; c < 4; ++c) {
       const auto value = detail::parse_number(node.tokens[std::size_t(c) + 2]);
       if (!value)
-        fail(path, node.line, kColumns[std::size_t(c) + 2],
-             c < 3 ? "expected a finite number in metres" : "expected a positive number in metres",
-             quoted(node.tokens[std::size_t(c) + 2]));
+        throw base::SourceError(
+            path, node.line, kColumns[std::size_t(c) + 2],
+            c < 3 ? "expected a finite number in metres" : "expected a positive number in metres",
+            quoted(node.tokens[std::size_t(c) + 2]));
       values[c] = *value;
     }
     ids[k] = *id;
@@ -163,9 +167,10 @@ Skeleton read_tree_file(const std::string& path) {
   }
   for (std::size_t k = 0; k < lines.size(); ++k) {
     if (ids[k] < 0 || ids[k] >= n)
-      fail(path, lines[k].line, "id",
-           fmt::format("expected an id in 0..{} (ids number the file's {} nodes from 0)", n - 1, n),
-           quoted(lines[k].tokens[0]));
+      throw base::SourceError(
+          path, lines[k].line, "id",
+          fmt::format("expected an id in 0..{} (ids number the file's {} nodes from 0)", n - 1, n),
+          quoted(lines[k].tokens[0]));
     source[std::size_t(ids[k])] = &lines[k];
   }
   // Reorder by id: unique ids in 0..n-1 are a permutation.
@@ -176,25 +181,24 @@ Skeleton read_tree_file(const std::string& path) {
     return Skeleton::from_nodes(std::move(by_id));
   } catch (const SkeletonError& error) {
     if (error.node() < 0 || error.node() >= int(n))
-      throw std::runtime_error(fmt::format("{}: {}, got {}", path, error.expected(), error.got()));
+      throw base::SourceError::unreadable(path, fmt::format("{}, got {}", error.expected(), error.got()));
     const NodeLine& node = *source[std::size_t(error.node())];
     switch (error.field()) {
       case SkeletonError::Field::parent:
-        fail(path, node.line, "parent", error.expected(), quoted(node.tokens[1]));
+        throw base::SourceError(path, node.line, "parent", error.expected(), quoted(node.tokens[1]));
       case SkeletonError::Field::radius:
-        fail(path, node.line, "radius", error.expected(), quoted(node.tokens[5]));
+        throw base::SourceError(path, node.line, "radius", error.expected(), quoted(node.tokens[5]));
       case SkeletonError::Field::position:
       case SkeletonError::Field::nodes:
         break;
     }
-    fail(path, node.line, "x y z", error.expected(),
-         fmt::format("'{} {} {}'", printable(node.tokens[2]), printable(node.tokens[3]),
-                     printable(node.tokens[4])));
+    throw base::SourceError(path, node.line, "x y z", error.expected(),
+                            fmt::format("'{} {} {}'", printable(node.tokens[2]), printable(node.tokens[3]),
+                                        printable(node.tokens[4])));
   }
 }
 
 void write_tree_file(const Skeleton& skeleton, const std::string& path) {
-  const std::string temporary = path + ".tmp";
   std::string text = fmt::format(
       "# forestwind skeleton: {} nodes\n# id parent x y z radius (metres; parent -1 is the root)\n",
       skeleton.size());
@@ -203,22 +207,7 @@ void write_tree_file(const Skeleton& skeleton, const std::string& path) {
     text += fmt::format("{} {} {:.17g} {:.17g} {:.17g} {:.17g}\n", i, node.parent, node.position.x(),
                         node.position.y(), node.position.z(), node.radius);
   }
-  {
-    std::ofstream out(temporary, std::ios::binary | std::ios::trunc);
-    if (!out) throw std::runtime_error(fmt::format("{}: cannot write: {}", temporary, std::strerror(errno)));
-    out.write(text.data(), std::streamsize(text.size()));
-    out.close();
-    if (!out) {
-      std::remove(temporary.c_str());
-      throw std::runtime_error(fmt::format("{}: write error", temporary));
-    }
-  }
-  std::error_code error;
-  std::filesystem::rename(temporary, path, error);
-  if (error) {
-    std::remove(temporary.c_str());
-    throw std::runtime_error(fmt::format("{}: cannot rename {} to it: {}", path, temporary, error.message()));
-  }
+  base::write_text_atomically("write_tree_file", path, text);
 }
 
 }  // namespace fw::trees

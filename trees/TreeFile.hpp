@@ -5,7 +5,7 @@
 //   2  1  0 0 4.5  0.08
 //   1  0  0 0 2.0  0.15
 //
-//   auto skeleton = fw::trees::read_tree_file("walnut.tree");   // throws std::runtime_error on any error
+//   auto skeleton = fw::trees::read_tree_file("walnut.tree");   // throws base::SourceError on any error
 //   fw::trees::write_tree_file(skeleton, "copy.tree");          // exact round trip
 //
 // - Ids are 0..n-1 for n node lines and become the node indices of the Skeleton; lines may come in any order.
@@ -15,12 +15,12 @@
 // - Numbers: id and parent are decimal integers; x y z radius are finite decimal numbers (an optional sign,
 //   exponent allowed).
 //
-// Every error throws std::runtime_error("FILE:LINE: KEY: what was expected, got 'TOKEN'"), where KEY is the
-// column: id, parent, x, y, z, radius, or "x y z" for the position as a whole (zero-length element). That
-// covers a non-numeric, missing or extra field, a duplicate id, an id outside 0..n-1, a parent that is not
-// -1 or an id, a radius <= 0, and the structure: a cycle, two roots or none, a node at its parent's position.
-// Structural errors name the line of the offending node. A file without node lines is an error too, and an
-// unreadable file gives "FILE: cannot open: REASON".
+// Every error throws base::SourceError (an input error, std::invalid_argument: "FILE:LINE: KEY: what was
+// expected, got 'TOKEN'"), where KEY is the column: id, parent, x, y, z, radius, or "x y z" for the position
+// as a whole (zero-length element). That covers a non-numeric, missing or extra field, a duplicate id, an id
+// outside 0..n-1, a parent that is not -1 or an id, a radius <= 0, and the structure: a cycle, two roots or
+// none, a node at its parent's position. Structural errors name the line of the offending node. A file
+// without node lines is an error too, and an unreadable file gives "FILE: cannot open: REASON".
 #pragma once
 
 #include "trees/Skeleton.hpp"
@@ -31,18 +31,18 @@
 
 namespace fw::trees {
 
-/// Reads a `.tree` file; see the header comment for the format and the errors (std::runtime_error).
+/// Reads a `.tree` file; see the header comment for the format and the errors (base::SourceError).
 Skeleton read_tree_file(const std::string& path);
 
 /// Writes the skeleton as `.tree`, one line per node in id order with full double precision ({:.17g}), so
-/// that read_tree_file gives back every value exactly. Writes `<path>.tmp` and renames it over path;
-/// throws std::runtime_error("FILE: ...") when the file cannot be written (the temporary is removed).
+/// that read_tree_file gives back every value exactly, through base::write_text_atomically (a temporary name,
+/// renamed over path); throws std::runtime_error("write_tree_file: cannot write PATH: ...") on failure.
 void write_tree_file(const Skeleton& skeleton, const std::string& path);
 
 namespace detail {
 // Small text helpers shared by the skeleton readers (TreeFile, QsmImport).
 
-/// The whole file, or std::runtime_error("PATH: cannot open: REASON").
+/// The whole file, or base::SourceError("PATH: cannot open: REASON").
 std::string read_text_file(const std::string& path);
 /// A finite decimal number filling all of text (leading '+' allowed), else nullopt.
 std::optional<double> parse_number(std::string_view text);

@@ -8,7 +8,7 @@
 #include <numbers>
 #include <stdexcept>
 
-#include "io/AtomicFile.hpp"
+#include "base/AtomicFile.hpp"
 
 namespace fw::viz {
 
@@ -197,8 +197,8 @@ std::array<std::uint8_t, 3> Canvas::pixel(int i, int j) const {
 }
 
 void Canvas::write_png(const std::filesystem::path& path) const {
-  io::require_output_folder("Canvas", path);
-  io::AtomicFile file(path);
+  base::require_output_folder("Canvas", path);
+  base::AtomicFile file(path);
   cairo_surface_flush(cairo_->surface);
   const cairo_status_t status = cairo_surface_write_to_png(cairo_->surface, file.temporary_path().c_str());
   if (status != CAIRO_STATUS_SUCCESS)

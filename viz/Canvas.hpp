@@ -77,7 +77,7 @@ class Canvas {
   /// The colour of pixel (i, j) as drawn so far (8 bits a channel, 0..255).
   std::array<std::uint8_t, 3> pixel(int i, int j) const;
 
-  /// Writes the picture as an 8-bit RGB PNG through a temporary name and a rename (io/AtomicFile). Throws
+  /// Writes the picture as an 8-bit RGB PNG through a temporary name and a rename (base/AtomicFile). Throws
   /// std::runtime_error("Canvas: cannot write PATH: ...") if the folder does not exist or writing fails.
   void write_png(const std::filesystem::path& path) const;
 

@@ -4,7 +4,7 @@
 #include <system_error>
 #include <utility>
 
-#include "io/AtomicFile.hpp"
+#include "base/AtomicFile.hpp"
 
 namespace fw::viz {
 
@@ -15,7 +15,7 @@ void ViewScriptWriter::begin() {
   std::error_code error;
   std::filesystem::create_directories(directory_, error);
   // A folder that cannot be made is reported by the write below, with the path and the reason.
-  io::write_text_atomically("ViewScriptWriter", path_, script_);
+  base::write_text_atomically("ViewScriptWriter", path_, script_);
 }
 
 }  // namespace fw::viz

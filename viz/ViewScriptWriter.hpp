@@ -4,7 +4,7 @@
 //   fw::viz::ViewScriptSettings view;                  // what the run writes, the domain (m), the slice
 //   view.wind = true; view.size = {128, 64, 32}; view.cell_size = 2.0; view.slice_height = 10.0;
 //   writers.push_back(std::make_unique<fw::viz::ViewScriptWriter>("out/calm", view));
-//   // begin(): out/calm/view.py, through a temporary name and a rename (io/AtomicFile)
+//   // begin(): out/calm/view.py, through a temporary name and a rename (base/AtomicFile)
 //
 // Then: paraview --script=out/calm/view.py
 #pragma once

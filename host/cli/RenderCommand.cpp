@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "base/AtomicFile.hpp"
 #include "host/cli/Commands.hpp"
 #include "viz/FrameRender.hpp"
 #include "viz/RunFolder.hpp"
@@ -127,18 +128,16 @@ int render_all(const viz::RunFolder& run, const RenderOptions& options, viz::Ren
       frames.size() > 1 ? (frames.back().time - frames.front().time) / (frames.size() - 1) : 1.0;
   const double fps = std::clamp(interval > 0.0 ? 1.0 / interval : kFastestFps, kSlowestFps, kFastestFps);
   const fs::path movie = folder / (run.scenario_name().empty() ? "run.mp4" : run.scenario_name() + ".mp4");
-  const fs::path partial = folder / ("." + movie.filename().string() + ".partial.mp4");
-  // yuv420p needs even sides; the picture's sides are rounded down to them.
+  base::AtomicFile file(movie);
+  // yuv420p needs even sides; the picture's sides are rounded down to them. The temporary name has no .mp4
+  // extension, so the container is named.
   const std::string command = fmt::format(
       "{} -y -loglevel error -framerate {:g} -i {} -vf 'crop=trunc(iw/2)*2:trunc(ih/2)*2' -c:v libx264 "
-      "-pix_fmt yuv420p {}",
+      "-pix_fmt yuv420p -f mp4 {}",
       shell_quote(ffmpeg.string()), fps, shell_quote((folder / "frame_%06d.png").string()),
-      shell_quote(partial.string()));
-  if (std::system(command.c_str()) != 0) {
-    fs::remove(partial);
-    throw std::runtime_error("render: ffmpeg failed: " + command);
-  }
-  fs::rename(partial, movie);
+      shell_quote(file.temporary_path().string()));
+  if (std::system(command.c_str()) != 0) throw std::runtime_error("render: ffmpeg failed: " + command);
+  file.commit();
   if (!options.quiet) std::cout << "wrote " << movie.string() << "\n";
   return 0;
 }

@@ -26,17 +26,11 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 
-// A .tree file, or else a TreeQSM cylinder table. File errors are bad input (exit code 2), reported by the
-// readers as "FILE:LINE: KEY: ...".
+// A .tree file, or else a TreeQSM cylinder table. The readers' errors are base::SourceError, "FILE:LINE: KEY:
+// ...", an input error (exit code 2).
 trees::Skeleton read_skeleton(const std::string& path) {
-  try {
-    if (std::filesystem::path(path).extension() == ".tree") return trees::read_tree_file(path);
-    return trees::read_qsm_cylinders(path);
-  } catch (const std::invalid_argument&) {
-    throw;
-  } catch (const std::runtime_error& e) {
-    throw std::invalid_argument(e.what());  // the readers' errors are the user's input errors
-  }
+  if (std::filesystem::path(path).extension() == ".tree") return trees::read_tree_file(path);
+  return trees::read_qsm_cylinders(path);
 }
 
 // The axis along which a mode moves the nodes most: the largest of sum u_x^2, sum u_y^2, sum u_z^2 over the

@@ -4,20 +4,11 @@
 
 #include <utility>
 
-#include "io/AtomicFile.hpp"
+#include "base/AtomicFile.hpp"
+#include "base/Fnv1a.hpp"
 #include "io/JsonWriter.hpp"
 
 namespace fw::io {
-
-std::string text_hash(const std::string& text) {
-  constexpr std::uint64_t kFnvOffset = 0xcbf29ce484222325ULL, kFnvPrime = 0x100000001b3ULL;
-  std::uint64_t hash = kFnvOffset;
-  for (unsigned char c : text) {
-    hash ^= c;
-    hash *= kFnvPrime;
-  }
-  return fmt::format("{:016x}", hash);
-}
 
 ManifestWriter::ManifestWriter(std::filesystem::path directory, RunManifest manifest)
     : directory_(std::move(directory)), manifest_(std::move(manifest)) {}
@@ -25,8 +16,8 @@ ManifestWriter::ManifestWriter(std::filesystem::path directory, RunManifest mani
 void ManifestWriter::begin() {
   std::filesystem::create_directories(directory_);
   if (!manifest_.scenario_file_name.empty())
-    write_text_atomically("ManifestWriter", directory_ / manifest_.scenario_file_name,
-                          manifest_.scenario_text);
+    base::write_text_atomically("ManifestWriter", directory_ / manifest_.scenario_file_name,
+                                manifest_.scenario_text);
 }
 
 void ManifestWriter::write(const OutputFrame& frame) {
@@ -42,7 +33,7 @@ void ManifestWriter::finish(const RunOutcome& outcome) {
   json.key("version").value(m.version);
   json.key("scenario").value(m.scenario_name);
   json.key("scenario_file").value(m.scenario_file_name);
-  json.key("scenario_hash").value(text_hash(m.scenario_text));
+  json.key("scenario_hash").value(base::fnv1a_hex(m.scenario_text));
   json.key("seed").value(m.seed);
   json.key("device").value(m.device);
   json.key("platform").value(m.platform);
@@ -91,7 +82,7 @@ void ManifestWriter::finish(const RunOutcome& outcome) {
     }
   }
   json.end_object();
-  write_text_atomically("ManifestWriter", directory_ / "run.json", json.str() + "\n");
+  base::write_text_atomically("ManifestWriter", directory_ / "run.json", json.str() + "\n");
 }
 
 }  // namespace fw::io

@@ -51,9 +51,6 @@ struct RunManifest {
   bool leaves = false;  ///< the run has leaves: run.json reports their counts
 };
 
-/// 64-bit FNV-1a of a text, as 16 hex digits (the scenario hash in run.json).
-std::string text_hash(const std::string& text);
-
 class ManifestWriter : public FrameWriter {
  public:
   ManifestWriter(std::filesystem::path directory, RunManifest manifest);

@@ -1,5 +1,5 @@
 // Reading back what the writers left in a test's folder (tests/io/): VTK XML polydata, .pvd collections,
-// and leftover temporaries of the atomic writes (io/AtomicFile: "NAME.tmp-...").
+// and leftover temporaries of the atomic writes (base/AtomicFile: "NAME.tmp-...").
 //
 //   CHECK_FALSE(fw::test::has_temporary(dir.path()));
 //   const auto data = fw::test::read_vtp(dir / "trees_000000.vtp");

@@ -2,6 +2,7 @@
 
 #include <catch2/catch.hpp>
 
+#include "base/SourceError.hpp"
 #include "tests/support/TempDir.hpp"
 
 #include <cmath>
@@ -17,7 +18,7 @@ namespace {
 std::string read_error(const std::string& path) {
   try {
     read_qsm_cylinders(path);
-  } catch (const std::runtime_error& e) {
+  } catch (const fw::base::SourceError& e) {
     return e.what();
   }
   return "";

@@ -2,6 +2,7 @@
 
 #include <catch2/catch.hpp>
 
+#include "base/SourceError.hpp"
 #include "tests/support/TempDir.hpp"
 
 #include <cmath>
@@ -19,11 +20,11 @@ using fw::trees::write_tree_file;
 
 namespace {
 
-// The message of the std::runtime_error that reading the file throws, or "" when it reads fine.
+// The message of the base::SourceError that reading the file throws, or "" when it reads fine.
 std::string read_error(const std::string& path) {
   try {
     read_tree_file(path);
-  } catch (const std::runtime_error& e) {
+  } catch (const fw::base::SourceError& e) {
     return e.what();
   }
   return "";

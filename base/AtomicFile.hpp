@@ -2,7 +2,7 @@
 // the same folder and renamed into place by commit(). Readers (ParaView watching a folder, a crash midway)
 // therefore never see a half-written file.
 //
-//   fw::io::AtomicFile file("out/modes.vtp");
+//   fw::base::AtomicFile file("out/modes.vtp");
 //   writer->SetFileName(file.temporary_path().c_str());   // any writer that takes a path
 //   writer->Write();
 //   file.commit();                                        // rename(temporary, final); throws on failure
@@ -14,7 +14,7 @@
 
 #include <filesystem>
 
-namespace fw::io {
+namespace fw::base {
 
 class AtomicFile {
  public:
@@ -37,7 +37,7 @@ class AtomicFile {
   bool committed_ = false;
 };
 
-// The two helpers every writer of io/ shares: the same folder check and the same atomic text write, with the
+// The two helpers every writer shares: the same folder check and the same atomic text write, with the
 // same error messages.
 
 /// Throws std::runtime_error("FUNCTION: cannot write PATH: the folder F does not exist" / "F is not a
@@ -48,4 +48,4 @@ void require_output_folder(const char* function, const std::filesystem::path& pa
 /// std::runtime_error("FUNCTION: cannot write PATH: reason") on failure; no temporary is left behind.
 void write_text_atomically(const char* function, const std::filesystem::path& path, std::string_view content);
 
-}  // namespace fw::io
+}  // namespace fw::base

@@ -1,4 +1,4 @@
-#include "io/AtomicFile.hpp"
+#include "base/AtomicFile.hpp"
 
 #include <fmt/format.h>
 #include <unistd.h>
@@ -12,7 +12,7 @@
 #include <system_error>
 #include <utility>
 
-namespace fw::io {
+namespace fw::base {
 
 AtomicFile::AtomicFile(std::filesystem::path target) : target_(std::move(target)) {
   temporary_ = target_;
@@ -78,4 +78,4 @@ void write_text_atomically(const char* function, const std::filesystem::path& pa
   }
 }
 
-}  // namespace fw::io
+}  // namespace fw::base
