@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <stdexcept>
@@ -80,6 +81,14 @@ FwGrid GridSpec::to_device() const {
   g.h = static_cast<float>(h);
   for (int a = 0; a < 3; ++a) g.origin[a] = static_cast<float>(origin[a]);
   return g;
+}
+
+std::array<int, 3> GridSpec::cell_holding(const std::array<double, 3>& world) const {
+  const int n[3] = {nx, ny, nz};
+  std::array<int, 3> cell{};
+  for (std::size_t a = 0; a < 3; ++a)
+    cell[a] = std::clamp(int(std::floor((world[a] - origin[a]) / h)), 0, n[a] - 1);
+  return cell;
 }
 
 }  // namespace fw::fluid

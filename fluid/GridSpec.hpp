@@ -51,6 +51,8 @@ struct GridSpec {
   bool periodic(int axis) const { return boundary[2 * axis] == BoundaryType::periodic; }
   /// True when some face holds pressure at zero (outflow), which makes the Poisson problem non-singular.
   bool has_dirichlet_pressure() const;
+  /// The cell (i, j, k) that holds a world position (m); positions outside the grid take the nearest cell.
+  std::array<int, 3> cell_holding(const std::array<double, 3>& world) const;
 
   FwGrid to_device() const;
 };

@@ -1,7 +1,10 @@
 #include "trees/Forest.hpp"
 
+#include "trees/ModalIntegrator.hpp"
+
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <stdexcept>
@@ -170,6 +173,39 @@ ForestPacking Forest::pack() const {
   p.total_nodes = total_nodes();
   p.total_samples = total_samples();
   return p;
+}
+
+Eigen::MatrixX3d Forest::instance_displacements(int k, const Eigen::VectorXd& qk,
+                                                bool strong_wind_correction) const {
+  const TreeInstance& t = instances().at(std::size_t(k));
+  const SpeciesBasis& sp = species_of(k);
+  if (qk.size() != sp.modes().mode_count())
+    throw std::invalid_argument(fmt::format("Forest: instance {} has {} modes, got {} coordinates", k,
+                                            sp.modes().mode_count(), qk.size()));
+  // The correction is fitted on the species (scale 1): its q is s^-5/2 times the instance's, and the
+  // instance's displacement s times the species'. The length-restoring pass runs here in the species'
+  // frame, on the device in the world frame: it commutes with s R, so the two routes check each other.
+  const Eigen::Matrix3d r = (strong_wind_correction ? t.scale : std::pow(t.scale, -1.5)) * rotation(k);
+  const Eigen::VectorXd local = strong_wind_correction ? sp.strong_wind().corrected_displacement(
+                                                             sp.skeleton(), std::pow(t.scale, -2.5) * qk)
+                                                       : Eigen::VectorXd(sp.node_shapes() * qk);
+  Eigen::MatrixX3d u(sp.skeleton().size(), 3);
+  for (int n = 0; n < sp.skeleton().size(); ++n) u.row(n) = (r * local.segment<3>(3 * n)).transpose();
+  return u;
+}
+
+double Forest::semi_implicit_dt_limit() const {
+  double limit = std::numeric_limits<double>::infinity();
+  for (int k = 0; k < instance_count(); ++k) {
+    const ModalBasis& modes = species_of(k).modes();
+    const double scale = instances_[std::size_t(k)].scale;
+    for (int i = 0; i < modes.mode_count(); ++i) {
+      const double omega = modes.omega()(i) / scale;
+      const double gamma = 2.0 * modes.damping_ratios()(i) * omega;
+      limit = std::min(limit, trees::semi_implicit_dt_limit(omega, gamma));
+    }
+  }
+  return limit;
 }
 
 }  // namespace fw::trees

@@ -87,6 +87,17 @@ class Forest {
   /// R(yaw) of an instance: counter-clockwise about +z.
   Eigen::Matrix3d rotation(int instance) const;
 
+  /// The largest stable dt of Diener's semi-implicit Euler over every instance-mode (omega / s and
+  /// gamma = 2 zeta omega / s of the instance), s; infinity without trees.
+  double semi_implicit_dt_limit() const;
+
+  /// One instance's nodal displacements for its modal coordinates qk (its m modes), computed on the host in
+  /// double precision: #nodes by 3, m, world frame. With the strong-wind correction (Diener's quadratic part
+  /// and the length-restoring pass, as on the device's output frames) or the linear sum s^-3/2 R Phi q.
+  /// Throws std::invalid_argument("Forest: ...") when qk does not have the species' mode count.
+  Eigen::MatrixX3d instance_displacements(int instance, const Eigen::VectorXd& qk,
+                                          bool strong_wind_correction = true) const;
+
   /// The float32 arrays of the device stage (host/ForestStages) in the layout of kernels/shared_types.h.
   ForestPacking pack() const;
   /// Only the instance table of pack() (ForestPacking::instances), for stages that need no shapes.

@@ -53,18 +53,9 @@ Eigen::Vector3d sample_mac_velocity(const fluid::GridSpec& spec, const fluid::Ma
   return v;
 }
 
-std::array<int, 3> cell_holding(const fluid::GridSpec& spec, const Eigen::Vector3d& world) {
-  const int n[3] = {spec.nx, spec.ny, spec.nz};
-  std::array<int, 3> cell{};
-  for (int a = 0; a < 3; ++a)
-    cell[std::size_t(a)] =
-        std::clamp(int(std::floor((world(a) - spec.origin[std::size_t(a)]) / spec.h)), 0, n[a] - 1);
-  return cell;
-}
-
 Eigen::Vector3d cell_centred_velocity(const fluid::GridSpec& spec, const fluid::MacVelocity& velocity,
                                       const Eigen::Vector3d& world) {
-  const std::array<int, 3> cell = cell_holding(spec, world);
+  const std::array<int, 3> cell = spec.cell_holding({world.x(), world.y(), world.z()});
   Eigen::Vector3d v;
   for (int c = 0; c < 3; ++c) {
     int next[3] = {cell[0], cell[1], cell[2]};
@@ -198,32 +189,13 @@ void ForestReference::step(Eigen::VectorXd& q, Eigen::VectorXd& qdot, const Eige
   }
 }
 
-Eigen::MatrixX3d ForestReference::instance_displacements(int k, const Eigen::VectorXd& qk,
-                                                         bool strong_wind_correction) const {
-  const TreeInstance& t = forest_.instances().at(std::size_t(k));
-  const SpeciesBasis& sp = forest_.species_of(k);
-  if (qk.size() != sp.modes().mode_count())
-    fail(fmt::format("instance {} has {} modes, got {} coordinates", k, sp.modes().mode_count(), qk.size()));
-  // The correction is fitted on the species (scale 1): its q is s^-5/2 times the instance's, and the
-  // instance's displacement s times the species'. The length-restoring pass runs here in the species'
-  // frame, on the device in the world frame: it commutes with s R, so the two routes check each other.
-  const Eigen::Matrix3d r =
-      (strong_wind_correction ? t.scale : std::pow(t.scale, -1.5)) * forest_.rotation(k);
-  const Eigen::VectorXd local = strong_wind_correction ? sp.strong_wind().corrected_displacement(
-                                                             sp.skeleton(), std::pow(t.scale, -2.5) * qk)
-                                                       : Eigen::VectorXd(sp.node_shapes() * qk);
-  Eigen::MatrixX3d u(sp.skeleton().size(), 3);
-  for (int n = 0; n < sp.skeleton().size(); ++n) u.row(n) = (r * local.segment<3>(3 * n)).transpose();
-  return u;
-}
-
 Eigen::MatrixX3d ForestReference::displacements(const Eigen::VectorXd& q, bool strong_wind_correction) const {
   if (q.size() != total_modes()) fail(fmt::format("q has {} entries, expected {}", q.size(), total_modes()));
   Eigen::MatrixX3d u(total_nodes(), 3);
   for (int k = 0; k < forest_.instance_count(); ++k) {
     const int m = forest_.species_of(k).modes().mode_count();
     u.middleRows(forest_.node_offset(k), forest_.species_of(k).skeleton().size()) =
-        instance_displacements(k, q.segment(forest_.mode_offset(k), m), strong_wind_correction);
+        forest_.instance_displacements(k, q.segment(forest_.mode_offset(k), m), strong_wind_correction);
   }
   return u;
 }

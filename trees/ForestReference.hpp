@@ -40,11 +40,9 @@ struct TreeTravel;
 /// Trilinear sample of the face velocities at a world position (m), m/s, with the clamping described above.
 Eigen::Vector3d sample_mac_velocity(const fluid::GridSpec& spec, const fluid::MacVelocity& velocity,
                                     const Eigen::Vector3d& world);
-/// The cell (i, j, k) that holds a world position (m); positions outside the grid take the nearest cell.
-std::array<int, 3> cell_holding(const fluid::GridSpec& spec, const Eigen::Vector3d& world);
-/// The velocity of the cell that holds a world position (m), m/s (cell_holding): at the cell's centre, each
-/// component the mean of the cell's two faces along its axis. Positions outside the grid take the nearest
-/// cell.
+/// The velocity of the cell that holds a world position (m), m/s (fluid::GridSpec::cell_holding): at the
+/// cell's centre, each component the mean of the cell's two faces along its axis. Positions outside the grid
+/// take the nearest cell.
 Eigen::Vector3d cell_centred_velocity(const fluid::GridSpec& spec, const fluid::MacVelocity& velocity,
                                       const Eigen::Vector3d& world);
 
@@ -83,10 +81,8 @@ class ForestReference {
   /// Nodal displacements of every instance for the modal coordinates q: #total nodes by 3, m, world frame.
   /// strong_wind_correction: the strong-wind correction, Diener's quadratic part and the length-restoring
   /// pass (the default, as on the device), or the linear modal sum.
-  /// One instance's nodal displacements for its modal coordinates qk (its m modes): #nodes by 3, m, world
-  /// frame (the same as the instance's rows of displacements()).
-  Eigen::MatrixX3d instance_displacements(int instance, const Eigen::VectorXd& qk,
-                                          bool strong_wind_correction = true) const;
+  /// Every instance through Forest::instance_displacements (host code the run uses too: the oracle of the
+  /// device's deformation kernels, not a second copy of it).
   Eigen::MatrixX3d displacements(const Eigen::VectorXd& q, bool strong_wind_correction = true) const;
 
   /// The equilibrium under constant forces, q_i = f_i / omega_i^2 (omega of the instance).

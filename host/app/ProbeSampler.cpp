@@ -16,11 +16,7 @@ int tip_node(const trees::Skeleton& skeleton) {
 ProbeSampler::ProbeSampler(ComputeContext& cc, const fluid::GridSpec& spec,
                            const std::vector<std::array<double, 3>>& points, const trees::Forest& forest,
                            int tip_trees, bool strong_wind_correction)
-    : cc_(cc),
-      points_(cc, spec, points),
-      forest_(forest),
-      reference_(forest),
-      strong_wind_correction_(strong_wind_correction) {
+    : cc_(cc), points_(cc, spec, points), forest_(forest), strong_wind_correction_(strong_wind_correction) {
   for (int k = 0; k < std::min(tip_trees, forest.instance_count()); ++k) {
     tip_trees_.push_back(k);
     tip_nodes_.push_back(tip_node(forest.species_of(k).skeleton()));
@@ -44,7 +40,7 @@ io::ProbeSample ProbeSampler::sample(CoupledStep& coupled) {
     for (int i = 0; i < modes; ++i) q(i) = state[2 * std::size_t(i)];
     // The whole tree: the strong-wind correction's length pass walks it from the root.
     const Eigen::Vector3d world =
-        reference_.instance_displacements(k, q, strong_wind_correction_).row(tip_nodes_[t]).transpose();
+        forest_.instance_displacements(k, q, strong_wind_correction_).row(tip_nodes_[t]).transpose();
     out.tips.push_back({world.x(), world.y(), world.z()});
   }
   if (coupled.has_leaves()) out.leaf_counts = coupled.leaves().counts();

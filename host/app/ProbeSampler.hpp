@@ -7,7 +7,7 @@
 //   fw::io::ProbeSample s = probes.sample(coupled);   // s.wind[p] m/s, s.tips[t] m, at coupled.time()
 //
 // A tip is the highest node of the tree's skeleton; its displacement is the one the trees' VTK frames show
-// (trees/ForestReference.hpp instance_displacements, with or without the strong-wind correction), from the
+// (trees::Forest::instance_displacements, with or without the strong-wind correction), from the
 // tree's modal coordinates read back (2 m floats a tree).
 #pragma once
 
@@ -19,7 +19,6 @@
 #include "host/stages/PointSampler.hpp"
 #include "io/writers/FrameWriter.hpp"
 #include "trees/Forest.hpp"
-#include "trees/ForestReference.hpp"
 
 namespace fw::host {
 
@@ -44,7 +43,6 @@ class ProbeSampler {
   ComputeContext& cc_;
   PointSampler points_;
   const trees::Forest& forest_;
-  trees::ForestReference reference_;
   bool strong_wind_correction_ = true;
   std::vector<int> tip_trees_, tip_nodes_;
 };

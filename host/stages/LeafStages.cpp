@@ -9,8 +9,6 @@
 #include <stdexcept>
 #include <unordered_map>
 
-#include "trees/ForestReference.hpp"  // cell_holding: the oracle's rule for a leaf's cell
-
 namespace fw::host {
 namespace {
 
@@ -86,6 +84,27 @@ class RestTable {
 
 }  // namespace
 
+std::size_t LeafStages::estimate_device_bytes(const trees::Forest& forest,
+                                              const std::vector<trees::SpeciesLeaves>& species_leaves) {
+  std::size_t leaves = 0, rest = 0;
+  for (const trees::TreeInstance& tree : forest.instances())
+    leaves += std::size_t(species_leaves.at(std::size_t(tree.species)).count());
+  for (const auto& s : species_leaves) rest += std::size_t(s.count());
+  const std::size_t padded = leaves + FW_LANES, instances = std::size_t(forest.instance_count());
+  const auto bytes = [](std::size_t count, std::size_t size) {
+    return ComputeContext::allocation_bytes(count * size);
+  };
+  constexpr std::size_t f = sizeof(float), i = sizeof(std::int32_t), float4 = 4 * sizeof(float);
+  // Per leaf: instance, site (padded), state, angle, rate, five float4; the sites (at most one a leaf).
+  std::size_t total = bytes(leaves, i) + bytes(padded, i) + bytes(padded, 1) + 2 * bytes(padded, f) +
+                      5 * bytes(padded, float4) + bytes(leaves, i) + bytes(3 * (leaves + FW_LANES), f);
+  // Per instance its first leaf and (one more) first block, the instances, the species and their rest table.
+  total += bytes(instances, i) + bytes(instances + 1, i) + bytes(instances, sizeof(FwTreeInstance));
+  total += bytes(species_leaves.size(), sizeof(FwLeafSpecies)) + bytes(FW_REST_FIELDS * (rest + FW_LANES), f);
+  total += bytes(2 * rest, i) + bytes(FW_LEAF_COUNTERS, i) + bytes(1, f);
+  return total;
+}
+
 LeafStages::LeafStages(ComputeContext& cc, const fluid::GridSpec& spec, const trees::Forest& forest,
                        const std::vector<trees::SpeciesLeaves>& species_leaves)
     : cc_(cc) {
@@ -138,7 +157,7 @@ LeafStages::LeafStages(ComputeContext& cc, const fluid::GridSpec& spec, const tr
     for (const auto& leaf : leaves.leaves()) {
       const Eigen::Vector3d centre =
           tree.position + tree.scale * R * (leaf.anchor + leaves.lever() * leaf.petiole);
-      const std::array<int, 3> cell = trees::cell_holding(spec, centre);
+      const std::array<int, 3> cell = spec.cell_holding({centre.x(), centre.y(), centre.z()});
       const int cell_index = cell[0] + spec.nx * (cell[1] + spec.ny * cell[2]);
       const auto [site, added] = site_of_cell.try_emplace(cell_index, int(site_cells.size()));
       if (added) site_cells.push_back(site->first);
