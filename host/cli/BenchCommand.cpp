@@ -3,9 +3,9 @@
 #include <iostream>
 #include <stdexcept>
 
-#include "bench/CoupledBench.hpp"
-#include "bench/TreeBench.hpp"
-#include "bench/WindBench.hpp"
+#include "host/bench/CoupledBench.hpp"
+#include "host/bench/TreeBench.hpp"
+#include "host/bench/WindBench.hpp"
 #include "host/cli/Commands.hpp"
 #include "host/runtime/ComputeContext.hpp"
 #include "host/runtime/Device.hpp"

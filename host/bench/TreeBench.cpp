@@ -1,4 +1,4 @@
-#include "bench/TreeBench.hpp"
+#include "host/bench/TreeBench.hpp"
 
 #include <fmt/format.h>
 #include <Eigen/Eigenvalues>

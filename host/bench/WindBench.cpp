@@ -1,16 +1,16 @@
-#include "bench/WindBench.hpp"
+#include "host/bench/WindBench.hpp"
 
 #include <fmt/format.h>
 
 #include <chrono>
 #include <cmath>
 
-#include "bench/BenchTurbulence.hpp"
-#include "bench/GatherThroughput.hpp"
-#include "bench/StageTraffic.hpp"
-#include "bench/StreamTriad.hpp"
 #include "fluid/ReferenceStages.hpp"
 #include "fluid/SolidMap.hpp"
+#include "host/bench/BenchTurbulence.hpp"
+#include "host/bench/GatherThroughput.hpp"
+#include "host/bench/StageTraffic.hpp"
+#include "host/bench/StreamTriad.hpp"
 #include "io/JsonWriter.hpp"
 
 namespace fw::bench {

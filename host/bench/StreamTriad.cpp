@@ -1,6 +1,6 @@
-#include "bench/StreamTriad.hpp"
+#include "host/bench/StreamTriad.hpp"
 
-#include "bench/BestTime.hpp"
+#include "host/bench/BestTime.hpp"
 
 namespace fw::bench {
 

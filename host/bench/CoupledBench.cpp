@@ -1,25 +1,25 @@
-#include "bench/CoupledBench.hpp"
+#include "host/bench/CoupledBench.hpp"
 
 #include <fmt/format.h>
 
+#include <unistd.h>
+
 #include <chrono>
 #include <cmath>
-#include <numbers>
+#include <filesystem>
 #include <random>
 #include <stdexcept>
+#include <system_error>
 
-#include "bench/BenchTurbulence.hpp"
-#include "bench/FmaPeak.hpp"
-#include "fluid/CanopyField.hpp"
 #include "host/app/CoupledStep.hpp"
+#include "host/app/SimulationPlan.hpp"
+#include "host/bench/BenchTurbulence.hpp"
+#include "host/bench/FmaPeak.hpp"
 #include "io/JsonWriter.hpp"
-#include "trees/CanopyDrag.hpp"
+#include "io/Scenario.hpp"
 #include "trees/Foliage.hpp"
-#include "trees/Forest.hpp"
 #include "trees/ForestReference.hpp"
 #include "trees/LSystem.hpp"
-#include "trees/SpeciesBasis.hpp"
-#include "trees/SpeciesLeaves.hpp"
 #include "trees/TreeGenerator.hpp"
 
 namespace fw::bench {
@@ -31,53 +31,114 @@ using Clock = std::chrono::steady_clock;
 // The bench forest's foliage: a leaf area index of 3, a broadleaf stand in leaf (the branches' and the
 // leaves' drag coefficients are the species defaults).
 constexpr double kLeafAreaIndex = 3.0;
+constexpr double kBenchWindSpeed = 10.0;  // m/s
+constexpr double kBenchDt = 0.1;          // s, fixed
+constexpr const char* kSpecies = "broadleaf";
+
+// A basis cache in a folder of its own, removed afterwards: the first plan computes the species (timed as a
+// miss), the later ones load it, and no user's cache is read or written.
+struct ScratchCache {
+  std::filesystem::path folder = std::filesystem::temp_directory_path() /
+                                 fmt::format("forestwind-bench-coupled-{}", static_cast<long>(::getpid()));
+  trees::BasisCache cache{folder};
+  ScratchCache() = default;
+  ScratchCache(const ScratchCache&) = delete;
+  ScratchCache& operator=(const ScratchCache&) = delete;
+  ~ScratchCache() {
+    std::error_code ignored;
+    std::filesystem::remove_all(folder, ignored);
+  }
+};
 
 double ms_since(Clock::time_point start) {
   return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
 }
 
-// jacobi_iterations > 0: Oliapuram's fixed Jacobi sweeps instead of CG to 1e-3.
-host::WindGridSetup forest_wind_setup(const std::array<int, 3>& grid, double h, int jacobi_iterations) {
-  host::WindGridSetup setup;
-  auto& spec = setup.spec;
-  spec.nx = grid[0];
-  spec.ny = grid[1];
-  spec.nz = grid[2];
-  spec.h = h;
-  using fluid::BoundaryType;
-  spec.boundary = {BoundaryType::inflow, BoundaryType::outflow, BoundaryType::slip,
-                   BoundaryType::slip,   BoundaryType::no_slip, BoundaryType::slip};
-  setup.settings.dt = 0.1;
-  if (jacobi_iterations > 0) {
-    setup.settings.pressure.solver = fluid::PressureSolverType::jacobi;
-    setup.settings.pressure.jacobi_iterations = jacobi_iterations;
-  } else {
-    setup.settings.pressure.solver = fluid::PressureSolverType::cg;
-    setup.settings.pressure.tolerance = 1e-3;
-    setup.settings.pressure.max_iterations = 200;
-  }
-  setup.ambient = {10.0, 0.0, 0.0};
-  return setup;
-}
+// One case of the bench: the converged laminar case, or it with turbulence, or with leaves, or with
+// Oliapuram's fixed Jacobi sweeps (jacobi > 0) instead of CG to 1e-3.
+struct Variant {
+  int jacobi = 0;
+  bool turbulent = false;
+  bool leaves = false;
+};
 
 // `count` trees on a jittered lattice over the middle 80% of the ground, random yaw and scale 0.85-1.15.
-std::vector<trees::TreeInstance> forest_instances(int count, const std::array<int, 3>& grid, double h) {
+std::vector<io::PlacedTreeSettings> forest_trees(int count, const std::array<int, 3>& grid, double h) {
   const double width = grid[0] * h, depth = grid[1] * h;
   const int columns = int(std::ceil(std::sqrt(count * width / depth)));
   const int rows = (count + columns - 1) / columns;
   std::mt19937_64 random(7);
-  std::vector<trees::TreeInstance> instances;
+  std::vector<io::PlacedTreeSettings> trees;
   for (int k = 0; k < count; ++k) {
     const double fx = (k % columns + 0.5 + 0.3 * (trees::unit_interval(random()) - 0.5)) / columns;
     const double fy = (k / columns + 0.5 + 0.3 * (trees::unit_interval(random()) - 0.5)) / rows;
-    trees::TreeInstance tree;
-    tree.species = 0;
+    io::PlacedTreeSettings tree;
+    tree.species = kSpecies;
+    tree.species_index = 0;
     tree.position = {width * (0.1 + 0.8 * fx), depth * (0.1 + 0.8 * fy), 0.0};
-    tree.yaw_rad = 2.0 * std::numbers::pi * trees::unit_interval(random());
+    tree.height_given = true;
+    tree.yaw = 360.0 * trees::unit_interval(random());
     tree.scale = 0.85 + 0.3 * trees::unit_interval(random());
-    instances.push_back(tree);
+    trees.push_back(tree);
   }
-  return instances;
+  return trees;
+}
+
+// The bench's case as a scenario, so that it runs through the planner exactly as a user's run does: a 10 m/s
+// uniform wind from the west (inflow west, outflow east, slip sides and top, no-slip ground), a fixed dt of
+// 0.1 s, semi-Lagrangian advection, two-way coupling; `species` the one species (its skeleton and leaves).
+io::Scenario bench_scenario(const CoupledBenchOptions& options, const std::array<int, 3>& grid,
+                            const Variant& variant, const io::Species& species) {
+  io::Scenario scenario;
+  scenario.file = "bench-coupled";
+  scenario.name = "bench-coupled";
+  scenario.seed = 1;
+  scenario.time.end = 1.0;
+  scenario.time.dt = kBenchDt;
+  const double h = options.cell_size;
+  for (int a = 0; a < 3; ++a) {
+    scenario.domain.origin[std::size_t(a)] = 0.0;
+    scenario.domain.cells[std::size_t(a)] = grid[std::size_t(a)];
+    scenario.domain.size[std::size_t(a)] = grid[std::size_t(a)] * h;
+  }
+  scenario.domain.cell_size = h;
+  using io::BoundaryChoice;
+  scenario.boundaries = {BoundaryChoice::inflow, BoundaryChoice::outflow, BoundaryChoice::slip,
+                         BoundaryChoice::slip,   BoundaryChoice::no_slip, BoundaryChoice::slip};
+  scenario.wind.speed = io::Expression::constant(kBenchWindSpeed);
+  scenario.wind.direction = io::Expression::constant(270.0);  // from the west, toward +x
+  scenario.wind.profile = fluid::InflowProfile{};             // uniform
+  scenario.wind.reference_height = scenario.wind.profile.reference_height;
+  if (variant.turbulent) {
+    // The inflow box, and Stam's forcing of every tree by the eddies below 2 cells.
+    io::TurbulenceSettings turbulence;
+    turbulence.intensity = kBenchTurbulenceIntensity;
+    turbulence.length_scale = kBenchTurbulenceLengthCells * h;
+    for (int a = 0; a < 3; ++a) {
+      turbulence.box_cells[std::size_t(a)] = grid[std::size_t(a)];  // as long as the domain on each axis
+      turbulence.box_size[std::size_t(a)] = grid[std::size_t(a)] * h;
+    }
+    turbulence.seed = 1;
+    turbulence.unresolved = true;
+    scenario.wind.turbulence = turbulence;
+  }
+  scenario.solver.advection = fluid::AdvectionScheme::semi_lagrangian;
+  if (variant.jacobi > 0) {
+    scenario.solver.pressure = fluid::PressureSolverType::jacobi;
+    scenario.solver.jacobi_iterations = variant.jacobi;
+  } else {
+    scenario.solver.pressure = fluid::PressureSolverType::cg;
+    scenario.solver.tolerance = 1e-3;
+    scenario.solver.max_iterations = 200;
+  }
+  scenario.solver.vorticity_confinement = 0.0;
+  scenario.solver.smagorinsky_constant = 0.0;
+  scenario.forest.two_way_coupling = true;
+  scenario.forest.integrator = trees::ModalIntegrator::exact;
+  scenario.forest.species = {species};
+  if (!variant.leaves) scenario.forest.species[0].leaves.model = trees::FlutterModel::none;
+  scenario.forest.trees = forest_trees(options.trees, grid, h);
+  return scenario;
 }
 
 }  // namespace
@@ -89,71 +150,54 @@ CoupledBenchResult run_coupled_bench(host::ComputeContext& cc, const CoupledBenc
   result.modes = options.modes;
   result.samples = options.samples;
 
-  // One species, computed once and shared by every instance (the point of the similarity laws).
-  const auto species_start = Clock::now();
+  // One species, generated at about nodes_per_tree nodes; its basis is computed once, by the first plan,
+  // and loaded from a cache of the bench's own by the others (the point of the similarity laws: one basis
+  // for every instance).
   trees::GeneratorSettings generator;
   generator.preset = "broadleaf";
   generator.height = 15.0;
   generator.seed = 1;
-  trees::SpeciesSettings settings;
-  settings.modal.mode_count = options.modes;
-  settings.wind.samples = options.samples;
-  settings.wind.leaf_area_index = kLeafAreaIndex;
-  trees::SpeciesBasis species = trees::SpeciesBasis::compute(
-      trees::generate_tree_with_nodes(generator, options.nodes_per_tree), settings);
-  result.species_seconds = ms_since(species_start) * 1e-3;
-  result.nodes_per_tree = species.skeleton().size();
-  // The leaves of the species in full leaf (LAI kLeafAreaIndex, leaves of the default size), simulated as a
-  // sample of leaves_per_tree of them (LeafSettings::fraction).
-  const trees::Foliage foliage = trees::Foliage::of(species.skeleton(), kLeafAreaIndex);
-  trees::LeafSettings leaf_settings;
-  const double real_leaves = foliage.leaf_area / leaf_settings.area;
-  leaf_settings.fraction = std::min(1.0, options.leaves_per_tree / std::max(real_leaves, 1.0));
-  const trees::SpeciesLeaves leaves =
-      options.leaves_per_tree > 0 ? trees::SpeciesLeaves::generate(species.skeleton(), foliage, leaf_settings)
-                                  : trees::SpeciesLeaves();
-  result.real_leaves_per_tree = real_leaves;
+  const trees::Skeleton skeleton =
+      trees::generate_tree_with_nodes(generator, options.nodes_per_tree, &generator.max_element_length);
+  io::Species species;
+  species.name = kSpecies;
+  species.skeleton.kind = io::SkeletonSource::Kind::generate;
+  species.skeleton.generate = generator;
+  species.modes.count = options.modes;
+  species.modes.wind_samples = options.samples;
+  species.canopy.leaf_area_index = kLeafAreaIndex;
+  // The species in full leaf (LAI kLeafAreaIndex, leaves of the default size), simulated as a sample of
+  // leaves_per_tree of them (LeafSettings::fraction).
+  const trees::Foliage foliage = trees::Foliage::of(skeleton, kLeafAreaIndex);
+  species.leaves = trees::LeafSettings{};
+  result.real_leaves_per_tree = foliage.leaf_area / species.leaves.area;
+  species.leaves.fraction =
+      std::min(1.0, options.leaves_per_tree / std::max(result.real_leaves_per_tree, 1.0));
+  const ScratchCache cache;
 
   for (const auto& grid : options.grids) {
-    const trees::Forest forest({species}, forest_instances(options.trees, grid, options.cell_size));
-    // Two-way coupling: every tree's frontal area (branches, and leaves at kLeafAreaIndex) drags on the wind
-    // with the force the tree receives (trees/CanopyDrag.hpp).
-    fluid::CanopyField canopy(forest_wind_setup(grid, options.cell_size, 0).spec);
-    for (int k = 0; k < forest.instance_count(); ++k) trees::add_to_canopy(canopy, forest, k);
     // The converged case, then (when asked) the same with turbulence and with leaves, then the Jacobi
     // baseline.
-    struct Variant {
-      int jacobi = 0;
-      bool turbulent = false;
-      bool leaves = false;
-    };
     std::vector<Variant> variants{{0, false, false}};
     if (options.turbulence) variants.push_back({0, true, false});
     if (options.leaves_per_tree > 0) variants.push_back({0, false, true});
     if (options.baseline_jacobi_iterations > 0)
       variants.push_back({options.baseline_jacobi_iterations, false, false});
-    for (const auto [jacobi, turbulent, with_leaves] : variants) {
+    for (const Variant& variant : variants) {
+      const host::SimulationPlan plan =
+          host::plan_simulation(bench_scenario(options, grid, variant, species), &cache.cache, nullptr);
+      if (result.cases.empty()) {
+        result.species_seconds = plan.species.front().seconds;
+        result.nodes_per_tree = plan.species.front().nodes;
+      }
       CoupledBenchCase c;
       c.grid = grid;
-      c.pressure = jacobi > 0 ? fmt::format("jacobi {}", jacobi) : "cg 1e-3";
-      c.turbulent = turbulent;
-      host::WindGridSetup setup = forest_wind_setup(grid, options.cell_size, jacobi);
-      const std::array<double, 3> ambient = setup.ambient;
-      host::CouplingSettings coupling;
-      coupling.drag_density = canopy.drag_density();
-      if (turbulent) {
-        // The inflow box, and Stam's forcing of every tree by the eddies below 2 cells.
-        add_bench_turbulence(setup, grid);
-        coupling.unresolved.enabled = true;
-        coupling.unresolved.cell_size = options.cell_size;
-        coupling.unresolved.intensity = kBenchTurbulenceIntensity;
-        coupling.unresolved.integral_length = kBenchTurbulenceLengthCells * options.cell_size;
-      }
-      if (with_leaves) coupling.leaves = {leaves};
-      host::CoupledStep coupled(cc, std::move(setup), forest, std::move(coupling));
-      if (with_leaves) c.leaves = coupled.leaves().leaf_count();
-      if (turbulent) coupled.wind().set_turbulence_sigma(kBenchTurbulenceSigma);
-      coupled.start(ambient);
+      c.pressure = variant.jacobi > 0 ? fmt::format("jacobi {}", variant.jacobi) : "cg 1e-3";
+      c.turbulent = variant.turbulent;
+      const trees::Forest& forest = plan.forest;
+      host::CoupledStep coupled(cc, plan);
+      if (variant.leaves) c.leaves = coupled.leaves().leaf_count();
+      coupled.start();
       for (int s = 0; s < options.warmup_steps; ++s) coupled.step();
       cc.finish();
 
@@ -196,7 +240,7 @@ CoupledBenchResult run_coupled_bench(host::ComputeContext& cc, const CoupledBenc
         Eigen::VectorXd q = Eigen::VectorXd::Zero(reference.total_modes()), qdot = q;
         const auto reference_start = Clock::now();
         const Eigen::VectorXd forces = reference.modal_forces(coupled.wind().spec(), velocity);
-        reference.step(q, qdot, forces, 0.1, trees::ModalIntegrator::exact);
+        reference.step(q, qdot, forces, kBenchDt, trees::ModalIntegrator::exact);
         result.trees_reference_ms = ms_since(reference_start);
         const auto reference_deform_start = Clock::now();
         const Eigen::MatrixX3d displacement = reference.displacements(q);

@@ -20,7 +20,7 @@
 #include <string>
 #include <vector>
 
-#include "bench/GatherThroughput.hpp"
+#include "host/bench/GatherThroughput.hpp"
 
 #include "host/runtime/ComputeContext.hpp"
 #include "host/stages/WindGrid.hpp"

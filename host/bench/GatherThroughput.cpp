@@ -1,6 +1,6 @@
-#include "bench/GatherThroughput.hpp"
+#include "host/bench/GatherThroughput.hpp"
 
-#include "bench/BestTime.hpp"
+#include "host/bench/BestTime.hpp"
 #include "kernels/shared_types.h"
 
 namespace fw::bench {

@@ -1,4 +1,4 @@
-#include "bench/BenchTurbulence.hpp"
+#include "host/bench/BenchTurbulence.hpp"
 
 #include <memory>
 
@@ -8,8 +8,9 @@ namespace fw::bench {
 
 void add_bench_turbulence(host::WindGridSetup& setup, const std::array<int, 3>& grid) {
   fluid::TurbulenceBoxSpec box;
-  for (int a = 0; a < 3; ++a) box.cells[a] = 2 * grid[a];  // points every h/2
-  box.spacing = 0.5 * setup.spec.h;
+  // As a run's plan builds it (host/app/plan/TurbulencePlan.cpp): points every h / kTurbulencePointsPerCell.
+  for (int a = 0; a < 3; ++a) box.cells[a] = fluid::kTurbulencePointsPerCell * grid[a];
+  box.spacing = setup.spec.h / fluid::kTurbulencePointsPerCell;
   box.spectrum = {1.0, kBenchTurbulenceLengthCells * setup.spec.h};
   box.seed = 1;
   setup.turbulence = std::make_shared<const fluid::TurbulenceBox>(box);

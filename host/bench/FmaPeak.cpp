@@ -1,6 +1,6 @@
-#include "bench/FmaPeak.hpp"
+#include "host/bench/FmaPeak.hpp"
 
-#include "bench/BestTime.hpp"
+#include "host/bench/BestTime.hpp"
 
 namespace fw::bench {
 
