@@ -61,6 +61,10 @@
 
 namespace fw::fluid {
 
+/// Points of a wind grid's inflow turbulence box per grid cell along each axis: the box's spacing is h / this
+/// (host/app/plan/TurbulencePlan.cpp), so a box of n cells along an axis holds 2 n points.
+inline constexpr int kTurbulencePointsPerCell = 2;
+
 struct TurbulenceBoxSpec {
   std::array<int, 3> cells{0, 0, 0};               ///< points along x, y, z; each even and >= 4
   double spacing = 0.0;                            ///< h, distance between points, m (> 0)

@@ -38,7 +38,7 @@ void validate_leaf_frame(const char* function, const LeafFrame& leaves) {
   check_size("normal", leaves.normal.size());
   check_size("state", leaves.state.size());
   check_size("tree_id", leaves.tree_id.size());
-  check_size("size", leaves.size.size());
+  check_size("size", leaves.side.size());
   const auto finite = [](const std::array<float, 3>& v) {
     return std::isfinite(v[0]) && std::isfinite(v[1]) && std::isfinite(v[2]);
   };
@@ -46,7 +46,7 @@ void validate_leaf_frame(const char* function, const LeafFrame& leaves) {
   for (std::size_t k = 0; k < n; ++k) {
     if (!finite(leaves.position[k])) fail(fmt::format("position of leaf {} is not finite", k));
     if (!finite(leaves.normal[k])) fail(fmt::format("normal of leaf {} is not finite", k));
-    if (!std::isfinite(leaves.size[k])) fail(fmt::format("size of leaf {} is not finite", k));
+    if (!std::isfinite(leaves.side[k])) fail(fmt::format("size of leaf {} is not finite", k));
     if (leaves.state[k] > kLastState) {
       fail(fmt::format("state of leaf {}: expected 0 to {}, got {}", k, kLastState, leaves.state[k]));
     }
@@ -95,7 +95,7 @@ void write_leaves_vtp(const std::filesystem::path& path, double time, const Leaf
     }
     state->SetValue(vtkIdType(k), leaves.state[k]);
     tree_id->SetValue(vtkIdType(k), leaves.tree_id[k]);
-    size->SetValue(vtkIdType(k), leaves.size[k]);
+    size->SetValue(vtkIdType(k), leaves.side[k]);
     offsets->SetValue(vtkIdType(k), std::int32_t(k));
     connectivity->SetValue(vtkIdType(k), std::int32_t(k));
   }

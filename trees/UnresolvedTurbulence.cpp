@@ -231,7 +231,8 @@ Eigen::Vector3d UnresolvedTurbulence::average(double x, double window) const {
 }
 
 std::vector<float> UnresolvedTurbulence::device_table() const {
-  constexpr int kStride = 2 * kComponents;
+  constexpr int kStride = int(kDeviceFloatsPerPoint);  // the values, then their running integrals
+  static_assert(kStride == 2 * kComponents);
   std::vector<float> out(std::size_t(kStride) * std::size_t(length()));
   for (int j = 0; j < length(); ++j)
     for (int c = 0; c < kComponents; ++c) {

@@ -145,9 +145,10 @@ class UnresolvedTurbulence {
   Eigen::Vector3d running_integral(double x) const;
   /// A step's read: the mean of the interpolated series over [x - W, x], W = clamp(window, dx, P) (m).
   Eigen::Vector3d average(double x, double window) const;
-  /// The float table a device uploads, 6 floats a point: [6 n + c] component c's value at point n,
-  /// [6 n + 3 + c] its running integral C(n dx) (m).
+  /// The float table a device uploads, kDeviceFloatsPerPoint (6) floats a point: [6 n + c] component c's
+  /// value at point n, [6 n + 3 + c] its running integral C(n dx) (m).
   std::vector<float> device_table() const;
+  static constexpr std::size_t kDeviceFloatsPerPoint = 6;
 
   /// k_p = 2 pi p / P (rad/m) and the amplitude a_p of component c: sqrt(2 F_c(k_p) 3 dk) for p = c mod 3,
   /// else 0 (and 0 below the cutoff, at p = 0 and p >= N/2).

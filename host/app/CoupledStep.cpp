@@ -13,41 +13,31 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 
-// The semi-implicit integrator's stable dt over every instance-mode: omega / s, gamma = 2 zeta omega / s.
-double forest_semi_implicit_limit(const trees::Forest& forest) {
-  double limit = std::numeric_limits<double>::infinity();
-  for (int k = 0; k < forest.instance_count(); ++k) {
-    const trees::ModalBasis& modes = forest.species_of(k).modes();
-    const double scale = forest.instances()[std::size_t(k)].scale;
-    for (int i = 0; i < modes.mode_count(); ++i) {
-      const double omega = modes.omega()(i) / scale;
-      const double gamma = 2.0 * modes.damping_ratios()(i) * omega;
-      limit = std::min(limit, trees::semi_implicit_dt_limit(omega, gamma));
-    }
-  }
-  return limit;
-}
-
 std::string where(long step, double time) {
   return fmt::format("step {} (t = {:.3f} s)", step, time);
 }
 
 }  // namespace
 
+CoupledStep::CoupledStep(ComputeContext& cc, const SimulationPlan& plan)
+    : CoupledStep(cc, plan.wind, plan.forest, plan.coupling, plan.inputs) {}
+
 CoupledStep::CoupledStep(ComputeContext& cc, WindGridSetup wind, const trees::Forest& forest,
-                         CouplingSettings coupling)
+                         CouplingSettings coupling, TimeInputs inputs)
     : cc_(cc),
+      inputs_(std::move(inputs)),
       wind_(cc, std::move(wind)),
       trees_(cc, wind_.spec(), forest),
       tree_count_(forest.instance_count()) {
   if (!coupling.drag_density.empty()) wind_.set_canopy(std::move(coupling.drag_density));
   trees_.set_integrator(coupling.integrator);
   trees_.set_strong_wind_correction(coupling.strong_wind_correction);
+  if (!inputs_.ambient_wind) throw std::invalid_argument("CoupledStep: the time inputs need an ambient wind");
   if (coupling.unresolved.enabled && has_trees())
     trees_.set_unresolved_turbulence(trees::UnresolvedTurbulence(coupling.unresolved),
                                      coupling.unresolved.intensity);
   if (coupling.integrator == trees::ModalIntegrator::semi_implicit)
-    integrator_dt_limit_ = forest_semi_implicit_limit(forest);
+    integrator_dt_limit_ = forest.semi_implicit_dt_limit();
   const bool any_leaves = std::any_of(coupling.leaves.begin(), coupling.leaves.end(),
                                       [](const trees::SpeciesLeaves& l) { return l.count() > 0; });
   if (any_leaves && has_trees())
@@ -65,18 +55,22 @@ void CoupledStep::enqueue_frame_deformation() {
   if (leaves_) leaves_->enqueue_frame(trees_.displacements());
 }
 
-void CoupledStep::set_unresolved_intensity(double intensity) {
-  if (trees_.unresolved_turbulence()) trees_.set_unresolved_intensity(intensity);
+void CoupledStep::apply_inputs(double t) {
+  wind_.set_ambient(inputs_.ambient_wind(t));
+  if (inputs_.turbulence_sigma) wind_.set_turbulence_sigma(inputs_.turbulence_sigma(t));
+  if (inputs_.unresolved_intensity && trees_.unresolved_turbulence())
+    trees_.set_unresolved_intensity(inputs_.unresolved_intensity(t));
 }
 
-void CoupledStep::start(const std::array<double, 3>& ambient) {
-  wind_.set_ambient(ambient);
+void CoupledStep::start() {
+  apply_inputs(0.0);
   wind_.initialise_ambient();
   if (has_trees()) trees_.reset_state();
 }
 
 CoupledStepReport CoupledStep::step(double max_dt) {
   const long next = wind_.steps() + 1;
+  apply_inputs(time());
   CoupledStepReport report;
   report.max_speed_component = wind_.max_speed_component();
   if (!std::isfinite(report.max_speed_component))

@@ -2,13 +2,15 @@
 // checks, on one OpenCL queue (DESIGN.md, "Data flow"). The run loop, `bench coupled` and the coupled tests
 // all drive this class; none of them repeats the order.
 //
-//   fw::host::CoupledStep coupled(cc, plan.wind, plan.forest, plan.coupling);   // uploads everything
-//   coupled.start(wind_at(0.0));              // wind from the ambient profile, projected; trees at rest
-//   while (coupled.time() < end) {
-//     coupled.set_ambient(wind_at(coupled.time()));
+//   fw::host::CoupledStep coupled(cc, plan);  // uploads everything; the plan must outlive it
+//   coupled.start();                          // wind from the ambient profile at t = 0, projected; trees at
+//   rest while (coupled.time() < end) {
 //     fw::host::CoupledStepReport r = coupled.step(end - coupled.time());   // never steps past `end`
 //   }
 //   coupled.enqueue_frame_deformation();      // an output frame: u = Phi q per instance, leaves with it
+//
+// The time inputs (host/app/TimeInputs.hpp: the ambient wind, the inflow turbulence's sigma_u, the trees'
+// unresolved intensity) are applied here, at the time each step starts; no caller feeds them.
 //
 // A step: choose dt (fixed, or the CFL number from max|u|, capped to land on the caller's limit) -> check it
 // -> wind grid step (advect, forces and gusts, canopy drag, projection) -> sample the wind at every tree's
@@ -30,14 +32,15 @@
 #include <string>
 #include <vector>
 
+#include "host/app/CouplingSettings.hpp"
+#include "host/app/SimulationPlan.hpp"
+#include "host/app/TimeInputs.hpp"
 #include "host/runtime/ComputeContext.hpp"
 #include "host/stages/ForestStages.hpp"
 #include "host/stages/LeafStages.hpp"
 #include "host/stages/WindGrid.hpp"
 #include "trees/Forest.hpp"
 #include "trees/ModalIntegrator.hpp"
-#include "trees/SpeciesLeaves.hpp"
-#include "trees/UnresolvedTurbulence.hpp"
 
 namespace fw::host {
 
@@ -45,21 +48,6 @@ namespace fw::host {
 class SimulationError : public std::runtime_error {
  public:
   using std::runtime_error::runtime_error;
-};
-
-/// How the trees and the wind exchange momentum.
-struct CouplingSettings {
-  trees::ModalIntegrator integrator = trees::ModalIntegrator::exact;
-  /// Per cell, the drag density k (1/m, fluid/CanopyField); empty = one-way coupling (the air feels no tree).
-  std::vector<float> drag_density;
-  /// Diener's strong-wind correction of the deformation on output frames (trees/StrongWindCorrection).
-  bool strong_wind_correction = true;
-  /// Stam's forcing of every tree by the turbulence the grid cannot resolve (trees/UnresolvedTurbulence);
-  /// off unless `enabled`. Its intensity can follow the run (set_unresolved_intensity).
-  trees::UnresolvedTurbulenceSettings unresolved;
-  /// The leaves of each species (docs/leaves.md), one per forest species; empty, or none with leaves: no
-  /// leaf stage.
-  std::vector<trees::SpeciesLeaves> leaves;
 };
 
 struct CoupledStepReport {
@@ -74,19 +62,18 @@ class CoupledStep {
   static constexpr double kRunawayCfl = 5.0;
 
   /// Uploads the wind grid, the canopy drag and the forest. Throws std::invalid_argument when the grid does
-  /// not fit the device or a setting is invalid (see WindGrid, ForestStages).
-  CoupledStep(ComputeContext& cc, WindGridSetup wind, const trees::Forest& forest, CouplingSettings coupling);
+  /// not fit the device or a setting is invalid (see WindGrid, ForestStages). `forest` must outlive this.
+  CoupledStep(ComputeContext& cc, WindGridSetup wind, const trees::Forest& forest, CouplingSettings coupling,
+              TimeInputs inputs);
+  /// The plan's wind, forest, coupling and time inputs; the plan must outlive this.
+  CoupledStep(ComputeContext& cc, const SimulationPlan& plan);
 
-  /// Sets the ambient wind (m/s at the reference height) and starts from it: every face on the inflow
-  /// profile, projected; the trees at rest.
-  void start(const std::array<double, 3>& ambient);
-  /// The ambient wind for the next step, m/s at the reference height.
-  void set_ambient(const std::array<double, 3>& ambient) { wind_.set_ambient(ambient); }
-  /// sigma_u / U of the unresolved turbulence from now on (>= 0); ignored when it is off.
-  void set_unresolved_intensity(double intensity);
+  /// Applies the time inputs at t = 0 and starts from them: every face on the inflow profile, projected;
+  /// the trees at rest.
+  void start();
 
-  /// One coupled step of at most max_dt seconds (the settings' dt otherwise). Throws SimulationError (see
-  /// the header comment) before the step when a check fails.
+  /// One coupled step of at most max_dt seconds (the settings' dt otherwise), with the time inputs at the
+  /// step's start. Throws SimulationError (see the header comment) before the step when a check fails.
   CoupledStepReport step(double max_dt = std::numeric_limits<double>::infinity());
 
   double time() const { return wind_.time(); }
@@ -112,7 +99,11 @@ class CoupledStep {
   void enqueue_frame_deformation();
 
  private:
+  /// The time inputs at time t: ambient wind, turbulence sigma_u and unresolved intensity where given.
+  void apply_inputs(double t);
+
   ComputeContext& cc_;
+  TimeInputs inputs_;
   WindGrid wind_;
   ForestStages trees_;
   std::unique_ptr<LeafStages> leaves_;  // null without leaves

@@ -48,11 +48,11 @@ viz::ViewScriptSettings view_of(const SimulationPlan& plan) {
   v.cell_size = spec.h;
   v.slice_height = viz::default_slice_height(v.origin, v.size, v.cell_size);
   // The speed scale starts at 0 to the ambient wind's peak over the run (at its reference height).
-  if (plan.ambient_wind) {
+  if (plan.inputs.ambient_wind) {
     constexpr int kSamples = 256;
     double peak = 0.0;  // m/s
     for (int n = 0; n <= kSamples; ++n) {
-      const std::array<double, 3> u = plan.ambient_wind(plan.end_time * n / kSamples);
+      const std::array<double, 3> u = plan.inputs.ambient_wind(plan.end_time * n / kSamples);
       peak = std::max(peak, std::sqrt(u[0] * u[0] + u[1] * u[1] + u[2] * u[2]));
     }
     if (peak > 0.0) v.speed_range = std::array<double, 2>{0.0, peak};

@@ -2,12 +2,14 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <array>
 #include <chrono>
 #include <cmath>
 #include <exception>
 #include <iostream>
 #include <utility>
+#include <vector>
 
 #include "host/app/OutputWriters.hpp"
 #include "host/app/ProbeSampler.hpp"
@@ -50,7 +52,7 @@ io::LeafFrame leaf_frame(const LeafSnapshot& snap, const trees::LeafCounts& coun
     out.normal.push_back({snap.normal[3 * j], snap.normal[3 * j + 1], snap.normal[3 * j + 2]});
     out.state.push_back(snap.state[j]);
     out.tree_id.push_back(snap.tree_id[j]);
-    out.size.push_back(snap.side[j]);
+    out.side.push_back(snap.side[j]);
   }
   return out;
 }
@@ -73,50 +75,118 @@ io::OutputFrame capture_frame(CoupledStep& coupled, const io::FrameNeeds& needs,
   return frame;
 }
 
-}  // namespace
+// Something due at a fixed interval of simulated time: at the first step that reaches each multiple of it
+// (0: every step). Like frames, a probe sample is due once the simulated time reaches its time.
+class Schedule {
+ public:
+  explicit Schedule(double interval) : interval_(interval), next_(interval) {}
+  /// Whether time t (s) has reached the next due time; if so, the next one moves past t.
+  bool due(double t) {
+    if (!(interval_ > 0.0)) return true;
+    if (t < next_ - kTimeTolerance * interval_) return false;
+    while (next_ <= t + kTimeTolerance * interval_) next_ += interval_;
+    return true;
+  }
 
-Simulation::Simulation(ComputeContext& cc, SimulationPlan plan, std::filesystem::path output_directory)
-    : cc_(cc), plan_(std::move(plan)), directory_(std::move(output_directory)) {
-  coupled_ = std::make_unique<CoupledStep>(cc_, plan_.wind, plan_.forest, plan_.coupling);
+ private:
+  double interval_, next_;
+};
+
+// One self-overwriting line on stderr: the step, the simulated time, the wall time per step and the ETA.
+void print_progress(const WindStepReport& step, double end, double wall_seconds) {
+  const double rate = step.time / std::max(wall_seconds, 1e-9);  // simulated seconds per wall second
+  std::cerr << fmt::format("\rstep {:>7}  t {:8.2f} / {:.2f} s  {:7.1f} ms/step  ETA {:>8}   ", step.step,
+                           step.time, end, wall_seconds * 1e3 / double(step.step),
+                           format_duration((end - step.time) / rate))
+            << std::flush;
 }
 
-Simulation::~Simulation() = default;
+// One run of the loop: the coupled step, its probe samples and frames handed to the output pipeline, and
+// the summary with its timings. Probe samples since the last frame travel with the next frame (or, at the
+// end, in a last batch of their own).
+class RunLoop {
+ public:
+  RunLoop(ComputeContext& cc, const SimulationPlan& plan, const std::filesystem::path& directory,
+          CoupledStep& coupled, const RunOptions& options)
+      : cc_(cc),
+        plan_(plan),
+        coupled_(coupled),
+        probes_(cc, plan.wind.spec, probe_points(plan), plan.forest, options.tip_trees,
+                plan.coupling.strong_wind_correction),
+        output_(make_writers(plan, directory, cc.device(), probes_.tip_trees())),
+        needs_(output_.needs()) {}
 
-RunSummary Simulation::run(const RunOptions& options) {
-  CoupledStep& coupled = *coupled_;
-  const double end = options.end_time > 0.0 ? options.end_time : plan_.end_time;
-  const double interval = plan_.output.interval;
+  /// Steps from t = 0 to `end` (or a stop request), then finishes the output; see Simulation::run.
+  RunSummary run(double end, const RunOptions& options, const std::filesystem::path& directory) {
+    try {
+      std::filesystem::create_directories(directory);
+      output_.begin();
+      coupled_.set_stage_timing(true);
+      coupled_.start();
+      sample_probes();
+      hand_over_frame();
+      step_until(end, options);
+    } catch (const std::exception& e) {
+      if (options.progress) std::cerr << "\n";
+      // The frames captured before the failure are still written; a second error while finishing is
+      // secondary to the first, which is the one reported.
+      try {
+        finish("failed", e.what());
+      } catch (const std::exception&) {
+      }
+      throw;
+    }
+    if (options.progress) std::cerr << "\n";
+    finish(summary_.interrupted ? "interrupted" : "completed", "");
+    return summary_;
+  }
 
-  RunSummary summary;
-  const auto wall_start = Clock::now();
-  std::vector<std::array<double, 3>> probe_points;
-  for (const auto& probe : plan_.output.probes) probe_points.push_back(probe.position);
-  ProbeSampler probes(cc_, plan_.wind.spec, probe_points, plan_.forest, options.tip_trees,
-                      plan_.coupling.strong_wind_correction);
-  io::OutputPipeline output(make_writers(plan_, directory_, cc_.device(), probes.tip_trees()));
-  const io::FrameNeeds needs = output.needs();
-  double output_ms = 0.0, probe_ms = 0.0;
-  int frames = 0;
-  // Probe samples since the last frame; they travel with the next frame (or a last batch of their own).
-  std::vector<io::ProbeSample> pending_samples;
-  auto take_probe_sample = [&] {
-    if (probes.empty()) return;
+ private:
+  static std::vector<std::array<double, 3>> probe_points(const SimulationPlan& plan) {
+    std::vector<std::array<double, 3>> points;
+    for (const auto& probe : plan.output.probes) points.push_back(probe.position);
+    return points;
+  }
+
+  void step_until(double end, const RunOptions& options) {
+    const double interval = plan_.output.interval;
+    Schedule frames(interval), samples(plan_.probe_interval);
+    auto last_progress = Clock::now();
+    while (coupled_.time() < end - kTimeTolerance * interval) {
+      if (options.stop && options.stop->load()) {
+        summary_.interrupted = true;
+        return;
+      }
+      output_.check();
+      const CoupledStepReport report = coupled_.step(end - coupled_.time());
+      if (samples.due(report.wind.time)) sample_probes();
+      if (frames.due(report.wind.time)) hand_over_frame();
+      if (options.progress && ms_since(last_progress) > kProgressMs) {
+        last_progress = Clock::now();
+        print_progress(report.wind, end, ms_since(wall_start_) * 1e-3);
+      }
+    }
+  }
+
+  void sample_probes() {
+    if (probes_.empty()) return;
     const auto start = Clock::now();
-    pending_samples.push_back(probes.sample(coupled));
-    probe_ms += ms_since(start);
-  };
-  auto hand_over_frame = [&] {
+    pending_samples_.push_back(probes_.sample(coupled_));
+    probe_ms_ += ms_since(start);
+  }
+
+  void hand_over_frame() {
     const auto start = Clock::now();
-    io::OutputFrame frame = capture_frame(coupled, needs, plan_.output.leaves_attached_stride, frames++);
-    frame.probe_samples = std::move(pending_samples);
-    pending_samples.clear();
-    output.push(std::move(frame));
-    output_ms += ms_since(start);
-  };
+    io::OutputFrame frame = capture_frame(coupled_, needs_, plan_.output.leaves_attached_stride, frames_++);
+    frame.probe_samples = std::move(pending_samples_);
+    pending_samples_.clear();
+    output_.push(std::move(frame));
+    output_ms_ += ms_since(start);
+  }
 
   // Every frame captured so far is written before run.json: a writer's error found while waiting for them
   // fails the run (unless it failed already) and is rethrown once run.json records it.
-  auto finish = [&](const std::string& status, const std::string& message) {
+  void finish(const std::string& status, const std::string& message) {
     cc_.finish();
     io::RunOutcome outcome;
     outcome.status = status;
@@ -124,14 +194,14 @@ RunSummary Simulation::run(const RunOptions& options) {
     std::exception_ptr write_error;
     const auto drain_start = Clock::now();
     try {
-      if (!pending_samples.empty()) {
+      if (!pending_samples_.empty()) {
         io::OutputFrame last;
         last.probe_samples_only = true;
-        last.probe_samples = std::move(pending_samples);
-        pending_samples.clear();
-        output.push(std::move(last));
+        last.probe_samples = std::move(pending_samples_);
+        pending_samples_.clear();
+        output_.push(std::move(last));
       }
-      output.drain();
+      output_.drain();
     } catch (const std::exception& e) {
       write_error = std::current_exception();
       if (outcome.status != "failed") {
@@ -139,77 +209,48 @@ RunSummary Simulation::run(const RunOptions& options) {
         outcome.message = e.what();
       }
     }
-    output_ms += ms_since(drain_start);
-    outcome.steps = summary.steps = coupled.steps();
-    outcome.simulated_time = summary.simulated_time = coupled.time();
-    summary.stage_ms = coupled.stage_ms();
-    summary.stage_ms["output"] = output_ms;
-    summary.stage_ms["probes"] = probe_ms;
-    summary.stage_ms["output_write"] = output.write_ms();
-    outcome.frames = summary.frames = output.frames_written();
-    outcome.wall_seconds = summary.wall_seconds = ms_since(wall_start) * 1e-3;
-    outcome.stage_ms = summary.stage_ms;
-    output.finish(outcome);
+    output_ms_ += ms_since(drain_start);
+    outcome.steps = summary_.steps = coupled_.steps();
+    outcome.simulated_time = summary_.simulated_time = coupled_.time();
+    summary_.stage_ms = coupled_.stage_ms();
+    summary_.stage_ms["output"] = output_ms_;
+    summary_.stage_ms["probes"] = probe_ms_;
+    summary_.stage_ms["output_write"] = output_.write_ms();
+    outcome.frames = summary_.frames = output_.frames_written();
+    outcome.wall_seconds = summary_.wall_seconds = ms_since(wall_start_) * 1e-3;
+    outcome.stage_ms = summary_.stage_ms;
+    output_.finish(outcome);
     if (write_error) std::rethrow_exception(write_error);
-  };
-
-  try {
-    std::filesystem::create_directories(directory_);
-    output.begin();
-    coupled.set_stage_timing(true);
-    if (plan_.turbulence_sigma) coupled.wind().set_turbulence_sigma(plan_.turbulence_sigma(0.0));
-    coupled.start(plan_.ambient_wind(0.0));
-    take_probe_sample();
-    hand_over_frame();
-    double next_frame = interval;
-    // 0: every step. Like frames, a sample is due once the simulated time reaches its time.
-    const double probe_interval = plan_.probe_interval;
-    double next_probe = probe_interval;
-    auto last_progress = Clock::now();
-    while (coupled.time() < end - kTimeTolerance * interval) {
-      if (options.stop && options.stop->load()) {
-        summary.interrupted = true;
-        break;
-      }
-      output.check();
-      coupled.set_ambient(plan_.ambient_wind(coupled.time()));
-      if (plan_.turbulence_sigma) coupled.wind().set_turbulence_sigma(plan_.turbulence_sigma(coupled.time()));
-      if (plan_.unresolved_intensity)
-        coupled.set_unresolved_intensity(plan_.unresolved_intensity(coupled.time()));
-      const CoupledStepReport report = coupled.step(end - coupled.time());
-      if (!(probe_interval > 0.0) || report.wind.time >= next_probe - kTimeTolerance * probe_interval) {
-        take_probe_sample();
-        while (probe_interval > 0.0 && next_probe <= report.wind.time + kTimeTolerance * probe_interval)
-          next_probe += probe_interval;
-      }
-      if (report.wind.time >= next_frame - kTimeTolerance * interval) {
-        hand_over_frame();
-        while (next_frame <= report.wind.time + kTimeTolerance * interval) next_frame += interval;
-      }
-      if (options.progress && ms_since(last_progress) > 250.0) {
-        last_progress = Clock::now();
-        const double wall = ms_since(wall_start) * 1e-3;
-        const double rate = report.wind.time / std::max(wall, 1e-9);  // simulated seconds per wall second
-        std::cerr << fmt::format("\rstep {:>7}  t {:8.2f} / {:.2f} s  {:7.1f} ms/step  ETA {:>8}   ",
-                                 report.wind.step, report.wind.time, end,
-                                 wall * 1e3 / double(report.wind.step),
-                                 format_duration((end - report.wind.time) / rate))
-                  << std::flush;
-      }
-    }
-  } catch (const std::exception& e) {
-    if (options.progress) std::cerr << "\n";
-    // The frames captured before the failure are still written; a second error while finishing is
-    // secondary to the first, which is the one reported.
-    try {
-      finish("failed", e.what());
-    } catch (const std::exception&) {
-    }
-    throw;
   }
-  if (options.progress) std::cerr << "\n";
-  finish(summary.interrupted ? "interrupted" : "completed", "");
-  return summary;
+
+  static constexpr double kProgressMs = 250.0;  // between progress lines
+
+  ComputeContext& cc_;
+  const SimulationPlan& plan_;
+  CoupledStep& coupled_;
+  const Clock::time_point wall_start_ = Clock::now();
+  ProbeSampler probes_;
+  io::OutputPipeline output_;
+  const io::FrameNeeds needs_;
+  RunSummary summary_;
+  double output_ms_ = 0.0, probe_ms_ = 0.0;
+  int frames_ = 0;
+  std::vector<io::ProbeSample> pending_samples_;
+};
+
+}  // namespace
+
+Simulation::Simulation(ComputeContext& cc, SimulationPlan plan, std::filesystem::path output_directory)
+    : cc_(cc), plan_(std::move(plan)), directory_(std::move(output_directory)) {
+  coupled_ = std::make_unique<CoupledStep>(cc_, plan_);
+}
+
+Simulation::~Simulation() = default;
+
+RunSummary Simulation::run(const RunOptions& options) {
+  const double end = options.end_time > 0.0 ? options.end_time : plan_.end_time;
+  RunLoop loop(cc_, plan_, directory_, *coupled_, options);
+  return loop.run(end, options, directory_);
 }
 
 }  // namespace fw::host

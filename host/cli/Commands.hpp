@@ -9,6 +9,7 @@
 #include <utility>
 #include <vector>
 
+#include "host/app/Simulation.hpp"
 #include "trees/Material.hpp"
 #include "trees/ModalBasis.hpp"
 
@@ -56,15 +57,15 @@ struct TreeModesOptions {
 
 int run_tree_modes(const TreeModesOptions& options);
 
-struct RunOptions {
+struct RunCommandOptions {
   std::string scenario;    // SCENARIO.yaml
   std::string output_dir;  // -o: overrides output.directory
-  double end_time = 0.0;   // --end: s, > 0 overrides time.end
   bool quiet = false;
+  host::RunOptions run;  // --end: run.end_time, s, > 0 overrides time.end
 };
 
 /// `forestwind run`: 0 completed, 130 interrupted by SIGINT (frames so far kept), exceptions otherwise.
-int run_scenario(const RunOptions& options, const GlobalOptions& global);
+int run_scenario(const RunCommandOptions& options, const GlobalOptions& global);
 /// `forestwind check`: validates and summarises without a device.
 int run_check(const std::string& scenario_path);
 

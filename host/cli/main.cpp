@@ -39,12 +39,12 @@ int main(int argc, char** argv) {
       ->check(CLI::PositiveNumber);
   bench_cmd->add_flag("--json", bench.json, "one JSON object on stdout");
 
-  cli::RunOptions run;
+  cli::RunCommandOptions run;
   auto* run_cmd = app.add_subcommand("run", "run a scenario: wind grid and forest on the OpenCL device");
   run_cmd->add_option("scenario", run.scenario, "SCENARIO.yaml")->required();
   run_cmd->add_option("-o,--output", run.output_dir,
                       "output folder (default: the scenario's output.directory)");
-  run_cmd->add_option("--end", run.end_time, "stop at this simulated time, s (default: time.end)")
+  run_cmd->add_option("--end", run.run.end_time, "stop at this simulated time, s (default: time.end)")
       ->check(CLI::PositiveNumber);
   run_cmd->add_flag("--quiet", run.quiet, "no progress line or summary");
 

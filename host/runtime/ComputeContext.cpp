@@ -107,7 +107,9 @@ std::size_t ComputeContext::flat_items(std::size_t n) const {
 
 cl::Buffer ComputeContext::buffer(std::size_t bytes, cl_mem_flags flags) {
   try {
-    return cl::Buffer(context_, flags, std::max<std::size_t>(bytes, 4));
+    cl::Buffer buffer(context_, flags, allocation_bytes(bytes));
+    allocated_bytes_ += allocation_bytes(bytes);
+    return buffer;
   } catch (const cl::Error& e) {
     throw ClError(fmt::format("allocating {} bytes on '{}'", bytes, device_.device_name), e.err());
   }

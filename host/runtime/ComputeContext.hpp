@@ -18,6 +18,7 @@
 // and the number of partials the host then adds in a fixed order.
 #pragma once
 
+#include <algorithm>
 #include <array>
 #include <cstddef>
 #include <memory>
@@ -73,7 +74,14 @@ class ComputeContext {
   /// The reductions' work-group, x by y items (FW_GROUP_X, FW_GROUP_Y in the kernels).
   std::array<std::size_t, 2> reduction_group() const;
 
+  /// A device buffer of `bytes` (at least kMinimumBufferBytes: OpenCL has no empty buffers).
   cl::Buffer buffer(std::size_t bytes, cl_mem_flags flags = CL_MEM_READ_WRITE);
+  /// What buffer(bytes) allocates on the device: the stages' memory estimates count with it.
+  static std::size_t allocation_bytes(std::size_t bytes) { return std::max(bytes, kMinimumBufferBytes); }
+  /// Bytes of every buffer this context has allocated so far (released ones included): a stage's estimate
+  /// is checked against the difference across its constructor.
+  std::size_t allocated_bytes() const { return allocated_bytes_; }
+  static constexpr std::size_t kMinimumBufferBytes = 4;
   /// A buffer holding `values` (blocking write; an empty vector gives an allocated but unwritten buffer).
   template <typename T>
   cl::Buffer upload(const std::vector<T>& values, cl_mem_flags flags = CL_MEM_READ_WRITE) {
@@ -92,6 +100,7 @@ class ComputeContext {
   std::unique_ptr<Profiler> profiler_;
   WorkMapping mapping_;
   int row_chunk_;
+  std::size_t allocated_bytes_ = 0;
 };
 
 /// A kernel that knows its name, so failures say which one.

@@ -11,7 +11,41 @@ namespace {
 // Per instance in the unresolved turbulence's travel buffer: whole points, fraction, last step (points).
 constexpr std::size_t kTravelFloats = 3;
 
+// The forest's buffers as the constructor allocates them: every packed table, then the state (forces, strong
+// amplitudes, q and qdot: 4 floats a mode), the sampled wind (3 a sample) and the displacements (3 a node).
+std::size_t forest_buffer_bytes(const trees::ForestPacking& p) {
+  std::size_t bytes = 0;
+  const auto add = [&bytes](const auto& table) {
+    bytes += ComputeContext::allocation_bytes(table.size() * sizeof(table[0]));
+  };
+  add(p.species), add(p.instances), add(p.node_shapes), add(p.projections), add(p.sample_points);
+  add(p.omega), add(p.damping_ratios), add(p.mode_instance), add(p.node_instance), add(p.strong_v);
+  add(p.strong_w), add(p.strong_b), add(p.walk), add(p.rest_elements);
+  const auto floats = [](std::size_t count) {
+    return ComputeContext::allocation_bytes(count * sizeof(float));
+  };
+  const std::size_t modes = std::size_t(p.total_modes);
+  bytes += 2 * floats(modes) + floats(2 * modes);
+  bytes += floats(3 * std::size_t(p.total_samples)) + floats(3 * std::size_t(p.total_nodes));
+  return bytes;
+}
+
 }  // namespace
+
+std::size_t ForestStages::estimate_device_bytes(const trees::Forest& forest) {
+  return forest_buffer_bytes(forest.pack());
+}
+
+std::size_t ForestStages::estimate_unresolved_bytes(const trees::UnresolvedTurbulenceSettings& settings,
+                                                    const trees::Forest& forest) {
+  if (forest.instance_count() == 0) return 0;
+  const std::size_t table = trees::UnresolvedTurbulence::kDeviceFloatsPerPoint *
+                            std::size_t(settings.series_length) * sizeof(float);
+  return ComputeContext::allocation_bytes(table) +
+         ComputeContext::allocation_bytes(std::size_t(forest.total_samples()) * sizeof(fw_int)) +
+         ComputeContext::allocation_bytes(kTravelFloats * std::size_t(forest.instance_count()) *
+                                          sizeof(float));
+}
 
 ForestStages::ForestStages(ComputeContext& cc, const fluid::GridSpec& spec, const trees::Forest& forest)
     : cc_(cc) {

@@ -44,6 +44,13 @@ class ForestStages {
   /// std::invalid_argument("ForestStages: ...") when `spec` is invalid.
   ForestStages(ComputeContext& cc, const fluid::GridSpec& spec, const trees::Forest& forest);
 
+  /// Bytes of device memory the constructor allocates for `forest` (the packed species and instances, the
+  /// modal state, forces, sampled wind and displacements).
+  static std::size_t estimate_device_bytes(const trees::Forest& forest);
+  /// Bytes set_unresolved_turbulence allocates for a series of `settings` over `forest`.
+  static std::size_t estimate_unresolved_bytes(const trees::UnresolvedTurbulenceSettings& settings,
+                                               const trees::Forest& forest);
+
   int instance_count() const { return instance_count_; }
   int total_modes() const { return total_modes_; }
   int total_nodes() const { return total_nodes_; }

@@ -44,6 +44,13 @@ class LeafStages {
   LeafStages(ComputeContext& cc, const fluid::GridSpec& spec, const trees::Forest& forest,
              const std::vector<trees::SpeciesLeaves>& species_leaves);
 
+  /// Bytes of device memory the constructor allocates, at most: per leaf its state, angle and rate, site
+  /// and instance, five float4 (position, velocity, normal, the frame's position and normal) and at most one
+  /// site of its own (a cell and its wind); per species leaf its rest table and element nodes; per instance
+  /// its first leaf and block. Every per-leaf array is padded by FW_LANES.
+  static std::size_t estimate_device_bytes(const trees::Forest& forest,
+                                           const std::vector<trees::SpeciesLeaves>& species_leaves);
+
   int leaf_count() const { return leaf_count_; }
 
   /// One step of every leaf over step.dt, ending at step.time + step.dt, in the wind `vel` (the step's end

@@ -14,6 +14,23 @@ namespace {
 
 // Validates everything before a single buffer exists (members are built after this returns).
 WindGridSetup validated(ComputeContext& cc, WindGridSetup setup) {
+  WindGrid::validate(setup);
+  const std::size_t box_bytes = setup.turbulence ? WindGrid::estimate_turbulence_bytes(*setup.turbulence) : 0;
+  WindGrid::check_fits_device(
+      setup.spec, WindGrid::estimate_device_bytes(setup.spec, setup.settings, cc.row_chunk()) + box_bytes,
+      cc.device());
+  return setup;
+}
+
+int viscous_substeps(double nu, double dt, double h) {
+  if (nu <= 0.0) return 0;
+  // Explicit diffusion is stable for nu dt / h^2 <= 1/6 in 3D; keep a margin.
+  return std::max(1, static_cast<int>(std::ceil(nu * dt / (h * h) / 0.15)));
+}
+
+}  // namespace
+
+void WindGrid::validate(const WindGridSetup& setup) {
   setup.spec.validate();
   setup.settings.validate();
   setup.profile.validate();
@@ -32,20 +49,15 @@ WindGridSetup validated(ComputeContext& cc, WindGridSetup setup) {
   for (const FwGust& g : setup.gusts)
     if (!(g.duration > 0.0f) || !(g.radius > 0.0f))
       throw std::invalid_argument("WindGrid: a gust needs a positive duration and radius");
-  const std::size_t box_bytes = setup.turbulence ? setup.turbulence->values().size() * sizeof(float) : 0;
-  WindGrid::check_fits_device(
-      setup.spec, WindGrid::estimate_device_bytes(setup.spec, setup.settings, cc.row_chunk()) + box_bytes,
-      cc.device());
-  return setup;
 }
 
-int viscous_substeps(double nu, double dt, double h) {
-  if (nu <= 0.0) return 0;
-  // Explicit diffusion is stable for nu dt / h^2 <= 1/6 in 3D; keep a margin.
-  return std::max(1, static_cast<int>(std::ceil(nu * dt / (h * h) / 0.15)));
+std::size_t WindGrid::estimate_turbulence_bytes(const fluid::TurbulenceBox& box) {
+  return ComputeContext::allocation_bytes(box.values().size() * sizeof(float));
 }
 
-}  // namespace
+std::size_t WindGrid::estimate_canopy_bytes(const fluid::GridSpec& spec) {
+  return ComputeContext::allocation_bytes(spec.cell_count() * sizeof(float));
+}
 
 std::size_t WindGrid::estimate_device_bytes(const fluid::GridSpec& spec, const fluid::WindSettings& settings,
                                             int row_chunk) {

@@ -72,9 +72,18 @@ class WindGrid {
   /// allocates. Throws std::invalid_argument naming the problem before any allocation.
   WindGrid(ComputeContext& cc, WindGridSetup setup);
 
-  /// Bytes of device memory a grid needs (fields, temporaries, pressure hierarchy).
+  /// Throws std::invalid_argument naming the problem in `setup` (GridSpec, WindSettings, InflowProfile,
+  /// sizes, gusts, forcing): every check the constructor makes except the device's memory. The planner
+  /// calls it, so that `check` finds what `run` would.
+  static void validate(const WindGridSetup& setup);
+  /// Bytes of device memory a grid needs (fields, temporaries, pressure hierarchy), within a few per cent:
+  /// the small buffers (wall faces, gusts, the profile) are left out and the hierarchy is taken as 8/7.
   static std::size_t estimate_device_bytes(const fluid::GridSpec& spec, const fluid::WindSettings& settings,
                                            int row_chunk);
+  /// Bytes the inflow turbulence box takes on the device (its values, uploaded once).
+  static std::size_t estimate_turbulence_bytes(const fluid::TurbulenceBox& box);
+  /// Bytes set_canopy allocates for a canopy on `spec` (a drag density per cell).
+  static std::size_t estimate_canopy_bytes(const fluid::GridSpec& spec);
   /// Throws std::invalid_argument when `bytes` exceed the device's global memory.
   static void check_fits_device(const fluid::GridSpec& spec, std::size_t bytes, const DeviceInfo& device);
 

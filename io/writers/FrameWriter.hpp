@@ -39,8 +39,9 @@ struct LeafFrame {
   std::vector<std::array<float, 3>> normal;    ///< blade normal, unit
   std::vector<std::uint8_t> state;             ///< trees::LeafState: 0 attached, 1 flying, 2 landed
   std::vector<std::int32_t> tree_id;           ///< instance index of the tree the leaf grew on
-  std::vector<float> size;                     ///< blade side l = sqrt(area), m
-  trees::LeafCounts counts;                    ///< over every leaf of the run, written or not
+  std::vector<float>
+      side;  ///< blade side l = sqrt(area), m (the files' array "size", Houdini's pscale l / 2)
+  trees::LeafCounts counts;  ///< over every leaf of the run, written or not
   std::size_t size_written() const { return position.size(); }
 };
 

@@ -51,7 +51,7 @@ LeafFrame five_leaves() {
                    {-1.0f, 0.0f, 0.0f}, {0.0f, -0.8f, 0.6f}, {0.0f, 1.0f, 0.0f}};
   leaves.state = {0, 1, 2, 0, 1, 1};
   leaves.tree_id = {0, 1, 2, 3, 4, 5};
-  leaves.size = {0.07f, 0.0316227766f, 0.05f, 0.1f, 0.0625f, 0.04f};
+  leaves.side = {0.07f, 0.0316227766f, 0.05f, 0.1f, 0.0625f, 0.04f};
   leaves.counts = {.shed = 4, .flying = 3, .landed = 1, .exited = 0, .attached = 2};
   return leaves;
 }
@@ -163,7 +163,7 @@ TEST_CASE("leaves vdb: a points grid with world positions, N, state, tree_id and
     }
     CHECK(point.state == leaves.state[k]);
     // Exact: half of a float is a float.
-    CHECK(point.pscale == 0.5f * leaves.size[k]);
+    CHECK(point.pscale == 0.5f * leaves.side[k]);
   }
   CHECK(seen == std::vector<int>(leaves.size_written(), 1));
 }
@@ -203,7 +203,7 @@ TEST_CASE("leaves vdb: an empty leaf frame writes an empty grid named leaves, le
       fw::io::write_wind_vdb(other, frame, true, true, &bad), std::invalid_argument,
       Catch::Matchers::Message("write_wind_vdb: leaves: state: expected 6 values (one per leaf), got 5"));
   bad = five_leaves();
-  bad.size[3] = std::numeric_limits<float>::quiet_NaN();
+  bad.side[3] = std::numeric_limits<float>::quiet_NaN();
   CHECK_THROWS_AS(fw::io::write_wind_vdb(other, frame, true, true, &bad), std::invalid_argument);
   CHECK_FALSE(fs::exists(other));
 }

@@ -52,7 +52,7 @@ LeafFrame four_leaves() {
   leaves.normal = {{0.0f, 0.0f, 1.0f}, {r, r, r}, {0.6f, 0.0f, 0.8f}, {-1.0f, 0.0f, 0.0f}};
   leaves.state = {0, 1, 2, 3};
   leaves.tree_id = {7, 7, 12, 2147483647};
-  leaves.size = {0.07f, 0.0316227766f, 0.05f, 0.1f};
+  leaves.side = {0.07f, 0.0316227766f, 0.05f, 0.1f};
   leaves.counts = {.shed = 3, .flying = 1, .landed = 1, .exited = 1, .attached = 5};
   return leaves;
 }
@@ -108,7 +108,7 @@ TEST_CASE("leaves vtk: points, one vertex each, and every point array read back 
     }
     CHECK(state->GetTuple1(k) == double(leaves.state[i]));
     CHECK(tree_id->GetTuple1(k) == double(leaves.tree_id[i]));
-    CHECK(size->GetTuple1(k) == double(leaves.size[i]));
+    CHECK(size->GetTuple1(k) == double(leaves.side[i]));
   }
 
   // One vertex cell per point, vertex k holding point k, and no other cells.
@@ -148,7 +148,7 @@ TEST_CASE("leaves vtk: inconsistent leaves throw invalid_argument, a missing fol
   fw::test::TempDir dir("fw_out");
   const fs::path path = fs::path(dir.path()) / "leaves.vtp";
   LeafFrame leaves = four_leaves();
-  leaves.size.pop_back();
+  leaves.side.pop_back();
   CHECK_THROWS_MATCHES(
       fw::io::write_leaves_vtp(path, 0.0, leaves), std::invalid_argument,
       Catch::Matchers::Message("write_leaves_vtp: leaves: size: expected 4 values (one per leaf), got 3"));
@@ -199,7 +199,7 @@ TEST_CASE("leaves vtk writer: leaves.pvd lists every frame's file in the leaves 
   frame.leaves.normal.resize(2);
   frame.leaves.state.resize(2);
   frame.leaves.tree_id.resize(2);
-  frame.leaves.size.resize(2);
+  frame.leaves.side.resize(2);
   writer.write(frame);
   writer.finish(fw::io::RunOutcome{});
 

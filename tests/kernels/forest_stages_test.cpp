@@ -465,3 +465,21 @@ TEST_CASE("ForestStages: deformation timing with and without the length-restorin
                   << " ms, whole correction " << corrected_ms << " ms (the length-restoring pass alone "
                   << pass_ms << " ms)");
 }
+
+TEST_CASE("ForestStages: the device memory estimate is what the stage allocates", "[forest]") {
+  auto* cc = test::device_or_skip();
+  if (!cc) return;
+  const trees::Forest forest = test_forest();
+  // Exact: the planner reports this number (host/app/plan/ForestPlan.cpp), and the estimate counts the same
+  // packed tables and state buffers the constructor uploads.
+  const std::size_t before = cc->allocated_bytes();
+  host::ForestStages stages(*cc, forest_grid(), forest);
+  CHECK(cc->allocated_bytes() - before == host::ForestStages::estimate_device_bytes(forest));
+
+  trees::UnresolvedTurbulenceSettings settings;
+  settings.series_length = 1 << 10;
+  const std::size_t before_series = cc->allocated_bytes();
+  stages.set_unresolved_turbulence(trees::UnresolvedTurbulence(settings), 0.1);
+  CHECK(cc->allocated_bytes() - before_series ==
+        host::ForestStages::estimate_unresolved_bytes(settings, forest));
+}

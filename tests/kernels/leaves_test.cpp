@@ -188,3 +188,22 @@ TEST_CASE("leaves: a frame moves attached leaves with their element's displaceme
   CHECK(error < 1e-5);  // float sums of ~10 m and 0.3 m
   CHECK(moved.state == rest.state);
 }
+
+TEST_CASE("LeafStages: the device memory estimate bounds what the stage allocates by the sites alone",
+          "[leaves_device]") {
+  auto* cc = test::device_or_skip();
+  if (!cc) return;
+  const trees::SpeciesBasis species = test::small_species("broadleaf", 8.0, 3, 5, 6, 2, kLeafAreaIndex);
+  const trees::Forest forest({species}, {{0, {2.0, 6.0, 0.0}, 0.3, 1.0}, {0, {24.0, 10.0, 0.0}, -1.2, 0.8}});
+  const std::vector<trees::SpeciesLeaves> leaves = {leaves_of(species, trees::FlutterModel::stochastic, 11)};
+  const std::size_t before = cc->allocated_bytes();
+  host::LeafStages stages(*cc, leaf_grid(), forest, leaves);
+  const std::size_t allocated = cc->allocated_bytes() - before;
+  const std::size_t estimate = host::LeafStages::estimate_device_bytes(forest, leaves);
+  // The estimate takes one site (a cell and its wind, 16 bytes) per leaf, the most there can be; the stage
+  // allocates one per cell that holds a leaf. Everything else is counted exactly.
+  const std::size_t leaf_total = std::size_t(stages.leaf_count());
+  constexpr std::size_t kSiteBytes = sizeof(std::int32_t) + 3 * sizeof(float);
+  CHECK(allocated <= estimate);
+  CHECK(allocated + leaf_total * kSiteBytes >= estimate);
+}

@@ -78,9 +78,8 @@ TEST_CASE("validation: the periodic forest shows the mixing-layer statistics at 
   const io::Scenario scenario =
       io::load_scenario(std::filesystem::path(FORESTWIND_SOURCE_DIR) / "scenarios/canopy.yaml");
   host::SimulationPlan plan = host::plan_simulation(scenario, nullptr, nullptr);
-  host::CoupledStep coupled(*cc, plan.wind, plan.forest, plan.coupling);
-  if (plan.turbulence_sigma) coupled.wind().set_turbulence_sigma(plan.turbulence_sigma(0.0));
-  coupled.start(plan.ambient_wind(0.0));
+  host::CoupledStep coupled(*cc, plan);
+  coupled.start();
   const auto& spec = coupled.wind().spec();
 
   // Heights of the mean profile: every cell centre. Canopy-top series at every 4th column.
@@ -95,7 +94,6 @@ TEST_CASE("validation: the periodic forest shows the mixing-layer statistics at 
   double next_sample = length.spin_up;
   const double end = length.spin_up + length.average;
   while (coupled.time() < end - 1e-9) {
-    coupled.set_ambient(plan.ambient_wind(coupled.time()));
     coupled.step(end - coupled.time());
     if (coupled.time() < next_sample - 1e-9) continue;
     next_sample += sample_interval;

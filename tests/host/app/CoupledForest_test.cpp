@@ -67,8 +67,8 @@ TEST_CASE("CoupledForest: one tree in steady uniform wind settles at the static 
   const fw::trees::SpeciesBasis species = species_from(asymmetric_nodes());
   const double yaw = 0.7, scale = 1.2;
   const fw::trees::Forest forest({species}, {{0, {12.0, 6.0, 0.0}, yaw, scale}});
-  fw::host::CoupledStep coupled(*cc, channel(8.0), forest, {});
-  coupled.start({8.0, 0.0, 0.0});
+  fw::host::CoupledStep coupled(*cc, channel(8.0), forest, {}, fw::host::TimeInputs::steady({8.0, 0.0, 0.0}));
+  coupled.start();
   for (int step = 0; step < 600; ++step) coupled.step();  // 30 s: over 10 damping times of the slowest mode
   const fw::host::ModalState state = coupled.trees().download_modal_state();
 
@@ -101,8 +101,9 @@ TEST_CASE("CoupledForest: wind from the east gives the mirror image of the respo
   const fw::trees::Forest east_forest({species_from(mirrored)}, {{0, {12.0, 6.0, 0.0}, 0.0, 1.0}});
 
   auto run = [&](const fw::trees::Forest& forest, double wind_x) {
-    fw::host::CoupledStep coupled(*cc, channel(wind_x), forest, {});
-    coupled.start({wind_x, 0.0, 0.0});
+    fw::host::CoupledStep coupled(*cc, channel(wind_x), forest, {},
+                                  fw::host::TimeInputs::steady({wind_x, 0.0, 0.0}));
+    coupled.start();
     for (int step = 0; step < 40; ++step) coupled.step();  // 2 s: still swinging, not yet static
     coupled.trees().enqueue_deform();
     return coupled.trees().download_displacements();
@@ -156,9 +157,10 @@ TEST_CASE("CoupledForest: a tree in turbulent wind sways at its first modal freq
   fw::trees::Forest forest({fw::trees::SpeciesBasis::compute(fw::trees::generate_tree(tree), settings)},
                            {{0, {6.0, 8.0, 0.0}, 0.0, 1.0}});
   const double f1 = forest.species()[0].modes().frequencies_hz()(0);
-  fw::host::CoupledStep coupled(*cc, setup, forest, {});
-  coupled.wind().set_turbulence_sigma(0.2 * 8.0);
-  coupled.start({8.0, 0.0, 0.0});
+  fw::host::TimeInputs inputs = fw::host::TimeInputs::steady({8.0, 0.0, 0.0});
+  inputs.turbulence_sigma = [](double) { return 0.2 * 8.0; };
+  fw::host::CoupledStep coupled(*cc, setup, forest, {}, inputs);
+  coupled.start();
   fw::host::ProbeSampler tips(*cc, coupled.wind().spec(), {}, forest, 1, true);
   // 2 s to set up, then one box period (128 s, 134 first-mode periods) for the spectrum's averages.
   while (coupled.time() < 2.0 - 1e-9) coupled.step();

@@ -52,8 +52,9 @@ struct LeafRun {
 // Runs `seconds` of the coupled step at `speed` and returns the final leaves and counts.
 std::pair<host::LeafSnapshot, trees::LeafCounts> run(host::ComputeContext& cc, double speed, double seconds) {
   LeafRun setup(speed);
-  host::CoupledStep coupled(cc, setup.wind, setup.forest, setup.coupling);
-  coupled.start(setup.wind.ambient);
+  host::CoupledStep coupled(cc, setup.wind, setup.forest, setup.coupling,
+                            host::TimeInputs::steady(setup.wind.ambient));
+  coupled.start();
   while (coupled.time() < seconds - 1e-9) coupled.step(seconds - coupled.time());
   return {coupled.leaves().download(), coupled.leaves().counts()};
 }

@@ -31,8 +31,9 @@ fw::host::WindGridSetup channel(double cfl, double dt) {
 TEST_CASE("CoupledStep: dt follows the CFL number and never passes the caller's limit", "[simulation]") {
   auto* cc = fw::test::device_or_skip();
   if (!cc) return;
-  fw::host::CoupledStep coupled(*cc, channel(0.5, 0.0), fw::trees::Forest(), {});
-  coupled.start({5.0, 0.0, 0.0});
+  fw::host::CoupledStep coupled(*cc, channel(0.5, 0.0), fw::trees::Forest(), {},
+                                fw::host::TimeInputs::steady({5.0, 0.0, 0.0}));
+  coupled.start();
   const auto free = coupled.step();
   // Uniform 5 m/s on 1 m cells: dt = 0.5 * 1 / 5 (float32 velocity: 1e-6 relative).
   CHECK(free.wind.dt == Approx(0.1).epsilon(1e-6));
@@ -46,8 +47,9 @@ TEST_CASE("CoupledStep: a non-finite velocity stops the next step, naming the st
           "[simulation]") {
   auto* cc = fw::test::device_or_skip();
   if (!cc) return;
-  fw::host::CoupledStep coupled(*cc, channel(0.5, 0.0), fw::trees::Forest(), {});
-  coupled.start({5.0, 0.0, 0.0});
+  fw::host::CoupledStep coupled(*cc, channel(0.5, 0.0), fw::trees::Forest(), {},
+                                fw::host::TimeInputs::steady({5.0, 0.0, 0.0}));
+  coupled.start();
   coupled.step();
   fw::fluid::MacVelocity velocity = coupled.wind().download_velocity();
   velocity.v[velocity.v.size() / 2] = std::numeric_limits<float>::quiet_NaN();
@@ -68,8 +70,9 @@ TEST_CASE("CoupledStep: a fixed dt far past the CFL limit stops before the first
   auto* cc = fw::test::device_or_skip();
   if (!cc) return;
   // 5 m/s, 1 m cells, dt 2 s: CFL 10 > kRunawayCfl.
-  fw::host::CoupledStep coupled(*cc, channel(0.0, 2.0), fw::trees::Forest(), {});
-  coupled.start({5.0, 0.0, 0.0});
+  fw::host::CoupledStep coupled(*cc, channel(0.0, 2.0), fw::trees::Forest(), {},
+                                fw::host::TimeInputs::steady({5.0, 0.0, 0.0}));
+  coupled.start();
   try {
     coupled.step();
     FAIL("no SimulationError");

@@ -1,6 +1,7 @@
 // The plan on the host, no device: every species' leaves, generated on the skeleton of its basis, their
 // totals and device memory, and the same leaves from the same scenario.
 #include "host/app/SimulationPlan.hpp"
+#include "host/stages/LeafStages.hpp"
 
 #include <catch2/catch.hpp>
 
@@ -63,7 +64,7 @@ TEST_CASE("SimulationPlan: a species with leaves gets round(fraction x leaf area
   TempDir dir("fw_plan");
   std::ostringstream log;
   const auto plan = plan_of(dir, "leaves", "{area: 0.01, fraction: 0.5, seed: 9}", &log);
-  REQUIRE(plan.leaves.size() == 2);  // one per forest species, in forest order
+  REQUIRE(plan.coupling.leaves.size() == 2);  // one per forest species, in forest order
   REQUIRE(plan.forest.species().size() == 2);
 
   // On the skeleton of the species' basis, with the canopy's leaf area index.
@@ -73,7 +74,7 @@ TEST_CASE("SimulationPlan: a species with leaves gets round(fraction x leaf area
   const long expected = std::lround(0.5 * foliage.leaf_area / 0.01);
   INFO("leaf area " << foliage.leaf_area << " m^2");
   REQUIRE(expected > 10);
-  const fw::trees::SpeciesLeaves& oak = plan.leaves[0];
+  const fw::trees::SpeciesLeaves& oak = plan.coupling.leaves[0];
   CHECK(oak.count() == expected);
   CHECK(oak.settings().seed == 9);
   CHECK(oak.settings().area == 0.01);
@@ -83,26 +84,29 @@ TEST_CASE("SimulationPlan: a species with leaves gets round(fraction x leaf area
     CHECK(foliage.leaf_bearing[std::size_t(leaf.element)]);
   }
   // The species without `leaves` has none, a default-constructed set.
-  CHECK(plan.leaves[1].count() == 0);
-  // Two oaks carry the species' leaves each; the bare tree none. The coupled step gets the same leaves.
-  CHECK(plan.leaf_count == 2 * expected);
-  REQUIRE(plan.coupling.leaves.size() == 2);
-  CHECK(plan.coupling.leaves[0].count() == expected);
   CHECK(plan.coupling.leaves[1].count() == 0);
+  // Two oaks carry the species' leaves each; the bare tree none.
+  CHECK(plan.leaf_count == 2 * expected);
 
   // The log names the leaves of the species that has them.
   CHECK_THAT(log.str(), Contains(", " + std::to_string(expected) + " leaves ("));
   CHECK(log.str().find("leaves") == log.str().rfind("leaves"));  // once: bare has none
 
-  // Device memory: 113 bytes per leaf of every tree (state; angle and rate; site and instance; position,
-  // velocity, normal, frame position and normal; a site's cell and wind) and 120 per species leaf (28 rest
-  // fields and 2 nodes).
+  // Device memory: the leaves are a part of their own (their stage's estimate, checked against what the
+  // stage allocates in tests/kernels/leaves_test.cpp), and the only difference from the same forest bare.
   const auto bare = plan_of(dir, "no_leaves", "");
   CHECK(bare.leaf_count == 0);
-  CHECK(bare.leaves.size() == 2);
-  CHECK(bare.leaves[0].count() == 0);
-  CHECK(plan.estimated_device_bytes - bare.estimated_device_bytes ==
-        std::size_t(plan.leaf_count) * 113 + std::size_t(expected) * 120);
+  CHECK(bare.coupling.leaves.size() == 2);
+  CHECK(bare.coupling.leaves[0].count() == 0);
+  const auto part = [](const fw::host::SimulationPlan& p, const std::string& name) {
+    for (const auto& entry : p.memory.parts())
+      if (entry.name == name) return entry.bytes;
+    return std::size_t(0);
+  };
+  CHECK(part(bare, "leaves") == 0);
+  CHECK(part(plan, "leaves") ==
+        fw::host::LeafStages::estimate_device_bytes(plan.forest, plan.coupling.leaves));
+  CHECK(plan.memory.total() - bare.memory.total() == part(plan, "leaves"));
 }
 
 TEST_CASE("SimulationPlan: the same scenario twice gives identical leaves, another seed other leaves",
@@ -110,8 +114,8 @@ TEST_CASE("SimulationPlan: the same scenario twice gives identical leaves, anoth
   TempDir dir("fw_plan");
   const auto first = plan_of(dir, "first", "{model: stochastic, area: 0.02}");
   const auto second = plan_of(dir, "second", "{model: stochastic, area: 0.02}");
-  const fw::trees::SpeciesLeaves& a = first.leaves[0];
-  const fw::trees::SpeciesLeaves& b = second.leaves[0];
+  const fw::trees::SpeciesLeaves& a = first.coupling.leaves[0];
+  const fw::trees::SpeciesLeaves& b = second.coupling.leaves[0];
   REQUIRE(a.count() > 0);
   REQUIRE(a.count() == b.count());
   // The default seed: global seed 4 + 2^32 + species index 0.
@@ -132,9 +136,9 @@ TEST_CASE("SimulationPlan: the same scenario twice gives identical leaves, anoth
     CHECK(x.tumble_axis == y.tumble_axis);
   }
   const auto reseeded = plan_of(dir, "reseeded", "{model: stochastic, area: 0.02, seed: 17}");
-  REQUIRE(reseeded.leaves[0].count() == a.count());  // the same foliage, so the same count
+  REQUIRE(reseeded.coupling.leaves[0].count() == a.count());  // the same foliage, so the same count
   bool differ = false;
   for (int k = 0; k < a.count(); ++k)
-    differ = differ || !(reseeded.leaves[0].leaf(k).anchor == a.leaf(k).anchor);
+    differ = differ || !(reseeded.coupling.leaves[0].leaf(k).anchor == a.leaf(k).anchor);
   CHECK(differ);
 }

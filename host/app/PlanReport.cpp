@@ -1,0 +1,96 @@
+// print_plan: what `forestwind check` shows of a plan, read from the plan alone.
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+
+#include "host/app/SimulationPlan.hpp"
+
+namespace fw::host {
+
+namespace {
+
+std::string megabytes(std::size_t bytes) {
+  return fmt::format("{:.1f} MB", double(bytes) / 1e6);
+}
+
+// A rough ground is a slip wall for the grid plus the log-law stress (fluid::WindSettings).
+std::string boundaries_line(const WindGridSetup& wind) {
+  static const char* faces[6] = {"west", "east", "south", "north", "ground", "top"};
+  std::string line;
+  for (int f = 0; f < 6; ++f) {
+    const bool rough = f == FW_FACE_GROUND && wind.settings.wall_roughness_length > 0.0;
+    line += fmt::format("{}{} {}", f ? ", " : "", faces[f],
+                        rough ? fmt::format("rough (z0 {} m)", wind.settings.wall_roughness_length)
+                              : fluid::to_string(wind.spec.boundary[std::size_t(f)]));
+  }
+  return line;
+}
+
+// The largest ambient speed over the run (sampled every second and at the end) plus the strongest gust: what
+// an automatic time step will be limited by.
+double peak_wind_speed(const SimulationPlan& plan) {
+  double peak = 0.0;
+  for (double t = 0.0;; t = std::min(t + 1.0, plan.end_time)) {
+    const auto v = plan.inputs.ambient_wind(t);
+    peak = std::max(peak, std::hypot(v[0], v[1], v[2]));
+    if (t >= plan.end_time) break;
+  }
+  double gust = 0.0;
+  for (const FwGust& g : plan.wind.gusts) gust = std::max(gust, double(g.peak_speed));
+  return peak + gust;
+}
+
+}  // namespace
+
+void print_plan(const SimulationPlan& plan, std::ostream& out) {
+  const fluid::GridSpec& spec = plan.wind.spec;
+  out << fmt::format("grid: {} x {} x {} = {} cells of {} m, domain {} x {} x {} m\n", spec.nx, spec.ny,
+                     spec.nz, spec.cell_count(), spec.h, spec.nx * spec.h, spec.ny * spec.h,
+                     spec.nz * spec.h);
+  out << "boundaries at t = 0: " << boundaries_line(plan.wind) << "\n";
+  const long solid_cells =
+      std::count_if(plan.wind.solid.begin(), plan.wind.solid.end(), [](std::uint8_t s) { return s != 0; });
+  out << fmt::format("solid cells: {}, gusts: {}, advection: {}, pressure: {}\n", solid_cells,
+                     plan.wind.gusts.size(), fluid::to_string(plan.wind.settings.advection),
+                     fluid::to_string(plan.wind.settings.pressure.solver));
+  if (const auto& box = plan.wind.turbulence) {
+    const auto& n = box->cells();
+    const auto period = box->period();
+    out << fmt::format(
+        "turbulence: von Karman, L_u {} m, box {} x {} x {} points {} m apart ({} x {} x {} m), {}\n",
+        box->spec().spectrum.integral_length, n[0], n[1], n[2], box->spacing(), period[0], period[1],
+        period[2],
+        plan.coupling.unresolved.enabled ? "unresolved eddies force the trees" : "no unresolved forcing");
+  }
+  for (std::size_t i = 0; i < plan.species.size(); ++i) {
+    const io::SpeciesSummary& s = plan.species[i];
+    const int leaves = plan.coupling.leaves[i].count();
+    out << fmt::format(
+        "species {}: {} nodes, {} modes from {:.3f} Hz, {} wind samples, {} trees{} (basis {})\n", s.name,
+        s.nodes, s.modes, s.first_hz, s.samples, s.trees,
+        leaves > 0 ? fmt::format(", {} leaves a tree", leaves) : "", s.cache);
+  }
+  out << fmt::format("trees: {}, leaves: {}, two-way coupling: {}\n", plan.forest.instance_count(),
+                     plan.leaf_count, plan.coupling.drag_density.empty() ? "off" : "on");
+  std::string parts;
+  for (const auto& part : plan.memory.parts())
+    parts += fmt::format("{}{} {}", parts.empty() ? "" : ", ", part.name, megabytes(part.bytes));
+  out << fmt::format("estimated device memory: {} ({})\n", megabytes(plan.memory.total()), parts);
+  const fluid::WindSettings& settings = plan.wind.settings;
+  if (!(settings.cfl > 0.0)) {
+    out << fmt::format("steps: {} (dt {} s to t = {} s)\n", long(std::ceil(plan.end_time / settings.dt)),
+                       settings.dt, plan.end_time);
+  } else {
+    const double peak = peak_wind_speed(plan);
+    const double dt = peak > 0.0 ? std::min(settings.cfl * spec.h / peak, settings.max_dt) : settings.max_dt;
+    out << fmt::format(
+        "steps: about {} or more (dt auto, CFL {}: {:.3f} s at the peak ambient wind plus gusts, {:.1f} m/s, "
+        "to t = {} s)\n",
+        long(std::ceil(plan.end_time / dt)), settings.cfl, dt, peak, plan.end_time);
+  }
+  out << fmt::format("output: {} every {} s, {} probes\n", plan.output.directory.string(),
+                     plan.output.interval, plan.output.probes.size());
+}
+
+}  // namespace fw::host

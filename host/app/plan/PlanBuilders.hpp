@@ -1,0 +1,39 @@
+// The builders of a SimulationPlan, one per part, in the order plan_simulation calls them. Each fills its
+// part of the plan from the scenario, validates it as the stage that will receive it does, and adds the
+// device memory that stage will allocate (plan.memory). Later builders read what earlier ones resolved.
+//
+//   SimulationPlan plan;
+//   plan_wind(scenario, plan);          // grid, solids, profile, gusts, mean forcing, ambient wind over time
+//   plan_turbulence(scenario, plan);    // the inflow box and its sigma_u(t); Stam's unresolved forcing
+//   auto bases = plan_species(scenario, cache, log, plan);   // bases (cache), leaves, summaries
+//   plan_forest(scenario, std::move(bases), plan);          // the placed instances
+//   plan_coupling(scenario, plan);      // the canopy and its drag, integrator, strong-wind correction
+//   plan_outputs(scenario, plan);       // writers, probes, the scenario record
+#pragma once
+
+#include <ostream>
+#include <vector>
+
+#include "host/app/SimulationPlan.hpp"
+#include "io/Scenario.hpp"
+#include "trees/BasisCache.hpp"
+#include "trees/SpeciesBasis.hpp"
+
+namespace fw::host {
+
+/// host/app/plan/WindPlan.cpp
+void plan_wind(const io::Scenario& scenario, SimulationPlan& plan);
+/// host/app/plan/TurbulencePlan.cpp (after plan_wind)
+void plan_turbulence(const io::Scenario& scenario, SimulationPlan& plan);
+/// host/app/plan/SpeciesPlan.cpp: every species' basis, in file order (to be handed to plan_forest), its
+/// leaves (plan.coupling.leaves) and its summary (plan.species). `cache` and `log` may be null.
+std::vector<trees::SpeciesBasis> plan_species(const io::Scenario& scenario, const trees::BasisCache* cache,
+                                              std::ostream* log, SimulationPlan& plan);
+/// host/app/plan/ForestPlan.cpp (after plan_species)
+void plan_forest(const io::Scenario& scenario, std::vector<trees::SpeciesBasis> bases, SimulationPlan& plan);
+/// host/app/plan/CouplingPlan.cpp (after plan_forest and plan_turbulence)
+void plan_coupling(const io::Scenario& scenario, SimulationPlan& plan);
+/// host/app/plan/OutputPlan.cpp
+void plan_outputs(const io::Scenario& scenario, SimulationPlan& plan);
+
+}  // namespace fw::host

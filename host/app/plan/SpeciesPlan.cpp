@@ -1,0 +1,94 @@
+// The species' part of the plan: each species' skeleton (generated, or read from its .tree or TreeQSM file),
+// its modal and wind basis (through the disk cache when there is one), its leaves on the basis' own
+// skeleton, and the summary that run.json and `check` report.
+#include <fmt/format.h>
+
+#include <chrono>
+
+#include "host/app/plan/PlanBuilders.hpp"
+#include "trees/Foliage.hpp"
+#include "trees/QsmImport.hpp"
+#include "trees/TreeFile.hpp"
+#include "trees/TreeGenerator.hpp"
+
+namespace fw::host {
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+// A file that does not parse throws base::SourceError naming its line (an input error).
+trees::Skeleton species_skeleton(const io::Species& species) {
+  using Kind = io::SkeletonSource::Kind;
+  switch (species.skeleton.kind) {
+    case Kind::generate:
+      return trees::generate_tree(species.skeleton.generate);
+    case Kind::file:
+      return trees::read_tree_file(species.skeleton.path.string());
+    case Kind::qsm:
+      return trees::read_qsm_cylinders(species.skeleton.path.string());
+  }
+  throw std::logic_error("species_skeleton: unknown skeleton source");
+}
+
+trees::SpeciesSettings species_settings(const io::Species& species) {
+  trees::SpeciesSettings settings;
+  settings.material = species.material;
+  settings.modal.mode_count = species.modes.count;
+  settings.modal.damping = trees::Damping::modal_ratio(species.modes.damping_ratio);
+  settings.wind.samples = species.modes.wind_samples;
+  // One drag convention on both sides of the coupling (trees/CanopyDrag.hpp): 1/2 rho C_D A |u| u.
+  settings.wind.branch_drag_coefficient = species.drag_coefficient;
+  settings.wind.leaf_area_index = species.canopy.leaf_area_index;
+  settings.wind.leaf_drag_coefficient = species.canopy.drag_coefficient;
+  return settings;
+}
+
+}  // namespace
+
+std::vector<trees::SpeciesBasis> plan_species(const io::Scenario& scenario, const trees::BasisCache* cache,
+                                              std::ostream* log, SimulationPlan& plan) {
+  std::vector<trees::SpeciesBasis> bases;
+  for (std::size_t index = 0; index < scenario.forest.species.size(); ++index) {
+    const io::Species& species = scenario.forest.species[index];
+    const auto start = Clock::now();
+    const trees::SpeciesSettings settings = species_settings(species);
+    const trees::Skeleton skeleton = species_skeleton(species);
+    io::check_species_skeleton(scenario, int(index), skeleton.size());
+    io::SpeciesSummary summary;
+    summary.name = species.name;
+    if (cache) {
+      trees::CacheOutcome outcome{};
+      std::string store_error;
+      bases.push_back(cache->load_or_compute(skeleton, settings, &outcome, &store_error));
+      summary.cache = trees::to_string(outcome);
+      if (!store_error.empty() && log) *log << "warning: " << store_error << "\n";
+    } else {
+      bases.push_back(trees::SpeciesBasis::compute(skeleton, settings));
+    }
+    const trees::SpeciesBasis& basis = bases.back();
+    summary.seconds = std::chrono::duration<double>(Clock::now() - start).count();
+    summary.nodes = basis.skeleton().size();
+    summary.modes = basis.modes().mode_count();
+    summary.samples = basis.wind().sample_count();
+    summary.first_hz = basis.modes().frequencies_hz()(0);
+    // The leaves on the basis' own skeleton and foliage, so that their elements are the forest's.
+    plan.coupling.leaves.push_back(
+        species.leaves.has_leaves()
+            ? trees::SpeciesLeaves::generate(
+                  basis.skeleton(), trees::Foliage::of(basis.skeleton(), species.canopy.leaf_area_index),
+                  species.leaves)
+            : trees::SpeciesLeaves());
+    if (log) {
+      const int leaves = plan.coupling.leaves.back().count();
+      *log << fmt::format("species {}: {} nodes, {} modes from {:.3f} Hz, {} wind samples{} ({}, {:.2f} s)\n",
+                          summary.name, summary.nodes, summary.modes, summary.first_hz, summary.samples,
+                          species.leaves.has_leaves() ? fmt::format(", {} leaves", leaves) : "",
+                          summary.cache, summary.seconds);
+    }
+    plan.species.push_back(summary);
+  }
+  return bases;
+}
+
+}  // namespace fw::host

@@ -1,0 +1,67 @@
+// The turbulence's part of the plan: the unit-sigma inflow box of wind.turbulence with its sigma_u over
+// time, and Stam's forcing of the trees by the eddies the grid cannot resolve with its intensity over time.
+#include <cmath>
+#include <memory>
+
+#include "fluid/TurbulenceBox.hpp"
+#include "host/app/plan/PlanBuilders.hpp"
+#include "host/stages/ForestStages.hpp"
+
+namespace fw::host {
+
+namespace {
+
+// The unit-sigma_u box on a grid of cell size h, fluid::kTurbulencePointsPerCell points a cell along each
+// axis: every face of an inflow plane (at whole cells along its normal, half cells across) then sits on a
+// box point, so that the plane carries the box's values without interpolation. Unequal sigma_u, sigma_v,
+// sigma_w scale the box's components: its x and y take the along- and across-wind values by the horizontal
+// axis closer to the wind at t = 0 (equal values, the intensity form, need no such choice).
+fluid::TurbulenceBoxSpec inflow_box_spec(const io::TurbulenceSettings& turbulence, double h,
+                                         const std::array<double, 3>& wind_at_start) {
+  fluid::TurbulenceBoxSpec spec;
+  for (int a = 0; a < 3; ++a) spec.cells[a] = fluid::kTurbulencePointsPerCell * turbulence.box_cells[a];
+  spec.spacing = h / fluid::kTurbulencePointsPerCell;
+  spec.spectrum = {1.0, turbulence.length_scale};  // unit sigma_u: the run scales it by sigma_u(t)
+  spec.seed = turbulence.seed;
+  const auto sigma = turbulence.standard_deviations(1.0);  // [along, across, vertical]
+  const bool along_x = std::abs(wind_at_start[0]) >= std::abs(wind_at_start[1]);
+  if (sigma[0] > 0.0) {
+    spec.component_scale = {(along_x ? sigma[0] : sigma[1]) / sigma[0],
+                            (along_x ? sigma[1] : sigma[0]) / sigma[0], sigma[2] / sigma[0]};
+  }
+  return spec;
+}
+
+}  // namespace
+
+void plan_turbulence(const io::Scenario& scenario, SimulationPlan& plan) {
+  if (!scenario.wind.turbulence) return;
+  const io::TurbulenceSettings& turbulence = *scenario.wind.turbulence;
+  WindGridSetup& wind = plan.wind;
+  wind.turbulence =
+      std::make_shared<const fluid::TurbulenceBox>(inflow_box_spec(turbulence, wind.spec.h, wind.ambient));
+  plan.inputs.turbulence_sigma = [turbulence, source = scenario.wind](double t) {
+    const auto v = io::wind_vector(source, t);
+    return turbulence.standard_deviations(std::hypot(v[0], v[1], v[2]))[0];
+  };
+  plan.memory.add("inflow turbulence", WindGrid::estimate_turbulence_bytes(*wind.turbulence));
+
+  if (!turbulence.unresolved) return;
+  trees::UnresolvedTurbulenceSettings& unresolved = plan.coupling.unresolved;
+  unresolved.enabled = true;
+  unresolved.cutoff_cells = turbulence.cutoff_cells;
+  unresolved.cell_size = wind.spec.h;
+  unresolved.integral_length = turbulence.length_scale;
+  unresolved.seed = turbulence.seed;
+  // sigma_u / U: the intensity as given, or sigma_u over the wind speed of the moment.
+  plan.inputs.unresolved_intensity = [turbulence, source = scenario.wind](double t) {
+    if (turbulence.intensity) return *turbulence.intensity;
+    const auto v = io::wind_vector(source, t);
+    const double speed = std::hypot(v[0], v[1], v[2]);
+    return speed > 0.0 ? turbulence.standard_deviations(speed)[0] / speed : 0.0;
+  };
+  unresolved.intensity = plan.inputs.unresolved_intensity(0.0);
+  unresolved.validate();
+}
+
+}  // namespace fw::host

@@ -1,0 +1,56 @@
+// The wind grid's part of the plan: the grid with "auto" faces resolved for the wind at t = 0, the solver
+// settings, the inflow profile, the solids (obstacles and terrain), the gusts, the mean forcing of a
+// periodic domain, and the ambient wind over time.
+#include <cmath>
+#include <variant>
+
+#include "fluid/SolidMap.hpp"
+#include "host/app/plan/PlanBuilders.hpp"
+
+namespace fw::host {
+
+namespace {
+
+// The FwGust of a gust event: its travel resolved, its direction along the ambient wind at its start (with
+// no wind then, along +x, so that the gust is still well defined).
+FwGust device_gust(const io::GustEvent& event, const std::array<double, 3>& wind_at_start) {
+  FwGust gust{};
+  gust.start = float(event.start);
+  gust.duration = float(event.duration);
+  gust.peak_speed = float(event.peak_speed);
+  gust.radius = float(event.radius);
+  const double speed = std::hypot(wind_at_start[0], wind_at_start[1], wind_at_start[2]);
+  for (int a = 0; a < 3; ++a) {
+    gust.center[a] = float(event.center[a]);
+    gust.travel[a] = float(event.travel[a]);
+    gust.direction[a] = float(speed > 0.0 ? wind_at_start[a] / speed : (a == 0 ? 1.0 : 0.0));
+  }
+  return gust;
+}
+
+}  // namespace
+
+void plan_wind(const io::Scenario& scenario, SimulationPlan& plan) {
+  WindGridSetup& wind = plan.wind;
+  wind.spec = scenario.grid_spec(0.0);
+  wind.settings = scenario.wind_settings();
+  wind.profile = scenario.wind.profile;
+  wind.ambient = scenario.wind_vector(0.0);
+  fluid::SolidMap solids(wind.spec);
+  for (const auto& obstacle : scenario.obstacles) {
+    std::visit([&](const auto& shape) { solids.add(shape); }, obstacle);
+  }
+  if (scenario.terrain && scenario.terrain->map) solids.add_terrain(*scenario.terrain->map);
+  wind.solid = solids.cells();
+  for (const auto& event : scenario.events)
+    wind.gusts.push_back(device_gust(event, scenario.wind_vector(event.start)));
+  if (scenario.wind.forcing) wind.forcing.relaxation_time = scenario.wind.forcing->relaxation_time;
+  WindGrid::validate(wind);
+
+  plan.end_time = scenario.time.end;
+  plan.inputs.ambient_wind = [source = scenario.wind](double t) { return io::wind_vector(source, t); };
+  // The planner has no device: the rows mapping's chunk of 1 gives the largest estimate of the two.
+  plan.memory.add("wind grid", WindGrid::estimate_device_bytes(wind.spec, wind.settings, 1));
+}
+
+}  // namespace fw::host
