@@ -1,6 +1,6 @@
 // One step of the coupled forest: the wind grid and every tree's modes, in one order, with the stability
-// checks, on one OpenCL queue (DESIGN.md, "Data flow"). The run loop, `bench coupled` and the coupled tests
-// all drive this class; none of them repeats the order.
+// checks, on one OpenCL queue (docs/design.md, "Data flow"). The run loop, `bench coupled` and the coupled
+// tests all drive this class; none of them repeats the order.
 //
 //   fw::host::CoupledStep coupled(cc, plan.wind, plan.forest, plan.coupling);   // uploads everything
 //   coupled.start(wind_at(0.0));              // wind from the ambient profile, projected; trees at rest

@@ -9,9 +9,9 @@
 //   plan.forest.instance_count();   plan.wind.spec.cell_count();   plan.ambient_wind(30.0);
 //   plan.leaves[0].count();         plan.leaf_count;                // species 0's leaves, all trees' leaves
 //
-// Conventions where DESIGN.md leaves a choice: "auto" boundaries are resolved once, for the wind at t = 0; a
-// tree's root stands on the ground under it (the terrain's height, else the domain floor) unless the file
-// gives z; a stand's or a tree's yaw turns its species' skeleton counter-clockwise about +z; gusts add
+// Conventions where docs/design.md leaves a choice: "auto" boundaries are resolved once, for the wind at
+// t = 0; a tree's root stands on the ground under it (the terrain's height, else the domain floor) unless the
+// file gives z; a stand's or a tree's yaw turns its species' skeleton counter-clockwise about +z; gusts add
 // velocity along the ambient wind at their start time. Errors in species files (a .tree or QSM table that
 // does not parse) are std::invalid_argument "FILE:LINE: KEY: ..."; a modal solve that fails is
 // trees::ModalError.
