@@ -9,7 +9,7 @@
 //   wind.set_canopy(canopy.drag_density());                            // host::WindGrid, du/dt = -k |u| u
 //   vtk.add("canopy_density", canopy.frontal_area_density());
 //
-// The drag convention (DESIGN.md, "Coupling"): an area A (m^2) with drag coefficient C_D in wind u feels
+// The drag convention (docs/design.md, "Coupling"): an area A (m^2) with drag coefficient C_D in wind u feels
 // F = 1/2 rho_air C_D A |u| u. An element carries frontal area alpha (m^2 per metre of element) and drag
 // area beta = sum over its parts of C_D x area (m^2/m), both constant along it. The element is clipped
 // exactly at every cell boundary it crosses; a piece of length l in cell c adds

@@ -1,6 +1,6 @@
 // What the prescribed velocity on inflow faces needs at one moment: the ambient wind, the profile's shape
-// and, when on, the synthetic turbulence swept through the inflow plane (DESIGN.md, "Turbulence"). The CPU
-// reference reads it through value(); the device kernels get the same numbers through FwStep and their
+// and, when on, the synthetic turbulence swept through the inflow plane (docs/design.md, "Turbulence"). The
+// CPU reference reads it through value(); the device kernels get the same numbers through FwStep and their
 // `inflow` buffer (kernels/common.cl inflow_face_value).
 //
 //   fw::fluid::InflowState inflow;

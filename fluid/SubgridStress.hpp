@@ -1,4 +1,4 @@
-// The subgrid and wall stresses of the wind grid (DESIGN.md, "Numerics: Wind grid: Turbulence"): a
+// The subgrid and wall stresses of the wind grid (docs/design.md, "Numerics: Wind grid: Turbulence"): a
 // Smagorinsky eddy viscosity for the stress of the eddies smaller than a cell, and a log-law rough-wall
 // stress on the first fluid cell above the ground and above solid cells. The constants and the rules both the
 // CPU reference (fluid/ReferenceStages: eddy_viscosity, diffuse_eddy, wall_stress) and the device

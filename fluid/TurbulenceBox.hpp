@@ -1,7 +1,7 @@
 // A periodic box of synthetic isotropic turbulence with the von Karman spectrum
 // (fluid/TurbulenceSpectrum.hpp), synthesised in the Fourier domain with FFTW, deterministic from a seed: the
-// inflow turbulence that the wind grid sweeps through its inflow plane by Taylor's hypothesis (DESIGN.md,
-// "Turbulence").
+// inflow turbulence that the wind grid sweeps through its inflow plane by Taylor's hypothesis
+// (docs/design.md, "Turbulence").
 //
 //   fw::fluid::TurbulenceBoxSpec spec;
 //   spec.cells = {512, 128, 64};          // points along x, y, z, each even and >= 4

@@ -1,5 +1,5 @@
-// A scenario file (DESIGN.md, "File formats"), read and validated in full before anything is computed. Every
-// key's type, unit, default and allowed values are defined once, in io/ScenarioSchema.hpp: the defaults
+// A scenario file (docs/design.md, "File formats"), read and validated in full before anything is computed.
+// Every key's type, unit, default and allowed values are defined once, in io/ScenarioSchema.hpp: the defaults
 // below are read from there, and docs/scenario.md's key tables are generated from there.
 //
 //   fw::io::Scenario scenario = fw::io::load_scenario("scenarios/storm.yaml");   // throws ScenarioError

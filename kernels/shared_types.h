@@ -68,9 +68,9 @@ typedef struct FwLevel {
 } FwLevel;
 
 /* What changes from step to step, passed by value to the kernels that need it.
- * Synthetic inflow turbulence (fluid/TurbulenceBox, DESIGN.md "Turbulence"): a periodic box of unit-sigma
- * velocity fluctuations, stored after the nz profile factors in the kernels' `inflow` buffer, is swept
- * through the inflow faces (Taylor's frozen turbulence): a face at world position x adds
+ * Synthetic inflow turbulence (fluid/TurbulenceBox, docs/design.md "Turbulence"): a periodic box of
+ * unit-sigma velocity fluctuations, stored after the nz profile factors in the kernels' `inflow` buffer, is
+ * swept through the inflow faces (Taylor's frozen turbulence): a face at world position x adds
  * turbulence_sigma * taper * box(x - turbulence_offset), taper = min(1, profile / FW_TURBULENCE_FULL_SHAPE).
  * turbulence_sigma 0: no turbulence. */
 /* The inflow turbulence has its full sigma where the mean profile reaches this fraction of the reference
@@ -133,7 +133,7 @@ typedef struct FwGust {
   float direction[3]; /* unit vector of the added velocity */
 } FwGust;
 
-/* --- Trees (DESIGN.md, "Numerics: Trees: Instances"; Diener 2008, figure 5) --------------------------------
+/* --- Trees (docs/design.md, "Numerics: Trees: Instances"; Diener 2008, figure 5) ---------------------------
  * Per-species arrays are packed back to back (trees/Forest.hpp, ForestPacking); the offsets below index them.
  * Flat per-instance arrays (modal state and forces, displacements, sampled wind) hold each instance's block
  * at the instance's own offsets. */

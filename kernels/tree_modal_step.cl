@@ -1,5 +1,5 @@
 /* The modal time step of every tree: q'' + gamma q' + omega^2 q = f per instance-mode, the force held over
- * the step (DESIGN.md, "Numerics: Trees: Integration"). Reference: trees/ForestReference.cpp
+ * the step (docs/design.md, "Numerics: Trees: Integration"). Reference: trees/ForestReference.cpp
  * exact_modal_step, semi_implicit_modal_step.
  *
  * Work mapping: one instance-mode per loop iteration (FW_FLAT_FOR over the flat modes); mode_instance names

@@ -1,5 +1,5 @@
 /* Wind load on the trees: the wind sampled at every instance's sample points and turned into modal forces
- * (DESIGN.md, "Numerics: Trees: Wind basis"). Reference: trees/ForestReference.cpp sample_wind,
+ * (docs/design.md, "Numerics: Trees: Wind basis"). Reference: trees/ForestReference.cpp sample_wind,
  * modal_forces.
  *
  * Work mapping: one instance per loop iteration (FW_FLAT_FOR over instances). Sampling (S x 3 trilinear

@@ -1,5 +1,6 @@
-// The 3D Euler-Bernoulli frame element of the tree FEM model (DESIGN.md, "Numerics: Trees"; the appendices of
-// Diener 2008 and Stam 1997): two nodes, 6 DOF per node, axial stretch, torsion and bending in two planes.
+// The 3D Euler-Bernoulli frame element of the tree FEM model (docs/design.md, "Numerics: Trees"; the
+// appendices of Diener 2008 and Stam 1997): two nodes, 6 DOF per node, axial stretch, torsion and
+// bending in two planes.
 //
 //   const auto section = fw::trees::BeamSection::circle(0.5 * (r_a + r_b));   // element radius = mean
 //   const auto K = fw::trees::global_stiffness(wood, section, a, b);         // 12x12, global frame

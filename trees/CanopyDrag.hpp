@@ -1,4 +1,4 @@
-// The trees' side of the two-way coupling (DESIGN.md, "Coupling"): a forest instance rasterised into the
+// The trees' side of the two-way coupling (docs/design.md, "Coupling"): a forest instance rasterised into the
 // canopy field with the same drag convention, foliage and element diameters as its wind basis, so that the
 // force the air loses in a cell equals the force applied to the tree's elements in that cell.
 //

@@ -1,4 +1,4 @@
-// Where a tree's leaves are and how much of them (DESIGN.md, "Coupling"): the one definition of the
+// Where a tree's leaves are and how much of them (docs/design.md, "Coupling"): the one definition of the
 // leaf-bearing rule and of the foliage distribution, used by the wind basis (trees/WindBasis: leaves bend the
 // tree) and by the canopy rasterisation (trees/CanopyDrag: leaves slow the air), so both sides see the same
 // leaf area on the same elements.

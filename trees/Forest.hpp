@@ -1,6 +1,6 @@
-// A forest: the species (one modal and wind basis each) and the tree instances that share them (DESIGN.md,
-// "Numerics: Trees: Instances"), and the packing of everything the device needs into plain arrays
-// (Diener 2008, figure 5: instances T, modal parameters P, mode shapes Phi; kernels/shared_types.h).
+// A forest: the species (one modal and wind basis each) and the tree instances that share them
+// (docs/design.md, "Numerics: Trees: Instances"), and the packing of everything the device needs into plain
+// arrays (Diener 2008, figure 5: instances T, modal parameters P, mode shapes Phi; kernels/shared_types.h).
 //
 //   std::vector<fw::trees::SpeciesBasis> species = {fw::trees::SpeciesBasis::compute(pine, settings)};
 //   std::vector<fw::trees::TreeInstance> trees = {{0, {40.0, 12.0, 0.0}, 0.5, 1.1}};  // species, x, yaw, s

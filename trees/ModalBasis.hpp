@@ -1,4 +1,4 @@
-// The lowest vibration modes of a tree's FEM model (DESIGN.md, "Numerics: Trees", "Modes").
+// The lowest vibration modes of a tree's FEM model (docs/design.md, "Numerics: Trees", "Modes").
 //
 //   fw::trees::BeamModel model(skeleton, wood);
 //   fw::trees::ModalSettings settings;
@@ -24,8 +24,8 @@
 // Damping: a damping ratio per mode (gamma_i = 2 zeta_i omega_i) or Rayleigh damping C = alpha M + beta K
 // (gamma_i = alpha + beta omega_i^2, Diener eq. 9).
 //
-// Instance scale (DESIGN.md, "Instances"): the tree skeleton.transformed(I, 0, s) of the same material has
-// K_s = s^3 D^-1 K D^-1 and M_s = s^5 D^-1 M D^-1, D = diag(s on translations, 1 on rotations), because
+// Instance scale (docs/design.md, "Instances"): the tree skeleton.transformed(I, 0, s) of the same material
+// has K_s = s^3 D^-1 K D^-1 and M_s = s^5 D^-1 M D^-1, D = diag(s on translations, 1 on rotations), because
 // strain energy scales as s^3 and kinetic energy as s^5 for a geometrically similar displacement field. Hence
 // omega_s = omega / s and phi_s = s^(-5/2) D phi (M_s-normalised). scaled(s) applies exactly that.
 #pragma once

@@ -1,5 +1,5 @@
 // How a tree's modes advance in time: each mode is a damped oscillator q'' + gamma q' + omega^2 q = f
-// (DESIGN.md, "Numerics: Trees: Integration").
+// (docs/design.md, "Numerics: Trees: Integration").
 #pragma once
 
 #include <cmath>

@@ -1,5 +1,5 @@
 // Everything the simulator needs to know about one tree species, computed once before a run: the skeleton,
-// its lowest vibration modes and the wind projection basis (DESIGN.md, "Data flow").
+// its lowest vibration modes and the wind projection basis (docs/design.md, "Data flow").
 //
 //   fw::trees::SpeciesSettings settings;
 //   settings.material = {1.0e10, 3.85e9, 900.0};

@@ -1,5 +1,5 @@
-// Diener 2008, section 5.2 (DESIGN.md, "Numerics: Trees", "Strong wind"): the strong-wind correction of the
-// linear modal displacement, which keeps branch lengths constant under strong wind. Two parts:
+// Diener 2008, section 5.2 (docs/design.md, "Numerics: Trees", "Strong wind"): the strong-wind correction of
+// the linear modal displacement, which keeps branch lengths constant under strong wind. Two parts:
 //   1. Diener's fitted quadratic correction (per node, parallel): u = sum_i q~_i v_i + q~_i^2 w_i, close to
 //      length-keeping already;
 //   2. followed by a projection that restores each element's rest length exactly (sequential along each

@@ -1,4 +1,5 @@
-// The skeleton `.tree` text format (DESIGN.md, "File formats"): one node per line, `id parent x y z radius`.
+// The skeleton `.tree` text format (docs/design.md, "File formats"): one node per line,
+// `id parent x y z radius`.
 //
 //   # a two-element trunk; metres
 //   0 -1  0 0 0    0.20

@@ -1,7 +1,7 @@
-// Per-tree stochastic modal forcing for the turbulence the wind grid cannot resolve (DESIGN.md, "Numerics:
-// Trees: Unresolved turbulence (Stam 1997)"): one shared periodic series of unit-intensity velocity
-// fluctuations in travelled air distance, synthesised in the frequency domain, which every tree reads at its
-// own offsets while its travelled distance grows with the local wind speed.
+// Per-tree stochastic modal forcing for the turbulence the wind grid cannot resolve (docs/design.md,
+// "Numerics: Trees: Unresolved turbulence (Stam 1997)"): one shared periodic series of unit-intensity
+// velocity fluctuations in travelled air distance, synthesised in the frequency domain, which every tree
+// reads at its own offsets while its travelled distance grows with the local wind speed.
 //
 //   fw::trees::UnresolvedTurbulenceSettings s;
 //   s.cell_size = 2.0;            // the wind grid's h, m

@@ -1,5 +1,6 @@
-// The wind projection basis of one tree (DESIGN.md, "Numerics: Trees: Wind basis"; Diener 2008, section 4):
-// precomputed vectors p_i^s that turn wind velocities sampled at a few points of the tree into modal forces.
+// The wind projection basis of one tree (docs/design.md, "Numerics: Trees: Wind basis"; Diener 2008,
+// section 4): precomputed vectors p_i^s that turn wind velocities sampled at a few points of the tree into
+// modal forces.
 //
 //   fw::trees::BeamModel model(skeleton, wood);
 //   Eigen::MatrixXd shapes = ...;                               // model.dof_count() x m, M-normalised modes
@@ -13,8 +14,8 @@
 //   Eigen::VectorXd F = G * fw::trees::WindBasis::squared_wind(wind);              // nodal loads, N, N m
 //   auto big = basis.scaled(1.3);                               // the same species, 1.3 times as large
 //
-// The drag convention (DESIGN.md, "Coupling"; the same on the air's side, trees/CanopyDrag.hpp): the drag on
-// an area A (m^2) in wind v is F = 1/2 rho_air C_D A |v| v, for both parts of a tree:
+// The drag convention (docs/design.md, "Coupling"; the same on the air's side, trees/CanopyDrag.hpp): the
+// drag on an area A (m^2) in wind v is F = 1/2 rho_air C_D A |v| v, for both parts of a tree:
 //   - wood: element e (nodes a, b) has frontal area D_e L_e, with D_e = r_a + r_b (twice the mean node
 //     radius, constant along the element as in the stiffness) and C_D = branch_drag_coefficient C_Db;
 //   - foliage: one-sided leaf area lambda_e per metre of element (trees/Foliage.hpp: LAI x crown hull, shared

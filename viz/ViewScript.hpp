@@ -1,5 +1,5 @@
-// view.py, the ParaView script every run writes into its output folder (DESIGN.md, "Outputs"): it opens the
-// run ready to look at, in ParaView 5.11.
+// view.py, the ParaView script every run writes into its output folder (docs/design.md, "Outputs"): it opens
+// the run ready to look at, in ParaView 5.11.
 //
 //   fw::viz::ViewScriptSettings view;
 //   view.scenario_name = "storm";

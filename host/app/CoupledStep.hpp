@@ -1,6 +1,6 @@
 // One step of the coupled forest: the wind grid and every tree's modes, in one order, with the stability
-// checks, on one OpenCL queue (DESIGN.md, "Data flow"). The run loop, `bench coupled` and the coupled tests
-// all drive this class; none of them repeats the order.
+// checks, on one OpenCL queue (docs/design.md, "Data flow"). The run loop, `bench coupled` and the coupled
+// tests all drive this class; none of them repeats the order.
 //
 //   fw::host::CoupledStep coupled(cc, plan);  // uploads everything; the plan must outlive it
 //   coupled.start();                          // wind from the ambient profile at t = 0, projected; trees at

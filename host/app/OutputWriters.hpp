@@ -1,5 +1,5 @@
-// The writers a run's output settings ask for, each created from them (DESIGN.md, "Outputs"). A new output
-// is a new io::FrameWriter class and one line here; the run loop does not change.
+// The writers a run's output settings ask for, each created from them (docs/design.md, "Outputs"). A new
+// output is a new io::FrameWriter class and one line here; the run loop does not change.
 //
 //   auto writers = fw::host::make_writers(plan, "out/storm", cc.device(), /*tip_trees=*/{0, 1, 2, 3});
 //   fw::io::OutputPipeline output(std::move(writers));

@@ -1,5 +1,5 @@
-// Probe samples at their own interval (DESIGN.md, "probes.csv"): the wind at the scenario's probe points and
-// the tip displacement of the first trees, taken from the device without copying the grid or the forest
+// Probe samples at their own interval (docs/design.md, "probes.csv"): the wind at the scenario's probe points
+// and the tip displacement of the first trees, taken from the device without copying the grid or the forest
 // back. Spectra need many more samples than output frames give.
 //
 //   fw::host::ProbeSampler probes(cc, plan.wind.spec, {{40, 120, 10}}, plan.forest, /*tip_trees=*/4,

@@ -1,5 +1,5 @@
 // The run loop: the coupled step over [0, end], with output frames handed to every writer on a background
-// thread (DESIGN.md, "Data flow").
+// thread (docs/design.md, "Data flow").
 //
 //   fw::host::SimulationPlan plan = fw::host::plan_simulation(scenario, &cache, &std::cerr);
 //   fw::host::Simulation sim(cc, std::move(plan), "out/storm");

@@ -13,7 +13,8 @@
 //   fw::host::CoupledStep coupled(cc, plan);               // the plan must outlive the step
 //
 // The plan is made by one small builder per part (host/app/plan/PlanBuilders.hpp): wind, turbulence,
-// species and leaves, forest, coupling, outputs. Every check a builder can make without a device it makes,
+// species and leaves, forest, coupling, outputs; each builder's file states its conventions where
+// docs/design.md leaves a choice. Every check a builder can make without a device it makes,
 // with the stages' own validation, so that a scenario `check` accepts does not fail `run` on anything
 // `check` could have known. Errors: std::invalid_argument for input errors (exit code 2, "FILE:LINE: KEY:
 // ..." where the error is in a file), trees::ModalError or std::runtime_error otherwise.

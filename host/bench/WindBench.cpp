@@ -333,7 +333,7 @@ std::string wind_bench_json(const WindBenchResult& r) {
   json.begin_object();
   json.key("device").value(r.device);
   json.key("steps").value(r.steps);
-  // The first case's keys at the top level, so a single --grid gives the flat object DESIGN.md lists.
+  // The first case's keys at the top level, so a single --grid gives the flat object docs/design.md lists.
   if (!r.cases.empty()) write_case(json, r.cases.front(), r);
   json.key("roofline").begin_object();
   json.key("grid")

@@ -1,5 +1,5 @@
 // The subcommands of `forestwind`, each a function from parsed options to an exit code.
-// Exit codes (DESIGN.md): 0 ok, 1 runtime failure, 2 bad input or usage, 3 no usable OpenCL device.
+// Exit codes (docs/design.md): 0 ok, 1 runtime failure, 2 bad input or usage, 3 no usable OpenCL device.
 #pragma once
 
 #include <array>

@@ -1,4 +1,4 @@
-// `forestwind plot`: a run's probes over time, and their spectra (DESIGN.md, "Command line";
+// `forestwind plot`: a run's probes over time, and their spectra (docs/design.md, "Command line";
 // viz/ProbePlots.hpp).
 #include <fmt/format.h>
 

@@ -1,4 +1,4 @@
-// `forestwind render`: pictures of a run's frames (DESIGN.md, "Command line"; viz/FrameRender.hpp).
+// `forestwind render`: pictures of a run's frames (docs/design.md, "Command line"; viz/FrameRender.hpp).
 #include <fmt/format.h>
 
 #include <chrono>

@@ -1,4 +1,4 @@
-// `forestwind run` and `forestwind check` (DESIGN.md, "Command line").
+// `forestwind run` and `forestwind check` (docs/design.md, "Command line").
 #include <fmt/format.h>
 #include <unistd.h>
 

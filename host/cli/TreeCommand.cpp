@@ -1,4 +1,4 @@
-// `forestwind tree generate` and `forestwind tree modes` (DESIGN.md, "Command line").
+// `forestwind tree generate` and `forestwind tree modes` (docs/design.md, "Command line").
 #include <fmt/format.h>
 
 #include <chrono>

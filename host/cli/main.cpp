@@ -1,4 +1,4 @@
-// forestwind: a forest in a resolved wind field. The command line (DESIGN.md "Command line").
+// forestwind: a forest in a resolved wind field. The command line (docs/design.md "Command line").
 #include <fmt/format.h>
 #include <CLI/CLI.hpp>
 

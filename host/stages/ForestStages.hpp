@@ -1,5 +1,5 @@
 // The trees' half of a step on the OpenCL device: sample the wind at every tree, modal forces, the modal
-// time step, and on output frames the skeleton deformation (DESIGN.md, "Data flow" 3-4; Diener 2008,
+// time step, and on output frames the skeleton deformation (docs/design.md, "Data flow" 3-4; Diener 2008,
 // figure 5). The packed forest (trees/Forest.hpp) is uploaded once; per step nothing leaves the device.
 //
 //   fw::host::ForestStages trees(cc, spec, forest);      // uploads species and instances, state = 0

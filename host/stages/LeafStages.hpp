@@ -1,4 +1,4 @@
-// The leaves of a forest on the device (DESIGN.md, "Data flow" 4; docs/leaves.md): flutter of attached
+// The leaves of a forest on the device (docs/design.md, "Data flow" 4; docs/leaves.md): flutter of attached
 // leaves, shedding, flight in the resolved wind, landing and exits, every step; and on output frames every
 // leaf's blade, the attached ones at their deformed anchors.
 //

@@ -1,4 +1,4 @@
-// The one interface of every run output (DESIGN.md, "Outputs"): the run loop hands each frame to every
+// The one interface of every run output (docs/design.md, "Outputs"): the run loop hands each frame to every
 // writer, and a new output is a new class, not an edit of the loop.
 //
 //   std::vector<std::unique_ptr<fw::io::FrameWriter>> writers;
@@ -24,7 +24,7 @@
 
 namespace fw::io {
 
-/// One probe sample (DESIGN.md, "probes.csv"): taken at the probes' own interval, not only on frames.
+/// One probe sample (docs/design.md, "probes.csv"): taken at the probes' own interval, not only on frames.
 struct ProbeSample {
   double time = 0.0;                        ///< simulated time, s
   std::vector<std::array<float, 3>> wind;   ///< per probe point, m/s

@@ -1,5 +1,5 @@
 // Output off the step's critical path: frames go through a bounded queue to one background thread that
-// hands each to every writer, while the run loop goes on stepping (DESIGN.md, "Data flow").
+// hands each to every writer, while the run loop goes on stepping (docs/design.md, "Data flow").
 //
 //   fw::io::OutputPipeline output(std::move(writers), /*capacity=*/2);
 //   output.begin();

@@ -43,7 +43,7 @@ if(hash_a STREQUAL hash_c)
 endif()
 require_contains("${gen_out}" "conifer tree, seed 5" "tree generate's summary")
 
-# --- modes --json: the keys of DESIGN.md ------------------------------------------------------------------------
+# --- modes --json: the keys of docs/design.md -------------------------------------------------------------------
 run(0 modes tree modes "${WORK}/a.tree" --modes 6 --json)
 string(JSON count LENGTH "${modes_out}" frequencies_hz)
 string(JSON nodes GET "${modes_out}" nodes)

@@ -1,6 +1,6 @@
 # cmake -DFORESTWIND=<path to the forestwind binary> -P usage_errors.cmake
 #
-# Bad usage exits with code 2 (DESIGN.md "Command line") and says what was wrong. None of these cases
+# Bad usage exits with code 2 (docs/design.md "Command line") and says what was wrong. None of these cases
 # needs an OpenCL device: the arguments are rejected before one is chosen.
 if(NOT FORESTWIND)
   message(FATAL_ERROR "pass -DFORESTWIND=<path to the forestwind binary>")

@@ -88,7 +88,7 @@ TEST_CASE("Expression::parse: numbers and formulas of constants are constant and
 }
 
 TEST_CASE("Expression::parse: arithmetic of t at several times", "[expression]") {
-  // The ramp of the header and of DESIGN.md: 12 m/s until t = 20 s, then up to 22 m/s at t = 60 s.
+  // The ramp of the header and of docs/design.md: 12 m/s until t = 20 s, then up to 22 m/s at t = 60 s.
   const Expression ramp = Expression::parse("12 + 10*min(1, max(0, (t-20)/40))");
   CHECK_FALSE(ramp.is_constant());
   CHECK(ramp.text() == "12 + 10*min(1, max(0, (t-20)/40))");

@@ -25,10 +25,11 @@ using fw::io::Scenario;
 
 namespace {
 
-// The reference example of DESIGN.md ("File formats"), verbatim but for one value: its reference_height of 10
-// m lies below displacement_height + roughness_length = 12.8 m, where the log law gives no wind, which the
-// loader rejects (see "a log profile whose reference height..." below), so it reads 20 m here. Its heightmap
-// hills.pgm is written next to it by the test, and its skeleton is generated, so it needs no other file.
+// The reference example of docs/design.md ("File formats"), verbatim but for one value: its reference_height
+// of 10 m lies below displacement_height + roughness_length = 12.8 m, where the log law gives no wind, which
+// the loader rejects (see "a log profile whose reference height..." below), so it reads 20 m here. Its
+// heightmap hills.pgm is written next to it by the test, and its skeleton is generated, so it needs no
+// other file.
 const std::string kDesignExample =
     R"yaml(# SI units; x east, y north, z up; directions in degrees the wind blows FROM, clockwise from north
 scenario: storm_over_forest
@@ -994,7 +995,7 @@ TEST_CASE("load_scenario: a file that cannot be read reports line 0 and key (fil
 TEST_CASE("load_scenario: a log profile whose reference height is not above d + z0 names the profile key",
           "[scenario]") {
   fw::test::TempDir dir("fw_scenario");
-  // DESIGN.md's own combination: 10 m reference, d = 12 m, z0 = 0.8 m.
+  // docs/design.md's own combination: 10 m reference, d = 12 m, z0 = 0.8 m.
   expect_error(dir, "log_below_displacement",
                "scenario: errors\n"
                "time: {end: 10.0}\n"

@@ -1,6 +1,6 @@
-// CanopyDrag: momentum balances between the air and the trees (DESIGN.md, "Coupling"). In a steady uniform
-// wind the force the canopy field takes from the air, rho_air sum_cells k |u| u h^3, equals the drag the
-// trees receive through their wind basis: in total for generated trees at a yaw and scale != 1, with and
+// CanopyDrag: momentum balances between the air and the trees (docs/design.md, "Coupling"). In a steady
+// uniform wind the force the canopy field takes from the air, rho_air sum_cells k |u| u h^3, equals the drag
+// the trees receive through their wind basis: in total for generated trees at a yaw and scale != 1, with and
 // without leaves, and per cell (per height band of the basis) for a small hand-built tree. Also the foliage
 // rule (trees/Foliage.hpp) and argument checks.
 #include "trees/CanopyDrag.hpp"

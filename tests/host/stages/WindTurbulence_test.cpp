@@ -1,5 +1,5 @@
-// Synthetic inflow turbulence on the device (DESIGN.md, "Turbulence"; issue 10, "Inflow"): what enters the
-// domain has the requested intensity, integral length scale and inertial-range slope, the field stays
+// Synthetic inflow turbulence on the device (docs/design.md, "Turbulence"; issue 10, "Inflow"): what enters
+// the domain has the requested intensity, integral length scale and inertial-range slope, the field stays
 // divergence-free, and a run is deterministic and unchanged when the turbulence is off.
 #include <catch2/catch.hpp>
 
