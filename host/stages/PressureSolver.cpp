@@ -8,9 +8,9 @@
 namespace fw::host {
 namespace {
 
-// Damping of the Jacobi smoother: 6/7 minimises the amplification of the high-frequency half of the
-// spectrum of the 7-point Laplacian.
-constexpr float kJacobiDamping = 6.0f / 7.0f;
+// Relaxation weight of the damped Jacobi smoother: 6/7 minimises the amplification of the high-frequency
+// half of the spectrum of the 7-point Laplacian.
+constexpr float kJacobiWeight = 6.0f / 7.0f;
 
 // prolong_add's slope for linear interpolation: a child sits a quarter of the coarse spacing from its
 // parent's centre.
@@ -147,9 +147,9 @@ double PressureSolver::sum_partials(std::size_t count) {
 }
 
 void PressureSolver::enqueue_jacobi_sweep(int level, cl::Buffer& b, cl::Buffer& phi, cl::Buffer& phi_out,
-                                          float omega) {
+                                          float relaxation_weight) {
   auto& L = levels_[level];
-  jacobi_.set_args(L.dims, L.mask, b, phi, phi_out, omega)
+  jacobi_.set_args(L.dims, L.mask, b, phi, phi_out, relaxation_weight)
       .enqueue(cc_, cc_.rows(L.dims.nx, L.dims.ny, L.dims.nz));
   count_traffic(level, traffic::kSmoothPass);
 }
@@ -186,8 +186,8 @@ void PressureSolver::enqueue_red_black_sweeps(int level, cl::Buffer& b, cl::Buff
   count_traffic(level, (2.0 * sweeps - first_pass) * traffic::kSmoothPass);
 }
 
-float PressureSolver::start_damping() const {
-  return settings_.smoother == fluid::MultigridSmoother::jacobi ? kJacobiDamping : 1.0f;
+float PressureSolver::start_relaxation_weight() const {
+  return settings_.smoother == fluid::MultigridSmoother::jacobi ? kJacobiWeight : 1.0f;
 }
 
 int PressureSolver::start_colour() const {
@@ -196,7 +196,7 @@ int PressureSolver::start_colour() const {
 
 void PressureSolver::enqueue_smoothing_start(int level, cl::Buffer& b, cl::Buffer& out) {
   auto& L = levels_[level];
-  smoothing_start_.set_args(L.dims, L.mask, b, out, start_damping(), start_colour())
+  smoothing_start_.set_args(L.dims, L.mask, b, out, start_relaxation_weight(), start_colour())
       .enqueue(cc_, cc_.rows(L.dims.nx, L.dims.ny, L.dims.nz));
   count_traffic(level, traffic::kSmoothingStart);
 }
@@ -219,7 +219,7 @@ void PressureSolver::enqueue_restrict_residual(int fine_level, cl::Buffer& b, cl
   count_traffic(fine_level, traffic::kResidual);
   restrict_
       .set_args(F.dims, C.dims, C.mask, F.scratch, C.b, level_first_pass(fine_level + 1), correction_scale(),
-                start_damping(), start_colour())
+                start_relaxation_weight(), start_colour())
       .enqueue(cc_, cc_.rows(C.dims.nx, C.dims.ny, C.dims.nz));
   count_traffic(fine_level, traffic::kRestrictFine);
   count_traffic(fine_level + 1, traffic::kRestrictCoarse);
@@ -252,7 +252,7 @@ void PressureSolver::smooth(int l, cl::Buffer& b, cl::Buffer& phi, int sweeps, b
     // correction, so the cycle is symmetric.
     auto& scratch = levels_[l].scratch;
     for (int p = first_pass; p < sweeps + sweeps % 2; ++p)
-      enqueue_jacobi_sweep(l, b, p % 2 ? scratch : phi, p % 2 ? phi : scratch, kJacobiDamping);
+      enqueue_jacobi_sweep(l, b, p % 2 ? scratch : phi, p % 2 ? phi : scratch, kJacobiWeight);
     return;
   }
   // Red-black Gauss-Seidel, one colour per pass; reversing the colour order after the correction keeps the
