@@ -16,6 +16,10 @@ constexpr float kJacobiWeight = 6.0f / 7.0f;
 // parent's centre.
 constexpr float kLinearSlope = 0.25f;
 
+// How often CG starts again from the true residual when its recursive one met the tolerance and the true one
+// did not (see solve_cg).
+constexpr int kCgRestarts = 2;
+
 // Lets the compiler reassociate the per-row sums of the reductions, which is what allows it to vectorise
 // them. Results stay deterministic on a given device; no kernel here tests for NaN.
 constexpr const char* kPressureBuildOptions = "-cl-unsafe-math-optimizations";
@@ -362,7 +366,12 @@ PressureSolveStatus PressureSolver::solve_cg() {
   double rr = residual_norm2(0, L.b, L.phi, r_);
   st.initial_residual = std::sqrt(rr) / bnorm;
   const double target = settings_.tolerance * bnorm;
-  if (std::sqrt(rr) > target) {
+  // CG stops on its recursively updated residual, which drifts from b - A phi in float: near the float floor
+  // it meets the target while the true residual is still above it (1.12e-5 of ||b|| for a target of 1e-5,
+  // the floor being ~8e-6, in tests/kernels/pressure_solver_test.cpp). Then it starts again from the true
+  // residual, which residual_norm2 leaves in r_: one restart reaches the floor, a second is the margin.
+  for (int run = 0; run <= kCgRestarts && std::sqrt(rr) > target && st.iterations < settings_.max_iterations;
+       ++run) {
     vcycle_from_zero(r_, z_);
     double rho = dot(r_, z_);
     std::swap(z_, d_);  // d = z without a copy: the next preconditioning writes all of z
@@ -374,9 +383,9 @@ PressureSolveStatus PressureSolver::solve_cg() {
       const float alpha = static_cast<float>(rho / dq);
       cg_update_.set_args(L.dims, alpha, d_, q_, L.phi, r_, partial_)
           .enqueue(cc_, reduce.global, reduce.local);
-      rr = sum_partials(reduce.groups);
+      const double recursive = sum_partials(reduce.groups);
       ++st.iterations;
-      if (std::sqrt(rr) <= target || !std::isfinite(rr)) break;
+      if (std::sqrt(recursive) <= target || !std::isfinite(recursive)) break;
       vcycle_from_zero(r_, z_);
       const double rho_new = dot(r_, z_);
       const float beta = static_cast<float>(rho_new / rho);
@@ -384,9 +393,9 @@ PressureSolveStatus PressureSolver::solve_cg() {
       cg_direction_.set_args(L.dims, beta, z_, d_).enqueue(cc_, range);
       count_traffic(0, traffic::kCgDirection);
     }
+    rr = residual_norm2(0, L.b, L.phi, r_);  // the true residual, reported or restarted from
   }
-  // The recursively updated residual drifts in float: report the true one.
-  st.relative_residual = std::sqrt(residual_norm2(0, L.b, L.phi, r_)) / bnorm;
+  st.relative_residual = std::sqrt(rr) / bnorm;
   st.converged = st.relative_residual <= settings_.tolerance;
   return st;
 }

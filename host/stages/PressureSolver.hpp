@@ -8,7 +8,9 @@
 // Solvers (fluid::PressureSolverType):
 //   jacobi     fixed iteration count (the seed's method, kept as a baseline);
 //   multigrid  geometric multigrid V-cycles until the relative residual is below the tolerance;
-//   cg         conjugate gradients preconditioned by one V-cycle, same stopping rule (the default).
+//   cg         conjugate gradients preconditioned by one V-cycle, same stopping rule (the default); when its
+//              recursively updated residual meets the tolerance and the true one does not (they part near the
+//              float floor), it restarts from the true residual, at most twice.
 // The V-cycle smooths with damped Jacobi or red-black Gauss-Seidel (both symmetric, so it is a valid CG
 // preconditioner), restricts the residual by averaging, and prolongs linearly (stand-alone cycles) or
 // piecewise-constant (in CG, where the cycle must be symmetric). Where a level
