@@ -424,7 +424,7 @@ std::vector<float> residual(const GridSpec& spec, const PressureLevel& L, const 
 }
 
 std::vector<float> jacobi_sweep(const GridSpec& spec, const PressureLevel& L, const std::vector<float>& b,
-                                const std::vector<float>& phi, double omega) {
+                                const std::vector<float>& phi, double relaxation_weight) {
   std::vector<float> out(L.cell_count(), 0.f);
   for (int k = 0; k < L.nz; ++k)
     for (int j = 0; j < L.ny; ++j)
@@ -434,7 +434,7 @@ std::vector<float> jacobi_sweep(const GridSpec& spec, const PressureLevel& L, co
         const int diag = open_count(m);
         if (!(m & FW_MASK_FLUID) || diag == 0) continue;
         const double target = (double(b[id]) + open_neighbour_sum(spec, L, phi, i, j, k, m)) / diag;
-        out[id] = float((1.0 - omega) * phi[id] + omega * target);
+        out[id] = float((1.0 - relaxation_weight) * phi[id] + relaxation_weight * target);
       }
   return out;
 }

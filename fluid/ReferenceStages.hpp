@@ -122,9 +122,9 @@ std::vector<float> apply_operator(const GridSpec& spec, const PressureLevel& lev
 std::vector<float> residual(const GridSpec& spec, const PressureLevel& level, const std::vector<float>& b,
                             const std::vector<float>& phi);
 
-/// One weighted Jacobi sweep: phi <- (1-omega) phi + omega (b + sum phi_nb) / diag.
+/// One weighted Jacobi sweep: phi <- (1 - w) phi + w (b + sum phi_nb) / diag, w = relaxation_weight.
 std::vector<float> jacobi_sweep(const GridSpec& spec, const PressureLevel& level, const std::vector<float>& b,
-                                const std::vector<float>& phi, double omega);
+                                const std::vector<float>& phi, double relaxation_weight);
 
 /// Gauss-Seidel on the cells of one colour ((i+j+k) % 2 == colour), in place.
 void red_black_sweep(const GridSpec& spec, const PressureLevel& level, const std::vector<float>& b,

@@ -49,25 +49,25 @@ FW_INLINE float centre_derivative(const FwGrid* g, __global const float* q, int 
          (span * g->h);
 }
 
-/* omega: 4 floats a cell (wx, wy, wz, |w|), 1/s. */
+/* vorticity: 4 floats a cell (wx, wy, wz, |w|), 1/s. */
 __kernel void vorticity(const FwGrid g, __global const float* u, __global const float* v,
-                        __global const float* w, __global float* omega) {
+                        __global const float* w, __global float* vorticity) {
   const int j = get_global_id(1), k = get_global_id(2);
   for (int i = FW_ROW_BEGIN; i < FW_ROW_END(g.nx); ++i) {
     const float wx = centre_derivative(&g, w, 2, 1, i, j, k) - centre_derivative(&g, v, 1, 2, i, j, k);
     const float wy = centre_derivative(&g, u, 0, 2, i, j, k) - centre_derivative(&g, w, 2, 0, i, j, k);
     const float wz = centre_derivative(&g, v, 1, 0, i, j, k) - centre_derivative(&g, u, 0, 1, i, j, k);
     const int id = 4 * cell_index(&g, i, j, k);
-    omega[id] = wx;
-    omega[id + 1] = wy;
-    omega[id + 2] = wz;
-    omega[id + 3] = sqrt(wx * wx + wy * wy + wz * wz);
+    vorticity[id] = wx;
+    vorticity[id + 1] = wy;
+    vorticity[id + 2] = wz;
+    vorticity[id + 3] = sqrt(wx * wx + wy * wy + wz * wz);
   }
 }
 
-/* Component c of the confinement force epsilon h (N x omega) at a cell. */
-FW_INLINE float confinement_force(const FwGrid* g, __global const float* omega, float epsilon, int c, int i,
-                                  int j, int k) {
+/* Component c of the confinement force epsilon h (N x vorticity) at a cell. */
+FW_INLINE float confinement_force(const FwGrid* g, __global const float* vorticity, float epsilon, int c,
+                                  int i, int j, int k) {
   float eta[3];
   const int at[3] = {i, j, k};
   for (int a = 0; a < 3; ++a) {
@@ -75,15 +75,15 @@ FW_INLINE float confinement_force(const FwGrid* g, __global const float* omega, 
     p[a] = min(at[a] + 1, axis_cells(g, a) - 1);
     m[a] = max(at[a] - 1, 0);
     const int span = p[a] - m[a];
-    eta[a] = span ? (omega[4 * cell_index(g, p[0], p[1], p[2]) + 3] -
-                     omega[4 * cell_index(g, m[0], m[1], m[2]) + 3]) /
+    eta[a] = span ? (vorticity[4 * cell_index(g, p[0], p[1], p[2]) + 3] -
+                     vorticity[4 * cell_index(g, m[0], m[1], m[2]) + 3]) /
                         (span * g->h)
                   : 0.0f;
   }
   const float len = sqrt(eta[0] * eta[0] + eta[1] * eta[1] + eta[2] * eta[2]) + 1e-20f;
   const float N[3] = {eta[0] / len, eta[1] / len, eta[2] / len};
   const int id = 4 * cell_index(g, i, j, k);
-  const float W[3] = {omega[id], omega[id + 1], omega[id + 2]};
+  const float W[3] = {vorticity[id], vorticity[id + 1], vorticity[id + 2]};
   const float scale = epsilon * g->h;
   if (c == 0) return scale * (N[1] * W[2] - N[2] * W[1]);
   if (c == 1) return scale * (N[2] * W[0] - N[0] * W[2]);
@@ -92,7 +92,7 @@ FW_INLINE float confinement_force(const FwGrid* g, __global const float* omega, 
 
 /* q (component c) += dt * confinement force averaged from the two cells beside the face. */
 __kernel void vorticity_confinement(const FwGrid g, const FwStep s, const int c, const float epsilon,
-                                    __global const float* omega, __global float* q) {
+                                    __global const float* vorticity, __global float* q) {
   const int j = get_global_id(1), k = get_global_id(2);
   const int ex = face_extent(&g, c, 0);
   const int n = axis_cells(&g, c);
@@ -100,8 +100,8 @@ __kernel void vorticity_confinement(const FwGrid g, const FwStep s, const int c,
     int lo[3] = {i, j, k}, hi[3] = {i, j, k};
     lo[c] = max(lo[c] - 1, 0);
     hi[c] = min(hi[c], n - 1);
-    const float f = 0.5f * (confinement_force(&g, omega, epsilon, c, lo[0], lo[1], lo[2]) +
-                            confinement_force(&g, omega, epsilon, c, hi[0], hi[1], hi[2]));
+    const float f = 0.5f * (confinement_force(&g, vorticity, epsilon, c, lo[0], lo[1], lo[2]) +
+                            confinement_force(&g, vorticity, epsilon, c, hi[0], hi[1], hi[2]));
     q[face_index(&g, c, i, j, k)] += s.dt * f;
   }
 }

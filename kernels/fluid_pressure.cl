@@ -147,24 +147,25 @@ FW_INLINE FwRowRuns row_runs(const FwLevel* L, const FwPlanes* P, __global const
     }                                          \
   } while (0)
 
-/* The Jacobi value of cell (i, j) at index p of its plane: (1 - omega) phi + omega (b + sum phi_nb) / diag
- * on fluid cells, 0 elsewhere. mask and b point at the plane; branch-free. */
+/* The Jacobi value of cell (i, j) at index p of its plane: (1 - w) phi + w (b + sum phi_nb) / diag, w the
+ * relaxation weight, on fluid cells, 0 elsewhere. mask and b point at the plane; branch-free. */
 FW_INLINE float jacobi_value(const FwLevel* L, __global const uchar* mask, __global const float* b,
-                             const FwPlanes* P, float omega, int i, int j, int p, int run) {
+                             const FwPlanes* P, float relaxation_weight, int i, int j, int p, int run) {
   const uchar m = mask[p];
   const float d = run_diagonal(m, run);
-  const float out =
-      (1.0f - omega) * P->here[p] + omega * (b[p] + run_neighbour_sum(L, P, i, j, p, m, run)) / d;
+  const float out = (1.0f - relaxation_weight) * P->here[p] +
+                    relaxation_weight * (b[p] + run_neighbour_sum(L, P, i, j, p, m, run)) / d;
   return (run_fluid(m, run) && d > 0.0f) ? out : 0.0f;
 }
 
 __kernel void jacobi_sweep(const FwLevel L, __global const uchar* mask, __global const float* b,
-                           __global const float* phi, __global float* phi_out, const float omega) {
+                           __global const float* phi, __global float* phi_out,
+                           const float relaxation_weight) {
   const int j = get_global_id(1), k = get_global_id(2), plane = k * plane_cells(&L), row = j * L.nx;
   const FwPlanes P = level_planes(&L, phi, k);
   mask += plane, b += plane, phi_out += plane;
   const FwRowRuns R = row_runs(&L, &P, mask + row, j, FW_ROW_BEGIN, FW_ROW_END(L.nx));
-  FW_FOR_RUNS(R, phi_out[row + i] = jacobi_value(&L, mask, b, &P, omega, i, j, row + i, run));
+  FW_FOR_RUNS(R, phi_out[row + i] = jacobi_value(&L, mask, b, &P, relaxation_weight, i, j, row + i, run));
 }
 
 /* Red-black Gauss-Seidel, one colour per pass and out of place: cells with (i + j + k) % 2 == colour get the
@@ -357,25 +358,26 @@ __kernel void apply_operator_dot(const FwLevel L, __global const uchar* mask, __
   FW_GROUP_SUM(sum, partial);
 }
 
-/* The first smoothing pass from a zero guess, which needs no neighbours: omega b / diag on the fluid cells
- * the pass updates, 0 elsewhere. colour: the colour a red-black pass updates (omega = 1), or
+/* The first smoothing pass from a zero guess, which needs no neighbours: w b / diag (w the relaxation weight)
+ * on the fluid cells the pass updates, 0 elsewhere. colour: the colour a red-black pass updates (w = 1), or
  * FW_SMOOTH_ALL_CELLS for a damped Jacobi sweep; cell_colour = (i + j + k) % 2. The same value as
  * red_black_value or jacobi_value with phi = 0. */
-FW_INLINE float smoothing_start_value(uchar m, float b, float omega, int colour, int cell_colour) {
+FW_INLINE float smoothing_start_value(uchar m, float b, float relaxation_weight, int colour,
+                                      int cell_colour) {
   const float d = diagonal(m);
   const int active =
       (colour == FW_SMOOTH_ALL_CELLS || cell_colour == colour) && (m & FW_MASK_FLUID) && d > 0.0f;
-  return active ? omega * b / d : 0.0f;
+  return active ? relaxation_weight * b / d : 0.0f;
 }
 
 /* out = the first smoothing pass of A phi = b from phi = 0 (a fill and a pass in one, reading no
  * neighbours). */
 __kernel void smoothing_start(const FwLevel L, __global const uchar* mask, __global const float* b,
-                              __global float* out, const float omega, const int colour) {
+                              __global float* out, const float relaxation_weight, const int colour) {
   const int j = get_global_id(1), k = get_global_id(2), row = level_index(&L, 0, j, k), parity = (j + k) & 1;
   mask += row, b += row, out += row;
   for (int i = FW_ROW_BEGIN; i < FW_ROW_END(L.nx); ++i)
-    out[i] = smoothing_start_value(mask[i], b[i], omega, colour, (i + parity) & 1);
+    out[i] = smoothing_start_value(mask[i], b[i], relaxation_weight, colour, (i + parity) & 1);
 }
 
 /* Coarse right-hand side: scale * mean of the fine residual r (from the residual kernel) over each coarse
@@ -388,18 +390,18 @@ __kernel void smoothing_start(const FwLevel L, __global const uchar* mask, __glo
 /* Coarse cell I of the row (coarse_mask, coarse_b and coarse_start point at it): its right-hand side
  * (restricted, off the fluid 0) and its first smoothing pass from a zero guess. */
 FW_INLINE void store_coarse_cell(__global const uchar* coarse_mask, __global float* coarse_b,
-                                 __global float* coarse_start, int I, float restricted, float omega,
-                                 int colour, int parity) {
+                                 __global float* coarse_start, int I, float restricted,
+                                 float relaxation_weight, int colour, int parity) {
   const uchar m = coarse_mask[I];
   const float bc = (m & FW_MASK_FLUID) ? restricted : 0.0f;
   coarse_b[I] = bc;
-  coarse_start[I] = smoothing_start_value(m, bc, omega, colour, (I + parity) & 1);
+  coarse_start[I] = smoothing_start_value(m, bc, relaxation_weight, colour, (I + parity) & 1);
 }
 
 __kernel void restrict_residual(const FwLevel F, const FwLevel C, __global const uchar* coarse_mask,
                                 __global const float* r, __global float* coarse_b,
-                                __global float* coarse_start, const float scale, const float omega,
-                                const int colour) {
+                                __global float* coarse_start, const float scale,
+                                const float relaxation_weight, const int colour) {
   const int J = get_global_id(1), K = get_global_id(2), j = 2 * J, k = 2 * K, plane = plane_cells(&F);
   /* The four fine rows of the coarse row: (j, k), (j + 1, k), (j, k + 1), (j + 1, k + 1). */
   __global const float* r00 = r + level_index(&F, 0, j, k);
@@ -414,12 +416,14 @@ __kernel void restrict_residual(const FwLevel F, const FwLevel C, __global const
     const int i = 2 * I;
     const float sum =
         (r00[i] + r00[i + 1]) + (r10[i] + r10[i + 1]) + (r01[i] + r01[i + 1]) + (r11[i] + r11[i + 1]);
-    store_coarse_cell(coarse_mask, coarse_b, coarse_start, I, weight * sum, omega, colour, parity);
+    store_coarse_cell(coarse_mask, coarse_b, coarse_start, I, weight * sum, relaxation_weight, colour,
+                      parity);
   }
   for (int I = max(begin, pairs); I < end; ++I) {
     const int i = 2 * I;
     const float sum = 2.0f * ((r00[i] + r10[i]) + (r01[i] + r11[i]));
-    store_coarse_cell(coarse_mask, coarse_b, coarse_start, I, weight * sum, omega, colour, parity);
+    store_coarse_cell(coarse_mask, coarse_b, coarse_start, I, weight * sum, relaxation_weight, colour,
+                      parity);
   }
 }
 

@@ -9,6 +9,7 @@
 #include <stdexcept>
 
 #include "viz/ColourBar.hpp"
+#include "viz/DisplacementScale.hpp"
 #include "viz/SliceHeight.hpp"
 #include "viz/Ticks.hpp"
 
@@ -25,8 +26,7 @@ constexpr int kMostQuadsAcross = 256;    // perspective: cells merged into block
 constexpr double kThinnestBranch = 1.0;  // px
 constexpr double kBranchEdge = 1.2;      // px of dark edge around each branch ...
 constexpr double kEdgedBranch = 1.5;     // ... this thick or more: a dense crown's twigs would be all edge
-constexpr double kDisplacementQuantile = 0.99;  // the displacement scale's top: see displacement_scale
-constexpr double kLeafSmallest = 1.2;           // px, radius
+constexpr double kLeafSmallest = 1.2;    // px, radius
 
 const Rgb kWhite{1.0, 1.0, 1.0}, kInk{0.1, 0.1, 0.1}, kGrid{0.55, 0.55, 0.55};
 const Rgb kSolidFill{0.62, 0.62, 0.62}, kSolidEdge{0.15, 0.15, 0.15}, kFootprintEdge{0.3, 0.3, 0.3};
@@ -210,15 +210,6 @@ void draw_arrows(Canvas& canvas, const Camera& camera, const WindGrid& g, const 
                    {p1.x - head * (ux + 0.5 * uy), p1.y - head * (uy - 0.5 * ux)}},
                   kInk, 1.0);
     }
-}
-
-// The top of the displacement colour scale: the 99th percentile of the nodes' displacements (nearest
-// rank), so that a few whipping tips do not leave every other branch at the dark end of the map.
-double displacement_scale(std::vector<double> displacement) {
-  if (displacement.empty()) return 0.0;
-  const std::size_t rank = std::size_t(std::ceil(kDisplacementQuantile * displacement.size())) - 1;
-  std::nth_element(displacement.begin(), displacement.begin() + rank, displacement.end());
-  return displacement[rank];
 }
 
 // The trees are drawn as strokes of many segments at once: a forest has about a million, and one stroke

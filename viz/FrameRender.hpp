@@ -18,8 +18,9 @@
 // Colours: unsigned fields (speed, magnitudes, densities) on the "wind" map from 0 to the slice's largest
 // value; signed ones (components, pressure) on the "diverging" map symmetric about 0; `range` overrides.
 // Trees: every element a line as thick as the branch (at least a pixel), on the "displacement" map from 0 to
-// the 99th percentile of the frame's nodal displacements (a few whipping tips would otherwise leave every
-// other branch dark), limbs and trunks with a dark edge so they read over any colour.
+// the 99th percentile of the frame's nodal displacements (viz/DisplacementScale, shared with view.py; a few
+// whipping tips would otherwise leave every other branch dark), limbs and trunks with a dark edge so they
+// read over any colour.
 #pragma once
 
 #include <array>

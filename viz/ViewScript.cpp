@@ -153,15 +153,16 @@ def open_collection(name):
     return PVDReader(registrationName=name + '.pvd', FileName=path)
 
 
-def use_colour_map(display, association, array, component, rgb_points, title, corner):
-    """Colours `display` by `array` with one of forestwind's maps and shows its scalar bar."""
+def use_colour_map(display, association, array, component, rgb_points, title, corner, rescale):
+    """Colours `display` by `array` with one of forestwind's maps and shows its scalar bar. rescale: how the
+    range follows the data as the animation plays ('Grow and update every timestep': growing only, so a
+    colour keeps its value; 'Never': the range set below stays)."""
     ColorBy(display, (association, array) if component is None else (association, array, component))
     lut = GetColorTransferFunction(array)
     lut.ColorSpace = 'Lab'  # the maps are interpolated in CIELAB, as viz/ColourMap does
     lut.RGBPoints = rgb_points
     lut.ScalarRangeInitialized = 1.0
-    # The range follows the data as the animation plays, growing only, so a colour keeps its value.
-    lut.AutomaticRescaleRangeMode = 'Grow and update every timestep'
+    lut.AutomaticRescaleRangeMode = rescale
     display.SetScalarBarVisibility(view, True)
     bar = GetScalarBar(lut, view)
     bar.Title = title
@@ -223,7 +224,7 @@ if wind is not None:
         plain_colour(slice_display, [0.8, 0.8, 0.8])
     if speed_array is not None:
         speed_lut = use_colour_map(slice_display, 'CELLS', speed_array, speed_component, SPEED_RGB_POINTS,
-                                   'speed (m/s)', 'Lower Right Corner')
+                                   'speed (m/s)', 'Lower Right Corner', 'Grow and update every timestep')
 )PY";
 
 constexpr const char* kTrees = R"PY(
@@ -238,8 +239,10 @@ if trees is not None:
     tubes.NumberofSides = 8
     tube_display = Show(tubes, view)
     if 'displacement' in trees.PointData.keys():
+        # render's scale, held: growing to the largest displacement would leave most branches dark.
         displacement_lut = use_colour_map(tube_display, 'POINTS', 'displacement', 'Magnitude',
-                                          DISPLACEMENT_RGB_POINTS, 'displacement (m)', 'Upper Right Corner')
+                                          DISPLACEMENT_RGB_POINTS, 'displacement (m)', 'Upper Right Corner',
+                                          'Never')
     else:
         plain_colour(tube_display, [0.45, 0.3, 0.15])
 )PY";
@@ -285,8 +288,10 @@ if speed_lut is not None:
         lo, hi = min(lo, SPEED_RANGE[0]), max(hi, SPEED_RANGE[1])
     set_range(speed_lut, speed_array, lo, hi, 0.1)  # m/s
 if displacement_lut is not None:
-    set_range(displacement_lut, 'displacement', 0.0, trees.PointData['displacement'].GetRange(-1)[1],
-              1e-3)  # m
+    top = DISPLACEMENT_TOP
+    if top is None:  # view.py written before the run's first frame: the data's largest displacement
+        top = trees.PointData['displacement'].GetRange(-1)[1]
+    set_range(displacement_lut, 'displacement', 0.0, top, 1e-3)  # m
 
 clock = AnnotateTime(registrationName='time')
 clock.Format = 't = {time:.2f} s'
@@ -349,6 +354,11 @@ std::string view_script(const ViewScriptSettings& s) {
     python_number(hi, "the speed range");
     if (!(lo < hi)) throw std::invalid_argument("view_script: the speed range needs lo < hi");
   }
+  if (s.displacement_top) {
+    python_number(*s.displacement_top, "the displacement scale");
+    if (!(*s.displacement_top >= 0.0))
+      throw std::invalid_argument("view_script: the displacement scale must be >= 0 m");
+  }
   const std::string name = python_string_literal(s.scenario_name);
 
   std::vector<std::string> shown;
@@ -357,7 +367,9 @@ std::string view_script(const ViewScriptSettings& s) {
         fmt::format("wind.pvd: a slice at z = {} m coloured by speed (m/s), the outline, obstacles",
                     python_number(s.slice_height, "the slice height")));
   }
-  if (s.trees) shown.push_back("trees.pvd: tubes of the branch radius coloured by displacement (m)");
+  if (s.trees)
+    shown.push_back(
+        "trees.pvd: tubes of the branch radius coloured by displacement (m), on forestwind render's scale");
   if (s.leaves) shown.push_back("leaves.pvd: points coloured by state (attached, flying, landed)");
   if (shown.empty()) shown.push_back("nothing: the run writes no wind, trees or leaves collection");
 
@@ -388,7 +400,14 @@ std::string view_script(const ViewScriptSettings& s) {
     }
     py += rgb_points("SPEED_RGB_POINTS", "wind", range[0], range[1], "m/s");
   }
-  if (s.trees) py += rgb_points("DISPLACEMENT_RGB_POINTS", "displacement", 0.0, 1.0, "m");
+  if (s.trees) {
+    py += rgb_points("DISPLACEMENT_RGB_POINTS", "displacement", 0.0, 1.0, "m");
+    py +=
+        "# The top of the displacement scale, m: `forestwind render`'s (the 99th percentile of the nodes'\n"
+        "# displacements, viz/DisplacementScale) at the last frame the run wrote; None before its first.\n";
+    py += "DISPLACEMENT_TOP = " +
+          (s.displacement_top ? python_number(*s.displacement_top, "the displacement scale") : "None") + "\n";
+  }
   py += kHelpers;
   if (s.wind) py += kWind;
   if (s.trees) py += kTrees;

@@ -30,9 +30,12 @@
 // The speed slice sits by default at the anemometer height, 10 m above the domain floor (origin z),
 // clamped into the domain's cell centres. The colour maps are the project's own (viz/ColourMap: "wind"
 // for speed, "displacement" for the trees), written as RGBPoints interpolated in CIELAB, so that
-// ParaView and `forestwind render` agree. Their ranges start at speed_range (else 0..1 m/s) and 0..1 m,
-// are set to the data at the last frame (speed: grown to cover speed_range) and grow as the animation
-// plays. The script opens only the collections named in the settings, and of those only the ones whose
+// ParaView and `forestwind render` agree. The speed scale starts at speed_range (else 0..1 m/s), is set to
+// the data at the last frame (grown to cover speed_range) and grows as the animation plays. The displacement
+// scale is render's: 0 to displacement_top, the 99th percentile of the nodes' displacements at the last
+// frame the run wrote (viz/DisplacementScale, computed by the run and written in), held as the animation
+// plays (before a first frame, none: the data's largest displacement at the last frame).
+// The script opens only the collections named in the settings, and of those only the ones whose
 // .pvd lists a frame when it runs, so a folder that a run is still writing (or that a failed run left)
 // opens too.
 #pragma once
@@ -58,11 +61,14 @@ struct ViewScriptSettings {
   /// A first range of the speed colour scale, m/s (lo < hi): e.g. 0 to the ambient wind's peak. ParaView
   /// grows it to the data; none: it starts at 0..1 m/s and follows the data.
   std::optional<std::array<double, 2>> speed_range;
+  /// The top of the trees' displacement scale, m (>= 0): viz::displacement_scale of the last frame the run
+  /// wrote (ViewScriptWriter fills it in); none before the first frame.
+  std::optional<double> displacement_top;
 };
 
 /// The Python text of view.py (ASCII only, LF line ends). Throws std::invalid_argument("view_script: ...")
-/// for non-finite numbers, a non-positive size or cell size, a slice outside the domain or a speed range
-/// with lo >= hi.
+/// for non-finite numbers, a non-positive size or cell size, a slice outside the domain, a speed range
+/// with lo >= hi or a negative displacement_top.
 std::string view_script(const ViewScriptSettings& settings);
 
 /// `text` as a Python 3 string literal in single quotes, in ASCII: backslash, quote and control characters

@@ -1,5 +1,7 @@
-// view.py in the output folder (viz/ViewScript): written once, when the run begins, so that a run that is
-// still going, was interrupted or failed opens in ParaView too. It reads no frame data.
+// view.py in the output folder (viz/ViewScript): written when the run begins, so that a run that is still
+// going, was interrupted or failed opens in ParaView too, and, when it shows the trees, written again after
+// each frame with that frame's displacement scale (viz/DisplacementScale: the one `forestwind render` uses),
+// the only frame data it reads.
 //
 //   fw::viz::ViewScriptSettings view;                  // what the run writes, the domain (m), the slice
 //   view.wind = true; view.size = {128, 64, 32}; view.cell_size = 2.0; view.slice_height = 10.0;
@@ -24,15 +26,21 @@ class ViewScriptWriter : public io::FrameWriter {
   ViewScriptWriter(std::filesystem::path directory, ViewScriptSettings settings);
 
   std::string name() const override { return "view.py"; }
-  io::FrameNeeds needs() const override { return {}; }  // nothing of the frames
+  /// The displacement when the script shows the trees; nothing else of the frames.
+  io::FrameNeeds needs() const override;
   /// Creates the folder and writes view.py. Throws std::runtime_error("ViewScriptWriter: cannot write ...").
   void begin() override;
-  void write(const io::OutputFrame& /*frame*/) override {}
+  /// With the trees shown and the frame's displacement there: view.py again, its displacement scale this
+  /// frame's. Throws as begin().
+  void write(const io::OutputFrame& frame) override;
 
   const std::filesystem::path& path() const { return path_; }
+  /// The settings of the script last written (displacement_top from the last frame).
+  const ViewScriptSettings& settings() const { return settings_; }
 
  private:
   std::filesystem::path directory_, path_;
+  ViewScriptSettings settings_;
   std::string script_;
 };
 

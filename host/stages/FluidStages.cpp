@@ -184,12 +184,13 @@ void FluidStages::enqueue_apply_forces(int c, float body_acceleration, cl::Buffe
   forces_.set_args(grid_, step_, c, body_acceleration, gusts, gust_count, q).enqueue(cc_, component_rows(c));
 }
 
-void FluidStages::enqueue_vorticity(DeviceVelocity& vel, cl::Buffer& omega) {
-  vorticity_.set_args(grid_, vel.u, vel.v, vel.w, omega).enqueue(cc_, cc_.rows(spec_.nx, spec_.ny, spec_.nz));
+void FluidStages::enqueue_vorticity(DeviceVelocity& vel, cl::Buffer& vorticity) {
+  vorticity_.set_args(grid_, vel.u, vel.v, vel.w, vorticity)
+      .enqueue(cc_, cc_.rows(spec_.nx, spec_.ny, spec_.nz));
 }
 
-void FluidStages::enqueue_vorticity_confinement(int c, float epsilon, cl::Buffer& omega, cl::Buffer& q) {
-  confinement_.set_args(grid_, step_, c, epsilon, omega, q).enqueue(cc_, component_rows(c));
+void FluidStages::enqueue_vorticity_confinement(int c, float epsilon, cl::Buffer& vorticity, cl::Buffer& q) {
+  confinement_.set_args(grid_, step_, c, epsilon, vorticity, q).enqueue(cc_, component_rows(c));
 }
 
 void FluidStages::enqueue_diffuse(int c, float nu_dt_over_h2, cl::Buffer& q, cl::Buffer& out) {

@@ -72,8 +72,8 @@ class FluidStages {
   void enqueue_maccormack_correct(int c, DeviceVelocity& padded_vel, cl::Buffer& padded_q,
                                   cl::Buffer& forward, cl::Buffer& back, cl::Buffer& out);
   void enqueue_apply_forces(int c, float body_acceleration, cl::Buffer& gusts, int gust_count, cl::Buffer& q);
-  void enqueue_vorticity(DeviceVelocity& vel, cl::Buffer& omega);
-  void enqueue_vorticity_confinement(int c, float epsilon, cl::Buffer& omega, cl::Buffer& q);
+  void enqueue_vorticity(DeviceVelocity& vel, cl::Buffer& vorticity);
+  void enqueue_vorticity_confinement(int c, float epsilon, cl::Buffer& vorticity, cl::Buffer& q);
   void enqueue_diffuse(int c, float nu_dt_over_h2, cl::Buffer& q, cl::Buffer& out);
   /// vel <- vel after implicit canopy drag over step().dt: q / (1 + dt k |u|) on every face, k the drag
   /// density (1/m, one float a cell) and |u| the old speed at the face. `box` must hold every cell of

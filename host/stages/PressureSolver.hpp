@@ -8,7 +8,9 @@
 // Solvers (fluid::PressureSolverType):
 //   jacobi     fixed iteration count (the seed's method, kept as a baseline);
 //   multigrid  geometric multigrid V-cycles until the relative residual is below the tolerance;
-//   cg         conjugate gradients preconditioned by one V-cycle, same stopping rule (the default).
+//   cg         conjugate gradients preconditioned by one V-cycle, same stopping rule (the default); when its
+//              recursively updated residual meets the tolerance and the true one does not (they part near the
+//              float floor), it restarts from the true residual, at most twice.
 // The V-cycle smooths with damped Jacobi or red-black Gauss-Seidel (both symmetric, so it is a valid CG
 // preconditioner), restricts the residual by averaging, and prolongs linearly (stand-alone cycles) or
 // piecewise-constant (in CG, where the cycle must be symmetric). Where a level
@@ -60,7 +62,8 @@ class PressureSolver {
   const fluid::PressureLevel& level(int l) const { return host_levels_[l]; }
 
   // One stage each, exposed for the kernel tests. `level` indexes the hierarchy (0 = fine grid).
-  void enqueue_jacobi_sweep(int level, cl::Buffer& b, cl::Buffer& phi, cl::Buffer& phi_out, float omega);
+  void enqueue_jacobi_sweep(int level, cl::Buffer& b, cl::Buffer& phi, cl::Buffer& phi_out,
+                            float relaxation_weight);
   /// One colour of red-black Gauss-Seidel, out of place: phi_out = phi with the colour's cells updated.
   void enqueue_red_black_pass(int level, cl::Buffer& b, cl::Buffer& phi, cl::Buffer& phi_out, int colour);
   /// One colour of red-black Gauss-Seidel in place: the values of enqueue_red_black_pass, fewer bytes moved.
@@ -112,9 +115,9 @@ class PressureSolver {
   /// started: the first smoothing pass from phi = 0 is already in first_pass_buffer(l, phi).
   void vcycle_level(int l, cl::Buffer& b, cl::Buffer& phi, bool started);
   void smooth(int l, cl::Buffer& b, cl::Buffer& phi, int sweeps, bool after_correction, bool started);
-  /// The smoother's first pass as the start kernels take it: its damping and its colour (or
-  /// FW_SMOOTH_ALL_CELLS).
-  float start_damping() const;
+  /// The smoother's first pass as the start kernels take it: its relaxation weight (kJacobiWeight, or 1 for
+  /// a red-black colour) and its colour (or FW_SMOOTH_ALL_CELLS).
+  float start_relaxation_weight() const;
   int start_colour() const;
   /// phi where level l updates in place, else the level's scratch.
   cl::Buffer& first_pass_buffer(int l, cl::Buffer& phi);

@@ -104,7 +104,7 @@ WindGrid::WindGrid(ComputeContext& cc, WindGridSetup setup)
     padded_forward_ = stages_.allocate_padded_velocity();
   }
   if (setup_.settings.vorticity_confinement > 0.0)
-    omega_ = cc_.buffer(setup_.spec.cell_count() * 4 * sizeof(float));
+    vorticity_ = cc_.buffer(setup_.spec.cell_count() * 4 * sizeof(float));
   if (subgrid_enabled()) eddy_viscosity_ = cc_.buffer(setup_.spec.cell_count() * sizeof(float));
   if (wall_stress_enabled()) {
     wall_drag_coefficient_ =
@@ -255,9 +255,9 @@ void WindGrid::apply_forces() {
       stages_.enqueue_apply_forces(c, static_cast<float>(body[c]), gusts_,
                                    static_cast<int>(setup_.gusts.size()), vel_.component(c));
   if (st.vorticity_confinement > 0.0) {
-    stages_.enqueue_vorticity(vel_, omega_);
+    stages_.enqueue_vorticity(vel_, vorticity_);
     for (int c = 0; c < 3; ++c)
-      stages_.enqueue_vorticity_confinement(c, static_cast<float>(st.vorticity_confinement), omega_,
+      stages_.enqueue_vorticity_confinement(c, static_cast<float>(st.vorticity_confinement), vorticity_,
                                             vel_.component(c));
   }
 }

@@ -163,7 +163,7 @@ class WindGrid {
   FluidStages stages_;
   PressureSolver pressure_;
   DeviceVelocity vel_, tmp_, back_, padded_, padded_forward_;
-  cl::Buffer omega_, gusts_, profile_;
+  cl::Buffer vorticity_, gusts_, profile_;
   double time_ = 0.0, last_dt_ = 0.0;
   double turbulence_sigma_ = 0.0;                     // m/s
   std::array<double, 3> turbulence_offset_{0, 0, 0};  // m, within one box length

@@ -113,9 +113,9 @@ TEST_CASE("make_wind_frame: carries the grid placement, time, step and per-cell 
 
 TEST_CASE("wind_vorticity: a solid-body rotation has vorticity (0, 0, 2 Omega)", "[output]") {
   const GridSpec spec = small_spec();
-  const double omega = 0.8;  // rad/s
+  const double rotation_rate = 0.8;  // rad/s
   const MacVelocity vel = mac_from(spec, [&](double x, double y, double) {
-    return std::array<double, 3>{-omega * y, omega * x, 0.0};
+    return std::array<double, 3>{-rotation_rate * y, rotation_rate * x, 0.0};
   });
   const auto frame = fw::io::make_wind_frame(spec, vel, {}, {}, {}, 0.0, 0);
   const std::vector<float> w = fw::io::wind_vorticity(frame);
@@ -127,7 +127,7 @@ TEST_CASE("wind_vorticity: a solid-body rotation has vorticity (0, 0, 2 Omega)",
         // Tolerance: float32 velocities (~1e-7 relative of ~2 m/s) differenced over 2h = 1 m.
         CHECK(w[3 * cell + 0] == Approx(0.0).margin(1e-5));
         CHECK(w[3 * cell + 1] == Approx(0.0).margin(1e-5));
-        CHECK(w[3 * cell + 2] == Approx(2.0 * omega).margin(1e-5));
+        CHECK(w[3 * cell + 2] == Approx(2.0 * rotation_rate).margin(1e-5));
       }
     }
   }

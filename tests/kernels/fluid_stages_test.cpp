@@ -266,11 +266,11 @@ TEST_CASE("forces: vorticity and vorticity confinement match the CPU reference")
   auto vel = test::random_velocity(f.spec, 3.0, 41);
   auto dvel = f.stages.allocate_velocity();
   test::upload(*cc, vel, dvel);
-  cl::Buffer omega = cc->buffer(f.spec.cell_count() * 4 * sizeof(float));
-  f.stages.enqueue_vorticity(dvel, omega);
-  const auto device_omega = test::download(*cc, omega, f.spec.cell_count() * 4);
-  CHECK(test::relative_error(device_omega, ref::vorticity(f.spec, vel)) < kStageTolerance);
-  for (int c = 0; c < 3; ++c) f.stages.enqueue_vorticity_confinement(c, 0.3f, omega, dvel.component(c));
+  cl::Buffer vorticity = cc->buffer(f.spec.cell_count() * 4 * sizeof(float));
+  f.stages.enqueue_vorticity(dvel, vorticity);
+  const auto device_vorticity = test::download(*cc, vorticity, f.spec.cell_count() * 4);
+  CHECK(test::relative_error(device_vorticity, ref::vorticity(f.spec, vel)) < kStageTolerance);
+  for (int c = 0; c < 3; ++c) f.stages.enqueue_vorticity_confinement(c, 0.3f, vorticity, dvel.component(c));
   const auto device = test::download(*cc, dvel, f.spec);
   ref::add_vorticity_confinement(f.spec, vel, 0.3, 0.4);
   // N = grad|w| / |grad|w|| amplifies rounding where the gradient is tiny; 1e-4 covers it.

@@ -214,8 +214,9 @@ void check_projection(fluid::PressureSolverType type, const fluid::GridSpec& spe
   if (!cc) return;
   fluid::PressureSettings settings;
   settings.solver = type;
-  // 1e-5: above the float32 floor of ||b - A phi|| / ||b|| on random fields (about 1e-5 here), where the
-  // true residual stops following the recursively updated one.
+  // 1e-5: just above the float32 floor of ||b - A phi|| / ||b|| on these random fields, where the true
+  // residual stops falling (7.4e-6 for V-cycles, 8e-6 for CG, measured over three seeds) and CG's recursively
+  // updated residual parts from it (it falls below 1e-5 while the true one is 1.12e-5: solve_cg restarts).
   settings.tolerance = 1e-5;
   settings.max_iterations = 200;
   const auto fine = fluid::build_fine_pressure_level(spec, solid);
@@ -238,7 +239,10 @@ void check_projection(fluid::PressureSolverType type, const fluid::GridSpec& spe
                  << status.relative_residual);
   WARN(status.solver << ": " << status.iterations << " iterations to " << status.relative_residual);
   CHECK(status.iterations < settings.max_iterations);
-  CHECK(status.relative_residual < 2 * settings.tolerance);  // within the float floor of the tolerance
+  // Converged within the tolerance asked for, by the solver's own measure: the true residual ||b - A phi|| /
+  // ||b||, recomputed from phi after the solve (not CG's recursively updated one).
+  REQUIRE(status.converged);
+  CHECK(status.relative_residual <= settings.tolerance);
   for (int c = 0; c < 3; ++c)
     stages.enqueue_subtract_gradient(c, solver.mask(), solver.solution(), dvel.component(c));
 

@@ -2,12 +2,16 @@
 #include "viz/ViewScript.hpp"
 #include "viz/ViewScriptWriter.hpp"
 
+#include "tests/support/RunFolders.hpp"
 #include "tests/support/TempDir.hpp"
 #include "viz/ColourMap.hpp"
+#include "viz/FrameRender.hpp"
+#include "viz/RunFolder.hpp"
 
 #include <catch2/catch.hpp>
 
 #include <array>
+#include <cmath>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -100,16 +104,19 @@ bool python3_accepts(const fw::test::TempDir& dir, const std::string& checker, c
 
 }  // namespace
 
-TEST_CASE("ViewScript: the writer writes view.py atomically into a folder and needs no frame data", "[viz]") {
+TEST_CASE("ViewScript: the writer writes view.py atomically into a folder and needs at most the displacement",
+          "[viz]") {
   fw::test::TempDir dir("fw_view");
   const fs::path out = fs::path(dir.path()) / "runs" / "grove";  // not there yet: begin() makes it
   fw::viz::ViewScriptWriter writer(out, settings(true, true, false));
-  const fw::io::FrameNeeds needs = writer.needs();
-  CHECK_FALSE(needs.velocity);
-  CHECK_FALSE(needs.pressure);
-  CHECK_FALSE(needs.displacement);
-  CHECK_FALSE(needs.probe_samples);
-  CHECK_FALSE(needs.leaves);
+  for (const bool trees : {true, false}) {
+    const fw::io::FrameNeeds needs = fw::viz::ViewScriptWriter("unused", settings(true, trees, true)).needs();
+    CHECK_FALSE(needs.velocity);
+    CHECK_FALSE(needs.pressure);
+    CHECK(needs.displacement == trees);  // for the trees' displacement scale
+    CHECK_FALSE(needs.probe_samples);
+    CHECK_FALSE(needs.leaves);
+  }
   CHECK(writer.path() == out / "view.py");
 
   writer.begin();
@@ -119,7 +126,7 @@ TEST_CASE("ViewScript: the writer writes view.py atomically into a folder and ne
   CHECK(contains(script, "return os.path.dirname(os.path.abspath(__file__))"));
   CHECK(contains(script, "RUN = script_folder()"));
   CHECK_FALSE(contains(script, dir.path()));
-  writer.write(fw::io::OutputFrame{});  // frames change nothing
+  writer.write(fw::io::OutputFrame{});  // a frame without the displacement changes nothing
   writer.finish(fw::io::RunOutcome{});
   CHECK(read_text(out / "view.py") == script);
 
@@ -134,6 +141,72 @@ TEST_CASE("ViewScript: the writer writes view.py atomically into a folder and ne
   std::ofstream(fs::path(dir.path()) / "blocked") << "a file";
   fw::viz::ViewScriptWriter blocked(fs::path(dir.path()) / "blocked", settings(true, false, false));
   CHECK_THROWS_WITH(blocked.begin(), Catch::Contains("ViewScriptWriter: cannot write"));
+}
+
+namespace {
+
+// The number after `NAME = ` in the script; NaN for None.
+double python_number_of(const std::string& script, const std::string& name) {
+  const std::size_t start = script.find("\n" + name + " = ");
+  REQUIRE(start != std::string::npos);
+  const std::size_t value = start + name.size() + 4, end = script.find('\n', value);
+  const std::string text = script.substr(value, end - value);
+  return text.rfind("None", 0) == 0 ? std::numeric_limits<double>::quiet_NaN() : std::stod(text);
+}
+
+}  // namespace
+
+TEST_CASE("ViewScript: the trees are coloured on render's scale, the 99th percentile of the last frame's",
+          "[viz]") {
+  // Ten trunks of 21 nodes, trunk k swaying 0.1 (k + 1) m at its top, and the tops of the two last whipping
+  // 7 m: the 99th percentile of the 210 nodes (nearest rank, the 208th smallest) is the third largest, 0.95 m
+  // (node 19 of the last trunk), far below the 7 m that view.py's scale used to reach.
+  std::vector<fw::io::TreesFrame::Tree> forest;
+  for (int k = 0; k < 10; ++k)
+    forest.push_back(fw::test::trunk(2.0 + 3.0 * k, 10.0, 8.0, 0.3, 21, 0.1 * (k + 1)));
+  forest[8].displacement.row(20) << 7.0, 0.0, 0.0;
+  forest[9].displacement.row(20) << 0.0, 7.0, 0.0;
+  fw::io::OutputFrame frame;  // what the run hands the writers: 3 floats a node, in instance order
+  for (const auto& tree : forest)
+    for (int n = 0; n < tree.displacement.rows(); ++n)
+      for (int c = 0; c < 3; ++c) frame.displacement.push_back(float(tree.displacement(n, c)));
+
+  fw::test::TempDir dir("fw_view");
+  fw::test::write_run(dir.path(), fw::test::UniformWind{}, forest, 1, 0.5);
+  const fw::viz::RunFolder run(dir.path());
+  const fw::viz::FrameRender picture(run.load(run.select(std::nullopt, std::nullopt)), run.scenario_name(),
+                                     fw::viz::RenderSettings{});
+
+  fw::viz::ViewScriptWriter writer(dir.path(), settings(true, true, false));
+  writer.begin();
+  CHECK(std::isnan(python_number_of(read_text(fs::path(dir.path()) / "view.py"), "DISPLACEMENT_TOP")));
+  writer.write(frame);
+  const std::string script = read_text(fs::path(dir.path()) / "view.py");
+  const double top = python_number_of(script, "DISPLACEMENT_TOP");
+  // The same function on the same float32 values (the frame's, and the file's that render reads back): equal.
+  CHECK(top == picture.displacement_range());
+  CHECK(top == Approx(0.95).epsilon(1e-6));  // float32 of 0.95 m
+  ViewScriptSettings expected = settings(true, true, false);
+  expected.displacement_top = top;
+  CHECK(script == fw::viz::view_script(expected));
+  // The script sets the range to it and holds it as the animation plays (the speed scale still grows).
+  CHECK(contains(script, "    top = DISPLACEMENT_TOP\n"));
+  CHECK(contains(script, "set_range(displacement_lut, 'displacement', 0.0, top, 1e-3)"));
+  CHECK(contains(
+      script,
+      "'displacement (m)', 'Upper Right Corner',\n                                          'Never')"));
+  CHECK(contains(script, "'speed (m/s)', 'Lower Right Corner', 'Grow and update every timestep')"));
+
+  // A later frame replaces it; a run without trees writes no scale and needs no displacement.
+  for (float& d : frame.displacement) d *= 2.0f;
+  writer.write(frame);
+  CHECK(python_number_of(read_text(fs::path(dir.path()) / "view.py"), "DISPLACEMENT_TOP") == 2 * top);
+  CHECK_FALSE(contains(fw::viz::view_script(settings(true, false, false)), "\nDISPLACEMENT_TOP = "));
+  ViewScriptSettings bad = settings(true, true, false);
+  bad.displacement_top = -1.0;
+  CHECK_THROWS_WITH(fw::viz::view_script(bad), Catch::Contains("displacement scale must be >= 0"));
+  bad.displacement_top = std::numeric_limits<double>::infinity();
+  CHECK_THROWS_WITH(fw::viz::view_script(bad), Catch::Contains("not a finite number"));
 }
 
 TEST_CASE("ViewScript: the script names exactly the collections the run writes", "[viz]") {
@@ -253,6 +326,7 @@ TEST_CASE("ViewScript: every combination of collections is valid Python (python3
   for (int mask = 0; mask < 8; ++mask) {
     ViewScriptSettings s = settings(mask & 1, mask & 2, mask & 4);
     if (mask == 5) s.speed_range.reset();
+    if (mask == 6) s.displacement_top = 0.95;
     files += ' ';
     files += dir.write("view" + std::to_string(mask) + ".py", fw::viz::view_script(s));
   }
