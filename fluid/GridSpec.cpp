@@ -12,14 +12,6 @@ constexpr const char* kBoundaryNames[] = {"inflow", "outflow", "slip", "no_slip"
 constexpr const char* kFaceNames[] = {"west", "east", "south", "north", "ground", "top"};
 }  // namespace
 
-BoundaryType parse_boundary_type(const std::string& name) {
-  for (int i = 0; i < 5; ++i)
-    if (name == kBoundaryNames[i]) return static_cast<BoundaryType>(i);
-  throw std::invalid_argument(fmt::format(
-      "GridSpec: unknown boundary type '{}'; expected one of inflow, outflow, slip, no_slip, periodic",
-      name));
-}
-
 std::string to_string(BoundaryType type) {
   const int i = static_cast<int>(type);
   return (i >= 0 && i < 5) ? kBoundaryNames[i] : fmt::format("<invalid boundary {}>", i);

@@ -26,8 +26,7 @@ enum class BoundaryType : int {
   periodic = FW_BC_PERIODIC,
 };
 
-/// "inflow", "outflow", "slip", "no_slip" or "periodic". Throws std::invalid_argument listing the choices.
-BoundaryType parse_boundary_type(const std::string& name);
+/// "inflow", "outflow", "slip", "no_slip" or "periodic".
 std::string to_string(BoundaryType type);
 /// "west", "east", "south", "north", "ground", "top" for FW_FACE_*.
 std::string face_name(int face);

@@ -7,21 +7,6 @@
 
 namespace fw::fluid {
 
-AdvectionScheme parse_advection_scheme(const std::string& name) {
-  if (name == "semi_lagrangian") return AdvectionScheme::semi_lagrangian;
-  if (name == "maccormack") return AdvectionScheme::maccormack;
-  throw std::invalid_argument(
-      fmt::format("WindSettings: unknown advection '{}'; expected semi_lagrangian or maccormack", name));
-}
-
-PressureSolverType parse_pressure_solver(const std::string& name) {
-  if (name == "jacobi") return PressureSolverType::jacobi;
-  if (name == "multigrid") return PressureSolverType::multigrid;
-  if (name == "cg") return PressureSolverType::cg;
-  throw std::invalid_argument(
-      fmt::format("WindSettings: unknown pressure solver '{}'; expected jacobi, multigrid or cg", name));
-}
-
 std::string to_string(AdvectionScheme scheme) {
   return scheme == AdvectionScheme::maccormack ? "maccormack" : "semi_lagrangian";
 }

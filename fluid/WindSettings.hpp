@@ -10,8 +10,6 @@ enum class AdvectionScheme { semi_lagrangian, maccormack };
 enum class PressureSolverType { jacobi, multigrid, cg };
 enum class MultigridSmoother { jacobi, red_black };
 
-AdvectionScheme parse_advection_scheme(const std::string& name);    // "semi_lagrangian" | "maccormack"
-PressureSolverType parse_pressure_solver(const std::string& name);  // "jacobi" | "multigrid" | "cg"
 std::string to_string(AdvectionScheme scheme);
 std::string to_string(PressureSolverType solver);
 

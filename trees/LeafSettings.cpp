@@ -38,15 +38,6 @@ std::string to_string(FlutterModel model) {
   throw std::invalid_argument(fmt::format("FlutterModel: unknown value {}", int(model)));
 }
 
-FlutterModel flutter_model_from_string(const std::string& name) {
-  for (const FlutterModel model :
-       {FlutterModel::none, FlutterModel::pseudo_branch, FlutterModel::stochastic}) {
-    if (name == to_string(model)) return model;
-  }
-  throw std::invalid_argument(
-      fmt::format("FlutterModel: expected none, pseudo_branch or stochastic, got '{}'", name));
-}
-
 void LeafSettings::validate() const {
   require_positive("area", area);
   if (!std::isfinite(fraction) || fraction <= 0.0 || fraction > 1.0) fail("fraction", "in (0, 1]", fraction);

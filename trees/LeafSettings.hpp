@@ -18,9 +18,8 @@ enum class FlutterModel {
   stochastic,     ///< Ota/Yildiz's three wind-scaled sine angles
 };
 
-/// "none", "pseudo_branch", "stochastic"; from_string throws std::invalid_argument for anything else.
+/// "none", "pseudo_branch", "stochastic".
 std::string to_string(FlutterModel model);
-FlutterModel flutter_model_from_string(const std::string& name);
 
 struct LeafSettings {
   FlutterModel model = FlutterModel::pseudo_branch;

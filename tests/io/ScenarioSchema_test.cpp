@@ -150,8 +150,8 @@ TEST_CASE("schema: the leaf keys take trees::LeafSettings' defaults, words and l
   const auto number = [](const char* name) {
     return schema::find(std::string("forest.species[].leaves.") + name)->number;
   };
-  CHECK(fw::trees::flutter_model_from_string(
-            std::string(schema::key("forest.species[].leaves.model").word)) == leaves.model);
+  CHECK(schema::value_of(schema::kLeafModelWords, schema::kLeafModels,
+                         schema::key("forest.species[].leaves.model").word) == leaves.model);
   CHECK(number("area") == leaves.area);
   CHECK(number("fraction") == leaves.fraction);
   CHECK(number("mass_per_area") == leaves.mass_per_area);
