@@ -820,7 +820,7 @@ void read_obstacles(const Loader& loader, const Field& field, Scenario& scenario
       box.name = loader.text(map.require("name"));
       box.center = loader.vector<3>(map.require("center"));
       box.size = loader.vector<3>(map.require("size"));
-      if (const auto yaw = map.get("yaw")) box.yaw_deg = loader.number(*yaw);
+      if (const auto yaw = map.get("yaw")) box.yaw_rad = radians(loader.number(*yaw));
       scenario.obstacles.emplace_back(box);
     } else if (shape == "cylinder") {
       fluid::SolidCylinder cylinder;
@@ -1109,7 +1109,7 @@ PlacedTreeSettings read_tree(const Loader& loader, const Field& item, const Scen
     if (scenario.terrain)
       tree.position[2] += scenario.terrain->map->height_at(tree.position[0], tree.position[1]);
   }
-  if (const auto yaw = map.get("yaw")) tree.yaw = loader.number(*yaw);
+  if (const auto yaw = map.get("yaw")) tree.yaw_rad = radians(loader.number(*yaw));
   if (const auto scale = map.get("scale")) tree.scale = loader.number(*scale);
   return tree;
 }

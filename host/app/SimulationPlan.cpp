@@ -5,7 +5,6 @@
 #include <chrono>
 #include <cmath>
 #include <memory>
-#include <numbers>
 #include <stdexcept>
 
 #include "fluid/CanopyField.hpp"
@@ -24,8 +23,6 @@ using Clock = std::chrono::steady_clock;
 double seconds_since(Clock::time_point start) {
   return std::chrono::duration<double>(Clock::now() - start).count();
 }
-
-constexpr double kDegree = std::numbers::pi / 180.0;
 
 // The height of the ground under (x, y): the terrain's surface, else the domain floor.
 double ground_z(const io::Scenario& scenario, double x, double y) {
@@ -202,7 +199,7 @@ SimulationPlan plan_simulation(const io::Scenario& scenario, const trees::BasisC
       tree.species = placed.species;
       tree.position = {placed.position.x(), placed.position.y(),
                        ground_z(scenario, placed.position.x(), placed.position.y())};
-      tree.yaw_rad = placed.yaw;
+      tree.yaw_rad = placed.yaw_rad;
       tree.scale = placed.scale;
       instances.push_back(tree);
     }
@@ -213,7 +210,7 @@ SimulationPlan plan_simulation(const io::Scenario& scenario, const trees::BasisC
     tree.position = {placed.position[0], placed.position[1],
                      placed.height_given ? placed.position[2]
                                          : ground_z(scenario, placed.position[0], placed.position[1])};
-    tree.yaw_rad = placed.yaw * kDegree;
+    tree.yaw_rad = placed.yaw_rad;
     tree.scale = placed.scale;
     instances.push_back(tree);
   }

@@ -10,6 +10,7 @@
 #include <cmath>
 #include <cstdint>
 #include <filesystem>
+#include <numbers>
 #include <optional>
 #include <string>
 #include <variant>
@@ -216,7 +217,7 @@ TEST_CASE("load_scenario: the example of DESIGN.md parses and every field lands 
   CHECK(barn->name == "barn");
   CHECK(barn->center == std::array<double, 3>{300, 100, 6});
   CHECK(barn->size == std::array<double, 3>{30, 15, 12});
-  CHECK(barn->yaw_deg == 15.0);
+  CHECK(barn->yaw_rad == fw::io::radians(15.0));  // the file gives degrees
   const auto* silo = std::get_if<fw::fluid::SolidCylinder>(&s.obstacles[1]);
   REQUIRE(silo != nullptr);
   CHECK(silo->name == "silo");
@@ -283,7 +284,7 @@ TEST_CASE("load_scenario: the example of DESIGN.md parses and every field lands 
   // On the ground: x = 400 m is pixel column 99.5 of the ramp, 99.5 / 120 * 20 m = 16.58333 m.
   // Tolerance: bilinear interpolation in doubles, 1e-9 m.
   CHECK(tree.position[2] == Approx(99.5 / 120.0 * 20.0).margin(1e-9));
-  CHECK(tree.yaw == 30.0);
+  CHECK(tree.yaw_rad == Approx(std::numbers::pi / 6).epsilon(1e-15));  // 30 degrees
   CHECK(tree.scale == 1.0);
 
   CHECK(s.solver.pressure == fw::fluid::PressureSolverType::multigrid);
@@ -408,7 +409,7 @@ output:
   const auto* shed = std::get_if<fw::fluid::SolidBox>(&s.obstacles[1]);
   REQUIRE(shed != nullptr);
   CHECK(shed->size == std::array<double, 3>{2, 3, 2});
-  CHECK(shed->yaw_deg == 0.0);  // not given
+  CHECK(shed->yaw_rad == 0.0);  // not given
 
   // An ESRI grid needs neither cell_size nor max_height.
   REQUIRE(s.terrain.has_value());
@@ -456,7 +457,7 @@ output:
   CHECK(forest.trees[1].species_index == 1);
   CHECK(forest.trees[1].height_given);
   CHECK(forest.trees[1].position == std::array<double, 3>{20, 15, 9.5});
-  CHECK(forest.trees[1].yaw == -45.0);
+  CHECK(forest.trees[1].yaw_rad == Approx(-std::numbers::pi / 4).epsilon(1e-15));  // -45 degrees
   CHECK(forest.trees[1].scale == 1.25);
 
   CHECK(s.solver.pressure == fw::fluid::PressureSolverType::jacobi);
@@ -563,7 +564,7 @@ forest:
   CHECK(s.forest.stands[0].layout.seed == 0);
   REQUIRE(s.forest.trees.size() == 1);
   CHECK(s.forest.trees[0].position == std::array<double, 3>{30, 10, 0});  // no terrain: the domain floor
-  CHECK(s.forest.trees[0].yaw == 0.0);
+  CHECK(s.forest.trees[0].yaw_rad == 0.0);
   CHECK(s.forest.trees[0].scale == 1.0);
 
   CHECK(s.solver.pressure == fw::fluid::PressureSolverType::cg);
