@@ -12,6 +12,7 @@
 #include <array>
 #include <cstddef>
 #include <cstdint>
+#include <limits>
 #include <string>
 
 #include "kernels/shared_types.h"
@@ -32,6 +33,9 @@ std::string to_string(BoundaryType type);
 std::string face_name(int face);
 
 struct GridSpec {
+  /// The most faces (nx + 1)(ny + 1)(nz + 1) a grid may have: the kernels index face arrays with 32-bit ints.
+  static constexpr std::int64_t kMaxFaces = std::numeric_limits<std::int32_t>::max();
+
   int nx = 0, ny = 0, nz = 0;             // cells along x, y, z
   double h = 0.0;                         // cell size, m
   std::array<double, 3> origin{0, 0, 0};  // minimum corner, m
@@ -40,7 +44,7 @@ struct GridSpec {
 
   /// Throws std::invalid_argument("GridSpec: ...") for non-positive dimensions or cell size, a periodic face
   /// whose opposite face is not periodic, an odd cell count >1 along a periodic axis, an out-of-range
-  /// boundary value, or a cell count over 2^31.
+  /// boundary value, or more than kMaxFaces faces.
   void validate() const;
 
   std::size_t cell_count() const { return std::size_t(nx) * ny * nz; }

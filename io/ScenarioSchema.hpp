@@ -14,7 +14,9 @@
 // belong to another part of the program (the pressure tolerance of fluid::PressureSettings, the wood of
 // trees::kDefaultWood, the drag coefficients of trees::WindBasisSettings, the modal defaults of
 // trees::ModalSettings, the leaves of trees::LeafSettings) are taken from there, so that each value is
-// written once.
+// written once. So are the limits: a number's upper limit (at_most, below) and the numbers a constraint
+// names (limits) come from the type that checks them again at run time (trees::LeafSettings::kMaxFraction,
+// fluid::GridSpec::kMaxFaces, ...), and the loader, its messages and the docs all read them from here.
 #pragma once
 
 #include <array>
@@ -25,6 +27,7 @@
 #include <string_view>
 #include <vector>
 
+#include "fluid/GridSpec.hpp"
 #include "fluid/InflowProfile.hpp"
 #include "fluid/WindSettings.hpp"
 #include "kernels/shared_types.h"
@@ -66,13 +69,17 @@ enum class Bound { any, positive, non_negative };
 
 using Words = std::span<const std::string_view>;
 
+inline constexpr double kNoNumberLimit = std::numeric_limits<double>::infinity();
+
 struct Key {
   std::string_view path{};
   Type type = Type::map;
   std::string_view unit{};  ///< SI unit; empty when dimensionless or not a quantity
   bool required = false;
   Bound bound = Bound::any;
-  long long lowest = 0;   ///< integer: the smallest value allowed
+  double at_most = kNoNumberLimit;  ///< number, point: each value must be <= this
+  double below = kNoNumberLimit;    ///< number, point: each value must be < this
+  long long lowest = 0;             ///< integer: the smallest value allowed
   long long highest = 0;  ///< integer: the largest value allowed (numeric_limits<int>::max(): no limit)
   Words words{};          ///< word, word_set: the vocabulary
   /// word: a vocabulary known only at run time (replaces words).
@@ -89,8 +96,10 @@ struct Key {
   std::string_view only_with{};     ///< the key applies only where its sibling `type` is this word
   std::string_view default_note{};  ///< docs: the default in words, where it is not a plain value
   std::string_view allowed{};       ///< docs: replaces the allowed values derived from the type
-  std::string_view constraint{};    ///< docs: what is allowed beyond the type's own rule
-  std::string_view description{};   ///< docs: the meaning, one table row
+  /// docs: what is allowed beyond the type's own rule; {0}, {1}, {2} stand for the numbers in `limits`
+  std::string_view constraint{};
+  std::array<double, 3> limits{};  ///< the numbers `constraint` names, taken from the type that checks them
+  std::string_view description{};  ///< docs: the meaning, one table row
 };
 
 inline constexpr int kNoUpperLimit = std::numeric_limits<int>::max();
@@ -157,12 +166,8 @@ std::vector<std::string> preset_words();
 inline constexpr fluid::PressureSettings kPressureDefaults{};
 inline constexpr trees::WindBasisSettings kDragDefaults{};
 inline constexpr trees::LeafSettings kLeafDefaults{};
-// The upper limits of the leaf keys, as trees::LeafSettings::validate has them
-// (tests/io/ScenarioSchema_test.cpp checks that they agree): fraction <= 1, damping_ratio < 1, each amplitude
-// <= 90 degrees.
-inline constexpr double kMaxLeafFraction = 1.0;
-inline constexpr double kMaxLeafDampingRatio = 1.0;
-inline constexpr double kMaxLeafAmplitudeDeg = 90.0;
+/// How far domain.size may lie from a whole multiple of cell_size, relative to the size.
+inline constexpr double kCellMultipleTolerance = 1e-6;
 
 inline constexpr Key kKeys[] = {
     // top level
@@ -214,14 +219,16 @@ inline constexpr Key kKeys[] = {
      .unit = "m",
      .required = true,
      .bound = Bound::positive,
-     .constraint = "each a whole multiple of `cell_size` (to 1e-6 relative), at least one cell",
+     .constraint = "each a whole multiple of `cell_size` (to {0} relative), at least one cell",
+     .limits = {kCellMultipleTolerance},
      .description = "Extent along x, y and z."},
     {.path = "domain.cell_size",
      .type = Type::number,
      .unit = "m",
      .required = true,
      .bound = Bound::positive,
-     .constraint = "(nx + 1)(ny + 1)(nz + 1) <= 2^31 - 1",
+     .constraint = "(nx + 1)(ny + 1)(nz + 1) <= {0}",
+     .limits = {double(fluid::GridSpec::kMaxFaces)},
      .description = "Cell edge h. The grid has `size / cell_size` cells along each axis."},
     // boundaries, in the order of FW_FACE_*
     {.path = "boundaries", .description = "Boundary condition per face."},
@@ -739,8 +746,8 @@ inline constexpr Key kKeys[] = {
     {.path = "forest.species[].leaves.fraction",
      .type = Type::number,
      .bound = Bound::positive,
+     .at_most = trees::LeafSettings::kMaxFraction,
      .number = kLeafDefaults.fraction,
-     .constraint = "<= 1",
      .description = "Share of the foliage's leaves that are simulated. Below 1, a thinned sample of the same "
                     "leaves, each of the real size, for big forests."},
     {.path = "forest.species[].leaves.mass_per_area",
@@ -759,8 +766,8 @@ inline constexpr Key kKeys[] = {
     {.path = "forest.species[].leaves.damping_ratio",
      .type = Type::number,
      .bound = Bound::non_negative,
+     .below = trees::LeafSettings::kDampingRatioBelow,
      .number = kLeafDefaults.damping_ratio,
-     .constraint = "< 1",
      .description = "Damping ratio zeta of the `pseudo_branch` oscillator. Low, so that leaves flutter; the "
                     "air damps their motion too."},
     {.path = "forest.species[].leaves.petiole_strength",
@@ -790,9 +797,9 @@ inline constexpr Key kKeys[] = {
      .type = Type::point3,
      .unit = "degrees",
      .bound = Bound::non_negative,
+     .at_most = trees::LeafSettings::kMaxAmplitudeDeg,
      .components = kLeafDefaults.amplitudes_deg,
      .noun = "[W_H, W_V, W_R]",
-     .constraint = "each <= 90",
      .description = "`stochastic` only: the amplitudes of the three angles at and above `reference_speed`, "
                     "about the vertical (W_H), about the branch (W_V) and about the petiole (W_R)."},
     {.path = "forest.species[].leaves.roll_coupling",
@@ -848,9 +855,9 @@ inline constexpr Key kKeys[] = {
      .unit = "m",
      .required = true,
      .bound = Bound::positive,
-     .constraint =
-         "`(width / spacing + 1) * (depth / spacing + 1)` at most 500,000, where width and depth are "
-         "the region's extents",
+     .constraint = "`2 (width / spacing + 1) (depth / spacing + 1)`, a bound on the trees the region holds, "
+                   "at most {0}, where width and depth are the region's extents",
+     .limits = {double(trees::kMaxTreesPerStand)},
      .description = "Minimum distance between trees (`poisson`) or exact distance (`grid`)."},
     {.path = "forest.stands[].scale",
      .default_note = "`{min: 1, max: 1}`",
@@ -937,9 +944,9 @@ inline constexpr Key kKeys[] = {
     {.path = "solver.smagorinsky_constant",
      .type = Type::number,
      .bound = Bound::non_negative,
-     .number = 0.0,
+     .below = fluid::WindSettings::kSmagorinskyConstantBelow,
+     .number = fluid::WindSettings{}.smagorinsky_constant,
      .default_note = "`0` (off)",
-     .constraint = "< 1",
      .description =
          "Smagorinsky constant C_s of the subgrid eddy viscosity `nu_t = (C_s h)^2 \\|S\\|`, h = "
          "`domain.cell_size` and `\\|S\\| = sqrt(2 S_ij S_ij)` the resolved strain rate: the "

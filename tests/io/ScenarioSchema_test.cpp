@@ -2,13 +2,16 @@
 
 #include <catch2/catch.hpp>
 
+#include <cmath>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <set>
 #include <sstream>
 #include <string>
+#include <utility>
 
+#include "fluid/GridSpec.hpp"
 #include "fluid/WindSettings.hpp"
 #include "io/Scenario.hpp"
 #include "trees/LeafSettings.hpp"
@@ -116,7 +119,10 @@ TEST_CASE("schema: the loader's messages come from the key's type, bound and uni
   CHECK(schema::generic_path("forest.species[12].modes.count") == "forest.species[].modes.count");
   CHECK(schema::generic_path("output.vtk.fields[1]") == "output.vtk.fields[]");
   CHECK(schema::expected(schema::key("forest.species[].leaves.amplitudes")) ==
-        "a list of 3 numbers [W_H, W_V, W_R], each >= 0 (degrees)");
+        "a list of 3 numbers [W_H, W_V, W_R], each >= 0 and <= 90 (degrees)");
+  CHECK(schema::expected(schema::key("forest.species[].leaves.fraction")) == "a number > 0 and <= 1");
+  CHECK(schema::expected(schema::key("forest.species[].leaves.damping_ratio")) == "a number >= 0 and < 1");
+  CHECK(schema::expected(schema::key("solver.smagorinsky_constant")) == "a number >= 0 and < 1");
   CHECK(schema::expected(schema::key("forest.species[].leaves.model")) ==
         "one of none | pseudo_branch | stochastic");
   CHECK(schema::expected(schema::key("output.leaves.attached")) == "one of all | none or an integer >= 1");
@@ -145,6 +151,20 @@ TEST_CASE("schema: defaults owned elsewhere are read from their owner, once", "[
   CHECK(fw::io::Species{}.drag_coefficient == fw::trees::WindBasisSettings::kCylinderDragCoefficient);
 }
 
+TEST_CASE("schema: limits checked elsewhere too are read from their owner, once", "[schema]") {
+  CHECK(schema::key("solver.smagorinsky_constant").below ==
+        fw::fluid::WindSettings::kSmagorinskyConstantBelow);
+  CHECK(schema::key("domain.cell_size").limits[0] == double(fw::fluid::GridSpec::kMaxFaces));
+  CHECK(schema::key("forest.stands[].spacing").limits[0] == double(fw::trees::kMaxTreesPerStand));
+  CHECK(schema::key("forest.species[].modes.wind_samples").highest == FW_MAX_TREE_SAMPLES);
+  // The smallest Smagorinsky constant the schema refuses is the smallest WindSettings refuses.
+  fw::fluid::WindSettings settings;
+  settings.smagorinsky_constant = schema::key("solver.smagorinsky_constant").below;
+  CHECK_THROWS(settings.validate());
+  settings.smagorinsky_constant = std::nextafter(settings.smagorinsky_constant, 0.0);
+  CHECK_NOTHROW(settings.validate());
+}
+
 TEST_CASE("schema: the leaf keys take trees::LeafSettings' defaults, words and limits", "[schema]") {
   const fw::trees::LeafSettings leaves;
   const auto number = [](const char* name) {
@@ -171,8 +191,17 @@ TEST_CASE("schema: the leaf keys take trees::LeafSettings' defaults, words and l
   // No `leaves` in a species: no leaves.
   CHECK_FALSE(fw::io::Species{}.leaves.has_leaves());
 
-  // The loader's upper limits are LeafSettings::validate's: the limit itself in or out as it says.
-  const auto valid = [](auto change) {
+  // The keys' upper limits are LeafSettings' own constants...
+  const auto leaf_key = [](const char* name) {
+    return *schema::find(std::string("forest.species[].leaves.") + name);
+  };
+  CHECK(leaf_key("fraction").at_most == fw::trees::LeafSettings::kMaxFraction);
+  CHECK(leaf_key("damping_ratio").below == fw::trees::LeafSettings::kDampingRatioBelow);
+  CHECK(leaf_key("amplitudes").at_most == fw::trees::LeafSettings::kMaxAmplitudeDeg);
+  // ... and every leaf number's range is the one LeafSettings::validate checks: the schema's limits (sign
+  // bounds and upper limits) in or out as the schema says, so that a file the loader takes never fails
+  // validate (which the loader still calls).
+  const auto valid = [](const auto& change) {
     fw::trees::LeafSettings settings;
     change(settings);
     try {
@@ -182,13 +211,40 @@ TEST_CASE("schema: the leaf keys take trees::LeafSettings' defaults, words and l
       return false;
     }
   };
-  const double above = 1.0 + 1e-12;
-  CHECK(valid([](auto& s) { s.fraction = schema::kMaxLeafFraction; }));
-  CHECK_FALSE(valid([&](auto& s) { s.fraction = schema::kMaxLeafFraction * above; }));
-  CHECK(valid([](auto& s) { s.damping_ratio = schema::kMaxLeafDampingRatio * (1.0 - 1e-12); }));
-  CHECK_FALSE(valid([](auto& s) { s.damping_ratio = schema::kMaxLeafDampingRatio; }));
-  CHECK(valid([](auto& s) { s.amplitudes_deg = {schema::kMaxLeafAmplitudeDeg, 0.0, 0.0}; }));
-  CHECK_FALSE(valid([&](auto& s) { s.amplitudes_deg = {0.0, schema::kMaxLeafAmplitudeDeg * above, 0.0}; }));
+  using Leaves = fw::trees::LeafSettings;
+  const std::pair<const char*, double Leaves::*> numbers[] = {
+      {"area", &Leaves::area},
+      {"fraction", &Leaves::fraction},
+      {"mass_per_area", &Leaves::mass_per_area},
+      {"frequency", &Leaves::frequency},
+      {"damping_ratio", &Leaves::damping_ratio},
+      {"petiole_strength", &Leaves::petiole_strength},
+      {"strength_spread", &Leaves::strength_spread},
+      {"flight_drag_coefficient", &Leaves::flight_drag_coefficient},
+      {"roll_coupling", &Leaves::roll_coupling},
+      {"reference_speed", &Leaves::reference_speed}};
+  const double step = 1e-12;  // relative, well above rounding and far below any limit's meaning
+  for (const auto& [name, member] : numbers) {
+    INFO("leaves." << name);
+    const schema::Key& key = leaf_key(name);
+    const auto with = [&](double value) { return valid([&](Leaves& s) { s.*member = value; }); };
+    CHECK(with(key.bound == schema::Bound::any ? -1e6 : step) == true);
+    CHECK(with(0.0) == (key.bound != schema::Bound::positive));
+    CHECK(with(-step) == (key.bound == schema::Bound::any));
+    if (key.at_most < schema::kNoNumberLimit) {
+      CHECK(with(key.at_most));
+      CHECK_FALSE(with(key.at_most * (1.0 + step)));
+    }
+    if (key.below < schema::kNoNumberLimit) {
+      CHECK(with(key.below * (1.0 - step)));
+      CHECK_FALSE(with(key.below));
+    }
+  }
+  const double most = leaf_key("amplitudes").at_most;
+  CHECK(valid([&](Leaves& s) { s.amplitudes_deg = {most, 0.0, 0.0}; }));
+  CHECK_FALSE(valid([&](Leaves& s) { s.amplitudes_deg = {0.0, most * (1.0 + step), 0.0}; }));
+  CHECK(valid([&](Leaves& s) { s.amplitudes_deg = {0.0, 0.0, 0.0}; }));
+  CHECK_FALSE(valid([&](Leaves& s) { s.amplitudes_deg = {0.0, 0.0, -step}; }));
 
   // The output keys' defaults: every attached leaf, leaves.pvd, and the leaves grid among the VDB grids.
   const fw::io::OutputSettings output;

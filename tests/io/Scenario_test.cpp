@@ -898,6 +898,24 @@ TEST_CASE("load_scenario: a size that is not a whole multiple of cell_size names
                5, "boundaries.west", "an even cell count; x has 21 cells");
 }
 
+TEST_CASE("load_scenario: a grid is as large as fluid::GridSpec allows, and no larger", "[scenario]") {
+  fw::test::TempDir dir("fw_scenario");
+  const auto cube = [](int cells) {
+    return fmt::format(
+        "scenario: big\ntime: {{end: 1.0}}\ndomain: {{size: [{0}, {0}, {0}], cell_size: 1.0}}\n"
+        "wind: {{speed: 4.0, direction: 270}}\n",
+        cells);
+  };
+  // 1289^3 cells have 1290^3 = 2.1467e9 faces, within GridSpec::kMaxFaces = 2^31 - 1; 1290^3 cells have
+  // 1291^3 = 2.1517e9, beyond it. The loader computes nothing per cell, so both are quick.
+  const Scenario largest = fw::io::load_scenario(dir.write("largest.yaml", cube(1289)));
+  CHECK_NOTHROW(largest.grid_spec(0.0).validate());
+  CHECK_THROWS(fw::fluid::GridSpec{1290, 1290, 1290, 1.0}.validate());
+  expect_error(dir, "too_large", cube(1290), 3, "domain.cell_size",
+               "a cell size giving (nx + 1)(ny + 1)(nz + 1) <= 2147483647 (size / cell_size gives 2.15e+09 "
+               "cells) expected, got '1.0'");
+}
+
 TEST_CASE("load_scenario: positions outside the domain name the position's key", "[scenario]") {
   fw::test::TempDir dir("fw_scenario");
   const std::string species = kBase +
@@ -1334,7 +1352,7 @@ TEST_CASE("load_scenario: bad rough-ground, forcing, Smagorinsky and probe keys 
   expect_error(dir, "smagorinsky_one", kBase + "solver: {smagorinsky_constant: 1}\n", 5,
                "solver.smagorinsky_constant", "a number >= 0 and < 1 expected, got '1'");
   expect_error(dir, "smagorinsky_negative", kBase + "solver: {smagorinsky_constant: -0.1}\n", 5,
-               "solver.smagorinsky_constant", "a number >= 0 expected, got '-0.1'");
+               "solver.smagorinsky_constant", "a number >= 0 and < 1 expected, got '-0.1'");
   expect_error(dir, "probe_zero", kBase + "output: {probe_interval: 0}\n", 5, "output.probe_interval",
                "a number > 0 (s) or auto expected, got '0'");
   expect_error(dir, "probe_negative", kBase + "output: {probe_interval: -0.5}\n", 5, "output.probe_interval",
@@ -1449,7 +1467,7 @@ TEST_CASE("load_scenario: bad leaf keys name the key and say what is expected", 
   expect_error(dir, "leaf_fraction", leafy_species("      leaves: {fraction: 1.5}\n"), 10, key + "fraction",
                "a number > 0 and <= 1 expected, got '1.5'");
   expect_error(dir, "leaf_fraction_zero", leafy_species("      leaves: {fraction: 0}\n"), 10,
-               key + "fraction", "a number > 0 expected, got '0'");
+               key + "fraction", "a number > 0 and <= 1 expected, got '0'");
   expect_error(dir, "leaf_mass", leafy_species("      leaves: {mass_per_area: -0.1}\n"), 10,
                key + "mass_per_area", "a number > 0 (kg/m^2) expected, got '-0.1'");
   expect_error(dir, "leaf_frequency", leafy_species("      leaves: {frequency: [3]}\n"), 10,
@@ -1472,13 +1490,14 @@ TEST_CASE("load_scenario: bad leaf keys name the key and say what is expected", 
                "one of none | pseudo_branch | stochastic expected, got 'flutter'");
   expect_error(dir, "leaf_amplitudes_pair", leafy_species("      leaves: {amplitudes: [20, 30]}\n"), 10,
                key + "amplitudes",
-               "a list of 3 numbers [W_H, W_V, W_R], each >= 0 (degrees) expected, got '[20, 30]'");
+               "a list of 3 numbers [W_H, W_V, W_R], each >= 0 and <= 90 (degrees) expected, got '[20, 30]'");
   expect_error(dir, "leaf_amplitudes_four", leafy_species("      leaves: {amplitudes: [20, 30, 15, 5]}\n"),
-               10, key + "amplitudes", "a list of 3 numbers [W_H, W_V, W_R], each >= 0 (degrees) expected");
+               10, key + "amplitudes",
+               "a list of 3 numbers [W_H, W_V, W_R], each >= 0 and <= 90 (degrees) expected");
   expect_error(dir, "leaf_amplitude_high", leafy_species("      leaves: {amplitudes: [20, 95, 15]}\n"), 10,
                key + "amplitudes[1]", "a number >= 0 and <= 90 (degrees) expected, got '95'");
   expect_error(dir, "leaf_amplitude_negative", leafy_species("      leaves: {amplitudes: [20, 30, -5]}\n"),
-               10, key + "amplitudes[2]", "a number >= 0 (degrees) expected, got '-5'");
+               10, key + "amplitudes[2]", "a number >= 0 and <= 90 (degrees) expected, got '-5'");
   expect_error(dir, "leaf_unknown_key", leafy_species("      leaves: {colour: green}\n"), 10, key + "colour",
                "one of the keys model, area, fraction, mass_per_area, frequency, damping_ratio, "
                "petiole_strength, strength_spread, flight_drag_coefficient, amplitudes, roll_coupling, "
