@@ -17,6 +17,7 @@
 #include <utility>
 
 #include "fluid/SubgridStress.hpp"
+#include "fluid/TurbulenceBox.hpp"
 #include "kernels/shared_types.h"
 
 namespace fw::io {
@@ -616,10 +617,8 @@ void check_time_series(const Loader& loader, const Field& field, const Expressio
   }
 }
 
-/// The largest turbulence box: 3 floats a point, indexed by 32-bit ints on the device (as
-/// fluid::TurbulenceBoxSpec::validate checks).
-constexpr double kMaxTurbulenceBoxPoints = double(std::numeric_limits<int>::max() / 3);
-constexpr double kMinTurbulenceBoxCells = 4.0;
+/// The default turbulence box spans this many length scales along x and y.
+constexpr double kDefaultBoxLengthScales = 8.0;
 
 TurbulenceSettings read_turbulence(const Loader& loader, const Field& field, const Scenario& scenario) {
   const MapFields map(loader, field);  // length_scale is required
@@ -648,38 +647,44 @@ TurbulenceSettings read_turbulence(const Loader& loader, const Field& field, con
   if (const auto unresolved = map.get("unresolved")) turbulence.unresolved = loader.boolean(*unresolved);
   if (const auto cutoff = map.get("cutoff_cells")) turbulence.cutoff_cells = loader.number(*cutoff);
 
-  // The box's points are cell_size apart: a given size rounds to an even count of at least 4; the default
-  // takes powers of two (fast FFTs) that cover the domain and, along x and y, 8 length scales.
+  // The box counts cells of the grid: a given size rounds to an even count of at least
+  // kMinTurbulenceBoxCells; the default takes powers of two (fast FFTs) that cover the domain and, along x
+  // and y, kDefaultBoxLengthScales length scales. The fluid::TurbulenceBox that a run builds from it has
+  // kTurbulencePointsPerCell points per cell along each axis, and at most TurbulenceBoxSpec::kMaxPoints in
+  // all: the limit counts those points, so that a box this accepts is one the run can build.
   const double h = scenario.domain.cell_size;
+  const double per_cell = fluid::kTurbulencePointsPerCell;
+  const double most_points = double(fluid::TurbulenceBoxSpec::kMaxPoints);
+  const double fewest_cells = schema::kMinTurbulenceBoxCells;
   const auto box_size = map.get("box_size");
   std::array<double, 3> cells{};
   if (box_size) {
     const std::array<double, 3> size = loader.vector<3>(*box_size);
     for (std::size_t axis = 0; axis < 3; ++axis)
-      cells[axis] = std::max(kMinTurbulenceBoxCells, 2.0 * std::round(size[axis] / (2.0 * h)));
+      cells[axis] = std::max(fewest_cells, 2.0 * std::round(size[axis] / (2.0 * h)));
   } else {
     for (std::size_t axis = 0; axis < 3; ++axis) {
       double target = scenario.domain.cells[axis];
-      if (axis < 2) target = std::max(target, 8.0 * turbulence.length_scale / h);
-      double count = kMinTurbulenceBoxCells;
-      while (count < target && count <= kMaxTurbulenceBoxPoints) count *= 2.0;
+      if (axis < 2) target = std::max(target, kDefaultBoxLengthScales * turbulence.length_scale / h);
+      double count = fewest_cells;
+      while (count < target && count * per_cell <= most_points) count *= 2.0;
       cells[axis] = count;
     }
   }
-  const double points = cells[0] * cells[1] * cells[2];
-  if (!(points <= kMaxTurbulenceBoxPoints)) {
-    const std::string box = fmt::format("{:.0f} x {:.0f} x {:.0f} = {:.3g} points of {} m", cells[0],
-                                        cells[1], cells[2], points, h);
+  const double points = cells[0] * cells[1] * cells[2] * per_cell * per_cell * per_cell;
+  if (!(points <= most_points)) {
+    const std::string box = fmt::format("{:.0f} x {:.0f} x {:.0f} cells of {} m, {:.3g} points", cells[0],
+                                        cells[1], cells[2], h, points);
+    const std::string limit =
+        fmt::format("at most {:.0f} points in all, {:.0f} per cell along each axis", most_points, per_cell);
     if (box_size) {
-      loader.expected(*box_size,
-                      fmt::format("{} of at most {:.0f} points in all (this box is {})",
-                                  schema::expected(key_of(*box_size)), kMaxTurbulenceBoxPoints, box));
+      loader.expected(*box_size, fmt::format("{} of {} (this box is {})", schema::expected(key_of(*box_size)),
+                                             limit, box));
     }
     const Field missing{field.node, field.key + ".box_size", field.line};
-    loader.fail(missing,
-                fmt::format("{} of at most {:.0f} points in all expected (required here: the default "
-                            "box, 8 length_scale along x and y, is {}), got nothing",
-                            schema::expected(key_of(missing)), kMaxTurbulenceBoxPoints, box));
+    loader.fail(missing, fmt::format("{} of {} expected (required here: the default box, {:.0f} length_scale "
+                                     "along x and y, is {}), got nothing",
+                                     schema::expected(key_of(missing)), limit, kDefaultBoxLengthScales, box));
   }
   for (std::size_t axis = 0; axis < 3; ++axis) {
     turbulence.box_cells[axis] = int(cells[axis]);

@@ -133,8 +133,9 @@ struct TurbulenceSettings {
   /// [sigma_u, sigma_v, sigma_w], m/s, each > 0, fixed over time (along-wind, across-wind, vertical).
   std::optional<std::array<double, 3>> sigma;
   double length_scale = 0.0;  ///< L_u, the longitudinal integral length scale, m, > 0
-  /// The box's points along x, y, z, each even and >= 4, resolved at load (from box_size, else computed);
-  /// the points are domain.cell_size apart.
+  /// The box's cells along x, y, z, each even and >= schema::kMinTurbulenceBoxCells, resolved at load (from
+  /// box_size, else computed). The fluid::TurbulenceBox a run builds has fluid::kTurbulencePointsPerCell
+  /// points per cell along each axis (h / 2 apart), at most TurbulenceBoxSpec::kMaxPoints in all.
   std::array<int, 3> box_cells{0, 0, 0};
   /// box_cells * domain.cell_size, m: the box's period along x, y, z (a given box_size, rounded).
   std::array<double, 3> box_size{0, 0, 0};

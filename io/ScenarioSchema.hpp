@@ -29,6 +29,7 @@
 
 #include "fluid/GridSpec.hpp"
 #include "fluid/InflowProfile.hpp"
+#include "fluid/TurbulenceBox.hpp"
 #include "fluid/WindSettings.hpp"
 #include "kernels/shared_types.h"
 #include "trees/ForestLayout.hpp"
@@ -168,6 +169,8 @@ inline constexpr trees::WindBasisSettings kDragDefaults{};
 inline constexpr trees::LeafSettings kLeafDefaults{};
 /// How far domain.size may lie from a whole multiple of cell_size, relative to the size.
 inline constexpr double kCellMultipleTolerance = 1e-6;
+/// The fewest cells of wind.turbulence.box_size along an axis (a box given smaller is rounded up to it).
+inline constexpr int kMinTurbulenceBoxCells = 4;
 
 inline constexpr Key kKeys[] = {
     // top level
@@ -392,15 +395,19 @@ inline constexpr Key kKeys[] = {
      .bound = Bound::positive,
      .default_note = "computed: along x and y the smallest power-of-two cell count >= the domain's cells "
                      "and >= 8 `length_scale` / `cell_size`; along z the smallest power of two >= the "
-                     "domain's cells; each at least 4",
-     .allowed = "each > 0; rounded to a whole, even number of cells, at least 4, per axis; at most (2^31 - "
-                "1) / 3 points in all",
+                     "domain's cells; each at least the fewest allowed",
+     .constraint =
+         "rounded to a whole, even number of cells, at least {0}, per axis; the box has {1} points "
+         "per cell along each axis (h / {1} apart, h = `domain.cell_size`), at most {2} points in all",
+     .limits = {kMinTurbulenceBoxCells, fluid::kTurbulencePointsPerCell,
+                double(fluid::TurbulenceBoxSpec::kMaxPoints)},
      .description =
-         "Extent of the periodic turbulence box along x, y and z. Its points are "
-         "`domain.cell_size` apart. Turbulence repeats with the box's period: a point fixed in the "
-         "inflow sees the same gusts again once the wind has carried the box one period past it, "
-         "and the box holds no wavelength longer than itself, so along the wind it should be "
-         "several L_u long."},
+         "Extent of the periodic turbulence box along x, y and z, in cells of the grid. Its points are "
+         "finer than the cells (see the allowed values), so that every face of an inflow plane sits on a "
+         "box point and takes the box's value without interpolation. Turbulence repeats with the box's "
+         "period: a point fixed in the inflow sees the same gusts again once the wind has carried the box "
+         "one period past it, and the box holds no wavelength longer than itself, so along the wind it "
+         "should be several L_u long."},
     {.path = "wind.turbulence.seed",
      .type = Type::seed,
      .default_note = "global `seed`",

@@ -85,8 +85,9 @@ trees::Skeleton species_skeleton(const io::Species& species);
 inline constexpr std::size_t kDeviceBytesPerLeaf = 1 + 2 * 4 + 2 * 4 + 5 * 16 + 4 * 4;
 inline constexpr std::size_t kDeviceBytesPerSpeciesLeaf = (FW_REST_FIELDS + 2) * 4;
 
-/// The turbulence box points per grid cell along each axis (the box's spacing is h / this).
-inline constexpr int kTurbulencePointsPerCell = 2;
+/// The turbulence box points per grid cell along each axis (the box's spacing is h / this); the scenario
+/// loader sizes the box with it too, so it lives with the box.
+using fluid::kTurbulencePointsPerCell;
 /// The unit-sigma_u inflow turbulence box of wind.turbulence on a grid of cell size h (m), points every h/2;
 /// unequal sigma_u, sigma_v, sigma_w scale the box's components (along-wind on the horizontal axis closer to
 /// the wind at t = 0).

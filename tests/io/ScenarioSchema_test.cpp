@@ -157,6 +157,10 @@ TEST_CASE("schema: limits checked elsewhere too are read from their owner, once"
   CHECK(schema::key("domain.cell_size").limits[0] == double(fw::fluid::GridSpec::kMaxFaces));
   CHECK(schema::key("forest.stands[].spacing").limits[0] == double(fw::trees::kMaxTreesPerStand));
   CHECK(schema::key("forest.species[].modes.wind_samples").highest == FW_MAX_TREE_SAMPLES);
+  // The turbulence box: its points per cell and its most points are the box's own.
+  CHECK(schema::key("wind.turbulence.box_size").limits[1] == fw::fluid::kTurbulencePointsPerCell);
+  CHECK(schema::key("wind.turbulence.box_size").limits[2] ==
+        double(fw::fluid::TurbulenceBoxSpec::kMaxPoints));
   // The smallest Smagorinsky constant the schema refuses is the smallest WindSettings refuses.
   fw::fluid::WindSettings settings;
   settings.smagorinsky_constant = schema::key("solver.smagorinsky_constant").below;

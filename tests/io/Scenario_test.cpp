@@ -1,5 +1,6 @@
 #include "io/Scenario.hpp"
 
+#include "fluid/TurbulenceBox.hpp"
 #include "kernels/shared_types.h"
 #include "tests/support/TempDir.hpp"
 
@@ -1304,12 +1305,45 @@ TEST_CASE("load_scenario: bad turbulence keys name the key and say what is expec
   expect_error(dir, "default_box_too_big",
                kWindBase + "  turbulence: {intensity: 0.1, length_scale: 1.0e6}\n", 7,
                "wind.turbulence.box_size",
-               "of at most 715827882 points in all expected (required here: the default box, 8 length_scale "
-               "along x and y, is 4194304 x 4194304 x 8");
+               "of at most 715827882 points in all, 2 per cell along each axis expected (required here: the "
+               "default box, 8 length_scale along x and y, is 4194304 x 4194304 x 8 cells of 2 m");
   expect_error(
       dir, "box_too_big",
       kWindBase + "  turbulence: {intensity: 0.1, length_scale: 10, box_size: [1.0e5, 1.0e5, 1000]}\n", 7,
-      "wind.turbulence.box_size", "points in all (this box is 50000 x 50000 x 500");
+      "wind.turbulence.box_size",
+      "2 per cell along each axis (this box is 50000 x 50000 x 500 cells of 2 m, 1e+13 points)");
+}
+
+TEST_CASE("load_scenario: the turbulence box's limit counts the points fluid::TurbulenceBox allocates",
+          "[scenario]") {
+  // check and run agree: the box the loader accepts at the limit is one TurbulenceBoxSpec::validate takes
+  // (without allocating it), and one more cell is refused by both, the loader naming file, line and key.
+  // Cells of 2 m, 4 x 4 along y and z: 5592404 cells along x are 2^3 * 16 * 5592404 = 715827712 points,
+  // within kMaxPoints = 715827882; 5592406 cells are 715827968 points, beyond it.
+  fw::test::TempDir dir("fw_scenario");
+  const auto box = [](long cells_x) {
+    return fmt::format("{}  turbulence: {{intensity: 0.1, length_scale: 10, box_size: [{}, 8, 8]}}\n",
+                       kWindBase, 2 * cells_x);
+  };
+  const auto spec_of = [](const std::array<int, 3>& cells) {
+    // As host::inflow_turbulence_spec builds it.
+    fw::fluid::TurbulenceBoxSpec spec;
+    for (std::size_t a = 0; a < 3; ++a) spec.cells[a] = fw::fluid::kTurbulencePointsPerCell * cells[a];
+    spec.spacing = 2.0 / fw::fluid::kTurbulencePointsPerCell;
+    spec.spectrum = {1.0, 10.0};
+    return spec;
+  };
+  const Scenario largest = fw::io::load_scenario(dir.write("largest.yaml", box(5592404)));
+  REQUIRE(largest.wind.turbulence.has_value());
+  CHECK(largest.wind.turbulence->box_cells == std::array<int, 3>{5592404, 4, 4});
+  CHECK(spec_of(largest.wind.turbulence->box_cells).point_count() == 715827712);
+  CHECK_NOTHROW(spec_of(largest.wind.turbulence->box_cells).validate());
+
+  CHECK_THROWS_WITH(spec_of({5592406, 4, 4}).validate(), Contains("exceed the limit of 715827882"));
+  expect_error(dir, "one_cell_more", box(5592406), 7, "wind.turbulence.box_size",
+               "a list of 3 numbers [x, y, z], each > 0 (m) of at most 715827882 points in all, 2 per cell "
+               "along each axis (this box is 5592406 x 4 x 4 cells of 2 m, 7.16e+08 points) expected, got "
+               "'[11184812, 8, 8]'");
 }
 
 TEST_CASE("load_scenario: bad rough-ground, forcing, Smagorinsky and probe keys name the key", "[scenario]") {
