@@ -1,8 +1,9 @@
 // The scenario schema: every key a scenario file may hold, with its type, unit, default, allowed values and
-// meaning, defined once (issue 9, "The schema in one place"). io/Scenario.cpp takes from here its unknown-key
-// checks, its required keys, its vocabularies and the "... expected" part of its messages; the defaults of
-// the io::Scenario structs are read from here; and the key tables of docs/scenario.md are generated from here
-// (render_scenario_docs; tests/io/ScenarioSchema_test.cpp fails when the committed page differs).
+// meaning, defined once (issue 9, "The schema in one place"). The loader (io/scenario/) takes from here its
+// unknown-key checks, its required keys, its vocabularies and the "... expected" part of its messages; the
+// defaults of the io::Scenario structs are read from here; and the key tables of docs/scenario.md are
+// generated from here (render_scenario_docs; tests/io/ScenarioSchema_test.cpp fails when the committed page
+// differs).
 //
 //   constexpr double cfl = fw::io::schema::key("time.cfl").number;       // 0.8, looked up at compile time
 //   const fw::io::schema::Key* found = fw::io::schema::find("forest.species[].modes.count");   // at run time
