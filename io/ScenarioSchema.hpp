@@ -1053,6 +1053,41 @@ consteval const Key& key(std::string_view path) {
   throw "not a key of the scenario schema";
 }
 
+/// Whether a generic path names a map of keys: the top level (""), a map or choice key, or the items of a
+/// list ("forest.species[]").
+consteval bool holds_keys(std::string_view path) {
+  if (path.empty()) return true;
+  const bool items = path.ends_with("[]");
+  if (items) path.remove_suffix(2);
+  for (const Key& entry : kKeys) {
+    if (entry.path != path) continue;
+    return items ? entry.type == Type::list || entry.type == Type::choice_list
+                 : entry.type == Type::map || entry.type == Type::choice;
+  }
+  return false;
+}
+
+/// The key `name` below the map at generic path `parent` ("" for the top level), or nullptr; `name` may reach
+/// further down ("canopy.leaf_area_index"). Usable at compile time.
+constexpr const Key* find(std::string_view parent, std::string_view name) {
+  for (const Key& entry : kKeys) {
+    const std::string_view path = entry.path;
+    if (parent.empty() ? path == name
+                       : path.size() == parent.size() + 1 + name.size() && path.starts_with(parent) &&
+                             path[parent.size()] == '.' && path.ends_with(name))
+      return &entry;
+  }
+  return nullptr;
+}
+
+/// The key `name` below the map at `parent`, at compile time: a name the map lacks does not compile. The
+/// loader's readers name their keys so (io/scenario/Reader.hpp).
+///   schema::key("forest.species[]", "modes")   // the key forest.species[].modes
+consteval const Key& key(std::string_view parent, std::string_view name) {
+  if (const Key* found = find(parent, name)) return *found;
+  throw "not a key of this map in the scenario schema";
+}
+
 /// The value of `word` (a key's default word, say) in a vocabulary and its values, aligned by position.
 template <typename Enum, std::size_t N>
 constexpr Enum value_of(const std::string_view (&words)[N], const Enum (&values)[N], std::string_view word) {

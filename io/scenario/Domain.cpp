@@ -14,11 +14,12 @@
 namespace fw::io::reader {
 
 void read_domain(const Loader& loader, const Field& field, DomainSettings& domain) {
-  const MapFields map(loader, field);
-  if (const auto origin = map.get("origin")) domain.origin = loader.vector<3>(*origin);
-  const Field size = map.require("size");
+  const Section<"domain"> map(loader, field);
+  if (const auto origin = map.get<"origin">()) domain.origin = loader.vector<3>(*origin);
+  const Field size = map.require<"size">();
   domain.size = loader.vector<3>(size);
-  domain.cell_size = loader.number(map.require("cell_size"));
+  const Field cell_size = map.require<"cell_size">();
+  domain.cell_size = loader.number(cell_size);
   double total = 1.0;
   for (std::size_t axis = 0; axis < 3; ++axis) {
     const double cells = domain.size[axis] / domain.cell_size;
@@ -36,7 +37,7 @@ void read_domain(const Loader& loader, const Field& field, DomainSettings& domai
   // Face arrays hold (nx + 1)(ny + 1)(nz + 1) values at most, indexed by 32-bit ints on the device.
   const double faces = (domain.cells[0] + 1.0) * (domain.cells[1] + 1.0) * (domain.cells[2] + 1.0);
   if (!(total < std::numeric_limits<double>::infinity()) || faces > double(fluid::GridSpec::kMaxFaces)) {
-    loader.expected(map.require("cell_size"),
+    loader.expected(cell_size,
                     fmt::format("a cell size giving (nx + 1)(ny + 1)(nz + 1) <= {} (size / cell_size "
                                 "gives {:.3g} cells)",
                                 fluid::GridSpec::kMaxFaces, total));
@@ -44,19 +45,21 @@ void read_domain(const Loader& loader, const Field& field, DomainSettings& domai
 }
 
 void read_boundaries(const Loader& loader, const Field& field, Scenario& scenario) {
-  const std::vector<std::string> faces = schema::child_names("boundaries");  // in the order of FW_FACE_*
-  const MapFields map(loader, field);
-  std::array<std::optional<Field>, 6> given;
+  const Section<"boundaries"> map(loader, field);
+  // Indexed by FW_FACE_*, as the schema lists the faces (tests/io/ScenarioSchema_test.cpp checks it).
+  const std::array<std::optional<Field>, 6> given = {map.get<"west">(),   map.get<"east">(),
+                                                     map.get<"south">(),  map.get<"north">(),
+                                                     map.get<"ground">(), map.get<"top">()};
+  const std::vector<std::string> faces = schema::child_names(schema::key("boundaries").path);
   const std::string rough = to_string(BoundaryChoice::rough);
   for (int face = 0; face < 6; ++face) {
-    given[face] = map.get(faces[face]);
     if (!given[face]) continue;
     const Field& choice = *given[face];
     if (face != FW_FACE_GROUND && choice.node.IsScalar() && choice.node.Scalar() == rough)
       loader.expected(choice, schema::expected(key_of(choice)) + " (rough is for the ground only)");
     scenario.boundaries[face] = value(schema::kBoundaryWords, kBoundaryChoices, loader.word(choice));
   }
-  if (const auto roughness = map.get("roughness_length")) {
+  if (const auto roughness = map.get<"roughness_length">()) {
     const double z0 = loader.number(*roughness);
     if (scenario.boundaries[FW_FACE_GROUND] != BoundaryChoice::rough) {
       loader.expected(*roughness, fmt::format("nothing unless boundaries.ground is rough (it is '{}')",
@@ -99,7 +102,7 @@ void resolve_ground_roughness(const Loader& loader, const Field& boundaries, Sce
                                  : schema::key("boundaries.roughness_length").number;
   const double first_centre = fluid::wall_centre_height(scenario.domain.cell_size);
   if (!(z0 < first_centre)) {
-    const Field missing{boundaries.node, "boundaries.roughness_length", boundaries.line};
+    const Field missing = Section<"boundaries">(loader, boundaries).missing<"roughness_length">();
     const std::string default_text =
         from_profile ? fmt::format("the default, wind.profile.roughness_length, is {} m", z0)
                      : fmt::format("the default without a log profile is {} m", z0);

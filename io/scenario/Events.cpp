@@ -5,16 +5,16 @@ namespace fw::io::reader {
 
 void read_events(const Loader& loader, const Field& field, Scenario& scenario) {
   for (const Field& item : loader.items(field)) {
-    const MapFields kind(loader, item);
-    const MapFields map(loader, kind.require("gust"));
+    const Section<"events[]"> kind(loader, item);  // gust is required
+    const Section<"events[].gust"> map(loader, kind.require<"gust">());
     GustEvent gust;
-    gust.start = loader.number(map.require("start"));
-    gust.duration = loader.number(map.require("duration"));
-    gust.peak_speed = loader.number(map.require("peak_speed"));
-    gust.center = loader.vector<3>(map.require("center"));
-    gust.radius = loader.number(map.require("radius"));
+    gust.start = loader.number(map.require<"start">());
+    gust.duration = loader.number(map.require<"duration">());
+    gust.peak_speed = loader.number(map.require<"peak_speed">());
+    gust.center = loader.vector<3>(map.require<"center">());
+    gust.radius = loader.number(map.require<"radius">());
     gust.travel_with_wind = true;
-    if (const auto travel = map.get("travel")) {
+    if (const auto travel = map.get<"travel">()) {
       const Key& key = key_of(*travel);
       if (travel->node.IsSequence() && travel->node.size() == 3) {
         gust.travel_with_wind = false;

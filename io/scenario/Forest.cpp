@@ -35,15 +35,15 @@ Vec2 region_corner(const Loader& loader, const Field& field, const DomainSetting
 }
 
 Stand read_stand(const Loader& loader, const Field& item, const Scenario& scenario) {
-  const MapFields map(loader, item);
+  const Section<"forest.stands[]"> map(loader, item);
   Stand stand;
-  const Field species = map.require("species");
+  const Field species = map.require<"species">();
   stand.layout.species = species_index(loader, species, scenario.forest.species);
   stand.species = scenario.forest.species[stand.layout.species].name;
 
-  const MapFields region(loader, map.require("region"));
-  const Vec2 min = region_corner(loader, region.require("min"), scenario.domain);
-  const Field max_field = region.require("max");
+  const Section<"forest.stands[].region"> region(loader, map.require<"region">());
+  const Vec2 min = region_corner(loader, region.require<"min">(), scenario.domain);
+  const Field max_field = region.require<"max">();
   const Vec2 max = region_corner(loader, max_field, scenario.domain);
   if (!(max[0] > min[0]) || !(max[1] > min[1]))
     loader.expected(max_field,
@@ -53,27 +53,27 @@ Stand read_stand(const Loader& loader, const Field& item, const Scenario& scenar
 
   stand.layout.layout =
       value(schema::kLayoutWords, schema::kLayouts, std::string(schema::key("forest.stands[].layout").word));
-  if (const auto layout = map.get("layout"))
+  if (const auto layout = map.get<"layout">())
     stand.layout.layout = value(schema::kLayoutWords, schema::kLayouts, loader.word(*layout));
-  const Field spacing = map.require("spacing");
+  const Field spacing = map.require<"spacing">();
   stand.layout.spacing = loader.number(spacing);
   stand.layout.scale_min = schema::key("forest.stands[].scale.min").number;
   stand.layout.scale_max = schema::key("forest.stands[].scale.max").number;
-  if (const auto scale_field = map.get("scale")) {
-    const MapFields scale(loader, *scale_field);
-    if (const auto low = scale.get("min")) stand.layout.scale_min = loader.number(*low);
-    if (const auto high = scale.get("max")) {
+  if (const auto scale_field = map.get<"scale">()) {
+    const Section<"forest.stands[].scale"> scale(loader, *scale_field);
+    if (const auto low = scale.get<"min">()) stand.layout.scale_min = loader.number(*low);
+    if (const auto high = scale.get<"max">()) {
       stand.layout.scale_max = loader.number(*high);
       if (stand.layout.scale_max < stand.layout.scale_min)
         loader.expected(*high, fmt::format("a number >= scale.min ({})", stand.layout.scale_min));
     } else if (stand.layout.scale_max < stand.layout.scale_min) {
-      loader.expected(*scale.get("min"),
+      loader.expected(*scale.get<"min">(),
                       fmt::format("a number <= scale.max ({}, the default)", stand.layout.scale_max));
     }
   }
   // Unless the file gives one: the global seed plus the stand's index.
   stand.layout.seed = scenario.seed + scenario.forest.stands.size();
-  if (const auto seed = map.get("seed")) stand.layout.seed = loader.seed(*seed);
+  if (const auto seed = map.get<"seed">()) stand.layout.seed = loader.seed(*seed);
   try {
     stand.layout.validate();  // what is left to fail: too many trees for the region and spacing
   } catch (const std::invalid_argument& error) {
@@ -83,12 +83,12 @@ Stand read_stand(const Loader& loader, const Field& item, const Scenario& scenar
 }
 
 PlacedTreeSettings read_tree(const Loader& loader, const Field& item, const Scenario& scenario) {
-  const MapFields map(loader, item);
+  const Section<"forest.trees[]"> map(loader, item);
   PlacedTreeSettings tree;
-  tree.species_index = species_index(loader, map.require("species"), scenario.forest.species);
+  tree.species_index = species_index(loader, map.require<"species">(), scenario.forest.species);
   tree.species = scenario.forest.species[tree.species_index].name;
 
-  const Field position = map.require("position");
+  const Field position = map.require<"position">();
   if (!position.node.IsSequence() || (position.node.size() != 2 && position.node.size() != 3))
     loader.expected(position);
   for (std::size_t i = 0; i < position.node.size(); ++i)
@@ -110,28 +110,29 @@ PlacedTreeSettings read_tree(const Loader& loader, const Field& item, const Scen
     if (scenario.terrain)
       tree.position[2] += scenario.terrain->map->height_at(tree.position[0], tree.position[1]);
   }
-  if (const auto yaw = map.get("yaw")) tree.yaw_rad = radians(loader.number(*yaw));
-  if (const auto scale = map.get("scale")) tree.scale = loader.number(*scale);
+  if (const auto yaw = map.get<"yaw">()) tree.yaw_rad = radians(loader.number(*yaw));
+  if (const auto scale = map.get<"scale">()) tree.scale = loader.number(*scale);
   return tree;
 }
 
 }  // namespace
 
 void read_forest(const Loader& loader, const Field& field, Scenario& scenario) {
-  const MapFields map(loader, field);
+  const Section<"forest"> map(loader, field);
   ForestSettings& forest = scenario.forest;
-  if (const auto coupling = map.get("two_way_coupling")) forest.two_way_coupling = loader.boolean(*coupling);
-  if (const auto integrator = map.get("integrator"))
+  if (const auto coupling = map.get<"two_way_coupling">())
+    forest.two_way_coupling = loader.boolean(*coupling);
+  if (const auto integrator = map.get<"integrator">())
     forest.integrator = value(schema::kIntegratorWords, schema::kIntegrators, loader.word(*integrator));
-  if (const auto correction = map.get("strong_wind_correction"))
+  if (const auto correction = map.get<"strong_wind_correction">())
     forest.strong_wind_correction = loader.boolean(*correction);
-  if (const auto species = map.get("species"))
+  if (const auto species = map.get<"species">())
     for (const Field& item : loader.items(*species))
       forest.species.push_back(read_species(loader, item, forest.species, scenario.seed));
-  if (const auto stands = map.get("stands"))
+  if (const auto stands = map.get<"stands">())
     for (const Field& item : loader.items(*stands))
       forest.stands.push_back(read_stand(loader, item, scenario));
-  if (const auto trees = map.get("trees"))
+  if (const auto trees = map.get<"trees">())
     for (const Field& item : loader.items(*trees)) forest.trees.push_back(read_tree(loader, item, scenario));
 }
 

@@ -62,9 +62,9 @@ Scenario load_scenario(const std::filesystem::path& file) {
       if (key->required) required.emplace_back(key->path);
     loader.expected(root, "a map of scenario keys (" + join(required, ", ") + ", ...)");
   }
-  const MapFields top(loader, root);
+  const Section<""> top(loader, root);
 
-  const Field scenario_name = top.require("scenario");
+  const Field scenario_name = top.require<"scenario">();
   scenario.name = loader.text(scenario_name);
   if (scenario.name.find_first_of("/\\") != std::string::npos || scenario.name == "." ||
       scenario.name == ".." ||
@@ -73,20 +73,19 @@ Scenario load_scenario(const std::filesystem::path& file) {
     loader.expected(scenario_name, schema::expected(key_of(scenario_name)) +
                                        " usable as a folder name (no / or \\, not . or ..)");
   }
-  if (const auto seed = top.get("seed")) scenario.seed = loader.seed(*seed);
-  read_time(loader, top.require("time"), scenario.time);
-  read_domain(loader, top.require("domain"), scenario.domain);
-  const auto boundaries = top.get("boundaries");
+  if (const auto seed = top.get<"seed">()) scenario.seed = loader.seed(*seed);
+  read_time(loader, top.require<"time">(), scenario.time);
+  read_domain(loader, top.require<"domain">(), scenario.domain);
+  const auto boundaries = top.get<"boundaries">();
   if (boundaries) read_boundaries(loader, *boundaries, scenario);
-  read_wind(loader, top.require("wind"), scenario);
+  read_wind(loader, top.require<"wind">(), scenario);
   if (boundaries) resolve_ground_roughness(loader, *boundaries, scenario);
-  if (const auto events = top.get("events")) read_events(loader, *events, scenario);
-  if (const auto obstacles = top.get("obstacles")) read_obstacles(loader, *obstacles, scenario);
-  if (const auto terrain = top.get("terrain")) read_terrain(loader, *terrain, scenario);
-  if (const auto forest = top.get("forest")) read_forest(loader, *forest, scenario);
-  if (const auto solver = top.get("solver")) read_solver(loader, *solver, scenario.solver);
-  read_output(loader, top.get("output").value_or(Field{YAML::Node(YAML::NodeType::Null), "output", 1}),
-              scenario);
+  if (const auto events = top.get<"events">()) read_events(loader, *events, scenario);
+  if (const auto obstacles = top.get<"obstacles">()) read_obstacles(loader, *obstacles, scenario);
+  if (const auto terrain = top.get<"terrain">()) read_terrain(loader, *terrain, scenario);
+  if (const auto forest = top.get<"forest">()) read_forest(loader, *forest, scenario);
+  if (const auto solver = top.get<"solver">()) read_solver(loader, *solver, scenario.solver);
+  read_output(loader, top.get<"output">().value_or(top.missing<"output">()), scenario);  // defaults
   return scenario;
 }
 

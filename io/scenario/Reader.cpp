@@ -95,9 +95,11 @@ std::string number_expected(const Key& owner) {
 
 // --- MapFields ---------------------------------------------------------------------------------------------
 
-MapFields::MapFields(const Loader& loader, const Field& map, const std::string* variant)
+MapFields::MapFields(const Loader& loader, const Field& map, std::string_view parent,
+                     const std::string* variant)
     : loader_(loader), self_(map) {
-  const std::string parent = schema::generic_path(map.key);
+  if (schema::generic_path(map.key) != parent)
+    throw std::logic_error(fmt::format("Scenario: the reader of {} was given {}", parent, map.key));
   std::vector<std::string> allowed;
   for (const Key* key : schema::children(parent))
     if (applies(*key, variant)) allowed.emplace_back(key->path.substr(key->path.rfind('.') + 1));
@@ -123,15 +125,32 @@ MapFields::MapFields(const Loader& loader, const Field& map, const std::string* 
   for (const Key* key : schema::children(parent)) {
     const bool every_variant = key->only_with.empty();
     if (key->required && (variant ? applies(*key, variant) : every_variant))
-      require(std::string(key->path.substr(key->path.rfind('.') + 1)));
+      require(std::string(key->path.substr(key->path.rfind('.') + 1)), "");
   }
+}
+
+std::optional<Field> MapFields::get(const std::string& name) const {
+  const auto found = fields_.find(name);
+  if (found == fields_.end()) return std::nullopt;
+  return found->second;
 }
 
 Field MapFields::require(const std::string& name, const std::string& reason) const {
   if (auto field = get(name)) return *field;
-  const Field missing{self_.node, path(name), self_.line};
-  const std::string what = schema::expected(key_of(missing)) + (reason.empty() ? "" : ", " + reason);
-  loader_.fail(missing, what + " expected (required), got nothing");
+  const Field absent = missing(name);
+  const std::string what = schema::expected(key_of(absent)) + (reason.empty() ? "" : ", " + reason);
+  loader_.fail(absent, what + " expected (required), got nothing");
+}
+
+Field MapFields::missing(const std::string& name) const {
+  return Field{YAML::Node(YAML::NodeType::Null), path(name), self_.line};
+}
+
+void MapFields::exactly_one() const {
+  if (fields_.size() == 1) return;
+  loader_.fail(self_, fmt::format("a map with exactly one of the keys {} expected, got {}",
+                                  join(schema::child_names(schema::generic_path(self_.key)), ", "),
+                                  fields_.empty() ? std::string("none") : join(order_, " and ")));
 }
 
 // --- Loader ------------------------------------------------------------------------------------------------
@@ -251,14 +270,8 @@ std::string Loader::word(const Field& field, const Key& key) const {
 
 // --- shared by several sections ----------------------------------------------------------------------------
 
-std::string the_one_key(const Loader& loader, const MapFields& map) {
-  if (map.size() != 1) {
-    const std::string parent = schema::generic_path(map.self().key);
-    loader.fail(map.self(), fmt::format("a map with exactly one of the keys {} expected, got {}",
-                                        join(schema::child_names(parent), ", "),
-                                        map.size() == 0 ? std::string("none") : join(map.given(), " and ")));
-  }
-  return map.given().front();
+bool comes_before(const Field& a, const Field& b) {
+  return a.node.Mark().pos < b.node.Mark().pos;
 }
 
 std::string axis_name(std::size_t axis) {

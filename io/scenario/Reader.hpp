@@ -1,15 +1,23 @@
 // What the scenario loader's section readers (io/scenario/*.cpp) share: a value of the file with the key and
-// line to blame (Field), the checked keys of one map (MapFields), and the Loader that reads each scalar as
-// its key in the schema says and throws ScenarioError ("FILE:LINE: KEY: what was expected, got VALUE").
-// Internal to forestwind_io; io/Scenario.hpp is the public header.
+// line to blame (Field), one map of the file read against its keys in the schema (Section), and the Loader
+// that reads each scalar as its key in the schema says and throws ScenarioError ("FILE:LINE: KEY: what was
+// expected, got VALUE"). Internal to forestwind_io; io/Scenario.hpp is the public header.
 //
-//   const MapFields map(loader, field);                       // unknown, duplicate, missing keys: errors
-//   time.end = loader.number(map.require("end"));             // "a number > 0 (s) expected, got '-1'"
-//   if (const auto cfl = map.get("cfl")) time.cfl = loader.number(*cfl);
+// A reader names its map by its schema path and each key by its name in that map, both checked against the
+// schema at compile time: a key the schema lacks (a typo, a key not added to the table) does not compile.
+//
+//   void read_time(const Loader& loader, const Field& field, TimeSettings& time) {
+//     const Section<"time"> map(loader, field);               // unknown, duplicate, missing keys: errors
+//     time.end = loader.number(map.require<"end">());         // "a number > 0 (s) expected, got '-1'"
+//     if (const auto cfl = map.get<"cfl">()) time.cfl = loader.number(*cfl);
+//   }
+//
+// Lists: an item of forest.species is a Section<"forest.species[]">, whose keys are "name", "skeleton", ....
 #pragma once
 
 #include <yaml-cpp/yaml.h>
 
+#include <algorithm>
 #include <array>
 #include <charconv>
 #include <cstddef>
@@ -75,37 +83,96 @@ const Key& key_of(const Field& field);
 /// A number with the range and unit of `owner` (the components of a point, say), as the table's number key.
 std::string number_expected(const Key& owner);
 
+/// Whether `a` stands before `b` in the file.
+bool comes_before(const Field& a, const Field& b);
+
+/// A generic path of the schema as a template argument: Section<"forest.species[]">, get<"name">().
+template <std::size_t N>
+struct SchemaPath {
+  char text[N]{};
+  consteval SchemaPath(const char (&path)[N]) { std::copy_n(path, N, text); }
+  constexpr std::string_view view() const { return {text, N - 1}; }
+};
+
 class Loader;
+template <SchemaPath Path>
+class Section;
 
 /// The keys of one map, checked against its keys in the schema (unknown and duplicate keys are errors, and
 /// so are missing required keys). A null value (`solver:` with nothing after it) counts as an empty map.
 /// With a variant (wind.profile's type), keys that apply to another variant are unknown; without one, all
-/// are allowed and only the keys of every variant are required.
+/// are allowed and only the keys of every variant are required. Readers use it through Section, which
+/// names the keys at compile time.
 class MapFields {
  public:
-  MapFields(const Loader& loader, const Field& map, const std::string* variant = nullptr);
+  /// `parent`: the map's generic path in the schema; the field's key must stand for it.
+  MapFields(const Loader& loader, const Field& map, std::string_view parent, const std::string* variant);
 
-  std::optional<Field> get(const std::string& name) const {
-    const auto found = fields_.find(name);
-    if (found == fields_.end()) return std::nullopt;
-    return found->second;
-  }
+  void exactly_one() const;  // see Section::exactly_one
+
+ private:
+  template <SchemaPath Path>
+  friend class Section;
+
+  std::optional<Field> get(const std::string& name) const;
   /// The field, or an error at the map's line: "WHAT expected (required), got nothing", WHAT from the
   /// schema and `reason` (why it is needed here) after it.
-  Field require(const std::string& name, const std::string& reason = "") const;
-  std::size_t size() const { return fields_.size(); }
-  const Field& self() const { return self_; }
+  Field require(const std::string& name, const std::string& reason) const;
+  /// A key (or a key below one) the file leaves out, blamed on the map's line.
+  Field missing(const std::string& name) const;
   std::string path(const std::string& name) const {
     return self_.key.empty() || self_.key == kTopLevel ? name : self_.key + "." + name;
   }
-  /// Names given, in file order.
-  const std::vector<std::string>& given() const { return order_; }
 
- private:
   const Loader& loader_;
   Field self_;
   std::map<std::string, Field> fields_;
-  std::vector<std::string> order_;
+  std::vector<std::string> order_;  // names given, in file order
+};
+
+/// One map of the file at the schema path Path, read as MapFields reads it. Its keys are named by their name
+/// in the map; get<"cfl">() in a Section<"time"> compiles only while the schema has time.cfl.
+template <SchemaPath Path>
+class Section {
+  static_assert(schema::holds_keys(Path.view()), "Section: not a map of the scenario schema");
+
+ public:
+  /// `map`: a field whose key stands for Path (std::logic_error otherwise: the reader is wrong, not the
+  /// file).
+  Section(const Loader& loader, const Field& map, const std::string* variant = nullptr)
+      : fields_(loader, map, Path.view(), variant) {}
+
+  /// The key Name of this map, or nullopt when the file leaves it out.
+  template <SchemaPath Name>
+  std::optional<Field> get() const {
+    return fields_.get(name<Name>());
+  }
+  /// The key Name, or an error at the map's line (see MapFields::require).
+  template <SchemaPath Name>
+  Field require(const std::string& reason = "") const {
+    return fields_.require(name<Name>(), reason);
+  }
+  /// The key Name (or one below it, "canopy.leaf_area_index") that the file leaves out, blamed on the map's
+  /// line: for a message that it is required here.
+  template <SchemaPath Name>
+  Field missing() const {
+    constexpr std::string_view path = schema::key(Path.view(), Name.view()).path;
+    return fields_.missing(std::string(path.substr(path.size() - Name.view().size())));
+  }
+
+  /// Fails unless the map holds exactly one key (an obstacle: box, cylinder or sphere; a skeleton source).
+  void exactly_one() const { fields_.exactly_one(); }
+
+ private:
+  /// Name, as the schema spells it below Path; it must be a key of this very map.
+  template <SchemaPath Name>
+  static std::string name() {
+    static_assert(Name.view().find('.') == std::string_view::npos, "get and require take a key of this map");
+    constexpr std::string_view path = schema::key(Path.view(), Name.view()).path;
+    return std::string(path.substr(path.size() - Name.view().size()));
+  }
+
+  MapFields fields_;
 };
 
 /// Reads the values of one scenario file, each as its key in the schema says, and throws its errors.
@@ -171,9 +238,6 @@ class Loader {
   std::string file_;
   std::filesystem::path folder_;
 };
-
-/// The one key of a map that must hold exactly one of its schema's keys (an obstacle, a skeleton source).
-std::string the_one_key(const Loader& loader, const MapFields& map);
 
 /// The enum value of a word the loader read, from a vocabulary and its values aligned by position.
 template <typename Enum, std::size_t N>

@@ -11,21 +11,21 @@
 namespace fw::io::reader {
 
 void read_terrain(const Loader& loader, const Field& field, Scenario& scenario) {
-  const MapFields map(loader, field);
+  const Section<"terrain"> map(loader, field);
   TerrainSettings terrain;
-  const Field heightmap = map.require("heightmap");
+  const Field heightmap = map.require<"heightmap">();
   terrain.heightmap = loader.readable_file(heightmap);
   // The format comes from the content (fluid/Heightmap.hpp); cell size and height scale matter for PGM only.
   char magic[2] = {0, 0};
   std::ifstream(terrain.heightmap, std::ios::binary).read(magic, 2);
   const bool pgm = magic[0] == 'P' && (magic[1] == '2' || magic[1] == '5');
-  const auto cell_size = map.get("cell_size");
-  const auto max_height = map.get("max_height");
+  const auto cell_size = map.get<"cell_size">();
+  const auto max_height = map.get<"max_height">();
   if (cell_size) terrain.cell_size = loader.number(*cell_size);
   if (max_height) terrain.max_height = loader.number(*max_height);
   const std::string reason = "needed for a PGM heightmap";
-  if (pgm && !cell_size) map.require("cell_size", reason);
-  if (pgm && !max_height) map.require("max_height", reason);
+  if (pgm && !cell_size) map.require<"cell_size">(reason);
+  if (pgm && !max_height) map.require<"max_height">(reason);
   try {
     terrain.map = fluid::Heightmap::read(terrain.heightmap.string(), pgm ? terrain.cell_size : 1.0,
                                          pgm ? terrain.max_height : 0.0);

@@ -4,9 +4,9 @@
 namespace fw::io::reader {
 
 void read_time(const Loader& loader, const Field& field, TimeSettings& time) {
-  const MapFields map(loader, field);
-  time.end = loader.number(map.require("end"));
-  if (const auto dt = map.get("dt")) {
+  const Section<"time"> map(loader, field);
+  time.end = loader.number(map.require<"end">());
+  if (const auto dt = map.get<"dt">()) {
     const Key& key = key_of(*dt);
     if (!(dt->node.IsScalar() && dt->node.Scalar() == key.word)) {  // the word: auto
       const std::optional<double> step = dt->node.IsScalar() ? parse_double(dt->node.Scalar()) : std::nullopt;
@@ -14,7 +14,7 @@ void read_time(const Loader& loader, const Field& field, TimeSettings& time) {
       time.dt = *step;
     }
   }
-  if (const auto cfl = map.get("cfl")) time.cfl = loader.number(*cfl);
+  if (const auto cfl = map.get<"cfl">()) time.cfl = loader.number(*cfl);
 }
 
 }  // namespace fw::io::reader

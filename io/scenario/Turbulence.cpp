@@ -19,31 +19,30 @@ constexpr double kDefaultBoxLengthScales = 8.0;
 }  // namespace
 
 TurbulenceSettings read_turbulence(const Loader& loader, const Field& field, const Scenario& scenario) {
-  const MapFields map(loader, field);  // length_scale is required
+  const Section<"wind.turbulence"> map(loader, field);  // length_scale is required
   TurbulenceSettings turbulence;
-  if (const auto model = map.get("model"))
+  if (const auto model = map.get<"model">())
     turbulence.model = value(schema::kTurbulenceModelWords, kTurbulenceModels, loader.word(*model));
 
   // Exactly one of intensity and sigma; with both, the one given second is blamed.
-  const auto intensity = map.get("intensity");
-  const auto sigma = map.get("sigma");
+  const auto intensity = map.get<"intensity">();
+  const auto sigma = map.get<"sigma">();
   if (intensity && sigma) {
-    const bool sigma_second = std::find(map.given().begin(), map.given().end(), "sigma") >
-                              std::find(map.given().begin(), map.given().end(), "intensity");
+    const bool sigma_second = comes_before(*intensity, *sigma);
     const Field& second = sigma_second ? *sigma : *intensity;
     const Field& first = sigma_second ? *intensity : *sigma;
     loader.fail(second, fmt::format("exactly one of intensity and sigma expected, got both ({} on line {})",
                                     sigma_second ? "intensity" : "sigma", first.line));
   }
-  if (!intensity && !sigma) map.require("intensity", "or sigma (exactly one of intensity and sigma)");
+  if (!intensity && !sigma) map.require<"intensity">("or sigma (exactly one of intensity and sigma)");
   if (intensity) turbulence.intensity = loader.number(*intensity);
   if (sigma) turbulence.sigma = loader.vector<3>(*sigma);
 
-  turbulence.length_scale = loader.number(map.require("length_scale"));
+  turbulence.length_scale = loader.number(map.require<"length_scale">());
   turbulence.seed = scenario.seed;
-  if (const auto seed = map.get("seed")) turbulence.seed = loader.seed(*seed);
-  if (const auto unresolved = map.get("unresolved")) turbulence.unresolved = loader.boolean(*unresolved);
-  if (const auto cutoff = map.get("cutoff_cells")) turbulence.cutoff_cells = loader.number(*cutoff);
+  if (const auto seed = map.get<"seed">()) turbulence.seed = loader.seed(*seed);
+  if (const auto unresolved = map.get<"unresolved">()) turbulence.unresolved = loader.boolean(*unresolved);
+  if (const auto cutoff = map.get<"cutoff_cells">()) turbulence.cutoff_cells = loader.number(*cutoff);
 
   // The box counts cells of the grid: a given size rounds to an even count of at least
   // kMinTurbulenceBoxCells; the default takes powers of two (fast FFTs) that cover the domain and, along x
@@ -54,7 +53,7 @@ TurbulenceSettings read_turbulence(const Loader& loader, const Field& field, con
   const double per_cell = fluid::kTurbulencePointsPerCell;
   const double most_points = double(fluid::TurbulenceBoxSpec::kMaxPoints);
   const double fewest_cells = schema::kMinTurbulenceBoxCells;
-  const auto box_size = map.get("box_size");
+  const auto box_size = map.get<"box_size">();
   std::array<double, 3> cells{};
   if (box_size) {
     const std::array<double, 3> size = loader.vector<3>(*box_size);
@@ -79,7 +78,7 @@ TurbulenceSettings read_turbulence(const Loader& loader, const Field& field, con
       loader.expected(*box_size, fmt::format("{} of {} (this box is {})", schema::expected(key_of(*box_size)),
                                              limit, box));
     }
-    const Field missing{field.node, field.key + ".box_size", field.line};
+    const Field missing = map.missing<"box_size">();
     loader.fail(missing, fmt::format("{} of {} expected (required here: the default box, {:.0f} length_scale "
                                      "along x and y, is {}), got nothing",
                                      schema::expected(key_of(missing)), limit, kDefaultBoxLengthScales, box));

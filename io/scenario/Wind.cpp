@@ -38,14 +38,14 @@ bool sides_periodic(const Scenario& scenario) {
 
 void read_wind(const Loader& loader, const Field& field, Scenario& scenario) {
   WindSource& wind = scenario.wind;
-  const MapFields map(loader, field);
-  const Field speed = map.require("speed");
+  const Section<"wind"> map(loader, field);
+  const Field speed = map.require<"speed">();
   wind.speed = loader.expression(speed);
   check_time_series(loader, speed, wind.speed, scenario.time.end);
-  const Field direction = map.require("direction");
+  const Field direction = map.require<"direction">();
   wind.direction = loader.expression(direction);
   check_time_series(loader, direction, wind.direction, scenario.time.end);
-  if (const auto height = map.get("reference_height")) wind.reference_height = loader.number(*height);
+  if (const auto height = map.get<"reference_height">()) wind.reference_height = loader.number(*height);
 
   wind.profile = fluid::InflowProfile{};
   wind.profile.type =
@@ -53,23 +53,23 @@ void read_wind(const Loader& loader, const Field& field, Scenario& scenario) {
   wind.profile.alpha = schema::key("wind.profile.alpha").number;
   wind.profile.displacement_height = schema::key("wind.profile.displacement_height").number;
   wind.profile.reference_height = wind.reference_height;
-  if (const auto profile_field = map.get("profile")) {
+  if (const auto profile_field = map.get<"profile">()) {
     // The allowed keys depend on the type, so read the type first.
-    const MapFields any(loader, *profile_field);
-    const std::string type = loader.word(any.require("type"));
-    const MapFields profile(loader, *profile_field, &type);
+    const Section<"wind.profile"> any(loader, *profile_field);
+    const std::string type = loader.word(any.require<"type">());
+    const Section<"wind.profile"> profile(loader, *profile_field, &type);
     wind.profile.type = value(schema::kProfileWords, schema::kProfileTypes, type);
-    if (const auto alpha = profile.get("alpha")) wind.profile.alpha = loader.number(*alpha);
-    if (const auto roughness = profile.get("roughness_length"))
+    if (const auto alpha = profile.get<"alpha">()) wind.profile.alpha = loader.number(*alpha);
+    if (const auto roughness = profile.get<"roughness_length">())
       wind.profile.roughness_length = loader.number(*roughness);
-    const auto displacement = profile.get("displacement_height");
+    const auto displacement = profile.get<"displacement_height">();
     if (displacement) wind.profile.displacement_height = loader.number(*displacement);
     if (wind.profile.type == fluid::InflowProfile::Type::log) {
       // The log law is only defined above d + z0, and the reference height is where it equals `speed`.
       const double floor = wind.profile.displacement_height + wind.profile.roughness_length;
       if (!(wind.reference_height > floor)) {
         loader.expected(
-            displacement ? *displacement : profile.require("roughness_length"),
+            displacement ? *displacement : profile.require<"roughness_length">(),
             fmt::format(
                 "displacement_height + roughness_length (now {} m) below wind.reference_height ({} m)", floor,
                 wind.reference_height));
@@ -77,25 +77,26 @@ void read_wind(const Loader& loader, const Field& field, Scenario& scenario) {
     }
   }
 
-  if (const auto turbulence = map.get("turbulence"))
+  if (const auto turbulence = map.get<"turbulence">())
     wind.turbulence = read_turbulence(loader, *turbulence, scenario);
 
   // A domain without inflow (all four sides periodic) is driven by the mean forcing, given or not.
   const bool periodic = sides_periodic(scenario);
-  if (const auto forcing_field = map.get("forcing")) {
+  if (const auto forcing_field = map.get<"forcing">()) {
     if (!periodic) {
       int open = FW_FACE_WEST;
       while (scenario.boundaries[open] == BoundaryChoice::periodic) ++open;
-      const std::vector<std::string> faces = schema::child_names("boundaries");
+      const std::vector<std::string> faces = schema::child_names(schema::key("boundaries").path);
       loader.expected(
           *forcing_field,
           fmt::format("forcing only in a domain whose west, east, south and north are all periodic "
                       "(boundaries.{} is '{}')",
                       faces[open], to_string(scenario.boundaries[open])));
     }
-    const MapFields forcing(loader, *forcing_field);
+    const Section<"wind.forcing"> forcing(loader, *forcing_field);
     wind.forcing = ForcingSettings{};
-    if (const auto tau = forcing.get("relaxation_time")) wind.forcing->relaxation_time = loader.number(*tau);
+    if (const auto tau = forcing.get<"relaxation_time">())
+      wind.forcing->relaxation_time = loader.number(*tau);
   } else if (periodic) {
     wind.forcing = ForcingSettings{};
   }

@@ -129,6 +129,33 @@ TEST_CASE("schema: the loader's messages come from the key's type, bound and uni
   CHECK(schema::child_names("output.leaves") == std::vector<std::string>{"attached", "vtk"});
 }
 
+TEST_CASE("schema: a reader's key is looked up below its map, so that a key the map lacks cannot be read",
+          "[schema]") {
+  // The loader's Section<PATH>::get<NAME>() compiles only where schema::key(PATH, NAME) finds the key; the
+  // same look-up, here at compile time too.
+  static_assert(&schema::key("time", "cfl") == &schema::key("time.cfl"));
+  static_assert(&schema::key("forest.species[]", "modes") == &schema::key("forest.species[].modes"));
+  static_assert(&schema::key("", "scenario") == &schema::key("scenario"));
+  static_assert(&schema::key("forest.species[]", "canopy.leaf_area_index") ==
+                &schema::key("forest.species[].canopy.leaf_area_index"));
+  static_assert(schema::find("time", "cfll") == nullptr);            // a typo
+  static_assert(schema::find("time", "fl") == nullptr);              // a tail of a name is not the name
+  static_assert(schema::find("forest.species", "name") == nullptr);  // the list, not its items
+  static_assert(schema::find("", "cfl") == nullptr);                 // not at the top level
+  static_assert(schema::holds_keys("") && schema::holds_keys("forest.species[]") &&
+                schema::holds_keys("wind.profile") && schema::holds_keys("events[]"));
+  static_assert(!schema::holds_keys("forest.species") && !schema::holds_keys("time.cfl") &&
+                !schema::holds_keys("tme"));
+  // Each key of the table is found from its parent's path and its own name.
+  for (const schema::Key& key : schema::kKeys) {
+    INFO("key " << key.path);
+    const std::size_t dot = key.path.rfind('.');
+    const std::string_view parent = dot == std::string_view::npos ? "" : key.path.substr(0, dot);
+    const std::string_view name = dot == std::string_view::npos ? key.path : key.path.substr(dot + 1);
+    CHECK(schema::find(parent, name) == &key);
+  }
+}
+
 TEST_CASE("schema: defaults owned elsewhere are read from their owner, once", "[schema]") {
   // One pressure tolerance for the wind grid and the scenario.
   CHECK(schema::key("solver.tolerance").number == fw::fluid::kDefaultPressureTolerance);
