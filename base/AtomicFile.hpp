@@ -25,7 +25,6 @@ class AtomicFile {
   AtomicFile& operator=(const AtomicFile&) = delete;
 
   const std::filesystem::path& temporary_path() const { return temporary_; }
-  const std::filesystem::path& target_path() const { return target_; }
 
   /// Renames the temporary onto the target (replacing it). Throws std::runtime_error("AtomicFile: ...")
   /// naming both paths if the temporary is missing or the rename fails.

@@ -13,14 +13,6 @@ constexpr const char* kBoundaryNames[] = {"inflow", "outflow", "slip", "no_slip"
 constexpr const char* kFaceNames[] = {"west", "east", "south", "north", "ground", "top"};
 }  // namespace
 
-BoundaryType parse_boundary_type(const std::string& name) {
-  for (int i = 0; i < 5; ++i)
-    if (name == kBoundaryNames[i]) return static_cast<BoundaryType>(i);
-  throw std::invalid_argument(fmt::format(
-      "GridSpec: unknown boundary type '{}'; expected one of inflow, outflow, slip, no_slip, periodic",
-      name));
-}
-
 std::string to_string(BoundaryType type) {
   const int i = static_cast<int>(type);
   return (i >= 0 && i < 5) ? kBoundaryNames[i] : fmt::format("<invalid boundary {}>", i);
@@ -41,7 +33,7 @@ void GridSpec::validate() const {
   // Face counts (nx+1)*ny*nz must fit the 32-bit indices the kernels use.
   // In double from the start: nx + 1 in int would overflow for nx = INT_MAX.
   const double faces = (double(nx) + 1.0) * (double(ny) + 1.0) * (double(nz) + 1.0);
-  if (faces > double(std::numeric_limits<std::int32_t>::max()))
+  if (faces > double(kMaxFaces))
     throw std::invalid_argument(
         fmt::format("GridSpec: {} x {} x {} cells exceed the 2^31 index range of the kernels", nx, ny, nz));
   for (int f = 0; f < 6; ++f) {

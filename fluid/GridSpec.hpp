@@ -12,6 +12,7 @@
 #include <array>
 #include <cstddef>
 #include <cstdint>
+#include <limits>
 #include <string>
 
 #include "kernels/shared_types.h"
@@ -26,13 +27,15 @@ enum class BoundaryType : int {
   periodic = FW_BC_PERIODIC,
 };
 
-/// "inflow", "outflow", "slip", "no_slip" or "periodic". Throws std::invalid_argument listing the choices.
-BoundaryType parse_boundary_type(const std::string& name);
+/// "inflow", "outflow", "slip", "no_slip" or "periodic".
 std::string to_string(BoundaryType type);
 /// "west", "east", "south", "north", "ground", "top" for FW_FACE_*.
 std::string face_name(int face);
 
 struct GridSpec {
+  /// The most faces (nx + 1)(ny + 1)(nz + 1) a grid may have: the kernels index face arrays with 32-bit ints.
+  static constexpr std::int64_t kMaxFaces = std::numeric_limits<std::int32_t>::max();
+
   int nx = 0, ny = 0, nz = 0;             // cells along x, y, z
   double h = 0.0;                         // cell size, m
   std::array<double, 3> origin{0, 0, 0};  // minimum corner, m
@@ -41,7 +44,7 @@ struct GridSpec {
 
   /// Throws std::invalid_argument("GridSpec: ...") for non-positive dimensions or cell size, a periodic face
   /// whose opposite face is not periodic, an odd cell count >1 along a periodic axis, an out-of-range
-  /// boundary value, or a cell count over 2^31.
+  /// boundary value, or more than kMaxFaces faces.
   void validate() const;
 
   std::size_t cell_count() const { return std::size_t(nx) * ny * nz; }

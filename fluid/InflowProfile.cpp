@@ -49,12 +49,4 @@ std::vector<float> InflowProfile::sample_cell_centres(int nz, double h) const {
   return s;
 }
 
-InflowProfile::Type parse_profile_type(const std::string& name) {
-  if (name == "uniform") return InflowProfile::Type::uniform;
-  if (name == "power") return InflowProfile::Type::power;
-  if (name == "log") return InflowProfile::Type::log;
-  throw std::invalid_argument(
-      fmt::format("InflowProfile: unknown profile type '{}'; expected uniform, power or log", name));
-}
-
 }  // namespace fw::fluid

@@ -32,6 +32,4 @@ struct InflowProfile {
   std::vector<float> sample_cell_centres(int nz, double h) const;
 };
 
-InflowProfile::Type parse_profile_type(const std::string& name);
-
 }  // namespace fw::fluid

@@ -4,7 +4,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <numbers>
 #include <stdexcept>
 
 namespace fw::fluid {
@@ -90,10 +89,9 @@ std::size_t SolidMap::add(const SolidBox& box) {
   check_positive(shape, "size[0]", box.size[0]);
   check_positive(shape, "size[1]", box.size[1]);
   check_positive(shape, "size[2]", box.size[2]);
-  check_finite(shape, "yaw", box.yaw_deg);
+  check_finite(shape, "yaw", box.yaw_rad);
 
-  const double yaw = box.yaw_deg * std::numbers::pi / 180.0;
-  const double c = std::cos(yaw), s = std::sin(yaw);
+  const double c = std::cos(box.yaw_rad), s = std::sin(box.yaw_rad);
   const std::array<double, 3> half{0.5 * box.size[0], 0.5 * box.size[1], 0.5 * box.size[2]};
   // Horizontal half-extents of the turned box's axis-aligned bounding box.
   const double ex = std::abs(c) * half[0] + std::abs(s) * half[1];

@@ -2,7 +2,7 @@
 // cylinders, spheres and heightmap terrain.
 //
 //   fw::fluid::SolidMap solids(spec);                                   // all fluid
-//   solids.add(fw::fluid::SolidBox{"barn", {300, 100, 6}, {30, 15, 12}, 15.0});
+//   solids.add(fw::fluid::SolidBox{"barn", {300, 100, 6}, {30, 15, 12}, 15.0 * std::numbers::pi / 180});
 //   solids.add(fw::fluid::SolidCylinder{"silo", {340, 60, 0}, 4.0, 20.0});
 //   solids.add_terrain(fw::fluid::Heightmap::read("hills.pgm", 4.0, 20.0));
 //   upload(solids.cells());                                             // x-fastest, like GridSpec
@@ -31,7 +31,7 @@ struct SolidBox {
   std::string name;                // for error messages
   std::array<double, 3> center{};  // world position of the box's centre, m
   std::array<double, 3> size{};    // full edge lengths along the box's own x, y, z axes, m (> 0)
-  double yaw_deg = 0.0;            // rotation about +z, degrees, counter-clockwise seen from above
+  double yaw_rad = 0.0;            // rotation about +z, counter-clockwise seen from above
 };
 
 /// A vertical cylinder standing on its base.

@@ -15,7 +15,7 @@ double eddy_viscosity_cap(double h, double dt) {
 }
 
 double wall_drag_coefficient(double h, double roughness_length) {
-  const double z1 = 0.5 * h;  // the first cell's centre above the wall
+  const double z1 = wall_centre_height(h);
   if (!std::isfinite(h) || !(roughness_length > 0.0) || !(roughness_length < z1))
     throw std::invalid_argument(
         fmt::format("wall_drag_coefficient: the roughness length must lie in (0, h/2) = (0, {}) m, got {} m",

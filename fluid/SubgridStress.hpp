@@ -69,8 +69,15 @@ inline constexpr double kEddyDiffusionLimit = 0.15;
 /// Throws std::invalid_argument unless h and dt are finite and > 0.
 double eddy_viscosity_cap(double h, double dt);
 
-/// C_w = (kappa / ln(z_1 / z0))^2 with z_1 = h / 2, dimensionless. Throws std::invalid_argument unless
-/// 0 < z0 < h / 2 (the log law needs the first cell's centre above the roughness length).
+/// z_1 = h / 2, m: the height of the first fluid cell's centre above a wall, where the log law is evaluated.
+/// A roughness length must lie below it (wall_drag_coefficient, and the scenario's roughness keys).
+constexpr double wall_centre_height(double h) {
+  return 0.5 * h;
+}
+
+/// C_w = (kappa / ln(z_1 / z0))^2 with z_1 = wall_centre_height(h), dimensionless. Throws
+/// std::invalid_argument unless 0 < z0 < z_1 (the log law needs the first cell's centre above the roughness
+/// length).
 double wall_drag_coefficient(double h, double roughness_length);
 
 /// True when the log-law stress applies on the domain's ground: a slip or no-slip wall (not inflow,

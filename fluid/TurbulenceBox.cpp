@@ -18,10 +18,6 @@ namespace fw::fluid {
 
 namespace {
 
-// The smallest even count that leaves a mode that is neither k = 0 nor Nyquist (m = +-1) on the axis.
-constexpr int kMinCells = 4;
-// The wind grid's kernels index buffers with a 32-bit int, and values() holds 3 floats per point.
-constexpr std::size_t kMaxPoints = std::size_t(std::numeric_limits<int>::max()) / 3;
 constexpr int kComponents = 3;
 // Each drawn half-spectrum mode stands for itself and its conjugate partner -k in the full lattice sum.
 constexpr double kPartnerWeight = 2.0;
@@ -61,9 +57,9 @@ int signed_index(int i, int n) {
 void TurbulenceBoxSpec::validate() const {
   static constexpr const char* kAxis = "xyz";
   for (int a = 0; a < kComponents; ++a) {
-    if (cells[a] < kMinCells || cells[a] % 2 != 0)
+    if (cells[a] < kMinPoints || cells[a] % 2 != 0)
       throw std::invalid_argument(fmt::format("TurbulenceBox: cells along {} must be even and >= {}, got {}",
-                                              kAxis[a], kMinCells, cells[a]));
+                                              kAxis[a], kMinPoints, cells[a]));
   }
   // Each count is < 2^31, so the product of the first two cannot overflow std::size_t.
   const std::size_t xy = std::size_t(cells[0]) * std::size_t(cells[1]);

@@ -55,25 +55,35 @@
 #include <array>
 #include <cstddef>
 #include <cstdint>
+#include <limits>
 #include <vector>
 
 #include "fluid/TurbulenceSpectrum.hpp"
 
 namespace fw::fluid {
 
-/// Points of a wind grid's inflow turbulence box per grid cell along each axis: the box's spacing is h / this
-/// (host/app/plan/TurbulencePlan.cpp), so a box of n cells along an axis holds 2 n points.
+/// The wind grid's inflow box has this many points per grid cell along each axis, h / 2 apart for cells of
+/// h: every face of an inflow plane (at whole cells along its normal, half cells across) then sits on a box
+/// point, and the plane carries the box's values without interpolation. The scenario's wind.turbulence box
+/// counts cells; the box it becomes (host/app/plan/TurbulencePlan.cpp) has this many times as many points
+/// along each axis.
 inline constexpr int kTurbulencePointsPerCell = 2;
 
 struct TurbulenceBoxSpec {
-  std::array<int, 3> cells{0, 0, 0};               ///< points along x, y, z; each even and >= 4
+  /// The fewest points along an axis: the smallest even count with a mode that is neither k = 0 nor Nyquist.
+  static constexpr int kMinPoints = 4;
+  /// The most points in all: values() holds 3 floats a point, and the wind grid's kernels index buffers
+  /// with a 32-bit int.
+  static constexpr std::size_t kMaxPoints = std::size_t(std::numeric_limits<int>::max()) / 3;
+
+  std::array<int, 3> cells{0, 0, 0};               ///< points along x, y, z; each even and >= kMinPoints
   double spacing = 0.0;                            ///< h, distance between points, m (> 0)
   VonKarmanSpectrum spectrum;                      ///< sigma (m/s) and L_u (m) of the isotropic turbulence
   std::array<double, 3> component_scale{1, 1, 1};  ///< multiplies u, v, w after normalisation (>= 0)
   std::uint64_t seed = 0;
 
-  /// Throws std::invalid_argument("TurbulenceBox: ...") for a cell count that is odd, below 4 or whose
-  /// product exceeds the 32-bit index of the wind grid's kernels, a spacing that is not finite and > 0, an
+  /// Throws std::invalid_argument("TurbulenceBox: ...") for a cell count that is odd, below kMinPoints or
+  /// whose product exceeds kMaxPoints, a spacing that is not finite and > 0, an
   /// invalid spectrum, or a component scale that is not finite and >= 0.
   void validate() const;
   std::size_t point_count() const { return std::size_t(cells[0]) * cells[1] * cells[2]; }

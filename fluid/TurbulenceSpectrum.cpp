@@ -44,14 +44,4 @@ double VonKarmanSpectrum::transverse(double k1) const {
          std::pow(1.0 + x2, 11.0 / 6.0);
 }
 
-double VonKarmanSpectrum::longitudinal_frequency(double f, double mean_speed) const {
-  const double to_k = 2.0 * std::numbers::pi / mean_speed;
-  return to_k * longitudinal(to_k * f);
-}
-
-double VonKarmanSpectrum::transverse_frequency(double f, double mean_speed) const {
-  const double to_k = 2.0 * std::numbers::pi / mean_speed;
-  return to_k * transverse(to_k * f);
-}
-
 }  // namespace fw::fluid

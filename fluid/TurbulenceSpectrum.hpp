@@ -4,7 +4,6 @@
 //   fw::fluid::VonKarmanSpectrum s{/*sigma=*/2.4, /*integral_length=*/30.0};
 //   double e  = s.energy(0.1);            // E(k), m^3/s^2, k in rad/m
 //   double fu = s.longitudinal(0.1);      // F_u(k1), m^3/s^2, one-sided: integral over k1 >= 0 is sigma^2
-//   double su = s.longitudinal_frequency(0.5, 12.0);   // S_u(f) at f = 0.5 Hz in a mean wind of 12 m/s
 //
 // With L the spectrum's length scale and L_u = integral_length the longitudinal integral scale (what a wind
 // engineer measures from an autocorrelation), L_u = L sqrt(pi) Gamma(5/6) / Gamma(1/3) = 0.7468 L, and
@@ -31,9 +30,6 @@ struct VonKarmanSpectrum {
   /// F_u(k1) and F_v(k1) = F_w(k1), one-sided, m^3/s^2, for k1 >= 0 (rad/m).
   double longitudinal(double k1) const;
   double transverse(double k1) const;
-  /// One-sided frequency spectra at f >= 0 (Hz) in a mean wind U > 0 (m/s), m^2/s.
-  double longitudinal_frequency(double f, double mean_speed) const;
-  double transverse_frequency(double f, double mean_speed) const;
 };
 
 /// L_u / L for the von Karman spectrum: sqrt(pi) Gamma(5/6) / Gamma(1/3) = 0.74684.

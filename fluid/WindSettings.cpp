@@ -7,21 +7,6 @@
 
 namespace fw::fluid {
 
-AdvectionScheme parse_advection_scheme(const std::string& name) {
-  if (name == "semi_lagrangian") return AdvectionScheme::semi_lagrangian;
-  if (name == "maccormack") return AdvectionScheme::maccormack;
-  throw std::invalid_argument(
-      fmt::format("WindSettings: unknown advection '{}'; expected semi_lagrangian or maccormack", name));
-}
-
-PressureSolverType parse_pressure_solver(const std::string& name) {
-  if (name == "jacobi") return PressureSolverType::jacobi;
-  if (name == "multigrid") return PressureSolverType::multigrid;
-  if (name == "cg") return PressureSolverType::cg;
-  throw std::invalid_argument(
-      fmt::format("WindSettings: unknown pressure solver '{}'; expected jacobi, multigrid or cg", name));
-}
-
 std::string to_string(AdvectionScheme scheme) {
   return scheme == AdvectionScheme::maccormack ? "maccormack" : "semi_lagrangian";
 }
@@ -48,11 +33,10 @@ void WindSettings::validate() const {
   if (vorticity_confinement < 0.0)
     throw std::invalid_argument(
         fmt::format("WindSettings: vorticity_confinement must be >= 0, got {}", vorticity_confinement));
-  // C_s >= 1 would make the subgrid length C_s h larger than the cell it stands for.
-  if (!(smagorinsky_constant >= 0.0 && smagorinsky_constant < 1.0))
+  if (!(smagorinsky_constant >= 0.0 && smagorinsky_constant < kSmagorinskyConstantBelow))
     throw std::invalid_argument(
-        fmt::format("WindSettings: smagorinsky_constant must lie in [0, 1) (typically 0.1-0.2), got {}",
-                    smagorinsky_constant));
+        fmt::format("WindSettings: smagorinsky_constant must lie in [0, {}) (typically 0.1-0.2), got {}",
+                    kSmagorinskyConstantBelow, smagorinsky_constant));
   if (!(wall_roughness_length >= 0.0) || !std::isfinite(wall_roughness_length))
     throw std::invalid_argument(
         fmt::format("WindSettings: wall_roughness_length must be >= 0 m, got {}", wall_roughness_length));

@@ -10,8 +10,6 @@ enum class AdvectionScheme { semi_lagrangian, maccormack };
 enum class PressureSolverType { jacobi, multigrid, cg };
 enum class MultigridSmoother { jacobi, red_black };
 
-AdvectionScheme parse_advection_scheme(const std::string& name);    // "semi_lagrangian" | "maccormack"
-PressureSolverType parse_pressure_solver(const std::string& name);  // "jacobi" | "multigrid" | "cg"
 std::string to_string(AdvectionScheme scheme);
 std::string to_string(PressureSolverType solver);
 
@@ -38,9 +36,13 @@ struct WindSettings {
   double dt = 0.05;                           // fixed time step, s (used when cfl <= 0)
   double cfl = 0.0;                           // > 0: dt = cfl * h / max|u| each step, capped at max_dt
   double max_dt = 1.0;                        // s
-  /// Smagorinsky constant C_s of the subgrid eddy viscosity nu_t = (C_s h)^2 |S|, dimensionless, in [0, 1)
-  /// (0: off; 0.1-0.2 typical, 0.17 from Lilly's inertial-range estimate). fluid/SubgridStress.hpp.
+  /// Smagorinsky constant C_s of the subgrid eddy viscosity nu_t = (C_s h)^2 |S|, dimensionless, in
+  /// [0, kSmagorinskyConstantBelow) (0: off; 0.1-0.2 typical, 0.17 from Lilly's inertial-range estimate).
+  /// fluid/SubgridStress.hpp.
   double smagorinsky_constant = 0.0;
+  /// C_s >= 1 would make the subgrid length C_s h larger than the cell it stands for (the scenario schema
+  /// takes the limit from here).
+  static constexpr double kSmagorinskyConstantBelow = 1.0;
   /// Roughness length z0 of the log-law wall stress on the first fluid cell above the ground and above solid
   /// cells, m (0: off; needs z0 < h/2). The ground should then be slip. fluid/SubgridStress.hpp.
   double wall_roughness_length = 0.0;

@@ -11,7 +11,9 @@
 //
 // Conventions: SI units (m, s, kg, m/s, Pa); axes x east, y north, z up; the domain's minimum corner is
 // domain.origin. Wind directions are meteorological (degrees the wind blows FROM, clockwise from north).
-// Yaws of trees and boxes are degrees counter-clockwise about +z seen from above (fluid::SolidBox). Relative
+// Yaws of trees and boxes turn counter-clockwise about +z seen from above; the file gives them in degrees,
+// and the loader converts them once: every struct here holds radians (yaw_rad, as fluid::SolidBox,
+// trees::PlacedTree and trees::TreeInstance do). Relative
 // paths in the file (skeletons, heightmap) resolve against the scenario file's folder; the output directory
 // resolves against the current working directory at load time.
 //
@@ -26,6 +28,7 @@
 #include <array>
 #include <cstdint>
 #include <filesystem>
+#include <numbers>
 #include <optional>
 #include <stdexcept>
 #include <string>
@@ -46,6 +49,11 @@
 #include "trees/TreeGenerator.hpp"
 
 namespace fw::io {
+
+/// An angle the file gives in degrees (yaws), in the radians of every struct past the loader.
+constexpr double radians(double degrees) {
+  return degrees * std::numbers::pi / 180.0;
+}
 
 /// A scenario that cannot be used: what() is "FILE:LINE: KEY: what was expected[, got 'VALUE']".
 class ScenarioError : public std::invalid_argument {
@@ -125,8 +133,9 @@ struct TurbulenceSettings {
   /// [sigma_u, sigma_v, sigma_w], m/s, each > 0, fixed over time (along-wind, across-wind, vertical).
   std::optional<std::array<double, 3>> sigma;
   double length_scale = 0.0;  ///< L_u, the longitudinal integral length scale, m, > 0
-  /// The box's points along x, y, z, each even and >= 4, resolved at load (from box_size, else computed);
-  /// the points are domain.cell_size apart.
+  /// The box's cells along x, y, z, each even and >= schema::kMinTurbulenceBoxCells, resolved at load (from
+  /// box_size, else computed). The fluid::TurbulenceBox a run builds has fluid::kTurbulencePointsPerCell
+  /// points per cell along each axis (h / 2 apart), at most TurbulenceBoxSpec::kMaxPoints in all.
   std::array<int, 3> box_cells{0, 0, 0};
   /// box_cells * domain.cell_size, m: the box's period along x, y, z (a given box_size, rounded).
   std::array<double, 3> box_size{0, 0, 0};
@@ -240,7 +249,8 @@ struct PlacedTreeSettings {
   int species_index = 0;             ///< into ForestSettings::species
   std::array<double, 3> position{};  ///< m; z from the file, else the ground (terrain) under (x, y)
   bool height_given = false;         ///< whether the file gave z
-  double yaw = schema::key("forest.trees[].yaw").number;  ///< degrees, counter-clockwise about +z from above
+  /// Counter-clockwise about +z seen from above (the file's degrees, converted).
+  double yaw_rad = radians(schema::key("forest.trees[].yaw").number);
   double scale = schema::key("forest.trees[].scale").number;  ///< > 0
 };
 

@@ -61,24 +61,6 @@ std::string sign_text(Bound bound) {
   return bound == Bound::positive ? "> 0" : bound == Bound::non_negative ? ">= 0" : "";
 }
 
-/// "[x, y]", "[x, y, z]".
-std::string point_names(int count) {
-  return count == 2 ? "[x, y]" : "[x, y, z]";
-}
-
-int point_size(Type type) {
-  return type == Type::point2 ? 2 : 3;
-}
-
-/// The generic path of the list whose items a key of a list item belongs to ("events" for "events[].gust").
-std::string_view parent_of(std::string_view path) {
-  const std::size_t dot = path.rfind('.');
-  if (dot == std::string_view::npos) return {};
-  std::string_view parent = path.substr(0, dot);
-  if (parent.ends_with("[]")) parent.remove_suffix(2);
-  return parent;
-}
-
 /// A number as the docs write it: plain in the range people read at a glance, else the shortest scientific
 /// form with a plain exponent (1e10, 3.85e9, 1e-3).
 std::string number_text(double value) {
@@ -95,6 +77,46 @@ std::string number_text(double value) {
   const bool negative = exponent.front() == '-';
   exponent.erase(0, exponent.find_first_not_of("+-0"));
   return text.substr(0, e + 1) + (negative ? "-" : "") + exponent;
+}
+
+/// The range a number (or each number of a point) must lie in: "> 0", ">= 0 and < 1", "<= 90", or "" for
+/// any number.
+std::string range_text(const Key& key) {
+  std::vector<std::string> parts;
+  if (key.bound != Bound::any) parts.push_back(sign_text(key.bound));
+  if (key.at_most < kNoNumberLimit) parts.push_back("<= " + number_text(key.at_most));
+  if (key.below < kNoNumberLimit) parts.push_back("< " + number_text(key.below));
+  return join(parts, " and ");
+}
+
+/// key.constraint with its {0}, {1}, {2} replaced by key.limits: whole numbers in full (2147483647), others
+/// as number_text writes them (1e-6).
+std::string constraint_text(const Key& key) {
+  std::array<std::string, 3> limits;
+  for (std::size_t i = 0; i < limits.size(); ++i) {
+    const double value = key.limits[i];
+    limits[i] = value == std::round(value) && std::abs(value) < 1e15 ? fmt::format("{:.0f}", value)
+                                                                     : number_text(value);
+  }
+  return fmt::format(fmt::runtime(key.constraint), limits[0], limits[1], limits[2]);
+}
+
+/// "[x, y]", "[x, y, z]".
+std::string point_names(int count) {
+  return count == 2 ? "[x, y]" : "[x, y, z]";
+}
+
+int point_size(Type type) {
+  return type == Type::point2 ? 2 : 3;
+}
+
+/// The generic path of the list whose items a key of a list item belongs to ("events" for "events[].gust").
+std::string_view parent_of(std::string_view path) {
+  const std::size_t dot = path.rfind('.');
+  if (dot == std::string_view::npos) return {};
+  std::string_view parent = path.substr(0, dot);
+  if (parent.ends_with("[]")) parent.remove_suffix(2);
+  return parent;
 }
 
 }  // namespace
@@ -132,12 +154,12 @@ std::string expected(const Key& key) {
     case Type::directory:
       return key.noun.empty() ? "a directory path" : std::string(key.noun);
     case Type::number: {
-      const std::string sign = sign_text(key.bound);
-      return "a number" + (sign.empty() ? "" : " " + sign) + unit_suffix(key);
+      const std::string range = range_text(key);
+      return "a number" + (range.empty() ? "" : " " + range) + unit_suffix(key);
     }
     case Type::number_or_auto: {
-      const std::string sign = sign_text(key.bound);
-      return "a number" + (sign.empty() ? "" : " " + sign) + unit_suffix(key) + " or auto";
+      const std::string range = range_text(key);
+      return "a number" + (range.empty() ? "" : " " + range) + unit_suffix(key) + " or auto";
     }
     case Type::integer:
       return key.highest == kNoUpperLimit ? fmt::format("an integer >= {}", key.lowest)
@@ -158,9 +180,9 @@ std::string expected(const Key& key) {
     case Type::point2:
     case Type::point3: {
       const int size = point_size(key.type);
-      const std::string sign = sign_text(key.bound);
+      const std::string range = range_text(key);
       return fmt::format("a list of {} numbers {}{}{}", size, key.noun.empty() ? point_names(size) : key.noun,
-                         sign.empty() ? "" : ", each " + sign, unit_suffix(key));
+                         range.empty() ? "" : ", each " + range, unit_suffix(key));
     }
     case Type::point2_or_3:
       return "a list [x, y] or [x, y, z]" + unit_suffix(key);
@@ -290,10 +312,10 @@ std::string doc_allowed(const Key& key) {
       allowed = "a readable file; relative to the scenario's folder";
       break;
     case Type::number:
-      allowed = key.bound == Bound::any ? "any" : sign_text(key.bound);
+      allowed = range_text(key).empty() ? "any" : range_text(key);
       break;
     case Type::number_or_auto:
-      allowed = sign_text(key.bound) + ", or the word `auto`";
+      allowed = range_text(key) + ", or the word `auto`";
       break;
     case Type::integer:
       allowed = key.highest == kNoUpperLimit ? fmt::format(">= {}", key.lowest)
@@ -319,7 +341,7 @@ std::string doc_allowed(const Key& key) {
     case Type::point2:
     case Type::point3:
     case Type::point2_or_3:
-      allowed = key.bound == Bound::any ? "any" : "each " + sign_text(key.bound);
+      allowed = range_text(key).empty() ? "any" : "each " + range_text(key);
       break;
     case Type::expression:
       allowed = fmt::format("finite{} for 0 <= t <= `time.end`",
@@ -329,7 +351,7 @@ std::string doc_allowed(const Key& key) {
       allowed = "the word `with_wind` or any 3 numbers";
       break;
   }
-  if (!key.constraint.empty()) allowed += "; " + std::string(key.constraint);
+  if (!key.constraint.empty()) allowed += "; " + constraint_text(key);
   if (!key.only_with.empty()) allowed += fmt::format("; `{}` only", key.only_with);
   return allowed;
 }

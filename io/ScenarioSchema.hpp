@@ -1,8 +1,9 @@
 // The scenario schema: every key a scenario file may hold, with its type, unit, default, allowed values and
-// meaning, defined once (issue 9, "The schema in one place"). io/Scenario.cpp takes from here its unknown-key
-// checks, its required keys, its vocabularies and the "... expected" part of its messages; the defaults of
-// the io::Scenario structs are read from here; and the key tables of docs/scenario.md are generated from here
-// (render_scenario_docs; tests/io/ScenarioSchema_test.cpp fails when the committed page differs).
+// meaning, defined once (issue 9, "The schema in one place"). The loader (io/scenario/) takes from here its
+// unknown-key checks, its required keys, its vocabularies and the "... expected" part of its messages; the
+// defaults of the io::Scenario structs are read from here; and the key tables of docs/scenario.md are
+// generated from here (render_scenario_docs; tests/io/ScenarioSchema_test.cpp fails when the committed page
+// differs).
 //
 //   constexpr double cfl = fw::io::schema::key("time.cfl").number;       // 0.8, looked up at compile time
 //   const fw::io::schema::Key* found = fw::io::schema::find("forest.species[].modes.count");   // at run time
@@ -14,7 +15,9 @@
 // belong to another part of the program (the pressure tolerance of fluid::PressureSettings, the wood of
 // trees::kDefaultWood, the drag coefficients of trees::WindBasisSettings, the modal defaults of
 // trees::ModalSettings, the leaves of trees::LeafSettings) are taken from there, so that each value is
-// written once.
+// written once. So are the limits: a number's upper limit (at_most, below) and the numbers a constraint
+// names (limits) come from the type that checks them again at run time (trees::LeafSettings::kMaxFraction,
+// fluid::GridSpec::kMaxFaces, ...), and the loader, its messages and the docs all read them from here.
 #pragma once
 
 #include <array>
@@ -25,7 +28,9 @@
 #include <string_view>
 #include <vector>
 
+#include "fluid/GridSpec.hpp"
 #include "fluid/InflowProfile.hpp"
+#include "fluid/TurbulenceBox.hpp"
 #include "fluid/WindSettings.hpp"
 #include "kernels/shared_types.h"
 #include "trees/ForestLayout.hpp"
@@ -66,13 +71,17 @@ enum class Bound { any, positive, non_negative };
 
 using Words = std::span<const std::string_view>;
 
+inline constexpr double kNoNumberLimit = std::numeric_limits<double>::infinity();
+
 struct Key {
   std::string_view path{};
   Type type = Type::map;
   std::string_view unit{};  ///< SI unit; empty when dimensionless or not a quantity
   bool required = false;
   Bound bound = Bound::any;
-  long long lowest = 0;   ///< integer: the smallest value allowed
+  double at_most = kNoNumberLimit;  ///< number, point: each value must be <= this
+  double below = kNoNumberLimit;    ///< number, point: each value must be < this
+  long long lowest = 0;             ///< integer: the smallest value allowed
   long long highest = 0;  ///< integer: the largest value allowed (numeric_limits<int>::max(): no limit)
   Words words{};          ///< word, word_set: the vocabulary
   /// word: a vocabulary known only at run time (replaces words).
@@ -89,8 +98,10 @@ struct Key {
   std::string_view only_with{};     ///< the key applies only where its sibling `type` is this word
   std::string_view default_note{};  ///< docs: the default in words, where it is not a plain value
   std::string_view allowed{};       ///< docs: replaces the allowed values derived from the type
-  std::string_view constraint{};    ///< docs: what is allowed beyond the type's own rule
-  std::string_view description{};   ///< docs: the meaning, one table row
+  /// docs: what is allowed beyond the type's own rule; {0}, {1}, {2} stand for the numbers in `limits`
+  std::string_view constraint{};
+  std::array<double, 3> limits{};  ///< the numbers `constraint` names, taken from the type that checks them
+  std::string_view description{};  ///< docs: the meaning, one table row
 };
 
 inline constexpr int kNoUpperLimit = std::numeric_limits<int>::max();
@@ -157,12 +168,10 @@ std::vector<std::string> preset_words();
 inline constexpr fluid::PressureSettings kPressureDefaults{};
 inline constexpr trees::WindBasisSettings kDragDefaults{};
 inline constexpr trees::LeafSettings kLeafDefaults{};
-// The upper limits of the leaf keys, as trees::LeafSettings::validate has them
-// (tests/io/ScenarioSchema_test.cpp checks that they agree): fraction <= 1, damping_ratio < 1, each amplitude
-// <= 90 degrees.
-inline constexpr double kMaxLeafFraction = 1.0;
-inline constexpr double kMaxLeafDampingRatio = 1.0;
-inline constexpr double kMaxLeafAmplitudeDeg = 90.0;
+/// How far domain.size may lie from a whole multiple of cell_size, relative to the size.
+inline constexpr double kCellMultipleTolerance = 1e-6;
+/// The fewest cells of wind.turbulence.box_size along an axis (a box given smaller is rounded up to it).
+inline constexpr int kMinTurbulenceBoxCells = 4;
 
 inline constexpr Key kKeys[] = {
     // top level
@@ -214,14 +223,16 @@ inline constexpr Key kKeys[] = {
      .unit = "m",
      .required = true,
      .bound = Bound::positive,
-     .constraint = "each a whole multiple of `cell_size` (to 1e-6 relative), at least one cell",
+     .constraint = "each a whole multiple of `cell_size` (to {0} relative), at least one cell",
+     .limits = {kCellMultipleTolerance},
      .description = "Extent along x, y and z."},
     {.path = "domain.cell_size",
      .type = Type::number,
      .unit = "m",
      .required = true,
      .bound = Bound::positive,
-     .constraint = "(nx + 1)(ny + 1)(nz + 1) <= 2^31 - 1",
+     .constraint = "(nx + 1)(ny + 1)(nz + 1) <= {0}",
+     .limits = {double(fluid::GridSpec::kMaxFaces)},
      .description = "Cell edge h. The grid has `size / cell_size` cells along each axis."},
     // boundaries, in the order of FW_FACE_*
     {.path = "boundaries", .description = "Boundary condition per face."},
@@ -385,15 +396,19 @@ inline constexpr Key kKeys[] = {
      .bound = Bound::positive,
      .default_note = "computed: along x and y the smallest power-of-two cell count >= the domain's cells "
                      "and >= 8 `length_scale` / `cell_size`; along z the smallest power of two >= the "
-                     "domain's cells; each at least 4",
-     .allowed = "each > 0; rounded to a whole, even number of cells, at least 4, per axis; at most (2^31 - "
-                "1) / 3 points in all",
+                     "domain's cells; each at least the fewest allowed",
+     .constraint =
+         "rounded to a whole, even number of cells, at least {0}, per axis; the box has {1} points "
+         "per cell along each axis (h / {1} apart, h = `domain.cell_size`), at most {2} points in all",
+     .limits = {kMinTurbulenceBoxCells, fluid::kTurbulencePointsPerCell,
+                double(fluid::TurbulenceBoxSpec::kMaxPoints)},
      .description =
-         "Extent of the periodic turbulence box along x, y and z. Its points are "
-         "`domain.cell_size` apart. Turbulence repeats with the box's period: a point fixed in the "
-         "inflow sees the same gusts again once the wind has carried the box one period past it, "
-         "and the box holds no wavelength longer than itself, so along the wind it should be "
-         "several L_u long."},
+         "Extent of the periodic turbulence box along x, y and z, in cells of the grid. Its points are "
+         "finer than the cells (see the allowed values), so that every face of an inflow plane sits on a "
+         "box point and takes the box's value without interpolation. Turbulence repeats with the box's "
+         "period: a point fixed in the inflow sees the same gusts again once the wind has carried the box "
+         "one period past it, and the box holds no wavelength longer than itself, so along the wind it "
+         "should be several L_u long."},
     {.path = "wind.turbulence.seed",
      .type = Type::seed,
      .default_note = "global `seed`",
@@ -739,8 +754,8 @@ inline constexpr Key kKeys[] = {
     {.path = "forest.species[].leaves.fraction",
      .type = Type::number,
      .bound = Bound::positive,
+     .at_most = trees::LeafSettings::kMaxFraction,
      .number = kLeafDefaults.fraction,
-     .constraint = "<= 1",
      .description = "Share of the foliage's leaves that are simulated. Below 1, a thinned sample of the same "
                     "leaves, each of the real size, for big forests."},
     {.path = "forest.species[].leaves.mass_per_area",
@@ -759,8 +774,8 @@ inline constexpr Key kKeys[] = {
     {.path = "forest.species[].leaves.damping_ratio",
      .type = Type::number,
      .bound = Bound::non_negative,
+     .below = trees::LeafSettings::kDampingRatioBelow,
      .number = kLeafDefaults.damping_ratio,
-     .constraint = "< 1",
      .description = "Damping ratio zeta of the `pseudo_branch` oscillator. Low, so that leaves flutter; the "
                     "air damps their motion too."},
     {.path = "forest.species[].leaves.petiole_strength",
@@ -790,9 +805,9 @@ inline constexpr Key kKeys[] = {
      .type = Type::point3,
      .unit = "degrees",
      .bound = Bound::non_negative,
+     .at_most = trees::LeafSettings::kMaxAmplitudeDeg,
      .components = kLeafDefaults.amplitudes_deg,
      .noun = "[W_H, W_V, W_R]",
-     .constraint = "each <= 90",
      .description = "`stochastic` only: the amplitudes of the three angles at and above `reference_speed`, "
                     "about the vertical (W_H), about the branch (W_V) and about the petiole (W_R)."},
     {.path = "forest.species[].leaves.roll_coupling",
@@ -848,9 +863,9 @@ inline constexpr Key kKeys[] = {
      .unit = "m",
      .required = true,
      .bound = Bound::positive,
-     .constraint =
-         "`(width / spacing + 1) * (depth / spacing + 1)` at most 500,000, where width and depth are "
-         "the region's extents",
+     .constraint = "`2 (width / spacing + 1) (depth / spacing + 1)`, a bound on the trees the region holds, "
+                   "at most {0}, where width and depth are the region's extents",
+     .limits = {double(trees::kMaxTreesPerStand)},
      .description = "Minimum distance between trees (`poisson`) or exact distance (`grid`)."},
     {.path = "forest.stands[].scale",
      .default_note = "`{min: 1, max: 1}`",
@@ -937,9 +952,9 @@ inline constexpr Key kKeys[] = {
     {.path = "solver.smagorinsky_constant",
      .type = Type::number,
      .bound = Bound::non_negative,
-     .number = 0.0,
+     .below = fluid::WindSettings::kSmagorinskyConstantBelow,
+     .number = fluid::WindSettings{}.smagorinsky_constant,
      .default_note = "`0` (off)",
-     .constraint = "< 1",
      .description =
          "Smagorinsky constant C_s of the subgrid eddy viscosity `nu_t = (C_s h)^2 \\|S\\|`, h = "
          "`domain.cell_size` and `\\|S\\| = sqrt(2 S_ij S_ij)` the resolved strain rate: the "
@@ -1036,6 +1051,41 @@ consteval const Key& key(std::string_view path) {
   for (const Key& entry : kKeys)
     if (entry.path == path) return entry;
   throw "not a key of the scenario schema";
+}
+
+/// Whether a generic path names a map of keys: the top level (""), a map or choice key, or the items of a
+/// list ("forest.species[]").
+consteval bool holds_keys(std::string_view path) {
+  if (path.empty()) return true;
+  const bool items = path.ends_with("[]");
+  if (items) path.remove_suffix(2);
+  for (const Key& entry : kKeys) {
+    if (entry.path != path) continue;
+    return items ? entry.type == Type::list || entry.type == Type::choice_list
+                 : entry.type == Type::map || entry.type == Type::choice;
+  }
+  return false;
+}
+
+/// The key `name` below the map at generic path `parent` ("" for the top level), or nullptr; `name` may reach
+/// further down ("canopy.leaf_area_index"). Usable at compile time.
+constexpr const Key* find(std::string_view parent, std::string_view name) {
+  for (const Key& entry : kKeys) {
+    const std::string_view path = entry.path;
+    if (parent.empty() ? path == name
+                       : path.size() == parent.size() + 1 + name.size() && path.starts_with(parent) &&
+                             path[parent.size()] == '.' && path.ends_with(name))
+      return &entry;
+  }
+  return nullptr;
+}
+
+/// The key `name` below the map at `parent`, at compile time: a name the map lacks does not compile. The
+/// loader's readers name their keys so (io/scenario/Reader.hpp).
+///   schema::key("forest.species[]", "modes")   // the key forest.species[].modes
+consteval const Key& key(std::string_view parent, std::string_view name) {
+  if (const Key* found = find(parent, name)) return *found;
+  throw "not a key of this map in the scenario schema";
 }
 
 /// The value of `word` (a key's default word, say) in a vocabulary and its values, aligned by position.

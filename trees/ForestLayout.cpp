@@ -137,7 +137,7 @@ std::vector<PlacedTree> place_stand(const StandSpec& stand) {
     PlacedTree tree;
     tree.species = stand.species;
     tree.position = p;
-    tree.yaw = 2.0 * std::numbers::pi * random.next();
+    tree.yaw_rad = 2.0 * std::numbers::pi * random.next();
     tree.scale = random.between(stand.scale_min, stand.scale_max);
     trees.push_back(tree);
   }

@@ -47,7 +47,7 @@ struct StandSpec {
 struct PlacedTree {
   int species = 0;
   Eigen::Vector2d position = Eigen::Vector2d::Zero();  ///< m, ground position of the root
-  double yaw = 0.0;                                    ///< rad, counter-clockwise about +z
+  double yaw_rad = 0.0;                                ///< counter-clockwise about +z
   double scale = 1.0;                                  ///< uniform scale of the species' skeleton
 };
 

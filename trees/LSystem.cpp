@@ -197,10 +197,6 @@ void LSystem::add_rule(char symbol, std::string_view successor, double weight) {
       {weight, parse_modules(successor, /*allow_predecessor=*/true, /*allow_jitter=*/true)});
 }
 
-int LSystem::alternative_count(char symbol) const {
-  return int(rules_[static_cast<unsigned char>(symbol)].size());
-}
-
 std::vector<Module> LSystem::derive(int iterations, std::uint64_t seed) const {
   if (iterations < 0)
     throw std::invalid_argument(fmt::format("LSystem: expected iterations >= 0, got {}", iterations));

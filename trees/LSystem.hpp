@@ -90,9 +90,6 @@ class LSystem {
   /// std::length_error when the word would exceed kMaxWordLength modules.
   std::vector<Module> derive(int iterations, std::uint64_t seed) const;
 
-  /// Number of stochastic alternatives for symbol (0: the symbol is copied unchanged).
-  int alternative_count(char symbol) const;
-
   // The compiled form of one successor module's parameter expression; public only so that the .cpp helpers
   // can name it.
   struct ParameterTemplate {

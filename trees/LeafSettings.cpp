@@ -8,10 +8,6 @@
 namespace fw::trees {
 namespace {
 
-// The stochastic model's angles are amplitudes of a tilt; beyond a right angle they would fold the blade
-// over.
-constexpr double kMaxAmplitudeDeg = 90.0;
-
 [[noreturn]] void fail(const std::string& key, const std::string& rule, double got) {
   throw std::invalid_argument(fmt::format("LeafSettings: {} must be {}, got {}", key, rule, got));
 }
@@ -38,22 +34,14 @@ std::string to_string(FlutterModel model) {
   throw std::invalid_argument(fmt::format("FlutterModel: unknown value {}", int(model)));
 }
 
-FlutterModel flutter_model_from_string(const std::string& name) {
-  for (const FlutterModel model :
-       {FlutterModel::none, FlutterModel::pseudo_branch, FlutterModel::stochastic}) {
-    if (name == to_string(model)) return model;
-  }
-  throw std::invalid_argument(
-      fmt::format("FlutterModel: expected none, pseudo_branch or stochastic, got '{}'", name));
-}
-
 void LeafSettings::validate() const {
   require_positive("area", area);
-  if (!std::isfinite(fraction) || fraction <= 0.0 || fraction > 1.0) fail("fraction", "in (0, 1]", fraction);
+  if (!std::isfinite(fraction) || fraction <= 0.0 || fraction > kMaxFraction)
+    fail("fraction", fmt::format("in (0, {}]", kMaxFraction), fraction);
   require_positive("mass_per_area", mass_per_area);
   require_positive("frequency", frequency);
-  if (!std::isfinite(damping_ratio) || damping_ratio < 0.0 || damping_ratio >= 1.0)
-    fail("damping_ratio", "in [0, 1)", damping_ratio);
+  if (!std::isfinite(damping_ratio) || damping_ratio < 0.0 || damping_ratio >= kDampingRatioBelow)
+    fail("damping_ratio", fmt::format("in [0, {})", kDampingRatioBelow), damping_ratio);
   require_positive("petiole_strength", petiole_strength);
   require_non_negative("strength_spread", strength_spread);
   require_positive("flight_drag_coefficient", flight_drag_coefficient);

@@ -18,9 +18,8 @@ enum class FlutterModel {
   stochastic,     ///< Ota/Yildiz's three wind-scaled sine angles
 };
 
-/// "none", "pseudo_branch", "stochastic"; from_string throws std::invalid_argument for anything else.
+/// "none", "pseudo_branch", "stochastic".
 std::string to_string(FlutterModel model);
-FlutterModel flutter_model_from_string(const std::string& name);
 
 struct LeafSettings {
   FlutterModel model = FlutterModel::pseudo_branch;
@@ -36,6 +35,15 @@ struct LeafSettings {
   double roll_coupling = 0.5;                        ///< a: theta_R gains a theta_H
   double reference_speed = 10.0;                     ///< U_ref, m/s: full amplitudes at and above it (> 0)
   std::uint64_t seed = 1;                            ///< the species' leaves (positions, angles, strengths)
+
+  // The upper limits of the ranges above, written once: validate() checks them, and the scenario schema
+  // (io/ScenarioSchema.hpp) takes them for its keys, its messages and docs/scenario.md.
+  static constexpr double kMaxFraction = 1.0;  ///< fraction <= this: every leaf of the foliage
+  /// damping_ratio < this: at critical damping the pseudo-branch no longer oscillates.
+  static constexpr double kDampingRatioBelow = 1.0;
+  /// Each amplitude <= this, degrees: the stochastic angles tilt the blade, and beyond a right angle they
+  /// would fold it over.
+  static constexpr double kMaxAmplitudeDeg = 90.0;
 
   /// Throws std::invalid_argument("LeafSettings: <key> ...") for a value outside the ranges above.
   void validate() const;

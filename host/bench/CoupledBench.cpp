@@ -7,6 +7,7 @@
 #include <chrono>
 #include <cmath>
 #include <filesystem>
+#include <numbers>
 #include <random>
 #include <stdexcept>
 #include <system_error>
@@ -77,7 +78,7 @@ std::vector<io::PlacedTreeSettings> forest_trees(int count, const std::array<int
     tree.species_index = 0;
     tree.position = {width * (0.1 + 0.8 * fx), depth * (0.1 + 0.8 * fy), 0.0};
     tree.height_given = true;
-    tree.yaw = 360.0 * trees::unit_interval(random());
+    tree.yaw_rad = 2.0 * std::numbers::pi * trees::unit_interval(random());
     tree.scale = 0.85 + 0.3 * trees::unit_interval(random());
     trees.push_back(tree);
   }

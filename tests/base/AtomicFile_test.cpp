@@ -76,12 +76,11 @@ class FileSizeLimit {
 }  // namespace
 
 TEST_CASE("AtomicFile: the file appears under its name only at commit, complete, and no temporary is left",
-          "[io]") {
+          "[base]") {
   fw::test::TempDir dir("fw_atomic");
   const fs::path target = fs::path(dir.path()) / "modes.vtp";
   {
     AtomicFile file(target);
-    CHECK(file.target_path() == target);
     // Beside the target (the same file system, so the rename is atomic), named after it and this process.
     CHECK(file.temporary_path().parent_path() == target.parent_path());
     CHECK(file.temporary_path().filename() == "modes.vtp.tmp-" + std::to_string(::getpid()));
@@ -104,7 +103,7 @@ TEST_CASE("AtomicFile: the file appears under its name only at commit, complete,
 }
 
 TEST_CASE("AtomicFile: a write that fails before commit leaves no file and no temporary, an old file intact",
-          "[io]") {
+          "[base]") {
   fw::test::TempDir dir("fw_atomic");
   const fs::path fresh = fs::path(dir.path()) / "fresh.vti";
   const fs::path old = fs::path(dir.path()) / "old.vti";
@@ -132,7 +131,7 @@ TEST_CASE("AtomicFile: a write that fails before commit leaves no file and no te
 
 TEST_CASE(
     "AtomicFile: an existing file is replaced by the rename: intact until commit, readers keep it whole",
-    "[io]") {
+    "[base]") {
   fw::test::TempDir dir("fw_atomic");
   const fs::path target = fs::path(dir.path()) / "wind.pvd";
   const std::string old_content(10000, 'o');
@@ -156,7 +155,7 @@ TEST_CASE(
 }
 
 TEST_CASE("AtomicFile: commit without a written temporary, or a failed rename, throws naming both paths",
-          "[io]") {
+          "[base]") {
   fw::test::TempDir dir("fw_atomic");
   {
     const fs::path target = fs::path(dir.path()) / "never.vtp";
@@ -202,7 +201,7 @@ TEST_CASE("AtomicFile: commit without a written temporary, or a failed rename, t
 }
 
 TEST_CASE("write_text_atomically: writes the bytes exactly, replaces a file, and leaves only the file",
-          "[io]") {
+          "[base]") {
   fw::test::TempDir dir("fw_atomic");
   const fs::path path = fs::path(dir.path()) / "run.json";
   const std::string bytes("line\r\nnul \0 high \xff\xfe end", 25);  // no text-mode translation
@@ -215,7 +214,7 @@ TEST_CASE("write_text_atomically: writes the bytes exactly, replaces a file, and
 }
 
 TEST_CASE("write_text_atomically: a missing folder or a file in its place is refused, naming the path",
-          "[io]") {
+          "[base]") {
   fw::test::TempDir dir("fw_atomic");
   const fs::path missing = fs::path(dir.path()) / "no" / "such" / "run.json";
   CHECK_THROWS_WITH(fw::base::write_text_atomically("ManifestWriter", missing, "{}"),
@@ -232,7 +231,7 @@ TEST_CASE("write_text_atomically: a missing folder or a file in its place is ref
 }
 
 TEST_CASE("write_text_atomically: a disk that fills up mid-write leaves no file, no temporary, the old file",
-          "[io]") {
+          "[base]") {
   fw::test::TempDir dir("fw_atomic");
   const fs::path fresh = fs::path(dir.path()) / "fresh.pvd";
   const fs::path old = fs::path(dir.path()) / "old.pvd";

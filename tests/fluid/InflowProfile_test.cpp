@@ -154,13 +154,3 @@ TEST_CASE("InflowProfile: sample_cell_centres evaluates the shape at (k + 0.5) h
   const auto uniform = InflowProfile{}.sample_cell_centres(3, 0.5);
   CHECK(uniform == std::vector<float>{1.0f, 1.0f, 1.0f});
 }
-
-TEST_CASE("InflowProfile: parse_profile_type accepts uniform, power and log") {
-  CHECK(fw::fluid::parse_profile_type("uniform") == InflowProfile::Type::uniform);
-  CHECK(fw::fluid::parse_profile_type("power") == InflowProfile::Type::power);
-  CHECK(fw::fluid::parse_profile_type("log") == InflowProfile::Type::log);
-  CHECK_THROWS_AS(fw::fluid::parse_profile_type("logarithmic"), std::invalid_argument);
-  CHECK_THROWS_WITH(fw::fluid::parse_profile_type("exp"), Catch::StartsWith("InflowProfile:") &&
-                                                              Catch::Contains("'exp'") &&
-                                                              Catch::Contains("uniform, power or log"));
-}

@@ -115,7 +115,7 @@ TEST_CASE("SolidMap: a box marks the cells whose centres lie inside it") {
 TEST_CASE("SolidMap: a box yawed 45 degrees counter-clockwise lies along the north-east diagonal") {
   // 8 m x 2 m x 4 m box centred on the cell centre (10.5, 10.5); its long axis turns from east to north-east.
   SolidMap map(grid(21, 21, 4, 1.0));
-  map.add(SolidBox{"diagonal", {10.5, 10.5, 2.0}, {8.0, 2.0, 4.0}, 45.0});
+  map.add(SolidBox{"diagonal", {10.5, 10.5, 2.0}, {8.0, 2.0, 4.0}, 45.0 * std::numbers::pi / 180.0});
   auto solid_at = [&](int di, int dj) { return map.solid(10 + di, 10 + dj, 1); };
   // Along the north-east diagonal: local x = sqrt(2) * d, inside while < 4 m.
   CHECK(solid_at(0, 0));
@@ -170,10 +170,13 @@ TEST_CASE("SolidMap: shapes reaching outside the grid mark only the cells inside
   const std::size_t octant = map.add(SolidSphere{"corner", {0.0, 0.0, 0.0}, 10.0});
   // Tolerance 2%: the voxelised octant is within about 1%.
   CHECK(double(octant) == Approx(4.0 / 3.0 * std::numbers::pi * 1000.0 / 8.0).epsilon(0.02));
-  CHECK(map.add(SolidBox{"far", {1e12, -1e12, 5.0}, {10.0, 10.0, 10.0}, 30.0}) == 0);
+  CHECK(map.add(SolidBox{"far", {1e12, -1e12, 5.0}, {10.0, 10.0, 10.0}, 30.0 * std::numbers::pi / 180.0}) ==
+        0);
   CHECK(map.add(SolidCylinder{"below", {10.0, 10.0, -50.0}, 5.0, 10.0}) == 0);
   // A box larger than the domain fills it.
-  CHECK(map.add(SolidBox{"everything", {10.0, 10.0, 10.0}, {1e9, 1e9, 1e9}, 10.0}) == 8000 - octant);
+  CHECK(
+      map.add(SolidBox{"everything", {10.0, 10.0, 10.0}, {1e9, 1e9, 1e9}, 10.0 * std::numbers::pi / 180.0}) ==
+      8000 - octant);
   CHECK(map.solid_count() == 8000);
 }
 

@@ -130,21 +130,6 @@ TEST_CASE("VonKarmanSpectrum: F_u and F_v follow from E by the isotropic relatio
   }
 }
 
-TEST_CASE("VonKarmanSpectrum: the frequency spectra are the wavenumber spectra at k1 = 2 pi f / U") {
-  const VonKarmanSpectrum s{2.4, 30.0};
-  const double U = 12.0;
-  // Integrated over f (Hz) in a mean wind U, each frequency spectrum holds sigma^2; the same quadrature as
-  // the wavenumber integrals, with f = e^s U / (2 pi L).
-  const double f_scale = 2.0 * std::numbers::pi * s.spectrum_length() / U;
-  CHECK(integrate_positive([&](double f) { return s.longitudinal_frequency(f, U); }, f_scale) ==
-        Approx(s.sigma * s.sigma).epsilon(kQuadratureTolerance));
-  CHECK(integrate_positive([&](double f) { return s.transverse_frequency(f, U); }, f_scale) ==
-        Approx(s.sigma * s.sigma).epsilon(kQuadratureTolerance));
-  // S_u(0) = 4 sigma^2 L_u / U, the wind engineer's form; a few roundings.
-  CHECK(s.longitudinal_frequency(0.0, U) ==
-        Approx(4.0 * s.sigma * s.sigma * s.integral_length / U).epsilon(1e-14));
-}
-
 TEST_CASE("VonKarmanSpectrum: a sigma or length that is not finite and positive is rejected") {
   const double nan = std::numeric_limits<double>::quiet_NaN(), inf = std::numeric_limits<double>::infinity();
   CHECK(validation_error(VonKarmanSpectrum{2.0, 30.0}).empty());

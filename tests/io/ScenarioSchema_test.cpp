@@ -2,13 +2,16 @@
 
 #include <catch2/catch.hpp>
 
+#include <cmath>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <set>
 #include <sstream>
 #include <string>
+#include <utility>
 
+#include "fluid/GridSpec.hpp"
 #include "fluid/WindSettings.hpp"
 #include "io/Scenario.hpp"
 #include "trees/LeafSettings.hpp"
@@ -116,11 +119,41 @@ TEST_CASE("schema: the loader's messages come from the key's type, bound and uni
   CHECK(schema::generic_path("forest.species[12].modes.count") == "forest.species[].modes.count");
   CHECK(schema::generic_path("output.vtk.fields[1]") == "output.vtk.fields[]");
   CHECK(schema::expected(schema::key("forest.species[].leaves.amplitudes")) ==
-        "a list of 3 numbers [W_H, W_V, W_R], each >= 0 (degrees)");
+        "a list of 3 numbers [W_H, W_V, W_R], each >= 0 and <= 90 (degrees)");
+  CHECK(schema::expected(schema::key("forest.species[].leaves.fraction")) == "a number > 0 and <= 1");
+  CHECK(schema::expected(schema::key("forest.species[].leaves.damping_ratio")) == "a number >= 0 and < 1");
+  CHECK(schema::expected(schema::key("solver.smagorinsky_constant")) == "a number >= 0 and < 1");
   CHECK(schema::expected(schema::key("forest.species[].leaves.model")) ==
         "one of none | pseudo_branch | stochastic");
   CHECK(schema::expected(schema::key("output.leaves.attached")) == "one of all | none or an integer >= 1");
   CHECK(schema::child_names("output.leaves") == std::vector<std::string>{"attached", "vtk"});
+}
+
+TEST_CASE("schema: a reader's key is looked up below its map, so that a key the map lacks cannot be read",
+          "[schema]") {
+  // The loader's Section<PATH>::get<NAME>() compiles only where schema::key(PATH, NAME) finds the key; the
+  // same look-up, here at compile time too.
+  static_assert(&schema::key("time", "cfl") == &schema::key("time.cfl"));
+  static_assert(&schema::key("forest.species[]", "modes") == &schema::key("forest.species[].modes"));
+  static_assert(&schema::key("", "scenario") == &schema::key("scenario"));
+  static_assert(&schema::key("forest.species[]", "canopy.leaf_area_index") ==
+                &schema::key("forest.species[].canopy.leaf_area_index"));
+  static_assert(schema::find("time", "cfll") == nullptr);            // a typo
+  static_assert(schema::find("time", "fl") == nullptr);              // a tail of a name is not the name
+  static_assert(schema::find("forest.species", "name") == nullptr);  // the list, not its items
+  static_assert(schema::find("", "cfl") == nullptr);                 // not at the top level
+  static_assert(schema::holds_keys("") && schema::holds_keys("forest.species[]") &&
+                schema::holds_keys("wind.profile") && schema::holds_keys("events[]"));
+  static_assert(!schema::holds_keys("forest.species") && !schema::holds_keys("time.cfl") &&
+                !schema::holds_keys("tme"));
+  // Each key of the table is found from its parent's path and its own name.
+  for (const schema::Key& key : schema::kKeys) {
+    INFO("key " << key.path);
+    const std::size_t dot = key.path.rfind('.');
+    const std::string_view parent = dot == std::string_view::npos ? "" : key.path.substr(0, dot);
+    const std::string_view name = dot == std::string_view::npos ? key.path : key.path.substr(dot + 1);
+    CHECK(schema::find(parent, name) == &key);
+  }
 }
 
 TEST_CASE("schema: defaults owned elsewhere are read from their owner, once", "[schema]") {
@@ -145,13 +178,31 @@ TEST_CASE("schema: defaults owned elsewhere are read from their owner, once", "[
   CHECK(fw::io::Species{}.drag_coefficient == fw::trees::WindBasisSettings::kCylinderDragCoefficient);
 }
 
+TEST_CASE("schema: limits checked elsewhere too are read from their owner, once", "[schema]") {
+  CHECK(schema::key("solver.smagorinsky_constant").below ==
+        fw::fluid::WindSettings::kSmagorinskyConstantBelow);
+  CHECK(schema::key("domain.cell_size").limits[0] == double(fw::fluid::GridSpec::kMaxFaces));
+  CHECK(schema::key("forest.stands[].spacing").limits[0] == double(fw::trees::kMaxTreesPerStand));
+  CHECK(schema::key("forest.species[].modes.wind_samples").highest == FW_MAX_TREE_SAMPLES);
+  // The turbulence box: its points per cell and its most points are the box's own.
+  CHECK(schema::key("wind.turbulence.box_size").limits[1] == fw::fluid::kTurbulencePointsPerCell);
+  CHECK(schema::key("wind.turbulence.box_size").limits[2] ==
+        double(fw::fluid::TurbulenceBoxSpec::kMaxPoints));
+  // The smallest Smagorinsky constant the schema refuses is the smallest WindSettings refuses.
+  fw::fluid::WindSettings settings;
+  settings.smagorinsky_constant = schema::key("solver.smagorinsky_constant").below;
+  CHECK_THROWS(settings.validate());
+  settings.smagorinsky_constant = std::nextafter(settings.smagorinsky_constant, 0.0);
+  CHECK_NOTHROW(settings.validate());
+}
+
 TEST_CASE("schema: the leaf keys take trees::LeafSettings' defaults, words and limits", "[schema]") {
   const fw::trees::LeafSettings leaves;
   const auto number = [](const char* name) {
     return schema::find(std::string("forest.species[].leaves.") + name)->number;
   };
-  CHECK(fw::trees::flutter_model_from_string(
-            std::string(schema::key("forest.species[].leaves.model").word)) == leaves.model);
+  CHECK(schema::value_of(schema::kLeafModelWords, schema::kLeafModels,
+                         schema::key("forest.species[].leaves.model").word) == leaves.model);
   CHECK(number("area") == leaves.area);
   CHECK(number("fraction") == leaves.fraction);
   CHECK(number("mass_per_area") == leaves.mass_per_area);
@@ -171,8 +222,17 @@ TEST_CASE("schema: the leaf keys take trees::LeafSettings' defaults, words and l
   // No `leaves` in a species: no leaves.
   CHECK_FALSE(fw::io::Species{}.leaves.has_leaves());
 
-  // The loader's upper limits are LeafSettings::validate's: the limit itself in or out as it says.
-  const auto valid = [](auto change) {
+  // The keys' upper limits are LeafSettings' own constants...
+  const auto leaf_key = [](const char* name) {
+    return *schema::find(std::string("forest.species[].leaves.") + name);
+  };
+  CHECK(leaf_key("fraction").at_most == fw::trees::LeafSettings::kMaxFraction);
+  CHECK(leaf_key("damping_ratio").below == fw::trees::LeafSettings::kDampingRatioBelow);
+  CHECK(leaf_key("amplitudes").at_most == fw::trees::LeafSettings::kMaxAmplitudeDeg);
+  // ... and every leaf number's range is the one LeafSettings::validate checks: the schema's limits (sign
+  // bounds and upper limits) in or out as the schema says, so that a file the loader takes never fails
+  // validate (which the loader still calls).
+  const auto valid = [](const auto& change) {
     fw::trees::LeafSettings settings;
     change(settings);
     try {
@@ -182,13 +242,40 @@ TEST_CASE("schema: the leaf keys take trees::LeafSettings' defaults, words and l
       return false;
     }
   };
-  const double above = 1.0 + 1e-12;
-  CHECK(valid([](auto& s) { s.fraction = schema::kMaxLeafFraction; }));
-  CHECK_FALSE(valid([&](auto& s) { s.fraction = schema::kMaxLeafFraction * above; }));
-  CHECK(valid([](auto& s) { s.damping_ratio = schema::kMaxLeafDampingRatio * (1.0 - 1e-12); }));
-  CHECK_FALSE(valid([](auto& s) { s.damping_ratio = schema::kMaxLeafDampingRatio; }));
-  CHECK(valid([](auto& s) { s.amplitudes_deg = {schema::kMaxLeafAmplitudeDeg, 0.0, 0.0}; }));
-  CHECK_FALSE(valid([&](auto& s) { s.amplitudes_deg = {0.0, schema::kMaxLeafAmplitudeDeg * above, 0.0}; }));
+  using Leaves = fw::trees::LeafSettings;
+  const std::pair<const char*, double Leaves::*> numbers[] = {
+      {"area", &Leaves::area},
+      {"fraction", &Leaves::fraction},
+      {"mass_per_area", &Leaves::mass_per_area},
+      {"frequency", &Leaves::frequency},
+      {"damping_ratio", &Leaves::damping_ratio},
+      {"petiole_strength", &Leaves::petiole_strength},
+      {"strength_spread", &Leaves::strength_spread},
+      {"flight_drag_coefficient", &Leaves::flight_drag_coefficient},
+      {"roll_coupling", &Leaves::roll_coupling},
+      {"reference_speed", &Leaves::reference_speed}};
+  const double step = 1e-12;  // relative, well above rounding and far below any limit's meaning
+  for (const auto& [name, member] : numbers) {
+    INFO("leaves." << name);
+    const schema::Key& key = leaf_key(name);
+    const auto with = [&](double value) { return valid([&](Leaves& s) { s.*member = value; }); };
+    CHECK(with(key.bound == schema::Bound::any ? -1e6 : step) == true);
+    CHECK(with(0.0) == (key.bound != schema::Bound::positive));
+    CHECK(with(-step) == (key.bound == schema::Bound::any));
+    if (key.at_most < schema::kNoNumberLimit) {
+      CHECK(with(key.at_most));
+      CHECK_FALSE(with(key.at_most * (1.0 + step)));
+    }
+    if (key.below < schema::kNoNumberLimit) {
+      CHECK(with(key.below * (1.0 - step)));
+      CHECK_FALSE(with(key.below));
+    }
+  }
+  const double most = leaf_key("amplitudes").at_most;
+  CHECK(valid([&](Leaves& s) { s.amplitudes_deg = {most, 0.0, 0.0}; }));
+  CHECK_FALSE(valid([&](Leaves& s) { s.amplitudes_deg = {0.0, most * (1.0 + step), 0.0}; }));
+  CHECK(valid([&](Leaves& s) { s.amplitudes_deg = {0.0, 0.0, 0.0}; }));
+  CHECK_FALSE(valid([&](Leaves& s) { s.amplitudes_deg = {0.0, 0.0, -step}; }));
 
   // The output keys' defaults: every attached leaf, leaves.pvd, and the leaves grid among the VDB grids.
   const fw::io::OutputSettings output;

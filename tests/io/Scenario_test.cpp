@@ -1,5 +1,6 @@
 #include "io/Scenario.hpp"
 
+#include "fluid/TurbulenceBox.hpp"
 #include "kernels/shared_types.h"
 #include "tests/support/TempDir.hpp"
 
@@ -10,6 +11,7 @@
 #include <cmath>
 #include <cstdint>
 #include <filesystem>
+#include <numbers>
 #include <optional>
 #include <string>
 #include <variant>
@@ -217,7 +219,7 @@ TEST_CASE("load_scenario: the example of DESIGN.md parses and every field lands 
   CHECK(barn->name == "barn");
   CHECK(barn->center == std::array<double, 3>{300, 100, 6});
   CHECK(barn->size == std::array<double, 3>{30, 15, 12});
-  CHECK(barn->yaw_deg == 15.0);
+  CHECK(barn->yaw_rad == fw::io::radians(15.0));  // the file gives degrees
   const auto* silo = std::get_if<fw::fluid::SolidCylinder>(&s.obstacles[1]);
   REQUIRE(silo != nullptr);
   CHECK(silo->name == "silo");
@@ -284,7 +286,7 @@ TEST_CASE("load_scenario: the example of DESIGN.md parses and every field lands 
   // On the ground: x = 400 m is pixel column 99.5 of the ramp, 99.5 / 120 * 20 m = 16.58333 m.
   // Tolerance: bilinear interpolation in doubles, 1e-9 m.
   CHECK(tree.position[2] == Approx(99.5 / 120.0 * 20.0).margin(1e-9));
-  CHECK(tree.yaw == 30.0);
+  CHECK(tree.yaw_rad == Approx(std::numbers::pi / 6).epsilon(1e-15));  // 30 degrees
   CHECK(tree.scale == 1.0);
 
   CHECK(s.solver.pressure == fw::fluid::PressureSolverType::multigrid);
@@ -409,7 +411,7 @@ output:
   const auto* shed = std::get_if<fw::fluid::SolidBox>(&s.obstacles[1]);
   REQUIRE(shed != nullptr);
   CHECK(shed->size == std::array<double, 3>{2, 3, 2});
-  CHECK(shed->yaw_deg == 0.0);  // not given
+  CHECK(shed->yaw_rad == 0.0);  // not given
 
   // An ESRI grid needs neither cell_size nor max_height.
   REQUIRE(s.terrain.has_value());
@@ -457,7 +459,7 @@ output:
   CHECK(forest.trees[1].species_index == 1);
   CHECK(forest.trees[1].height_given);
   CHECK(forest.trees[1].position == std::array<double, 3>{20, 15, 9.5});
-  CHECK(forest.trees[1].yaw == -45.0);
+  CHECK(forest.trees[1].yaw_rad == Approx(-std::numbers::pi / 4).epsilon(1e-15));  // -45 degrees
   CHECK(forest.trees[1].scale == 1.25);
 
   CHECK(s.solver.pressure == fw::fluid::PressureSolverType::jacobi);
@@ -564,7 +566,7 @@ forest:
   CHECK(s.forest.stands[0].layout.seed == 0);
   REQUIRE(s.forest.trees.size() == 1);
   CHECK(s.forest.trees[0].position == std::array<double, 3>{30, 10, 0});  // no terrain: the domain floor
-  CHECK(s.forest.trees[0].yaw == 0.0);
+  CHECK(s.forest.trees[0].yaw_rad == 0.0);
   CHECK(s.forest.trees[0].scale == 1.0);
 
   CHECK(s.solver.pressure == fw::fluid::PressureSolverType::cg);
@@ -896,6 +898,24 @@ TEST_CASE("load_scenario: a size that is not a whole multiple of cell_size names
                "scenario: errors\ntime: {end: 10.0}\ndomain: {size: [42, 20, 10], cell_size: 2.0}\n"
                "wind: {speed: 4.0, direction: 270}\nboundaries: {west: periodic, east: periodic}\n",
                5, "boundaries.west", "an even cell count; x has 21 cells");
+}
+
+TEST_CASE("load_scenario: a grid is as large as fluid::GridSpec allows, and no larger", "[scenario]") {
+  fw::test::TempDir dir("fw_scenario");
+  const auto cube = [](int cells) {
+    return fmt::format(
+        "scenario: big\ntime: {{end: 1.0}}\ndomain: {{size: [{0}, {0}, {0}], cell_size: 1.0}}\n"
+        "wind: {{speed: 4.0, direction: 270}}\n",
+        cells);
+  };
+  // 1289^3 cells have 1290^3 = 2.1467e9 faces, within GridSpec::kMaxFaces = 2^31 - 1; 1290^3 cells have
+  // 1291^3 = 2.1517e9, beyond it. The loader computes nothing per cell, so both are quick.
+  const Scenario largest = fw::io::load_scenario(dir.write("largest.yaml", cube(1289)));
+  CHECK_NOTHROW(largest.grid_spec(0.0).validate());
+  CHECK_THROWS(fw::fluid::GridSpec{1290, 1290, 1290, 1.0}.validate());
+  expect_error(dir, "too_large", cube(1290), 3, "domain.cell_size",
+               "a cell size giving (nx + 1)(ny + 1)(nz + 1) <= 2147483647 (size / cell_size gives 2.15e+09 "
+               "cells) expected, got '1.0'");
 }
 
 TEST_CASE("load_scenario: positions outside the domain name the position's key", "[scenario]") {
@@ -1286,12 +1306,45 @@ TEST_CASE("load_scenario: bad turbulence keys name the key and say what is expec
   expect_error(dir, "default_box_too_big",
                kWindBase + "  turbulence: {intensity: 0.1, length_scale: 1.0e6}\n", 7,
                "wind.turbulence.box_size",
-               "of at most 715827882 points in all expected (required here: the default box, 8 length_scale "
-               "along x and y, is 4194304 x 4194304 x 8");
+               "of at most 715827882 points in all, 2 per cell along each axis expected (required here: the "
+               "default box, 8 length_scale along x and y, is 4194304 x 4194304 x 8 cells of 2 m");
   expect_error(
       dir, "box_too_big",
       kWindBase + "  turbulence: {intensity: 0.1, length_scale: 10, box_size: [1.0e5, 1.0e5, 1000]}\n", 7,
-      "wind.turbulence.box_size", "points in all (this box is 50000 x 50000 x 500");
+      "wind.turbulence.box_size",
+      "2 per cell along each axis (this box is 50000 x 50000 x 500 cells of 2 m, 1e+13 points)");
+}
+
+TEST_CASE("load_scenario: the turbulence box's limit counts the points fluid::TurbulenceBox allocates",
+          "[scenario]") {
+  // check and run agree: the box the loader accepts at the limit is one TurbulenceBoxSpec::validate takes
+  // (without allocating it), and one more cell is refused by both, the loader naming file, line and key.
+  // Cells of 2 m, 4 x 4 along y and z: 5592404 cells along x are 2^3 * 16 * 5592404 = 715827712 points,
+  // within kMaxPoints = 715827882; 5592406 cells are 715827968 points, beyond it.
+  fw::test::TempDir dir("fw_scenario");
+  const auto box = [](long cells_x) {
+    return fmt::format("{}  turbulence: {{intensity: 0.1, length_scale: 10, box_size: [{}, 8, 8]}}\n",
+                       kWindBase, 2 * cells_x);
+  };
+  const auto spec_of = [](const std::array<int, 3>& cells) {
+    // As host::inflow_turbulence_spec builds it.
+    fw::fluid::TurbulenceBoxSpec spec;
+    for (std::size_t a = 0; a < 3; ++a) spec.cells[a] = fw::fluid::kTurbulencePointsPerCell * cells[a];
+    spec.spacing = 2.0 / fw::fluid::kTurbulencePointsPerCell;
+    spec.spectrum = {1.0, 10.0};
+    return spec;
+  };
+  const Scenario largest = fw::io::load_scenario(dir.write("largest.yaml", box(5592404)));
+  REQUIRE(largest.wind.turbulence.has_value());
+  CHECK(largest.wind.turbulence->box_cells == std::array<int, 3>{5592404, 4, 4});
+  CHECK(spec_of(largest.wind.turbulence->box_cells).point_count() == 715827712);
+  CHECK_NOTHROW(spec_of(largest.wind.turbulence->box_cells).validate());
+
+  CHECK_THROWS_WITH(spec_of({5592406, 4, 4}).validate(), Contains("exceed the limit of 715827882"));
+  expect_error(dir, "one_cell_more", box(5592406), 7, "wind.turbulence.box_size",
+               "a list of 3 numbers [x, y, z], each > 0 (m) of at most 715827882 points in all, 2 per cell "
+               "along each axis (this box is 5592406 x 4 x 4 cells of 2 m, 7.16e+08 points) expected, got "
+               "'[11184812, 8, 8]'");
 }
 
 TEST_CASE("load_scenario: bad rough-ground, forcing, Smagorinsky and probe keys name the key", "[scenario]") {
@@ -1334,7 +1387,7 @@ TEST_CASE("load_scenario: bad rough-ground, forcing, Smagorinsky and probe keys 
   expect_error(dir, "smagorinsky_one", kBase + "solver: {smagorinsky_constant: 1}\n", 5,
                "solver.smagorinsky_constant", "a number >= 0 and < 1 expected, got '1'");
   expect_error(dir, "smagorinsky_negative", kBase + "solver: {smagorinsky_constant: -0.1}\n", 5,
-               "solver.smagorinsky_constant", "a number >= 0 expected, got '-0.1'");
+               "solver.smagorinsky_constant", "a number >= 0 and < 1 expected, got '-0.1'");
   expect_error(dir, "probe_zero", kBase + "output: {probe_interval: 0}\n", 5, "output.probe_interval",
                "a number > 0 (s) or auto expected, got '0'");
   expect_error(dir, "probe_negative", kBase + "output: {probe_interval: -0.5}\n", 5, "output.probe_interval",
@@ -1449,7 +1502,7 @@ TEST_CASE("load_scenario: bad leaf keys name the key and say what is expected", 
   expect_error(dir, "leaf_fraction", leafy_species("      leaves: {fraction: 1.5}\n"), 10, key + "fraction",
                "a number > 0 and <= 1 expected, got '1.5'");
   expect_error(dir, "leaf_fraction_zero", leafy_species("      leaves: {fraction: 0}\n"), 10,
-               key + "fraction", "a number > 0 expected, got '0'");
+               key + "fraction", "a number > 0 and <= 1 expected, got '0'");
   expect_error(dir, "leaf_mass", leafy_species("      leaves: {mass_per_area: -0.1}\n"), 10,
                key + "mass_per_area", "a number > 0 (kg/m^2) expected, got '-0.1'");
   expect_error(dir, "leaf_frequency", leafy_species("      leaves: {frequency: [3]}\n"), 10,
@@ -1472,13 +1525,14 @@ TEST_CASE("load_scenario: bad leaf keys name the key and say what is expected", 
                "one of none | pseudo_branch | stochastic expected, got 'flutter'");
   expect_error(dir, "leaf_amplitudes_pair", leafy_species("      leaves: {amplitudes: [20, 30]}\n"), 10,
                key + "amplitudes",
-               "a list of 3 numbers [W_H, W_V, W_R], each >= 0 (degrees) expected, got '[20, 30]'");
+               "a list of 3 numbers [W_H, W_V, W_R], each >= 0 and <= 90 (degrees) expected, got '[20, 30]'");
   expect_error(dir, "leaf_amplitudes_four", leafy_species("      leaves: {amplitudes: [20, 30, 15, 5]}\n"),
-               10, key + "amplitudes", "a list of 3 numbers [W_H, W_V, W_R], each >= 0 (degrees) expected");
+               10, key + "amplitudes",
+               "a list of 3 numbers [W_H, W_V, W_R], each >= 0 and <= 90 (degrees) expected");
   expect_error(dir, "leaf_amplitude_high", leafy_species("      leaves: {amplitudes: [20, 95, 15]}\n"), 10,
                key + "amplitudes[1]", "a number >= 0 and <= 90 (degrees) expected, got '95'");
   expect_error(dir, "leaf_amplitude_negative", leafy_species("      leaves: {amplitudes: [20, 30, -5]}\n"),
-               10, key + "amplitudes[2]", "a number >= 0 (degrees) expected, got '-5'");
+               10, key + "amplitudes[2]", "a number >= 0 and <= 90 (degrees) expected, got '-5'");
   expect_error(dir, "leaf_unknown_key", leafy_species("      leaves: {colour: green}\n"), 10, key + "colour",
                "one of the keys model, area, fraction, mass_per_area, frequency, damping_ratio, "
                "petiole_strength, strength_spread, flight_drag_coefficient, amplitudes, roll_coupling, "

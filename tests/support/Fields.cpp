@@ -29,7 +29,7 @@ std::vector<std::uint8_t> box_solid(const fluid::GridSpec& spec) {
       "test box",
       {spec.origin[0] + 0.45 * L[0], spec.origin[1] + 0.5 * L[1], spec.origin[2] + 0.3 * L[2]},
       {0.2 * L[0], 0.25 * L[1], 0.3 * L[2]},
-      20.0});
+      20.0 * std::numbers::pi / 180.0});
   return solids.cells();
 }
 

@@ -52,8 +52,8 @@ TEST_CASE("ForestLayout: a Poisson stand keeps every pair of trees at least the 
     CHECK(t.position.y() <= 100.0);
     CHECK(t.scale >= 0.85);
     CHECK(t.scale <= 1.15);
-    CHECK(t.yaw >= 0.0);
-    CHECK(t.yaw < 2.0 * std::numbers::pi);
+    CHECK(t.yaw_rad >= 0.0);
+    CHECK(t.yaw_rad < 2.0 * std::numbers::pi);
   }
 }
 
@@ -89,7 +89,7 @@ TEST_CASE("ForestLayout: the same seed gives the same stand, another seed anothe
   REQUIRE(a.size() == b.size());
   for (std::size_t i = 0; i < a.size(); ++i) {
     CHECK(a[i].position == b[i].position);
-    CHECK(a[i].yaw == b[i].yaw);
+    CHECK(a[i].yaw_rad == b[i].yaw_rad);
     CHECK(a[i].scale == b[i].scale);
   }
   stand.seed = 12;

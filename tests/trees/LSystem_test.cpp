@@ -47,8 +47,6 @@ TEST_CASE("LSystem: deterministic rewriting gives the expected word", "[lsystem]
   CHECK(to_string(algae.derive(1, 1)) == "AB");
   CHECK(to_string(algae.derive(3, 1)) == "ABAAB");
   CHECK(to_string(algae.derive(5, 1)) == "ABAABABAABAAB");
-  CHECK(algae.alternative_count('A') == 1);
-  CHECK(algae.alternative_count('F') == 0);
 }
 
 TEST_CASE("LSystem: parametric successors scale the predecessor's parameter", "[lsystem]") {

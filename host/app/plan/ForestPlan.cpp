@@ -7,7 +7,6 @@
 #include <algorithm>
 #include <cstdint>
 #include <limits>
-#include <numbers>
 #include <stdexcept>
 
 #include "host/app/plan/PlanBuilders.hpp"
@@ -18,8 +17,6 @@
 namespace fw::host {
 
 namespace {
-
-constexpr double kDegree = std::numbers::pi / 180.0;
 
 double ground_z(const io::Scenario& scenario, double x, double y) {
   double z = scenario.domain.origin[2];
@@ -32,13 +29,13 @@ std::vector<trees::TreeInstance> place_instances(const io::Scenario& scenario) {
   for (const io::Stand& stand : scenario.forest.stands) {
     for (const trees::PlacedTree& placed : trees::place_stand(stand.layout)) {
       const double x = placed.position.x(), y = placed.position.y();
-      instances.push_back({placed.species, {x, y, ground_z(scenario, x, y)}, placed.yaw, placed.scale});
+      instances.push_back({placed.species, {x, y, ground_z(scenario, x, y)}, placed.yaw_rad, placed.scale});
     }
   }
   for (const io::PlacedTreeSettings& placed : scenario.forest.trees) {
     const auto& p = placed.position;
     const double z = placed.height_given ? p[2] : ground_z(scenario, p[0], p[1]);
-    instances.push_back({placed.species_index, {p[0], p[1], z}, placed.yaw * kDegree, placed.scale});
+    instances.push_back({placed.species_index, {p[0], p[1], z}, placed.yaw_rad, placed.scale});
   }
   return instances;
 }

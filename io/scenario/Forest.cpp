@@ -1,0 +1,139 @@
+// forest: its switches, then the species (io/scenario/Species.cpp), the stands and the single trees.
+#include "io/scenario/Sections.hpp"
+
+#include <fmt/format.h>
+
+#include <stdexcept>
+
+namespace fw::io::reader {
+
+namespace {
+
+std::string horizontal_extent(const DomainSettings& domain) {
+  const Vec3 top = domain.max_corner();
+  return fmt::format("[{}, {}] x [{}, {}] m", domain.origin[0], top[0], domain.origin[1], top[1]);
+}
+
+int species_index(const Loader& loader, const Field& field, const std::vector<Species>& species) {
+  const std::string name = loader.text(field);
+  for (std::size_t i = 0; i < species.size(); ++i)
+    if (species[i].name == name) return int(i);
+  std::vector<std::string> names;
+  for (const Species& s : species) names.push_back(s.name);
+  const std::string what = schema::expected(key_of(field));
+  loader.expected(
+      field, names.empty() ? what + " (forest.species is empty)" : what + ", one of " + join(names, ", "));
+}
+
+Vec2 region_corner(const Loader& loader, const Field& field, const DomainSettings& domain) {
+  const Vec2 corner = loader.vector<2>(field);
+  const Vec3 top = domain.max_corner();
+  if (!inside(corner[0], domain.origin[0], top[0]) || !inside(corner[1], domain.origin[1], top[1]))
+    loader.expected(field,
+                    "a point [x, y] inside the domain's horizontal extent " + horizontal_extent(domain));
+  return corner;
+}
+
+Stand read_stand(const Loader& loader, const Field& item, const Scenario& scenario) {
+  const Section<"forest.stands[]"> map(loader, item);
+  Stand stand;
+  const Field species = map.require<"species">();
+  stand.layout.species = species_index(loader, species, scenario.forest.species);
+  stand.species = scenario.forest.species[stand.layout.species].name;
+
+  const Section<"forest.stands[].region"> region(loader, map.require<"region">());
+  const Vec2 min = region_corner(loader, region.require<"min">(), scenario.domain);
+  const Field max_field = region.require<"max">();
+  const Vec2 max = region_corner(loader, max_field, scenario.domain);
+  if (!(max[0] > min[0]) || !(max[1] > min[1]))
+    loader.expected(max_field,
+                    fmt::format("a point north-east of min [{}, {}] (x and y both larger)", min[0], min[1]));
+  stand.layout.min = {min[0], min[1]};
+  stand.layout.max = {max[0], max[1]};
+
+  stand.layout.layout =
+      value(schema::kLayoutWords, schema::kLayouts, std::string(schema::key("forest.stands[].layout").word));
+  if (const auto layout = map.get<"layout">())
+    stand.layout.layout = value(schema::kLayoutWords, schema::kLayouts, loader.word(*layout));
+  const Field spacing = map.require<"spacing">();
+  stand.layout.spacing = loader.number(spacing);
+  stand.layout.scale_min = schema::key("forest.stands[].scale.min").number;
+  stand.layout.scale_max = schema::key("forest.stands[].scale.max").number;
+  if (const auto scale_field = map.get<"scale">()) {
+    const Section<"forest.stands[].scale"> scale(loader, *scale_field);
+    if (const auto low = scale.get<"min">()) stand.layout.scale_min = loader.number(*low);
+    if (const auto high = scale.get<"max">()) {
+      stand.layout.scale_max = loader.number(*high);
+      if (stand.layout.scale_max < stand.layout.scale_min)
+        loader.expected(*high, fmt::format("a number >= scale.min ({})", stand.layout.scale_min));
+    } else if (stand.layout.scale_max < stand.layout.scale_min) {
+      loader.expected(*scale.get<"min">(),
+                      fmt::format("a number <= scale.max ({}, the default)", stand.layout.scale_max));
+    }
+  }
+  // Unless the file gives one: the global seed plus the stand's index.
+  stand.layout.seed = scenario.seed + scenario.forest.stands.size();
+  if (const auto seed = map.get<"seed">()) stand.layout.seed = loader.seed(*seed);
+  try {
+    stand.layout.validate();  // what is left to fail: too many trees for the region and spacing
+  } catch (const std::invalid_argument& error) {
+    loader.expected(spacing, fmt::format("a spacing the region can hold ({})", error.what()));
+  }
+  return stand;
+}
+
+PlacedTreeSettings read_tree(const Loader& loader, const Field& item, const Scenario& scenario) {
+  const Section<"forest.trees[]"> map(loader, item);
+  PlacedTreeSettings tree;
+  tree.species_index = species_index(loader, map.require<"species">(), scenario.forest.species);
+  tree.species = scenario.forest.species[tree.species_index].name;
+
+  const Field position = map.require<"position">();
+  if (!position.node.IsSequence() || (position.node.size() != 2 && position.node.size() != 3))
+    loader.expected(position);
+  for (std::size_t i = 0; i < position.node.size(); ++i)
+    tree.position[i] = loader.component(position, i, key_of(position));
+  const DomainSettings& domain = scenario.domain;
+  const Vec3 top = domain.max_corner();
+  if (!inside(tree.position[0], domain.origin[0], top[0]) ||
+      !inside(tree.position[1], domain.origin[1], top[1]))
+    loader.expected(position,
+                    "a position inside the domain's horizontal extent " + horizontal_extent(domain));
+  tree.height_given = position.node.size() == 3;
+  if (tree.height_given && !inside(tree.position[2], domain.origin[2], top[2])) {
+    loader.expected(loader.child(position, position.node[2], position.key + "[2]"),
+                    fmt::format("a height inside the domain's [{}, {}] m", domain.origin[2], top[2]));
+  }
+  if (!tree.height_given) {
+    // On the ground: the terrain surface, whose heights count from the domain floor.
+    tree.position[2] = domain.origin[2];
+    if (scenario.terrain)
+      tree.position[2] += scenario.terrain->map->height_at(tree.position[0], tree.position[1]);
+  }
+  if (const auto yaw = map.get<"yaw">()) tree.yaw_rad = radians(loader.number(*yaw));
+  if (const auto scale = map.get<"scale">()) tree.scale = loader.number(*scale);
+  return tree;
+}
+
+}  // namespace
+
+void read_forest(const Loader& loader, const Field& field, Scenario& scenario) {
+  const Section<"forest"> map(loader, field);
+  ForestSettings& forest = scenario.forest;
+  if (const auto coupling = map.get<"two_way_coupling">())
+    forest.two_way_coupling = loader.boolean(*coupling);
+  if (const auto integrator = map.get<"integrator">())
+    forest.integrator = value(schema::kIntegratorWords, schema::kIntegrators, loader.word(*integrator));
+  if (const auto correction = map.get<"strong_wind_correction">())
+    forest.strong_wind_correction = loader.boolean(*correction);
+  if (const auto species = map.get<"species">())
+    for (const Field& item : loader.items(*species))
+      forest.species.push_back(read_species(loader, item, forest.species, scenario.seed));
+  if (const auto stands = map.get<"stands">())
+    for (const Field& item : loader.items(*stands))
+      forest.stands.push_back(read_stand(loader, item, scenario));
+  if (const auto trees = map.get<"trees">())
+    for (const Field& item : loader.items(*trees)) forest.trees.push_back(read_tree(loader, item, scenario));
+}
+
+}  // namespace fw::io::reader

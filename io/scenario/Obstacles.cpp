@@ -1,0 +1,51 @@
+// obstacles: boxes, cylinders and spheres.
+#include "io/scenario/Sections.hpp"
+
+namespace fw::io::reader {
+
+namespace {
+
+fluid::SolidBox read_box(const Loader& loader, const Field& field) {
+  const Section<"obstacles[].box"> map(loader, field);
+  fluid::SolidBox box;
+  box.name = loader.text(map.require<"name">());
+  box.center = loader.vector<3>(map.require<"center">());
+  box.size = loader.vector<3>(map.require<"size">());
+  if (const auto yaw = map.get<"yaw">()) box.yaw_rad = radians(loader.number(*yaw));
+  return box;
+}
+
+fluid::SolidCylinder read_cylinder(const Loader& loader, const Field& field) {
+  const Section<"obstacles[].cylinder"> map(loader, field);
+  fluid::SolidCylinder cylinder;
+  cylinder.name = loader.text(map.require<"name">());
+  cylinder.base = loader.vector<3>(map.require<"base">());
+  cylinder.radius = loader.number(map.require<"radius">());
+  cylinder.height = loader.number(map.require<"height">());
+  return cylinder;
+}
+
+fluid::SolidSphere read_sphere(const Loader& loader, const Field& field) {
+  const Section<"obstacles[].sphere"> map(loader, field);
+  fluid::SolidSphere sphere;
+  sphere.name = loader.text(map.require<"name">());
+  sphere.center = loader.vector<3>(map.require<"center">());
+  sphere.radius = loader.number(map.require<"radius">());
+  return sphere;
+}
+
+}  // namespace
+
+void read_obstacles(const Loader& loader, const Field& field, Scenario& scenario) {
+  for (const Field& item : loader.items(field)) {
+    const Section<"obstacles[]"> kind(loader, item);
+    kind.exactly_one();
+    if (const auto box = kind.get<"box">()) scenario.obstacles.emplace_back(read_box(loader, *box));
+    if (const auto cylinder = kind.get<"cylinder">())
+      scenario.obstacles.emplace_back(read_cylinder(loader, *cylinder));
+    if (const auto sphere = kind.get<"sphere">())
+      scenario.obstacles.emplace_back(read_sphere(loader, *sphere));
+  }
+}
+
+}  // namespace fw::io::reader

@@ -1,0 +1,109 @@
+// output: the folder, the frames' interval and contents, the leaves in them, and the probes.
+#include "io/scenario/Sections.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <filesystem>
+
+namespace fw::io::reader {
+
+namespace {
+
+bool probe_name(const std::string& name) {
+  return !name.empty() && std::all_of(name.begin(), name.end(), [](unsigned char c) {
+    return (c >= 'A' && c <= 'Z') || (c >= 'a' && c <= 'z') || (c >= '0' && c <= '9') || c == '_';
+  });
+}
+
+/// Where output.directory's default names the scenario.
+constexpr std::string_view kScenarioNamePlaceholder = "<scenario>";
+
+void read_vtk(const Loader& loader, const Field& field, OutputSettings& output) {
+  const Section<"output.vtk"> map(loader, field);
+  if (const auto wind = map.get<"wind">()) output.vtk_wind = loader.boolean(*wind);
+  if (const auto trees = map.get<"trees">()) output.vtk_trees = loader.boolean(*trees);
+  if (const auto fields = map.get<"fields">()) output.vtk_fields = loader.word_set(*fields);
+}
+
+void read_vdb(const Loader& loader, const Field& field, OutputSettings& output) {
+  const Section<"output.vdb"> map(loader, field);
+  if (const auto enabled = map.get<"enabled">()) output.vdb_enabled = loader.boolean(*enabled);
+  if (const auto grids = map.get<"grids">()) output.vdb_grids = loader.word_set(*grids);
+}
+
+void read_leaves(const Loader& loader, const Field& field, OutputSettings& output) {
+  const Section<"output.leaves"> map(loader, field);
+  if (const auto attached = map.get<"attached">()) {
+    // A word (all, none) or a stride N >= 1.
+    const Key& key = key_of(*attached);
+    const std::vector<std::string> words = schema::words(key);
+    const bool word = attached->node.IsScalar() &&
+                      std::find(words.begin(), words.end(), attached->node.Scalar()) != words.end();
+    if (word) {
+      output.leaves_attached_stride =
+          value(schema::kLeafStrideWords, schema::kLeafStrides, loader.word(*attached));
+    } else {
+      const auto stride =
+          attached->node.IsScalar() ? parse_integer<long long>(attached->node.Scalar()) : std::nullopt;
+      if (!stride || *stride < key.lowest || *stride > key.highest) loader.expected(*attached);
+      output.leaves_attached_stride = int(*stride);
+    }
+  }
+  if (const auto vtk = map.get<"vtk">()) output.vtk_leaves = loader.boolean(*vtk);
+}
+
+/// One item of output.probes, after the probes `earlier`.
+Probe read_probe(const Loader& loader, const Field& item, const std::vector<Probe>& earlier,
+                 const DomainSettings& domain) {
+  const Section<"output.probes[]"> map(loader, item);
+  Probe probe;
+  const Field name = map.require<"name">();
+  probe.name = loader.text(name);
+  const std::string what = schema::expected(key_of(name));
+  if (!probe_name(probe.name)) loader.expected(name, what + " of letters, digits and _");
+  for (const Probe& other : earlier)
+    if (other.name == probe.name) loader.expected(name, what + " not used before");
+  const Field position = map.require<"position">();
+  probe.position = loader.vector<3>(position);
+  const Vec3 top = domain.max_corner();
+  for (int axis = 0; axis < 3; ++axis) {
+    if (!inside(probe.position[axis], domain.origin[axis], top[axis])) {
+      loader.expected(position, fmt::format("a position inside the domain [{}, {}] x [{}, {}] x [{}, {}] m",
+                                            domain.origin[0], top[0], domain.origin[1], top[1],
+                                            domain.origin[2], top[2]));
+    }
+  }
+  return probe;
+}
+
+}  // namespace
+
+void read_output(const Loader& loader, const Field& field, Scenario& scenario) {
+  OutputSettings& output = scenario.output;
+  const Section<"output"> map(loader, field);
+  std::string directory(schema::key("output.directory").word);
+  if (const std::size_t at = directory.find(kScenarioNamePlaceholder); at != std::string::npos)
+    directory.replace(at, kScenarioNamePlaceholder.size(), scenario.name);
+  if (const auto given = map.get<"directory">()) directory = loader.text(*given);
+  // Against the working directory, not the scenario folder: a run writes where it is started.
+  output.directory = std::filesystem::absolute(std::filesystem::path(directory)).lexically_normal();
+  if (const auto interval = map.get<"interval">()) output.interval = loader.number(*interval);
+  if (const auto probe_interval = map.get<"probe_interval">()) {
+    const Key& key = key_of(*probe_interval);
+    if (!(probe_interval->node.IsScalar() && probe_interval->node.Scalar() == key.word)) {  // the word: auto
+      const std::optional<double> every =
+          probe_interval->node.IsScalar() ? parse_double(probe_interval->node.Scalar()) : std::nullopt;
+      if (!every || !(*every > 0.0)) loader.expected(*probe_interval);
+      output.probe_interval = *every;
+    }
+  }
+  if (const auto vtk = map.get<"vtk">()) read_vtk(loader, *vtk, output);
+  if (const auto vdb = map.get<"vdb">()) read_vdb(loader, *vdb, output);
+  if (const auto leaves = map.get<"leaves">()) read_leaves(loader, *leaves, output);
+  if (const auto probes = map.get<"probes">())
+    for (const Field& item : loader.items(*probes))
+      output.probes.push_back(read_probe(loader, item, output.probes, scenario.domain));
+}
+
+}  // namespace fw::io::reader

@@ -1,0 +1,23 @@
+// solver: the pressure solver, advection and the subgrid models.
+#include "io/scenario/Sections.hpp"
+
+namespace fw::io::reader {
+
+void read_solver(const Loader& loader, const Field& field, SolverSettings& solver) {
+  const Section<"solver"> map(loader, field);
+  if (const auto pressure = map.get<"pressure">())
+    solver.pressure = value(schema::kPressureWords, schema::kPressureSolvers, loader.word(*pressure));
+  if (const auto tolerance = map.get<"tolerance">()) solver.tolerance = loader.number(*tolerance);
+  if (const auto iterations = map.get<"max_iterations">())
+    solver.max_iterations = loader.integer(*iterations);
+  if (const auto iterations = map.get<"jacobi_iterations">())
+    solver.jacobi_iterations = loader.integer(*iterations);
+  if (const auto advection = map.get<"advection">())
+    solver.advection = value(schema::kAdvectionWords, schema::kAdvectionSchemes, loader.word(*advection));
+  if (const auto epsilon = map.get<"vorticity_confinement">())
+    solver.vorticity_confinement = loader.number(*epsilon);
+  if (const auto smagorinsky = map.get<"smagorinsky_constant">())
+    solver.smagorinsky_constant = loader.number(*smagorinsky);
+}
+
+}  // namespace fw::io::reader

@@ -1,0 +1,154 @@
+// forest.species: skeletons, wood, modes, drag, canopy and leaves of each species; and the checks that need
+// the skeleton (check_species_skeleton).
+#include "io/scenario/Sections.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <stdexcept>
+#include <string>
+
+namespace fw::io::reader {
+
+namespace {
+
+/// forest.species[].skeleton: exactly one of generate, file and qsm. `seed`: the generator's, unless the file
+/// gives one.
+SkeletonSource read_skeleton(const Loader& loader, const Field& field, std::uint64_t seed) {
+  const Section<"forest.species[].skeleton"> map(loader, field);
+  map.exactly_one();
+  SkeletonSource skeleton;
+  if (const auto generate_field = map.get<"generate">()) {
+    const Section<"forest.species[].skeleton.generate"> generate(loader, *generate_field);
+    skeleton.kind = SkeletonSource::Kind::generate;
+    skeleton.generate.preset = loader.word(generate.require<"preset">());
+    if (const auto height = generate.get<"height">()) skeleton.generate.height = loader.number(*height);
+    skeleton.generate.seed = seed;
+    if (const auto given = generate.get<"seed">()) skeleton.generate.seed = loader.seed(*given);
+  }
+  if (const auto file = map.get<"file">()) {
+    skeleton.kind = SkeletonSource::Kind::file;
+    skeleton.path = loader.readable_file(*file);
+  }
+  if (const auto qsm = map.get<"qsm">()) {
+    skeleton.kind = SkeletonSource::Kind::qsm;
+    skeleton.path = loader.readable_file(*qsm);
+  }
+  return skeleton;
+}
+
+void read_material(const Loader& loader, const Field& field, trees::Material& material) {
+  const Section<"forest.species[].material"> map(loader, field);
+  if (const auto e = map.get<"youngs_modulus">()) material.youngs_modulus = loader.number(*e);
+  if (const auto g = map.get<"shear_modulus">()) material.shear_modulus = loader.number(*g);
+  if (const auto rho = map.get<"density">()) material.density = loader.number(*rho);
+}
+
+void read_modes(const Loader& loader, const Field& field, ModeSettings& modes) {
+  const Section<"forest.species[].modes"> map(loader, field);
+  if (const auto count = map.get<"count">()) {
+    modes.count = loader.integer(*count);
+    modes.count_line = count->line;
+  }
+  if (const auto zeta = map.get<"damping_ratio">()) modes.damping_ratio = loader.number(*zeta);
+  if (const auto samples = map.get<"wind_samples">()) modes.wind_samples = loader.integer(*samples);
+}
+
+/// forest.species[].leaves over trees::LeafSettings' defaults (the schema's); `seed` unless the file gives
+/// one.
+trees::LeafSettings read_leaves(const Loader& loader, const Field& field, std::uint64_t seed) {
+  const Section<"forest.species[].leaves"> map(loader, field);
+  trees::LeafSettings leaves;
+  if (const auto model = map.get<"model">())
+    leaves.model = value(schema::kLeafModelWords, schema::kLeafModels, loader.word(*model));
+  if (const auto area = map.get<"area">()) leaves.area = loader.number(*area);
+  if (const auto fraction = map.get<"fraction">()) leaves.fraction = loader.number(*fraction);
+  if (const auto sigma = map.get<"mass_per_area">()) leaves.mass_per_area = loader.number(*sigma);
+  if (const auto frequency = map.get<"frequency">()) leaves.frequency = loader.number(*frequency);
+  if (const auto zeta = map.get<"damping_ratio">()) leaves.damping_ratio = loader.number(*zeta);
+  if (const auto strength = map.get<"petiole_strength">()) leaves.petiole_strength = loader.number(*strength);
+  if (const auto spread = map.get<"strength_spread">()) leaves.strength_spread = loader.number(*spread);
+  if (const auto drag = map.get<"flight_drag_coefficient">())
+    leaves.flight_drag_coefficient = loader.number(*drag);
+  if (const auto amplitudes = map.get<"amplitudes">()) leaves.amplitudes_deg = loader.vector<3>(*amplitudes);
+  if (const auto roll = map.get<"roll_coupling">()) leaves.roll_coupling = loader.number(*roll);
+  if (const auto speed = map.get<"reference_speed">()) leaves.reference_speed = loader.number(*speed);
+  leaves.seed = seed;
+  if (const auto given = map.get<"seed">()) leaves.seed = loader.seed(*given);
+  try {
+    leaves.validate();  // passes: the keys' ranges are LeafSettings' own (tests/io/ScenarioSchema_test.cpp)
+  } catch (const std::invalid_argument& error) {
+    loader.expected(field, fmt::format("leaf settings trees::LeafSettings accepts ({})", error.what()));
+  }
+  return leaves;
+}
+
+}  // namespace
+
+// global_seed + 1 + its index seeds a species' generator, global_seed + kLeafSeedOffset + its index its
+// leaves, unless the file gives a seed.
+Species read_species(const Loader& loader, const Field& item, const std::vector<Species>& earlier,
+                     std::uint64_t global_seed) {
+  const Section<"forest.species[]"> map(loader, item);
+  Species species;
+  species.modes.count_line = item.line;
+  const Field name = map.require<"name">();
+  species.name = loader.text(name);
+  for (const Species& other : earlier)
+    if (other.name == species.name)
+      loader.expected(name, schema::expected(key_of(name)) + " not used before");
+
+  species.skeleton = read_skeleton(loader, map.require<"skeleton">(), global_seed + 1 + earlier.size());
+  if (const auto material = map.get<"material">()) read_material(loader, *material, species.material);
+  if (const auto modes = map.get<"modes">()) read_modes(loader, *modes, species.modes);
+  if (const auto drag = map.get<"drag_coefficient">()) species.drag_coefficient = loader.number(*drag);
+
+  std::optional<Field> lai;
+  Field lai_missing = map.missing<"canopy.leaf_area_index">();  // on the species' line, or canopy's
+  if (const auto canopy_field = map.get<"canopy">()) {
+    const Section<"forest.species[].canopy"> canopy(loader, *canopy_field);
+    lai = canopy.get<"leaf_area_index">();
+    lai_missing = canopy.missing<"leaf_area_index">();
+    if (lai) species.canopy.leaf_area_index = loader.number(*lai);
+    if (const auto drag = canopy.get<"drag_coefficient">())
+      species.canopy.drag_coefficient = loader.number(*drag);
+  }
+
+  species.leaves.seed = global_seed + kLeafSeedOffset + earlier.size();
+  if (const auto leaves = map.get<"leaves">()) {
+    species.leaves = read_leaves(loader, *leaves, species.leaves.seed);
+    // The leaves sit on the canopy's foliage (trees/Foliage.hpp): without leaf area there would be none.
+    if (species.leaves.has_leaves() && !(species.canopy.leaf_area_index > 0.0)) {
+      const Key& key = key_of(lai_missing);
+      const std::string what = schema::expected(
+          Key{.path = key.path, .type = schema::Type::number, .unit = key.unit, .bound = Bound::positive});
+      const std::string reason =
+          fmt::format("leaves need a leaf area index > 0; {} is on line {}", leaves->key, leaves->line);
+      if (lai) loader.expected(*lai, fmt::format("{} ({})", what, reason));
+      loader.fail(lai_missing,
+                  fmt::format("{} expected (required here: {}, and the default is {}), got nothing", what,
+                              reason, key.number));
+    }
+  }
+  return species;
+}
+
+}  // namespace fw::io::reader
+
+namespace fw::io {
+
+void check_species_skeleton(const Scenario& scenario, int species_index, int skeleton_nodes) {
+  const Species& species = scenario.forest.species.at(std::size_t(species_index));
+  // A skeleton of n nodes, root clamped, has 6 (n - 1) DOFs; the modal analysis keeps fewer modes than that.
+  const long dofs = 6L * (skeleton_nodes - 1);
+  if (species.modes.count >= dofs) {
+    std::string key(schema::key("forest.species[].modes.count").path);  // with the species' index in the []
+    key.insert(key.find("[]") + 1, std::to_string(species_index));
+    throw ScenarioError(
+        scenario.file.string(), species.modes.count_line, key,
+        fmt::format("at most {} modes for this skeleton of {} nodes ({} DOFs) expected, got '{}'",
+                    std::max(0L, dofs - 1), skeleton_nodes, dofs, species.modes.count));
+  }
+}
+
+}  // namespace fw::io

@@ -1,0 +1,20 @@
+// time: the run's span and time step.
+#include "io/scenario/Sections.hpp"
+
+namespace fw::io::reader {
+
+void read_time(const Loader& loader, const Field& field, TimeSettings& time) {
+  const Section<"time"> map(loader, field);
+  time.end = loader.number(map.require<"end">());
+  if (const auto dt = map.get<"dt">()) {
+    const Key& key = key_of(*dt);
+    if (!(dt->node.IsScalar() && dt->node.Scalar() == key.word)) {  // the word: auto
+      const std::optional<double> step = dt->node.IsScalar() ? parse_double(dt->node.Scalar()) : std::nullopt;
+      if (!step || !(*step > 0.0)) loader.expected(*dt);
+      time.dt = *step;
+    }
+  }
+  if (const auto cfl = map.get<"cfl">()) time.cfl = loader.number(*cfl);
+}
+
+}  // namespace fw::io::reader
