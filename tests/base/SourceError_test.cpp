@@ -16,7 +16,7 @@ TEST_CASE("SourceError: reads FILE:LINE: KEY: expected, got value, and is an inp
   CHECK(std::string(input.what()) == error.what());
 }
 
-TEST_CASE("SourceError: line 0 and an empty got are left out; a whole-file error names only the file",
+TEST_CASE("SourceError: line 0 and an empty got are left out, and a whole-file error names only the file",
           "[base]") {
   CHECK(std::string(fw::base::SourceError("a.txt", 0, "id", "at least one node", "").what()) ==
         "a.txt: id: at least one node");
