@@ -203,7 +203,7 @@ inline constexpr Key kKeys[] = {
      .word = "auto",
      .description =
          "Time step. With a number, the step is fixed; a run stops with exit code 1 when that "
-         "step's CFL number exceeds 5 (checked every 10 steps). With `auto`, each step uses `dt = "
+         "step's CFL number exceeds 5 (checked before every step). With `auto`, each step uses `dt = "
          "cfl * h / max\\|u\\|` (h = `domain.cell_size`, max over the velocity components), capped "
          "at 1 s."},
     {.path = "time.cfl",

@@ -2,7 +2,7 @@
 
 #include <catch2/catch.hpp>
 
-#include "base/SourceError.hpp"
+#include "tests/support/SourceErrors.hpp"
 #include "tests/support/TempDir.hpp"
 
 #include <cmath>
@@ -15,22 +15,9 @@ using fw::trees::read_qsm_cylinders;
 
 namespace {
 
-std::string read_error(const std::string& path) {
-  try {
-    read_qsm_cylinders(path);
-  } catch (const fw::base::SourceError& e) {
-    return e.what();
-  }
-  return "";
-}
-
 void check_error(const std::string& content, int line, const std::string& column, const std::string& detail) {
-  TempDir dir("fw_qsm");
-  const auto path = dir.write("cyl.txt", content);
-  const auto message = read_error(path);
-  INFO("file:\n" << content << "message: " << message);
-  CHECK(message.rfind(path + ":" + std::to_string(line) + ": " + column + ": ", 0) == 0);
-  CHECK(message.find(detail) != std::string::npos);
+  const auto read = [](const std::string& path) { return read_qsm_cylinders(path); };
+  fw::test::check_source_error(read, "cyl.txt", content, line, column, detail);
 }
 
 bool near(const Eigen::Vector3d& a, const Eigen::Vector3d& b) {

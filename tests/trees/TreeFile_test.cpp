@@ -2,7 +2,7 @@
 
 #include <catch2/catch.hpp>
 
-#include "base/SourceError.hpp"
+#include "tests/support/SourceErrors.hpp"
 #include "tests/support/TempDir.hpp"
 
 #include <cmath>
@@ -20,24 +20,9 @@ using fw::trees::write_tree_file;
 
 namespace {
 
-// The message of the base::SourceError that reading the file throws, or "" when it reads fine.
-std::string read_error(const std::string& path) {
-  try {
-    read_tree_file(path);
-  } catch (const fw::base::SourceError& e) {
-    return e.what();
-  }
-  return "";
-}
-
 // Checks that reading `content` fails with a message that starts with "FILE:LINE: KEY: " and holds `detail`.
 void check_error(const std::string& content, int line, const std::string& key, const std::string& detail) {
-  TempDir dir("fw_treefile");
-  const auto path = dir.write("bad.tree", content);
-  const auto message = read_error(path);
-  INFO("file:\n" << content << "message: " << message);
-  CHECK(message.rfind(path + ":" + std::to_string(line) + ": " + key + ": ", 0) == 0);
-  CHECK(message.find(detail) != std::string::npos);
+  fw::test::check_source_error(read_tree_file, "bad.tree", content, line, key, detail);
 }
 
 }  // namespace
@@ -190,7 +175,7 @@ TEST_CASE("TreeFile: malformed fields name the line and the column", "[trees][tr
 TEST_CASE("TreeFile: unreadable or unwritable paths name the file", "[trees][treefile]") {
   TempDir dir("fw_treefile");
   const auto missing = dir.path() + "/missing.tree";
-  const auto message = read_error(missing);
+  const auto message = fw::test::source_error(read_tree_file, missing);
   CHECK(message.rfind(missing + ": cannot open", 0) == 0);
 
   const auto skeleton = Skeleton::from_nodes({{-1, {0, 0, 0}, 0.1}});
