@@ -15,14 +15,14 @@
 // "displacement". Warp By Vector on "displacement" with scale factor -1 shows the rest shape, with e.g. 10 an
 // exaggerated sway.
 //
-// Layout: a single vtkPolyData holding all trees. Points (float64, m, world frame) are the DEFORMED node
+// Layout: a single vtkPolyData holding all trees. Points (float32, m, world frame) are the DEFORMED node
 // positions, rest + displacement, tree after tree in frame order (tree t's nodes follow those of trees
 // 0..t-1, in that tree's node order). Cells: one 2-point line per element (parent node, child node), per tree
 // in node order of the child. Lines rather than one polyline per branch chain keep the file a direct image of
 // the elements; Tube then draws one segment per element, the segments meeting at the shared points.
 // Point arrays:
-//   radius        float64, m
-//   displacement  float64 x 3, m (deformed minus rest)   [the active vectors]
+//   radius        float32, m
+//   displacement  float32 x 3, m (deformed minus rest)   [the active vectors]
 //   tree_id       int32, the tree's id (TreesFrame::Tree::tree_id)
 //   species       int32, the species index
 //   node_id       int32, the node's index within its tree

@@ -38,10 +38,11 @@ void WindGrid::validate(const WindGridSetup& setup) {
     throw std::invalid_argument(fmt::format("WindGrid: solid map has {} cells, the grid {}",
                                             setup.solid.size(), setup.spec.cell_count()));
   const double z0 = setup.settings.wall_roughness_length;
-  if (z0 > 0.0 && !(z0 < 0.5 * setup.spec.h))  // the log law needs the first cell's centre above z0
+  const double z1 = fluid::wall_centre_height(setup.spec.h);
+  if (z0 > 0.0 && !(z0 < z1))  // the log law needs the first cell's centre above z0
     throw std::invalid_argument(fmt::format(
         "WindGrid: wall_roughness_length must be below h/2 = {} m (the first cell centre's height), got {} m",
-        0.5 * setup.spec.h, z0));
+        z1, z0));
   if (!(std::isfinite(setup.forcing.relaxation_time) && setup.forcing.relaxation_time >= 0.0))
     throw std::invalid_argument(
         fmt::format("WindGrid: the mean forcing's relaxation time must be >= 0 s, got {}",
