@@ -10,8 +10,11 @@ namespace fw::host {
 
 namespace {
 
+// MB, or kB for the small parts (a few probes), so that no part reads 0.0.
 std::string megabytes(std::size_t bytes) {
-  return fmt::format("{:.1f} MB", double(bytes) / 1e6);
+  constexpr double kMega = 1e6, kKilo = 1e3;
+  return bytes >= kMega / 10 ? fmt::format("{:.1f} MB", double(bytes) / kMega)
+                             : fmt::format("{:.1f} kB", double(bytes) / kKilo);
 }
 
 // A rough ground is a slip wall for the grid plus the log-law stress (fluid::WindSettings).

@@ -7,6 +7,11 @@
 
 namespace fw::host {
 
+std::size_t PointSampler::estimate_device_bytes(std::size_t point_count) {
+  if (point_count == 0) return 0;
+  return 2 * ComputeContext::allocation_bytes(3 * point_count * sizeof(float));
+}
+
 PointSampler::PointSampler(ComputeContext& cc, const fluid::GridSpec& spec,
                            const std::vector<std::array<double, 3>>& points)
     : cc_(cc), count_(static_cast<int>(points.size())) {

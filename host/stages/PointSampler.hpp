@@ -24,6 +24,9 @@ class PointSampler {
   PointSampler(ComputeContext& cc, const fluid::GridSpec& spec,
                const std::vector<std::array<double, 3>>& points);
 
+  /// Bytes the constructor allocates for `point_count` points: their positions and their sampled wind.
+  static std::size_t estimate_device_bytes(std::size_t point_count);
+
   int point_count() const { return count_; }
   /// The velocity at every point, m/s, in the constructor's order. Blocks until read back.
   std::vector<std::array<float, 3>> sample(DeviceVelocity& velocity);

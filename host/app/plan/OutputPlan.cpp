@@ -1,6 +1,7 @@
 // The outputs' part of the plan: the folder, the frame interval, the writers and fields, the probes and
 // their interval, and the record of where the run came from (run.json and the scenario's copy).
 #include "host/app/plan/PlanBuilders.hpp"
+#include "host/stages/PointSampler.hpp"
 
 namespace fw::host {
 
@@ -8,6 +9,8 @@ void plan_outputs(const io::Scenario& scenario, SimulationPlan& plan) {
   plan.scenario = {scenario.name, scenario.file.filename().string(), scenario.text, scenario.seed};
   plan.output = scenario.output;
   plan.probe_interval = scenario.resolved_probe_interval().value_or(0.0);
+  if (!plan.output.probes.empty())
+    plan.memory.add("probes", PointSampler::estimate_device_bytes(plan.output.probes.size()));
 }
 
 }  // namespace fw::host
