@@ -150,9 +150,8 @@ LeafStages::LeafStages(ComputeContext& cc, const fluid::GridSpec& spec, const tr
     first_block.push_back(block_count_);
     total += leaves.count();
     block_count_ += (leaves.count() + FW_LANES - 1) / FW_LANES;
-    if (total > std::numeric_limits<std::int32_t>::max() - FW_LANES)
-      throw std::invalid_argument(fmt::format("LeafStages: more than {} leaves",
-                                              std::numeric_limits<std::int32_t>::max() - FW_LANES));
+    if (total > kMaxLeaves)
+      throw std::invalid_argument(fmt::format("LeafStages: more than {} leaves", kMaxLeaves));
     const Eigen::Matrix3d R = forest.rotation(k);
     for (const auto& leaf : leaves.leaves()) {
       const Eigen::Vector3d centre =

@@ -15,6 +15,7 @@
 #pragma once
 
 #include <cstdint>
+#include <limits>
 #include <vector>
 
 #include "fluid/GridSpec.hpp"
@@ -43,6 +44,10 @@ class LeafStages {
   /// grid, a species count that differs from the forest's, or more leaves than 32-bit indexing holds.
   LeafStages(ComputeContext& cc, const fluid::GridSpec& spec, const trees::Forest& forest,
              const std::vector<trees::SpeciesLeaves>& species_leaves);
+
+  /// Most leaves of a forest: leaves are indexed with 32-bit integers, and each lane block may run FW_LANES
+  /// past the last.
+  static constexpr long long kMaxLeaves = std::numeric_limits<std::int32_t>::max() - FW_LANES;
 
   /// Bytes of device memory the constructor allocates, at most: per leaf its state, angle and rate, site
   /// and instance, five float4 (position, velocity, normal, the frame's position and normal) and at most one

@@ -5,8 +5,6 @@
 #include <fmt/format.h>
 
 #include <algorithm>
-#include <cstdint>
-#include <limits>
 #include <stdexcept>
 
 #include "host/app/plan/PlanBuilders.hpp"
@@ -52,13 +50,11 @@ void plan_forest(const io::Scenario& scenario, std::vector<trees::SpeciesBasis> 
   if (plan.forest.instance_count() == 0) return;
   plan.memory.add("trees", ForestStages::estimate_device_bytes(plan.forest));
   if (plan.leaf_count == 0) return;
-  // The leaf stage indexes leaves with 32-bit integers (host/stages/LeafStages).
-  constexpr long kMostLeaves = std::numeric_limits<std::int32_t>::max() - FW_LANES;
-  if (plan.leaf_count > kMostLeaves)
+  if (plan.leaf_count > LeafStages::kMaxLeaves)
     throw std::invalid_argument(fmt::format(
         "{}: forest: {} leaves on all trees, more than the {} the leaf stage holds; lower a species' "
         "leaves.fraction or canopy.leaf_area_index",
-        scenario.file.string(), plan.leaf_count, kMostLeaves));
+        scenario.file.string(), plan.leaf_count, LeafStages::kMaxLeaves));
   plan.memory.add("leaves", LeafStages::estimate_device_bytes(plan.forest, plan.coupling.leaves));
 }
 
