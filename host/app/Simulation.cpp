@@ -110,6 +110,8 @@ class RunLoop {
           CoupledStep& coupled, const RunOptions& options)
       : cc_(cc),
         plan_(plan),
+        directory_(directory),
+        options_(options),
         coupled_(coupled),
         probes_(cc, plan.wind.spec, probe_points(plan), plan.forest, options.tip_trees,
                 plan.coupling.strong_wind_correction),
@@ -117,17 +119,17 @@ class RunLoop {
         needs_(output_.needs()) {}
 
   /// Steps from t = 0 to `end` (or a stop request), then finishes the output; see Simulation::run.
-  RunSummary run(double end, const RunOptions& options, const std::filesystem::path& directory) {
+  RunSummary run(double end) {
     try {
-      std::filesystem::create_directories(directory);
+      std::filesystem::create_directories(directory_);
       output_.begin();
       coupled_.set_stage_timing(true);
       coupled_.start();
       sample_probes();
       hand_over_frame();
-      step_until(end, options);
+      step_until(end);
     } catch (const std::exception& e) {
-      if (options.progress) std::cerr << "\n";
+      if (options_.progress) std::cerr << "\n";
       // The frames captured before the failure are still written; a second error while finishing is
       // secondary to the first, which is the one reported.
       try {
@@ -136,7 +138,7 @@ class RunLoop {
       }
       throw;
     }
-    if (options.progress) std::cerr << "\n";
+    if (options_.progress) std::cerr << "\n";
     finish(summary_.interrupted ? "interrupted" : "completed", "");
     return summary_;
   }
@@ -148,12 +150,12 @@ class RunLoop {
     return points;
   }
 
-  void step_until(double end, const RunOptions& options) {
+  void step_until(double end) {
     const double interval = plan_.output.interval;
     Schedule frames(interval), samples(plan_.probe_interval);
     auto last_progress = Clock::now();
     while (coupled_.time() < end - kTimeTolerance * interval) {
-      if (options.stop && options.stop->load()) {
+      if (options_.stop && options_.stop->load()) {
         summary_.interrupted = true;
         return;
       }
@@ -161,7 +163,7 @@ class RunLoop {
       const CoupledStepReport report = coupled_.step(end - coupled_.time());
       if (samples.due(report.wind.time)) sample_probes();
       if (frames.due(report.wind.time)) hand_over_frame();
-      if (options.progress && ms_since(last_progress) > kProgressMs) {
+      if (options_.progress && ms_since(last_progress) > kProgressMs) {
         last_progress = Clock::now();
         print_progress(report.wind, end, ms_since(wall_start_) * 1e-3);
       }
@@ -227,6 +229,8 @@ class RunLoop {
 
   ComputeContext& cc_;
   const SimulationPlan& plan_;
+  const std::filesystem::path& directory_;
+  const RunOptions& options_;
   CoupledStep& coupled_;
   const Clock::time_point wall_start_ = Clock::now();
   ProbeSampler probes_;
@@ -250,7 +254,7 @@ Simulation::~Simulation() = default;
 RunSummary Simulation::run(const RunOptions& options) {
   const double end = options.end_time > 0.0 ? options.end_time : plan_.end_time;
   RunLoop loop(cc_, plan_, directory_, *coupled_, options);
-  return loop.run(end, options, directory_);
+  return loop.run(end);
 }
 
 }  // namespace fw::host
