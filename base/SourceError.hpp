@@ -1,4 +1,4 @@
-// An error in a file the user gave: a scenario, a .tree skeleton, a TreeQSM table, a heightmap. what() reads
+// An error in a file the user gave, found as it is read (a .tree skeleton, a TreeQSM table). what() reads
 // "FILE:LINE: KEY: EXPECTED, got GOT" (line 0 is left out: "FILE: KEY: ..."), or "FILE: WHAT" for a file
 // that cannot be read at all. It is a std::invalid_argument, so the command line maps it to exit code 2 (bad
 // input) wherever it is thrown, and no caller needs to convert it.

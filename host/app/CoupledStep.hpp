@@ -3,8 +3,8 @@
 // tests all drive this class; none of them repeats the order.
 //
 //   fw::host::CoupledStep coupled(cc, plan);  // uploads everything; the plan must outlive it
-//   coupled.start();                          // wind from the ambient profile at t = 0, projected; trees at
-//   rest while (coupled.time() < end) {
+//   coupled.start();                          // the ambient profile at t = 0, projected; trees at rest
+//   while (coupled.time() < end) {
 //     fw::host::CoupledStepReport r = coupled.step(end - coupled.time());   // never steps past `end`
 //   }
 //   coupled.enqueue_frame_deformation();      // an output frame: u = Phi q per instance, leaves with it

@@ -11,8 +11,8 @@
 // (kernels/bench_fma.cl): a node of a tree with m modes costs 3 m FMAs.
 //
 // With `turbulence`, each grid runs again with the inflow turbulence box and Stam's forcing of every tree by
-// the eddies the grid cannot resolve (bench/BenchTurbulence.hpp): the cost of turbulence is the difference.
-// The deformation is timed with the strong-wind correction (the default) and without it. With
+// the eddies the grid cannot resolve (host/bench/BenchTurbulence.hpp): the cost of turbulence is the
+// difference. The deformation is timed with the strong-wind correction (the default) and without it. With
 // `leaves_per_tree`, each grid runs once more with the forest in full leaf (docs/leaves.md), a sample of that
 // many leaves simulated per tree: the leaves' stage is timed on its own.
 //
@@ -48,8 +48,8 @@ struct CoupledBenchOptions {
   int deform_frames = 10;              // timed deformation frames
   double cell_size = 2.0;              // m
   int baseline_jacobi_iterations = 4;  // Oliapuram's fixed Jacobi sweeps; 0 skips the baseline rows
-  bool turbulence = true;              // also the converged case with turbulence (bench/BenchTurbulence.hpp)
-  int leaves_per_tree = 1000;          // also the converged case with leaves (0: not)
+  bool turbulence = true;      // also the converged case with turbulence (host/bench/BenchTurbulence.hpp)
+  int leaves_per_tree = 1000;  // also the converged case with leaves (0: not)
 };
 
 struct CoupledBenchCase {

@@ -276,7 +276,7 @@ void print_wind_bench_table(const WindBenchResult& r, std::ostream& out) {
           run.gradient_gb_s, share(run.gradient_gb_s, r.triad_gb_s));
   }
   out << "(%: of the windowed and the scattered corner-load rates for advection, of the triad for the rest; "
-         "traffic per bench/StageTraffic.hpp)\n";
+         "traffic per host/bench/StageTraffic.hpp)\n";
 }
 
 namespace {

@@ -7,7 +7,7 @@
 // Baselines measured in the same process: a STREAM triad on the device (roofline), the rates of advection's
 // eight-corner loads, scattered (gathers) and windowed (a smooth flow's back-traces), the smoother's
 // bandwidth on a grid too large for cache, and one step of the CPU reference (fluid/ReferenceStages). Each
-// stage's throughput is reported as a fraction of the limit that binds it (bench/StageTraffic.hpp).
+// stage's throughput is reported as a fraction of the limit that binds it (host/bench/StageTraffic.hpp).
 //
 //   WindBenchOptions opt;                 // default grids 128x128x64, 64x64x32, 256x256x16
 //   WindBenchResult r = run_wind_bench(cc, opt);
@@ -48,7 +48,7 @@ struct SolverRun {
   double cells_steps_per_s = 0.0;
   double startup_ms_per_step = 0.0;          // the first steps from the uniform start (kStartupSteps)
   double startup_pressure_iterations = 0.0;  // mean over those steps
-  // What the stages reach against the limit that binds them (bench/StageTraffic.hpp):
+  // What the stages reach against the limit that binds them (host/bench/StageTraffic.hpp):
   double advect_loads_per_s = 0.0;  ///< corner loads of the advection kernels (padding included in the time)
   double divergence_gb_s = 0.0, pressure_gb_s = 0.0, gradient_gb_s = 0.0;
 };
@@ -63,8 +63,8 @@ struct WindBenchCase {
 struct WindBenchResult {
   std::string device;
   double triad_gb_s = 0.0;
-  CornerLoadRates corner_loads;             // eight-corner loads (bench/GatherThroughput) on roofline_grid
-  double roofline_smoother_gb_s = 0.0;      // in-place red-black pass on roofline_grid
+  CornerLoadRates corner_loads;         // eight-corner loads (host/bench/GatherThroughput) on roofline_grid
+  double roofline_smoother_gb_s = 0.0;  // in-place red-black pass on roofline_grid
   double roofline_out_of_place_gb_s = 0.0;  // out-of-place red-black pass on roofline_grid
   double roofline_jacobi_gb_s = 0.0;        // Jacobi sweep on roofline_grid
   std::array<int, 3> roofline_grid{};
