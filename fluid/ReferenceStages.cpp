@@ -191,6 +191,54 @@ MacVelocity advect_maccormack(const GridSpec& spec, const InflowState& inflow, c
   return out;
 }
 
+MacVelocity upwind_stage(const GridSpec& spec, const InflowState& inflow, const UpwindOrders& orders,
+                         const MacVelocity& stage, const MacVelocity& base, double coef_dt) {
+  MacVelocity out(spec);
+  for (int c = 0; c < 3; ++c)
+    for_each_face(spec, c, [&](int i, int j, int k, std::size_t id) {
+      const int p[3] = {i, j, k};
+      // Values of component n at p shifted by d (any integer offsets), through fetch's ghost rules.
+      auto value = [&](int n, const int d[3]) {
+        return fetch(spec, inflow, stage.component(n), n, p[0] + d[0], p[1] + d[1], p[2] + d[2]);
+      };
+      double net = 0.0;
+      for (int a = 0; a < 3; ++a) {
+        // The side of the control volume at p - 1/2 e_a (side 0) and p + 1/2 e_a (side 1).
+        for (int side = 0; side < 2; ++side) {
+          std::array<double, 6> q{};
+          for (int n = 0; n < 6; ++n) {
+            int d[3] = {0, 0, 0};
+            d[a] = side - 3 + n;  // q_m-2 .. q_m+3, m = p - 1 + side
+            q[std::size_t(n)] = value(c, d);
+          }
+          double U;
+          if (a == c) {
+            U = 0.5 * (q[2] + q[3]);
+          } else {  // component a on the two faces meeting at the side, at p and one back along c
+            int here[3] = {0, 0, 0}, back[3] = {0, 0, 0};
+            here[a] = back[a] = side;
+            back[c] = -1;
+            U = 0.5 * (value(a, back) + value(a, here));
+          }
+          const int order = flux_order(orders[std::size_t(c)][id], a, FluxSide(side));
+          const double flux = U * upwind_interpolation(order, U, q);
+          net += side == 1 ? flux : -flux;
+        }
+      }
+      out.component(c)[id] = float(double(base.component(c)[id]) - coef_dt / spec.h * net);
+    });
+  return out;
+}
+
+MacVelocity advect_upwind5(const GridSpec& spec, const PressureLevel& fine, const InflowState& inflow,
+                           const UpwindOrders& orders, const MacVelocity& vel, double dt) {
+  MacVelocity first = upwind_stage(spec, inflow, orders, vel, vel, dt / 3.0);
+  enforce_boundaries(spec, fine, inflow, first);
+  MacVelocity second = upwind_stage(spec, inflow, orders, first, vel, dt / 2.0);
+  enforce_boundaries(spec, fine, inflow, second);
+  return upwind_stage(spec, inflow, orders, second, vel, dt);
+}
+
 void add_body_force(MacVelocity& vel, const std::array<double, 3>& g, double dt) {
   for (int c = 0; c < 3; ++c)
     for (auto& x : vel.component(c)) x = float(double(x) + dt * g[c]);

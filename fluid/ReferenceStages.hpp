@@ -21,6 +21,7 @@
 #include "fluid/InflowState.hpp"
 #include "fluid/MacVelocity.hpp"
 #include "fluid/PressureLevels.hpp"
+#include "fluid/UpwindStencil.hpp"
 #include "kernels/shared_types.h"
 
 namespace fw::fluid {
@@ -54,6 +55,17 @@ MacVelocity advect_semi_lagrangian(const GridSpec& spec, const InflowState& infl
 /// result replaced by the forward value where it leaves the range of the 8 values it was interpolated from.
 MacVelocity advect_maccormack(const GridSpec& spec, const InflowState& inflow, const MacVelocity& vel,
                               const MacVelocity& q, double dt);
+
+/// One Runge-Kutta stage of flux-form upwind advection (fluid/UpwindStencil.hpp): every face of base +
+/// coef_dt R(stage), R = -(sum over the axes of upper minus lower flux U q) / h, the fluxes' values through
+/// fetch()'s ghost rules and their orders from `orders`.
+MacVelocity upwind_stage(const GridSpec& spec, const InflowState& inflow, const UpwindOrders& orders,
+                         const MacVelocity& stage, const MacVelocity& base, double coef_dt);
+
+/// Wicker & Skamarock's three-stage Runge-Kutta of upwind_stage over dt: u1 = u + dt/3 R(u), u2 = u + dt/2
+/// R(u1), u + dt R(u2), the first two stages' prescribed faces imposed (enforce_boundaries); no projection.
+MacVelocity advect_upwind5(const GridSpec& spec, const PressureLevel& fine, const InflowState& inflow,
+                           const UpwindOrders& orders, const MacVelocity& vel, double dt);
 
 /// vel += dt * g on every face (m/s^2).
 void add_body_force(MacVelocity& vel, const std::array<double, 3>& g, double dt);

@@ -3,12 +3,25 @@
 #include <fmt/format.h>
 
 #include <cmath>
+#include <limits>
 #include <stdexcept>
 
 namespace fw::fluid {
 
 std::string to_string(AdvectionScheme scheme) {
-  return scheme == AdvectionScheme::maccormack ? "maccormack" : "semi_lagrangian";
+  switch (scheme) {
+    case AdvectionScheme::semi_lagrangian:
+      return "semi_lagrangian";
+    case AdvectionScheme::maccormack:
+      return "maccormack";
+    case AdvectionScheme::upwind5:
+      return "upwind5";
+  }
+  return "?";
+}
+
+double courant_limit(AdvectionScheme scheme) {
+  return scheme == AdvectionScheme::upwind5 ? kUpwind5CourantLimit : std::numeric_limits<double>::infinity();
 }
 
 std::string to_string(PressureSolverType solver) {

@@ -6,13 +6,27 @@
 
 namespace fw::fluid {
 
-enum class AdvectionScheme { semi_lagrangian, maccormack };
+enum class AdvectionScheme { semi_lagrangian, maccormack, upwind5 };
+/// Where upwind5's Runge-Kutta step projects: once, after its last stage (with the rest of the step), or
+/// after each of its first two stages as well, so that every stage advects a divergence-free field.
+enum class StageProjection { final_stage, every_stage };
 enum class PressureSolverType { jacobi, multigrid, cg };
 enum class MultigridSmoother { jacobi, red_black };
 
 std::string to_string(AdvectionScheme scheme);
 std::string to_string(PressureSolverType solver);
 
+/// The stability limit of upwind5 (fluid/UpwindStencil.hpp) with Wicker & Skamarock's three-stage
+/// Runge-Kutta, on the sum of the Courant numbers (|u| + |v| + |w|) dt / h. Von Neumann analysis of the
+/// linear scheme puts the limit of that sum at 1.435 at fifth order (Wicker & Skamarock 2002: 1.43), 1.626
+/// at third and 1.256 at first, the order the scheme drops to beside walls; 1.2 stays below all three,
+/// with a margin for the nonlinear flow and the split forces. The step takes the sum of the components'
+/// maxima, which bounds every cell's sum.
+inline constexpr double kUpwind5CourantLimit = 1.2;
+
+/// The largest sum of Courant numbers at which `scheme` is stable: kUpwind5CourantLimit for upwind5,
+/// infinity for the semi-Lagrangian schemes (stable at any Courant number).
+double courant_limit(AdvectionScheme scheme);
 /// The relative residual at which the converging solvers stop, unless told otherwise (the scenario's
 /// solver.tolerance reads it too): a tenth of a per cent of the divergence left, and well above the float32
 /// floor near 1e-5 that a solve cannot get below.
@@ -29,13 +43,16 @@ struct PressureSettings {
 
 struct WindSettings {
   AdvectionScheme advection = AdvectionScheme::semi_lagrangian;
+  StageProjection stage_projection = StageProjection::final_stage;  // upwind5 only
   PressureSettings pressure;
   double vorticity_confinement = 0.0;         // epsilon, dimensionless (0: off)
   double viscosity = 0.0;                     // kinematic, m^2/s (0: off; air is 1.5e-5)
   std::array<double, 3> body_force{0, 0, 0};  // uniform acceleration, m/s^2
   double dt = 0.05;                           // fixed time step, s (used when cfl <= 0)
-  double cfl = 0.0;                           // > 0: dt = cfl * h / max|u| each step, capped at max_dt
-  double max_dt = 1.0;                        // s
+  /// > 0: dt = cfl * h / max|u| each step (max over the components), capped at max_dt and at the scheme's
+  /// courant_limit on the sum of the components' maxima.
+  double cfl = 0.0;
+  double max_dt = 1.0;  // s
   /// Smagorinsky constant C_s of the subgrid eddy viscosity nu_t = (C_s h)^2 |S|, dimensionless, in
   /// [0, kSmagorinskyConstantBelow) (0: off; 0.1-0.2 typical, 0.17 from Lilly's inertial-range estimate).
   /// fluid/SubgridStress.hpp.

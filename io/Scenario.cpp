@@ -131,6 +131,7 @@ std::array<double, 3> TurbulenceSettings::standard_deviations(double speed) cons
 fluid::WindSettings Scenario::wind_settings() const {
   fluid::WindSettings settings;
   settings.advection = solver.advection;
+  settings.stage_projection = solver.stage_projection;
   settings.pressure.solver = solver.pressure;
   settings.pressure.tolerance = solver.tolerance;
   settings.pressure.max_iterations = solver.max_iterations;

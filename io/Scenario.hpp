@@ -274,6 +274,8 @@ struct SolverSettings {
   int jacobi_iterations = int(schema::key("solver.jacobi_iterations").number);  ///< >= 1 (jacobi)
   fluid::AdvectionScheme advection = schema::value_of(schema::kAdvectionWords, schema::kAdvectionSchemes,
                                                       schema::key("solver.advection").word);
+  fluid::StageProjection stage_projection = schema::value_of(
+      schema::kStageProjectionWords, schema::kStageProjections, schema::key("solver.stage_projection").word);
   /// epsilon, dimensionless, >= 0 (0: off)
   double vorticity_confinement = schema::key("solver.vorticity_confinement").number;
   /// C_s of the eddy viscosity (C_s h)^2 |S|, dimensionless, in [0, 1) (0: off)

@@ -47,12 +47,6 @@ FW_INLINE lanef sample_lanes(__global const float* qp, int c, lanef X, lanef Y, 
   return trilinear(v, fx, fy, fz);
 }
 
-/* Stride of component a's padded copy along axis `axis`. */
-FW_INLINE int padded_stride(const FwGrid* g, int a, int axis) {
-  return axis == 0 ? 1
-                   : (axis == 1 ? padded_extent(g, a, 0) : padded_extent(g, a, 0) * padded_extent(g, a, 1));
-}
-
 /* Component a (a != c) at the faces `at` (padded indices of component a at the same (i,j,k)) of component c:
  * the mean of its four nearest faces, which is trilinear interpolation at that point (fractions of one half
  * on axes a and c, zero on the third). */
@@ -61,12 +55,6 @@ FW_INLINE lanef cross_component(const FwGrid* g, __global const float* ap, int a
   const int step_c = padded_stride(g, a, c), step_a = padded_stride(g, a, a);
   return 0.25f * ((row_lanes(ap, at - step_c, valid) + row_lanes(ap, at, valid)) +
                   (row_lanes(ap, at - step_c + step_a, valid) + row_lanes(ap, at + step_a, valid)));
-}
-
-/* The padded index of component a at the lanes' faces i of row (j, k) (FW_LANE_SETUP's lanes: consecutive,
- * or in a row shorter than FW_LANES clamped to its last face). */
-FW_INLINE lanei lane_padded_index(const FwGrid* g, int a, lanei i, int j, int k) {
-  return (i + FW_PAD) + padded_extent(g, a, 0) * ((j + FW_PAD) + padded_extent(g, a, 1) * (k + FW_PAD));
 }
 
 /* Back-traced positions of faces (i, j, k) of component c through the padded velocity over dt (explicit
@@ -88,20 +76,6 @@ FW_INLINE void backtrace_lanes(const FwGrid* g, int c, lanei i, int valid, int j
   *Y = Py - scale * sample_lanes(vp, 1, Mx, My, Mz, g);
   *Z = Pz - scale * sample_lanes(wp, 2, Mx, My, Mz, g);
 }
-
-/* This work-item's faces: FW_LANES consecutive faces of row (j, k) from i0, of which it stores the lanes
- * `skip` .. `valid` - 1. The last item of a row that does not fill its lanes moves back to end at the row's
- * end, redoing faces of the item before it without storing them: its lanes then stay contiguous, for vector
- * and windowed loads. Rows shorter than FW_LANES clamp the lanes past the row to its last face. */
-#define FW_LANE_SETUP(c)                                  \
-  const int j = get_global_id(1), k = get_global_id(2);   \
-  const int ex = face_extent(&g, c, 0);                   \
-  const int own_first = (int)get_global_id(0) * FW_LANES; \
-  if (own_first >= ex) return;                            \
-  const int i0 = max(0, min(own_first, ex - FW_LANES));   \
-  const int skip = own_first - i0;                        \
-  const int valid = min(FW_LANES, ex - i0);               \
-  const lanei i = min((lanei)(i0) + FW_LANE_OFFSETS, (lanei)(ex - 1));
 
 /* out = qp sampled at the back-traced position of each face (c is a literal in each kernel below, so the
  * compiler folds the component logic away). */

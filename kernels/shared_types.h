@@ -88,8 +88,18 @@ typedef struct FwStep {
   float turbulence_spacing;   /* box point spacing, m */
 } FwStep;
 
-/* Ghost layers on every side of a padded velocity copy (kernels/fluid_ghosts.cl, host/stages/FluidStages). */
-#define FW_PAD 2
+/* Ghost layers on every side of a padded velocity copy (kernels/fluid_ghosts.cl, host/stages/FluidStages):
+ * the widest stencil, fifth-order upwind advection (kernels/fluid_upwind.cl), reaches three faces past the
+ * face it updates across a periodic boundary. */
+#define FW_PAD 3
+
+/* The order of one upwind flux (fluid/UpwindStencil.hpp): two bits a flux, for the lower and the upper flux
+ * of a face along each axis a at bit FW_UPWIND_SHIFT(a, side), side 0 lower, 1 upper. */
+#define FW_UPWIND_FIRST 0
+#define FW_UPWIND_THIRD 1
+#define FW_UPWIND_FIFTH 2
+#define FW_UPWIND_BITS 3
+#define FW_UPWIND_SHIFT(a, side) (4 * (a) + 2 * (side))
 
 /* The prescribed inflow shell: with the inflow turbulence on, every prescribed face value of a step (the
  * inflow faces of the normal component and the ghosts beyond an inflow face) is sampled once per step

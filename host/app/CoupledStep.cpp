@@ -72,17 +72,25 @@ CoupledStepReport CoupledStep::step(double max_dt) {
   const long next = wind_.steps() + 1;
   apply_inputs(time());
   CoupledStepReport report;
-  report.max_speed_component = wind_.max_speed_component();
-  if (!std::isfinite(report.max_speed_component))
+  const std::array<double, 3> maxima = wind_.max_speed_components();
+  report.max_speed_component = std::max({maxima[0], maxima[1], maxima[2]});
+  if (!(std::isfinite(maxima[0]) && std::isfinite(maxima[1]) && std::isfinite(maxima[2])))
     throw SimulationError(fmt::format("{}: field velocity is not finite", where(next, time())));
-  double dt = wind_.cfl_dt(report.max_speed_component);
+  double dt = wind_.cfl_dt(maxima);
   if (max_dt < dt) dt = max_dt;
-  report.cfl = report.max_speed_component * dt / wind_.spec().h;
-  if (wind_.fixed_dt() && report.cfl > kRunawayCfl) {
+  report.cfl = wind_.courant_number(maxima, dt);
+  // A scheme with a stability limit blows up past it; the semi-Lagrangian ones only lose accuracy.
+  const double scheme_limit = fluid::courant_limit(wind_.setup().settings.advection);
+  const double runaway = std::isfinite(scheme_limit) ? scheme_limit : kRunawayCfl;
+  if (wind_.fixed_dt() && report.cfl > runaway) {
     throw SimulationError(fmt::format(
-        "{}: field velocity reaches {:.1f} m/s, CFL number {:.1f} > {} with the fixed dt {} s; lower "
-        "time.dt or use dt: auto",
-        where(next, time()), report.max_speed_component, report.cfl, kRunawayCfl, dt));
+        "{}: field velocity reaches {:.1f} m/s, Courant number {:.2f} > {} ({}) with the fixed dt {} s; "
+        "lower time.dt or use dt: auto",
+        where(next, time()), report.max_speed_component, report.cfl, runaway,
+        std::isfinite(scheme_limit)
+            ? fluid::to_string(wind_.setup().settings.advection) + "'s stability limit"
+            : "the runaway limit",
+        dt));
   }
   if (dt >= integrator_dt_limit_) {
     throw SimulationError(fmt::format(

@@ -20,7 +20,8 @@
 // Checks, every step, before anything moves (a SimulationError names the step, the time and the field):
 //   - the velocity is finite (max|u| is read back each step: the CFL time step needs it, and a fixed dt
 //     needs it for the next check; one reduction over the faces costs under 1% of a step);
-//   - a fixed dt whose CFL number exceeds kRunawayCfl is a blow-up in the making, not a slow run;
+//   - a fixed dt whose Courant number exceeds the scheme's stability limit (upwind5: fluid::courant_limit)
+//     or, for the semi-Lagrangian schemes, kRunawayCfl is a blow-up in the making, not a slow run;
 //   - Diener's semi-implicit Euler is stable only while dt^2 omega^2 + 2 gamma dt < 4 for every mode.
 #pragma once
 
@@ -53,12 +54,13 @@ class SimulationError : public std::runtime_error {
 struct CoupledStepReport {
   WindStepReport wind;               ///< step index, time after the step, dt, pressure solve
   double max_speed_component = 0.0;  ///< max over faces of |u|, |v|, |w| before the step, m/s
-  double cfl = 0.0;                  ///< max_speed_component dt / h
+  double cfl = 0.0;                  ///< the step's Courant number (WindGrid::courant_number)
 };
 
 class CoupledStep {
  public:
-  /// A fixed dt this many times past the advection CFL limit stops the run.
+  /// A fixed dt whose CFL number passes this stops a semi-Lagrangian run (which is stable at any CFL
+  /// number, but a wind this far past the expected one is a blow-up in the making).
   static constexpr double kRunawayCfl = 5.0;
 
   /// Uploads the wind grid, the canopy drag and the forest. Throws std::invalid_argument when the grid does

@@ -30,20 +30,6 @@ std::string boundaries_line(const WindGridSetup& wind) {
   return line;
 }
 
-// The largest ambient speed over the run (sampled every second and at the end) plus the strongest gust: what
-// an automatic time step will be limited by.
-double peak_wind_speed(const SimulationPlan& plan) {
-  double peak = 0.0;
-  for (double t = 0.0;; t = std::min(t + 1.0, plan.end_time)) {
-    const auto v = plan.inputs.ambient_wind(t);
-    peak = std::max(peak, std::hypot(v[0], v[1], v[2]));
-    if (t >= plan.end_time) break;
-  }
-  double gust = 0.0;
-  for (const FwGust& g : plan.wind.gusts) gust = std::max(gust, double(g.peak_speed));
-  return peak + gust;
-}
-
 }  // namespace
 
 void print_plan(const SimulationPlan& plan, std::ostream& out) {
@@ -85,12 +71,19 @@ void print_plan(const SimulationPlan& plan, std::ostream& out) {
     out << fmt::format("steps: {} (dt {} s to t = {} s)\n", long(std::ceil(plan.end_time / settings.dt)),
                        settings.dt, plan.end_time);
   } else {
+    // A wind along one axis at the peak speed: the largest component and the sum of the components agree.
     const double peak = peak_wind_speed(plan);
-    const double dt = peak > 0.0 ? std::min(settings.cfl * spec.h / peak, settings.max_dt) : settings.max_dt;
+    const double dt = host::WindGrid::cfl_dt(settings, spec, {peak, 0.0, 0.0});
     out << fmt::format(
-        "steps: about {} or more (dt auto, CFL {}: {:.3f} s at the peak ambient wind plus gusts, {:.1f} m/s, "
-        "to t = {} s)\n",
-        long(std::ceil(plan.end_time / dt)), settings.cfl, dt, peak, plan.end_time);
+        "steps: about {} or more (dt auto, CFL {}{}: {:.3f} s at the peak wind plus gusts, {:.1f} m/s, to t "
+        "= "
+        "{} s)\n",
+        long(std::ceil(plan.end_time / dt)), settings.cfl,
+        std::isfinite(fluid::courant_limit(settings.advection))
+            ? fmt::format(", {} limit {}", fluid::to_string(settings.advection),
+                          fluid::courant_limit(settings.advection))
+            : "",
+        dt, peak, plan.end_time);
   }
   out << fmt::format("output: {} every {} s, {} probes\n", plan.output.directory.string(),
                      plan.output.interval, plan.output.probes.size());

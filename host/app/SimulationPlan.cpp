@@ -1,5 +1,8 @@
 #include "host/app/SimulationPlan.hpp"
 
+#include <algorithm>
+#include <cmath>
+
 #include "host/app/plan/PlanBuilders.hpp"
 
 namespace fw::host {
@@ -13,6 +16,20 @@ SimulationPlan plan_simulation(const io::Scenario& scenario, const trees::BasisC
   plan_coupling(scenario, plan);
   plan_outputs(scenario, plan);
   return plan;
+}
+
+double peak_wind_speed(const SimulationPlan& plan) {
+  double peak = 0.0;
+  for (double t = 0.0;; t = std::min(t + 1.0, plan.end_time)) {
+    const auto v = plan.inputs.ambient_wind(t);
+    peak = std::max(peak, std::hypot(v[0], v[1], v[2]));
+    if (t >= plan.end_time) break;
+  }
+  const std::vector<float> shape = plan.wind.profile.sample_cell_centres(plan.wind.spec.nz, plan.wind.spec.h);
+  const double factor = shape.empty() ? 1.0 : double(*std::max_element(shape.begin(), shape.end()));
+  double gust = 0.0;
+  for (const FwGust& g : plan.wind.gusts) gust = std::max(gust, double(g.peak_speed));
+  return peak * factor + gust;
 }
 
 }  // namespace fw::host

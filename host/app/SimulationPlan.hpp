@@ -69,4 +69,10 @@ SimulationPlan plan_simulation(const io::Scenario& scenario, const trees::BasisC
 /// the forest, the device memory by part, the time steps and the outputs, all read from the plan.
 void print_plan(const SimulationPlan& plan, std::ostream& out);
 
+/// The largest wind speed the plan's inputs give, m/s: the ambient wind's largest speed over the run
+/// (sampled every second and at the end) times the inflow profile's largest factor over the cell centres,
+/// plus the strongest gust's peak. What an automatic time step will be limited by; a turbulent flow's
+/// largest face speed exceeds it.
+double peak_wind_speed(const SimulationPlan& plan);
+
 }  // namespace fw::host

@@ -179,6 +179,36 @@ void FluidStages::enqueue_maccormack_correct(int c, DeviceVelocity& pv, cl::Buff
       .enqueue(cc_, advect_rows(c));
 }
 
+void FluidStages::build_upwind_kernels() {
+  if (upwind_built_) return;
+  cl::Program program = cc_.build("fluid_upwind.cl");
+  for (int c = 0; c < 3; ++c) upwind_stage_[c] = Kernel(program, std::string("upwind_stage_") + "uvw"[c]);
+  upwind_built_ = true;
+}
+
+DeviceUpwindOrders FluidStages::upload_upwind_orders(const fluid::UpwindOrders& orders) {
+  DeviceUpwindOrders device;
+  const std::size_t counts[3] = {spec_.u_count(), spec_.v_count(), spec_.w_count()};
+  for (int c = 0; c < 3; ++c) {
+    if (orders[c].size() != counts[c])
+      throw std::invalid_argument(
+          fmt::format("FluidStages: {} upwind orders for component {}, the grid has {} faces",
+                      orders[c].size(), c, counts[c]));
+    const std::size_t bytes = orders[c].size() * sizeof(std::uint16_t);
+    device.component[c] = cc_.buffer(bytes);
+    cc_.queue().enqueueWriteBuffer(device.component[c], CL_TRUE, 0, bytes, orders[c].data());
+  }
+  return device;
+}
+
+void FluidStages::enqueue_upwind_stage(int c, float coef_dt, DeviceVelocity& pv, DeviceUpwindOrders& orders,
+                                       cl::Buffer& base, cl::Buffer& out) {
+  build_upwind_kernels();
+  upwind_stage_[c]
+      .set_args(grid_, coef_dt, pv.u, pv.v, pv.w, orders.component[c], base, out)
+      .enqueue(cc_, advect_rows(c));
+}
+
 void FluidStages::enqueue_apply_forces(int c, float body_acceleration, cl::Buffer& gusts, int gust_count,
                                        cl::Buffer& q) {
   forces_.set_args(grid_, step_, c, body_acceleration, gusts, gust_count, q).enqueue(cc_, component_rows(c));
@@ -332,17 +362,21 @@ double FluidStages::max_divergence(cl::Buffer& mask, DeviceVelocity& vel) {
   return max_partials(r.groups);
 }
 
-double FluidStages::max_speed_component(DeviceVelocity& vel) {
-  double m = 0.0;
+std::array<double, 3> FluidStages::max_speed_components(DeviceVelocity& vel) {
+  std::array<double, 3> m{};
   for (int c = 0; c < 3; ++c) {
     const int extent_x = spec_.nx + (c == 0), extent_y = spec_.ny + (c == 1), extent_z = spec_.nz + (c == 2);
     const ReductionRange r = cc_.reduction_rows(extent_x, extent_y, extent_z);
     max_abs_.set_args(extent_x, extent_y, vel.component(c), partial_).enqueue(cc_, r.global, r.local);
-    const double mc = max_partials(r.groups);
-    if (std::isnan(mc)) return NAN;
-    m = std::max(m, mc);
+    m[c] = max_partials(r.groups);
   }
   return m;
+}
+
+double FluidStages::max_speed_component(DeviceVelocity& vel) {
+  const std::array<double, 3> m = max_speed_components(vel);
+  if (std::isnan(m[0]) || std::isnan(m[1]) || std::isnan(m[2])) return NAN;
+  return std::max({m[0], m[1], m[2]});
 }
 
 }  // namespace fw::host

@@ -14,6 +14,7 @@
 
 #include "fluid/GridSpec.hpp"
 #include "fluid/InflowState.hpp"
+#include "fluid/UpwindStencil.hpp"
 #include "host/runtime/ComputeContext.hpp"
 #include "host/stages/WallFaces.hpp"
 #include "kernels/shared_types.h"
@@ -24,6 +25,12 @@ namespace fw::host {
 struct DeviceVelocity {
   cl::Buffer u, v, w;
   cl::Buffer& component(int c) { return c == 0 ? u : (c == 1 ? v : w); }
+};
+
+/// The packed flux orders of upwind advection on the device (fluid::UpwindOrders): a ushort a face per
+/// component.
+struct DeviceUpwindOrders {
+  std::array<cl::Buffer, 3> component;
 };
 
 /// Cells first .. first + count - 1 along x, y, z (cell indices); count 0 on an axis: no cell.
@@ -71,6 +78,13 @@ class FluidStages {
   void enqueue_advect(int c, float dt, DeviceVelocity& padded_vel, cl::Buffer& padded_q, cl::Buffer& out);
   void enqueue_maccormack_correct(int c, DeviceVelocity& padded_vel, cl::Buffer& padded_q,
                                   cl::Buffer& forward, cl::Buffer& back, cl::Buffer& out);
+  /// Uploads the flux orders of upwind advection (fluid::upwind_orders), once per grid.
+  DeviceUpwindOrders upload_upwind_orders(const fluid::UpwindOrders& orders);
+  /// out = base + coef_dt * R(stage) for component c: one Runge-Kutta stage of flux-form upwind advection
+  /// (fluid/UpwindStencil.hpp), R from the padded stage velocity (enqueue_pad); base and out unpadded, out
+  /// another buffer than base.
+  void enqueue_upwind_stage(int c, float coef_dt, DeviceVelocity& padded_stage, DeviceUpwindOrders& orders,
+                            cl::Buffer& base, cl::Buffer& out);
   void enqueue_apply_forces(int c, float body_acceleration, cl::Buffer& gusts, int gust_count, cl::Buffer& q);
   void enqueue_vorticity(DeviceVelocity& vel, cl::Buffer& vorticity);
   void enqueue_vorticity_confinement(int c, float epsilon, cl::Buffer& vorticity, cl::Buffer& q);
@@ -107,6 +121,8 @@ class FluidStages {
   double max_divergence(cl::Buffer& mask, DeviceVelocity& vel);
   /// Max |component| over all faces of the three components, m/s; NaN if any face is NaN (blocks).
   double max_speed_component(DeviceVelocity& vel);
+  /// Max |u|, |v| and |w| over the faces of each, m/s; NaN for a component with a NaN face (blocks).
+  std::array<double, 3> max_speed_components(DeviceVelocity& vel);
 
   /// Floats the reductions need for their per-work-item partials.
   std::size_t partial_count() const { return partial_host_.size(); }
@@ -114,6 +130,7 @@ class FluidStages {
  private:
   double max_partials(std::size_t count);
   void build_subgrid_kernels();  // on first use: a run without the subgrid or wall stage never builds them
+  void build_upwind_kernels();   // on first use, likewise for upwind advection
   void refresh_inflow_shell();   // the shell's blocks on every inflow face, unless already fresh
 
   ComputeContext& cc_;
@@ -125,7 +142,8 @@ class FluidStages {
   Kernel pad_, advect_[3], maccormack_[3], forces_, vorticity_, confinement_, diffuse_, boundaries_,
       divergence_, max_div_, gradient_, max_abs_, canopy_drag_[3], copy_face_box_, fill_inflow_shell_;
   Kernel eddy_viscosity_, diffuse_eddy_[3], wall_stress_faces_, wall_stress_store_;
-  bool subgrid_built_ = false;
+  Kernel upwind_stage_[3];
+  bool subgrid_built_ = false, upwind_built_ = false;
   bool shell_fresh_ = false;  // the shell holds step_'s prescribed values
 };
 

@@ -8,6 +8,7 @@
 #include <stdexcept>
 
 #include "fluid/SubgridStress.hpp"
+#include "fluid/UpwindStencil.hpp"
 
 namespace fw::host {
 namespace {
@@ -64,8 +65,13 @@ std::size_t WindGrid::estimate_device_bytes(const fluid::GridSpec& spec, const f
                                             int row_chunk) {
   const std::size_t faces = spec.u_count() + spec.v_count() + spec.w_count();
   const bool maccormack = settings.advection == fluid::AdvectionScheme::maccormack;
-  const std::size_t padded = std::size_t(spec.nx + 5) * (spec.ny + 5) * (spec.nz + 5) * 3;
-  std::size_t bytes = ((maccormack ? 3 : 2) * faces + (maccormack ? 2 : 1) * padded) * sizeof(float);
+  const bool upwind = settings.advection == fluid::AdvectionScheme::upwind5;
+  const std::size_t padded =
+      std::size_t(spec.nx + 2 * FW_PAD) * (spec.ny + 2 * FW_PAD) * (spec.nz + 2 * FW_PAD) * 3;
+  // Velocity and scratch, the third buffer of MacCormack and upwind5, and the padded copies.
+  std::size_t bytes =
+      ((maccormack || upwind ? 3 : 2) * faces + (maccormack ? 2 : 1) * padded) * sizeof(float);
+  if (upwind) bytes += faces * sizeof(std::uint16_t);  // the flux orders
   if (settings.vorticity_confinement > 0.0) bytes += spec.cell_count() * 4 * sizeof(float);
   if (settings.smagorinsky_constant > 0.0) bytes += spec.cell_count() * sizeof(float);  // nu_t
   // Pressure hierarchy: about 1/7 extra for the coarse levels of a 3D grid.
@@ -103,6 +109,10 @@ WindGrid::WindGrid(ComputeContext& cc, WindGridSetup setup)
   if (setup_.settings.advection == fluid::AdvectionScheme::maccormack) {
     back_ = stages_.allocate_velocity();
     padded_forward_ = stages_.allocate_padded_velocity();
+  }
+  if (setup_.settings.advection == fluid::AdvectionScheme::upwind5) {
+    back_ = stages_.allocate_velocity();
+    upwind_orders_ = stages_.upload_upwind_orders(fluid::upwind_orders(setup_.spec, setup_.solid));
   }
   if (setup_.settings.vorticity_confinement > 0.0)
     vorticity_ = cc_.buffer(setup_.spec.cell_count() * 4 * sizeof(float));
@@ -202,11 +212,15 @@ void WindGrid::timed(const char* stage, F&& work) {
     work();
     return;
   }
+  // A stage timed inside another (upwind5's stage projections inside "advect") counts for itself only.
+  const double nested_before = nested_ms_;
   const auto start = std::chrono::steady_clock::now();
   work();
   cc_.finish();
-  stage_ms_[stage] +=
+  const double total =
       std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+  stage_ms_[stage] += total - (nested_ms_ - nested_before);
+  nested_ms_ = nested_before + total;
 }
 
 void WindGrid::initialise_ambient() {
@@ -230,6 +244,10 @@ void WindGrid::initialise_ambient() {
 }
 
 void WindGrid::advect(float dt) {
+  if (setup_.settings.advection == fluid::AdvectionScheme::upwind5) {
+    advect_upwind(dt);
+    return;
+  }
   stages_.enqueue_pad(vel_, padded_);
   for (int c = 0; c < 3; ++c) stages_.enqueue_advect(c, dt, padded_, padded_.component(c), tmp_.component(c));
   if (setup_.settings.advection == fluid::AdvectionScheme::semi_lagrangian) {
@@ -244,6 +262,28 @@ void WindGrid::advect(float dt) {
     stages_.enqueue_maccormack_correct(c, padded_, padded_.component(c), tmp_.component(c),
                                        back_.component(c), back_.component(c));
   std::swap(vel_, back_);
+}
+
+void WindGrid::advect_upwind(float dt) {
+  // Wicker & Skamarock's three stages from u at the step's start: u1 = u + dt/3 R(u), u2 = u + dt/2 R(u1),
+  // u + dt R(u2). Stages alternate between tmp_ and back_; each reads only the padded copy of the one
+  // before and u itself. The first two get their prescribed faces back (and, if asked, a projection), as
+  // the last does with the rest of the step.
+  constexpr float kStageFractions[] = {1.0f / 3.0f, 0.5f, 1.0f};
+  DeviceVelocity* stage = &vel_;
+  for (int n = 0; n < 3; ++n) {
+    stages_.enqueue_pad(*stage, padded_);
+    DeviceVelocity& out = n == 1 ? back_ : tmp_;
+    for (int c = 0; c < 3; ++c)
+      stages_.enqueue_upwind_stage(c, kStageFractions[n] * dt, padded_, upwind_orders_, vel_.component(c),
+                                   out.component(c));
+    if (n < 2) {
+      enforce_boundaries(out);
+      if (setup_.settings.stage_projection == fluid::StageProjection::every_stage) project(out);
+    }
+    stage = &out;
+  }
+  std::swap(vel_, tmp_);
 }
 
 void WindGrid::apply_forces() {
@@ -305,35 +345,47 @@ void WindGrid::apply_wall_stress() {
   stages_.enqueue_wall_stress(static_cast<float>(wall_drag_coefficient_), wall_faces_, vel_);
 }
 
-void WindGrid::enforce_boundaries() {
-  for (int c = 0; c < 3; ++c) stages_.enqueue_enforce_boundaries(c, pressure_.mask(), vel_.component(c));
+void WindGrid::enforce_boundaries(DeviceVelocity& vel) {
+  for (int c = 0; c < 3; ++c) stages_.enqueue_enforce_boundaries(c, pressure_.mask(), vel.component(c));
 }
 
-PressureSolveStatus WindGrid::project() {
+PressureSolveStatus WindGrid::project(DeviceVelocity& vel) {
   PressureSolveStatus status;
-  timed("divergence", [&] { stages_.enqueue_divergence_rhs(pressure_.mask(), vel_, pressure_.rhs()); });
+  timed("divergence", [&] { stages_.enqueue_divergence_rhs(pressure_.mask(), vel, pressure_.rhs()); });
   timed("pressure", [&] { status = pressure_.solve(); });
   timed("gradient", [&] {
     for (int c = 0; c < 3; ++c)
-      stages_.enqueue_subtract_gradient(c, pressure_.mask(), pressure_.solution(), vel_.component(c));
+      stages_.enqueue_subtract_gradient(c, pressure_.mask(), pressure_.solution(), vel.component(c));
   });
   return status;
 }
 
-double WindGrid::cfl_dt(double max_speed_component) const {
-  const auto& st = setup_.settings;
+double WindGrid::cfl_dt(const fluid::WindSettings& st, const fluid::GridSpec& spec,
+                        const std::array<double, 3>& maxima) {
   if (!(st.cfl > 0.0)) return st.dt;
-  return max_speed_component > 0.0 ? std::min(st.max_dt, st.cfl * setup_.spec.h / max_speed_component)
-                                   : st.max_dt;
+  const double largest = std::max({maxima[0], maxima[1], maxima[2]});
+  const double sum = maxima[0] + maxima[1] + maxima[2];
+  double dt = st.max_dt;
+  if (largest > 0.0) dt = std::min(dt, st.cfl * spec.h / largest);
+  const double limit = fluid::courant_limit(st.advection);
+  if (std::isfinite(limit) && sum > 0.0) dt = std::min(dt, limit * spec.h / sum);
+  return dt;
+}
+
+double WindGrid::courant_number(const std::array<double, 3>& maxima, double dt) const {
+  const double speed = std::isfinite(fluid::courant_limit(setup_.settings.advection))
+                           ? maxima[0] + maxima[1] + maxima[2]
+                           : std::max({maxima[0], maxima[1], maxima[2]});
+  return speed * dt / setup_.spec.h;
 }
 
 WindStepReport WindGrid::step() {
   double dt = setup_.settings.dt;
   if (setup_.settings.cfl > 0.0) {
-    const double vmax = stages_.max_speed_component(vel_);
-    if (!std::isfinite(vmax))
+    const std::array<double, 3> maxima = stages_.max_speed_components(vel_);
+    if (!(std::isfinite(maxima[0]) && std::isfinite(maxima[1]) && std::isfinite(maxima[2])))
       throw std::runtime_error(fmt::format("WindGrid: velocity is not finite before step {}", steps_ + 1));
-    dt = cfl_dt(vmax);
+    dt = cfl_dt(maxima);
   }
   return step_by(dt);
 }

@@ -11,8 +11,9 @@
 //   }
 //
 // A step: (dt from the CFL number if set) -> the inflow turbulence's box travels ambient * dt -> advect
-// (semi-Lagrangian RK2, or clamped MacCormack) -> body force, mean forcing and gusts -> vorticity
-// confinement -> canopy drag (set_canopy) -> Smagorinsky subgrid stress and log-law wall stress (when set)
+// (semi-Lagrangian RK2, clamped MacCormack, or flux-form upwind5 by three Runge-Kutta stages) -> body force,
+// mean forcing and gusts -> vorticity confinement -> canopy drag (set_canopy) -> Smagorinsky subgrid stress
+// and log-law wall stress (when set)
 // -> viscosity (explicit, sub-stepped) -> prescribed faces (inflow profile + turbulence) -> divergence ->
 // pressure solve -> subtract the gradient. Everything stays on the device; only the scalars of reductions
 // (residual norms, max speed for the CFL step) and, with a mean forcing, two layers of u and v come back.
@@ -102,9 +103,16 @@ class WindGrid {
   /// One step of exactly dt (s, finite and > 0, else std::invalid_argument): for callers that choose dt
   /// themselves (the coupled step lands on the run's end time).
   WindStepReport step_by(double dt);
-  /// The CFL time step for a largest face speed (m/s): min(max_dt, cfl h / speed), max_dt at rest; the
-  /// fixed dt when the settings have no CFL number.
-  double cfl_dt(double max_speed_component) const;
+  /// The CFL time step for the largest |u|, |v| and |w| (m/s): min(max_dt, cfl h / the largest of them,
+  /// courant_limit h / their sum), max_dt at rest; the fixed dt when the settings have no CFL number.
+  double cfl_dt(const std::array<double, 3>& max_speed_components) const {
+    return cfl_dt(setup_.settings, setup_.spec, max_speed_components);
+  }
+  static double cfl_dt(const fluid::WindSettings& settings, const fluid::GridSpec& spec,
+                       const std::array<double, 3>& max_speed_components);
+  /// The Courant number of a step of dt that the scheme's stability is measured by: the sum of the
+  /// components' Courant numbers for upwind5 (fluid::courant_limit), the largest one otherwise.
+  double courant_number(const std::array<double, 3>& max_speed_components, double dt) const;
   bool fixed_dt() const { return !(setup_.settings.cfl > 0.0); }
 
   double time() const { return time_; }
@@ -120,8 +128,9 @@ class WindGrid {
   /// Max over fluid cells of |div u|, 1/s.
   double max_divergence() { return stages_.max_divergence(pressure_.mask(), vel_); }
   double max_speed_component() { return stages_.max_speed_component(vel_); }
+  std::array<double, 3> max_speed_components() { return stages_.max_speed_components(vel_); }
   /// Projects the current velocity (divergence -> solve -> gradient) and returns the solve's status.
-  PressureSolveStatus project();
+  PressureSolveStatus project() { return project(vel_); }
 
   /// Canopy drag F = -k |u| u from the drag density k = sum Cd a (1/m, one float a cell, x-fastest; see
   /// fluid/CanopyField), applied implicitly right after the body forces (stage "canopy"). Uploaded once; an
@@ -149,8 +158,11 @@ class WindGrid {
   template <typename F>
   void timed(const char* stage, F&& work);
   void advect(float dt);
+  void advect_upwind(float dt);
+  PressureSolveStatus project(DeviceVelocity& vel);
+  void enforce_boundaries(DeviceVelocity& vel);
   void apply_forces();
-  void enforce_boundaries();
+  void enforce_boundaries() { enforce_boundaries(vel_); }
   void apply_canopy_drag();
   void apply_subgrid_stress(double dt);
   void apply_wall_stress();
@@ -163,6 +175,7 @@ class WindGrid {
   FluidStages stages_;
   PressureSolver pressure_;
   DeviceVelocity vel_, tmp_, back_, padded_, padded_forward_;
+  DeviceUpwindOrders upwind_orders_;  // upwind5's flux orders; allocated for upwind5 only
   cl::Buffer vorticity_, gusts_, profile_;
   double time_ = 0.0, last_dt_ = 0.0;
   double turbulence_sigma_ = 0.0;                     // m/s
@@ -178,6 +191,7 @@ class WindGrid {
   double wall_drag_coefficient_ = 0.0;       // C_w of the log law at the first cell centre
   bool stage_timing_ = false;
   std::map<std::string, double> stage_ms_;
+  double nested_ms_ = 0.0;  // timed() sections so far, for the stages timed inside others
 };
 
 }  // namespace fw::host

@@ -14,6 +14,9 @@ void read_solver(const Loader& loader, const Field& field, SolverSettings& solve
     solver.jacobi_iterations = loader.integer(*iterations);
   if (const auto advection = map.get<"advection">())
     solver.advection = value(schema::kAdvectionWords, schema::kAdvectionSchemes, loader.word(*advection));
+  if (const auto projection = map.get<"stage_projection">())
+    solver.stage_projection =
+        value(schema::kStageProjectionWords, schema::kStageProjections, loader.word(*projection));
   if (const auto epsilon = map.get<"vorticity_confinement">())
     solver.vorticity_confinement = loader.number(*epsilon);
   if (const auto smagorinsky = map.get<"smagorinsky_constant">())

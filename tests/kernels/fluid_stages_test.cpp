@@ -48,7 +48,7 @@ struct StageFixture {
   }
   /// The reference's ghost value at every index of component c's padded copy, in its storage order.
   std::vector<float> expected_padded(const fluid::MacVelocity& vel, int c) const {
-    constexpr int pad = 2;  // FW_PAD
+    constexpr int pad = FW_PAD;
     const int ex = ref::extent(spec, c, 0), ey = ref::extent(spec, c, 1), ez = ref::extent(spec, c, 2);
     std::vector<float> expected;
     for (int k = -pad; k < ez + pad; ++k)
@@ -76,6 +76,39 @@ struct StageFixture {
       stages.enqueue_maccormack_correct(c, padded, padded.component(c), fwd.component(c), back.component(c),
                                         back.component(c));
     return {test::download(cc, fwd, spec), test::download(cc, back, spec)};
+  }
+  /// WindGrid::advect_upwind's sequence on the device over dt: three upwind stages from vel, the first two
+  /// with their prescribed faces imposed (no projection).
+  fluid::MacVelocity upwind5(const fluid::MacVelocity& vel, float dt) {
+    auto orders = stages.upload_upwind_orders(fluid::upwind_orders(spec, solid));
+    auto base = stages.allocate_velocity(), first = stages.allocate_velocity(),
+         second = stages.allocate_velocity();
+    auto padded = stages.allocate_padded_velocity();
+    test::upload(cc, vel, base);
+    const float fractions[] = {1.0f / 3.0f, 0.5f, 1.0f};
+    host::DeviceVelocity* stage = &base;
+    for (int n = 0; n < 3; ++n) {
+      stages.enqueue_pad(*stage, padded);
+      host::DeviceVelocity& out = n == 1 ? second : first;
+      for (int c = 0; c < 3; ++c)
+        stages.enqueue_upwind_stage(c, fractions[n] * dt, padded, orders, base.component(c),
+                                    out.component(c));
+      if (n < 2)
+        for (int c = 0; c < 3; ++c) stages.enqueue_enforce_boundaries(c, mask, out.component(c));
+      stage = &out;
+    }
+    return test::download(cc, first, spec);
+  }
+  /// One upwind stage on the device: vel + coef_dt R(vel).
+  fluid::MacVelocity upwind_stage(const fluid::MacVelocity& vel, float coef_dt) {
+    auto orders = stages.upload_upwind_orders(fluid::upwind_orders(spec, solid));
+    auto dvel = stages.allocate_velocity(), out = stages.allocate_velocity();
+    auto padded = stages.allocate_padded_velocity();
+    test::upload(cc, vel, dvel);
+    stages.enqueue_pad(dvel, padded);
+    for (int c = 0; c < 3; ++c)
+      stages.enqueue_upwind_stage(c, coef_dt, padded, orders, dvel.component(c), out.component(c));
+    return test::download(cc, out, spec);
   }
   /// Inflow turbulence through the inflow faces (test::add_small_turbulence).
   void make_turbulent() {
@@ -231,6 +264,44 @@ TEST_CASE("advect: semi-Lagrangian and MacCormack kernels match the CPU referenc
     // As on random fields: the clamp may switch differently in float and double at a few faces.
     CHECK(test::mismatch_fraction(corrected.component(c), expected_corrected.component(c), kStageTolerance) <
           2e-3);
+  }
+}
+
+TEST_CASE("advect: an upwind5 stage matches the CPU reference on random fields, short rows included") {
+  // Random values make every flux's upwind side and order matter. The mixed grid has every boundary type
+  // and a solid box (so all three orders occur); a 10-cell variant has rows shorter than the lanes.
+  auto* cc = test::device_or_skip();
+  if (!cc) return;
+  auto short_rows = test::mixed_boundary_spec();
+  short_rows.nx = 10;
+  for (const auto& grid : {test::mixed_boundary_spec(), short_rows}) {
+    StageFixture f(*cc, grid);
+    auto vel = test::random_velocity(f.spec, 8.0, 31);
+    test::match_periodic_faces(f.spec, vel);
+    const auto device = f.upwind_stage(vel, 0.4f);
+    const auto expected =
+        ref::upwind_stage(f.spec, f.inflow, fluid::upwind_orders(f.spec, f.solid), vel, vel, 0.4);
+    for (int c = 0; c < 3; ++c) {
+      INFO("nx " << f.spec.nx << ", component " << c);
+      CHECK(test::relative_error(device.component(c), expected.component(c)) < kStageTolerance);
+    }
+  }
+}
+
+TEST_CASE("advect: upwind5's three Runge-Kutta stages match the CPU reference in a smooth wind") {
+  auto* cc = test::device_or_skip();
+  if (!cc) return;
+  StageFixture f(*cc);
+  f.make_turbulent();  // the inflow ghosts carry turbulence through every stage
+  auto vel = test::smooth_velocity(f.spec, {3.75, 1.25, -1.25}, {1.5, 0.2, 0.2});
+  test::match_periodic_faces(f.spec, vel);
+  // dt 0.4 s, h 2 m and speeds up to about 5 m/s: a summed Courant number near 1, inside the limit.
+  const auto device = f.upwind5(vel, 0.4f);
+  const auto expected =
+      ref::advect_upwind5(f.spec, f.fine, f.inflow, fluid::upwind_orders(f.spec, f.solid), vel, 0.4);
+  for (int c = 0; c < 3; ++c) {
+    INFO("component " << c);
+    CHECK(test::relative_error(device.component(c), expected.component(c)) < kStageTolerance);
   }
 }
 

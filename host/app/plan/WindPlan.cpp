@@ -1,7 +1,10 @@
 // The wind grid's part of the plan: the grid with "auto" faces resolved for the wind at t = 0, the solver
 // settings, the inflow profile, the solids (obstacles and terrain), the gusts, the mean forcing of a
 // periodic domain, and the ambient wind over time.
+#include <fmt/format.h>
+
 #include <cmath>
+#include <stdexcept>
 #include <variant>
 
 #include "fluid/SolidMap.hpp"
@@ -49,6 +52,19 @@ void plan_wind(const io::Scenario& scenario, SimulationPlan& plan) {
 
   plan.end_time = scenario.time.end;
   plan.inputs.ambient_wind = [source = scenario.wind](double t) { return io::wind_vector(source, t); };
+  // A fixed dt past the scheme's stability limit at the peak wind would blow up in the first gusty minute.
+  const double limit = fluid::courant_limit(wind.settings.advection);
+  if (!(wind.settings.cfl > 0.0) && std::isfinite(limit)) {
+    const double peak = peak_wind_speed(plan);
+    if (peak * wind.settings.dt / wind.spec.h > limit)
+      throw std::invalid_argument(fmt::format(
+          "{}: time.dt: {} is stable up to a Courant number (|u| + |v| + |w|) dt / h of {}; at the peak wind "
+          "of {:.1f} m/s (ambient times the profile's top, plus gusts) and h = {} m that needs dt <= {:.4g} "
+          "s, "
+          "got {} s; lower time.dt or use dt: auto",
+          scenario.file.string(), fluid::to_string(wind.settings.advection), limit, peak, wind.spec.h,
+          limit * wind.spec.h / peak, wind.settings.dt));
+  }
   // The planner has no device: the rows mapping's chunk of 1 gives the largest estimate of the two.
   plan.memory.add("wind grid", WindGrid::estimate_device_bytes(wind.spec, wind.settings, 1));
 }
