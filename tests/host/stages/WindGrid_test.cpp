@@ -73,7 +73,8 @@ TEST_CASE("WindGrid: a grid larger than the device memory is refused from an est
 TEST_CASE("WindGrid: the device memory estimate is within 10% of what the grid allocates") {
   auto* cc = test::device_or_skip();
   if (!cc) return;
-  for (const auto advection : {fluid::AdvectionScheme::semi_lagrangian, fluid::AdvectionScheme::maccormack}) {
+  for (const auto advection : {fluid::AdvectionScheme::semi_lagrangian, fluid::AdvectionScheme::maccormack,
+                               fluid::AdvectionScheme::upwind5}) {
     auto setup = channel(48, 24, 16, 1.0);
     setup.settings.advection = advection;
     const std::size_t before = cc->allocated_bytes();
