@@ -20,6 +20,25 @@ inline double advection_loads_per_face(fluid::AdvectionScheme scheme) {
   return scheme == fluid::AdvectionScheme::maccormack ? kMacCormackLoadsPerFace : kSemiLagrangianLoadsPerFace;
 }
 
+/// Bytes per face an advection step streams, neighbours taken as cached. upwind5 (kernels/fluid_upwind.cl):
+/// three stages, each padding the three components (a read and a write of each face) and then reading a
+/// face of each padded component, the base value and the packed orders (2 bytes) and writing the result;
+/// its loads are whole rows, not gathers, so the triad binds it. The semi-Lagrangian step: a pad and the
+/// result written (its gathers are counted by advection_loads_per_face); MacCormack two of those and the
+/// correction's reads of q, the forward and the backward values.
+inline double advection_bytes_per_face(fluid::AdvectionScheme scheme) {
+  constexpr double kPad = 4 + 4, kStore = 4;
+  switch (scheme) {
+    case fluid::AdvectionScheme::upwind5:
+      return 3 * (3 * kPad + (3 * 4 + 4 + 2 + kStore));
+    case fluid::AdvectionScheme::maccormack:
+      return 2 * (kPad + kStore) + (3 * 4 + kStore);
+    case fluid::AdvectionScheme::semi_lagrangian:
+      return kPad + kStore;
+  }
+  return 0.0;
+}
+
 /// Divergence: the three faces' velocities per cell (as many faces as cells per component), the mask, b.
 constexpr double kDivergenceBytesPerCell = 3 * 4 + 1 + 4;
 /// Gradient: per component, the face read and written, phi and the mask.

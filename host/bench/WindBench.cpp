@@ -18,6 +18,8 @@ namespace {
 
 // Steps timed from the uniform start (the issue: at most 1.5x a developed step).
 constexpr int kStartupSteps = 5;
+// The CFL number of dt: auto that scenarios default to (io: time.cfl), for the semi-Lagrangian schemes.
+constexpr double kDefaultCfl = 0.8;
 
 using Clock = std::chrono::steady_clock;
 double ms_since(Clock::time_point t) {
@@ -94,6 +96,37 @@ SolverRun time_solver(host::ComputeContext& cc, const std::array<int, 3>& grid,
   run.gradient_gb_s = per_second(cells * kGradientBytesPerCell, "gradient") * 1e-9;
   run.pressure_gb_s =
       per_second((wind.pressure().traffic_bytes() - traffic_before) / opt.steps, "pressure") * 1e-9;
+  return run;
+}
+
+// The turbulent wind tunnel with `scheme` at its own dt: auto (SchemeRun).
+SchemeRun time_scheme(host::ComputeContext& cc, const std::array<int, 3>& grid, fluid::AdvectionScheme scheme,
+                      const WindBenchOptions& opt) {
+  host::WindGridSetup setup =
+      bench_setup(grid, fluid::PressureSolverType::cg, opt, Turbulence::inflow_subgrid);
+  setup.settings.advection = scheme;
+  const bool limited = std::isfinite(fluid::courant_limit(scheme));
+  setup.settings.cfl = limited ? fluid::courant_limit(scheme) : kDefaultCfl;
+  host::WindGrid wind(cc, setup);
+  wind.set_turbulence_sigma(kBenchTurbulenceSigma);
+  wind.initialise_ambient();
+  for (int s = 0; s < opt.warmup_steps; ++s) wind.step();
+  cc.finish();
+  wind.set_stage_timing(true);
+  SchemeRun run;
+  run.scheme = scheme;
+  run.cfl = setup.settings.cfl;
+  const double t0 = wind.time();
+  const auto start = Clock::now();
+  for (int s = 0; s < opt.steps; ++s) wind.step();
+  cc.finish();
+  run.ms_per_step = ms_since(start) / opt.steps;
+  run.dt = (wind.time() - t0) / opt.steps;
+  run.ms_per_simulated_second = run.ms_per_step / run.dt;
+  run.advect_ms = wind.stage_ms().at("advect") / opt.steps;
+  const auto& spec = wind.spec();
+  const double faces = double(spec.u_count() + spec.v_count() + spec.w_count());
+  run.advect_gb_s = faces * advection_bytes_per_face(scheme) / (run.advect_ms * 1e-3) * 1e-9;
   return run;
 }
 
@@ -203,6 +236,10 @@ WindBenchResult run_wind_bench(host::ComputeContext& cc, const WindBenchOptions&
       c.runs.push_back(time_solver(cc, grid, fluid::PressureSolverType::cg, opt, Turbulence::inflow));
       c.runs.push_back(time_solver(cc, grid, fluid::PressureSolverType::cg, opt, Turbulence::inflow_subgrid));
     }
+    if (opt.schemes)
+      for (auto scheme : {fluid::AdvectionScheme::semi_lagrangian, fluid::AdvectionScheme::maccormack,
+                          fluid::AdvectionScheme::upwind5})
+        c.schemes.push_back(time_scheme(cc, grid, scheme, opt));
     c.smoother_gb_s = measure_smoother_gb_s(cc, grid, SmootherPass::red_black_in_place, 20);
     if (opt.reference && std::size_t(grid[0]) * grid[1] * grid[2] <= (std::size_t(1) << 18))
       c.reference_ms_per_step = time_reference_step(grid);
@@ -277,6 +314,24 @@ void print_wind_bench_table(const WindBenchResult& r, std::ostream& out) {
   }
   out << "(%: of the windowed and the scattered corner-load rates for advection, of the triad for the rest; "
          "traffic per host/bench/StageTraffic.hpp)\n";
+  bool any_schemes = false;
+  for (const auto& c : r.cases) any_schemes = any_schemes || !c.schemes.empty();
+  if (!any_schemes) return;
+  out << "\nadvection schemes at their own dt: auto (cg, inflow turbulence, Smagorinsky and wall stress)\n";
+  out << fmt::format("{:<12} {:<16} {:>5} {:>9} {:>8} {:>11} {:>8} {:>18} {:>9}\n", "grid", "scheme", "CFL",
+                     "ms/step", "dt ms", "ms/sim. s", "advect", "advect GB/s", "x SL/s");
+  for (const auto& c : r.cases) {
+    const std::string grid = fmt::format("{}x{}x{}", c.grid[0], c.grid[1], c.grid[2]);
+    for (const auto& run : c.schemes)
+      out << fmt::format(
+          "{:<12} {:<16} {:>5.2f} {:>9.2f} {:>8.2f} {:>11.1f} {:>8.2f} {:>9.1f} ({:>3.0f}%) {:>9.2f}\n", grid,
+          fluid::to_string(run.scheme), run.cfl, run.ms_per_step, run.dt * 1e3, run.ms_per_simulated_second,
+          run.advect_ms, run.advect_gb_s, r.triad_gb_s > 0 ? 100.0 * run.advect_gb_s / r.triad_gb_s : 0.0,
+          run.ms_per_simulated_second / c.schemes.front().ms_per_simulated_second);
+  }
+  out << "(CFL: the largest component's for the semi-Lagrangian schemes, the summed Courant number for "
+         "upwind5; "
+         "x SL/s: cost per simulated second over semi_lagrangian's; %: of the triad)\n";
 }
 
 namespace {
@@ -322,6 +377,20 @@ void write_case(io::JsonWriter& json, const WindBenchCase& c, const WindBenchRes
     json.key("stages_ms").begin_object();
     for (const auto& [stage, ms] : run.stages_ms) json.key(stage).value(ms);
     json.end_object();
+    json.end_object();
+  }
+  json.end_array();
+  json.key("schemes").begin_array();
+  for (const auto& run : c.schemes) {
+    json.begin_object();
+    json.key("scheme").value(fluid::to_string(run.scheme));
+    json.key("cfl").value(run.cfl);
+    json.key("ms_per_step").value(run.ms_per_step);
+    json.key("dt").value(run.dt);
+    json.key("ms_per_simulated_second").value(run.ms_per_simulated_second);
+    json.key("advect_ms").value(run.advect_ms);
+    json.key("advect_gb_s").value(run.advect_gb_s);
+    json.key("advect_triad_fraction").value(r.triad_gb_s > 0 ? run.advect_gb_s / r.triad_gb_s : 0.0);
     json.end_object();
   }
   json.end_array();

@@ -34,6 +34,7 @@ struct WindBenchOptions {
   int jacobi_iterations = 40;
   bool reference = true;   // time one CPU-reference step on grids up to 64^3 cells
   bool turbulence = true;  // also time cg with the inflow turbulence, and with it Smagorinsky + wall stress
+  bool schemes = true;     // time each advection scheme at its own dt: auto (cg, inflow turbulence, subgrid)
   std::array<int, 3> roofline_grid{256, 256, 128};  // smoother bandwidth, too large for cache
 };
 
@@ -53,9 +54,23 @@ struct SolverRun {
   double divergence_gb_s = 0.0, pressure_gb_s = 0.0, gradient_gb_s = 0.0;
 };
 
+/// One advection scheme on the turbulent wind tunnel (cg, inflow turbulence, Smagorinsky and wall stress) at
+/// its own dt: auto: the semi-Lagrangian schemes at the scenario default CFL number 0.8, upwind5 at its
+/// summed Courant limit (fluid::kUpwind5CourantLimit).
+struct SchemeRun {
+  fluid::AdvectionScheme scheme{};
+  double cfl = 0.0;  // the CFL number the run asked for
+  double ms_per_step = 0.0;
+  double dt = 0.0;                       // mean step, s
+  double ms_per_simulated_second = 0.0;  // ms_per_step / dt
+  double advect_ms = 0.0;                // per step
+  double advect_gb_s = 0.0;              // advection's traffic (host/bench/StageTraffic.hpp) over its time
+};
+
 struct WindBenchCase {
   std::array<int, 3> grid{};
   std::vector<SolverRun> runs;         // converging solver first
+  std::vector<SchemeRun> schemes;      // semi-Lagrangian first, the baseline of the schemes' ratios
   double smoother_gb_s = 0.0;          // in-place red-black Gauss-Seidel pass (the solver's) on this grid
   double reference_ms_per_step = 0.0;  // 0 when not measured
 };
