@@ -574,6 +574,7 @@ forest:
   CHECK(s.solver.max_iterations == 100);
   CHECK(s.solver.jacobi_iterations == 40);
   CHECK(s.solver.advection == fw::fluid::AdvectionScheme::semi_lagrangian);
+  CHECK(s.solver.stage_projection == fw::fluid::StageProjection::final_stage);
   CHECK(s.solver.vorticity_confinement == 0.0);
 
   CHECK(s.output.directory.string() == (fs::current_path() / "out" / "minimal").lexically_normal().string());
@@ -1163,7 +1164,7 @@ wind:
   turbulence: {model: von_karman, intensity: 0.15, length_scale: 10, box_size: [50, 30, 7], seed: 9,
                unresolved: false, cutoff_cells: 4}
 forest: {strong_wind_correction: false}
-solver: {smagorinsky_constant: 0.17}
+solver: {smagorinsky_constant: 0.17, advection: upwind5, stage_projection: every_stage}
 output: {interval: 0.5, probe_interval: 0.05}
 )"));
   REQUIRE(s.wind.turbulence.has_value());
@@ -1191,6 +1192,8 @@ output: {interval: 0.5, probe_interval: 0.05}
 
   CHECK_FALSE(s.forest.strong_wind_correction);
   CHECK(s.solver.smagorinsky_constant == 0.17);
+  CHECK(s.solver.advection == fw::fluid::AdvectionScheme::upwind5);
+  CHECK(s.wind_settings().stage_projection == fw::fluid::StageProjection::every_stage);
   CHECK(s.output.probe_interval == std::optional<double>(0.05));
   CHECK(s.resolved_probe_interval() == std::optional<double>(0.05));
 }
