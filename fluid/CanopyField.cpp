@@ -121,6 +121,28 @@ double CanopyField::drag_in_domain() const {
   return sum * spec_.h * spec_.h * spec_.h;
 }
 
+CanopyColumns CanopyField::columns_in(const std::array<double, 2>& min,
+                                      const std::array<double, 2>& max) const {
+  CanopyColumns out;
+  double sum = 0.0;  // of a over the cells, 1/m
+  const auto centre_inside = [&](int index, int axis) {
+    const double centre = spec_.origin[std::size_t(axis)] + (index + 0.5) * spec_.h;
+    return centre >= min[std::size_t(axis)] && centre <= max[std::size_t(axis)];
+  };
+  for (int j = 0; j < spec_.ny; ++j) {
+    if (!centre_inside(j, 1)) continue;
+    for (int i = 0; i < spec_.nx; ++i) {
+      if (!centre_inside(i, 0)) continue;
+      ++out.columns;
+      for (int k = 0; k < spec_.nz; ++k)
+        sum += area_[std::size_t(i) + std::size_t(spec_.nx) * (std::size_t(j) + std::size_t(spec_.ny) * k)];
+    }
+  }
+  out.ground_area = out.columns * spec_.h * spec_.h;
+  out.frontal_area = sum * spec_.h * spec_.h * spec_.h;
+  return out;
+}
+
 std::vector<float> CanopyField::to_float(const std::vector<double>& v) {
   return std::vector<float>(v.begin(), v.end());
 }

@@ -48,6 +48,15 @@ struct CanopyTreeReport {
   double crown_projected_area = 0.0;  ///< horizontal convex hull of the leaf-bearing elements
 };
 
+/// The canopy over a horizontal rectangle: the grid columns whose centres lie in it, and the frontal area
+/// in them. frontal_area / ground_area is the rectangle's frontal area index (m^2 per m^2 of ground): a
+/// integrated up each column, averaged over the columns.
+struct CanopyColumns {
+  int columns = 0;            ///< columns whose centre (x, y) lies in the rectangle, edges included
+  double ground_area = 0.0;   ///< columns x h^2, m^2
+  double frontal_area = 0.0;  ///< sum over their cells of a h^3 (whatever element put it there), m^2
+};
+
 class CanopyField {
  public:
   /// All cells empty. Throws std::invalid_argument("CanopyField: ...") for an invalid spec.
@@ -74,6 +83,9 @@ class CanopyField {
   /// Sum over cells of k h^3 (double precision), m^2: half the drag area (C_D x area) inside the domain,
   /// so that rho_air |u| u times it is the force a uniform wind u loses to the canopy.
   double drag_in_domain() const;
+  /// The columns whose centres lie in [min, max] (world x and y, m, edges included) and the frontal area in
+  /// them; none (all zero) when the rectangle holds no column centre.
+  CanopyColumns columns_in(const std::array<double, 2>& min, const std::array<double, 2>& max) const;
   int tree_count() const { return trees_; }
   /// Trees of which nothing landed in the domain.
   int trees_outside() const { return trees_outside_; }

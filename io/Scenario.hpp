@@ -241,6 +241,11 @@ struct Species {
 struct Stand {
   std::string species;      ///< a Species::name
   trees::StandSpec layout;  ///< layout.species is the index into ForestSettings::species; region in m
+  /// The stand's own leaf area index, m^2/m^2, in (0, trees::StandDensity::kMaxLeafAreaIndex]; nullopt:
+  /// the species' canopy.leaf_area_index on every crown.
+  std::optional<double> leaf_area_index;
+  int line = 0;                  ///< the stand entry's line in the file
+  int leaf_area_index_line = 0;  ///< the line of leaf_area_index (the entry's when not given)
 };
 
 /// One tree placed by hand.

@@ -31,6 +31,14 @@ std::string generic_path(std::string_view key) {
   return out;
 }
 
+std::string item_path(std::string_view path, std::size_t index) {
+  std::string key(path);
+  const std::size_t brackets = key.find("[]");
+  if (brackets == std::string::npos) throw std::logic_error("item_path: " + key + " lies in no list");
+  key.insert(brackets + 1, std::to_string(index));
+  return key;
+}
+
 namespace {
 
 /// The last component of a path ("count" of "forest.species[].modes.count") and what lies above it.

@@ -38,6 +38,7 @@
 #include "trees/Material.hpp"
 #include "trees/ModalBasis.hpp"
 #include "trees/ModalIntegrator.hpp"
+#include "trees/StandDensity.hpp"
 #include "trees/WindBasis.hpp"
 
 namespace fw::io::schema {
@@ -895,6 +896,19 @@ inline constexpr Key kKeys[] = {
      .type = Type::seed,
      .default_note = "global `seed` + stand index",
      .description = "Seed for positions, yaws and scales. The same seed gives the same stand."},
+    {.path = "forest.stands[].leaf_area_index",
+     .type = Type::number,
+     .unit = "m^2/m^2",
+     .bound = Bound::positive,
+     .at_most = trees::StandDensity::kMaxLeafAreaIndex,
+     .default_note = "none: the species' `canopy.leaf_area_index` on every crown",
+     .description =
+         "The stand's leaf area index as measured in the field: one-sided leaf area of the stand's trees "
+         "per m^2 of its region. The stand's trees then carry the species' foliage scaled so that their "
+         "leaf area (whole crowns) over the region's area is this figure, in place of the species' "
+         "`canopy.leaf_area_index`, which stays for the species' other stands and single trees. Their "
+         "leaves are scaled with the foliage. The upper limit is the largest leaf area index of the "
+         "field measurements Asner, Scurlock & Hicke (2003) kept after their outlier analysis."},
     // forest.trees
     {.path = "forest.trees[].species",
      .type = Type::text,
@@ -1124,6 +1138,9 @@ const Key* find(std::string_view path);
 
 /// A file's dotted key with its list indices dropped: "forest.species[2].modes" -> "forest.species[].modes".
 std::string generic_path(std::string_view key);
+/// A generic path's key in item `index` of its (first) list: ("forest.stands[].spacing", 2) ->
+/// "forest.stands[2].spacing". Where messages past the loader name a key of the file.
+std::string item_path(std::string_view path, std::size_t index);
 
 /// The keys directly below a map's generic path ("" for the top level, "events[]" for an event), in table
 /// order.

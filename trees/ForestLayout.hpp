@@ -39,6 +39,9 @@ struct StandSpec {
   double scale_max = 1.0;
   std::uint64_t seed = 0;
 
+  /// The region's area, m^2: the ground a stand's density counts per (trees/StandDensity.hpp).
+  double ground_area() const { return (max - min).prod(); }
+
   /// Throws std::invalid_argument("StandSpec: ...") for an empty or inverted region, spacing <= 0,
   /// 0 < scale_min <= scale_max violated, non-finite values, or a region needing more than kMaxTrees trees.
   void validate() const;

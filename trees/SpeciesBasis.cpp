@@ -108,4 +108,20 @@ SpeciesBasis SpeciesBasis::scaled(double s) const {
                     strong_wind_.scaled(s));
 }
 
+SpeciesBasis SpeciesBasis::with_leaf_area_index(double leaf_area_index) const {
+  SpeciesSettings settings = settings_;
+  settings.wind.leaf_area_index = leaf_area_index;
+  settings.wind.validate();
+  SpeciesTimings timings;
+  auto start = Clock::now();
+  const BeamModel model(skeleton_, settings.material);
+  timings.assembly = seconds_since(start);
+  start = Clock::now();
+  WindBasis wind = WindBasis::compute(skeleton_, model, modes_.shapes(), settings.wind);
+  timings.wind = seconds_since(start);
+  SpeciesBasis species = from_parts(skeleton_, std::move(settings), modes_, std::move(wind), strong_wind_);
+  species.timings_ = timings;
+  return species;
+}
+
 }  // namespace fw::trees

@@ -11,6 +11,7 @@
 //   species.node_shapes();                       // (3 n) x m: nodal translations, for u = Phi q on a device
 //   species.strong_wind().corrected_displacement(species.skeleton(), q);   // strong-wind pose of Phi q (3 n)
 //   auto instance = species.scaled(1.1);         // one basis serves a whole stand of similar trees
+//   auto leafier = species.with_leaf_area_index(4.0);   // the same modes, the wind basis of more foliage
 //
 // The expensive part (the eigenproblem) is cached on disk by trees/BasisCache.hpp, with the strong-wind fit.
 #pragma once
@@ -73,6 +74,13 @@ class SpeciesBasis {
   /// The species grown by s about its root origin (Skeleton::transformed(I, 0, s)), with modes, wind basis
   /// and strong-wind correction transformed by the similarity laws instead of recomputed.
   SpeciesBasis scaled(double s) const;
+
+  /// The species with another leaf area index per crown (settings().wind.leaf_area_index; a stand that
+  /// gives its own, host/app/plan/ForestPlan.cpp): the modes and the strong-wind correction kept, since
+  /// foliage adds drag but neither mass nor stiffness (BeamModel), and the wind basis recomputed with the
+  /// new foliage. Throws std::invalid_argument("WindBasisSettings: ...") for a leaf area index that is not
+  /// finite and >= 0.
+  SpeciesBasis with_leaf_area_index(double leaf_area_index) const;
 
  private:
   Skeleton skeleton_;

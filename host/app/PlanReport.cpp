@@ -30,6 +30,22 @@ std::string boundaries_line(const WindGridSetup& wind) {
   return line;
 }
 
+// A stand's density as foresters give it (trees/StandDensity.hpp): LAI over its region, with the leaf area
+// index of each crown that makes it, and FAI over its grid columns.
+std::string stand_line(std::size_t index, const StandPlan& stand) {
+  const trees::StandDensity& d = stand.density;
+  const Eigen::Vector2d extent = stand.max - stand.min;
+  const std::string crowns = stand.leaf_area_index
+                                 ? fmt::format("given; {:.3g} a crown", stand.crown_leaf_area_index)
+                                 : fmt::format("the species' {:.3g} a crown", stand.crown_leaf_area_index);
+  const std::string frontal =
+      d.columns > 0
+          ? fmt::format("frontal area index {:.2f} over {} grid columns", d.frontal_area_index(), d.columns)
+          : std::string("no grid column centre in the region for a frontal area index");
+  return fmt::format("stand {}: {} {} trees on {} x {} m, leaf area index {:.2f} ({}), {}", index, d.trees,
+                     stand.species, extent.x(), extent.y(), d.leaf_area_index(), crowns, frontal);
+}
+
 }  // namespace
 
 void print_plan(const SimulationPlan& plan, std::ostream& out) {
@@ -62,6 +78,7 @@ void print_plan(const SimulationPlan& plan, std::ostream& out) {
   }
   out << fmt::format("trees: {}, leaves: {}, two-way coupling: {}\n", plan.forest.instance_count(),
                      plan.leaf_count, plan.coupling.drag_density.empty() ? "off" : "on");
+  for (std::size_t k = 0; k < plan.stands.size(); ++k) out << stand_line(k, plan.stands[k]) << "\n";
   std::string parts;
   for (const auto& part : plan.memory.parts())
     parts += fmt::format("{}{} {}", parts.empty() ? "" : ", ", part.name, megabytes(part.bytes));

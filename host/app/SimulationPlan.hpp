@@ -20,8 +20,11 @@
 // ..." where the error is in a file), trees::ModalError or std::runtime_error otherwise.
 #pragma once
 
+#include <Eigen/Core>
+
 #include <cstddef>
 #include <cstdint>
+#include <optional>
 #include <ostream>
 #include <string>
 #include <vector>
@@ -34,6 +37,7 @@
 #include "io/writers/ManifestWriter.hpp"
 #include "trees/BasisCache.hpp"
 #include "trees/Forest.hpp"
+#include "trees/StandDensity.hpp"
 
 namespace fw::host {
 
@@ -45,6 +49,20 @@ struct ScenarioRecord {
   std::uint64_t seed = 0;
 };
 
+/// One stand of the scenario (forest.stands[k]) as planned: which trees are its own and how dense they stand.
+struct StandPlan {
+  std::string species;     ///< the scenario's species name
+  int species_index = 0;   ///< into the scenario's forest.species
+  int forest_species = 0;  ///< into forest.species(): the species' basis, or the stand's own (below)
+  int first_instance = 0;  ///< its trees are the instances [first_instance, first_instance + density.trees)
+  Eigen::Vector2d min = Eigen::Vector2d::Zero(), max = Eigen::Vector2d::Zero();  ///< its region, m
+  /// forest.stands[k].leaf_area_index, when the file gives it: the stand's trees are then a basis of their
+  /// own whose crowns carry crown_leaf_area_index, so that the stand's LAI is the figure given.
+  std::optional<double> leaf_area_index;
+  double crown_leaf_area_index = 0.0;  ///< one-sided leaf area per crown hull area of its trees (Foliage)
+  trees::StandDensity density;         ///< LAI and FAI (trees/StandDensity.hpp), from plan_coupling
+};
+
 struct SimulationPlan {
   ScenarioRecord scenario;
   double end_time = 0.0;  ///< s: the run covers [0, end_time]
@@ -52,13 +70,19 @@ struct SimulationPlan {
   TimeInputs inputs;      ///< the ambient wind, the inflow turbulence's sigma_u, the unresolved intensity
   trees::Forest forest;
   CouplingSettings coupling;
-  std::vector<io::SpeciesSummary> species;  ///< per forest species: its basis, its trees, the cache
+  /// Per forest species (forest.species()): its basis, its trees, the cache; the scenario's species first,
+  /// in file order, then one for each stand that gives its own leaf area index.
+  std::vector<io::SpeciesSummary> species;
+  std::vector<StandPlan> stands;      ///< per forest.stands[] entry, in file order
   long leaf_count = 0;                ///< leaves of all instances: the sum over trees of their species' count
   std::vector<float> canopy_density;  ///< per cell, frontal area density a (1/m); empty without trees
   double canopy_dropped_area = 0.0;   ///< m^2 of frontal area outside the domain
   io::OutputSettings output;          ///< folder, frame interval, which writers and fields, probes
   double probe_interval = 0.0;        ///< s between probe samples; 0: every step
   DeviceMemory memory;                ///< what each stage will allocate, by part
+  /// What the plan accepts but the user should hear of (a stand denser than forests are), one line each,
+  /// "FILE:LINE: KEY: ...", without a "warning: " prefix: `check` prints them on stderr, `run` in its log.
+  std::vector<std::string> warnings;
 };
 
 /// Builds the plan. `cache` may be null (no disk cache); `log` (may be null) gets one line per species.
@@ -66,7 +90,8 @@ SimulationPlan plan_simulation(const io::Scenario& scenario, const trees::BasisC
                                std::ostream* log);
 
 /// What `forestwind check` prints: the grid and its boundaries, the turbulence, each species and its trees,
-/// the forest, the device memory by part, the time steps and the outputs, all read from the plan.
+/// the forest, each stand's leaf and frontal area index, the device memory by part, the time steps and the
+/// outputs, all read from the plan (the plan's warnings are the caller's to print).
 void print_plan(const SimulationPlan& plan, std::ostream& out);
 
 /// The largest wind speed the plan's inputs give, m/s: the ambient wind's largest speed over the run

@@ -46,6 +46,7 @@ int run_check(const std::string& scenario_path) {
   const host::SimulationPlan plan = host::plan_simulation(scenario, &cache, nullptr);
   std::cout << fmt::format("{}: scenario '{}' is valid\n", scenario_path, scenario.name);
   host::print_plan(plan, std::cout);
+  for (const std::string& warning : plan.warnings) std::cerr << "warning: " << warning << "\n";
   return 0;
 }
 
@@ -58,6 +59,8 @@ int run_scenario(const RunCommandOptions& options, const GlobalOptions& global) 
   std::ostream* log = options.quiet ? nullptr : &std::cerr;
   trees::BasisCache cache(trees::BasisCache::default_directory());
   host::SimulationPlan plan = host::plan_simulation(scenario, &cache, log);
+  if (log)
+    for (const std::string& warning : plan.warnings) *log << "warning: " << warning << "\n";
   const bool leaves = plan.leaf_count > 0;
 
   host::ComputeContext cc(host::select_device(host::device_filter_from_env(global.device_filter)),

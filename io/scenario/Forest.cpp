@@ -37,6 +37,7 @@ Vec2 region_corner(const Loader& loader, const Field& field, const DomainSetting
 Stand read_stand(const Loader& loader, const Field& item, const Scenario& scenario) {
   const Section<"forest.stands[]"> map(loader, item);
   Stand stand;
+  stand.line = stand.leaf_area_index_line = item.line;
   const Field species = map.require<"species">();
   stand.layout.species = species_index(loader, species, scenario.forest.species);
   stand.species = scenario.forest.species[stand.layout.species].name;
@@ -70,6 +71,10 @@ Stand read_stand(const Loader& loader, const Field& item, const Scenario& scenar
       loader.expected(*scale.get<"min">(),
                       fmt::format("a number <= scale.max ({}, the default)", stand.layout.scale_max));
     }
+  }
+  if (const auto lai = map.get<"leaf_area_index">()) {
+    stand.leaf_area_index = loader.number(*lai);
+    stand.leaf_area_index_line = lai->line;
   }
   // Unless the file gives one: the global seed plus the stand's index.
   stand.layout.seed = scenario.seed + scenario.forest.stands.size();

@@ -142,10 +142,9 @@ void check_species_skeleton(const Scenario& scenario, int species_index, int ske
   // A skeleton of n nodes, root clamped, has 6 (n - 1) DOFs; the modal analysis keeps fewer modes than that.
   const long dofs = 6L * (skeleton_nodes - 1);
   if (species.modes.count >= dofs) {
-    std::string key(schema::key("forest.species[].modes.count").path);  // with the species' index in the []
-    key.insert(key.find("[]") + 1, std::to_string(species_index));
     throw ScenarioError(
-        scenario.file.string(), species.modes.count_line, key,
+        scenario.file.string(), species.modes.count_line,
+        schema::item_path(schema::key("forest.species[].modes.count").path, std::size_t(species_index)),
         fmt::format("at most {} modes for this skeleton of {} nodes ({} DOFs) expected, got '{}'",
                     std::max(0L, dofs - 1), skeleton_nodes, dofs, species.modes.count));
   }

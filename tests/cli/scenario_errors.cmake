@@ -96,6 +96,13 @@ expect_bad(leaves_without_foliage "${WORK}/leaves_without_foliage.yaml:7"
 expect_bad(leaves_attached "${WORK}/leaves_attached.yaml:12" "output.leaves.attached"
            "interval: 1.0}" "interval: 1.0, leaves: {attached: 0}}")
 
+# A stand's own leaf area index: past the forests' largest (the loader), and on the shrub, a stick whose crown
+# has no horizontal extent to carry leaves (the plan, once the skeleton is read).
+expect_bad(stand_lai_above "${WORK}/stand_lai_above.yaml:11" "forest.stands[0].leaf_area_index" "  trees:"
+           "  stands:\n    - {species: shrub, region: {min: [4, 4], max: [12, 12]}, spacing: 4, leaf_area_index: 20}\n  trees:")
+expect_bad(stand_lai_no_crown "${WORK}/stand_lai_no_crown.yaml:11" "forest.stands[0].leaf_area_index" "  trees:"
+           "  stands:\n    - {species: shrub, region: {min: [4, 4], max: [12, 12]}, spacing: 4, leaf_area_index: 2}\n  trees:")
+
 # The example scenarios are valid.
 file(GLOB examples "${SCENARIOS}/*.yaml")
 foreach(example ${examples})

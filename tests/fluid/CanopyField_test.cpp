@@ -176,6 +176,40 @@ TEST_CASE("CanopyField: a tree outside the domain contributes nothing and is rep
   CHECK(canopy.tree_count() == 2);
 }
 
+TEST_CASE(
+    "CanopyField: a rectangle's columns are those whose centres lie in it, with the frontal area in them",
+    "[canopy]") {
+  fluid::GridSpec spec = grid(8, 6, 4, 2.0);
+  spec.origin = {10.0, -4.0, 0.0};
+  CanopyField canopy(spec);
+  // Two vertical stems, 6 m tall, frontal area 0.3 and 0.5 m^2 per metre: one in column (1, 1), centre
+  // (13, -1); one in column (6, 4), centre (23, 5).
+  const auto stem = [](double x, double y, double alpha) {
+    fluid::CanopyElement e;
+    e.start = {x, y, 0.0};
+    e.end = {x, y, 6.0};
+    e.frontal_area_per_metre = alpha;
+    return e;
+  };
+  const std::vector<fluid::CanopyElement> stems{stem(12.5, -1.5, 0.3), stem(23.5, 5.5, 0.5)};
+  canopy.add_elements(stems);
+  // [12, 18] x [-2, 6] holds the centres x 13, 15, 17 and y -1, 1, 3, 5: 12 columns, the first stem only.
+  const fluid::CanopyColumns first = canopy.columns_in({12.0, -2.0}, {18.0, 6.0});
+  CHECK(first.columns == 12);
+  CHECK(first.ground_area == 12 * 4.0);
+  CHECK(first.frontal_area == Approx(0.3 * 6.0).epsilon(1e-12));  // sums of a h^3 in double: rounding only
+  // Edges included: [13, 23] x [-1, 5] holds the centres 13 .. 23 and -1 .. 5, both stems.
+  const fluid::CanopyColumns both = canopy.columns_in({13.0, -1.0}, {23.0, 5.0});
+  CHECK(both.columns == 6 * 4);
+  CHECK(both.frontal_area == Approx(0.3 * 6.0 + 0.5 * 6.0).epsilon(1e-12));
+  CHECK(both.frontal_area == Approx(canopy.frontal_area_in_domain()).epsilon(1e-12));
+  // A rectangle between centres holds no column.
+  const fluid::CanopyColumns none = canopy.columns_in({13.2, -1.0}, {14.8, 5.0});
+  CHECK(none.columns == 0);
+  CHECK(none.ground_area == 0.0);
+  CHECK(none.frontal_area == 0.0);
+}
+
 TEST_CASE("CanopyField: bad arguments throw std::invalid_argument naming the class", "[canopy]") {
   using Catch::Matchers::Contains;
   CHECK_THROWS_WITH(CanopyField(grid(0, 4, 4, 1.0)), Contains("CanopyField"));

@@ -3,6 +3,7 @@
 #include "fluid/TurbulenceBox.hpp"
 #include "kernels/shared_types.h"
 #include "tests/support/TempDir.hpp"
+#include "trees/StandDensity.hpp"
 
 #include <fmt/format.h>
 #include <catch2/catch.hpp>
@@ -1081,6 +1082,47 @@ TEST_CASE("load_scenario: stands and generated skeletons take their default seed
   CHECK(seeded.forest.stands[0].layout.seed == 7);
   CHECK(seeded.forest.stands[1].layout.seed == 5);
   CHECK(seeded.forest.stands[2].layout.seed == 9);
+}
+
+TEST_CASE("load_scenario: a stand's own leaf_area_index is read with its line, and a bad one is refused",
+          "[scenario]") {
+  fw::test::TempDir dir("fw_scenario");
+  const std::string forest =
+      kBase +
+      "forest:\n"
+      "  species:\n"
+      "    - {name: oak, skeleton: {generate: {preset: broadleaf}}, canopy: {leaf_area_index: 3}}\n"
+      "  stands:\n"
+      "    - {species: oak, region: {min: [0, 0], max: [40, 20]}, spacing: 8.0}\n";  // 9
+  auto with = [&](const std::string& value) {
+    return forest +
+           "    - {species: oak, region: {min: [0, 0], max: [40, 20]}, spacing: 8.0,\n"  // 10
+           "       leaf_area_index: " +
+           value + "}\n";  // 11
+  };
+  const Scenario scenario = fw::io::load_scenario(dir.write("given.yaml", with("4.5")));
+  REQUIRE(scenario.forest.stands.size() == 2);
+  // Left out: the species' canopy.leaf_area_index stays on every crown of the stand.
+  CHECK_FALSE(scenario.forest.stands[0].leaf_area_index);
+  CHECK(scenario.forest.stands[0].line == 9);
+  CHECK(scenario.forest.stands[0].leaf_area_index_line == 9);
+  CHECK(scenario.forest.stands[1].leaf_area_index == 4.5);
+  CHECK(scenario.forest.stands[1].line == 10);
+  CHECK(scenario.forest.stands[1].leaf_area_index_line == 11);
+  CHECK(scenario.forest.species[0].canopy.leaf_area_index == 3.0);  // both given: each keeps its own
+  // The upper limit is the forests' own (trees::StandDensity), and it is allowed.
+  const std::string most = fmt::format("{}", fw::trees::StandDensity::kMaxLeafAreaIndex);
+  CHECK(fw::io::load_scenario(dir.write("most.yaml", with(most))).forest.stands[1].leaf_area_index ==
+        fw::trees::StandDensity::kMaxLeafAreaIndex);
+
+  const std::string key = "forest.stands[1].leaf_area_index";
+  const std::string range = "a number > 0 and <= " + most + " (m^2/m^2) expected";
+  expect_error(dir, "lai_zero", with("0"), 11, key, range + ", got '0'");
+  expect_error(dir, "lai_negative", with("-2"), 11, key, range + ", got '-2'");
+  expect_error(dir, "lai_above", with("19"), 11, key, range + ", got '19'");
+  expect_error(dir, "lai_infinite", with(".inf"), 11, key, range + ", got '.inf'");
+  expect_error(dir, "lai_nan", with(".nan"), 11, key, range + ", got '.nan'");
+  expect_error(dir, "lai_word", with("dense"), 11, key, range + ", got 'dense'");
 }
 
 TEST_CASE("check_species_skeleton: more modes than the skeleton has DOFs names modes.count's line",

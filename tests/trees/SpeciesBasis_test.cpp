@@ -5,6 +5,7 @@
 #include <Eigen/Geometry>
 
 #include <cmath>
+#include <stdexcept>
 #include <vector>
 
 #include "trees/BeamModel.hpp"
@@ -95,6 +96,29 @@ TEST_CASE("SpeciesBasis: a scaled species matches the species computed from the 
   // Sample points scale about the origin; tolerance 1e-12 m.
   CHECK((scaled.wind().sample_points() - recomputed.wind().sample_points()).cwiseAbs().maxCoeff() < 1e-12);
   CHECK(scaled.skeleton().height() == Approx(s * tree.height()).epsilon(1e-12));
+}
+
+TEST_CASE("SpeciesBasis: another leaf area index keeps the modes and gives the wind basis of that foliage") {
+  const Skeleton tree = small_tree();
+  SpeciesSettings settings = settings_with(6, 2);
+  settings.wind.leaf_area_index = 2.0;
+  const SpeciesBasis base = SpeciesBasis::compute(tree, settings);
+  const SpeciesBasis leafier = base.with_leaf_area_index(5.0);
+  CHECK(leafier.settings().wind.leaf_area_index == 5.0);
+  CHECK(base.settings().wind.leaf_area_index == 2.0);
+  // Foliage adds drag, neither mass nor stiffness: the very same modes and strong-wind correction.
+  CHECK(leafier.modes().omega() == base.modes().omega());
+  CHECK(leafier.modes().shapes() == base.modes().shapes());
+  CHECK(leafier.node_shapes() == base.node_shapes());
+  CHECK(leafier.strong_wind().mode_count() == base.strong_wind().mode_count());
+  // The wind basis is the one WindBasis computes with the new foliage on the same modes, bit for bit.
+  settings.wind.leaf_area_index = 5.0;
+  const BeamModel model(tree, settings.material);
+  const WindBasis wind = WindBasis::compute(tree, model, base.modes().shapes(), settings.wind);
+  CHECK(leafier.wind().projection_matrix() == wind.projection_matrix());
+  CHECK(leafier.wind().sample_points() == wind.sample_points());  // drag-weighted: they move with the foliage
+  CHECK_FALSE(leafier.wind().projection_matrix() == base.wind().projection_matrix());
+  CHECK_THROWS_AS(base.with_leaf_area_index(-1.0), std::invalid_argument);
 }
 
 TEST_CASE("SpeciesBasis: parts that do not fit together are rejected") {

@@ -1,6 +1,8 @@
 // The coupling's part of the plan: every tree's frontal area on the grid (the canopy density the wind
-// frames show) and, with two-way coupling, the drag density the wind feels; the modal integrator; the
-// strong-wind correction of output frames; and the memory of the canopy drag and of Stam's forcing.
+// frames show) and, with two-way coupling, the drag density the wind feels; each stand's leaf and frontal
+// area index from the same rasterisation (trees/StandDensity.hpp), with a warning for a stand whose leaf
+// area index no forest has; the modal integrator; the strong-wind correction of output frames; and the
+// memory of the canopy drag and of Stam's forcing.
 #include <fmt/format.h>
 
 #include <stdexcept>
@@ -11,6 +13,41 @@
 #include "trees/CanopyDrag.hpp"
 
 namespace fw::host {
+
+namespace {
+
+// "FILE:LINE: forest.stands[k]: ...": the stand's leaf area index lies outside forests', with the keys that
+// set it.
+std::string stand_warning(const io::Scenario& scenario, std::size_t k, const StandPlan& stand) {
+  using trees::StandDensity;
+  namespace schema = io::schema;
+  const io::Stand& given = scenario.forest.stands[k];
+  const double lai = stand.density.leaf_area_index();
+  const bool dense = lai > StandDensity::kForestLeafAreaIndexHigh;
+  std::string keys;
+  if (stand.leaf_area_index) {
+    keys = fmt::format("{} {} sets it: {} it",
+                       schema::item_path(schema::key("forest.stands[].leaf_area_index").path, k),
+                       *stand.leaf_area_index, dense ? "lower" : "raise");
+  } else {
+    const std::string spacing = schema::item_path(schema::key("forest.stands[].spacing").path, k);
+    const std::string crown = schema::item_path(schema::key("forest.species[].canopy.leaf_area_index").path,
+                                                std::size_t(stand.species_index));
+    keys = fmt::format(
+        "{} {} m and {} {} (per crown) set it: {} the spacing or {} the crowns' leaf area index, or give the "
+        "stand's own {}",
+        spacing, given.layout.spacing, crown, stand.crown_leaf_area_index, dense ? "widen" : "narrow",
+        dense ? "lower" : "raise", schema::item_path(schema::key("forest.stands[].leaf_area_index").path, k));
+  }
+  return fmt::format(
+      "{}:{}: {}: the {} stand's leaf area index is {:.3g} m^2 of leaf per m^2 of ground, {} the {} to {} of "
+      "forests; {}",
+      scenario.file.string(), given.line, schema::item_path("forest.stands[]", k), stand.species, lai,
+      dense ? "above" : "below", StandDensity::kForestLeafAreaIndexLow,
+      StandDensity::kForestLeafAreaIndexHigh, keys);
+}
+
+}  // namespace
 
 void plan_coupling(const io::Scenario& scenario, SimulationPlan& plan) {
   CouplingSettings& coupling = plan.coupling;
@@ -29,9 +66,24 @@ void plan_coupling(const io::Scenario& scenario, SimulationPlan& plan) {
                       scenario.file.string(), settings.dt, limit));
   }
   fluid::CanopyField canopy(plan.wind.spec);
-  for (int k = 0; k < plan.forest.instance_count(); ++k) trees::add_to_canopy(canopy, plan.forest, k);
+  std::vector<double> leaf_area(std::size_t(plan.forest.instance_count()));  // m^2, one-sided, per tree
+  for (int k = 0; k < plan.forest.instance_count(); ++k)
+    leaf_area[std::size_t(k)] = trees::add_to_canopy(canopy, plan.forest, k).leaf_area;
   plan.canopy_density = canopy.frontal_area_density();
   plan.canopy_dropped_area = canopy.dropped_frontal_area();
+  for (std::size_t k = 0; k < plan.stands.size(); ++k) {
+    StandPlan& stand = plan.stands[k];
+    trees::StandDensity& density = stand.density;
+    density.leaf_area = 0.0;
+    for (int tree = stand.first_instance; tree < stand.first_instance + density.trees; ++tree)
+      density.leaf_area += leaf_area[std::size_t(tree)];
+    const fluid::CanopyColumns columns =
+        canopy.columns_in({stand.min.x(), stand.min.y()}, {stand.max.x(), stand.max.y()});
+    density.columns = columns.columns;
+    density.column_ground_area = columns.ground_area;
+    density.column_frontal_area = columns.frontal_area;
+    if (!density.forest_like()) plan.warnings.push_back(stand_warning(scenario, k, stand));
+  }
   if (scenario.forest.two_way_coupling) {
     coupling.drag_density = canopy.drag_density();
     plan.memory.add("canopy drag", WindGrid::estimate_canopy_bytes(plan.wind.spec));

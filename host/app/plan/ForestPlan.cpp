@@ -1,16 +1,24 @@
 // The forest's part of the plan: the tree instances (the stands first, in file order, then the single
 // trees), each standing on the ground under it (the terrain's height, else the domain floor) unless the file
-// gives z, turned counter-clockwise about +z by its yaw; the trees and leaves per species; and the device
-// memory of the trees' and the leaves' stages.
+// gives z, turned counter-clockwise about +z by its yaw; the stands (plan.stands); the trees and leaves per
+// species; and the device memory of the trees' and the leaves' stages.
+//
+// A stand that gives its own leaf area index gets a basis of its own (SpeciesBasis::with_leaf_area_index,
+// appended after the scenario's species, with its leaves and its summary): its species' with the crown leaf
+// area index at which the stand's trees, as placed, carry that leaf area index over its region
+// (trees/StandDensity.hpp). The species' own index stays for its other stands and its single trees.
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <chrono>
 #include <stdexcept>
 
 #include "host/app/plan/PlanBuilders.hpp"
 #include "host/stages/ForestStages.hpp"
 #include "host/stages/LeafStages.hpp"
+#include "trees/Foliage.hpp"
 #include "trees/ForestLayout.hpp"
+#include "trees/StandDensity.hpp"
 
 namespace fw::host {
 
@@ -22,13 +30,58 @@ double ground_z(const io::Scenario& scenario, double x, double y) {
   return z;
 }
 
-std::vector<trees::TreeInstance> place_instances(const io::Scenario& scenario) {
+// The stand's own basis (header comment), appended to `bases` with its leaves and summary; its index.
+int stand_basis(const io::Scenario& scenario, std::size_t index, const std::vector<trees::PlacedTree>& placed,
+                StandPlan& stand, std::vector<trees::SpeciesBasis>& bases, SimulationPlan& plan) {
+  const auto start = std::chrono::steady_clock::now();
+  const trees::SpeciesBasis& species = bases[std::size_t(stand.species_index)];
+  const double crown_area = trees::Foliage::of(species.skeleton(), 1.0).crown_projected_area;
+  const io::Stand& given = scenario.forest.stands[index];
+  try {
+    stand.crown_leaf_area_index =
+        trees::crown_leaf_area_index(*stand.leaf_area_index, given.layout.ground_area(), crown_area, placed);
+  } catch (const std::invalid_argument& error) {  // a species whose crown cannot carry leaves
+    throw io::ScenarioError(
+        scenario.file.string(), given.leaf_area_index_line,
+        io::schema::item_path(io::schema::key("forest.stands[].leaf_area_index").path, index),
+        fmt::format("a stand of a species with a crown to carry the leaves expected ({}), got '{}'",
+                    error.what(), *stand.leaf_area_index));
+  }
+  bases.push_back(species.with_leaf_area_index(stand.crown_leaf_area_index));
+  plan.coupling.leaves.push_back(
+      species_leaves(bases.back(), scenario.forest.species[std::size_t(stand.species_index)].leaves));
+  io::SpeciesSummary summary = plan.species[std::size_t(stand.species_index)];
+  summary.name = fmt::format("{} (stand {})", stand.species, index);
+  summary.trees = 0;
+  summary.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  plan.species.push_back(summary);
+  return int(bases.size()) - 1;
+}
+
+// Places every tree, the stands' first; fills plan.stands and adds the stands' own bases to `bases`.
+std::vector<trees::TreeInstance> place_instances(const io::Scenario& scenario,
+                                                 std::vector<trees::SpeciesBasis>& bases,
+                                                 SimulationPlan& plan) {
   std::vector<trees::TreeInstance> instances;
-  for (const io::Stand& stand : scenario.forest.stands) {
-    for (const trees::PlacedTree& placed : trees::place_stand(stand.layout)) {
-      const double x = placed.position.x(), y = placed.position.y();
-      instances.push_back({placed.species, {x, y, ground_z(scenario, x, y)}, placed.yaw_rad, placed.scale});
+  for (std::size_t k = 0; k < scenario.forest.stands.size(); ++k) {
+    const io::Stand& given = scenario.forest.stands[k];
+    const std::vector<trees::PlacedTree> placed = trees::place_stand(given.layout);
+    StandPlan stand;
+    stand.species = given.species;
+    stand.species_index = stand.forest_species = given.layout.species;
+    stand.first_instance = int(instances.size());
+    stand.min = given.layout.min;
+    stand.max = given.layout.max;
+    stand.leaf_area_index = given.leaf_area_index;
+    stand.crown_leaf_area_index = bases[std::size_t(stand.species_index)].settings().wind.leaf_area_index;
+    if (stand.leaf_area_index) stand.forest_species = stand_basis(scenario, k, placed, stand, bases, plan);
+    stand.density.trees = int(placed.size());
+    stand.density.ground_area = given.layout.ground_area();
+    for (const trees::PlacedTree& tree : placed) {
+      const double x = tree.position.x(), y = tree.position.y();
+      instances.push_back({stand.forest_species, {x, y, ground_z(scenario, x, y)}, tree.yaw_rad, tree.scale});
     }
+    plan.stands.push_back(std::move(stand));
   }
   for (const io::PlacedTreeSettings& placed : scenario.forest.trees) {
     const auto& p = placed.position;
@@ -41,7 +94,7 @@ std::vector<trees::TreeInstance> place_instances(const io::Scenario& scenario) {
 }  // namespace
 
 void plan_forest(const io::Scenario& scenario, std::vector<trees::SpeciesBasis> bases, SimulationPlan& plan) {
-  std::vector<trees::TreeInstance> instances = place_instances(scenario);
+  std::vector<trees::TreeInstance> instances = place_instances(scenario, bases, plan);
   for (const auto& tree : instances) {
     ++plan.species[std::size_t(tree.species)].trees;
     plan.leaf_count += plan.coupling.leaves[std::size_t(tree.species)].count();
@@ -53,7 +106,7 @@ void plan_forest(const io::Scenario& scenario, std::vector<trees::SpeciesBasis> 
   if (plan.leaf_count > LeafStages::kMaxLeaves)
     throw std::invalid_argument(fmt::format(
         "{}: forest: {} leaves on all trees, more than the {} the leaf stage holds; lower a species' "
-        "leaves.fraction or canopy.leaf_area_index",
+        "leaves.fraction or canopy.leaf_area_index, or a stand's leaf_area_index",
         scenario.file.string(), plan.leaf_count, LeafStages::kMaxLeaves));
   plan.memory.add("leaves", LeafStages::estimate_device_bytes(plan.forest, plan.coupling.leaves));
 }

@@ -6,8 +6,8 @@
 //   plan_wind(scenario, plan);          // grid, solids, profile, gusts, mean forcing, ambient wind over time
 //   plan_turbulence(scenario, plan);    // the inflow box and its sigma_u(t); Stam's unresolved forcing
 //   auto bases = plan_species(scenario, cache, log, plan);   // bases (cache), leaves, summaries
-//   plan_forest(scenario, std::move(bases), plan);          // the placed instances
-//   plan_coupling(scenario, plan);      // the canopy and its drag, integrator, strong-wind correction
+//   plan_forest(scenario, std::move(bases), plan);          // the placed instances, the stands
+//   plan_coupling(scenario, plan);      // the canopy and its drag, the stands' density, integrator, ...
 //   plan_outputs(scenario, plan);       // writers, probes, the scenario record
 #pragma once
 
@@ -18,6 +18,7 @@
 #include "io/Scenario.hpp"
 #include "trees/BasisCache.hpp"
 #include "trees/SpeciesBasis.hpp"
+#include "trees/SpeciesLeaves.hpp"
 
 namespace fw::host {
 
@@ -29,7 +30,11 @@ void plan_turbulence(const io::Scenario& scenario, SimulationPlan& plan);
 /// leaves (plan.coupling.leaves) and its summary (plan.species). `cache` and `log` may be null.
 std::vector<trees::SpeciesBasis> plan_species(const io::Scenario& scenario, const trees::BasisCache* cache,
                                               std::ostream* log, SimulationPlan& plan);
-/// host/app/plan/ForestPlan.cpp (after plan_species)
+/// host/app/plan/SpeciesPlan.cpp: the leaves `settings` ask for on a basis' own skeleton and foliage (its
+/// settings().wind.leaf_area_index), so that their elements are the forest's; none without leaves.
+trees::SpeciesLeaves species_leaves(const trees::SpeciesBasis& basis, const trees::LeafSettings& settings);
+/// host/app/plan/ForestPlan.cpp (after plan_species): the placed instances, and a basis of its own for every
+/// stand that gives its leaf area index (plan.stands, plan.species, plan.coupling.leaves)
 void plan_forest(const io::Scenario& scenario, std::vector<trees::SpeciesBasis> bases, SimulationPlan& plan);
 /// host/app/plan/CouplingPlan.cpp (after plan_forest and plan_turbulence)
 void plan_coupling(const io::Scenario& scenario, SimulationPlan& plan);

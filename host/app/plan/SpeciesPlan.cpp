@@ -46,6 +46,13 @@ trees::SpeciesSettings species_settings(const io::Species& species) {
 
 }  // namespace
 
+trees::SpeciesLeaves species_leaves(const trees::SpeciesBasis& basis, const trees::LeafSettings& settings) {
+  if (!settings.has_leaves()) return {};
+  return trees::SpeciesLeaves::generate(
+      basis.skeleton(), trees::Foliage::of(basis.skeleton(), basis.settings().wind.leaf_area_index),
+      settings);
+}
+
 std::vector<trees::SpeciesBasis> plan_species(const io::Scenario& scenario, const trees::BasisCache* cache,
                                               std::ostream* log, SimulationPlan& plan) {
   std::vector<trees::SpeciesBasis> bases;
@@ -72,13 +79,7 @@ std::vector<trees::SpeciesBasis> plan_species(const io::Scenario& scenario, cons
     summary.modes = basis.modes().mode_count();
     summary.samples = basis.wind().sample_count();
     summary.first_hz = basis.modes().frequencies_hz()(0);
-    // The leaves on the basis' own skeleton and foliage, so that their elements are the forest's.
-    plan.coupling.leaves.push_back(
-        species.leaves.has_leaves()
-            ? trees::SpeciesLeaves::generate(
-                  basis.skeleton(), trees::Foliage::of(basis.skeleton(), species.canopy.leaf_area_index),
-                  species.leaves)
-            : trees::SpeciesLeaves());
+    plan.coupling.leaves.push_back(species_leaves(basis, species.leaves));
     if (log) {
       const int leaves = plan.coupling.leaves.back().count();
       *log << fmt::format("species {}: {} nodes, {} modes from {:.3f} Hz, {} wind samples{} ({}, {:.2f} s)\n",

@@ -1,8 +1,11 @@
 // The plan on the host, no device: every species' leaves, generated on the skeleton of its basis, their
-// totals and device memory, and the same leaves from the same scenario.
+// totals and device memory, and the same leaves from the same scenario; each stand's leaf and frontal area
+// index against a stand worked out by hand, the warning for a stand no forest is like, and a stand's own
+// leaf area index.
 #include "host/app/SimulationPlan.hpp"
 #include "host/stages/LeafStages.hpp"
 
+#include <fmt/format.h>
 #include <catch2/catch.hpp>
 
 #include <cmath>
@@ -13,8 +16,12 @@
 #include "io/Scenario.hpp"
 #include "tests/support/TempDir.hpp"
 #include "trees/Foliage.hpp"
+#include "trees/Skeleton.hpp"
+#include "trees/StandDensity.hpp"
+#include "trees/TreeFile.hpp"
 
 using Catch::Matchers::Contains;
+using Catch::Matchers::StartsWith;
 using fw::test::TempDir;
 
 namespace {
@@ -57,7 +64,208 @@ fw::host::SimulationPlan plan_of(const TempDir& dir, const std::string& name, co
   return fw::host::plan_simulation(scenario, nullptr, log);
 }
 
+// The stand worked out by hand: kTreeFile's crown hull is the rhombus of its branch tips (+-1.2, 0) and
+// (0, +-1.0), 2.4 m^2. A grid 4.5 m apart, centred in the 12 x 12 m region [2, 14]^2, puts 3 x 3 trees at
+// 3.5, 8 and 12.5 on each axis, every crown (and so every element) inside the region, whose columns of 2 m
+// cells (centres 3 .. 13) cover it exactly. One more oak stands alone at (24, 8), outside the stand's
+// columns.
+constexpr double kCrownArea = 2.4;     // m^2
+constexpr double kRegionArea = 144.0;  // m^2, 12 x 12
+constexpr int kStandTrees = 9;
+
+// Species oak (crown leaf area index `crown_lai`, `leaves` a flow map or empty), one stand of it over
+// [2, 14]^2 with the rest of its entry `stand` (layout, spacing, maybe leaf_area_index), and the lone oak.
+std::string stand_scenario(double crown_lai, const std::string& stand, const std::string& leaves = "") {
+  return "scenario: plan_stand\nseed: 4\n"
+         "time: {end: 1.0}\n"
+         "domain: {size: [32, 16, 8], cell_size: 2.0}\n"
+         "wind: {speed: 5.0, direction: 270}\n"
+         "forest:\n"
+         "  species:\n"
+         "    - name: oak\n"
+         "      skeleton: {file: tree.tree}\n"
+         "      modes: {count: 4, wind_samples: 2}\n" +
+         fmt::format("      canopy: {{leaf_area_index: {}}}\n", crown_lai) +
+         (leaves.empty() ? std::string() : "      leaves: " + leaves + "\n") +
+         "  stands:\n"  // the stand's entry is on line 13 (14 with leaves)
+         "    - {species: oak, region: {min: [2, 2], max: [14, 14]}, " +
+         stand +
+         "}\n"
+         "  trees:\n"
+         "    - {species: oak, position: [24, 8]}\n";
+}
+
+fw::host::SimulationPlan stand_plan(const TempDir& dir, const std::string& name, const std::string& text) {
+  dir.write("tree.tree", kTreeFile);
+  return fw::host::plan_simulation(fw::io::load_scenario(dir.write(name + ".yaml", text)), nullptr, nullptr);
+}
+
+// Sum over kTreeFile's elements of D L, D = r_a + r_b (the wood's frontal area, trees/CanopyDrag.hpp), m^2.
+double woody_area(const TempDir& dir) {
+  const fw::trees::Skeleton tree = fw::trees::read_tree_file(dir.write("tree.tree", kTreeFile));
+  double area = 0.0;
+  for (const auto& [parent, child] : tree.elements()) {
+    const auto& a = tree.node(parent);
+    const auto& b = tree.node(child);
+    area += (a.radius + b.radius) * (b.position - a.position).norm();
+  }
+  return area;
+}
+
 }  // namespace
+
+TEST_CASE("SimulationPlan: a stand's leaf and frontal area index are those of the stand worked out by hand",
+          "[simulation][plan]") {
+  TempDir dir("fw_plan");
+  constexpr double kCrownLai = 10.0;
+  const auto plan = stand_plan(dir, "hand", stand_scenario(kCrownLai, "layout: grid, spacing: 4.5"));
+  REQUIRE(plan.stands.size() == 1);
+  const fw::host::StandPlan& stand = plan.stands[0];
+  const fw::trees::StandDensity& density = stand.density;
+  REQUIRE(density.trees == kStandTrees);
+  CHECK(stand.first_instance == 0);
+  CHECK(stand.forest_species == 0);  // the species' own basis: the stand gives no leaf area index
+  CHECK(density.ground_area == kRegionArea);
+  CHECK(density.columns == 36);  // 6 x 6 columns of 2 m
+  CHECK(density.column_ground_area == kRegionArea);
+  // The crown hull as the foliage computes it (exact, up to the rounding of the hull's shoelace sum).
+  CHECK(fw::trees::Foliage::of(plan.forest.species()[0].skeleton(), 1.0).crown_projected_area ==
+        Approx(kCrownArea).epsilon(1e-12));
+
+  // LAI = N x (crown LAI x crown area) / region area = 9 x 24 / 144. The leaf areas come from the world
+  // skeletons (turned and moved), whose hulls equal the species' to rounding: 1e-12 relative.
+  const double lai = kStandTrees * kCrownLai * kCrownArea / kRegionArea;
+  CHECK(density.leaf_area_index() == Approx(lai).epsilon(1e-12));
+  CHECK(density.forest_like());
+  // FAI = N x (wood + leaves) / the columns' ground, every element inside the columns. The field sums in
+  // double over pieces clipped at the cells, so only rounding separates the two: 1e-10 relative.
+  const double fai = kStandTrees * (woody_area(dir) + kCrownLai * kCrownArea) / kRegionArea;
+  CHECK(density.frontal_area_index() == Approx(fai).epsilon(1e-10));
+  CHECK(plan.warnings.empty());
+
+  // check prints both figures, and no line for the lone tree.
+  std::ostringstream out;
+  fw::host::print_plan(plan, out);
+  INFO(out.str());
+  CHECK_THAT(out.str(), Contains(fmt::format("stand 0: 9 oak trees on 12 x 12 m, leaf area index {:.2f} (the "
+                                             "species' 10 a crown), frontal area index {:.2f} over 36 grid "
+                                             "columns\n",
+                                             lai, fai)));
+  CHECK(out.str().find("stand 1") == std::string::npos);
+}
+
+TEST_CASE(
+    "SimulationPlan: a stand denser or sparser than any forest warns and names its keys, a forest's does not",
+    "[simulation][plan]") {
+  TempDir dir("fw_plan");
+  // 9 x 9 trees 1.5 m apart carry 81 x 24 m^2 of leaves on 144 m^2: LAI 13.5, above 12.
+  const std::string dense_file = dir.path() + "/dense.yaml";
+  const auto dense = stand_plan(dir, "dense", stand_scenario(10.0, "layout: grid, spacing: 1.5"));
+  REQUIRE(dense.stands[0].density.trees == 81);
+  CHECK(dense.stands[0].density.leaf_area_index() == Approx(13.5).epsilon(1e-12));
+  REQUIRE(dense.warnings.size() == 1);
+  const std::string& warning = dense.warnings[0];
+  INFO(warning);
+  CHECK_THAT(warning,
+             StartsWith(dense_file + ":13: forest.stands[0]: the oak stand's leaf area index is 13.5 "));
+  CHECK_THAT(warning, Contains("above the 0.3 to 12 of forests"));
+  CHECK_THAT(warning, Contains("forest.stands[0].spacing 1.5 m"));
+  CHECK_THAT(warning, Contains("forest.species[0].canopy.leaf_area_index 10 (per crown)"));
+  CHECK_THAT(warning, Contains("forest.stands[0].leaf_area_index"));
+
+  // Crowns at leaf area index 1 on the hand-worked grid: LAI 0.15, below 0.3.
+  const auto sparse = stand_plan(dir, "sparse", stand_scenario(1.0, "layout: grid, spacing: 4.5"));
+  CHECK(sparse.stands[0].density.leaf_area_index() == Approx(0.15).epsilon(1e-12));
+  REQUIRE(sparse.warnings.size() == 1);
+  CHECK_THAT(sparse.warnings[0], Contains("below the 0.3 to 12 of forests"));
+
+  // A stand given a leaf area index outside the range names that key.
+  const auto given =
+      stand_plan(dir, "given", stand_scenario(3.0, "layout: grid, spacing: 4.5, leaf_area_index: 15"));
+  REQUIRE(given.warnings.size() == 1);
+  CHECK_THAT(given.warnings[0], Contains("forest.stands[0].leaf_area_index 15 sets it: lower it"));
+
+  // LAI 1.5 (the hand-worked stand) and a poisson stand of the same crowns: no warning.
+  CHECK(stand_plan(dir, "forest", stand_scenario(10.0, "layout: grid, spacing: 4.5")).warnings.empty());
+  const auto poisson = stand_plan(dir, "poisson", stand_scenario(10.0, "spacing: 3.0"));
+  INFO("poisson LAI " << poisson.stands[0].density.leaf_area_index());
+  CHECK(poisson.stands[0].density.forest_like());
+  CHECK(poisson.warnings.empty());
+}
+
+TEST_CASE(
+    "SimulationPlan: a stand's own leaf area index scales its trees' foliage, leaves and canopy density to "
+    "it",
+    "[simulation][plan]") {
+  TempDir dir("fw_plan");
+  constexpr double kSpeciesLai = 3.0, kStandLai = 4.0;
+  const std::string leaves = "{area: 0.01, fraction: 0.1}";
+  const auto plan = stand_plan(
+      dir, "own", stand_scenario(kSpeciesLai, "layout: grid, spacing: 4.5, leaf_area_index: 4", leaves));
+  const fw::host::StandPlan& stand = plan.stands[0];
+  REQUIRE(stand.leaf_area_index == kStandLai);
+
+  // The stand's trees get a basis of their own, after the species'; the lone oak keeps the species'.
+  REQUIRE(plan.forest.species().size() == 2);
+  CHECK(stand.forest_species == 1);
+  for (int k = 0; k < kStandTrees; ++k) CHECK(plan.forest.instances()[std::size_t(k)].species == 1);
+  CHECK(plan.forest.instances()[kStandTrees].species == 0);
+  REQUIRE(plan.species.size() == 2);
+  CHECK(plan.species[1].name == "oak (stand 0)");
+  CHECK(plan.species[0].trees == 1);
+  CHECK(plan.species[1].trees == kStandTrees);
+  // Each crown carries LAI x region / (N x crown area): 4 x 144 / (9 x 2.4) = 26.67 per crown hull area.
+  const double crown_lai = kStandLai * kRegionArea / (kStandTrees * kCrownArea);
+  CHECK(stand.crown_leaf_area_index == Approx(crown_lai).epsilon(1e-12));
+  CHECK(plan.forest.species()[1].settings().wind.leaf_area_index == stand.crown_leaf_area_index);
+  CHECK(plan.forest.species()[0].settings().wind.leaf_area_index == kSpeciesLai);
+  // The same modes (foliage weighs nothing), another wind basis: more foliage, more load.
+  CHECK(plan.forest.species()[1].modes().frequencies_hz() ==
+        plan.forest.species()[0].modes().frequencies_hz());
+  CHECK(plan.forest.species()[1].wind().projection_matrix().norm() >
+        plan.forest.species()[0].wind().projection_matrix().norm());
+
+  // The stand's LAI is the figure given (to the rounding of the crown hulls: 1e-12), and its FAI is the
+  // wood's plus that figure, every element inside the columns (rounding of the cell sums: 1e-10).
+  CHECK(stand.density.leaf_area_index() == Approx(kStandLai).epsilon(1e-12));
+  const double fai = kStandTrees * woody_area(dir) / kRegionArea + kStandLai;
+  CHECK(stand.density.frontal_area_index() == Approx(fai).epsilon(1e-10));
+  CHECK(plan.warnings.empty());
+
+  // Leaves follow the foliage: round(fraction x leaf area / area) on each, the stand's with its own.
+  REQUIRE(plan.coupling.leaves.size() == 2);
+  CHECK(plan.coupling.leaves[0].count() == std::lround(0.1 * kSpeciesLai * kCrownArea / 0.01));
+  CHECK(plan.coupling.leaves[1].count() == std::lround(0.1 * crown_lai * kCrownArea / 0.01));
+  CHECK(plan.leaf_count == plan.coupling.leaves[0].count() + kStandTrees * plan.coupling.leaves[1].count());
+
+  std::ostringstream out;
+  fw::host::print_plan(plan, out);
+  INFO(out.str());
+  CHECK_THAT(out.str(),
+             Contains("stand 0: 9 oak trees on 12 x 12 m, leaf area index 4.00 (given; 26.7 a crown)"));
+  CHECK_THAT(out.str(), Contains("species oak (stand 0): "));
+}
+
+TEST_CASE(
+    "SimulationPlan: a stand's own leaf area index on crowns that cannot carry leaves names the key's line",
+    "[simulation][plan]") {
+  TempDir dir("fw_plan");
+  // A vertical stick: its crown hull has no area, so no foliage can give the stand a leaf area index.
+  dir.write("stick.tree", "0 -1 0 0 0 0.1\n1 0 0 0 1 0.08\n2 1 0 0 2 0.05\n");
+  std::string text = stand_scenario(3.0, "spacing: 4.0,\n       leaf_area_index: 2");
+  text.replace(text.find("tree.tree"), 9, "stick.tree");
+  const std::string path = dir.write("stick.yaml", text);
+  try {
+    fw::host::plan_simulation(fw::io::load_scenario(path), nullptr, nullptr);
+    FAIL("the plan accepted a stand leaf area index on a crown without area");
+  } catch (const fw::io::ScenarioError& error) {
+    INFO(error.what());
+    CHECK(error.line() == 14);
+    CHECK(error.key() == "forest.stands[0].leaf_area_index");
+    CHECK_THAT(std::string(error.what()), StartsWith(path + ":14: forest.stands[0].leaf_area_index: "));
+    CHECK_THAT(std::string(error.what()), Contains("no horizontal extent"));
+  }
+}
 
 TEST_CASE("SimulationPlan: a species with leaves gets round(fraction x leaf area / area) of them",
           "[simulation][plan]") {
