@@ -101,10 +101,11 @@ SolverRun time_solver(host::ComputeContext& cc, const std::array<int, 3>& grid,
 
 // The turbulent wind tunnel with `scheme` at its own dt: auto (SchemeRun).
 SchemeRun time_scheme(host::ComputeContext& cc, const std::array<int, 3>& grid, fluid::AdvectionScheme scheme,
-                      const WindBenchOptions& opt) {
+                      fluid::StageProjection projection, const WindBenchOptions& opt) {
   host::WindGridSetup setup =
       bench_setup(grid, fluid::PressureSolverType::cg, opt, Turbulence::inflow_subgrid);
   setup.settings.advection = scheme;
+  setup.settings.stage_projection = projection;
   const bool limited = std::isfinite(fluid::courant_limit(scheme));
   setup.settings.cfl = limited ? fluid::courant_limit(scheme) : kDefaultCfl;
   host::WindGrid wind(cc, setup);
@@ -115,6 +116,7 @@ SchemeRun time_scheme(host::ComputeContext& cc, const std::array<int, 3>& grid, 
   wind.set_stage_timing(true);
   SchemeRun run;
   run.scheme = scheme;
+  run.projection = projection;
   run.cfl = setup.settings.cfl;
   const double t0 = wind.time();
   const auto start = Clock::now();
@@ -128,6 +130,12 @@ SchemeRun time_scheme(host::ComputeContext& cc, const std::array<int, 3>& grid, 
   const double faces = double(spec.u_count() + spec.v_count() + spec.w_count());
   run.advect_gb_s = faces * advection_bytes_per_face(scheme) / (run.advect_ms * 1e-3) * 1e-9;
   return run;
+}
+
+// The scheme, and "+stages" where upwind5 projects every stage.
+std::string scheme_label(const SchemeRun& run) {
+  return fluid::to_string(run.scheme) +
+         (run.projection == fluid::StageProjection::every_stage ? "+stages" : "");
 }
 
 // One step of the CPU reference with the same stages: advect, boundaries, divergence, CG to 1e-3, gradient.
@@ -239,7 +247,10 @@ WindBenchResult run_wind_bench(host::ComputeContext& cc, const WindBenchOptions&
     if (opt.schemes)
       for (auto scheme : {fluid::AdvectionScheme::semi_lagrangian, fluid::AdvectionScheme::maccormack,
                           fluid::AdvectionScheme::upwind5})
-        c.schemes.push_back(time_scheme(cc, grid, scheme, opt));
+        c.schemes.push_back(time_scheme(cc, grid, scheme, fluid::StageProjection::final_stage, opt));
+    if (opt.schemes)  // and upwind5 projecting every Runge-Kutta stage
+      c.schemes.push_back(
+          time_scheme(cc, grid, fluid::AdvectionScheme::upwind5, fluid::StageProjection::every_stage, opt));
     c.smoother_gb_s = measure_smoother_gb_s(cc, grid, SmootherPass::red_black_in_place, 20);
     if (opt.reference && std::size_t(grid[0]) * grid[1] * grid[2] <= (std::size_t(1) << 18))
       c.reference_ms_per_step = time_reference_step(grid);
@@ -325,7 +336,7 @@ void print_wind_bench_table(const WindBenchResult& r, std::ostream& out) {
     for (const auto& run : c.schemes)
       out << fmt::format(
           "{:<12} {:<16} {:>5.2f} {:>9.2f} {:>8.2f} {:>11.1f} {:>8.2f} {:>9.1f} ({:>3.0f}%) {:>9.2f}\n", grid,
-          fluid::to_string(run.scheme), run.cfl, run.ms_per_step, run.dt * 1e3, run.ms_per_simulated_second,
+          scheme_label(run), run.cfl, run.ms_per_step, run.dt * 1e3, run.ms_per_simulated_second,
           run.advect_ms, run.advect_gb_s, r.triad_gb_s > 0 ? 100.0 * run.advect_gb_s / r.triad_gb_s : 0.0,
           run.ms_per_simulated_second / c.schemes.front().ms_per_simulated_second);
   }
@@ -384,6 +395,8 @@ void write_case(io::JsonWriter& json, const WindBenchCase& c, const WindBenchRes
   for (const auto& run : c.schemes) {
     json.begin_object();
     json.key("scheme").value(fluid::to_string(run.scheme));
+    json.key("stage_projection")
+        .value(run.projection == fluid::StageProjection::every_stage ? "every_stage" : "final_stage");
     json.key("cfl").value(run.cfl);
     json.key("ms_per_step").value(run.ms_per_step);
     json.key("dt").value(run.dt);

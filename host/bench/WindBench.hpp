@@ -59,6 +59,7 @@ struct SolverRun {
 /// summed Courant limit (fluid::kUpwind5CourantLimit).
 struct SchemeRun {
   fluid::AdvectionScheme scheme{};
+  fluid::StageProjection projection = fluid::StageProjection::final_stage;
   double cfl = 0.0;  // the CFL number the run asked for
   double ms_per_step = 0.0;
   double dt = 0.0;                       // mean step, s
