@@ -1,8 +1,11 @@
+# The decaying-turbulence spectra of docs/numerics.md as a picture: python3 scripts/plot-spectra.py SPECTRA.csv [OUT.png]
+# (the CSV from FORESTWIND_SPECTRA_CSV=SPECTRA.csv build/validation_tests "validation: decaying*").
 import csv, collections
 import matplotlib
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt
-rows = list(csv.DictReader(open("/tmp/spectra.csv")))
+import sys
+rows = list(csv.DictReader(open(sys.argv[1] if len(sys.argv) > 1 else "spectra.csv")))
 series = collections.OrderedDict()
 start = None
 for r in rows:
@@ -28,4 +31,4 @@ ax.set_title("Decaying turbulence, 64$^3$ periodic box, 5 m/s mean wind, one tur
 ax.set_ylim(1e-5, 1)
 ax.legend(fontsize=7)
 fig.tight_layout()
-fig.savefig("/work/main/docs/spectra-decaying.png")
+fig.savefig(sys.argv[2] if len(sys.argv) > 2 else "docs/spectra-decaying.png")

@@ -214,6 +214,7 @@ void WindGrid::timed(const char* stage, F&& work) {
   }
   // A stage timed inside another (upwind5's stage projections inside "advect") counts for itself only.
   const double nested_before = nested_ms_;
+  cc_.finish();  // what the enclosing stage enqueued before this one is the enclosing stage's
   const auto start = std::chrono::steady_clock::now();
   work();
   cc_.finish();
