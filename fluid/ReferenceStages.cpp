@@ -342,7 +342,7 @@ void add_vorticity_confinement(const GridSpec& spec, MacVelocity& vel, double ep
 }
 
 MacVelocity canopy_drag(const GridSpec& spec, const MacVelocity& vel, const std::vector<float>& drag_density,
-                        double dt) {
+                        double dt, const DragLaw& law) {
   if (drag_density.size() != spec.cell_count())
     throw std::invalid_argument("canopy_drag: the drag density needs one value a cell");
   MacVelocity out(spec);
@@ -367,7 +367,8 @@ MacVelocity canopy_drag(const GridSpec& spec, const MacVelocity& vel, const std:
           }
         speed2 += 0.0625 * m * m;
       }
-      out.component(c)[id] = float(q / (1.0 + dt * kf * std::sqrt(speed2)));
+      const double speed = std::sqrt(speed2);
+      out.component(c)[id] = float(q / (1.0 + dt * kf * law.factor(speed) * speed));
     });
   return out;
 }

@@ -17,6 +17,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "fluid/DragLaw.hpp"
 #include "fluid/GridSpec.hpp"
 #include "fluid/InflowState.hpp"
 #include "fluid/MacVelocity.hpp"
@@ -80,12 +81,13 @@ std::vector<float> vorticity(const GridSpec& spec, const MacVelocity& vel);
 /// Vorticity confinement f = epsilon h (N x w), N = grad|w| / |grad|w||, added as dt * f averaged to faces.
 void add_vorticity_confinement(const GridSpec& spec, MacVelocity& vel, double epsilon, double dt);
 
-/// Implicit canopy drag F = -k |u| u: every face becomes q / (1 + dt k_face |u|_face). k (1/m, one float a
+/// Implicit canopy drag F = -k f(|u|) |u| u (f: the drag law's factor, fluid/DragLaw.hpp): every face becomes
+/// q / (1 + dt k_face f(|u|_face) |u|_face). k (1/m, one float a
 /// cell) is averaged from the two cells beside the face (the inner one at the domain's edge); |u|_face uses
 /// the face's own component and the other two averaged from the four faces of those two cells, all from
 /// the old velocity.
 MacVelocity canopy_drag(const GridSpec& spec, const MacVelocity& vel, const std::vector<float>& drag_density,
-                        double dt);
+                        double dt, const DragLaw& law = {});
 
 /// One explicit step of q += dt * nu * laplacian(q), with the ghost rules of fetch().
 MacVelocity diffuse(const GridSpec& spec, const InflowState& inflow, const MacVelocity& vel, double nu,

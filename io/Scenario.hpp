@@ -35,6 +35,7 @@
 #include <variant>
 #include <vector>
 
+#include "fluid/DragLaw.hpp"
 #include "fluid/GridSpec.hpp"
 #include "fluid/Heightmap.hpp"
 #include "fluid/InflowProfile.hpp"
@@ -266,6 +267,7 @@ struct ForestSettings {
       schema::value_of(schema::kIntegratorWords, schema::kIntegrators, schema::key("forest.integrator").word);
   /// Diener's (2008, section 5.2) quadratic correction of the linear modal displacement on output frames.
   bool strong_wind_correction = schema::key("forest.strong_wind_correction").flag;
+  fluid::DragLaw drag_law;  ///< forest.drag_law (validated by the reader's bounds)
   std::vector<Species> species;
   std::vector<Stand> stands;
   std::vector<PlacedTreeSettings> trees;

@@ -92,6 +92,7 @@ std::string number_text(double value) {
 std::string range_text(const Key& key) {
   std::vector<std::string> parts;
   if (key.bound != Bound::any) parts.push_back(sign_text(key.bound));
+  if (key.at_least > -kNoNumberLimit) parts.push_back(">= " + number_text(key.at_least));
   if (key.at_most < kNoNumberLimit) parts.push_back("<= " + number_text(key.at_most));
   if (key.below < kNoNumberLimit) parts.push_back("< " + number_text(key.below));
   return join(parts, " and ");

@@ -28,6 +28,7 @@
 #include <string_view>
 #include <vector>
 
+#include "fluid/DragLaw.hpp"
 #include "fluid/GridSpec.hpp"
 #include "fluid/InflowProfile.hpp"
 #include "fluid/TurbulenceBox.hpp"
@@ -80,9 +81,10 @@ struct Key {
   std::string_view unit{};  ///< SI unit; empty when dimensionless or not a quantity
   bool required = false;
   Bound bound = Bound::any;
-  double at_most = kNoNumberLimit;  ///< number, point: each value must be <= this
-  double below = kNoNumberLimit;    ///< number, point: each value must be < this
-  long long lowest = 0;             ///< integer: the smallest value allowed
+  double at_least = -kNoNumberLimit;  ///< number, point: each value must be >= this
+  double at_most = kNoNumberLimit;    ///< number, point: each value must be <= this
+  double below = kNoNumberLimit;      ///< number, point: each value must be < this
+  long long lowest = 0;               ///< integer: the smallest value allowed
   long long highest = 0;  ///< integer: the largest value allowed (numeric_limits<int>::max(): no limit)
   Words words{};          ///< word, word_set: the vocabulary
   /// word: a vocabulary known only at run time (replaces words).
@@ -616,6 +618,25 @@ inline constexpr Key kKeys[] = {
                     "far, and the correction keeps branch lengths nearly constant under strong wind. It "
                     "changes the written geometry only; the modal dynamics stay linear. With `false`, frames "
                     "show the linear displacement."},
+    {.path = "forest.drag_law",
+     .default_note = "a constant drag coefficient",
+     .description = "How the drag coefficients of every species (branches and foliage) vary with the local "
+                    "wind speed: C_D(\\|u\\|) = C_D (max(\\|u\\|, 0.1 U_ref) / U_ref)^exponent, the species' "
+                    "coefficients holding at U_ref. Leaves and twigs streamline in strong wind (Vogel 1984); "
+                    "the air's canopy drag and the trees' modal forces follow the same law."},
+    {.path = "forest.drag_law.exponent",
+     .type = Type::number,
+     .at_least = fluid::DragLaw::kLowestExponent,
+     .at_most = 0.0,
+     .number = fluid::DragLaw{}.exponent,
+     .description = "The Vogel exponent: 0 keeps the coefficient constant; plants measure 0 to -4/3 "
+                    "(strongly reconfiguring ones)."},
+    {.path = "forest.drag_law.reference_speed",
+     .type = Type::number,
+     .unit = "m/s",
+     .bound = Bound::positive,
+     .number = fluid::DragLaw{}.reference_speed,
+     .description = "U_ref, where the species' drag coefficients hold."},
     {.path = "forest.species",
      .type = Type::list,
      .noun = "a list of species",

@@ -196,6 +196,13 @@ FW_INLINE float sample_mac_component(const FwGrid* g, __global const float* q, i
   return mix(mix(c00, c10, t[1]), mix(c01, c11, t[1]), t[2]);
 }
 
+/* The drag law's factor C_D(|u|) / C_D0 at `speed` (m/s): 1 for the constant coefficient. */
+FW_INLINE float drag_law_factor(const FwDragLaw law, float speed) {
+  return law.exponent == 0.0f
+             ? 1.0f
+             : powr(fmax(speed, law.lowest_speed) * law.inverse_reference_speed, law.exponent);
+}
+
 /* Index along its own axis of face (i,j,k) of component c. */
 FW_INLINE int own_index(int c, int i, int j, int k) {
   return c == 0 ? i : (c == 1 ? j : k);

@@ -122,8 +122,9 @@ __kernel void diffuse(const FwGrid g, const FwStep s, __global const float* prof
   }
 }
 
-/* Implicit canopy drag, F = -k |u| u with k = Cd a the drag density (1/m, one float a cell):
- * out = q / (1 + dt k_face |u|_face), which never reverses or amplifies the flow for any dt.
+/* Implicit canopy drag, F = -k f(|u|) |u| u with k = Cd a the drag density (1/m, one float a cell) and f
+ * the drag law's factor (fluid/DragLaw.hpp: (max(|u|, floor) / U_ref)^exponent, 1 for exponent 0):
+ * out = q / (1 + dt k_face f |u|_face), which never reverses or amplifies the flow for any dt.
  * k_face is the mean of the two cells beside the face (the one inside at the domain's edge); |u|_face takes
  * the face's own component and the other two averaged from the four faces of those two cells. Reads the
  * old u, v, w and writes component c to `out`, on the faces first .. first + count - 1 of component c only:
@@ -131,8 +132,9 @@ __kernel void diffuse(const FwGrid g, const FwStep s, __global const float* prof
  * domain), and copies them back with copy_face_box. Global range: (ceil(count.x / FW_ROW_CHUNK), count.y,
  * count.z). Reference: fluid/ReferenceStages.cpp canopy_drag. */
 FW_INLINE void canopy_drag_box(const FwGrid* g, const float dt, const int c, const int4 first,
-                               const int4 count, __global const float* drag, __global const float* u,
-                               __global const float* v, __global const float* w, __global float* out) {
+                               const int4 count, const FwDragLaw law, __global const float* drag,
+                               __global const float* u, __global const float* v, __global const float* w,
+                               __global float* out) {
   const int j = first.y + (int)get_global_id(1), k = first.z + (int)get_global_id(2);
   const int n = axis_cells(g, c);
   /* The face's own component q and the other two, a (axis d1) and b (axis d2). */
@@ -166,25 +168,26 @@ FW_INLINE void canopy_drag_box(const FwGrid* g, const float dt, const int c, con
     const float mb =
         0.25f * (b[face_index(g, d2, lo[0], lo[1], lo[2])] + b[face_index(g, d2, lo2[0], lo2[1], lo2[2])] +
                  b[face_index(g, d2, hi[0], hi[1], hi[2])] + b[face_index(g, d2, hi2[0], hi2[1], hi2[2])]);
-    out[face] = qf / (1.0f + dt * kf * sqrt(qf * qf + ma * ma + mb * mb));
+    const float speed = sqrt(qf * qf + ma * ma + mb * mb);
+    out[face] = qf / (1.0f + dt * kf * drag_law_factor(law, speed) * speed);
   }
 }
 
 /* One kernel a component, so that c is a literal and the index arrays above fold into registers. */
 __kernel void canopy_drag_u(const FwGrid g, const FwStep s, const int4 first, const int4 count,
-                            __global const float* drag, __global const float* u, __global const float* v,
-                            __global const float* w, __global float* out) {
-  canopy_drag_box(&g, s.dt, 0, first, count, drag, u, v, w, out);
+                            const FwDragLaw law, __global const float* drag, __global const float* u,
+                            __global const float* v, __global const float* w, __global float* out) {
+  canopy_drag_box(&g, s.dt, 0, first, count, law, drag, u, v, w, out);
 }
 __kernel void canopy_drag_v(const FwGrid g, const FwStep s, const int4 first, const int4 count,
-                            __global const float* drag, __global const float* u, __global const float* v,
-                            __global const float* w, __global float* out) {
-  canopy_drag_box(&g, s.dt, 1, first, count, drag, u, v, w, out);
+                            const FwDragLaw law, __global const float* drag, __global const float* u,
+                            __global const float* v, __global const float* w, __global float* out) {
+  canopy_drag_box(&g, s.dt, 1, first, count, law, drag, u, v, w, out);
 }
 __kernel void canopy_drag_w(const FwGrid g, const FwStep s, const int4 first, const int4 count,
-                            __global const float* drag, __global const float* u, __global const float* v,
-                            __global const float* w, __global float* out) {
-  canopy_drag_box(&g, s.dt, 2, first, count, drag, u, v, w, out);
+                            const FwDragLaw law, __global const float* drag, __global const float* u,
+                            __global const float* v, __global const float* w, __global float* out) {
+  canopy_drag_box(&g, s.dt, 2, first, count, law, drag, u, v, w, out);
 }
 
 /* to = from on the faces first .. first + count - 1 of component c; the range as for canopy_drag_*. */

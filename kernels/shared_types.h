@@ -88,6 +88,15 @@ typedef struct FwStep {
   float turbulence_spacing;   /* box point spacing, m */
 } FwStep;
 
+/* The canopy's drag law (fluid/DragLaw.hpp) as the drag kernels read it: C_D(|u|) / C_D0 =
+ * (max(|u|, lowest_speed) * inverse_reference_speed)^exponent, 1 where exponent is 0. */
+typedef struct FwDragLaw {
+  float exponent;
+  float lowest_speed;            /* m/s */
+  float inverse_reference_speed; /* s/m */
+  float unused;                  /* keeps the struct four floats wide */
+} FwDragLaw;
+
 /* Ghost layers on every side of a padded velocity copy (kernels/fluid_ghosts.cl, host/stages/FluidStages):
  * the widest stencil, fifth-order upwind advection (kernels/fluid_upwind.cl), reaches three faces past the
  * face it updates across a periodic boundary. */

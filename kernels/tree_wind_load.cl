@@ -9,8 +9,9 @@
 #include "common.cl"
 
 /* For every instance: sampled_wind (3 floats per flat sample, m/s, world frame) and
- * forces[mode_offset + i] = sum_s |v_s| v_s . (s^1/2 R p_i^s)  (N / kg^1/2). */
-__kernel void tree_wind_load(const FwGrid g, const int instance_count,
+ * forces[mode_offset + i] = sum_s f(|v_s|) |v_s| v_s . (s^1/2 R p_i^s)  (N / kg^1/2), f the drag law's factor
+ * (the same as the air's canopy drag). */
+__kernel void tree_wind_load(const FwGrid g, const FwDragLaw law, const int instance_count,
                              __global const FwTreeInstance* instances, __global const FwSpecies* species,
                              __global const float* projections, __global const float* sample_points,
                              __global const float* u, __global const float* v, __global const float* w,
@@ -36,7 +37,8 @@ __kernel void tree_wind_load(const FwGrid g, const int instance_count,
       out[0] = vx;
       out[1] = vy;
       out[2] = vz;
-      const float speed = sqrt(vx * vx + vy * vy + vz * vz) * root_scale;
+      const float world_speed = sqrt(vx * vx + vy * vy + vz * vz);
+      const float speed = world_speed * drag_law_factor(law, world_speed) * root_scale;
       load[3 * s] = speed * (cs * vx + sn * vy);
       load[3 * s + 1] = speed * (-sn * vx + cs * vy);
       load[3 * s + 2] = speed * vz;

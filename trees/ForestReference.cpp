@@ -126,7 +126,8 @@ Eigen::MatrixX3d ForestReference::sample_wind(const fluid::GridSpec& spec,
   return wind;
 }
 
-Eigen::VectorXd ForestReference::modal_forces(const Eigen::MatrixX3d& sampled_wind) const {
+Eigen::VectorXd ForestReference::modal_forces(const Eigen::MatrixX3d& sampled_wind,
+                                              const fluid::DragLaw& law) const {
   if (sampled_wind.rows() != total_samples())
     fail(fmt::format("sampled wind has {} rows, expected {}", sampled_wind.rows(), total_samples()));
   Eigen::VectorXd f(total_modes());
@@ -138,7 +139,7 @@ Eigen::VectorXd ForestReference::modal_forces(const Eigen::MatrixX3d& sampled_wi
       double sum = 0.0;
       for (int s = 0; s < basis.sample_count(); ++s) {
         const Eigen::Vector3d v = sampled_wind.row(forest_.sample_offset(k) + s).transpose();
-        sum += v.norm() * v.dot(std::sqrt(t.scale) * r * basis.projection(s, i));
+        sum += law.factor(v.norm()) * v.norm() * v.dot(std::sqrt(t.scale) * r * basis.projection(s, i));
       }
       f(forest_.mode_offset(k) + i) = sum;
     }
@@ -146,9 +147,9 @@ Eigen::VectorXd ForestReference::modal_forces(const Eigen::MatrixX3d& sampled_wi
   return f;
 }
 
-Eigen::VectorXd ForestReference::modal_forces(const fluid::GridSpec& spec,
-                                              const fluid::MacVelocity& velocity) const {
-  return modal_forces(sample_wind(spec, velocity));
+Eigen::VectorXd ForestReference::modal_forces(const fluid::GridSpec& spec, const fluid::MacVelocity& velocity,
+                                              const fluid::DragLaw& law) const {
+  return modal_forces(sample_wind(spec, velocity), law);
 }
 
 Eigen::VectorXd ForestReference::omega() const {

@@ -66,8 +66,10 @@ class ForestReference {
   /// The wind at every sample, #total samples by 3, m/s, world frame.
   Eigen::MatrixX3d sample_wind(const fluid::GridSpec& spec, const fluid::MacVelocity& velocity) const;
   /// Modal forces from sampled wind (#total samples by 3, m/s): #total modes, N / kg^1/2.
-  Eigen::VectorXd modal_forces(const Eigen::MatrixX3d& sampled_wind) const;
-  Eigen::VectorXd modal_forces(const fluid::GridSpec& spec, const fluid::MacVelocity& velocity) const;
+  /// `law`: the drag law's factor f(|v_s|) on each sample's load (fluid/DragLaw.hpp; default constant).
+  Eigen::VectorXd modal_forces(const Eigen::MatrixX3d& sampled_wind, const fluid::DragLaw& law = {}) const;
+  Eigen::VectorXd modal_forces(const fluid::GridSpec& spec, const fluid::MacVelocity& velocity,
+                               const fluid::DragLaw& law = {}) const;
 
   /// Per flat mode: omega_i / s (rad/s) and gamma = 2 zeta_i omega_i / s (1/s) of the owning instance.
   Eigen::VectorXd omega() const;

@@ -29,7 +29,8 @@ CoupledStep::CoupledStep(ComputeContext& cc, WindGridSetup wind, const trees::Fo
       wind_(cc, std::move(wind)),
       trees_(cc, wind_.spec(), forest),
       tree_count_(forest.instance_count()) {
-  if (!coupling.drag_density.empty()) wind_.set_canopy(std::move(coupling.drag_density));
+  if (!coupling.drag_density.empty()) wind_.set_canopy(std::move(coupling.drag_density), coupling.drag_law);
+  trees_.set_drag_law(coupling.drag_law);
   trees_.set_integrator(coupling.integrator);
   trees_.set_strong_wind_correction(coupling.strong_wind_correction);
   if (!inputs_.ambient_wind) throw std::invalid_argument("CoupledStep: the time inputs need an ambient wind");

@@ -5,6 +5,8 @@
 
 #include <vector>
 
+#include "fluid/DragLaw.hpp"
+
 #include "trees/ModalIntegrator.hpp"
 #include "trees/SpeciesLeaves.hpp"
 #include "trees/UnresolvedTurbulence.hpp"
@@ -17,6 +19,8 @@ struct CouplingSettings {
   std::vector<float> drag_density;
   /// Diener's strong-wind correction of the deformation on output frames (trees/StrongWindCorrection).
   bool strong_wind_correction = true;
+  /// How the drag coefficients vary with the wind (fluid/DragLaw.hpp), on the air and the trees alike.
+  fluid::DragLaw drag_law;
   /// Stam's forcing of every tree by the turbulence the grid cannot resolve (trees/UnresolvedTurbulence);
   /// off unless `enabled`. Its intensity follows the run (TimeInputs::unresolved_intensity).
   trees::UnresolvedTurbulenceSettings unresolved;

@@ -228,7 +228,7 @@ void FluidStages::enqueue_diffuse(int c, float nu_dt_over_h2, cl::Buffer& q, cl:
 }
 
 void FluidStages::enqueue_canopy_drag(cl::Buffer& drag_density, const CellBox& box, DeviceVelocity& vel,
-                                      DeviceVelocity& scratch) {
+                                      DeviceVelocity& scratch, const fluid::DragLaw& law) {
   if (box.empty()) return;
   // Faces of component c next to the box's cells: one more along c (the far face of the last cell).
   auto face_box = [&](int c) {
@@ -243,7 +243,8 @@ void FluidStages::enqueue_canopy_drag(cl::Buffer& drag_density, const CellBox& b
   for (int c = 0; c < 3; ++c) {
     const auto [first, count] = face_box(c);
     canopy_drag_[c]
-        .set_args(grid_, step_, first, count, drag_density, vel.u, vel.v, vel.w, scratch.component(c))
+        .set_args(grid_, step_, first, count, law.to_device(), drag_density, vel.u, vel.v, vel.w,
+                  scratch.component(c))
         .enqueue(cc_, cc_.rows(count.s[0], count.s[1], count.s[2]));
   }
   for (int c = 0; c < 3; ++c) {

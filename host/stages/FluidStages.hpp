@@ -12,6 +12,7 @@
 #include <array>
 #include <vector>
 
+#include "fluid/DragLaw.hpp"
 #include "fluid/GridSpec.hpp"
 #include "fluid/InflowState.hpp"
 #include "fluid/UpwindStencil.hpp"
@@ -93,7 +94,7 @@ class FluidStages {
   /// density (1/m, one float a cell) and |u| the old speed at the face. `box` must hold every cell of
   /// non-zero k (nonzero_cell_box): only the faces of those cells are touched, through `scratch`.
   void enqueue_canopy_drag(cl::Buffer& drag_density, const CellBox& box, DeviceVelocity& vel,
-                           DeviceVelocity& scratch);
+                           DeviceVelocity& scratch, const fluid::DragLaw& law = {});
   /// Smagorinsky eddy viscosity (fluid/SubgridStress.hpp) into nu_t (one float a cell, m^2/s):
   /// min((C_s h)^2 |S|, cap), 0 in the solid cells of the pressure mask, from the velocity vel (unpadded:
   /// the strain reads no ghost but a periodic twin). cap: fluid::eddy_viscosity_cap(h, step().dt).

@@ -100,8 +100,8 @@ ForestStages::ForestStages(ComputeContext& cc, const fluid::GridSpec& spec, cons
 void ForestStages::enqueue_wind_load(DeviceVelocity& velocity) {
   if (instance_count_ == 0) return;
   wind_load_
-      .set_args(grid_, instance_count_, instances_, species_, projections_, sample_points_, velocity.u,
-                velocity.v, velocity.w, sampled_wind_, forces_)
+      .set_args(grid_, drag_law_.to_device(), instance_count_, instances_, species_, projections_,
+                sample_points_, velocity.u, velocity.v, velocity.w, sampled_wind_, forces_)
       .enqueue(cc_, cl::NDRange(cc_.flat_items(std::size_t(instance_count_))));
   if (unresolved_on_)
     unresolved_load_

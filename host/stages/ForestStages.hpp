@@ -23,6 +23,7 @@
 
 #include <vector>
 
+#include "fluid/DragLaw.hpp"
 #include "fluid/GridSpec.hpp"
 #include "host/runtime/ComputeContext.hpp"
 #include "host/stages/FluidStages.hpp"
@@ -64,6 +65,12 @@ class ForestStages {
   /// constant under large q; on by default. Off, frames are the linear modal sum exactly as before the
   /// correction existed. Affects only the deformation, not the modal state.
   void set_strong_wind_correction(bool on) { strong_wind_correction_ = on; }
+  /// How the drag coefficients vary with the sampled speed (fluid/DragLaw.hpp; default constant): the
+  /// modal forces scale as the air's canopy drag does (WindGrid::set_canopy), so momentum still balances.
+  void set_drag_law(const fluid::DragLaw& law) {
+    law.validate();
+    drag_law_ = law;
+  }
   bool strong_wind_correction() const { return strong_wind_correction_; }
 
   /// Samples `velocity` at every instance's sample points and computes the modal forces.
@@ -116,6 +123,7 @@ class ForestStages {
   FwGrid grid_;
   trees::ModalIntegrator integrator_ = trees::ModalIntegrator::exact;
   bool strong_wind_correction_ = true;
+  fluid::DragLaw drag_law_;
   int instance_count_ = 0, total_modes_ = 0, total_nodes_ = 0, total_samples_ = 0;
   cl::Buffer species_, instances_, node_shapes_, projections_, sample_points_, omega_, zeta_, mode_instance_,
       node_instance_;

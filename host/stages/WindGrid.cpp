@@ -304,7 +304,9 @@ void WindGrid::apply_forces() {
   }
 }
 
-void WindGrid::set_canopy(std::vector<float> drag_density) {
+void WindGrid::set_canopy(std::vector<float> drag_density, const fluid::DragLaw& law) {
+  law.validate();
+  drag_law_ = law;
   bool any = false;
   if (!drag_density.empty()) {
     if (drag_density.size() != setup_.spec.cell_count())
@@ -329,7 +331,7 @@ void WindGrid::set_canopy(std::vector<float> drag_density) {
 }
 
 void WindGrid::apply_canopy_drag() {
-  stages_.enqueue_canopy_drag(canopy_, canopy_box_, vel_, tmp_);
+  stages_.enqueue_canopy_drag(canopy_, canopy_box_, vel_, tmp_, drag_law_);
 }
 
 void WindGrid::apply_subgrid_stress(double dt) {

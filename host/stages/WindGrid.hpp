@@ -26,6 +26,7 @@
 #include <string>
 #include <vector>
 
+#include "fluid/DragLaw.hpp"
 #include "fluid/GridSpec.hpp"
 #include "fluid/InflowProfile.hpp"
 #include "fluid/InflowState.hpp"
@@ -136,7 +137,8 @@ class WindGrid {
   /// fluid/CanopyField), applied implicitly right after the body forces (stage "canopy"). Uploaded once; an
   /// empty or all-zero field turns the drag off, and the step is then exactly the one without a canopy.
   /// Throws std::invalid_argument for a wrong size or a negative or non-finite value.
-  void set_canopy(std::vector<float> drag_density);
+  /// `law`: how the drag coefficients behind k vary with |u| (fluid/DragLaw.hpp; default constant).
+  void set_canopy(std::vector<float> drag_density, const fluid::DragLaw& law = {});
   bool canopy_enabled() const { return canopy_on_; }
   /// The subgrid stage (WindSettings::smagorinsky_constant > 0): Smagorinsky eddy viscosity and its explicit
   /// diffusion, right after the canopy drag. The wall stage (wall_roughness_length > 0): the implicit
@@ -185,6 +187,7 @@ class WindGrid {
   long steps_ = 0;
   cl::Buffer canopy_;   // drag density, one float a cell; valid while canopy_on_
   CellBox canopy_box_;  // the cells of non-zero drag density
+  fluid::DragLaw drag_law_;
   bool canopy_on_ = false;
   cl::Buffer eddy_viscosity_;                // nu_t, one float a cell, m^2/s; valid while subgrid_enabled()
   FluidStages::DeviceWallFaces wall_faces_;  // the faces of the wall cells; used while wall_stress_enabled()

@@ -131,6 +131,12 @@ void read_forest(const Loader& loader, const Field& field, Scenario& scenario) {
     forest.integrator = value(schema::kIntegratorWords, schema::kIntegrators, loader.word(*integrator));
   if (const auto correction = map.get<"strong_wind_correction">())
     forest.strong_wind_correction = loader.boolean(*correction);
+  if (const auto law = map.get<"drag_law">()) {
+    const Section<"forest.drag_law"> drag(loader, *law);
+    if (const auto exponent = drag.get<"exponent">()) forest.drag_law.exponent = loader.number(*exponent);
+    if (const auto speed = drag.get<"reference_speed">())
+      forest.drag_law.reference_speed = loader.number(*speed);
+  }
   if (const auto species = map.get<"species">())
     for (const Field& item : loader.items(*species))
       forest.species.push_back(read_species(loader, item, forest.species, scenario.seed));

@@ -89,6 +89,7 @@ std::string number_expected(const Key& owner) {
                               .type = schema::Type::number,
                               .unit = owner.unit,
                               .bound = owner.bound,
+                              .at_least = owner.at_least,
                               .at_most = owner.at_most,
                               .below = owner.below});
 }
@@ -253,8 +254,8 @@ double Loader::number(const Field& field, const Key& key, const std::string& wha
   if (!field.node.IsScalar()) expected(field, what);
   const std::optional<double> value = parse_double(field.node.Scalar());
   if (!value || (key.bound == Bound::positive && !(*value > 0.0)) ||
-      (key.bound == Bound::non_negative && !(*value >= 0.0)) || !(*value <= key.at_most) ||
-      !(*value < key.below))
+      (key.bound == Bound::non_negative && !(*value >= 0.0)) || !(*value >= key.at_least) ||
+      !(*value <= key.at_most) || !(*value < key.below))
     expected(field, what);
   return *value;
 }

@@ -848,6 +848,8 @@ TEST_CASE("load_scenario: out-of-range numbers name the key and the allowed rang
       dir, "gust_zero",
       kBase + "events:\n  - gust: {start: 1, duration: 0, peak_speed: 3, center: [1, 1, 1], radius: 2}\n", 6,
       "events[0].gust.duration", "a number > 0 (s) expected, got '0'");
+  expect_error(dir, "drag_law", kBase + "forest: {drag_law: {exponent: -2}}\n", 5, "forest.drag_law.exponent",
+               "a number >= -1.3333333333333333 and <= 0 expected, got '-2'");
   expect_error(dir, "seed", kBase + "seed: -1\n", 5, "seed",
                "an integer 0..18446744073709551615 expected, got '-1'");
   expect_error(dir, "cfl",
@@ -1205,7 +1207,7 @@ wind:
   direction: 270
   turbulence: {model: von_karman, intensity: 0.15, length_scale: 10, box_size: [50, 30, 7], seed: 9,
                unresolved: false, cutoff_cells: 4}
-forest: {strong_wind_correction: false}
+forest: {strong_wind_correction: false, drag_law: {exponent: -0.5, reference_speed: 4.0}}
 solver: {smagorinsky_constant: 0.17, advection: upwind5, stage_projection: every_stage}
 output: {interval: 0.5, probe_interval: 0.05}
 )"));
@@ -1233,6 +1235,8 @@ output: {interval: 0.5, probe_interval: 0.05}
   CHECK_FALSE(s.wind.forcing.has_value());  // the sides are not periodic
 
   CHECK_FALSE(s.forest.strong_wind_correction);
+  CHECK(s.forest.drag_law.exponent == -0.5);
+  CHECK(s.forest.drag_law.reference_speed == 4.0);
   CHECK(s.solver.smagorinsky_constant == 0.17);
   CHECK(s.solver.advection == fw::fluid::AdvectionScheme::upwind5);
   CHECK(s.wind_settings().stage_projection == fw::fluid::StageProjection::every_stage);

@@ -46,6 +46,46 @@ double face_relative_error(const std::vector<float>& a, const std::vector<float>
 
 }  // namespace
 
+TEST_CASE(
+    "canopy drag: with a drag law the kernel matches the reference, and a uniform wind slows by its factor",
+    "[canopy]") {
+  auto* cc = test::device_or_skip();
+  if (!cc) return;
+  const auto spec = test::mixed_boundary_spec();
+  host::FluidStages stages(*cc, spec);
+  FwStep s{};
+  s.dt = 0.4f;
+  stages.set_step(s);
+  const fluid::DragLaw law{-0.8, 3.0};
+  const auto drag = random_drag(spec.cell_count(), 7);
+  cl::Buffer ddrag = cc->buffer(drag.size() * sizeof(float));
+  test::upload(*cc, drag, ddrag);
+  auto run = [&](const fluid::MacVelocity& vel, const fluid::DragLaw& l) {
+    auto dvel = stages.allocate_velocity(), scratch = stages.allocate_velocity();
+    test::upload(*cc, vel, dvel);
+    stages.enqueue_canopy_drag(ddrag, host::nonzero_cell_box(spec, drag), dvel, scratch, l);
+    return test::download(*cc, dvel, spec);
+  };
+  const auto random = test::random_velocity(spec, 8.0, 31);
+  const auto device = run(random, law);
+  const auto expected = ref::canopy_drag(spec, random, drag, 0.4, law);
+  for (int c = 0; c < 3; ++c)
+    CHECK(face_relative_error(device.component(c), expected.component(c)) < kDragTolerance);
+  // In a uniform 6 m/s wind every face's implicit deceleration rate k f |u| carries the factor f(6) =
+  // 2^-0.8: (q / out - 1) over the constant law's is f, to float rounding of the two quotients.
+  fluid::MacVelocity uniform(spec);
+  for (float& u : uniform.u) u = 6.0f;
+  const auto with_law = run(uniform, law), constant = run(uniform, {});
+  const double factor = law.factor(6.0);
+  REQUIRE(factor == Approx(std::pow(2.0, -0.8)));
+  double worst = 0.0;
+  for (std::size_t f = 0; f < uniform.u.size(); ++f) {
+    const double rate_law = 6.0 / with_law.u[f] - 1.0, rate_constant = 6.0 / constant.u[f] - 1.0;
+    if (rate_constant > 1e-2) worst = std::max(worst, std::abs(rate_law / rate_constant / factor - 1.0));
+  }
+  CHECK(worst < 1e-4);  // float quotients near 1: a few ulps (6e-8) over rates of 0.01 and more
+}
+
 TEST_CASE("canopy drag: the kernel matches the CPU reference on a random field", "[canopy]") {
   auto* cc = test::device_or_skip();
   if (!cc) return;

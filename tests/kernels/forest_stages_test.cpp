@@ -147,6 +147,20 @@ TEST_CASE("tree_wind_load: sampled wind and modal forces match the reference", "
   CHECK(force_error < kForceTolerance);
 }
 
+TEST_CASE("tree_wind_load: with a drag law the modal forces match the reference and scale by its factor",
+          "[forest]") {
+  auto* cc = test::device_or_skip();
+  if (!cc) return;
+  ForestFixture f(*cc);
+  const fluid::DragLaw law{-0.8, 3.0};
+  f.stages.set_drag_law(law);
+  f.stages.enqueue_wind_load(f.dwind);
+  const auto forces = f.stages.download_modal_forces();
+  CHECK(relative(forces, f.ref.modal_forces(f.spec, f.wind, law)) < kForceTolerance);
+  // The law does change them: the fixture's wind is not at the reference speed everywhere.
+  CHECK(relative(forces, f.ref.modal_forces(f.spec, f.wind)) > 0.05);
+}
+
 TEST_CASE("tree_modal_step: 50 steps of both integrators match the reference", "[forest]") {
   auto* cc = test::device_or_skip();
   if (!cc) return;

@@ -35,8 +35,8 @@ namespace ref = fw::fluid::reference;
 
 namespace {
 
-// The canopy top h: the top of the highest cell layer whose mean frontal area density is at least a tenth of
-// the densest layer's (a stray crown tip does not count), m above the floor.
+// The canopy top h: the top of the highest cell layer whose mean frontal area density is at least 1% of the
+// densest layer's (a stray crown tip does not count; a conifer's thin tip does), m above the floor.
 double canopy_top(const fluid::GridSpec& spec, const std::vector<float>& density) {
   std::vector<double> layer(std::size_t(spec.nz), 0.0);
   for (std::size_t id = 0; id < density.size(); ++id)
@@ -44,7 +44,7 @@ double canopy_top(const fluid::GridSpec& spec, const std::vector<float>& density
   const double densest = *std::max_element(layer.begin(), layer.end());
   int top = 0;
   for (int k = 0; k < spec.nz; ++k)
-    if (layer[std::size_t(k)] >= 0.1 * densest) top = k;
+    if (layer[std::size_t(k)] >= 0.01 * densest) top = k;
   return (top + 1) * spec.h;
 }
 
@@ -61,6 +61,28 @@ ValidationLength validation_length() {
   if (mode && std::string(mode) == "full") return {600.0, 1200.0, true};
   return {150.0, 120.0, false};
 }
+
+// Moments of u and w at one height over every column and sample (the plane is homogeneous, so one mean over
+// space and time): correlation, standard deviations, skewness.
+struct PointMoments {
+  double uu = 0, ww = 0, uw = 0, u = 0, w = 0, uuu = 0, www = 0;
+  long n = 0;
+  void add(double a, double b) {
+    uu += a * a, ww += b * b, uw += a * b, u += a, w += b, uuu += a * a * a, www += b * b * b;
+    ++n;
+  }
+  double mean_u() const { return u / n; }
+  double mean_w() const { return w / n; }
+  double sigma_u() const { return std::sqrt(uu / n - mean_u() * mean_u()); }
+  double sigma_w() const { return std::sqrt(ww / n - mean_w() * mean_w()); }
+  double r_uw() const { return (uw / n - mean_u() * mean_w()) / (sigma_u() * sigma_w()); }
+  // From the raw moments: <x'^3> = <x^3> - 3 <x> <x^2> + 2 <x>^3.
+  static double skewness(double cubes, double squares, double mean, double sigma, long n) {
+    return (cubes / n - 3.0 * mean * squares / n + 2.0 * mean * mean * mean) / (sigma * sigma * sigma);
+  }
+  double skew_u() const { return skewness(uuu, uu, mean_u(), sigma_u(), n); }
+  double skew_w() const { return skewness(www, ww, mean_w(), sigma_w(), n); }
+};
 
 // Cell-column averages at the point (i + 1/2, j + 1/2) of u and w at height z (m): w faces sit on whole
 // cells, u faces at half cells, so both are interpolated linearly in z (and u over its two x faces).
@@ -103,9 +125,11 @@ TEST_CASE("validation: the periodic forest shows the mixing-layer statistics at 
   std::vector<double> heights;
   for (int k = 0; k < spec.nz; ++k) heights.push_back((k + 0.5) * spec.h);
   std::vector<double> profile(heights.size(), 0.0);
-  double uu = 0, ww = 0, uw = 0, u_mean = 0, w_mean = 0;  // sums at the canopy top over points and samples
-  double uuu = 0, www = 0;
-  long top_samples = 0, samples = 0;
+  PointMoments top;  // at the canopy top
+  // And around it, as field data are often taken above the top: z / h = 0.75, 1.25, 1.5, 2.
+  const double around[] = {0.75, 1.25, 1.5, 2.0};
+  std::vector<PointMoments> near(std::size(around));
+  long samples = 0;
   constexpr int kSeriesStride = 4;
   std::vector<std::vector<double>> w_series;
   const double sample_interval = 0.5;  // s: resolves f up to 1 Hz, ten times the expected peak
@@ -127,9 +151,11 @@ TEST_CASE("validation: the periodic forest shows the mixing-layer statistics at 
     for (int j = 0; j < spec.ny; ++j)
       for (int i = 0; i < spec.nx; ++i) {
         const double u = u_at(spec, vel, i, j, canopy_height), w = w_at(spec, vel, i, j, canopy_height);
-        uu += u * u, ww += w * w, uw += u * w, u_mean += u, w_mean += w;
-        uuu += u * u * u, www += w * w * w;
-        ++top_samples;
+        top.add(u, w);
+        for (std::size_t n = 0; n < near.size(); ++n) {
+          const double z = around[n] * canopy_height;
+          if (z < spec.nz * spec.h) near[n].add(u_at(spec, vel, i, j, z), w_at(spec, vel, i, j, z));
+        }
         if (i % kSeriesStride == 0 && j % kSeriesStride == 0) {
           if (w_series.size() <= series) w_series.emplace_back();
           w_series[series++].push_back(w);
@@ -137,17 +163,8 @@ TEST_CASE("validation: the periodic forest shows the mixing-layer statistics at 
       }
   }
   for (double& p : profile) p /= double(samples);
-  u_mean /= top_samples, w_mean /= top_samples;
-  // Variances about the one mean over space and time: the plane is homogeneous.
-  const double sigma_u = std::sqrt(uu / top_samples - u_mean * u_mean);
-  const double sigma_w = std::sqrt(ww / top_samples - w_mean * w_mean);
-  const double r_uw = (uw / top_samples - u_mean * w_mean) / (sigma_u * sigma_w);
-  // Skewness from the raw moments: <x'^3> = <x^3> - 3 <x> <x^2> + 2 <x>^3.
-  auto skewness = [&](double cubes, double squares, double mean, double sigma) {
-    const double n = double(top_samples);
-    return (cubes / n - 3.0 * mean * squares / n + 2.0 * mean * mean * mean) / (sigma * sigma * sigma);
-  };
-  const double skew_u = skewness(uuu, uu, u_mean, sigma_u), skew_w = skewness(www, ww, w_mean, sigma_w);
+  const double sigma_u = top.sigma_u(), sigma_w = top.sigma_w(), r_uw = top.r_uw();
+  const double skew_u = top.skew_u(), skew_w = top.skew_w();
 
   // The inflection: the largest dU/dz between cell centres.
   std::size_t steepest = 0;
@@ -180,6 +197,11 @@ TEST_CASE("validation: the periodic forest shows the mixing-layer statistics at 
             << "  r_uw " << r_uw << ", sigma_w/sigma_u " << sigma_w / sigma_u << ", sigma_u/U(h) "
             << sigma_u / U_h << ", Sk_u " << skew_u << ", Sk_w " << skew_w << "\n  f_peak " << f_peak
             << " Hz, Lambda_x " << eddy_spacing << " m = " << eddy_spacing / shear_length << " L_s\n";
+  for (std::size_t n = 0; n < near.size(); ++n)
+    if (near[n].n > 0)
+      std::cout << "  at " << around[n] << " h: r_uw " << near[n].r_uw() << ", sigma_w/sigma_u "
+                << near[n].sigma_w() / near[n].sigma_u() << ", Sk_u " << near[n].skew_u() << ", Sk_w "
+                << near[n].skew_w() << "\n";
   std::cout << "  U(z):";
   for (std::size_t n = 0; n < profile.size(); ++n) std::cout << " " << heights[n] << ":" << profile[n];
   std::cout << std::endl;

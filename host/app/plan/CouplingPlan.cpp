@@ -53,6 +53,7 @@ void plan_coupling(const io::Scenario& scenario, SimulationPlan& plan) {
   CouplingSettings& coupling = plan.coupling;
   coupling.integrator = scenario.forest.integrator;
   coupling.strong_wind_correction = scenario.forest.strong_wind_correction;
+  coupling.drag_law = scenario.forest.drag_law;
   if (plan.forest.instance_count() == 0) return;
   // A fixed dt past the semi-implicit integrator's limit would stop the run at its first step.
   const fluid::WindSettings& settings = plan.wind.settings;
