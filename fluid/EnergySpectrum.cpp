@@ -13,9 +13,9 @@ std::vector<double> shell_energy_spectrum(const GridSpec& spec, const MacVelocit
   bool periodic = spec.ny == n && spec.nz == n && n >= 4 && n % 2 == 0;
   for (int a = 0; a < 3; ++a) periodic = periodic && spec.periodic(a);
   if (!periodic)
-    throw std::invalid_argument(fmt::format(
-        "shell_energy_spectrum: needs a periodic cube of an even n >= 4 cells, got {} x {} x {}", spec.nx,
-        spec.ny, spec.nz));
+    throw std::invalid_argument(
+        fmt::format("shell_energy_spectrum: needs a periodic cube of an even n >= 4 cells, got {} x {} x {}",
+                    spec.nx, spec.ny, spec.nz));
   if (vel.u.size() != spec.u_count() || vel.v.size() != spec.v_count() || vel.w.size() != spec.w_count())
     throw std::invalid_argument("shell_energy_spectrum: the velocity does not fit the grid");
   const std::size_t points = std::size_t(n) * n * n, half = std::size_t(n / 2 + 1);
@@ -30,8 +30,9 @@ std::vector<double> shell_energy_spectrum(const GridSpec& spec, const MacVelocit
     const std::size_t ex = std::size_t(n) + (c == 0), ey = std::size_t(n) + (c == 1);
     for (int k = 0; k < n; ++k)
       for (int j = 0; j < n; ++j)
-        for (int i = 0; i < n; ++i) in[std::size_t(i) + n * (std::size_t(j) + n * std::size_t(k))] =
-                                        q[std::size_t(i) + ex * (std::size_t(j) + ey * std::size_t(k))];
+        for (int i = 0; i < n; ++i)
+          in[std::size_t(i) + n * (std::size_t(j) + n * std::size_t(k))] =
+              q[std::size_t(i) + ex * (std::size_t(j) + ey * std::size_t(k))];
     fftw_execute(plan);
     for (int k = 0; k < n; ++k)
       for (int j = 0; j < n; ++j)
