@@ -95,25 +95,21 @@ __kernel void tke_viscosity(const FwGrid g, const FwTke t, const float cap,
   }
 }
 
-/* One corner of the advection's interpolation, cell (x, y, z) which may lie outside the grid: wrapped on a
- * periodic axis, FwTke.inflow across an inflow face, else the edge cell; a solid cell reads as `own`, the
- * departing cell's value. */
-FW_INLINE float advect_corner(const FwGrid* g, const FwTke* t, __global const uchar* mask,
-                              __global const float* energy, float own, int x, int y, int z) {
-  int at[3] = {x, y, z};
-  int inflow = 0;
-  for (int a = 0; a < 3; ++a) {
-    const int across = resolve_cell_axis(g, a, &at[a]);
-    inflow |= across == FW_TKE_INFLOW;
-    if (across == FW_TKE_CLOSED) at[a] = clamp(at[a], 0, axis_cells(g, a) - 1);
+/* The two cells base and base + 1 along axis a that the advection's interpolation reads, which may lie
+ * outside the grid: wrapped on a periodic axis, else the edge cell; inflow[n] = 1 where one lies across an
+ * inflow face (it then reads FwTke.inflow). Resolved once per axis, not per corner. */
+FW_INLINE void advect_axis(const FwGrid* g, int a, int base, int at[2], int inflow[2]) {
+  for (int n = 0; n < 2; ++n) {
+    at[n] = base + n;
+    const int across = resolve_cell_axis(g, a, &at[n]);
+    inflow[n] = across == FW_TKE_INFLOW;
+    if (across != FW_TKE_INSIDE) at[n] = clamp(at[n], 0, axis_cells(g, a) - 1);
   }
-  if (inflow) return t->inflow;
-  const int id = cell_index(g, at[0], at[1], at[2]);
-  return (mask[id] & FW_MASK_FLUID) ? energy[id] : own;
 }
 
 /* Step 2: out = e at each cell centre traced back over s.dt along the cell-centred velocity (one Euler
- * step), trilinear between cell centres; 0 in solid cells. out must not be energy. */
+ * step), trilinear between cell centres; a corner across an inflow face reads FwTke.inflow, a solid one
+ * the departing cell's own e. 0 in solid cells. out must not be energy. */
 __kernel void tke_advect(const FwGrid g, const FwStep s, const FwTke t, __global const uchar* restrict mask,
                          __global const float* restrict u, __global const float* restrict v,
                          __global const float* restrict w, __global const float* restrict energy,
@@ -131,22 +127,24 @@ __kernel void tke_advect(const FwGrid g, const FwStep s, const FwTke t, __global
     const float at[3] = {(float)i - steps * centre_velocity(&g, u, 0, i, j, k),
                          (float)j - steps * centre_velocity(&g, v, 1, i, j, k),
                          (float)k - steps * centre_velocity(&g, w, 2, i, j, k)};
-    int base[3];
+    int cx[2], cy[2], cz[2], ix[2], iy[2], iz[2];
     float frac[3];
-    for (int a = 0; a < 3; ++a) {
-      const float lower = floor(at[a]);
-      base[a] = (int)lower;
-      frac[a] = at[a] - lower;
-    }
+    for (int a = 0; a < 3; ++a) frac[a] = at[a] - floor(at[a]);
+    advect_axis(&g, 0, (int)floor(at[0]), cx, ix);
+    advect_axis(&g, 1, (int)floor(at[1]), cy, iy);
+    advect_axis(&g, 2, (int)floor(at[2]), cz, iz);
     float value = 0.0f;
     for (int dz = 0; dz < 2; ++dz)
-      for (int dy = 0; dy < 2; ++dy)
+      for (int dy = 0; dy < 2; ++dy) {
+        const int line = cell_index(&g, 0, cy[dy], cz[dz]);
+        const float wyz = (dy ? frac[1] : 1.0f - frac[1]) * (dz ? frac[2] : 1.0f - frac[2]);
         for (int dx = 0; dx < 2; ++dx) {
-          const float weight = (dx ? frac[0] : 1.0f - frac[0]) * (dy ? frac[1] : 1.0f - frac[1]) *
-                               (dz ? frac[2] : 1.0f - frac[2]);
-          value +=
-              weight * advect_corner(&g, &t, mask, energy, own, base[0] + dx, base[1] + dy, base[2] + dz);
+          const int c = line + cx[dx];
+          const float corner =
+              (ix[dx] | iy[dy] | iz[dz]) ? t.inflow : ((mask[c] & FW_MASK_FLUID) ? energy[c] : own);
+          value += (dx ? frac[0] : 1.0f - frac[0]) * wyz * corner;
         }
+      }
     out[id] = value;
   }
 }
