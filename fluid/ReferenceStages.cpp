@@ -664,13 +664,10 @@ void face_cells(const GridSpec& spec, int c, int i, int j, int k, int lo[3], int
 
 }  // namespace
 
-std::vector<float> eddy_viscosity(const GridSpec& spec, const std::vector<std::uint8_t>& solid,
-                                  const MacVelocity& vel, double smagorinsky_constant, double cap) {
-  check_solid_size(spec, solid, "eddy_viscosity");
-  const int nx = spec.nx, ny = spec.ny, nz = spec.nz;
+double strain_rate_squared(const GridSpec& spec, const MacVelocity& vel, int i, int j, int k) {
   // A face of component c, its index wrapped where it lies outside a periodic axis (the ghost's rule).
-  auto face = [&](int c, int i, int j, int k) {
-    int idx[3] = {i, j, k};
+  auto face = [&](int c, int fi, int fj, int fk) {
+    int idx[3] = {fi, fj, fk};
     for (int a = 0; a < 3; ++a) {
       if (idx[a] >= 0 && idx[a] < extent(spec, c, a)) continue;
       const int n = dims(spec, a);
@@ -678,12 +675,12 @@ std::vector<float> eddy_viscosity(const GridSpec& spec, const std::vector<std::u
     }
     return double(vel.component(c)[face_index(spec, c, idx[0], idx[1], idx[2])]);
   };
-  auto centre = [&](int c, int i, int j, int k) {
-    int hi[3] = {i, j, k};
+  auto centre = [&](int c, int ci, int cj, int ck) {
+    int hi[3] = {ci, cj, ck};
     hi[c] += 1;
-    return 0.5 * (face(c, i, j, k) + face(c, hi[0], hi[1], hi[2]));
+    return 0.5 * (face(c, ci, cj, ck) + face(c, hi[0], hi[1], hi[2]));
   };
-  auto deriv = [&](int c, int a, int i, int j, int k) {
+  auto deriv = [&](int c, int a) {
     int p[3] = {i, j, k}, m[3] = {i, j, k};
     p[a] += 1;
     m[a] -= 1;
@@ -695,23 +692,29 @@ std::vector<float> eddy_viscosity(const GridSpec& spec, const std::vector<std::u
     if (span == 0) return 0.0;
     return (centre(c, p[0], p[1], p[2]) - centre(c, m[0], m[1], m[2])) / (span * spec.h);
   };
+  double g[3][3];  // g[c][a] = d u_c / d x_a
+  for (int c = 0; c < 3; ++c)
+    for (int a = 0; a < 3; ++a) g[c][a] = deriv(c, a);
+  double s2 = 0.0;
+  for (int c = 0; c < 3; ++c)
+    for (int a = 0; a < 3; ++a) {
+      const double s = 0.5 * (g[c][a] + g[a][c]);
+      s2 += 2.0 * s * s;
+    }
+  return s2;
+}
+
+std::vector<float> eddy_viscosity(const GridSpec& spec, const std::vector<std::uint8_t>& solid,
+                                  const MacVelocity& vel, double smagorinsky_constant, double cap) {
+  check_solid_size(spec, solid, "eddy_viscosity");
   const double cs_h = smagorinsky_constant * spec.h;
   std::vector<float> nu(spec.cell_count(), 0.0f);
-  for (int k = 0; k < nz; ++k)
-    for (int j = 0; j < ny; ++j)
-      for (int i = 0; i < nx; ++i) {
-        const std::size_t id = cell_index(nx, ny, i, j, k);
+  for (int k = 0; k < spec.nz; ++k)
+    for (int j = 0; j < spec.ny; ++j)
+      for (int i = 0; i < spec.nx; ++i) {
+        const std::size_t id = cell_index(spec.nx, spec.ny, i, j, k);
         if (!solid.empty() && solid[id]) continue;
-        double g[3][3];  // g[c][a] = d u_c / d x_a
-        for (int c = 0; c < 3; ++c)
-          for (int a = 0; a < 3; ++a) g[c][a] = deriv(c, a, i, j, k);
-        double s2 = 0.0;  // 2 S_ij S_ij
-        for (int c = 0; c < 3; ++c)
-          for (int a = 0; a < 3; ++a) {
-            const double s = 0.5 * (g[c][a] + g[a][c]);
-            s2 += 2.0 * s * s;
-          }
-        nu[id] = float(std::fmin(cs_h * cs_h * std::sqrt(s2), cap));
+        nu[id] = float(std::fmin(cs_h * cs_h * std::sqrt(strain_rate_squared(spec, vel, i, j, k)), cap));
       }
   return nu;
 }

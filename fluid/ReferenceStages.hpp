@@ -93,6 +93,12 @@ MacVelocity canopy_drag(const GridSpec& spec, const MacVelocity& vel, const std:
 MacVelocity diffuse(const GridSpec& spec, const InflowState& inflow, const MacVelocity& vel, double nu,
                     double dt);
 
+/// 2 S_ij S_ij of cell (i,j,k), 1/s^2: S_ij = (d_j u_i + d_i u_j) / 2 from central differences of the
+/// cell-centred velocities over 2h (one-sided over h at a non-periodic edge, wrapping across a periodic
+/// axis); the squared strain rate |S|^2 both subgrid models read (fluid/SubgridStress.hpp,
+/// fluid/SubgridTke.hpp).
+double strain_rate_squared(const GridSpec& spec, const MacVelocity& vel, int i, int j, int k);
+
 /// Smagorinsky eddy viscosity (fluid/SubgridStress.hpp), m^2/s, one float a cell (x fastest):
 /// min((C_s h)^2 |S|, cap) with |S| = sqrt(2 S_ij S_ij) from central differences of the cell-centred
 /// velocities (one-sided at a non-periodic edge, wrapping across a periodic axis); 0 in solid cells.

@@ -36,6 +36,16 @@ std::string to_string(PressureSolverType solver) {
   return "?";
 }
 
+std::string to_string(SubgridModel model) {
+  switch (model) {
+    case SubgridModel::smagorinsky:
+      return "smagorinsky";
+    case SubgridModel::tke:
+      return "tke";
+  }
+  return "?";
+}
+
 void WindSettings::validate() const {
   if (cfl <= 0.0 && !(dt > 0.0))
     throw std::invalid_argument(fmt::format("WindSettings: fixed time step must be > 0 s, got {}", dt));
@@ -50,6 +60,11 @@ void WindSettings::validate() const {
     throw std::invalid_argument(
         fmt::format("WindSettings: smagorinsky_constant must lie in [0, {}) (typically 0.1-0.2), got {}",
                     kSmagorinskyConstantBelow, smagorinsky_constant));
+  if (subgrid == SubgridModel::tke && smagorinsky_constant != 0.0)
+    throw std::invalid_argument(fmt::format(
+        "WindSettings: smagorinsky_constant applies to the smagorinsky subgrid model only; the tke model "
+        "takes its eddy viscosity from the subgrid energy, got {}",
+        smagorinsky_constant));
   if (!(wall_roughness_length >= 0.0) || !std::isfinite(wall_roughness_length))
     throw std::invalid_argument(
         fmt::format("WindSettings: wall_roughness_length must be >= 0 m, got {}", wall_roughness_length));

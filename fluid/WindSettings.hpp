@@ -11,10 +11,15 @@ enum class AdvectionScheme { semi_lagrangian, maccormack, upwind5 };
 /// after each of its first two stages as well, so that every stage advects a divergence-free field.
 enum class StageProjection { final_stage, every_stage };
 enum class PressureSolverType { jacobi, multigrid, cg };
+/// The subgrid stress's model: Smagorinsky's eddy viscosity from the resolved strain alone
+/// (fluid/SubgridStress.hpp), or Deardorff's 1.5-order closure on a prognostic subgrid kinetic energy
+/// (fluid/SubgridTke.hpp).
+enum class SubgridModel { smagorinsky, tke };
 enum class MultigridSmoother { jacobi, red_black };
 
 std::string to_string(AdvectionScheme scheme);
 std::string to_string(PressureSolverType solver);
+std::string to_string(SubgridModel model);
 
 /// The stability limit of upwind5 (fluid/UpwindStencil.hpp) with Wicker & Skamarock's three-stage
 /// Runge-Kutta, on the sum of the Courant numbers (|u| + |v| + |w|) dt / h. Von Neumann analysis of the
@@ -53,6 +58,10 @@ struct WindSettings {
   /// courant_limit on the sum of the components' maxima.
   double cfl = 0.0;
   double max_dt = 1.0;  // s
+  /// smagorinsky: the subgrid stage runs while smagorinsky_constant > 0. tke: it always runs, its eddy
+  /// viscosity C_m l sqrt(e) from the subgrid energy e each cell carries (fluid/SubgridTke.hpp); the
+  /// Smagorinsky constant must then stay 0.
+  SubgridModel subgrid = SubgridModel::smagorinsky;
   /// Smagorinsky constant C_s of the subgrid eddy viscosity nu_t = (C_s h)^2 |S|, dimensionless, in
   /// [0, kSmagorinskyConstantBelow) (0: off; 0.1-0.2 typical, 0.17 from Lilly's inertial-range estimate).
   /// fluid/SubgridStress.hpp.
@@ -66,7 +75,8 @@ struct WindSettings {
 
   /// Throws std::invalid_argument("WindSettings: ...") for a non-positive dt (fixed mode), a negative
   /// viscosity, tolerance or confinement, non-positive iteration counts, a Smagorinsky constant outside
-  /// [0, 1) or a negative or non-finite roughness length (its bound h/2 is checked by host::WindGrid).
+  /// [0, 1), a Smagorinsky constant other than 0 with the tke model, or a negative or non-finite roughness
+  /// length (its bound h/2 is checked by host::WindGrid).
   void validate() const;
 };
 

@@ -137,6 +137,7 @@ fluid::WindSettings Scenario::wind_settings() const {
   settings.pressure.max_iterations = solver.max_iterations;
   settings.pressure.jacobi_iterations = solver.jacobi_iterations;
   settings.vorticity_confinement = solver.vorticity_confinement;
+  settings.subgrid = solver.subgrid;
   settings.smagorinsky_constant = solver.smagorinsky_constant;
   settings.wall_roughness_length = ground_roughness_length;
   if (time.dt) {

@@ -285,7 +285,10 @@ struct SolverSettings {
       schema::kStageProjectionWords, schema::kStageProjections, schema::key("solver.stage_projection").word);
   /// epsilon, dimensionless, >= 0 (0: off)
   double vorticity_confinement = schema::key("solver.vorticity_confinement").number;
-  /// C_s of the eddy viscosity (C_s h)^2 |S|, dimensionless, in [0, 1) (0: off)
+  /// The subgrid stress's model (smagorinsky: on while smagorinsky_constant > 0)
+  fluid::SubgridModel subgrid =
+      schema::value_of(schema::kSubgridWords, schema::kSubgridModels, schema::key("solver.subgrid").word);
+  /// C_s of the eddy viscosity (C_s h)^2 |S|, dimensionless, in [0, 1) (0: off); not given with tke
   double smagorinsky_constant = schema::key("solver.smagorinsky_constant").number;
 };
 

@@ -145,6 +145,10 @@ inline constexpr std::string_view kStageProjectionWords[] = {"final_stage", "eve
 inline constexpr fluid::StageProjection kStageProjections[] = {fluid::StageProjection::final_stage,
                                                                fluid::StageProjection::every_stage};
 
+inline constexpr std::string_view kSubgridWords[] = {"smagorinsky", "tke"};
+inline constexpr fluid::SubgridModel kSubgridModels[] = {fluid::SubgridModel::smagorinsky,
+                                                         fluid::SubgridModel::tke};
+
 inline constexpr std::string_view kVtkFieldWords[] = {"velocity",  "pressure", "speed",
                                                       "vorticity", "solid",    "canopy_density"};
 inline constexpr std::string_view kVdbGridWords[] = {"vel", "speed", "leaves"};
@@ -1002,6 +1006,17 @@ inline constexpr Key kKeys[] = {
      .number = fluid::WindSettings{}.vorticity_confinement,
      .default_note = "`0` (off)",
      .description = "Vorticity confinement strength epsilon."},
+    {.path = "solver.subgrid",
+     .type = Type::word,
+     .words = kSubgridWords,
+     .word = "smagorinsky",
+     .description =
+         "Model of the subgrid stress. `smagorinsky`: the eddy viscosity `(C_s h)^2 \\|S\\|` of "
+         "`smagorinsky_constant`, on while that is above 0. `tke`: Deardorff's 1.5-order closure "
+         "(as PALM): each cell carries a subgrid kinetic energy e, advected, diffused, produced by "
+         "the strain and by the canopy's wakes, dissipated and drained by the canopy's drag; the "
+         "eddy viscosity is `C_m l sqrt(e)`, C_m = 0.1, l = h (0.9 h on a wall). With `tke`, leave "
+         "`smagorinsky_constant` out. docs/numerics.md, \"Subgrid energy\"."},
     {.path = "solver.smagorinsky_constant",
      .type = Type::number,
      .bound = Bound::non_negative,
@@ -1009,9 +1024,9 @@ inline constexpr Key kKeys[] = {
      .number = fluid::WindSettings{}.smagorinsky_constant,
      .default_note = "`0` (off)",
      .description =
-         "Smagorinsky constant C_s of the subgrid eddy viscosity `nu_t = (C_s h)^2 \\|S\\|`, h = "
-         "`domain.cell_size` and `\\|S\\| = sqrt(2 S_ij S_ij)` the resolved strain rate: the "
-         "stress of the eddies smaller than a cell, which drains energy at the grid scale. Typical "
+         "With `subgrid: smagorinsky`: the constant C_s of the subgrid eddy viscosity `nu_t = (C_s h)^2 "
+         "\\|S\\|`, h = `domain.cell_size` and `\\|S\\| = sqrt(2 S_ij S_ij)` the resolved strain rate: "
+         "the stress of the eddies smaller than a cell, which drains energy at the grid scale. Typical "
          "0.1 to 0.2 (0.17 for isotropic turbulence, Lilly 1967; smaller in shear near walls)."},
     // output
     {.path = "output", .description = "What to write, and where."},

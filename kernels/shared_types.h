@@ -152,6 +152,18 @@ typedef struct FwGust {
   float direction[3]; /* unit vector of the added velocity */
 } FwGust;
 
+/* Deardorff's subgrid energy model (fluid/SubgridTke.hpp, kernels/subgrid_tke.cl): its per-cell factors
+ * at the grid's cell size, [0] for an open cell, [1] for a cell on a wall (fluid::wall_cells), and its
+ * constants, filled from fluid::tke_coefficients and the constants there. */
+typedef struct FwTke {
+  float viscosity_length[2]; /* C_m l, m: nu_t = C_m l sqrt(e) */
+  float dissipation_rate[2]; /* C_eps / l, 1/m: dissipation C_eps e^(3/2) / l */
+  float canopy_sink;         /* s of the canopy's sink -s k |U| e */
+  float wake_fraction;       /* share of the drag's work k |U|^3 produced as e */
+  float floor;               /* the smallest e of a fluid cell, m^2/s^2 */
+  float inflow;              /* e beyond an inflow face, m^2/s^2 */
+} FwTke;
+
 /* --- Trees (docs/design.md, "Numerics: Trees: Instances"; Diener 2008, figure 5) ---------------------------
  * Per-species arrays are packed back to back (trees/Forest.hpp, ForestPacking); the offsets below index them.
  * Flat per-instance arrays (modal state and forces, displacements, sampled wind) hold each instance's block

@@ -9,6 +9,7 @@
 #include <utility>
 
 #include "fluid/SubgridStress.hpp"
+#include "fluid/SubgridTke.hpp"
 
 namespace fw::host {
 namespace {}  // namespace
@@ -279,6 +280,47 @@ void FluidStages::enqueue_diffuse_eddy(bool wall_slip, cl::Buffer& mask, cl::Buf
     diffuse_eddy_[c]
         .set_args(grid_, step_, profile_, int(wall_slip), mask, nu_t, vel.component(c), out.component(c))
         .enqueue(cc_, component_rows(c));
+}
+
+void FluidStages::build_tke_kernels() {
+  if (tke_built_) return;
+  cl::Program program = cc_.build("subgrid_tke.cl");
+  tke_equilibrium_ = Kernel(program, "tke_equilibrium");
+  tke_viscosity_ = Kernel(program, "tke_viscosity");
+  tke_advect_ = Kernel(program, "tke_advect");
+  tke_update_ = Kernel(program, "tke_update");
+  tke_ = fluid::tke_device_parameters(spec_.h);
+  tke_built_ = true;
+}
+
+void FluidStages::enqueue_tke_equilibrium(cl::Buffer& mask, DeviceVelocity& vel, cl::Buffer& energy) {
+  build_tke_kernels();
+  tke_equilibrium_.set_args(grid_, tke_, mask, vel.u, vel.v, vel.w, energy)
+      .enqueue(cc_, cc_.rows(spec_.nx, spec_.ny, spec_.nz));
+}
+
+void FluidStages::enqueue_tke_viscosity(float cap, cl::Buffer& mask, cl::Buffer& energy, cl::Buffer& nu_t) {
+  build_tke_kernels();
+  tke_viscosity_.set_args(grid_, tke_, cap, mask, energy, nu_t)
+      .enqueue(cc_, cc_.rows(spec_.nx, spec_.ny, spec_.nz));
+}
+
+void FluidStages::enqueue_tke_advect(cl::Buffer& mask, DeviceVelocity& vel, cl::Buffer& energy,
+                                     cl::Buffer& advected) {
+  build_tke_kernels();
+  tke_advect_.set_args(grid_, step_, tke_, mask, vel.u, vel.v, vel.w, energy, advected)
+      .enqueue(cc_, cc_.rows(spec_.nx, spec_.ny, spec_.nz));
+}
+
+void FluidStages::enqueue_tke_update(float cap, cl::Buffer& mask, DeviceVelocity& vel, cl::Buffer& nu_t,
+                                     cl::Buffer* drag_density, cl::Buffer& advected, cl::Buffer& energy) {
+  build_tke_kernels();
+  // Without a canopy the kernel reads no drag; nu_t stands in for the argument.
+  cl::Buffer& drag = drag_density ? *drag_density : nu_t;
+  tke_update_
+      .set_args(grid_, step_, tke_, cap, int(drag_density != nullptr), mask, vel.u, vel.v, vel.w, nu_t, drag,
+                advected, energy)
+      .enqueue(cc_, cc_.rows(spec_.nx, spec_.ny, spec_.nz));
 }
 
 FluidStages::DeviceWallFaces FluidStages::upload_wall_faces(const WallFaces& list) {

@@ -105,6 +105,22 @@ class FluidStages {
   /// a u or v face into the face below it when that one touches a solid.
   void enqueue_diffuse_eddy(bool wall_slip, cl::Buffer& mask, cl::Buffer& nu_t, DeviceVelocity& vel,
                             DeviceVelocity& out);
+  /// Deardorff's subgrid energy e (fluid/SubgridTke.hpp; one float a cell, m^2/s^2), the start: energy =
+  /// max(floor, (C_m / C_eps) l^2 |S|^2) from the strain of vel (unpadded), 0 in the solid cells of the
+  /// pressure mask: shear production in balance with the dissipation.
+  void enqueue_tke_equilibrium(cl::Buffer& mask, DeviceVelocity& vel, cl::Buffer& energy);
+  /// The subgrid energy's step 1: nu_t = min(C_m l sqrt(e), cap) per cell (m^2/s), 0 in solid cells;
+  /// cap: fluid::eddy_viscosity_cap(h, step().dt).
+  void enqueue_tke_viscosity(float cap, cl::Buffer& mask, cl::Buffer& energy, cl::Buffer& nu_t);
+  /// Step 2: advected = energy traced back over step().dt along the cell-centred velocity of vel
+  /// (semi-Lagrangian, trilinear; inflow sides give fluid::kTkeInflow); advected must not be energy.
+  void enqueue_tke_advect(cl::Buffer& mask, DeviceVelocity& vel, cl::Buffer& energy, cl::Buffer& advected);
+  /// Steps 3 and 4: energy = the advected e diffused by 2 nu_t (flux form, capped at cap), produced by
+  /// nu_t |S|^2 of vel and by the canopy's wakes, dissipated and drained by the canopy, the sinks implicit,
+  /// at least fluid::kTkeFloor (fluid::reference::tke_update). drag_density: the canopy's k per cell (1/m),
+  /// or null for none. nu_t is step 1's, from the energy before step 2.
+  void enqueue_tke_update(float cap, cl::Buffer& mask, DeviceVelocity& vel, cl::Buffer& nu_t,
+                          cl::Buffer* drag_density, cl::Buffer& advected, cl::Buffer& energy);
   /// The wall stress's face list on the device, uploaded once (upload_wall_faces).
   struct DeviceWallFaces {
     int count = 0, u_count = 0;
@@ -132,6 +148,7 @@ class FluidStages {
   double max_partials(std::size_t count);
   void build_subgrid_kernels();  // on first use: a run without the subgrid or wall stage never builds them
   void build_upwind_kernels();   // on first use, likewise for upwind advection
+  void build_tke_kernels();      // on first use, likewise for the subgrid energy
   void refresh_inflow_shell();   // the shell's blocks on every inflow face, unless already fresh
 
   ComputeContext& cc_;
@@ -144,6 +161,9 @@ class FluidStages {
       divergence_, max_div_, gradient_, max_abs_, canopy_drag_[3], copy_face_box_, fill_inflow_shell_;
   Kernel eddy_viscosity_, diffuse_eddy_[3], wall_stress_faces_, wall_stress_store_;
   Kernel upwind_stage_[3];
+  Kernel tke_equilibrium_, tke_viscosity_, tke_advect_, tke_update_;
+  FwTke tke_{};  // the subgrid energy model's factors at this grid's cell size
+  bool tke_built_ = false;
   bool subgrid_built_ = false, upwind_built_ = false;
   bool shell_fresh_ = false;  // the shell holds step_'s prescribed values
 };

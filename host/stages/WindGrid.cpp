@@ -74,6 +74,8 @@ std::size_t WindGrid::estimate_device_bytes(const fluid::GridSpec& spec, const f
   if (upwind) bytes += faces * sizeof(std::uint16_t);  // the flux orders
   if (settings.vorticity_confinement > 0.0) bytes += spec.cell_count() * 4 * sizeof(float);
   if (settings.smagorinsky_constant > 0.0) bytes += spec.cell_count() * sizeof(float);  // nu_t
+  if (settings.subgrid == fluid::SubgridModel::tke)
+    bytes += 3 * spec.cell_count() * sizeof(float);  // nu_t, e and the advected e
   // Pressure hierarchy: about 1/7 extra for the coarse levels of a 3D grid.
   const std::size_t cells = spec.cell_count();
   const std::size_t levels = cells + cells / 7 + 64;
@@ -117,6 +119,10 @@ WindGrid::WindGrid(ComputeContext& cc, WindGridSetup setup)
   if (setup_.settings.vorticity_confinement > 0.0)
     vorticity_ = cc_.buffer(setup_.spec.cell_count() * 4 * sizeof(float));
   if (subgrid_enabled()) eddy_viscosity_ = cc_.buffer(setup_.spec.cell_count() * sizeof(float));
+  if (subgrid_tke_enabled()) {
+    subgrid_energy_ = cc_.buffer(setup_.spec.cell_count() * sizeof(float));
+    advected_energy_ = cc_.buffer(setup_.spec.cell_count() * sizeof(float));
+  }
   if (wall_stress_enabled()) {
     wall_drag_coefficient_ =
         fluid::wall_drag_coefficient(setup_.spec.h, setup_.settings.wall_roughness_length);
@@ -240,6 +246,7 @@ void WindGrid::initialise_ambient() {
   }
   upload_velocity(vel);
   enforce_boundaries();
+  subgrid_energy_set_ = false;  // a new field: the subgrid energy starts in equilibrium with it
   if (last_dt_ <= 0.0) last_dt_ = setup_.settings.cfl > 0.0 ? setup_.settings.max_dt : setup_.settings.dt;
   project();
 }
@@ -338,8 +345,11 @@ void WindGrid::apply_subgrid_stress(double dt) {
   // The strain and the diffusion read the forced velocity with the boundary rules for ghosts; the
   // diffusion writes out of place (into tmp_, free once advection is done), then the fields swap.
   const auto cap = static_cast<float>(fluid::eddy_viscosity_cap(setup_.spec.h, dt));
-  stages_.enqueue_eddy_viscosity(static_cast<float>(setup_.settings.smagorinsky_constant), cap,
-                                 pressure_.mask(), vel_, eddy_viscosity_);
+  if (subgrid_tke_enabled())
+    advance_subgrid_energy(cap);
+  else
+    stages_.enqueue_eddy_viscosity(static_cast<float>(setup_.settings.smagorinsky_constant), cap,
+                                   pressure_.mask(), vel_, eddy_viscosity_);
   stages_.enqueue_diffuse_eddy(wall_stress_enabled(), pressure_.mask(), eddy_viscosity_, vel_, tmp_);
   std::swap(vel_, tmp_);
 }
@@ -466,6 +476,44 @@ std::vector<float> WindGrid::download_pressure() {
   const double inv_dt = last_dt_ > 0.0 ? 1.0 / last_dt_ : 0.0;
   for (auto& p : phi) p = static_cast<float>(p * inv_dt);
   return phi;
+}
+
+void WindGrid::start_subgrid_energy() {
+  if (subgrid_energy_set_) return;
+  stages_.enqueue_tke_equilibrium(pressure_.mask(), vel_, subgrid_energy_);
+  subgrid_energy_set_ = true;
+}
+
+void WindGrid::advance_subgrid_energy(float cap) {
+  // nu_t from e^n (it also diffuses the velocity), then e^n advected into advected_energy_, then the
+  // update back into subgrid_energy_; all read the forced velocity.
+  start_subgrid_energy();
+  stages_.enqueue_tke_viscosity(cap, pressure_.mask(), subgrid_energy_, eddy_viscosity_);
+  stages_.enqueue_tke_advect(pressure_.mask(), vel_, subgrid_energy_, advected_energy_);
+  stages_.enqueue_tke_update(cap, pressure_.mask(), vel_, eddy_viscosity_, canopy_on_ ? &canopy_ : nullptr,
+                             advected_energy_, subgrid_energy_);
+}
+
+std::vector<float> WindGrid::download_subgrid_energy() {
+  if (!subgrid_tke_enabled())
+    throw std::logic_error("WindGrid: no subgrid energy without solver.subgrid tke");
+  start_subgrid_energy();
+  std::vector<float> energy(setup_.spec.cell_count());
+  cc_.queue().enqueueReadBuffer(subgrid_energy_, CL_TRUE, 0, energy.size() * sizeof(float), energy.data());
+  return energy;
+}
+
+void WindGrid::upload_subgrid_energy(const std::vector<float>& energy) {
+  if (!subgrid_tke_enabled())
+    throw std::logic_error("WindGrid: no subgrid energy without solver.subgrid tke");
+  if (energy.size() != setup_.spec.cell_count())
+    throw std::invalid_argument(fmt::format("WindGrid: subgrid energy has {} cells, the grid {}",
+                                            energy.size(), setup_.spec.cell_count()));
+  for (float e : energy)
+    if (!std::isfinite(e) || e < 0.0f)
+      throw std::invalid_argument(fmt::format("WindGrid: subgrid energy must be finite and >= 0, got {}", e));
+  cc_.queue().enqueueWriteBuffer(subgrid_energy_, CL_TRUE, 0, energy.size() * sizeof(float), energy.data());
+  subgrid_energy_set_ = true;
 }
 
 }  // namespace fw::host

@@ -13,7 +13,7 @@
 // A step: (dt from the CFL number if set) -> the inflow turbulence's box travels ambient * dt -> advect
 // (semi-Lagrangian RK2, clamped MacCormack, or flux-form upwind5 by three Runge-Kutta stages) -> body force,
 // mean forcing and gusts -> vorticity confinement -> canopy drag (set_canopy) -> Smagorinsky subgrid stress
-// and log-law wall stress (when set)
+// (or the tke model's subgrid energy and its eddy viscosity) and log-law wall stress (when set)
 // -> viscosity (explicit, sub-stepped) -> prescribed faces (inflow profile + turbulence) -> divergence ->
 // pressure solve -> subtract the gradient. Everything stays on the device; only the scalars of reductions
 // (residual norms, max speed for the CFL step) and, with a mean forcing, two layers of u and v come back.
@@ -140,11 +140,23 @@ class WindGrid {
   /// `law`: how the drag coefficients behind k vary with |u| (fluid/DragLaw.hpp; default constant).
   void set_canopy(std::vector<float> drag_density, const fluid::DragLaw& law = {});
   bool canopy_enabled() const { return canopy_on_; }
-  /// The subgrid stage (WindSettings::smagorinsky_constant > 0): Smagorinsky eddy viscosity and its explicit
-  /// diffusion, right after the canopy drag. The wall stage (wall_roughness_length > 0): the implicit
-  /// log-law stress on the wall cells' u and v, after it. Both off by default; when off they enqueue
-  /// nothing and allocate nothing. fluid/SubgridStress.hpp has the numerics.
-  bool subgrid_enabled() const { return setup_.settings.smagorinsky_constant > 0.0; }
+  /// The subgrid stage (WindSettings::smagorinsky_constant > 0, or the tke model): an eddy viscosity and its
+  /// explicit diffusion, right after the canopy drag. The wall stage (wall_roughness_length > 0): the
+  /// implicit log-law stress on the wall cells' u and v, after it. Both off by default; when off they
+  /// enqueue nothing and allocate nothing. fluid/SubgridStress.hpp has the numerics, fluid/SubgridTke.hpp
+  /// those of the tke model.
+  bool subgrid_enabled() const { return subgrid_tke_enabled() || setup_.settings.smagorinsky_constant > 0.0; }
+  /// The tke model (WindSettings::subgrid): the subgrid stage first advances each cell's subgrid energy e,
+  /// with the canopy's terms where set_canopy put one, and takes nu_t = C_m l sqrt(e) from it.
+  bool subgrid_tke_enabled() const { return setup_.settings.subgrid == fluid::SubgridModel::tke; }
+  /// The subgrid energy e, m^2/s^2, one float a cell (0 in solids). e starts in equilibrium with the strain
+  /// (fluid/SubgridTke.hpp) of the field the next subgrid stage sees, or, when this is asked first, of the
+  /// current field. Throws std::logic_error without the tke model.
+  std::vector<float> download_subgrid_energy();
+  /// Sets e (m^2/s^2, one float a cell, finite and >= 0; solids' values are ignored by the stages) for the
+  /// next step, instead of the equilibrium start. Throws std::logic_error without the tke model and
+  /// std::invalid_argument for a wrong size or value.
+  void upload_subgrid_energy(const std::vector<float>& energy);
   bool wall_stress_enabled() const { return setup_.settings.wall_roughness_length > 0.0; }
 
   /// When on, each stage ends with a queue finish and its wall time is added to stage_ms() (for benchmarks).
@@ -167,6 +179,8 @@ class WindGrid {
   void enforce_boundaries() { enforce_boundaries(vel_); }
   void apply_canopy_drag();
   void apply_subgrid_stress(double dt);
+  void advance_subgrid_energy(float cap);
+  void start_subgrid_energy();
   void apply_wall_stress();
   void update_mean_forcing(double dt);
   void upload_step_inflow();
@@ -192,6 +206,10 @@ class WindGrid {
   cl::Buffer eddy_viscosity_;                // nu_t, one float a cell, m^2/s; valid while subgrid_enabled()
   FluidStages::DeviceWallFaces wall_faces_;  // the faces of the wall cells; used while wall_stress_enabled()
   double wall_drag_coefficient_ = 0.0;       // C_w of the log law at the first cell centre
+  // The tke model's e and the advected e of a step, one float a cell, m^2/s^2; valid while
+  // subgrid_tke_enabled(). set: e holds a state (else the next stage starts it at equilibrium).
+  cl::Buffer subgrid_energy_, advected_energy_;
+  bool subgrid_energy_set_ = false;
   bool stage_timing_ = false;
   std::map<std::string, double> stage_ms_;
   double nested_ms_ = 0.0;  // timed() sections so far, for the stages timed inside others

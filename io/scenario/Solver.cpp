@@ -1,6 +1,8 @@
 // solver: the pressure solver, advection and the subgrid models.
 #include "io/scenario/Sections.hpp"
 
+#include <fmt/format.h>
+
 namespace fw::io::reader {
 
 void read_solver(const Loader& loader, const Field& field, SolverSettings& solver) {
@@ -19,8 +21,16 @@ void read_solver(const Loader& loader, const Field& field, SolverSettings& solve
         value(schema::kStageProjectionWords, schema::kStageProjections, loader.word(*projection));
   if (const auto epsilon = map.get<"vorticity_confinement">())
     solver.vorticity_confinement = loader.number(*epsilon);
-  if (const auto smagorinsky = map.get<"smagorinsky_constant">())
+  if (const auto subgrid = map.get<"subgrid">())
+    solver.subgrid = value(schema::kSubgridWords, schema::kSubgridModels, loader.word(*subgrid));
+  if (const auto smagorinsky = map.get<"smagorinsky_constant">()) {
+    // Strict: a constant the tke model would ignore is more likely a forgotten switch than a wish.
+    if (solver.subgrid != fluid::SubgridModel::smagorinsky)
+      loader.expected(*smagorinsky, fmt::format("nothing unless solver.subgrid is smagorinsky (it is '{}': "
+                                                "its eddy viscosity comes from the subgrid energy)",
+                                                fluid::to_string(solver.subgrid)));
     solver.smagorinsky_constant = loader.number(*smagorinsky);
+  }
 }
 
 }  // namespace fw::io::reader

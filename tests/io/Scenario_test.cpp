@@ -1238,10 +1238,22 @@ output: {interval: 0.5, probe_interval: 0.05}
   CHECK(s.forest.drag_law.exponent == -0.5);
   CHECK(s.forest.drag_law.reference_speed == 4.0);
   CHECK(s.solver.smagorinsky_constant == 0.17);
+  CHECK(s.solver.subgrid == fw::fluid::SubgridModel::smagorinsky);  // the default
   CHECK(s.solver.advection == fw::fluid::AdvectionScheme::upwind5);
   CHECK(s.wind_settings().stage_projection == fw::fluid::StageProjection::every_stage);
   CHECK(s.output.probe_interval == std::optional<double>(0.05));
   CHECK(s.resolved_probe_interval() == std::optional<double>(0.05));
+}
+
+TEST_CASE("load_scenario: solver.subgrid tke reaches the wind settings, without a Smagorinsky constant",
+          "[scenario]") {
+  fw::test::TempDir dir("fw_scenario");
+  const Scenario s = fw::io::load_scenario(dir.write("tke.yaml", kBase + "solver: {subgrid: tke}\n"));
+  CHECK(s.solver.subgrid == fw::fluid::SubgridModel::tke);
+  const auto settings = s.wind_settings();
+  CHECK(settings.subgrid == fw::fluid::SubgridModel::tke);
+  CHECK(settings.smagorinsky_constant == 0.0);
+  CHECK_NOTHROW(settings.validate());
 }
 
 TEST_CASE("load_scenario: turbulence and a rough ground get the documented defaults", "[scenario]") {
@@ -1437,6 +1449,13 @@ TEST_CASE("load_scenario: bad rough-ground, forcing, Smagorinsky and probe keys 
                "solver.smagorinsky_constant", "a number >= 0 and < 1 expected, got '1'");
   expect_error(dir, "smagorinsky_negative", kBase + "solver: {smagorinsky_constant: -0.1}\n", 5,
                "solver.smagorinsky_constant", "a number >= 0 and < 1 expected, got '-0.1'");
+  expect_error(dir, "subgrid_word", kBase + "solver: {subgrid: deardorff}\n", 5, "solver.subgrid",
+               "one of smagorinsky | tke expected, got 'deardorff'");
+  // Strict: the tke model takes no Smagorinsky constant, whichever key comes first in the map.
+  expect_error(dir, "subgrid_constant", kBase + "solver:\n  smagorinsky_constant: 0.17\n  subgrid: tke\n", 6,
+               "solver.smagorinsky_constant",
+               "nothing unless solver.subgrid is smagorinsky (it is 'tke': its eddy viscosity comes from the "
+               "subgrid energy) expected, got '0.17'");
   expect_error(dir, "probe_zero", kBase + "output: {probe_interval: 0}\n", 5, "output.probe_interval",
                "a number > 0 (s) or auto expected, got '0'");
   expect_error(dir, "probe_negative", kBase + "output: {probe_interval: -0.5}\n", 5, "output.probe_interval",

@@ -18,7 +18,8 @@ namespace {
   X(FwGrid);                 \
   X(FwLevel);                \
   X(FwStep);                 \
-  X(FwGust)
+  X(FwGust);                 \
+  X(FwTke)
 #define FW_SHARED_FIELDS(X)      \
   X(FwGrid, nx);                 \
   X(FwGrid, ny);                 \
@@ -43,7 +44,13 @@ namespace {
   X(FwGust, radius);             \
   X(FwGust, center);             \
   X(FwGust, travel);             \
-  X(FwGust, direction)
+  X(FwGust, direction);          \
+  X(FwTke, viscosity_length);    \
+  X(FwTke, dissipation_rate);    \
+  X(FwTke, canopy_sink);         \
+  X(FwTke, wake_fraction);       \
+  X(FwTke, floor);               \
+  X(FwTke, inflow)
 // The trees' structs (packed by trees/Forest.hpp), kept in their own lists.
 #define FW_TREE_STRUCTS(X) \
   X(FwSpecies);            \
@@ -124,11 +131,13 @@ std::string layout_kernel_source(const std::vector<LayoutEntry>& entries) {
 }  // namespace
 
 TEST_CASE("shared_types: host structs are packed 32-bit fields without padding") {
-  // Field counts: FwGrid 3 + 6 + 1 + 3, FwLevel 4, FwStep 2 + 3 + 1 + 3 + 3 + 1, FwGust 4 + 3 * 3.
+  // Field counts: FwGrid 3 + 6 + 1 + 3, FwLevel 4, FwStep 2 + 3 + 1 + 3 + 3 + 1, FwGust 4 + 3 * 3,
+  // FwTke 2 + 2 + 4.
   CHECK(sizeof(FwGrid) == 13 * 4);
   CHECK(sizeof(FwLevel) == 4 * 4);
   CHECK(sizeof(FwStep) == 13 * 4);
   CHECK(sizeof(FwGust) == 13 * 4);
+  CHECK(sizeof(FwTke) == 8 * 4);
   CHECK(alignof(FwGrid) == 4);
   CHECK(alignof(FwGust) == 4);
   CHECK(offsetof(FwGrid, bc) == 12);
@@ -168,8 +177,8 @@ TEST_CASE("shared_types: OpenCL C and the host agree on sizeof and offsetof of e
   auto* cc = fw::test::device_or_skip();
   if (!cc) return;
   const auto entries = host_layout();
-  // Shared structs and fields, the trees', the leaves' (1 struct, 13 fields).
-  REQUIRE(entries.size() == 4 + 24 + 2 + 16 + 1 + 13);
+  // Shared structs and fields (FwTke's 1 and 6 among them), the trees', the leaves' (1 struct, 13 fields).
+  REQUIRE(entries.size() == 5 + 30 + 2 + 16 + 1 + 13);
   const std::string source = layout_kernel_source(entries);
   INFO(source);
 
