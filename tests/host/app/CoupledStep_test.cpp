@@ -80,7 +80,7 @@ TEST_CASE("CoupledStep: a fixed dt far past the CFL limit stops before the first
     const std::string message = e.what();
     INFO(message);
     CHECK(message.find("step 1 ") != std::string::npos);
-    CHECK(message.find("CFL number 10.0") != std::string::npos);
+    CHECK(message.find("Courant number 10.00") != std::string::npos);
   }
   CHECK(coupled.steps() == 0);
   // The same dt cut to the caller's limit is a legal step.
