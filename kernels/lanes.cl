@@ -61,35 +61,6 @@ FW_INLINE int lane_max(lanei v) {
 }
 #else
 #error "FW_LANES must be 8 or 16"
-/* Face rows: the lane kernels over a velocity component (advection) give each work-item FW_LANES faces of
- * one x-row. */
-
-/* Stride of component a's padded copy along axis `axis`. */
-FW_INLINE int padded_stride(const FwGrid* g, int a, int axis) {
-  return axis == 0 ? 1
-                   : (axis == 1 ? padded_extent(g, a, 0) : padded_extent(g, a, 0) * padded_extent(g, a, 1));
-}
-
-/* The padded index of component a at the lanes' faces i of row (j, k) (FW_LANE_SETUP's lanes: consecutive,
- * or in a row shorter than FW_LANES clamped to its last face). */
-FW_INLINE lanei lane_padded_index(const FwGrid* g, int a, lanei i, int j, int k) {
-  return (i + FW_PAD) + padded_extent(g, a, 0) * ((j + FW_PAD) + padded_extent(g, a, 1) * (k + FW_PAD));
-}
-
-/* This work-item's faces: FW_LANES consecutive faces of row (j, k) from i0, of which it stores the lanes
- * `skip` .. `valid` - 1. The last item of a row that does not fill its lanes moves back to end at the row's
- * end, redoing faces of the item before it without storing them: its lanes then stay contiguous, for vector
- * and windowed loads. Rows shorter than FW_LANES clamp the lanes past the row to its last face. */
-#define FW_LANE_SETUP(c)                                  \
-  const int j = get_global_id(1), k = get_global_id(2);   \
-  const int ex = face_extent(&g, c, 0);                   \
-  const int own_first = (int)get_global_id(0) * FW_LANES; \
-  if (own_first >= ex) return;                            \
-  const int i0 = max(0, min(own_first, ex - FW_LANES));   \
-  const int skip = own_first - i0;                        \
-  const int valid = min(FW_LANES, ex - i0);               \
-  const lanei i = min((lanei)(i0) + FW_LANE_OFFSETS, (lanei)(ex - 1));
-
 #endif
 
 /* Windowed loads: lanes whose indices nearly follow the lanes, at[l] = l + shift[l] with every shift within
@@ -100,35 +71,6 @@ FW_INLINE lanei lane_padded_index(const FwGrid* g, int a, lanei i, int j, int k)
  * this way are that much longer, and up to FW_WINDOW_SHIFTS - 1 before the lowest. */
 #if FW_WINDOW_SHIFTS != 3
 #error "LaneWindow blends three shifts"
-/* Face rows: the lane kernels over a velocity component (advection) give each work-item FW_LANES faces of
- * one x-row. */
-
-/* Stride of component a's padded copy along axis `axis`. */
-FW_INLINE int padded_stride(const FwGrid* g, int a, int axis) {
-  return axis == 0 ? 1
-                   : (axis == 1 ? padded_extent(g, a, 0) : padded_extent(g, a, 0) * padded_extent(g, a, 1));
-}
-
-/* The padded index of component a at the lanes' faces i of row (j, k) (FW_LANE_SETUP's lanes: consecutive,
- * or in a row shorter than FW_LANES clamped to its last face). */
-FW_INLINE lanei lane_padded_index(const FwGrid* g, int a, lanei i, int j, int k) {
-  return (i + FW_PAD) + padded_extent(g, a, 0) * ((j + FW_PAD) + padded_extent(g, a, 1) * (k + FW_PAD));
-}
-
-/* This work-item's faces: FW_LANES consecutive faces of row (j, k) from i0, of which it stores the lanes
- * `skip` .. `valid` - 1. The last item of a row that does not fill its lanes moves back to end at the row's
- * end, redoing faces of the item before it without storing them: its lanes then stay contiguous, for vector
- * and windowed loads. Rows shorter than FW_LANES clamp the lanes past the row to its last face. */
-#define FW_LANE_SETUP(c)                                  \
-  const int j = get_global_id(1), k = get_global_id(2);   \
-  const int ex = face_extent(&g, c, 0);                   \
-  const int own_first = (int)get_global_id(0) * FW_LANES; \
-  if (own_first >= ex) return;                            \
-  const int i0 = max(0, min(own_first, ex - FW_LANES));   \
-  const int skip = own_first - i0;                        \
-  const int valid = min(FW_LANES, ex - i0);               \
-  const lanei i = min((lanei)(i0) + FW_LANE_OFFSETS, (lanei)(ex - 1));
-
 #endif
 typedef struct {
   int first;       /* the smallest shift */
