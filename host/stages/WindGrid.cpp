@@ -118,7 +118,7 @@ WindGrid::WindGrid(ComputeContext& cc, WindGridSetup setup)
   }
   if (setup_.settings.vorticity_confinement > 0.0)
     vorticity_ = cc_.buffer(setup_.spec.cell_count() * 4 * sizeof(float));
-  if (subgrid_enabled()) eddy_viscosity_ = cc_.buffer(setup_.spec.cell_count() * sizeof(float));
+  if (subgrid_enabled()) eddy_viscosity_ = cc_.zero_floats(setup_.spec.cell_count());
   if (subgrid_tke_enabled()) {
     subgrid_energy_ = cc_.buffer(setup_.spec.cell_count() * sizeof(float));
     advected_energy_ = cc_.buffer(setup_.spec.cell_count() * sizeof(float));
@@ -501,6 +501,17 @@ std::vector<float> WindGrid::download_subgrid_energy() {
   std::vector<float> energy(setup_.spec.cell_count());
   cc_.queue().enqueueReadBuffer(subgrid_energy_, CL_TRUE, 0, energy.size() * sizeof(float), energy.data());
   return energy;
+}
+
+std::vector<float> WindGrid::download_eddy_viscosity() {
+  if (!subgrid_enabled())
+    throw std::logic_error(
+        "WindGrid: no eddy viscosity without a subgrid stage (solver.smagorinsky_constant or "
+        "solver.subgrid tke)");
+  std::vector<float> viscosity(setup_.spec.cell_count());
+  cc_.queue().enqueueReadBuffer(eddy_viscosity_, CL_TRUE, 0, viscosity.size() * sizeof(float),
+                                viscosity.data());
+  return viscosity;
 }
 
 void WindGrid::upload_subgrid_energy(const std::vector<float>& energy) {

@@ -157,6 +157,10 @@ class WindGrid {
   /// next step, instead of the equilibrium start. Throws std::logic_error without the tke model and
   /// std::invalid_argument for a wrong size or value.
   void upload_subgrid_energy(const std::vector<float>& energy);
+  /// The eddy viscosity nu_t the last subgrid stage diffused the velocity with, m^2/s, one float a cell (0 in
+  /// solids; 0 everywhere before the first step). With the subgrid stress -2 nu_t S_ij it gives the part of
+  /// the turbulent stress the grid does not resolve. Throws std::logic_error without a subgrid stage.
+  std::vector<float> download_eddy_viscosity();
   bool wall_stress_enabled() const { return setup_.settings.wall_roughness_length > 0.0; }
 
   /// When on, each stage ends with a queue finish and its wall time is added to stage_ms() (for benchmarks).
