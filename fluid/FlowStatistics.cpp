@@ -3,6 +3,7 @@
 #include <fftw3.h>
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 #include <numeric>
@@ -116,6 +117,63 @@ double peak_frequency(const Spectrum& spectrum, double f_low, double f_high) {
     if (f >= f_low && f <= f_high && spectrum.density[i] > best) best = spectrum.density[i], at = f;
   }
   return at;
+}
+
+double premultiplied_peak_frequency(const Spectrum& spectrum, int bins_per_decade) {
+  if (bins_per_decade <= 0)
+    throw std::invalid_argument(
+        fmt::format("premultiplied_peak_frequency: bins_per_decade must be > 0, got {}", bins_per_decade));
+  if (spectrum.frequency.empty() || !(spectrum.frequency.front() > 0.0))
+    throw std::invalid_argument("premultiplied_peak_frequency: the spectrum needs frequencies above 0");
+  // Bin b holds x = log10(f / f_0) in [b, b + 1) / bins_per_decade; it sits at the mean x of its
+  // frequencies (few and unevenly placed in the lowest bins).
+  const double f0 = spectrum.frequency.front();
+  std::vector<double> sum, position, count;
+  for (std::size_t i = 0; i < spectrum.frequency.size(); ++i) {
+    const double f = spectrum.frequency[i], x = std::log10(f / f0);
+    const auto b = std::size_t(std::floor(x * bins_per_decade + 1e-9));
+    if (b >= sum.size()) sum.resize(b + 1, 0.0), position.resize(b + 1, 0.0), count.resize(b + 1, 0.0);
+    sum[b] += f * spectrum.density[i];
+    position[b] += x;
+    count[b] += 1.0;
+  }
+  // Empty bins (narrower than the frequency spacing, at the low end) take no part.
+  std::vector<double> centre, value;
+  for (std::size_t b = 0; b < sum.size(); ++b)
+    if (count[b] > 0.0) centre.push_back(position[b] / count[b]), value.push_back(sum[b] / count[b]);
+  if (value.size() < 3)
+    throw std::invalid_argument(fmt::format(
+        "premultiplied_peak_frequency: {} bins hold a frequency, at least 3 needed", value.size()));
+  // The peak's region: the run of bins around the largest that stay above half of it. A parabola in
+  // (log f, log f S) fitted to all of them by least squares: exact for a peak that is Gaussian in log f,
+  // and the noise of each bin averages out over the region (a canopy's w spectrum is flat-topped: a factor of
+  // 1.5 either side of its peak lowers f S by a fifth only, so any one bin may win).
+  const std::size_t best = std::size_t(std::max_element(value.begin(), value.end()) - value.begin());
+  std::size_t low = best, high = best;
+  while (low > 0 && value[low - 1] >= 0.5 * value[best]) --low;
+  while (high + 1 < value.size() && value[high + 1] >= 0.5 * value[best]) ++high;
+  // At least three bins, so that a parabola is determined.
+  while (high - low < 2) {
+    if (low > 0) --low;
+    if (high - low < 2 && high + 1 < value.size()) ++high;
+  }
+  double s0 = 0, s1 = 0, s2 = 0, s3 = 0, s4 = 0, t0 = 0, t1 = 0, t2 = 0;
+  for (std::size_t b = low; b <= high; ++b) {
+    // Centred on the largest bin, for conditioning.
+    const double x = centre[b] - centre[best], y = std::log(std::max(value[b], 1e-300));
+    s0 += 1, s1 += x, s2 += x * x, s3 += x * x * x, s4 += x * x * x * x;
+    t0 += y, t1 += x * y, t2 += x * x * y;
+  }
+  // Normal equations of y = a + b x + c x^2, by Cramer's rule.
+  const auto det3 = [](double a, double b, double c, double d, double e, double f, double g, double h,
+                       double i) { return a * (e * i - f * h) - b * (d * i - f * g) + c * (d * h - e * g); };
+  const double det = det3(s0, s1, s2, s1, s2, s3, s2, s3, s4);
+  const double slope = det3(s0, t0, s2, s1, t1, s3, s2, t2, s4) / det;
+  const double curvature = det3(s0, s1, t0, s1, s2, t1, s2, s3, t2) / det;
+  double at = centre[best];
+  if (std::isfinite(slope) && curvature < 0.0)
+    at = std::clamp(centre[best] - slope / (2.0 * curvature), centre[low], centre[high]);
+  return f0 * std::pow(10.0, at);
 }
 
 }  // namespace fw::fluid

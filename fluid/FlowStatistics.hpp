@@ -39,5 +39,13 @@ Spectrum power_spectrum(const std::vector<double>& x, double dt, std::size_t seg
 double log_log_slope(const Spectrum& spectrum, double f_low, double f_high);
 /// The frequency of the largest density within [f_low, f_high], Hz.
 double peak_frequency(const Spectrum& spectrum, double f_low, double f_high);
+/// The frequency of the peak of the premultiplied spectrum f S(f), Hz: where the variance per interval of
+/// log f is largest (the dominant eddies of a series, as micrometeorology reads them). f S(f) is averaged
+/// in bins of equal width in log f, `bins_per_decade` a decade (> 0), from the lowest frequency; around the
+/// largest bin, the bins above half of it (at least three) are fitted by a parabola in (log f, log f S) by
+/// least squares, whose vertex is the peak (kept within those bins). A broad, noisy spectrum's largest single
+/// density jumps between frequencies far apart; the fit uses the whole peak. Throws std::invalid_argument
+/// when fewer than three bins hold a frequency or bins_per_decade <= 0.
+double premultiplied_peak_frequency(const Spectrum& spectrum, int bins_per_decade);
 
 }  // namespace fw::fluid
