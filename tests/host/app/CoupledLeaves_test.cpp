@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "fluid/SolidMap.hpp"
+#include "fluid/WindSettings.hpp"
 #include "host/app/CoupledStep.hpp"
 #include "tests/support/SmallSpecies.hpp"
 #include "tests/support/TestDevice.hpp"
@@ -26,7 +27,7 @@ struct LeafRun {
   trees::Forest forest;
   host::CouplingSettings coupling;
 
-  explicit LeafRun(double speed) {
+  explicit LeafRun(double speed, fluid::AdvectionScheme advection = fluid::AdvectionScheme::semi_lagrangian) {
     wind.spec.nx = 48;
     wind.spec.ny = 16;
     wind.spec.nz = 16;
@@ -34,6 +35,7 @@ struct LeafRun {
     wind.spec.boundary = {B::inflow, B::outflow, B::periodic, B::periodic, B::no_slip, B::slip};
     wind.settings.cfl = 0.8;
     wind.settings.max_dt = 0.1;
+    wind.settings.advection = advection;
     wind.ambient = {speed, 0.0, 0.0};
     fluid::SolidMap solids(wind.spec);
     solids.add(fluid::SolidBox{"block", {30.0, 8.0, 2.0}, {6.0, 16.0, 4.0}});
@@ -50,8 +52,10 @@ struct LeafRun {
 };
 
 // Runs `seconds` of the coupled step at `speed` and returns the final leaves and counts.
-std::pair<host::LeafSnapshot, trees::LeafCounts> run(host::ComputeContext& cc, double speed, double seconds) {
-  LeafRun setup(speed);
+std::pair<host::LeafSnapshot, trees::LeafCounts> run(
+    host::ComputeContext& cc, double speed, double seconds,
+    fluid::AdvectionScheme advection = fluid::AdvectionScheme::semi_lagrangian) {
+  LeafRun setup(speed, advection);
   host::CoupledStep coupled(cc, setup.wind, setup.forest, setup.coupling,
                             host::TimeInputs::steady(setup.wind.ambient));
   coupled.start();
@@ -78,15 +82,19 @@ TEST_CASE("coupled leaves: more leaves are shed, strictly, as the wind rises", "
   CHECK(shed[2] < total);  // the strongest petioles still hold
 }
 
-TEST_CASE("coupled leaves: shed leaves land on the ground or the block's roof, never inside a solid",
-          "[leaves_coupled]") {
+TEST_CASE(
+    "coupled leaves: shed leaves land on the ground or the block's roof, never inside a solid, under every "
+    "advection scheme",
+    "[leaves_coupled]") {
   auto* cc = test::device_or_skip();
   if (!cc) return;
+  const auto advection = GENERATE(fluid::AdvectionScheme::semi_lagrangian, fluid::AdvectionScheme::maccormack,
+                                  fluid::AdvectionScheme::upwind5);
   // 8 m/s: a leaf falling at ~1.3 m/s from the crowns (4-8 m) comes down within the domain's 48 m.
-  const LeafRun setup(8.0);
-  const auto [snap, counts] = run(*cc, 8.0, 12.0);
-  INFO("shed " << counts.shed << " flying " << counts.flying << " landed " << counts.landed << " exited "
-               << counts.exited);
+  const LeafRun setup(8.0, advection);
+  const auto [snap, counts] = run(*cc, 8.0, 12.0, advection);
+  INFO("advection " << fluid::to_string(advection) << ": shed " << counts.shed << " flying " << counts.flying
+                    << " landed " << counts.landed << " exited " << counts.exited);
   REQUIRE(counts.landed > 0);
   const auto& spec = setup.wind.spec;
   long checked = 0;

@@ -56,6 +56,7 @@ struct ScenarioText {
   double frame_interval = 2.0;  // s
   std::string probe_interval;   // output.probe_interval, or empty for its default
   std::string leaves;           // a flow map for the shrub's leaves, or empty (none)
+  std::string advection;        // solver.advection, or empty for its default
 
   std::string yaml() const {
     std::ostringstream s;
@@ -66,6 +67,7 @@ struct ScenarioText {
       << "wind: {speed: " << speed << ", direction: " << direction << ", reference_height: 10.0, "
       << "profile: {type: uniform}" << (turbulence.empty() ? "" : ", turbulence: " + turbulence) << "}\n";
     if (!obstacles.empty()) s << "obstacles:\n" << obstacles;
+    if (!advection.empty()) s << "solver: {advection: " << advection << "}\n";
     s << "forest:\n  two_way_coupling: " << (coupling ? "true" : "false") << "\n  integrator: " << integrator
       << "\n  species:\n"
       << "    - name: shrub\n      skeleton: {file: shrub.tree}\n"
@@ -332,11 +334,14 @@ TEST_CASE("Simulation: probes at their own interval, independent of the frames",
   }
 }
 
-TEST_CASE("Simulation: two-way coupling lowers the wind inside a stand", "[simulation]") {
+TEST_CASE("Simulation: two-way coupling lowers the wind inside a stand, under every advection scheme",
+          "[simulation]") {
   auto* cc = fw::test::device_or_skip();
   if (!cc) return;
   TempDir dir("fw_sim");
   ScenarioText text;
+  text.advection = GENERATE("semi_lagrangian", "maccormack", "upwind5");
+  INFO("advection " << text.advection);
   text.end = 10.0;
   text.trees.clear();
   text.stands =
@@ -354,11 +359,15 @@ TEST_CASE("Simulation: two-way coupling lowers the wind inside a stand", "[simul
   CHECK(coupled[4] < uncoupled[4]);
 }
 
-TEST_CASE("Simulation: trees behind a wall get less wind than trees in the open", "[simulation]") {
+TEST_CASE(
+    "Simulation: trees behind a wall get less wind than trees in the open, under every advection scheme",
+    "[simulation]") {
   auto* cc = fw::test::device_or_skip();
   if (!cc) return;
   TempDir dir("fw_sim");
   ScenarioText text;
+  text.advection = GENERATE("semi_lagrangian", "maccormack", "upwind5");
+  INFO("advection " << text.advection);
   text.end = 12.0;
   text.coupling = false;
   text.obstacles = "  - box: {name: wall, center: [14, 24, 4], size: [2, 14, 8], yaw: 0.0}\n";
