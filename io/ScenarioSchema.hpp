@@ -1022,12 +1022,16 @@ inline constexpr Key kKeys[] = {
      .bound = Bound::non_negative,
      .below = fluid::WindSettings::kSmagorinskyConstantBelow,
      .number = fluid::WindSettings{}.smagorinsky_constant,
-     .default_note = "`0` (off)",
+     .default_note = "`0` (off); `0.16` with `advection: upwind5`",
      .description =
          "With `subgrid: smagorinsky`: the constant C_s of the subgrid eddy viscosity `nu_t = (C_s h)^2 "
          "\\|S\\|`, h = `domain.cell_size` and `\\|S\\| = sqrt(2 S_ij S_ij)` the resolved strain rate: "
          "the stress of the eddies smaller than a cell, which drains energy at the grid scale. Typical "
-         "0.1 to 0.2 (0.17 for isotropic turbulence, Lilly 1967; smaller in shear near walls)."},
+         "0.1 to 0.2 (0.17 for isotropic turbulence, Lilly 1967; smaller in shear near walls). "
+         "`upwind5` dissipates too little on its own, so it gets 0.16 unless this names another (`0` "
+         "turns it off): the smallest constant that keeps decaying turbulence on the -5/3 line, without "
+         "a pile-up, down to 6 cells (docs/numerics.md). `semi_lagrangian` and `maccormack` drain the "
+         "cascade themselves."},
     // output
     {.path = "output", .description = "What to write, and where."},
     {.path = "output.directory",

@@ -1256,6 +1256,24 @@ TEST_CASE("load_scenario: solver.subgrid tke reaches the wind settings, without 
   CHECK_NOTHROW(settings.validate());
 }
 
+TEST_CASE("load_scenario: upwind5 gets the measured Smagorinsky constant unless the file names one",
+          "[scenario]") {
+  fw::test::TempDir dir("fw_scenario");
+  const auto constant = [&](const std::string& name, const std::string& solver) {
+    return fw::io::load_scenario(dir.write(name + ".yaml", kBase + "solver: " + solver + "\n"))
+        .wind_settings()
+        .smagorinsky_constant;
+  };
+  CHECK(constant("upwind5", "{advection: upwind5}") == fw::fluid::WindSettings::kUpwind5SmagorinskyConstant);
+  CHECK(fw::fluid::WindSettings::kUpwind5SmagorinskyConstant == 0.16);  // as docs/scenario.md says
+  CHECK(constant("upwind5_named", "{advection: upwind5, smagorinsky_constant: 0.12}") == 0.12);
+  CHECK(constant("upwind5_off", "{advection: upwind5, smagorinsky_constant: 0}") == 0.0);
+  CHECK(constant("upwind5_tke", "{advection: upwind5, subgrid: tke}") == 0.0);
+  // The dissipative schemes drain the cascade themselves: off unless named.
+  CHECK(constant("maccormack", "{advection: maccormack}") == 0.0);
+  CHECK(constant("semi_lagrangian", "{advection: semi_lagrangian}") == 0.0);
+}
+
 TEST_CASE("load_scenario: turbulence and a rough ground get the documented defaults", "[scenario]") {
   fw::test::TempDir dir("fw_scenario");
   const Scenario s = fw::io::load_scenario(dir.write("defaults.yaml", R"(scenario: turbulent_defaults
