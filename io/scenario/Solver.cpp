@@ -32,7 +32,8 @@ void read_solver(const Loader& loader, const Field& field, SolverSettings& solve
     solver.smagorinsky_constant = loader.number(*smagorinsky);
   } else if (solver.advection == fluid::AdvectionScheme::upwind5 &&
              solver.subgrid == fluid::SubgridModel::smagorinsky) {
-    // The less dissipative scheme needs a subgrid model to drain the cascade; the other two drain it themselves.
+    // The less dissipative scheme needs a subgrid model to drain the cascade; the other two drain it
+    // themselves.
     solver.smagorinsky_constant = fluid::WindSettings::kUpwind5SmagorinskyConstant;
   }
 }
