@@ -42,16 +42,17 @@ std::string stand_line(std::size_t index, const StandPlan& stand) {
       d.columns > 0
           ? fmt::format("frontal area index {:.2f} over {} grid columns", d.frontal_area_index(), d.columns)
           : std::string("no grid column centre in the region for a frontal area index");
-  return fmt::format("stand {}: {} {} trees on {} x {} m, leaf area index {:.2f} ({}), {}", index, d.trees,
-                     stand.species, extent.x(), extent.y(), d.leaf_area_index(), crowns, frontal);
+  // 6 digits: a region given as 2.4 .. 93.6 m is 91.2 m wide, not its binary rounding.
+  return fmt::format("stand {}: {} {} trees on {:.6g} x {:.6g} m, leaf area index {:.2f} ({}), {}", index,
+                     d.trees, stand.species, extent.x(), extent.y(), d.leaf_area_index(), crowns, frontal);
 }
 
 }  // namespace
 
 void print_plan(const SimulationPlan& plan, std::ostream& out) {
   const fluid::GridSpec& spec = plan.wind.spec;
-  out << fmt::format("grid: {} x {} x {} = {} cells of {} m, domain {} x {} x {} m\n", spec.nx, spec.ny,
-                     spec.nz, spec.cell_count(), spec.h, spec.nx * spec.h, spec.ny * spec.h,
+  out << fmt::format("grid: {} x {} x {} = {} cells of {:.6g} m, domain {:.6g} x {:.6g} x {:.6g} m\n",
+                     spec.nx, spec.ny, spec.nz, spec.cell_count(), spec.h, spec.nx * spec.h, spec.ny * spec.h,
                      spec.nz * spec.h);
   out << "boundaries at t = 0: " << boundaries_line(plan.wind) << "\n";
   const long solid_cells =
