@@ -30,6 +30,14 @@ std::string boundaries_line(const WindGridSetup& wind) {
   return line;
 }
 
+// The subgrid model with its constant: a scenario that names none may still get one (upwind5's
+// Smagorinsky constant), and a constant of 0 runs no subgrid stage at all.
+std::string subgrid_words(const fluid::WindSettings& settings) {
+  if (settings.subgrid != fluid::SubgridModel::smagorinsky) return fluid::to_string(settings.subgrid);
+  if (settings.smagorinsky_constant <= 0.0) return "none (smagorinsky, C_s 0)";
+  return fmt::format("smagorinsky, C_s {:.3g}", settings.smagorinsky_constant);
+}
+
 // A stand's density as foresters give it (trees/StandDensity.hpp): LAI over its region, with the leaf area
 // index of each crown that makes it, and FAI over its grid columns.
 std::string stand_line(std::size_t index, const StandPlan& stand) {
@@ -57,9 +65,9 @@ void print_plan(const SimulationPlan& plan, std::ostream& out) {
   out << "boundaries at t = 0: " << boundaries_line(plan.wind) << "\n";
   const long solid_cells =
       std::count_if(plan.wind.solid.begin(), plan.wind.solid.end(), [](std::uint8_t s) { return s != 0; });
-  out << fmt::format("solid cells: {}, gusts: {}, advection: {}, pressure: {}\n", solid_cells,
+  out << fmt::format("solid cells: {}, gusts: {}, advection: {}, subgrid: {}, pressure: {}\n", solid_cells,
                      plan.wind.gusts.size(), fluid::to_string(plan.wind.settings.advection),
-                     fluid::to_string(plan.wind.settings.pressure.solver));
+                     subgrid_words(plan.wind.settings), fluid::to_string(plan.wind.settings.pressure.solver));
   if (const auto& box = plan.wind.turbulence) {
     const auto& n = box->cells();
     const auto period = box->period();

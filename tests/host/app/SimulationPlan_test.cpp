@@ -350,3 +350,26 @@ TEST_CASE("SimulationPlan: the same scenario twice gives identical leaves, anoth
     differ = differ || !(reseeded.coupling.leaves[0].leaf(k).anchor == a.leaf(k).anchor);
   CHECK(differ);
 }
+
+TEST_CASE("SimulationPlan: check names the subgrid model and the constant the solver gets") {
+  TempDir dir("fw_plan_subgrid");
+  const auto solver_line = [&](const std::string& solver) {
+    const std::string text =
+        "scenario: plan_subgrid\nseed: 4\ntime: {end: 1.0}\n"
+        "domain: {size: [16, 16, 8], cell_size: 2.0}\n"
+        "wind: {speed: 5.0, direction: 270}\n"
+        "solver: " +
+        solver + "\n";
+    std::ostringstream out;
+    fw::host::print_plan(stand_plan(dir, "subgrid", text), out);
+    return out.str();
+  };
+  // upwind5 names no constant and gets the measured one; the other schemes get none unless asked.
+  CHECK_THAT(solver_line("{advection: upwind5}"),
+             Contains("advection: upwind5, subgrid: smagorinsky, C_s 0.16, pressure:"));
+  CHECK_THAT(solver_line("{advection: maccormack}"),
+             Contains("advection: maccormack, subgrid: none (smagorinsky, C_s 0), pressure:"));
+  CHECK_THAT(solver_line("{advection: maccormack, smagorinsky_constant: 0.12}"),
+             Contains("subgrid: smagorinsky, C_s 0.12,"));
+  CHECK_THAT(solver_line("{advection: upwind5, subgrid: tke}"), Contains("subgrid: tke, pressure:"));
+}
