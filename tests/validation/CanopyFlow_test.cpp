@@ -26,6 +26,7 @@
 //     (twice the separation of its first minimum), are printed beside it.
 // Field ranges (RF&B 1996, table and figure 9; Finnigan 2000): r_uw -0.3 .. -0.6 (about -0.45 typical),
 // sigma_w / sigma_u 0.4 .. 0.65 (about 0.5), Lambda_x / L_s 7 .. 10 (8.1 +- 0.3 fit), Sk_u > 0, Sk_w < 0.
+// Lambda_x / L_s is held to them only where the grid resolves the shear layer the eddies grow from (below).
 #include <catch2/catch.hpp>
 
 #include <algorithm>
@@ -68,13 +69,21 @@ struct ValidationLength {
   bool full = false;
 };
 
-ValidationLength validation_length() {
+bool full_validation() {
   const char* mode = std::getenv("FORESTWIND_VALIDATION");
+  return mode && std::string(mode) == "full";
+}
+
+ValidationLength validation_length() {
   // Full: 30 large-eddy turnovers h / u* (~20 s) to spin up, then 60 to average. Short: enough for the
   // shear layer to form and for plane averages to settle to a few per cent.
-  if (mode && std::string(mode) == "full") return {600.0, 1200.0, true};
+  if (full_validation()) return {600.0, 1200.0, true};
   return {150.0, 120.0, false};
 }
+
+// The smallest eddy upwind5 resolves, in cells: its decaying spectrum holds within 2x of -5/3 down to 8
+// cells and falls away below 6 (docs/numerics.md, "Decaying turbulence").
+constexpr double kFinestResolvedEddyCells = 6.0;
 
 // Moments of u and w at one height over every column and sample (the plane is homogeneous, so one mean over
 // space and time): correlation, standard deviations, skewness; with the subgrid parts when added.
@@ -202,8 +211,8 @@ double correlation_spacing(const PlaneSeries& s) {
 
 // Runs the periodic canopy of `file` through the coupled step, prints what it measures and checks the
 // mixing-layer statistics against the field ranges (full) or their signs and orders (short).
-void check_canopy(host::ComputeContext& cc, const std::filesystem::path& file) {
-  const ValidationLength length = validation_length();
+void check_canopy(host::ComputeContext& cc, const std::filesystem::path& file,
+                  const ValidationLength& length = validation_length()) {
   const io::Scenario scenario = io::load_scenario(file);
   host::SimulationPlan plan = host::plan_simulation(scenario, nullptr, nullptr);
   host::CoupledStep coupled(cc, plan);
@@ -333,8 +342,19 @@ void check_canopy(host::ComputeContext& cc, const std::filesystem::path& file) {
     CHECK(r_uw >= -0.6);
     CHECK(sigma_ratio >= 0.4);
     CHECK(sigma_ratio <= 0.65);
-    CHECK(eddy_spacing / shear_length >= 7.0);
-    CHECK(eddy_spacing / shear_length <= 10.0);
+    // The eddies of the mixing layer grow from a shear layer 2 L_s thick (its vorticity thickness, RF&B
+    // 1996): a grid that cannot resolve that thickness cannot make them at their spacing, so Lambda_x is
+    // held to the field only where it can. The beech at 8 cells per h (2 L_s of 4-5 cells) makes eddies
+    // 16-18 L_s apart; at 16 cells per h, 8 L_s, as the field does (docs/numerics.md).
+    const double shear_layer_cells = 2.0 * shear_length / spec.h;
+    if (shear_layer_cells >= kFinestResolvedEddyCells) {
+      CHECK(eddy_spacing / shear_length >= 7.0);
+      CHECK(eddy_spacing / shear_length <= 10.0);
+    } else {
+      std::cout << "  Lambda_x / L_s not held to the field: the shear layer (2 L_s) spans "
+                << shear_layer_cells << " cells, under the " << kFinestResolvedEddyCells
+                << " that upwind5 resolves\n";
+    }
   } else {
     // Two minutes of averaging after a short spin-up: the correlation and the ratio have formed but not
     // settled, and the eddy spacing needs the long run's frequency resolution; ask for the signs and orders.
@@ -365,4 +385,16 @@ TEST_CASE("validation: a second canopy (beech, 12 m, stand LAI 2) shows the same
   auto* cc = test::device_or_skip();
   if (!cc) return;
   check_canopy(*cc, std::filesystem::path(FORESTWIND_SOURCE_DIR) / "tests/validation/broadleaf_canopy.yaml");
+}
+
+// `make validate` only (hidden from CTest: 1M cells, about 40 min on 2 cores): the beech again at 16 cells
+// per h, where its shear layer is resolved, on a domain 16 h long, where its eddies are not locked to the
+// domain's length. Half the full length, for the cost: 300 s is still 17 turnovers h / u* (u* 0.7 m/s).
+TEST_CASE("validation: the beech canopy at 16 cells per h shows the eddy spacing of the field",
+          "[.][validation]") {
+  auto* cc = test::device_or_skip();
+  if (!cc) return;
+  check_canopy(*cc,
+               std::filesystem::path(FORESTWIND_SOURCE_DIR) / "tests/validation/broadleaf_canopy_fine.yaml",
+               {300.0, 600.0, full_validation()});
 }
