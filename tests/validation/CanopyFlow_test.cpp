@@ -152,8 +152,8 @@ std::pair<double, double> subgrid_at_face_layer(const fluid::GridSpec& spec, con
       (vel.w[ref::face_index(spec, 2, east, j, top)] - vel.w[ref::face_index(spec, 2, west, j, top)]) /
       (2.0 * spec.h);
   // Smagorinsky has no e of its own: the one whose nu_t = C_m h sqrt(e) is the nu_t used.
-  const double from_viscosity = std::pow(nu / (fluid::kTkeViscosityConstant * spec.h), 2);
-  const double e = energy ? 0.5 * ((*energy)[cell(top - 1)] + (*energy)[cell(top)]) : from_viscosity;
+  const double e = energy ? 0.5 * ((*energy)[cell(top - 1)] + (*energy)[cell(top)])
+                          : std::pow(nu / (fluid::kTkeViscosityConstant * spec.h), 2);
   return {-nu * (du_dz + dw_dx), e};
 }
 
@@ -186,8 +186,8 @@ double parabolic_peak(double before, double at, double after) {
 // separation against lag through the origin.
 double convection_velocity(const PlaneSeries& s, int max_shift) {
   double xt = 0.0, tt = 0.0;
+  const std::size_t max_lag = std::min<std::size_t>(s.planes.size() / 4, 80);
   for (int shift = 2; shift <= max_shift; ++shift) {
-    const std::size_t max_lag = std::min<std::size_t>(s.planes.size() / 4, 80);
     std::vector<double> c(max_lag + 1);
     for (std::size_t lag = 0; lag <= max_lag; ++lag) c[lag] = space_time_covariance(s, shift, lag);
     const std::size_t best = std::size_t(std::max_element(c.begin(), c.end()) - c.begin());
