@@ -20,9 +20,10 @@
 #define FW_ROW_BEGIN ((int)get_global_id(0) * FW_ROW_CHUNK)
 #define FW_ROW_END(extent_x) min(FW_ROW_BEGIN + FW_ROW_CHUNK, (extent_x))
 
-/* Reductions leave one partial per work-group (host/runtime/ComputeContext.hpp): the host launches them on a
+/* Maxima leave one partial per work-group (host/runtime/ComputeContext.hpp): the host launches them on a
  * range padded to whole groups of FW_GROUP_X x FW_GROUP_Y x 1 items, a power of two in all. Items past the
- * array do no work but must reach the group's reduction: a reduction kernel never returns early. */
+ * array do no work but must reach the group's reduction: a reduction kernel never returns early. (Sums
+ * leave column sums instead, which the host adds exactly: fluid_pressure.cl.) */
 #ifndef FW_GROUP_X
 #define FW_GROUP_X 1
 #endif
@@ -45,23 +46,21 @@ FW_INLINE int group_index(void) {
 #define FW_REDUCTION_ROW_END(extent_x, extent_y) \
   ((int)get_global_id(1) < (extent_y) ? FW_ROW_END(extent_x) : FW_ROW_BEGIN)
 
-/* Writes to partial[group] the sum (is_max 0) or the maximum (is_max 1; NaN wins, so a blow-up is seen) of
- * every item's value, as a tree in a fixed order: deterministic on a given device. */
-FW_INLINE void write_group_partial(float value, int is_max, __local float* scratch, __global float* partial) {
+/* Writes to partial[group] the maximum of every item's value (NaN wins, so a blow-up is seen), as a tree. */
+FW_INLINE void write_group_max(float value, __local float* scratch, __global float* partial) {
   const int l = (int)get_local_id(0) + (int)get_local_size(0) * (int)get_local_id(1);
   scratch[l] = value;
   barrier(CLK_LOCAL_MEM_FENCE);
   for (int stride = FW_GROUP_ITEMS / 2; stride > 0; stride >>= 1) {
     if (l < stride) {
       const float a = scratch[l], b = scratch[l + stride];
-      scratch[l] = is_max ? ((b > a || isnan(b)) && !isnan(a) ? b : a) : a + b;
+      scratch[l] = (b > a || isnan(b)) && !isnan(a) ? b : a;
     }
     barrier(CLK_LOCAL_MEM_FENCE);
   }
   if (l == 0) partial[group_index()] = scratch[0];
 }
-#define FW_GROUP_SUM(value, partial) write_group_partial((value), 0, fw_group_scratch, (partial))
-#define FW_GROUP_MAX(value, partial) write_group_partial((value), 1, fw_group_scratch, (partial))
+#define FW_GROUP_MAX(value, partial) write_group_max((value), fw_group_scratch, (partial))
 
 FW_INLINE int axis_cells(const FwGrid* g, int a) {
   return a == 0 ? g->nx : (a == 1 ? g->ny : g->nz);

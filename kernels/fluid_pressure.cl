@@ -2,9 +2,10 @@
  * grid transfers and the vector operations of conjugate gradients.
  *
  * (A phi)_c = popcount(open) phi_c - sum over open faces of phi_neighbour, with phi = 0 across outflow
- * faces and wrap-around on periodic axes (see fluid/PressureLevels.hpp). Reductions write one partial
- * value per work-group (common.cl); the host adds them in double precision, in a fixed order
- * (deterministic).
+ * faces and wrap-around on periodic axes (see fluid/PressureLevels.hpp). Sums (the *_columns kernels)
+ * write one partial per x-y column of cells: its values added in float from k = 0 up, whatever the work
+ * mapping. The host adds the columns exactly (base/ExactSum), so a sum depends on the cells' values alone,
+ * not on how the grid is split into work-groups or, over MPI, into blocks (docs/parallel.md).
  * Reference: fluid/ReferenceStages.cpp apply_operator, residual, jacobi_sweep, red_black_sweep (as passes),
  * restrict_residual, prolong_add.
  */
@@ -324,38 +325,34 @@ FW_INLINE float residual_value(const FwLevel* L, __global const uchar* mask, __g
   return run_fluid(mask[p], run) ? b[p] - operator_value(L, mask, P, i, j, p, run) : 0.0f;
 }
 
-/* r = b - A phi; partial[group] = sum of r^2 over the group's cells. */
+/* r = b - A phi (rows). */
 __kernel void residual(const FwLevel L, __global const uchar* mask, __global const float* b,
-                       __global const float* phi, __global float* r, __global float* partial) {
-  FW_GROUP_SCRATCH;
+                       __global const float* phi, __global float* r) {
   const int j = get_global_id(1), k = get_global_id(2), plane = k * plane_cells(&L), row = j * L.nx;
   const FwPlanes P = level_planes(&L, phi, k);
   mask += plane, b += plane, r += plane;
-  const FwRowRuns R = row_runs(&L, &P, mask + row, j, FW_ROW_BEGIN, FW_REDUCTION_ROW_END(L.nx, L.ny));
-  float sum = 0.0f;
-  FW_FOR_RUNS(R, {
-    const float res = residual_value(&L, mask, b, &P, i, j, row + i, run);
-    r[row + i] = res;
-    sum += res * res;
-  });
-  FW_GROUP_SUM(sum, partial);
+  const FwRowRuns R = row_runs(&L, &P, mask + row, j, FW_ROW_BEGIN, FW_ROW_END(L.nx));
+  FW_FOR_RUNS(R, r[row + i] = residual_value(&L, mask, b, &P, i, j, row + i, run));
 }
 
-/* q = A d; partial[group] = sum of d q. */
-__kernel void apply_operator_dot(const FwLevel L, __global const uchar* mask, __global const float* d,
-                                 __global float* q, __global float* partial) {
-  FW_GROUP_SCRATCH;
+/* The column sums' start: this item's cells [begin, end) of column row j zeroed (columns: nx * ny values, the
+ * column of cell (i, j) at i + nx j). Each column kernel then adds plane k = 0, 1, ... in order. */
+FW_INLINE __global float* zeroed_columns(const FwLevel* L, __global float* columns, int j, int begin,
+                                         int end) {
+  columns += j * L->nx;
+  for (int i = begin; i < end; ++i) columns[i] = 0.0f;
+  return columns;
+}
+
+/* q = A d (rows); CG then takes the column sums of d q (dot_product_columns): apart, both stream at full
+ * speed, where one kernel over whole columns ran at half. */
+__kernel void apply_operator(const FwLevel L, __global const uchar* mask, __global const float* d,
+                             __global float* q) {
   const int j = get_global_id(1), k = get_global_id(2), plane = k * plane_cells(&L), row = j * L.nx;
   const FwPlanes D = level_planes(&L, d, k);
   mask += plane, q += plane;
-  const FwRowRuns R = row_runs(&L, &D, mask + row, j, FW_ROW_BEGIN, FW_REDUCTION_ROW_END(L.nx, L.ny));
-  float sum = 0.0f;
-  FW_FOR_RUNS(R, {
-    const float out = operator_value(&L, mask, &D, i, j, row + i, run);
-    q[row + i] = out;
-    sum += D.here[row + i] * out;
-  });
-  FW_GROUP_SUM(sum, partial);
+  const FwRowRuns R = row_runs(&L, &D, mask + row, j, FW_ROW_BEGIN, FW_ROW_END(L.nx));
+  FW_FOR_RUNS(R, q[row + i] = operator_value(&L, mask, &D, i, j, row + i, run));
 }
 
 /* The first smoothing pass from a zero guess, which needs no neighbours: w b / diag (w the relaxation weight)
@@ -513,21 +510,21 @@ __kernel void prolong_add(const FwLevel F, const FwLevel C, __global const uchar
   for (int i = tail_begin; i < end; ++i) prolong_edge_cell(&C, &R, coarse_mask, fine_mask, phi, i);
 }
 
-/* x += alpha d; r -= alpha q; partial[group] = sum of r^2. */
-__kernel void cg_update(const FwLevel L, const float alpha, __global const float* d, __global const float* q,
-                        __global float* x, __global float* r, __global float* partial) {
-  FW_GROUP_SCRATCH;
-  const int j = get_global_id(1), k = get_global_id(2);
-  const int end = FW_REDUCTION_ROW_END(L.nx, L.ny);
-  float sum = 0.0f;
-  for (int i = FW_ROW_BEGIN; i < end; ++i) {
-    const int id = level_index(&L, i, j, k);
-    x[id] += alpha * d[id];
-    const float res = r[id] - alpha * q[id];
-    r[id] = res;
-    sum += res * res;
+/* x += alpha d; r -= alpha q; columns = the column sums of r^2. */
+__kernel void cg_update_columns(const FwLevel L, const float alpha, __global const float* restrict d,
+                                __global const float* restrict q, __global float* restrict x,
+                                __global float* restrict r, __global float* restrict columns) {
+  const int j = get_global_id(1), begin = FW_ROW_BEGIN, end = FW_ROW_END(L.nx);
+  __global float* column = zeroed_columns(&L, columns, j, begin, end);
+  for (int k = 0; k < L.nz; ++k) {
+    const int row = level_index(&L, 0, j, k);
+    for (int i = begin; i < end; ++i) {
+      x[row + i] += alpha * d[row + i];
+      const float res = r[row + i] - alpha * q[row + i];
+      r[row + i] = res;
+      column[i] += res * res;
+    }
   }
-  FW_GROUP_SUM(sum, partial);
 }
 
 /* d = z + beta d. */
@@ -539,18 +536,15 @@ __kernel void cg_direction(const FwLevel L, const float beta, __global const flo
   }
 }
 
-/* partial[group] = sum of a b. */
-__kernel void dot_product(const FwLevel L, __global const float* a, __global const float* b,
-                          __global float* partial) {
-  FW_GROUP_SCRATCH;
-  const int j = get_global_id(1), k = get_global_id(2);
-  const int end = FW_REDUCTION_ROW_END(L.nx, L.ny);
-  float sum = 0.0f;
-  for (int i = FW_ROW_BEGIN; i < end; ++i) {
-    const int id = level_index(&L, i, j, k);
-    sum += a[id] * b[id];
+/* columns = the column sums of a b. */
+__kernel void dot_product_columns(const FwLevel L, __global const float* a, __global const float* b,
+                                  __global float* restrict columns) {
+  const int j = get_global_id(1), begin = FW_ROW_BEGIN, end = FW_ROW_END(L.nx);
+  __global float* column = zeroed_columns(&L, columns, j, begin, end);
+  for (int k = 0; k < L.nz; ++k) {
+    const int row = level_index(&L, 0, j, k);
+    for (int i = begin; i < end; ++i) column[i] += a[row + i] * b[row + i];
   }
-  FW_GROUP_SUM(sum, partial);
 }
 
 /* x += value on fluid cells (removes the mean of b when A is singular). */
@@ -563,16 +557,13 @@ __kernel void add_on_fluid(const FwLevel L, __global const uchar* mask, const fl
   }
 }
 
-/* partial[group] = sum of x over fluid cells. */
-__kernel void sum_on_fluid(const FwLevel L, __global const uchar* mask, __global const float* x,
-                           __global float* partial) {
-  FW_GROUP_SCRATCH;
-  const int j = get_global_id(1), k = get_global_id(2);
-  const int end = FW_REDUCTION_ROW_END(L.nx, L.ny);
-  float sum = 0.0f;
-  for (int i = FW_ROW_BEGIN; i < end; ++i) {
-    const int id = level_index(&L, i, j, k);
-    if (mask[id] & FW_MASK_FLUID) sum += x[id];
+/* columns = the column sums of x over fluid cells. */
+__kernel void sum_on_fluid_columns(const FwLevel L, __global const uchar* restrict mask,
+                                   __global const float* restrict x, __global float* restrict columns) {
+  const int j = get_global_id(1), begin = FW_ROW_BEGIN, end = FW_ROW_END(L.nx);
+  __global float* column = zeroed_columns(&L, columns, j, begin, end);
+  for (int k = 0; k < L.nz; ++k) {
+    const int row = level_index(&L, 0, j, k);
+    for (int i = begin; i < end; ++i) column[i] += (mask[row + i] & FW_MASK_FLUID) ? x[row + i] : 0.0f;
   }
-  FW_GROUP_SUM(sum, partial);
 }

@@ -13,9 +13,10 @@
 // the kernels as the macros FW_ROW_CHUNK and FW_CPU_LAYOUT. (Advection sets its own range, see
 // host/stages/FluidStages.)
 //
-// Reductions (sums, maxima) leave one partial per work-group, reduced in local memory: reduction_rows()
-// gives their range, padded to whole groups of FW_GROUP_X x FW_GROUP_Y items (1 x 8 rows, or 64 x 1 cells),
-// and the number of partials the host then adds in a fixed order.
+// Maxima leave one partial per work-group, reduced in local memory: reduction_rows() gives their range,
+// padded to whole groups of FW_GROUP_X x FW_GROUP_Y items (1 x 8 rows, or 64 x 1 cells), and the number of
+// partials the host then takes the maximum of. (Sums do not: they leave column sums that the host adds
+// exactly, so that they do not depend on the groups; see host/stages/PressureSolver.)
 #pragma once
 
 #include <algorithm>

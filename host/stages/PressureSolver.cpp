@@ -2,8 +2,11 @@
 
 #include <algorithm>
 #include <cmath>
+#include <span>
 #include <stdexcept>
 #include <utility>
+
+#include "base/ExactSum.hpp"
 
 namespace fw::host {
 namespace {
@@ -20,9 +23,12 @@ constexpr float kLinearSlope = 0.25f;
 // did not (see solve_cg).
 constexpr int kCgRestarts = 2;
 
-// Lets the compiler reassociate the per-row sums of the reductions, which is what allows it to vectorise
-// them. Results stay deterministic on a given device; no kernel here tests for NaN.
-constexpr const char* kPressureBuildOptions = "-cl-unsafe-math-optimizations";
+// No -cl-unsafe-math-optimizations: with it the compiler reorders a cell's arithmetic differently in the
+// vectorised and the scalar runs of a row, so a cell's bits depended on where the work-items' runs begin
+// (the rows and the cells mapping parted in the last bits). Without it every cell computes the same bits
+// under any mapping and, over MPI, in any block; it cost 0.6 ms of the 19 ms a CG solve takes on
+// 128x128x64 under PoCL.
+constexpr const char* kPressureBuildOptions = "";
 // The work-group of red_black_sweeps: under the GPU work mapping enough items for a compute unit; under the
 // CPU's rows mapping one item, as a CPU runs a group on one core whatever its size and one item spares PoCL
 // the barriers (a group of 256 items took 5x as long). The mapping, not the device, decides, so that CI
@@ -40,12 +46,12 @@ FwLevel level_dims(const fluid::PressureLevel& L, const fluid::GridSpec& spec) {
 
 }  // namespace
 
-std::size_t PressureSolver::device_bytes(const std::vector<fluid::PressureLevel>& levels,
-                                         std::size_t partial_values) {
+std::size_t PressureSolver::device_bytes(const std::vector<fluid::PressureLevel>& levels) {
   std::size_t bytes = 0;
   for (const auto& L : levels) bytes += L.cell_count() * (1 + 3 * sizeof(float));  // mask, b, phi, scratch
-  bytes += levels.front().cell_count() * 5 * sizeof(float);                        // r, z, d, q, scratch
-  return bytes + partial_values * sizeof(float);
+  const auto& fine = levels.front();
+  bytes += fine.cell_count() * 5 * sizeof(float);                 // r, z, d, q, scratch
+  return bytes + std::size_t(fine.nx) * fine.ny * sizeof(float);  // the column sums
 }
 
 PressureSolver::PressureSolver(ComputeContext& cc, const fluid::GridSpec& spec,
@@ -72,8 +78,8 @@ PressureSolver::PressureSolver(ComputeContext& cc, const fluid::GridSpec& spec,
     *buf = cc_.buffer(n * sizeof(float));
     cc_.queue().enqueueFillBuffer(*buf, 0.0f, 0, n * sizeof(float));
   }
-  partial_host_.resize(reduction(0).groups);  // the finest level has the most groups
-  partial_ = cc_.buffer(partial_host_.size() * sizeof(float));
+  columns_host_.resize(std::size_t(host_levels_[0].nx) * host_levels_[0].ny);  // the finest has the most
+  columns_ = cc_.buffer(columns_host_.size() * sizeof(float));
 
   cl::Program program = cc_.build("fluid_pressure.cl", kPressureBuildOptions);
   jacobi_ = Kernel(program, "jacobi_sweep");
@@ -85,14 +91,14 @@ PressureSolver::PressureSolver(ComputeContext& cc, const fluid::GridSpec& spec,
                          ? 1
                          : std::min(kOneGroupItemsGpu, red_black_sweeps_.max_group_size(cc_));
   residual_ = Kernel(program, "residual");
-  apply_dot_ = Kernel(program, "apply_operator_dot");
+  apply_ = Kernel(program, "apply_operator");
   restrict_ = Kernel(program, "restrict_residual");
   prolong_ = Kernel(program, "prolong_add");
-  cg_update_ = Kernel(program, "cg_update");
+  cg_update_ = Kernel(program, "cg_update_columns");
   cg_direction_ = Kernel(program, "cg_direction");
-  dot_ = Kernel(program, "dot_product");
+  dot_ = Kernel(program, "dot_product_columns");
   add_ = Kernel(program, "add_on_fluid");
-  sum_ = Kernel(program, "sum_on_fluid");
+  sum_ = Kernel(program, "sum_on_fluid_columns");
 }
 
 float PressureSolver::correction_scale() const {
@@ -119,7 +125,7 @@ constexpr double kRestrictCoarse = 9;  // ... coarse mask read, coarse b and fir
 constexpr double kProlongFine = 9;     // fine mask read, fine phi read and written ...
 constexpr double kProlongCoarse = 5;   // ... coarse mask and phi read (the side rows cached)
 constexpr double kDot = 8;             // a, b read
-constexpr double kApplyDot = 9;        // mask, d read; q written
+constexpr double kApply = 9;           // mask, d read; q written
 constexpr double kCgUpdate = 24;       // d, q, x, r read; x, r written
 constexpr double kCgDirection = 12;    // z, d read; d written
 constexpr double kSmoothingStart = 9;  // mask, b read; the first pass written
@@ -130,24 +136,23 @@ void PressureSolver::count_traffic(int level, double bytes_per_cell) {
   traffic_bytes_ += bytes_per_cell * double(host_levels_[level].cell_count());
 }
 
-ReductionRange PressureSolver::reduction(int level) const {
+cl::NDRange PressureSolver::column_rows(int level) const {
   const auto& L = host_levels_[level];
-  return cc_.reduction_rows(L.nx, L.ny, L.nz);
+  return cc_.rows(L.nx, L.ny, 1);
 }
 
-double PressureSolver::dot(cl::Buffer& a, cl::Buffer& b) {
-  auto& L = levels_[0];
-  const ReductionRange range = reduction(0);
-  dot_.set_args(L.dims, a, b, partial_).enqueue(cc_, range.global, range.local);
-  count_traffic(0, traffic::kDot);
-  return sum_partials(range.groups);
+double PressureSolver::dot(int level, cl::Buffer& a, cl::Buffer& b) {
+  dot_.set_args(levels_[level].dims, a, b, columns_).enqueue(cc_, column_rows(level));
+  count_traffic(level, traffic::kDot);
+  return sum_columns(level);
 }
 
-double PressureSolver::sum_partials(std::size_t count) {
-  cc_.queue().enqueueReadBuffer(partial_, CL_TRUE, 0, count * sizeof(float), partial_host_.data());
-  double sum = 0.0;
-  for (std::size_t i = 0; i < count; ++i) sum += partial_host_[i];
-  return sum;
+double PressureSolver::sum_columns(int level) {
+  const std::size_t count = std::size_t(host_levels_[level].nx) * host_levels_[level].ny;
+  cc_.queue().enqueueReadBuffer(columns_, CL_TRUE, 0, count * sizeof(float), columns_host_.data());
+  base::ExactSum sum;
+  sum.add(std::span<const float>(columns_host_.data(), count));
+  return sum.value();
 }
 
 void PressureSolver::enqueue_jacobi_sweep(int level, cl::Buffer& b, cl::Buffer& phi, cl::Buffer& phi_out,
@@ -205,12 +210,15 @@ void PressureSolver::enqueue_smoothing_start(int level, cl::Buffer& b, cl::Buffe
   count_traffic(level, traffic::kSmoothingStart);
 }
 
-double PressureSolver::residual_norm2(int level, cl::Buffer& b, cl::Buffer& phi, cl::Buffer& r) {
+void PressureSolver::enqueue_residual(int level, cl::Buffer& b, cl::Buffer& phi, cl::Buffer& r) {
   auto& L = levels_[level];
-  const ReductionRange range = reduction(level);
-  residual_.set_args(L.dims, L.mask, b, phi, r, partial_).enqueue(cc_, range.global, range.local);
+  residual_.set_args(L.dims, L.mask, b, phi, r).enqueue(cc_, cc_.rows(L.dims.nx, L.dims.ny, L.dims.nz));
   count_traffic(level, traffic::kResidual);
-  return sum_partials(range.groups);
+}
+
+double PressureSolver::residual_norm2(int level, cl::Buffer& b, cl::Buffer& phi, cl::Buffer& r) {
+  enqueue_residual(level, b, phi, r);
+  return dot(level, r, r);
 }
 
 void PressureSolver::enqueue_restrict_residual(int fine_level, cl::Buffer& b, cl::Buffer& phi) {
@@ -218,9 +226,7 @@ void PressureSolver::enqueue_restrict_residual(int fine_level, cl::Buffer& b, cl
   auto& C = levels_[fine_level + 1];
   // The residual kernel's branch-free interior run is much faster than recomputing the residual inside the
   // restriction; the scratch buffer is free at this point of the cycle.
-  const ReductionRange range = reduction(fine_level);
-  residual_.set_args(F.dims, F.mask, b, phi, F.scratch, partial_).enqueue(cc_, range.global, range.local);
-  count_traffic(fine_level, traffic::kResidual);
+  enqueue_residual(fine_level, b, phi, F.scratch);
   restrict_
       .set_args(F.dims, C.dims, C.mask, F.scratch, C.b, level_first_pass(fine_level + 1), correction_scale(),
                 start_relaxation_weight(), start_colour())
@@ -289,10 +295,9 @@ void PressureSolver::vcycle_level(int l, cl::Buffer& b, cl::Buffer& phi, bool st
 
 void PressureSolver::remove_mean(cl::Buffer& b) {
   auto& L = levels_[0];
-  const ReductionRange sum_range = reduction(0);
-  sum_.set_args(L.dims, L.mask, b, partial_).enqueue(cc_, sum_range.global, sum_range.local);
+  sum_.set_args(L.dims, L.mask, b, columns_).enqueue(cc_, column_rows(0));
   count_traffic(0, traffic::kSumOnFluid + traffic::kAddOnFluid);
-  const double mean = fluid_cells_ ? sum_partials(sum_range.groups) / double(fluid_cells_) : 0.0;
+  const double mean = fluid_cells_ ? sum_columns(0) / double(fluid_cells_) : 0.0;
   add_.set_args(L.dims, L.mask, static_cast<float>(-mean), b)
       .enqueue(cc_, cc_.rows(L.dims.nx, L.dims.ny, L.dims.nz));
 }
@@ -314,7 +319,7 @@ PressureSolveStatus PressureSolver::solve_jacobi() {
   auto& L = levels_[0];
   PressureSolveStatus st;
   st.solver = "jacobi";
-  const double bnorm = std::sqrt(dot(L.b, L.b));
+  const double bnorm = std::sqrt(dot(0, L.b, L.b));
   // Ping-pong between phi and scratch; an even count of sweeps ends in phi.
   const int sweeps = settings_.jacobi_iterations + (settings_.jacobi_iterations % 2);
   for (int s = 0; s < sweeps; s += 2) {
@@ -331,7 +336,7 @@ PressureSolveStatus PressureSolver::solve_multigrid() {
   auto& L = levels_[0];
   PressureSolveStatus st;
   st.solver = "multigrid";
-  const double bnorm = std::sqrt(dot(L.b, L.b));
+  const double bnorm = std::sqrt(dot(0, L.b, L.b));
   if (bnorm == 0.0) {
     cc_.queue().enqueueFillBuffer(L.phi, 0.0f, 0, host_levels_[0].cell_count() * sizeof(float));
     st.converged = true;
@@ -355,9 +360,9 @@ PressureSolveStatus PressureSolver::solve_cg() {
   st.solver = "cg";
   const std::size_t bytes = host_levels_[0].cell_count() * sizeof(float);
   const auto range = cc_.rows(L.dims.nx, L.dims.ny, L.dims.nz);
-  const ReductionRange reduce = reduction(0);
+  const auto columns = column_rows(0);  // cg_update's
 
-  const double bnorm = std::sqrt(dot(L.b, L.b));
+  const double bnorm = std::sqrt(dot(0, L.b, L.b));
   if (bnorm == 0.0) {
     cc_.queue().enqueueFillBuffer(L.phi, 0.0f, 0, bytes);
     st.converged = true;
@@ -373,21 +378,20 @@ PressureSolveStatus PressureSolver::solve_cg() {
   for (int run = 0; run <= kCgRestarts && std::sqrt(rr) > target && st.iterations < settings_.max_iterations;
        ++run) {
     vcycle_from_zero(r_, z_);
-    double rho = dot(r_, z_);
+    double rho = dot(0, r_, z_);
     std::swap(z_, d_);  // d = z without a copy: the next preconditioning writes all of z
     while (st.iterations < settings_.max_iterations) {
-      apply_dot_.set_args(L.dims, L.mask, d_, q_, partial_).enqueue(cc_, reduce.global, reduce.local);
-      count_traffic(0, traffic::kApplyDot);
-      const double dq = sum_partials(reduce.groups);
+      apply_.set_args(L.dims, L.mask, d_, q_).enqueue(cc_, range);
+      count_traffic(0, traffic::kApply);
+      const double dq = dot(0, d_, q_);
       if (!(dq > 0.0)) break;  // breakdown: direction has no energy left (or NaN)
       const float alpha = static_cast<float>(rho / dq);
-      cg_update_.set_args(L.dims, alpha, d_, q_, L.phi, r_, partial_)
-          .enqueue(cc_, reduce.global, reduce.local);
-      const double recursive = sum_partials(reduce.groups);
+      cg_update_.set_args(L.dims, alpha, d_, q_, L.phi, r_, columns_).enqueue(cc_, columns);
+      const double recursive = sum_columns(0);
       ++st.iterations;
       if (std::sqrt(recursive) <= target || !std::isfinite(recursive)) break;
       vcycle_from_zero(r_, z_);
-      const double rho_new = dot(r_, z_);
+      const double rho_new = dot(0, r_, z_);
       const float beta = static_cast<float>(rho_new / rho);
       rho = rho_new;
       cg_direction_.set_args(L.dims, beta, z_, d_).enqueue(cc_, range);

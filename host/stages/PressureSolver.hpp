@@ -45,8 +45,7 @@ class PressureSolver {
                  const fluid::PressureSettings& settings);
 
   /// Device bytes this solver allocates for `levels` (for the memory estimate made before allocating).
-  static std::size_t device_bytes(const std::vector<fluid::PressureLevel>& levels,
-                                  std::size_t partial_values);
+  static std::size_t device_bytes(const std::vector<fluid::PressureLevel>& levels);
 
   PressureSolveStatus solve();
 
@@ -85,8 +84,13 @@ class PressureSolver {
   /// Under PoCL a launch costs about 0.1 ms, more than one core takes for a colour pass over this many cells
   /// (16,384 cells, one more level, came out slower on one core than in parallel).
   static constexpr std::size_t kOneGroupCells = 4096;
+  /// r = b - A phi on `level`.
+  void enqueue_residual(int level, cl::Buffer& b, cl::Buffer& phi, cl::Buffer& r);
   /// r = b - A phi and returns ||r||^2 (blocks).
   double residual_norm2(int level, cl::Buffer& b, cl::Buffer& phi, cl::Buffer& r);
+  /// sum of a b over `level` (blocks): column sums on the device, added exactly on the host (base/ExactSum),
+  /// so that the bits do not depend on the work mapping.
+  double dot(int level, cl::Buffer& a, cl::Buffer& b);
   /// Coarse rhs = correction_scale() * mean of the children's residual, and the coarse level's first
   /// smoothing pass from a zero guess in level_first_pass(fine_level + 1).
   void enqueue_restrict_residual(int fine_level, cl::Buffer& b, cl::Buffer& phi);
@@ -121,12 +125,11 @@ class PressureSolver {
   int start_colour() const;
   /// phi where level l updates in place, else the level's scratch.
   cl::Buffer& first_pass_buffer(int l, cl::Buffer& phi);
-  double sum_partials(std::size_t count);
+  /// The exact sum of the column sums a *_columns kernel left for `level` (blocks).
+  double sum_columns(int level);
   void count_traffic(int level, double bytes_per_cell);
-  /// The range of a reduction kernel on `level`, and its number of partials.
-  ReductionRange reduction(int level) const;
-  /// sum of a b over the finest level (the dot_product kernel and its partials).
-  double dot(cl::Buffer& a, cl::Buffer& b);
+  /// The range of the *_columns kernels on `level`: rows over x and y, each item taking every k.
+  cl::NDRange column_rows(int level) const;
   void remove_mean(cl::Buffer& b);
   PressureSolveStatus solve_jacobi();
   PressureSolveStatus solve_multigrid();
@@ -137,12 +140,12 @@ class PressureSolver {
   fluid::PressureSettings settings_;
   std::vector<fluid::PressureLevel> host_levels_;
   std::vector<DeviceLevel> levels_;
-  cl::Buffer r_, z_, d_, q_, scratch_, partial_;
-  std::vector<float> partial_host_;
+  cl::Buffer r_, z_, d_, q_, scratch_, columns_;  // columns_: one float per x-y column of level 0
+  std::vector<float> columns_host_;
   std::size_t one_group_items_ = 1;  // red_black_sweeps' work-group
   double traffic_bytes_ = 0.0;
   std::size_t fluid_cells_ = 0;
-  Kernel jacobi_, red_black_, red_black_update_, red_black_sweeps_, smoothing_start_, residual_, apply_dot_,
+  Kernel jacobi_, red_black_, red_black_update_, red_black_sweeps_, smoothing_start_, residual_, apply_,
       restrict_, prolong_, cg_update_, cg_direction_, dot_, add_, sum_;
 };
 
