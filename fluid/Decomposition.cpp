@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <cmath>
 #include <limits>
 #include <vector>
 
@@ -30,27 +31,36 @@ std::vector<int> block_counts(int n, int p, int alignment) {
   return counts;
 }
 
-// The alignment along an axis, or a DecompositionError saying why the axis cannot take p blocks.
+// The alignment along an axis, or a DecompositionError saying why the axis cannot take p blocks: of the
+// alignments that leave every block at least min_block_cells (and, on a periodic axis, even), the one whose
+// largest block is smallest (the best balance), the larger alignment on a tie.
 int axis_alignment(const GridSpec& spec, int axis, int p, int halo) {
   if (p == 1) return 1;
   const int n = axis == 0 ? spec.nx : spec.ny;
   const int need = min_block_cells(halo);
+  int best = 0, best_largest = 0, odd_block = 0;
   for (int alignment = Decomposition::kMaxAlignment; alignment >= 1; alignment /= 2) {
     if (n % alignment != 0) continue;
     const auto counts = block_counts(n, p, alignment);
     if (*std::min_element(counts.begin(), counts.end()) < need) continue;
     if (spec.periodic(axis)) {
       const auto odd = std::find_if(counts.begin(), counts.end(), [](int c) { return c % 2 != 0; });
-      if (odd != counts.end())
-        throw DecompositionError(fmt::format(
-            "{} blocks along the periodic {} axis of {} cells leave a block of {} cells; every block of a "
-            "periodic axis needs an even count (the red-black colouring and the pressure hierarchy pair "
-            "cells "
-            "across the wrap)",
-            p, kAxisNames[axis], n, *odd));
+      if (odd != counts.end()) {
+        odd_block = *odd;
+        continue;
+      }
     }
-    return alignment;
+    const int largest = *std::max_element(counts.begin(), counts.end());
+    if (best == 0 || largest < best_largest) best = alignment, best_largest = largest;
   }
+  if (best > 0) return best;
+  if (odd_block > 0)
+    throw DecompositionError(fmt::format(
+        "{} blocks along the periodic {} axis of {} cells leave a block of {} cells; every block of a "
+        "periodic "
+        "axis needs an even count (the red-black colouring and the pressure hierarchy pair cells across the "
+        "wrap)",
+        p, kAxisNames[axis], n, odd_block));
   throw DecompositionError(fmt::format(
       "{} blocks along {} need at least {} cells each ({} in all: the halo is {} cells), but {} has {}: more "
       "ranks than the grid can be split into",
@@ -58,6 +68,12 @@ int axis_alignment(const GridSpec& spec, int axis, int p, int halo) {
 }
 
 }  // namespace
+
+int halo_cells(AdvectionScheme scheme, double courant) {
+  if (scheme == AdvectionScheme::upwind5) return FW_PAD;
+  const double reach = std::ceil(std::max(courant, 0.0));
+  return reach + 2 > FW_PAD ? int(std::min(reach + 2, double(std::numeric_limits<int>::max()))) : FW_PAD;
+}
 
 Decomposition Decomposition::make(const GridSpec& spec, int ranks,
                                   std::optional<std::array<int, 2>> requested, int halo) {
@@ -109,6 +125,11 @@ Block Decomposition::block(int rank) const {
   for (int a = 0; a < 2; ++a) {
     block.first[a] = cut(a, index[a]);
     block.count[a] = cut(a, index[a] + 1) - block.first[a];
+    std::array<int, 2> below = index, above = index;
+    --below[a], ++above[a];
+    const int low = rank_of(below[0], below[1]), high = rank_of(above[0], above[1]);
+    block.halo_low[a] = low >= 0 && blocks_[a] > 1 ? halo_ : 0;
+    block.halo_high[a] = high >= 0 && blocks_[a] > 1 ? halo_ : 0;
   }
   return block;
 }
@@ -135,15 +156,7 @@ long long Decomposition::halo_cells() const {
   long long cells = 0;
   for (int r = 0; r < ranks(); ++r) {
     const Block b = block(r);
-    const int bx = r % blocks_[0], by = r / blocks_[0];
-    // A side receives a halo where another block lies across it (a periodic wrap onto itself is no exchange).
-    const auto side = [&](int dx, int dy) {
-      const int other = rank_of(bx + dx, by + dy);
-      return other >= 0 && other != r ? halo_ : 0;
-    };
-    const long long wide = b.count[0] + side(-1, 0) + side(1, 0);
-    const long long deep = b.count[1] + side(0, -1) + side(0, 1);
-    cells += (wide * deep - (long long)b.count[0] * b.count[1]) * spec_.nz;
+    cells += ((long long)b.extent(0) * b.extent(1) - (long long)b.count[0] * b.count[1]) * spec_.nz;
   }
   return cells;
 }

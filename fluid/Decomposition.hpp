@@ -6,8 +6,9 @@
 //   d.alignment();                       // every cut lies on a multiple of this many cells (a power of 2)
 //
 // Rank r holds block (r % px, r / px). Along an axis of n cells cut into p blocks the cuts lie at
-// round(b n / (a p)) a for b = 1 .. p - 1, a the alignment: the largest power of two up to kMaxAlignment
-// that divides n and leaves every block at least max(halo, 2) cells. The alignment is what keeps the
+// round(b n / (a p)) a for b = 1 .. p - 1, a the alignment: a power of two up to kMaxAlignment that divides
+// n and leaves every block at least max(halo, 2) cells, the one that balances the blocks best (the larger on
+// a tie; on a periodic axis one that leaves every block even). The alignment is what keeps the
 // pressure hierarchy's coarse levels per rank: a block coarsens on its own while its cuts stay whole coarse
 // cells (docs/parallel.md). A block is never thinner than the halo, so a halo is only ever exchanged with
 // the next block.
@@ -27,6 +28,7 @@
 #include <string>
 
 #include "fluid/GridSpec.hpp"
+#include "fluid/WindSettings.hpp"
 
 namespace fw::fluid {
 
@@ -34,14 +36,27 @@ struct DecompositionError : std::invalid_argument {
   using std::invalid_argument::invalid_argument;
 };
 
-/// One rank's block: cells first .. first + count - 1 along x and y, every z.
+/// The halo, in cells, that a step of `scheme` needs around a block when the largest Courant number of a
+/// component is `courant`: upwind5's stencil reaches FW_PAD cells; a semi-Lagrangian back-trace (and
+/// MacCormack's) reaches ceil(courant) cells, its trilinear stencil one more, with one of margin for the
+/// RK2 midpoint; never less than FW_PAD, the ghost layers every scheme's padded copies have.
+int halo_cells(AdvectionScheme scheme, double courant);
+
+/// One rank's block: cells first .. first + count - 1 along x and y, every z, and the halo it receives on
+/// each side: the decomposition's halo where another block lies across that side (a periodic wrap onto
+/// itself included only when the axis is cut), else 0.
 struct Block {
   std::array<int, 2> first{0, 0};
   std::array<int, 2> count{0, 0};
+  std::array<int, 2> halo_low{0, 0}, halo_high{0, 0};
+  /// Cells along x or y with the halo: what the rank allocates.
+  int extent(int axis) const { return count[axis] + halo_low[axis] + halo_high[axis]; }
 };
 
 class Decomposition {
  public:
+  /// One block: the whole grid on one rank (before make()).
+  Decomposition() = default;
   /// The largest alignment taken: 16 cells keeps four coarse levels of the pressure hierarchy per rank.
   static constexpr int kMaxAlignment = 16;
 

@@ -110,6 +110,9 @@ struct DomainSettings {
   std::array<double, 3> size{0, 0, 0};  ///< extent along x, y, z, m (> 0)
   double cell_size = 0.0;               ///< h, m (> 0); cells are cubic
   std::array<int, 3> cells{0, 0, 0};    ///< round(size / h); size is a whole multiple of h
+  /// Blocks along x and y over MPI ranks (fluid/Decomposition), as given; else chosen from the ranks.
+  std::optional<std::array<int, 2>> decomposition;
+  int decomposition_line = 0;  ///< the line of decomposition in the file (of domain when not given)
 
   /// origin + size, m.
   std::array<double, 3> max_corner() const {

@@ -248,6 +248,14 @@ inline constexpr Key kKeys[] = {
      .constraint = "(nx + 1)(ny + 1)(nz + 1) <= {0}",
      .limits = {double(fluid::GridSpec::kMaxFaces)},
      .description = "Cell edge h. The grid has `size / cell_size` cells along each axis."},
+    {.path = "domain.decomposition",
+     .type = Type::point2,
+     .at_least = 1,
+     .noun = "[px, py]",
+     .default_note = "chosen: the split of the ranks that exchanges the fewest halo cells",
+     .constraint = "whole numbers whose product is the number of ranks (`mpirun -np`)",
+     .description = "Blocks along x and y of a run over MPI ranks, one block a rank (docs/parallel.md). "
+                    "Ignored by a run in one process."},
     // boundaries, in the order of FW_FACE_*
     {.path = "boundaries", .description = "Boundary condition per face."},
     {.path = "boundaries.west",

@@ -40,6 +40,8 @@ packages=(
   build-essential cmake ninja-build pkg-config clang-format
   # OpenCL: headers, C++ bindings, ICD loader, PoCL (the CPU implementation CI runs on), clinfo
   opencl-headers opencl-clhpp-headers ocl-icd-opencl-dev pocl-opencl-icd clinfo
+  # MPI: OpenMPI's library and its launcher (mpirun), one rank per device (docs/parallel.md)
+  libopenmpi-dev openmpi-bin
   # numerics
   libeigen3-dev libspectra-dev libglm-dev libmuparser-dev libfftw3-dev
   # output: VTK for ParaView, OpenVDB for Houdini/Blender (its CMake module needs boost-iostreams)

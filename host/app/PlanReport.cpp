@@ -55,6 +55,22 @@ std::string stand_line(std::size_t index, const StandPlan& stand) {
                      d.trees, stand.species, extent.x(), extent.y(), d.leaf_area_index(), crowns, frontal);
 }
 
+// The blocks over the ranks, and each rank's block of the wind grid with its halo.
+void print_decomposition(const SimulationPlan& plan, std::ostream& out) {
+  const fluid::Decomposition& d = plan.decomposition;
+  out << fmt::format("decomposition: {} over {} ranks, halo {} cells ({} halo cells per exchanged field)\n",
+                     d.describe(), d.ranks(), d.halo(), d.halo_cells());
+  for (int r = 0; r < d.ranks(); ++r) {
+    const fluid::Block b = d.block(r);
+    fluid::GridSpec local = plan.wind.spec;
+    local.nx = b.extent(0), local.ny = b.extent(1);
+    out << fmt::format("  rank {}: cells x {}-{}, y {}-{}; wind grid with its halo {} x {} x {}: {}\n", r,
+                       b.first[0], b.first[0] + b.count[0] - 1, b.first[1], b.first[1] + b.count[1] - 1,
+                       local.nx, local.ny, local.nz,
+                       megabytes(WindGrid::estimate_device_bytes(local, plan.wind.settings, 1)));
+  }
+}
+
 }  // namespace
 
 void print_plan(const SimulationPlan& plan, std::ostream& out) {
@@ -92,6 +108,7 @@ void print_plan(const SimulationPlan& plan, std::ostream& out) {
   for (const auto& part : plan.memory.parts())
     parts += fmt::format("{}{} {}", parts.empty() ? "" : ", ", part.name, megabytes(part.bytes));
   out << fmt::format("estimated device memory: {} ({})\n", megabytes(plan.memory.total()), parts);
+  if (plan.decomposition.ranks() > 1) print_decomposition(plan, out);
   const fluid::WindSettings& settings = plan.wind.settings;
   if (!(settings.cfl > 0.0)) {
     out << fmt::format("steps: {} (dt {} s to t = {} s)\n", long(std::ceil(plan.end_time / settings.dt)),

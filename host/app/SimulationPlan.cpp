@@ -8,9 +8,9 @@
 namespace fw::host {
 
 SimulationPlan plan_simulation(const io::Scenario& scenario, const trees::BasisCache* cache,
-                               std::ostream* log) {
+                               std::ostream* log, int ranks) {
   SimulationPlan plan;
-  plan_wind(scenario, plan);
+  plan_wind(scenario, ranks, plan);
   plan_turbulence(scenario, plan);
   plan_forest(scenario, plan_species(scenario, cache, log, plan), plan);
   plan_coupling(scenario, plan);

@@ -29,6 +29,7 @@
 #include <string>
 #include <vector>
 
+#include "fluid/Decomposition.hpp"
 #include "host/app/CouplingSettings.hpp"
 #include "host/app/DeviceMemory.hpp"
 #include "host/app/TimeInputs.hpp"
@@ -67,7 +68,10 @@ struct SimulationPlan {
   ScenarioRecord scenario;
   double end_time = 0.0;  ///< s: the run covers [0, end_time]
   WindGridSetup wind;     ///< ambient set for t = 0
-  TimeInputs inputs;      ///< the ambient wind, the inflow turbulence's sigma_u, the unresolved intensity
+  /// The wind grid's x-y blocks over the run's ranks (one block in one process): domain.decomposition, else
+  /// chosen; its halo from the scheme and the largest Courant number the run will take.
+  fluid::Decomposition decomposition;
+  TimeInputs inputs;  ///< the ambient wind, the inflow turbulence's sigma_u, the unresolved intensity
   trees::Forest forest;
   CouplingSettings coupling;
   /// Per forest species (forest.species()): its basis, its trees, the cache; the scenario's species first,
@@ -85,9 +89,10 @@ struct SimulationPlan {
   std::vector<std::string> warnings;
 };
 
-/// Builds the plan. `cache` may be null (no disk cache); `log` (may be null) gets one line per species.
+/// Builds the plan for a run over `ranks` MPI ranks. `cache` may be null (no disk cache); `log` (may be null)
+/// gets one line per species.
 SimulationPlan plan_simulation(const io::Scenario& scenario, const trees::BasisCache* cache,
-                               std::ostream* log);
+                               std::ostream* log, int ranks = 1);
 
 /// What `forestwind check` prints: the grid and its boundaries, the turbulence, each species and its trees,
 /// the forest, each stand's leaf and frontal area index, the device memory by part, the time steps and the

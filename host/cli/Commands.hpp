@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "host/app/Simulation.hpp"
+#include "host/runtime/Communicator.hpp"
 #include "trees/Material.hpp"
 #include "trees/ModalBasis.hpp"
 
@@ -65,9 +66,10 @@ struct RunCommandOptions {
 };
 
 /// `forestwind run`: 0 completed, 130 interrupted by SIGINT (frames so far kept), exceptions otherwise.
-int run_scenario(const RunCommandOptions& options, const GlobalOptions& global);
+int run_scenario(const RunCommandOptions& options, const GlobalOptions& global,
+                 const host::Communicator& world);
 /// `forestwind check`: validates and summarises without a device.
-int run_check(const std::string& scenario_path);
+int run_check(const std::string& scenario_path, const host::Communicator& world);
 
 struct RenderOptions {
   std::string folder;                 // DIR: a run's output folder

@@ -38,21 +38,32 @@ class InterruptGuard {
 
 }  // namespace
 
-int run_check(const std::string& scenario_path) {
+int run_check(const std::string& scenario_path, const host::Communicator& world) {
   const io::Scenario scenario = io::load_scenario(scenario_path);
   // The plan `run` builds, with the same cache (species bases are computed or loaded here once): valid means
-  // that nothing short of the device itself can fail.
+  // that nothing short of the device itself can fail. Under mpirun every rank plans; rank 0 reports.
   trees::BasisCache cache(trees::BasisCache::default_directory());
-  const host::SimulationPlan plan = host::plan_simulation(scenario, &cache, nullptr);
+  const host::SimulationPlan plan = host::plan_simulation(scenario, &cache, nullptr, world.size());
+  if (world.rank() != 0) return 0;
   std::cout << fmt::format("{}: scenario '{}' is valid\n", scenario_path, scenario.name);
   host::print_plan(plan, std::cout);
   for (const std::string& warning : plan.warnings) std::cerr << "warning: " << warning << "\n";
   return 0;
 }
 
-int run_scenario(const RunCommandOptions& options, const GlobalOptions& global) {
+int run_scenario(const RunCommandOptions& options, const GlobalOptions& global,
+                 const host::Communicator& world) {
   // Everything that can be wrong with the input is found before the device or the output folder is touched.
   const io::Scenario scenario = io::load_scenario(options.scenario);
+  if (world.size() > 1) {
+    // Planned first, so that a decomposition that cannot work is named as such.
+    trees::BasisCache planning_cache(trees::BasisCache::default_directory());
+    const host::SimulationPlan plan = host::plan_simulation(scenario, &planning_cache, nullptr, world.size());
+    throw std::invalid_argument(fmt::format(
+        "{}: a run over {} ranks ({}) needs the wind grid's stages on blocks, which are not built yet "
+        "(docs/parallel.md); `mpirun -np {} forestwind check` shows the blocks it will take",
+        options.scenario, world.size(), plan.decomposition.describe(), world.size()));
+  }
   const std::filesystem::path directory =
       options.output_dir.empty() ? scenario.output.directory : std::filesystem::absolute(options.output_dir);
   const bool terminal = ::isatty(STDERR_FILENO) == 1 && !options.quiet;

@@ -8,9 +8,27 @@
 
 #include "host/cli/Commands.hpp"
 #include "host/runtime/ClError.hpp"
+#include "host/runtime/Communicator.hpp"
+
+namespace {
+
+// Prints the error, naming the rank when there are several, and returns its exit code. An error on one rank
+// of several would leave the others waiting in a collective: it stops them all (MPI_Abort) with that code.
+int failed(const fw::host::Communicator& world, const std::exception& error, int code) {
+  if (world.size() == 1) {
+    std::cerr << "forestwind: " << error.what() << "\n";
+    return code;
+  }
+  std::cerr << "forestwind: rank " << world.rank() << " of " << world.size() << ": " << error.what() << "\n";
+  world.abort(code);
+}
+
+}  // namespace
 
 int main(int argc, char** argv) {
   using namespace fw;
+  host::MpiSession mpi(argc, argv);
+  const host::Communicator& world = mpi.world();
   CLI::App app{"forestwind: a forest in a resolved wind field (OpenCL)"};
   app.require_subcommand(1);
   app.fallthrough();  // --device and --profile may follow the subcommand
@@ -131,8 +149,8 @@ int main(int argc, char** argv) {
 
   try {
     if (devices->parsed()) return cli::run_devices(devices_json);
-    if (run_cmd->parsed()) return cli::run_scenario(run, global);
-    if (check_cmd->parsed()) return cli::run_check(check_path);
+    if (run_cmd->parsed()) return cli::run_scenario(run, global, world);
+    if (check_cmd->parsed()) return cli::run_check(check_path, world);
     if (tree_generate->parsed()) return cli::run_tree_generate(generate);
     if (tree_modes->parsed()) return cli::run_tree_modes(modes);
     if (plot_cmd->parsed()) return cli::run_plot(plot);
@@ -145,14 +163,11 @@ int main(int argc, char** argv) {
       return cli::run_bench(bench, global);
     }
   } catch (const host::NoDeviceError& e) {
-    std::cerr << "forestwind: " << e.what() << "\n";
-    return 3;
+    return failed(world, e, 3);
   } catch (const std::invalid_argument& e) {
-    std::cerr << "forestwind: " << e.what() << "\n";
-    return 2;
+    return failed(world, e, 2);
   } catch (const std::exception& e) {
-    std::cerr << "forestwind: " << e.what() << "\n";
-    return 1;
+    return failed(world, e, 1);
   }
   return 2;
 }

@@ -34,6 +34,19 @@ void read_domain(const Loader& loader, const Field& field, DomainSettings& domai
     domain.cells[axis] = int(std::min(whole, double(std::numeric_limits<int>::max())));
     total *= whole;
   }
+  domain.decomposition_line = field.line;
+  if (const auto blocks = map.get<"decomposition">()) {
+    const auto given = loader.vector<2>(*blocks);
+    std::array<int, 2> whole{1, 1};
+    for (std::size_t axis = 0; axis < 2; ++axis) {
+      if (given[axis] != std::round(given[axis]) || given[axis] > double(std::numeric_limits<int>::max()))
+        loader.expected(loader.child(*blocks, blocks->node[axis], fmt::format("{}[{}]", blocks->key, axis)),
+                        fmt::format("a whole number of blocks along {}", axis_name(axis)));
+      whole[axis] = int(given[axis]);
+    }
+    domain.decomposition = whole;
+    domain.decomposition_line = blocks->line;
+  }
   // Face arrays hold (nx + 1)(ny + 1)(nz + 1) values at most, indexed by 32-bit ints on the device.
   const double faces = (domain.cells[0] + 1.0) * (domain.cells[1] + 1.0) * (domain.cells[2] + 1.0);
   if (!(total < std::numeric_limits<double>::infinity()) || faces > double(fluid::GridSpec::kMaxFaces)) {

@@ -51,7 +51,10 @@ TEST_CASE("Decomposition: the blocks tile the grid on aligned cuts", "[fluid]") 
     CHECK(d.ranks() == ranks);
     check_tiles(spec, d);
   }
-  // 96 = 6 x 16: three blocks of 32 cells along x, cut on multiples of 16.
+  // 96 = 6 x 16: three blocks of 32 cells along x, cut on multiples of 16; four of 24 on multiples of 8 (16
+  // would leave 32, 16, 32, 16).
+  CHECK(Decomposition::make(spec, 4, std::array<int, 2>{4, 1}, 3).describe() ==
+        "4 x 1 blocks of 24 x 40 x 8 cells");
   const Decomposition d = Decomposition::make(spec, 3, std::array<int, 2>{3, 1}, 3);
   CHECK(d.alignment()[0] == 16);
   CHECK(d.block(1).first[0] == 32);
@@ -77,9 +80,13 @@ TEST_CASE("Decomposition: neighbours wrap on periodic axes only", "[fluid]") {
   CHECK(open.rank_of(-1, 0) == -1);
   CHECK(open.rank_of(4, 0) == -1);
   CHECK(open.rank_of(2, 0) == 2);
+  CHECK(open.block(0).halo_low == std::array<int, 2>{0, 0});
+  CHECK(open.block(0).halo_high == std::array<int, 2>{2, 0});
+  CHECK(open.block(0).extent(0) == 16 + 2);
   const Decomposition periodic = Decomposition::make(grid(64, 64, 4, true), 4, std::array<int, 2>{4, 1}, 2);
   CHECK(periodic.rank_of(-1, 0) == 3);
   CHECK(periodic.rank_of(4, 0) == 0);
+  CHECK(periodic.block(0).halo_low == std::array<int, 2>{2, 0});  // from block 3, across the wrap
   // Periodic: every block receives two faces of 64 x 4 cells, 2 deep.
   CHECK(periodic.halo_cells() == 4LL * 2 * 64 * 4 * 2);
 }
@@ -100,4 +107,11 @@ TEST_CASE("Decomposition: splits that cannot work are refused with the reason", 
   // The same cut on an axis that is not periodic is valid.
   CHECK(Decomposition::make(grid(18, 8, 4), 5, std::array<int, 2>{5, 1}, 3).alignment()[0] == 1);
   CHECK_THROWS_AS(Decomposition::make(spec, 0, std::nullopt, 3), DecompositionError);
+}
+
+TEST_CASE("Decomposition: the halo follows the advection scheme and the Courant number", "[fluid]") {
+  using fw::fluid::AdvectionScheme;
+  CHECK(fw::fluid::halo_cells(AdvectionScheme::upwind5, 1.2) == FW_PAD);
+  CHECK(fw::fluid::halo_cells(AdvectionScheme::semi_lagrangian, 0.8) == FW_PAD);
+  CHECK(fw::fluid::halo_cells(AdvectionScheme::maccormack, 2.5) == 5);  // 3 cells reached, +1 trilinear, +1
 }

@@ -524,6 +524,7 @@ forest:
   CHECK(s.time.cfl == 0.8);
   CHECK(s.domain.origin == std::array<double, 3>{0, 0, 0});
   CHECK(s.domain.cells == std::array<int, 3>{20, 10, 5});
+  CHECK_FALSE(s.domain.decomposition.has_value());  // chosen from the ranks
   CHECK(s.boundaries == std::array<BoundaryChoice, 6>{BoundaryChoice::automatic, BoundaryChoice::automatic,
                                                       BoundaryChoice::automatic, BoundaryChoice::automatic,
                                                       BoundaryChoice::no_slip, BoundaryChoice::slip});
@@ -1679,4 +1680,30 @@ TEST_CASE("load_scenario: output.leaves takes all, none or a stride, and vtk", "
                "one of the keys attached, vtk expected, got 'flying'");
   expect_error(dir, "vdb_grid", kBase + "output: {vdb: {grids: [vel, leaf]}}\n", 5, "output.vdb.grids[1]",
                "one of vel | speed | leaves expected, got 'leaf'");
+}
+
+TEST_CASE("load_scenario: domain.decomposition takes whole blocks along x and y, with its line",
+          "[scenario]") {
+  fw::test::TempDir dir("fw_scenario");
+  const Scenario s = fw::io::load_scenario(dir.write("blocks.yaml", R"(scenario: blocks
+time: {end: 10.0}
+domain:
+  size: [40, 20, 10]
+  cell_size: 2.0
+  decomposition: [2, 1]
+wind: {speed: 4.0, direction: 270}
+)"));
+  REQUIRE(s.domain.decomposition.has_value());
+  CHECK(*s.domain.decomposition == std::array<int, 2>{2, 1});
+  CHECK(s.domain.decomposition_line == 6);
+  expect_error(
+      dir, "blocks_fraction",
+      "scenario: errors\ntime: {end: 10.0}\ndomain: {size: [40, 20, 10], cell_size: 2.0, decomposition: "
+      "[2.5, 1]}\nwind: {speed: 4.0, direction: 270}\n",
+      3, "domain.decomposition[0]", "a whole number of blocks along x expected, got '2.5'");
+  expect_error(
+      dir, "blocks_zero",
+      "scenario: errors\ntime: {end: 10.0}\ndomain: {size: [40, 20, 10], cell_size: 2.0, decomposition: "
+      "[0, 1]}\nwind: {speed: 4.0, direction: 270}\n",
+      3, "domain.decomposition[0]", "a number >= 1 expected, got '0'");
 }

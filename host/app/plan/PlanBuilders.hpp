@@ -3,7 +3,9 @@
 // device memory that stage will allocate (plan.memory). Later builders read what earlier ones resolved.
 //
 //   SimulationPlan plan;
-//   plan_wind(scenario, plan);          // grid, solids, profile, gusts, mean forcing, ambient wind over time
+//   plan_wind(scenario, ranks, plan);   // grid, solids, profile, gusts, mean forcing, ambient wind over
+//   time,
+//                                       // the blocks over the ranks
 //   plan_turbulence(scenario, plan);    // the inflow box and its sigma_u(t); Stam's unresolved forcing
 //   auto bases = plan_species(scenario, cache, log, plan);   // bases (cache), leaves, summaries
 //   plan_forest(scenario, std::move(bases), plan);          // the placed instances, the stands
@@ -23,7 +25,7 @@
 namespace fw::host {
 
 /// host/app/plan/WindPlan.cpp
-void plan_wind(const io::Scenario& scenario, SimulationPlan& plan);
+void plan_wind(const io::Scenario& scenario, int ranks, SimulationPlan& plan);
 /// host/app/plan/TurbulencePlan.cpp (after plan_wind)
 void plan_turbulence(const io::Scenario& scenario, SimulationPlan& plan);
 /// host/app/plan/SpeciesPlan.cpp: every species' basis, in file order (to be handed to plan_forest), its

@@ -1,6 +1,6 @@
 // The wind grid's part of the plan: the grid with "auto" faces resolved for the wind at t = 0, the solver
 // settings, the inflow profile, the solids (obstacles and terrain), the gusts, the mean forcing of a
-// periodic domain, and the ambient wind over time.
+// periodic domain, the ambient wind over time, and the grid's blocks over the run's ranks.
 #include <fmt/format.h>
 
 #include <cmath>
@@ -33,7 +33,7 @@ FwGust device_gust(const io::GustEvent& event, const std::array<double, 3>& wind
 
 }  // namespace
 
-void plan_wind(const io::Scenario& scenario, SimulationPlan& plan) {
+void plan_wind(const io::Scenario& scenario, int ranks, SimulationPlan& plan) {
   WindGridSetup& wind = plan.wind;
   wind.spec = scenario.grid_spec(0.0);
   wind.settings = scenario.wind_settings();
@@ -64,6 +64,17 @@ void plan_wind(const io::Scenario& scenario, SimulationPlan& plan) {
           "got {} s; lower time.dt or use dt: auto",
           scenario.file.string(), fluid::to_string(wind.settings.advection), limit, peak, wind.spec.h,
           limit * wind.spec.h / peak, wind.settings.dt));
+  }
+  // In one process a scenario's decomposition is ignored, so that the same file runs alone and over ranks.
+  const double courant =
+      wind.settings.cfl > 0.0 ? wind.settings.cfl : peak_wind_speed(plan) * wind.settings.dt / wind.spec.h;
+  try {
+    plan.decomposition =
+        fluid::Decomposition::make(wind.spec, ranks, ranks > 1 ? scenario.domain.decomposition : std::nullopt,
+                                   fluid::halo_cells(wind.settings.advection, courant));
+  } catch (const fluid::DecompositionError& e) {
+    throw std::invalid_argument(fmt::format("{}:{}: domain.decomposition: {}", scenario.file.string(),
+                                            scenario.domain.decomposition_line, e.what()));
   }
   // The planner has no device: the rows mapping's chunk of 1 gives the largest estimate of the two.
   plan.memory.add("wind grid", WindGrid::estimate_device_bytes(wind.spec, wind.settings, 1));

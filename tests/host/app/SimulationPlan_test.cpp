@@ -373,3 +373,26 @@ TEST_CASE("SimulationPlan: check names the subgrid model and the constant the so
              Contains("subgrid: smagorinsky, C_s 0.12,"));
   CHECK_THAT(solver_line("{advection: upwind5, subgrid: tke}"), Contains("subgrid: tke, pressure:"));
 }
+
+TEST_CASE("SimulationPlan: the grid's blocks over the ranks, given or chosen, and a split that cannot work",
+          "[plan]") {
+  TempDir dir("fw_plan_blocks");
+  const auto plan_with = [&](const std::string& name, const std::string& decomposition, int ranks) {
+    std::string text = scenario_text("");
+    const std::string domain = "domain: {size: [16, 16, 8], cell_size: 2.0}";
+    text.replace(text.find(domain), domain.size(),
+                 "domain: {size: [16, 16, 8], cell_size: 2.0" + decomposition + "}");
+    dir.write("tree.tree", kTreeFile);
+    return fw::host::plan_simulation(fw::io::load_scenario(dir.write(name + ".yaml", text)), nullptr, nullptr,
+                                     ranks);
+  };
+  // 8 x 8 cells: 2 ranks take 2 x 1 blocks of 4 cells (1 x 2 exchanges as much; x first).
+  CHECK(plan_with("chosen", "", 2).decomposition.describe() == "2 x 1 blocks of 4 x 8 x 4 cells");
+  CHECK(plan_with("given", ", decomposition: [1, 2]", 2).decomposition.blocks() == std::array<int, 2>{1, 2});
+  // One process ignores the file's blocks, so that the same scenario runs alone.
+  CHECK(plan_with("alone", ", decomposition: [1, 2]", 1).decomposition.ranks() == 1);
+  // 8 cells with a halo of 3 take at most 2 blocks along an axis.
+  CHECK_THROWS_WITH(plan_with("too_many", ", decomposition: [4, 1]", 4),
+                    Catch::Contains("too_many.yaml:4: domain.decomposition: 4 blocks along x need at least 3 "
+                                    "cells each"));
+}

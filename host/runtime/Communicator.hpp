@@ -1,0 +1,80 @@
+// The run's processes: one MPI rank per OpenCL device under mpirun or srun, or one process alone.
+//
+//   fw::host::MpiSession session(argc, argv);         // in main(): MPI_Init when a launcher started us
+//   const fw::host::Communicator& world = session.world();
+//   world.rank(); world.size();                       // 0 and 1 without a launcher
+//   world.node_rank(); world.node_size();             // among the ranks of this machine: which device
+//   fw::base::ExactSum local = ...;
+//   double total = world.sum(local);                  // the same bits on every rank, whatever the split
+//   double largest = world.max(x);                    // NaN on any rank wins
+//   world.abort(1);                                   // stops every rank (never returns)
+//
+// Without a launcher (no OMPI_COMM_WORLD_SIZE, PMIX_RANK or PMI_RANK in the environment) MPI is never
+// initialised, and the program runs as it always has: one rank, the collectives local. Communicator::alone()
+// is that rank for code that runs without a session (tests, tools).
+//
+// Sums are exact (base/ExactSum): each rank's bins are added as 64-bit integers (MPI_SUM is then
+// associative), and every rank rounds the same bins to the same double. A sum over ranks therefore equals the
+// sum of the same terms in one process, bit for bit (docs/parallel.md).
+#pragma once
+
+#include <mpi.h>
+
+#include <array>
+
+#include "base/ExactSum.hpp"
+
+namespace fw::host {
+
+/// True when an MPI launcher (mpirun, mpiexec, srun) started this process.
+bool launched_by_mpi();
+
+class Communicator {
+ public:
+  /// The one rank of a process that runs alone (no MPI).
+  static const Communicator& alone();
+
+  int rank() const { return rank_; }
+  int size() const { return size_; }
+  /// This rank's index among the ranks on its machine, and their count: a node's r-th rank takes its r-th
+  /// device, and on a CPU its share of the cores.
+  int node_rank() const { return node_rank_; }
+  int node_size() const { return node_size_; }
+  bool uses_mpi() const { return comm_ != MPI_COMM_NULL; }
+  MPI_Comm comm() const { return comm_; }
+
+  /// The exact sum of every rank's terms, rounded to double: the same on every rank. Collective.
+  double sum(const base::ExactSum& local) const;
+  /// The largest of every rank's value; NaN when any rank's is NaN. Collective.
+  double max(double local) const;
+  /// The sum of every rank's count. Collective.
+  long long sum(long long local) const;
+  /// Waits for every rank. Collective.
+  void barrier() const;
+  /// Stops every rank with `code` (MPI_Abort), or exits this process when alone. Never returns.
+  [[noreturn]] void abort(int code) const;
+
+ private:
+  friend class MpiSession;
+  Communicator() = default;
+  MPI_Comm comm_ = MPI_COMM_NULL;
+  int rank_ = 0, size_ = 1, node_rank_ = 0, node_size_ = 1;
+};
+
+/// MPI for the life of main(): initialised when launched_by_mpi(), finalised at the end.
+class MpiSession {
+ public:
+  MpiSession(int& argc, char**& argv);
+  ~MpiSession();
+  MpiSession(const MpiSession&) = delete;
+  MpiSession& operator=(const MpiSession&) = delete;
+
+  const Communicator& world() const { return world_; }
+
+ private:
+  Communicator world_;
+  MPI_Comm node_ = MPI_COMM_NULL;
+  bool initialised_ = false;
+};
+
+}  // namespace fw::host

@@ -1,0 +1,50 @@
+// host/runtime/Communicator under mpirun -np 1, 2 and 4 (CTest runs this binary at each): sums over ranks
+// equal the sum of the same terms in one process, bit for bit; maxima see every rank's NaN.
+#include "host/runtime/Communicator.hpp"
+
+#include <catch2/catch.hpp>
+
+#include <cmath>
+#include <random>
+#include <vector>
+
+#include "tests/support/TestWorld.hpp"
+
+namespace {
+
+// The same terms on every rank: floats over 40 decades, both signs.
+std::vector<float> all_terms() {
+  std::mt19937 rng(23);
+  std::uniform_real_distribution<float> exponent(-20.0f, 20.0f), mantissa(-1.0f, 1.0f);
+  std::vector<float> values(10007);
+  for (auto& v : values) v = mantissa(rng) * std::pow(10.0f, exponent(rng));
+  return values;
+}
+
+}  // namespace
+
+TEST_CASE("Communicator: a sum over ranks is the one-process sum of the same terms, bit for bit", "[mpi]") {
+  const auto& world = fw::test::world();
+  const auto terms = all_terms();
+  fw::base::ExactSum whole, mine;
+  whole.add(terms);
+  // Rank r takes every size-th term from r: interleaved, the hardest split for an ordered sum.
+  for (std::size_t i = world.rank(); i < terms.size(); i += world.size()) mine.add(terms[i]);
+  CHECK(world.sum(mine) == whole.value());
+  CHECK(world.sum((long long)world.rank() + 1) == (long long)world.size() * (world.size() + 1) / 2);
+}
+
+TEST_CASE("Communicator: the maximum over ranks, NaN on any rank winning", "[mpi]") {
+  const auto& world = fw::test::world();
+  CHECK(world.max(double(world.rank())) == double(world.size() - 1));
+  const double last_has_nan = world.rank() == world.size() - 1 ? std::nan("") : 1.0;
+  CHECK(std::isnan(world.max(last_has_nan)));
+}
+
+TEST_CASE("Communicator: a process started without a launcher is one rank alone", "[mpi]") {
+  const auto& alone = fw::host::Communicator::alone();
+  CHECK(alone.size() == 1);
+  CHECK(alone.rank() == 0);
+  CHECK_FALSE(alone.uses_mpi());
+  CHECK(fw::test::world().uses_mpi() == fw::host::launched_by_mpi());
+}
