@@ -19,6 +19,12 @@ FW_INLINE int plane_cells(const FwLevel* L) {
   return L->nx * L->ny;
 }
 
+/* The parity of row (j, k) in global indices: a cell's red-black colour is (i + row_parity) % 2, i local.
+ * The origin may be negative (a block's halo across a periodic wrap); & 1 is still its parity. */
+FW_INLINE int row_parity(const FwLevel* L, int j, int k) {
+  return (j + k + L->ox + L->oy) & 1;
+}
+
 /* Plane k of an array on the level and its z neighbours, each a pointer to nx * ny values, wrapped on a
  * periodic z axis. Where a neighbour plane does not exist the pointer repeats `here` and `faces` drops that
  * face, so the loads stay valid and branch-free (and the planes of k = 0 and nz - 1 take the vectorised
@@ -172,7 +178,7 @@ __kernel void jacobi_sweep(const FwLevel L, __global const uchar* mask, __global
 /* Red-black Gauss-Seidel, one colour per pass and out of place: cells with (i + j + k) % 2 == colour get the
  * Gauss-Seidel value computed from the planes P (their neighbours all have the other colour, so this equals
  * the in-place update), every other cell is copied. Writing each cell once to a second buffer keeps the
- * loop free of dependences, so it streams and vectorises like a Jacobi sweep. parity = (j + k) % 2. */
+ * loop free of dependences, so it streams and vectorises like a Jacobi sweep. parity: row_parity. */
 /* Whether the pass of `colour` updates cell i of a row of that parity (mask m, diagonal d). */
 FW_INLINE int red_black_updates(uchar m, float d, int colour, int parity, int i, int run) {
   return ((i + parity) & 1) == colour && run_fluid(m, run) && d > 0.0f;
@@ -190,7 +196,7 @@ FW_INLINE float red_black_value(const FwLevel* L, __global const uchar* mask, __
 FW_INLINE void red_black_row(const FwLevel* L, __global const uchar* mask, __global const float* b,
                              const FwPlanes* P, __global float* out, int colour, int j, int k, int begin,
                              int end) {
-  const int row = j * L->nx, parity = (j + k) & 1;
+  const int row = j * L->nx, parity = row_parity(L, j, k);
   const FwRowRuns R = row_runs(L, P, mask + row, j, begin, end);
   FW_FOR_RUNS(R, out[row + i] = red_black_value(L, mask, b, P, colour, parity, i, j, row + i, run));
 }
@@ -275,7 +281,7 @@ FW_INLINE void red_black_update_run(const FwLevel* L, __global const uchar* mask
 __kernel void red_black_update(const FwLevel L, __global const uchar* mask, __global const float* b,
                                __global float* phi, const int colour) {
   const int j = get_global_id(1), k = get_global_id(2), plane = k * plane_cells(&L), row = j * L.nx;
-  const int parity = (j + k) & 1;
+  const int parity = row_parity(&L, j, k);
   const FwPlanes P = level_planes(&L, phi, k);
   mask += plane, b += plane, phi += plane;
   const FwRowRuns R = row_runs(&L, &P, mask + row, j, FW_ROW_BEGIN, FW_ROW_END(L.nx));
@@ -371,7 +377,8 @@ FW_INLINE float smoothing_start_value(uchar m, float b, float relaxation_weight,
  * neighbours). */
 __kernel void smoothing_start(const FwLevel L, __global const uchar* mask, __global const float* b,
                               __global float* out, const float relaxation_weight, const int colour) {
-  const int j = get_global_id(1), k = get_global_id(2), row = level_index(&L, 0, j, k), parity = (j + k) & 1;
+  const int j = get_global_id(1), k = get_global_id(2), row = level_index(&L, 0, j, k);
+  const int parity = row_parity(&L, j, k);
   mask += row, b += row, out += row;
   for (int i = FW_ROW_BEGIN; i < FW_ROW_END(L.nx); ++i)
     out[i] = smoothing_start_value(mask[i], b[i], relaxation_weight, colour, (i + parity) & 1);
@@ -383,7 +390,10 @@ __kernel void smoothing_start(const FwLevel L, __global const uchar* mask, __glo
  * equation (see PressureSolver).
  * A coarse cell with one child along an axis (an odd fine extent) reads that child twice, so every cell
  * sums eight values and the mean is sum / 8 without counting. Pairs along x are read with stride 2, which
- * vectorises. Rows over the coarse level. */
+ * vectorises. Rows over the coarse level.
+ * On a rank's block (docs/parallel.md) the children of coarse cell (I, J) are the fine cells from (2 I + sx,
+ * 2 J + sy), s = 2 C.o - F.o, the pairing of global indices. A coarse cell whose children lie outside the
+ * fine cells is a halo cell: it is skipped, and its values come with the halo. */
 /* Coarse cell I of the row (coarse_mask, coarse_b and coarse_start point at it): its right-hand side
  * (restricted, off the fluid 0) and its first smoothing pass from a zero guess. */
 FW_INLINE void store_coarse_cell(__global const uchar* coarse_mask, __global float* coarse_b,
@@ -399,27 +409,32 @@ __kernel void restrict_residual(const FwLevel F, const FwLevel C, __global const
                                 __global const float* r, __global float* coarse_b,
                                 __global float* coarse_start, const float scale,
                                 const float relaxation_weight, const int colour) {
-  const int J = get_global_id(1), K = get_global_id(2), j = 2 * J, k = 2 * K, plane = plane_cells(&F);
+  const int sx = 2 * C.ox - F.ox, sy = 2 * C.oy - F.oy;
+  const int J = get_global_id(1), K = get_global_id(2), j = 2 * J + sy, k = 2 * K, plane = plane_cells(&F);
+  if (j < 0 || j >= F.ny) return; /* a halo row */
   /* The four fine rows of the coarse row: (j, k), (j + 1, k), (j, k + 1), (j + 1, k + 1). */
   __global const float* r00 = r + level_index(&F, 0, j, k);
   __global const float* r10 = j + 1 < F.ny ? r00 + F.nx : r00;
   __global const float* r01 = k + 1 < F.nz ? r00 + plane : r00;
   __global const float* r11 = k + 1 < F.nz ? r10 + plane : r10;
-  const int row = level_index(&C, 0, J, K), parity = (J + K) & 1;
+  const int row = level_index(&C, 0, J, K), parity = row_parity(&C, J, K);
   coarse_mask += row, coarse_b += row, coarse_start += row;
   const float weight = 0.125f * scale;
-  const int begin = FW_ROW_BEGIN, end = FW_ROW_END(C.nx), pairs = F.nx / 2; /* I < pairs: two children */
+  /* I in [first, pairs): both children inside; I == pairs with an odd count left: one child. */
+  const int first = sx < 0 ? (1 - sx) / 2 : 0, pairs = (F.nx - sx) / 2;
+  const int begin = max(FW_ROW_BEGIN, first), end = FW_ROW_END(C.nx);
   for (int I = begin; I < min(end, pairs); ++I) {
-    const int i = 2 * I;
+    const int i = 2 * I + sx;
     const float sum =
         (r00[i] + r00[i + 1]) + (r10[i] + r10[i + 1]) + (r01[i] + r01[i + 1]) + (r11[i] + r11[i + 1]);
     store_coarse_cell(coarse_mask, coarse_b, coarse_start, I, weight * sum, relaxation_weight, colour,
                       parity);
   }
-  for (int I = max(begin, pairs); I < end; ++I) {
-    const int i = 2 * I;
+  const int single = pairs; /* its one child is the row's last cell */
+  if ((F.nx - sx) % 2 != 0 && single >= begin && single < end) {
+    const int i = 2 * single + sx;
     const float sum = 2.0f * ((r00[i] + r10[i]) + (r01[i] + r11[i]));
-    store_coarse_cell(coarse_mask, coarse_b, coarse_start, I, weight * sum, relaxation_weight, colour,
+    store_coarse_cell(coarse_mask, coarse_b, coarse_start, single, weight * sum, relaxation_weight, colour,
                       parity);
   }
 }
@@ -455,8 +470,12 @@ FW_INLINE __global const float* side_row(__global const float* row, int at, int 
   return row;
 }
 
-FW_INLINE FwCoarseRows coarse_rows(const FwLevel* C, __global const float* e, int j, int k, float slope) {
-  const int J = j / 2, K = k / 2, side_y = j & 1, side_z = k & 1;
+/* The coarse rows of fine row (j, k), j shifted by sy = 2 C.oy - F.oy (the pairing of global indices, see
+ * restrict_residual): J = (j - sy) / 2 rounded down, which may lie outside the coarse cells for a halo row.
+ */
+FW_INLINE FwCoarseRows coarse_rows(const FwLevel* C, __global const float* e, int j, int sy, int k,
+                                   float slope) {
+  const int J = (j - sy) >> 1, K = k / 2, side_y = (j - sy) & 1, side_z = k & 1;
   FwCoarseRows R;
   R.slope = slope;
   R.parent = e + level_index(C, 0, J, K);
@@ -477,10 +496,13 @@ FW_INLINE float linear_correction(const FwCoarseRows* R, uchar m, int I, int sid
   return p + R->slope * ((dx + dy) + dz);
 }
 
-/* Fine cell i of the row, any position: its x neighbour wrapped or beyond the domain. */
+/* Fine cell i of the row, any position: its x neighbour wrapped or beyond the domain. Its parent is coarse
+ * cell (i - sx) / 2, sx = 2 C.ox - F.ox; a halo cell whose parent lies outside the coarse cells is skipped.
+ */
 FW_INLINE void prolong_edge_cell(const FwLevel* C, const FwCoarseRows* R, __global const uchar* coarse_mask,
-                                 __global const uchar* fine_mask, __global float* phi, int i) {
-  const int I = i / 2, side_x = i & 1, to = side_x ? I + 1 : I - 1;
+                                 __global const uchar* fine_mask, __global float* phi, int i, int sx) {
+  const int I = (i - sx) >> 1, side_x = (i - sx) & 1, to = side_x ? I + 1 : I - 1;
+  if (I < 0 || I >= C->nx) return;
   const float e_x = (to >= 0 && to < C->nx) ? R->parent[to]
                     : (C->periodic & 1)     ? R->parent[(to + C->nx) % C->nx]
                                             : 0.0f;
@@ -490,24 +512,28 @@ FW_INLINE void prolong_edge_cell(const FwLevel* C, const FwCoarseRows* R, __glob
 __kernel void prolong_add(const FwLevel F, const FwLevel C, __global const uchar* fine_mask,
                           __global const uchar* coarse_mask, __global const float* coarse_e,
                           __global float* phi, const float slope) {
+  const int sx = 2 * C.ox - F.ox, sy = 2 * C.oy - F.oy;
   const int j = get_global_id(1), k = get_global_id(2), row = level_index(&F, 0, j, k);
+  const int J = (j - sy) >> 1;
+  if (J < 0 || J >= C.ny) return; /* a halo row whose parents lie outside the coarse cells */
   fine_mask += row, phi += row;
-  coarse_mask += level_index(&C, 0, j / 2, k / 2);
-  const FwCoarseRows R = coarse_rows(&C, coarse_e, j, k, slope);
+  coarse_mask += level_index(&C, 0, J, k / 2);
+  const FwCoarseRows R = coarse_rows(&C, coarse_e, j, sy, k, slope);
   const int begin = FW_ROW_BEGIN, end = FW_ROW_END(F.nx);
-  /* Interior pairs (2I, 2I + 1), wholly in [begin, end) with both x neighbours inside the coarse row: one
-   * parent load for both children, stride-2 stores (vectorises); every other cell one by one. */
-  const int pair_lo = max((begin + 1) / 2, 1), pair_hi = max(pair_lo, min(end / 2, C.nx - 1));
-  const int head_end = min(end, 2 * pair_lo), tail_begin = max(head_end, 2 * pair_hi);
-  for (int i = begin; i < head_end; ++i) prolong_edge_cell(&C, &R, coarse_mask, fine_mask, phi, i);
+  /* Interior pairs (2I + sx, 2I + sx + 1), wholly in [begin, end) with both x neighbours inside the coarse
+   * row: one parent load for both children, stride-2 stores (vectorises); every other cell one by one. */
+  const int pair_lo = max((begin - sx + 1) >> 1, 1), pair_hi = max(pair_lo, min((end - sx) >> 1, C.nx - 1));
+  const int head_end = min(end, 2 * pair_lo + sx), tail_begin = max(head_end, 2 * pair_hi + sx);
+  for (int i = begin; i < head_end; ++i) prolong_edge_cell(&C, &R, coarse_mask, fine_mask, phi, i, sx);
   for (int I = pair_lo; I < pair_hi; ++I) {
     const uchar m = coarse_mask[I];
     const float lo = linear_correction(&R, m, I, 0, R.parent[I - 1]);
     const float hi = linear_correction(&R, m, I, 1, R.parent[I + 1]);
-    phi[2 * I] += (fine_mask[2 * I] & FW_MASK_FLUID) ? lo : 0.0f;
-    phi[2 * I + 1] += (fine_mask[2 * I + 1] & FW_MASK_FLUID) ? hi : 0.0f;
+    const int i = 2 * I + sx;
+    phi[i] += (fine_mask[i] & FW_MASK_FLUID) ? lo : 0.0f;
+    phi[i + 1] += (fine_mask[i + 1] & FW_MASK_FLUID) ? hi : 0.0f;
   }
-  for (int i = tail_begin; i < end; ++i) prolong_edge_cell(&C, &R, coarse_mask, fine_mask, phi, i);
+  for (int i = tail_begin; i < end; ++i) prolong_edge_cell(&C, &R, coarse_mask, fine_mask, phi, i, sx);
 }
 
 /* x += alpha d; r -= alpha q; columns = the column sums of r^2. */

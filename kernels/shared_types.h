@@ -60,11 +60,14 @@ typedef struct FwGrid {
   float origin[3];   /* world position of the domain's minimum corner, m */
 } FwGrid;
 
-/* One level of the pressure hierarchy (the fine grid is level 0). periodic: bit a set when axis a
- * (0 x, 1 y, 2 z) wraps around. */
+/* One level of the pressure hierarchy (the fine grid is level 0), or a rank's block of it with its halo.
+ * periodic: bit a set when axis a (0 x, 1 y, 2 z) wraps around inside these cells. ox, oy: the level's global
+ * cell index of local cell (0, 0), 0 for a whole level; the red-black colour (i + j + k) % 2 and the pairing
+ * of fine and coarse cells are taken in global indices (docs/parallel.md). */
 typedef struct FwLevel {
   fw_int nx, ny, nz;
   fw_int periodic;
+  fw_int ox, oy;
 } FwLevel;
 
 /* What changes from step to step, passed by value to the kernels that need it.

@@ -44,6 +44,37 @@ FwLevel level_dims(const fluid::PressureLevel& L, const fluid::GridSpec& spec) {
   return d;
 }
 
+// How many levels, from the fine one, the blocks split into whole cells: a level l is split while every cut
+// lies on a multiple of 2^l (and the level exists).
+int split_level_count(const fluid::Decomposition& d, const std::vector<fluid::PressureLevel>& levels) {
+  int count = 1;
+  while (count < int(levels.size())) {
+    const int scale = 1 << count;
+    bool whole = true;
+    for (int r = 0; r < d.ranks(); ++r)
+      for (int axis = 0; axis < 2; ++axis)
+        if (d.blocks()[axis] > 1)
+          whole = whole && d.block(r).first[axis] % scale == 0 && d.block(r).count[axis] % scale == 0;
+    if (!whole) break;
+    ++count;
+  }
+  return count;
+}
+
+// The mask of a rank's block of level L, its halo included (wrapped across a periodic face).
+std::vector<std::uint8_t> block_mask(const fluid::PressureLevel& L, const BlockArray& a) {
+  std::vector<std::uint8_t> mask(a.cells());
+  const auto wrap = [](int i, int n) { return ((i % n) + n) % n; };
+  for (int k = 0; k < a.extent[2]; ++k)
+    for (int j = 0; j < a.extent[1]; ++j)
+      for (int i = 0; i < a.extent[0]; ++i) {
+        const int gi = wrap(a.origin[0] + i, L.nx), gj = wrap(a.origin[1] + j, L.ny);
+        mask[i + std::size_t(a.extent[0]) * (j + std::size_t(a.extent[1]) * k)] =
+            L.mask[gi + std::size_t(L.nx) * (gj + std::size_t(L.ny) * k)];
+      }
+  return mask;
+}
+
 }  // namespace
 
 std::size_t PressureSolver::device_bytes(const std::vector<fluid::PressureLevel>& levels) {
@@ -56,29 +87,50 @@ std::size_t PressureSolver::device_bytes(const std::vector<fluid::PressureLevel>
 
 PressureSolver::PressureSolver(ComputeContext& cc, const fluid::GridSpec& spec,
                                std::vector<fluid::PressureLevel> levels,
-                               const fluid::PressureSettings& settings)
+                               const fluid::PressureSettings& settings, const PressureBlocks* blocks)
     : cc_(cc), spec_(spec), settings_(settings), host_levels_(std::move(levels)) {
   if (host_levels_.empty()) throw std::invalid_argument("PressureSolver: no pressure levels");
-  const std::size_t n = host_levels_[0].cell_count();
-  for (const auto& L : host_levels_) {
+  split_levels_ = int(host_levels_.size());
+  if (blocks && blocks->world && blocks->world->size() > 1) {
+    world_ = blocks->world;
+    decomposition_ = blocks->decomposition;
+    split_levels_ = split_level_count(decomposition_, host_levels_);
+  }
+  for (int l = 0; l < int(host_levels_.size()); ++l) {
+    const fluid::PressureLevel& L = host_levels_[l];
     DeviceLevel d;
     d.dims = level_dims(L, spec_);
-    d.mask = cc_.buffer(L.cell_count());
-    d.b = cc_.buffer(L.cell_count() * sizeof(float));
-    d.phi = cc_.buffer(L.cell_count() * sizeof(float));
-    d.scratch = cc_.buffer(L.cell_count() * sizeof(float));
-    cc_.queue().enqueueWriteBuffer(d.mask, CL_TRUE, 0, L.cell_count(), L.mask.data());
-    cc_.queue().enqueueFillBuffer(d.b, 0.0f, 0, L.cell_count() * sizeof(float));
-    cc_.queue().enqueueFillBuffer(d.phi, 0.0f, 0, L.cell_count() * sizeof(float));
+    d.own = {0, L.nx, 0, L.ny};
+    std::vector<std::uint8_t> mask;
+    if (split(l)) {
+      const BlockArray a =
+          block_array(decomposition_, world_->rank(), l, L.nz, l == 0 ? blocks->fine_halo : 1);
+      d.dims.nx = a.extent[0], d.dims.ny = a.extent[1];
+      d.dims.ox = a.origin[0], d.dims.oy = a.origin[1];
+      // A cut axis wraps through the halo, not inside the block.
+      for (int axis = 0; axis < 2; ++axis)
+        if (decomposition_.blocks()[axis] > 1) d.dims.periodic &= ~(1 << axis);
+      d.own = {a.halo_low[0], a.extent[0] - a.halo_high[0], a.halo_low[1], a.extent[1] - a.halo_high[1]};
+      d.halo.emplace(cc_, *world_, a);
+      mask = block_mask(L, a);
+    }
+    const std::vector<std::uint8_t>& cells_mask = split(l) ? mask : L.mask;
+    d.cells = cells_mask.size();
+    d.mask = cc_.upload(cells_mask);
+    d.b = cc_.zero_floats(d.cells);
+    d.phi = cc_.zero_floats(d.cells);
+    d.scratch = cc_.buffer(d.cells * sizeof(float));
     levels_.push_back(std::move(d));
+  }
+  if (split_levels_ < int(host_levels_.size()) && world_->size() > 1) {
+    gathered_dims_ = level_dims(host_levels_[split_levels_ - 1], spec_);
+    gathered_ = cc_.buffer(host_levels_[split_levels_ - 1].cell_count() * sizeof(float));
   }
   for (auto m : host_levels_[0].mask)
     if (m & FW_MASK_FLUID) ++fluid_cells_;
-  for (cl::Buffer* buf : {&r_, &z_, &d_, &q_, &scratch_}) {
-    *buf = cc_.buffer(n * sizeof(float));
-    cc_.queue().enqueueFillBuffer(*buf, 0.0f, 0, n * sizeof(float));
-  }
-  columns_host_.resize(std::size_t(host_levels_[0].nx) * host_levels_[0].ny);  // the finest has the most
+  const std::size_t n = levels_[0].cells;
+  for (cl::Buffer* buf : {&r_, &z_, &d_, &q_, &scratch_}) *buf = cc_.zero_floats(n);
+  columns_host_.resize(std::size_t(levels_[0].dims.nx) * levels_[0].dims.ny);  // the finest has the most
   columns_ = cc_.buffer(columns_host_.size() * sizeof(float));
 
   cl::Program program = cc_.build("fluid_pressure.cl", kPressureBuildOptions);
@@ -133,12 +185,16 @@ constexpr double kSumOnFluid = 5, kAddOnFluid = 9;
 }  // namespace traffic
 
 void PressureSolver::count_traffic(int level, double bytes_per_cell) {
-  traffic_bytes_ += bytes_per_cell * double(host_levels_[level].cell_count());
+  traffic_bytes_ += bytes_per_cell * double(levels_[level].cells);
 }
 
 cl::NDRange PressureSolver::column_rows(int level) const {
-  const auto& L = host_levels_[level];
+  const FwLevel& L = levels_[level].dims;
   return cc_.rows(L.nx, L.ny, 1);
+}
+
+void PressureSolver::exchange(int l, cl::Buffer& field) {
+  if (split(l)) levels_[l].halo->exchange(field);
 }
 
 double PressureSolver::dot(int level, cl::Buffer& a, cl::Buffer& b) {
@@ -148,11 +204,15 @@ double PressureSolver::dot(int level, cl::Buffer& a, cl::Buffer& b) {
 }
 
 double PressureSolver::sum_columns(int level) {
-  const std::size_t count = std::size_t(host_levels_[level].nx) * host_levels_[level].ny;
+  const DeviceLevel& L = levels_[level];
+  const std::size_t nx = std::size_t(L.dims.nx), count = nx * L.dims.ny;
   cc_.queue().enqueueReadBuffer(columns_, CL_TRUE, 0, count * sizeof(float), columns_host_.data());
+  // The block's own columns only: its halo's are another rank's (and wrong here).
   base::ExactSum sum;
-  sum.add(std::span<const float>(columns_host_.data(), count));
-  return sum.value();
+  for (int j = L.own[2]; j < L.own[3]; ++j)
+    sum.add(
+        std::span<const float>(columns_host_.data() + nx * j + L.own[0], std::size_t(L.own[1] - L.own[0])));
+  return split(level) ? world_->sum(sum) : sum.value();
 }
 
 void PressureSolver::enqueue_jacobi_sweep(int level, cl::Buffer& b, cl::Buffer& phi, cl::Buffer& phi_out,
@@ -227,12 +287,56 @@ void PressureSolver::enqueue_restrict_residual(int fine_level, cl::Buffer& b, cl
   // The residual kernel's branch-free interior run is much faster than recomputing the residual inside the
   // restriction; the scratch buffer is free at this point of the cycle.
   enqueue_residual(fine_level, b, phi, F.scratch);
+  // From the last level split over ranks, the whole residual is restricted on every rank alike.
+  const bool gather = split(fine_level) && !split(fine_level + 1);
+  if (gather) gather_residual(fine_level);
   restrict_
-      .set_args(F.dims, C.dims, C.mask, F.scratch, C.b, level_first_pass(fine_level + 1), correction_scale(),
-                start_relaxation_weight(), start_colour())
+      .set_args(gather ? gathered_dims_ : F.dims, C.dims, C.mask, gather ? gathered_ : F.scratch, C.b,
+                level_first_pass(fine_level + 1), correction_scale(), start_relaxation_weight(),
+                start_colour())
       .enqueue(cc_, cc_.rows(C.dims.nx, C.dims.ny, C.dims.nz));
   count_traffic(fine_level, traffic::kRestrictFine);
   count_traffic(fine_level + 1, traffic::kRestrictCoarse);
+  exchange(fine_level + 1, level_first_pass(fine_level + 1));
+}
+
+void PressureSolver::gather_residual(int l) {
+  const DeviceLevel& F = levels_[l];
+  const fluid::PressureLevel& whole = host_levels_[l];
+  const int scale = 1 << l;
+  const auto ranks = static_cast<std::size_t>(world_->size());
+  // Every rank's own cells at level l, in global indices: first x, first y, count x, count y.
+  std::vector<std::array<int, 4>> boxes(ranks);
+  std::vector<int> counts(ranks), offsets(ranks);
+  int total = 0;
+  for (std::size_t r = 0; r < ranks; ++r) {
+    const fluid::Block b = decomposition_.block(int(r));
+    boxes[r] = {b.first[0] / scale, b.first[1] / scale, b.count[0] / scale, b.count[1] / scale};
+    counts[r] = boxes[r][2] * boxes[r][3] * whole.nz;
+    offsets[r] = total;
+    total += counts[r];
+  }
+  const auto& mine = boxes[std::size_t(world_->rank())];
+  std::vector<float> own(static_cast<std::size_t>(counts[std::size_t(world_->rank())]));
+  std::vector<float> all(static_cast<std::size_t>(total));
+  const std::size_t row = std::size_t(F.dims.nx) * sizeof(float), slice = row * F.dims.ny;
+  cc_.queue().enqueueReadBufferRect(
+      F.scratch, CL_TRUE, {std::size_t(F.own[0]) * sizeof(float), std::size_t(F.own[2]), 0}, {0, 0, 0},
+      {std::size_t(mine[2]) * sizeof(float), std::size_t(mine[3]), std::size_t(whole.nz)}, row, slice,
+      std::size_t(mine[2]) * sizeof(float), std::size_t(mine[2]) * sizeof(float) * mine[3], own.data());
+  MPI_Allgatherv(own.data(), counts[world_->rank()], MPI_FLOAT, all.data(), counts.data(), offsets.data(),
+                 MPI_FLOAT, world_->comm());
+  std::vector<float> level(whole.cell_count());
+  for (std::size_t r = 0; r < ranks; ++r) {
+    const auto [x0, y0, nx, ny] = boxes[r];
+    const float* from = all.data() + offsets[r];
+    for (int k = 0; k < whole.nz; ++k)
+      for (int j = 0; j < ny; ++j, from += nx)
+        std::copy_n(
+            from, nx,
+            level.begin() + (x0 + std::ptrdiff_t(whole.nx) * (y0 + j + std::ptrdiff_t(whole.ny) * k)));
+  }
+  cc_.queue().enqueueWriteBuffer(gathered_, CL_TRUE, 0, level.size() * sizeof(float), level.data());
 }
 
 void PressureSolver::enqueue_prolong_add(int fine_level, cl::Buffer& phi) {
@@ -242,6 +346,7 @@ void PressureSolver::enqueue_prolong_add(int fine_level, cl::Buffer& phi) {
       .enqueue(cc_, cc_.rows(F.dims.nx, F.dims.ny, F.dims.nz));
   count_traffic(fine_level, traffic::kProlongFine);
   count_traffic(fine_level + 1, traffic::kProlongCoarse);
+  exchange(fine_level, phi);
 }
 
 void PressureSolver::vcycle(cl::Buffer& b, cl::Buffer& phi) {
@@ -250,6 +355,7 @@ void PressureSolver::vcycle(cl::Buffer& b, cl::Buffer& phi) {
 
 void PressureSolver::vcycle_from_zero(cl::Buffer& b, cl::Buffer& phi) {
   enqueue_smoothing_start(0, b, first_pass_buffer(0, phi));
+  exchange(0, first_pass_buffer(0, phi));
   vcycle_level(0, b, phi, true);
 }
 
@@ -261,19 +367,34 @@ void PressureSolver::smooth(int l, cl::Buffer& b, cl::Buffer& phi, int sweeps, b
     // Damped Jacobi, phi -> scratch -> phi, an odd count rounded up to pairs; the same before and after the
     // correction, so the cycle is symmetric.
     auto& scratch = levels_[l].scratch;
-    for (int p = first_pass; p < sweeps + sweeps % 2; ++p)
+    for (int p = first_pass; p < sweeps + sweeps % 2; ++p) {
       enqueue_jacobi_sweep(l, b, p % 2 ? scratch : phi, p % 2 ? phi : scratch, kJacobiWeight);
+      exchange(l, p % 2 ? phi : scratch);
+    }
     return;
   }
   // Red-black Gauss-Seidel, one colour per pass; reversing the colour order after the correction keeps the
   // cycle symmetric. Small levels take all their passes in one launch, large ones update in place.
   const int first = after_correction ? 1 : 0;
-  if (!updates_in_place(l)) {
+  const auto colour = [first](int pass) { return pass % 2 ? 1 - first : first; };
+  if (updates_in_place(l)) {
+    for (int p = first_pass; p < 2 * sweeps; ++p) {
+      enqueue_red_black_update(l, b, phi, colour(p));
+      exchange(l, phi);
+    }
+    return;
+  }
+  if (!split(l)) {
     enqueue_red_black_sweeps(l, b, phi, sweeps, first, first_pass);
     return;
   }
-  for (int p = first_pass; p < 2 * sweeps; ++p)
-    enqueue_red_black_update(l, b, phi, p % 2 ? 1 - first : first);
+  // A small level split over ranks: red_black_sweeps' passes one launch each, with the halo exchanged
+  // between them (the same values).
+  auto& scratch = levels_[l].scratch;
+  for (int p = first_pass; p < 2 * sweeps; ++p) {
+    enqueue_red_black_pass(l, b, p % 2 ? scratch : phi, p % 2 ? phi : scratch, colour(p));
+    exchange(l, p % 2 ? phi : scratch);
+  }
 }
 
 void PressureSolver::vcycle_level(int l, cl::Buffer& b, cl::Buffer& phi, bool started) {
@@ -304,6 +425,7 @@ void PressureSolver::remove_mean(cl::Buffer& b) {
 
 PressureSolveStatus PressureSolver::solve() {
   if (!spec_.has_dirichlet_pressure()) remove_mean(levels_[0].b);
+  exchange(0, levels_[0].phi);  // the warm start's halo: the last solve's, or an upload's
   switch (settings_.solver) {
     case fluid::PressureSolverType::jacobi:
       return solve_jacobi();
@@ -324,7 +446,9 @@ PressureSolveStatus PressureSolver::solve_jacobi() {
   const int sweeps = settings_.jacobi_iterations + (settings_.jacobi_iterations % 2);
   for (int s = 0; s < sweeps; s += 2) {
     enqueue_jacobi_sweep(0, L.b, L.phi, scratch_, 1.0f);
+    exchange(0, scratch_);
     enqueue_jacobi_sweep(0, L.b, scratch_, L.phi, 1.0f);
+    exchange(0, L.phi);
   }
   st.iterations = sweeps;
   st.relative_residual = bnorm > 0 ? std::sqrt(residual_norm2(0, L.b, L.phi, r_)) / bnorm : 0.0;
@@ -338,7 +462,7 @@ PressureSolveStatus PressureSolver::solve_multigrid() {
   st.solver = "multigrid";
   const double bnorm = std::sqrt(dot(0, L.b, L.b));
   if (bnorm == 0.0) {
-    cc_.queue().enqueueFillBuffer(L.phi, 0.0f, 0, host_levels_[0].cell_count() * sizeof(float));
+    cc_.queue().enqueueFillBuffer(L.phi, 0.0f, 0, L.cells * sizeof(float));
     st.converged = true;
     return st;
   }
@@ -358,7 +482,7 @@ PressureSolveStatus PressureSolver::solve_cg() {
   auto& L = levels_[0];
   PressureSolveStatus st;
   st.solver = "cg";
-  const std::size_t bytes = host_levels_[0].cell_count() * sizeof(float);
+  const std::size_t bytes = L.cells * sizeof(float);
   const auto range = cc_.rows(L.dims.nx, L.dims.ny, L.dims.nz);
   const auto columns = column_rows(0);  // cg_update's
 

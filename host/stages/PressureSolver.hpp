@@ -19,17 +19,37 @@
 // smoothing_start on level 0. Red-black passes update phi in place on large levels (updates_in_place);
 // small levels take all their passes in one launch, out of place through the level's scratch. When no face is
 // an outflow the operator is singular, and the mean of b over fluid cells is removed before solving.
+//
+// Over MPI ranks (PressureBlocks, docs/parallel.md) each rank holds its block of the fine level, with the
+// velocity's halo, and of the coarse levels whose cells the blocks still split whole (the decomposition's
+// alignment), each with a one-cell halo. The kernels update every cell of a block, halo included; the halo's
+// own values are wrong and are replaced by an exchange after each pass, so a block's own cells get exactly
+// the values of one process. Below those levels each rank gathers the whole residual and solves the coarse
+// levels as one process would, the same on every rank. Sums add the blocks' own columns exactly over all
+// ranks. So the solve gives the bits of one process on any number of ranks.
 #pragma once
 
+#include <array>
+#include <optional>
 #include <string>
 #include <vector>
 
+#include "fluid/Decomposition.hpp"
 #include "fluid/GridSpec.hpp"
 #include "fluid/PressureLevels.hpp"
 #include "fluid/WindSettings.hpp"
+#include "host/runtime/Communicator.hpp"
 #include "host/runtime/ComputeContext.hpp"
+#include "host/stages/HaloExchange.hpp"
 
 namespace fw::host {
+
+/// A solve over ranks: this rank's place in the decomposition and the fine level's halo (the velocity's).
+struct PressureBlocks {
+  const Communicator* world = nullptr;
+  fluid::Decomposition decomposition;
+  int fine_halo = 1;  // cells
+};
 
 struct PressureSolveStatus {
   std::string solver;              // "jacobi", "multigrid" or "cg"
@@ -41,8 +61,11 @@ struct PressureSolveStatus {
 
 class PressureSolver {
  public:
+  /// `levels`: the whole grid's hierarchy. blocks: null for one process; else this rank solves its block
+  /// (rhs(), solution() and mask() are then its block with the halo: block_array(decomposition, rank, 0,
+  /// nz, fine_halo)).
   PressureSolver(ComputeContext& cc, const fluid::GridSpec& spec, std::vector<fluid::PressureLevel> levels,
-                 const fluid::PressureSettings& settings);
+                 const fluid::PressureSettings& settings, const PressureBlocks* blocks = nullptr);
 
   /// Device bytes this solver allocates for `levels` (for the memory estimate made before allocating).
   static std::size_t device_bytes(const std::vector<fluid::PressureLevel>& levels);
@@ -112,9 +135,19 @@ class PressureSolver {
 
  private:
   struct DeviceLevel {
-    FwLevel dims{};
+    FwLevel dims{};  // the block with its halo on a rank's level, else the whole level
     cl::Buffer mask, b, phi, scratch;
+    std::size_t cells = 0;
+    std::optional<HaloExchange> halo;    // on a rank's level over several ranks
+    std::array<int, 4> own{0, 0, 0, 0};  // the block's own cells: x from, x to, y from, y to
   };
+
+  /// Fills the halo of `field` on level l (nothing on a whole level or in one process).
+  void exchange(int l, cl::Buffer& field);
+  /// The levels held as blocks over ranks (the rest are whole on every rank); all of them in one process.
+  bool split(int l) const { return l < split_levels_ && world_->size() > 1; }
+  /// Level fine_level's residual (in its scratch) gathered from every rank's block into gathered_, whole.
+  void gather_residual(int fine_level);
 
   /// started: the first smoothing pass from phi = 0 is already in first_pass_buffer(l, phi).
   void vcycle_level(int l, cl::Buffer& b, cl::Buffer& phi, bool started);
@@ -136,6 +169,11 @@ class PressureSolver {
   PressureSolveStatus solve_cg();
 
   ComputeContext& cc_;
+  const Communicator* world_ = &Communicator::alone();
+  fluid::Decomposition decomposition_;
+  int split_levels_ = 0;  // levels 0 .. split_levels_ - 1 are blocks (all levels in one process)
+  cl::Buffer gathered_;   // the whole residual of level split_levels_ - 1, over several ranks
+  FwLevel gathered_dims_{};
   fluid::GridSpec spec_;
   fluid::PressureSettings settings_;
   std::vector<fluid::PressureLevel> host_levels_;
