@@ -72,6 +72,10 @@ FwGrid GridSpec::to_device() const {
   for (int f = 0; f < 6; ++f) g.bc[f] = static_cast<fw_int>(boundary[f]);
   g.h = static_cast<float>(h);
   for (int a = 0; a < 3; ++a) g.origin[a] = static_cast<float>(origin[a]);
+  g.ox = block_offset[0];
+  g.oy = block_offset[1];
+  g.wrap[0] = block_period[0];
+  g.wrap[1] = block_period[1];
   return g;
 }
 

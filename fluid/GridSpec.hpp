@@ -38,7 +38,15 @@ struct GridSpec {
 
   int nx = 0, ny = 0, nz = 0;             // cells along x, y, z
   double h = 0.0;                         // cell size, m
-  std::array<double, 3> origin{0, 0, 0};  // minimum corner, m
+  std::array<double, 3> origin{0, 0, 0};  // minimum corner of the domain, m
+  /// For a rank's block of the domain (docs/parallel.md): the domain's cell index of this grid's cell
+  /// (0, 0) along x and y, so that a face or cell centre lies at origin + h (index + block_offset + ...),
+  /// the same float a whole grid computes. {0, 0} for a whole grid.
+  std::array<int, 2> block_offset{0, 0};
+  /// For a rank's block whose x or y axis is periodic in the domain but cut between blocks: the domain's
+  /// cells along it, by which positions wrap as a whole grid wraps them (so a back-trace rounds alike). 0
+  /// elsewhere, and for a whole grid.
+  std::array<int, 2> block_period{0, 0};
   std::array<BoundaryType, 6> boundary{BoundaryType::slip, BoundaryType::slip, BoundaryType::slip,
                                        BoundaryType::slip, BoundaryType::slip, BoundaryType::slip};
 

@@ -10,7 +10,7 @@ double InflowState::value(const GridSpec& spec, int c, int i, int j, int k, int 
   const double shape = profile[std::clamp(level, 0, spec.nz - 1)];
   double out = double(ambient[c]) * shape;
   if (turbulent()) {
-    const int index[3] = {i, j, k};
+    const int index[3] = {i + spec.block_offset[0], j + spec.block_offset[1], k};
     double world[3];
     for (int a = 0; a < 3; ++a)
       world[a] = spec.origin[a] + spec.h * (index[a] + (a == c ? 0.0 : 0.5)) - turbulence_offset[a];

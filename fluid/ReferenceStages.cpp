@@ -115,7 +115,11 @@ double sample(const GridSpec& spec, const InflowState& inflow, const std::vector
   double fr[3];
   for (int a = 0; a < 3; ++a) {
     const int n = dims(spec, a);
-    if (spec.periodic(a)) P[a] -= n * std::floor(P[a] / n);
+    // A periodic axis reads a position near its seam through the ghost layers, as the kernels do (face n of
+    // a staggered axis from above, face 0 from below; fetch wraps the indices); one further out, wrapped.
+    const double near = std::floor(P[a] - offset(c, a));
+    if (spec.periodic(a) && !(near >= -FW_PAD && near + 1 < extent(spec, c, a) + FW_PAD))
+      P[a] -= n * std::floor(P[a] / n);
     double g = P[a] - offset(c, a);
     if (!spec.periodic(a)) g = std::clamp(g, -1.0, double(extent(spec, c, a)));
     const double fl = std::floor(g);

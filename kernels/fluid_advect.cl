@@ -11,21 +11,36 @@
 
 /* Lower interpolation index and fraction along axis a of component c, for positions p (cell units):
  * periodic axes wrap p into [0, n) (a back-trace moves less than one period), other axes clamp to the ghost
- * layer; the same rules as fluid/ReferenceStages.cpp sample(). */
+ * layer; the same rules as fluid/ReferenceStages.cpp sample(). Positions are the domain's: on a rank's block
+ * (whose periodic axes are never cut ones) they include its offset, so that the fraction is the float a whole
+ * grid computes, and only the index comes back into the block's arrays (docs/parallel.md). */
 FW_INLINE void lane_coordinate(const FwGrid* g, int c, int a, lanef p, lanei* i0, lanef* fraction) {
-  const float n = (float)axis_cells(g, a);
+  const int offset = a == 0 ? g->ox : (a == 1 ? g->oy : 0);
+  const int wrap = a < 2 ? g->wrap[a] : 0;
   lanef q;
-  if (g->bc[2 * a] == FW_BC_PERIODIC) {
-    p = select(p, p + n, p < 0.0f);
-    p = select(p, p - n, p >= n);
+  lanei unwrap = (lanei)(0);
+  if (g->bc[2 * a] == FW_BC_PERIODIC || wrap > 0) {
+    /* Wrapped by the domain's period (a block on a cut periodic axis too: the float p + n rounds otherwise
+     * than p), and the index then taken back beside the cells where the padded copy still holds it: a face n
+     * of the staggered axis is read as its twin face 0 (they differ between boundary passes), as a block,
+     * which holds only one of the two, must read it. A back-trace of more than the ghost layers stays
+     * wrapped. */
+    const int period = wrap > 0 ? wrap : axis_cells(g, a);
+    const float n = (float)period;
+    const lanei below = p < 0.0f, above = p >= n;
+    p = select(p, p + n, below);
+    p = select(p, p - n, above);
+    unwrap = select(unwrap, (lanei)(-period), below);
+    unwrap = select(unwrap, (lanei)(period), above);
     q = clamp(p, 0.0f, n) - face_offset(c, a);
   } else {
-    q = clamp(p - face_offset(c, a), -1.0f, (float)face_extent(g, c, a));
+    q = clamp(p - face_offset(c, a), (float)(offset - 1), (float)(offset + face_extent(g, c, a)));
   }
-  /* q >= -1, so truncating q + 4 gives floor(q) + 4. */
-  const lanei fl = convert_lanei(q + 4.0f) - 4;
-  *i0 = fl;
-  *fraction = q - convert_lanef(fl);
+  const lanef fl = floor(q);
+  const lanei wrapped = convert_lanei(fl) - offset, back = wrapped + unwrap;
+  const lanei inside = back >= -FW_PAD && back + 1 < face_extent(g, c, a) + FW_PAD;
+  *i0 = select(wrapped, back, inside);
+  *fraction = q - fl;
 }
 
 /* The eight interpolation corners of component c's padded copy qp around positions (X, Y, Z) (cell_corners'
@@ -62,8 +77,9 @@ FW_INLINE lanef cross_component(const FwGrid* g, __global const float* ap, int a
 FW_INLINE void backtrace_lanes(const FwGrid* g, int c, lanei i, int valid, int j, int k, float dt,
                                __global const float* up, __global const float* vp, __global const float* wp,
                                lanef* X, lanef* Y, lanef* Z) {
-  const lanef Px = convert_lanef(i) + face_offset(c, 0);
-  const lanef Py = (lanef)((float)j + face_offset(c, 1));
+  /* The domain's positions (lane_coordinate). */
+  const lanef Px = convert_lanef(i + g->ox) + face_offset(c, 0);
+  const lanef Py = (lanef)((float)(j + g->oy) + face_offset(c, 1));
   const lanef Pz = (lanef)((float)k + face_offset(c, 2));
   const float scale = dt / g->h; /* m/s -> cells */
   const lanei at_u = lane_padded_index(g, 0, i, j, k), at_v = lane_padded_index(g, 1, i, j, k),

@@ -9,10 +9,10 @@ __kernel void apply_forces(const FwGrid g, const FwStep s, const int c, const fl
   const int j = get_global_id(1), k = get_global_id(2);
   const int ex = face_extent(&g, c, 0);
   const float tm = s.time + 0.5f * s.dt;
-  const float y = g.origin[1] + g.h * (j + face_offset(c, 1));
+  const float y = g.origin[1] + g.h * (j + g.oy + face_offset(c, 1));
   const float z = g.origin[2] + g.h * (k + face_offset(c, 2));
   for (int i = FW_ROW_BEGIN; i < FW_ROW_END(ex); ++i) {
-    const float x = g.origin[0] + g.h * (i + face_offset(c, 0));
+    const float x = g.origin[0] + g.h * (i + g.ox + face_offset(c, 0));
     float add = s.dt * body_acceleration;
     for (int n = 0; n < gust_count; ++n) {
       const FwGust G = gusts[n];
@@ -30,6 +30,18 @@ __kernel void apply_forces(const FwGrid g, const FwStep s, const int c, const fl
   }
 }
 
+/* The first and last cell of the domain along axis a, in this grid's indices. The vorticity and the
+ * confinement turn one-sided at the domain's edges, periodic or not; a rank's block on a cut periodic axis
+ * holds the domain's edge inside its cells (its halo lies across the seam), so it clamps there as a whole
+ * grid does. */
+FW_INLINE int domain_first(const FwGrid* g, int a) {
+  return a < 2 && g->wrap[a] > 0 ? max(0, -(a == 0 ? g->ox : g->oy)) : 0;
+}
+FW_INLINE int domain_last(const FwGrid* g, int a) {
+  const int last = axis_cells(g, a) - 1;
+  return a < 2 && g->wrap[a] > 0 ? min(last, g->wrap[a] - 1 - (a == 0 ? g->ox : g->oy)) : last;
+}
+
 /* Cell-centred velocity component c. */
 FW_INLINE float centre_velocity(const FwGrid* g, __global const float* q, int c, int i, int j, int k) {
   int hi[3] = {i, j, k};
@@ -41,8 +53,8 @@ FW_INLINE float centre_velocity(const FwGrid* g, __global const float* q, int c,
 FW_INLINE float centre_derivative(const FwGrid* g, __global const float* q, int c, int a, int i, int j,
                                   int k) {
   int p[3] = {i, j, k}, m[3] = {i, j, k};
-  p[a] = min(p[a] + 1, axis_cells(g, a) - 1);
-  m[a] = max(m[a] - 1, 0);
+  p[a] = min(p[a] + 1, domain_last(g, a));
+  m[a] = max(m[a] - 1, domain_first(g, a));
   const int span = p[a] - m[a];
   if (span == 0) return 0.0f;
   return (centre_velocity(g, q, c, p[0], p[1], p[2]) - centre_velocity(g, q, c, m[0], m[1], m[2])) /
@@ -72,8 +84,8 @@ FW_INLINE float confinement_force(const FwGrid* g, __global const float* vortici
   const int at[3] = {i, j, k};
   for (int a = 0; a < 3; ++a) {
     int p[3] = {i, j, k}, m[3] = {i, j, k};
-    p[a] = min(at[a] + 1, axis_cells(g, a) - 1);
-    m[a] = max(at[a] - 1, 0);
+    p[a] = min(at[a] + 1, domain_last(g, a));
+    m[a] = max(at[a] - 1, domain_first(g, a));
     const int span = p[a] - m[a];
     eta[a] = span ? (vorticity[4 * cell_index(g, p[0], p[1], p[2]) + 3] -
                      vorticity[4 * cell_index(g, m[0], m[1], m[2]) + 3]) /
@@ -95,11 +107,11 @@ __kernel void vorticity_confinement(const FwGrid g, const FwStep s, const int c,
                                     __global const float* vorticity, __global float* q) {
   const int j = get_global_id(1), k = get_global_id(2);
   const int ex = face_extent(&g, c, 0);
-  const int n = axis_cells(&g, c);
+  const int first = domain_first(&g, c), last = domain_last(&g, c);
   for (int i = FW_ROW_BEGIN; i < FW_ROW_END(ex); ++i) {
     int lo[3] = {i, j, k}, hi[3] = {i, j, k};
-    lo[c] = max(lo[c] - 1, 0);
-    hi[c] = min(hi[c], n - 1);
+    lo[c] = max(lo[c] - 1, first);
+    hi[c] = min(hi[c], last);
     const float f = 0.5f * (confinement_force(&g, vorticity, epsilon, c, lo[0], lo[1], lo[2]) +
                             confinement_force(&g, vorticity, epsilon, c, hi[0], hi[1], hi[2]));
     q[face_index(&g, c, i, j, k)] += s.dt * f;

@@ -57,7 +57,9 @@ __kernel void fill_inflow_shell(const FwGrid g, const FwStep s, const int f, __g
   for (int t2 = 0; t2 < span2; t2 += FW_LANES) {
     at[b2] = (lanei)(t2 - FW_PAD) + FW_LANE_OFFSETS;
     lanef world[3];
-    for (int d = 0; d < 3; ++d) world[d] = g.origin[d] + g.h * (convert_lanef(at[d]) + face_offset(c, d));
+    const int offset[3] = {g.ox, g.oy, 0}; /* a rank's block: the domain's index of its cell 0 */
+    for (int d = 0; d < 3; ++d)
+      world[d] = g.origin[d] + g.h * (convert_lanef(at[d] + offset[d]) + face_offset(c, d));
     const lanef shape = gather(inflow, clamp(at[2], 0, g.nz - 1));
     const lanef taper = clamp(shape / FW_TURBULENCE_FULL_SHAPE, 0.0f, 1.0f);
     const lanef value =

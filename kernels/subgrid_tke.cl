@@ -124,14 +124,15 @@ __kernel void tke_advect(const FwGrid g, const FwStep s, const FwTke t, __global
       continue;
     }
     const float own = energy[id];
-    const float at[3] = {(float)i - steps * centre_velocity(&g, u, 0, i, j, k),
-                         (float)j - steps * centre_velocity(&g, v, 1, i, j, k),
+    /* The domain's positions, so that a rank's block gets a whole grid's fractions (docs/parallel.md). */
+    const float at[3] = {(float)(i + g.ox) - steps * centre_velocity(&g, u, 0, i, j, k),
+                         (float)(j + g.oy) - steps * centre_velocity(&g, v, 1, i, j, k),
                          (float)k - steps * centre_velocity(&g, w, 2, i, j, k)};
     int cx[2], cy[2], cz[2], ix[2], iy[2], iz[2];
     float frac[3];
     for (int a = 0; a < 3; ++a) frac[a] = at[a] - floor(at[a]);
-    advect_axis(&g, 0, (int)floor(at[0]), cx, ix);
-    advect_axis(&g, 1, (int)floor(at[1]), cy, iy);
+    advect_axis(&g, 0, (int)floor(at[0]) - g.ox, cx, ix);
+    advect_axis(&g, 1, (int)floor(at[1]) - g.oy, cy, iy);
     advect_axis(&g, 2, (int)floor(at[2]), cz, iz);
     float value = 0.0f;
     for (int dz = 0; dz < 2; ++dz)

@@ -1,7 +1,7 @@
 // A rank's block of a cell-centred field with its halo, and the exchange that fills the halo from the
 // neighbouring blocks (docs/parallel.md).
 //
-//   fw::host::BlockArray layout = fw::host::block_array(decomposition, rank, nz, halo);
+//   fw::host::BlockArray layout = fw::host::block_array(decomposition, rank, 0, nz, halo);  // BlockGrid.hpp
 //   fw::host::HaloExchange halo(cc, world, layout);
 //   halo.exchange(field);       // field: layout.cells() floats on the device, x fastest
 //
@@ -16,25 +16,11 @@
 #include <cstddef>
 #include <vector>
 
-#include "fluid/Decomposition.hpp"
 #include "host/runtime/Communicator.hpp"
 #include "host/runtime/ComputeContext.hpp"
+#include "host/stages/BlockGrid.hpp"
 
 namespace fw::host {
-
-/// The layout of a rank's array: its block's cells plus the halo, x fastest, then y, then z.
-struct BlockArray {
-  std::array<int, 3> extent{1, 1, 1};                                // cells along x, y, z, the halo included
-  std::array<int, 2> halo_low{0, 0}, halo_high{0, 0};                // halo cells on each side along x and y
-  std::array<int, 2> neighbour_low{-1, -1}, neighbour_high{-1, -1};  // the rank across each side, or -1
-  std::array<int, 2> origin{0, 0};  // the global index of local cell (0, 0) (negative across a periodic wrap)
-
-  std::size_t cells() const { return std::size_t(extent[0]) * extent[1] * extent[2]; }
-};
-
-/// Rank `rank`'s block of a level whose cuts are the decomposition's divided by 2^level, with `halo` cells
-/// on every side that has a neighbour, nz cells deep.
-BlockArray block_array(const fluid::Decomposition& decomposition, int rank, int level, int nz, int halo);
 
 class HaloExchange {
  public:
@@ -43,6 +29,10 @@ class HaloExchange {
   /// Fills the halo of `field` (layout.cells() floats) from the neighbours' own cells. Collective with the
   /// neighbours: every rank of the decomposition calls it for the same field. Blocks until done.
   void exchange(cl::Buffer& field);
+  /// On a face array across a cut periodic axis: the domain's face n (the last block's) becomes a copy of
+  /// face 0 (block 0's), as a whole grid's boundary pass makes it. Nothing elsewhere. Collective with the
+  /// seam's two blocks.
+  void copy_seam(cl::Buffer& field);
   /// Bytes sent by this rank in one exchange.
   std::size_t bytes_sent() const { return bytes_sent_; }
   const BlockArray& layout() const { return layout_; }

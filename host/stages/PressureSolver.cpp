@@ -61,20 +61,6 @@ int split_level_count(const fluid::Decomposition& d, const std::vector<fluid::Pr
   return count;
 }
 
-// The mask of a rank's block of level L, its halo included (wrapped across a periodic face).
-std::vector<std::uint8_t> block_mask(const fluid::PressureLevel& L, const BlockArray& a) {
-  std::vector<std::uint8_t> mask(a.cells());
-  const auto wrap = [](int i, int n) { return ((i % n) + n) % n; };
-  for (int k = 0; k < a.extent[2]; ++k)
-    for (int j = 0; j < a.extent[1]; ++j)
-      for (int i = 0; i < a.extent[0]; ++i) {
-        const int gi = wrap(a.origin[0] + i, L.nx), gj = wrap(a.origin[1] + j, L.ny);
-        mask[i + std::size_t(a.extent[0]) * (j + std::size_t(a.extent[1]) * k)] =
-            L.mask[gi + std::size_t(L.nx) * (gj + std::size_t(L.ny) * k)];
-      }
-  return mask;
-}
-
 }  // namespace
 
 std::size_t PressureSolver::device_bytes(const std::vector<fluid::PressureLevel>& levels) {
@@ -112,7 +98,7 @@ PressureSolver::PressureSolver(ComputeContext& cc, const fluid::GridSpec& spec,
         if (decomposition_.blocks()[axis] > 1) d.dims.periodic &= ~(1 << axis);
       d.own = {a.halo_low[0], a.extent[0] - a.halo_high[0], a.halo_low[1], a.extent[1] - a.halo_high[1]};
       d.halo.emplace(cc_, *world_, a);
-      mask = block_mask(L, a);
+      mask = block_of(L.mask, L.nx, L.ny, a);
     }
     const std::vector<std::uint8_t>& cells_mask = split(l) ? mask : L.mask;
     d.cells = cells_mask.size();

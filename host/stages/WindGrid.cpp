@@ -7,6 +7,7 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "base/ExactSum.hpp"
 #include "fluid/SubgridStress.hpp"
 #include "fluid/UpwindStencil.hpp"
 
@@ -27,6 +28,15 @@ int viscous_substeps(double nu, double dt, double h) {
   if (nu <= 0.0) return 0;
   // Explicit diffusion is stable for nu dt / h^2 <= 1/6 in 3D; keep a margin.
   return std::max(1, static_cast<int>(std::ceil(nu * dt / (h * h) / 0.15)));
+}
+
+// The cells a rank holds: its block with the halo over several ranks, else the whole grid.
+BlockArray held_cells(const fluid::GridSpec& spec, const Communicator& world,
+                      const fluid::Decomposition& decomposition) {
+  if (world.size() > 1) return block_array(decomposition, world.rank(), 0, spec.nz, decomposition.halo());
+  BlockArray whole;
+  whole.extent = {spec.nx, spec.ny, spec.nz};
+  return whole;
 }
 
 }  // namespace
@@ -98,13 +108,33 @@ void WindGrid::check_fits_device(const fluid::GridSpec& spec, std::size_t bytes,
         spec.nx, spec.ny, spec.nz, largest / mib, device.device_name, device.max_allocation_bytes / mib));
 }
 
-WindGrid::WindGrid(ComputeContext& cc, WindGridSetup setup)
+WindGrid::WindGrid(ComputeContext& cc, WindGridSetup setup, const WindBlocks* blocks)
     : cc_(cc),
       setup_(validated(cc, std::move(setup))),
+      world_(blocks && blocks->world ? blocks->world : &Communicator::alone()),
+      decomposition_(blocks ? blocks->decomposition : fluid::Decomposition()),
+      block_(held_cells(setup_.spec, *world_, decomposition_)),
+      local_(world_->size() > 1 ? block_spec(setup_.spec, decomposition_, block_) : setup_.spec),
+      pressure_blocks_{world_, decomposition_, decomposition_.halo()},
       profile_shape_(setup_.profile.sample_cell_centres(setup_.spec.nz, setup_.spec.h)),
-      stages_(cc, setup_.spec),
+      stages_(cc, local_),
       pressure_(cc, setup_.spec, fluid::build_pressure_levels(setup_.spec, setup_.solid),
-                setup_.settings.pressure) {
+                setup_.settings.pressure, world_->size() > 1 ? &pressure_blocks_ : nullptr) {
+  const bool split = world_->size() > 1;
+  if (split) {
+    for (int c = 0; c < 3; ++c) face_halo_[std::size_t(c)].emplace(cc_, *world_, face_array(block_, c));
+    cell_halo_.emplace(cc_, *world_, block_);
+    if (setup_.settings.vorticity_confinement > 0.0) {
+      // Four floats a cell, interleaved: along x the layout is four times as long, and so are its halos.
+      BlockArray quads = block_;
+      quads.extent[0] *= 4, quads.halo_low[0] *= 4, quads.halo_high[0] *= 4;
+      vorticity_halo_.emplace(cc_, *world_, quads);
+    }
+  }
+  // The block's solids, halo included; the whole grid's in one process.
+  const std::vector<std::uint8_t> solid = split && !setup_.solid.empty()
+                                              ? block_of(setup_.solid, setup_.spec.nx, setup_.spec.ny, block_)
+                                              : setup_.solid;
   vel_ = stages_.allocate_velocity();
   tmp_ = stages_.allocate_velocity();
   padded_ = stages_.allocate_padded_velocity();
@@ -114,20 +144,25 @@ WindGrid::WindGrid(ComputeContext& cc, WindGridSetup setup)
   }
   if (setup_.settings.advection == fluid::AdvectionScheme::upwind5) {
     back_ = stages_.allocate_velocity();
-    upwind_orders_ = stages_.upload_upwind_orders(fluid::upwind_orders(setup_.spec, setup_.solid));
+    // The whole grid's orders, cut to the block: a block's edge is no wall to the flux orders.
+    fluid::UpwindOrders orders = fluid::upwind_orders(setup_.spec, setup_.solid);
+    if (split)
+      for (int c = 0; c < 3; ++c)
+        orders[std::size_t(c)] = block_of(orders[std::size_t(c)], setup_.spec.nx + (c == 0),
+                                          setup_.spec.ny + (c == 1), face_array(block_, c));
+    upwind_orders_ = stages_.upload_upwind_orders(orders);
   }
   if (setup_.settings.vorticity_confinement > 0.0)
-    vorticity_ = cc_.buffer(setup_.spec.cell_count() * 4 * sizeof(float));
-  if (subgrid_enabled()) eddy_viscosity_ = cc_.zero_floats(setup_.spec.cell_count());
+    vorticity_ = cc_.buffer(local_.cell_count() * 4 * sizeof(float));
+  if (subgrid_enabled()) eddy_viscosity_ = cc_.zero_floats(local_.cell_count());
   if (subgrid_tke_enabled()) {
-    subgrid_energy_ = cc_.buffer(setup_.spec.cell_count() * sizeof(float));
-    advected_energy_ = cc_.buffer(setup_.spec.cell_count() * sizeof(float));
+    subgrid_energy_ = cc_.buffer(local_.cell_count() * sizeof(float));
+    advected_energy_ = cc_.buffer(local_.cell_count() * sizeof(float));
   }
   if (wall_stress_enabled()) {
     wall_drag_coefficient_ =
         fluid::wall_drag_coefficient(setup_.spec.h, setup_.settings.wall_roughness_length);
-    wall_faces_ =
-        stages_.upload_wall_faces(list_wall_faces(setup_.spec, fluid::wall_cells(setup_.spec, setup_.solid)));
+    wall_faces_ = stages_.upload_wall_faces(list_wall_faces(local_, fluid::wall_cells(local_, solid)));
   }
   if (!setup_.gusts.empty()) {
     gusts_ = cc_.buffer(setup_.gusts.size() * sizeof(FwGust));
@@ -136,7 +171,7 @@ WindGrid::WindGrid(ComputeContext& cc, WindGridSetup setup)
   } else {
     gusts_ = cc_.buffer(sizeof(FwGust));
   }
-  const auto inflow = inflow_buffer_values(inflow_state(), setup_.spec);
+  const auto inflow = inflow_buffer_values(inflow_state(), local_);
   profile_ = cc_.buffer(inflow.size() * sizeof(float));
   cc_.queue().enqueueWriteBuffer(profile_, CL_TRUE, 0, inflow.size() * sizeof(float), inflow.data());
   stages_.set_profile(profile_);
@@ -181,22 +216,33 @@ std::array<double, 2> WindGrid::reference_layer_mean() {
   const double t = level - k0;
   std::array<double, 2> mean{0, 0};
   for (int c = 0; c < 2; ++c) {
-    const std::size_t ex = spec.nx + (c == 0), ey = spec.ny + (c == 1), layer = ex * ey;
-    // The faces that are distinct (a periodic axis' last face repeats its first).
-    const std::size_t nx = c == 0 && spec.periodic(0) ? spec.nx : ex,
-                      ny = c == 1 && spec.periodic(1) ? spec.ny : ey;
+    const BlockArray faces = face_array(block_, c);
+    const std::size_t ex = std::size_t(faces.values(0)), ey = std::size_t(faces.values(1)), layer = ex * ey;
+    // The faces that are distinct (a periodic axis' last face repeats its first) and this rank's own: its
+    // cells' low faces, and the domain's high face where the block ends at it (the face between two blocks
+    // is the upper block's).
+    std::array<std::size_t, 2> from{}, to{};
+    for (int a = 0; a < 2; ++a) {
+      const bool across = a == c, ends_domain = faces.halo_high[a] == 0;
+      from[a] = std::size_t(faces.halo_low[a]);
+      to[a] = std::size_t(faces.values(a) - faces.halo_high[a]) -
+              (across && (!ends_domain || spec.periodic(a)) ? 1 : 0);
+    }
     std::vector<float> rows(2 * layer);
     cc_.queue().enqueueReadBuffer(vel_.component(c), CL_FALSE, layer * k0 * sizeof(float),
                                   layer * sizeof(float), rows.data());
     cc_.queue().enqueueReadBuffer(vel_.component(c), CL_TRUE, layer * k1 * sizeof(float),
                                   layer * sizeof(float), rows.data() + layer);
-    double lower = 0.0, upper = 0.0;
-    for (std::size_t j = 0; j < ny; ++j)
-      for (std::size_t i = 0; i < nx; ++i) {
-        lower += rows[i + ex * j];
-        upper += rows[layer + i + ex * j];
+    // Exact sums: the same on any number of ranks (base/ExactSum).
+    base::ExactSum lower, upper;
+    for (std::size_t j = from[1]; j < to[1]; ++j)
+      for (std::size_t i = from[0]; i < to[0]; ++i) {
+        lower.add(rows[i + ex * j]);
+        upper.add(rows[layer + i + ex * j]);
       }
-    mean[c] = ((1.0 - t) * lower + t * upper) / double(nx * ny);
+    const std::size_t distinct = (spec.nx + (c == 0 && !spec.periodic(0) ? 1 : 0)) *
+                                 std::size_t(spec.ny + (c == 1 && !spec.periodic(1) ? 1 : 0));
+    mean[c] = ((1.0 - t) * world_->sum(lower) + t * world_->sum(upper)) / double(distinct);
   }
   return mean;
 }
@@ -231,7 +277,7 @@ void WindGrid::timed(const char* stage, F&& work) {
 }
 
 void WindGrid::initialise_ambient() {
-  const auto& spec = setup_.spec;
+  const auto& spec = local_;
   const auto inflow = inflow_state();
   fluid::MacVelocity vel(spec);
   // The profile, and the turbulence where there is some, on every face: a turbulent run starts developed.
@@ -260,9 +306,11 @@ void WindGrid::advect(float dt) {
   for (int c = 0; c < 3; ++c) stages_.enqueue_advect(c, dt, padded_, padded_.component(c), tmp_.component(c));
   if (setup_.settings.advection == fluid::AdvectionScheme::semi_lagrangian) {
     std::swap(vel_, tmp_);
+    exchange(vel_);
     return;
   }
   // MacCormack: forward into tmp, backward (from tmp's padded copy) into back, corrected in place in back.
+  exchange(tmp_);
   stages_.enqueue_pad(tmp_, padded_forward_);
   for (int c = 0; c < 3; ++c)
     stages_.enqueue_advect(c, -dt, padded_, padded_forward_.component(c), back_.component(c));
@@ -270,6 +318,7 @@ void WindGrid::advect(float dt) {
     stages_.enqueue_maccormack_correct(c, padded_, padded_.component(c), tmp_.component(c),
                                        back_.component(c), back_.component(c));
   std::swap(vel_, back_);
+  exchange(vel_);
 }
 
 void WindGrid::advect_upwind(float dt) {
@@ -288,10 +337,12 @@ void WindGrid::advect_upwind(float dt) {
     if (n < 2) {
       enforce_boundaries(out);
       if (setup_.settings.stage_projection == fluid::StageProjection::every_stage) project(out);
+      exchange(out);
     }
     stage = &out;
   }
   std::swap(vel_, tmp_);
+  exchange(vel_);
 }
 
 void WindGrid::apply_forces() {
@@ -305,20 +356,33 @@ void WindGrid::apply_forces() {
                                    static_cast<int>(setup_.gusts.size()), vel_.component(c));
   if (st.vorticity_confinement > 0.0) {
     stages_.enqueue_vorticity(vel_, vorticity_);
+    if (vorticity_halo_) vorticity_halo_->exchange(vorticity_);  // across a periodic seam, as for nu_t
     for (int c = 0; c < 3; ++c)
       stages_.enqueue_vorticity_confinement(c, static_cast<float>(st.vorticity_confinement), vorticity_,
                                             vel_.component(c));
   }
+  exchange(vel_);
+}
+
+void WindGrid::exchange(DeviceVelocity& vel) {
+  for (int c = 0; c < 3; ++c)
+    if (face_halo_[std::size_t(c)]) face_halo_[std::size_t(c)]->exchange(vel.component(c));
+}
+
+void WindGrid::exchange_cells(cl::Buffer& field) {
+  if (cell_halo_) cell_halo_->exchange(field);
 }
 
 void WindGrid::set_canopy(std::vector<float> drag_density, const fluid::DragLaw& law) {
   law.validate();
   drag_law_ = law;
+  if (world_->size() > 1 && !drag_density.empty() && drag_density.size() == setup_.spec.cell_count())
+    drag_density = block_of(drag_density, setup_.spec.nx, setup_.spec.ny, block_);
   bool any = false;
   if (!drag_density.empty()) {
-    if (drag_density.size() != setup_.spec.cell_count())
+    if (drag_density.size() != local_.cell_count())
       throw std::invalid_argument(fmt::format("WindGrid: canopy drag density has {} cells, the grid {}",
-                                              drag_density.size(), setup_.spec.cell_count()));
+                                              drag_density.size(), local_.cell_count()));
     for (float k : drag_density) {
       if (!std::isfinite(k) || k < 0.0f)
         throw std::invalid_argument(
@@ -331,7 +395,7 @@ void WindGrid::set_canopy(std::vector<float> drag_density, const fluid::DragLaw&
     canopy_ = cl::Buffer();
     return;
   }
-  canopy_box_ = nonzero_cell_box(setup_.spec, drag_density);
+  canopy_box_ = nonzero_cell_box(local_, drag_density);
   canopy_ = cc_.buffer(drag_density.size() * sizeof(float));
   cc_.queue().enqueueWriteBuffer(canopy_, CL_TRUE, 0, drag_density.size() * sizeof(float),
                                  drag_density.data());
@@ -339,6 +403,7 @@ void WindGrid::set_canopy(std::vector<float> drag_density, const fluid::DragLaw&
 
 void WindGrid::apply_canopy_drag() {
   stages_.enqueue_canopy_drag(canopy_, canopy_box_, vel_, tmp_, drag_law_);
+  exchange(vel_);
 }
 
 void WindGrid::apply_subgrid_stress(double dt) {
@@ -350,16 +415,24 @@ void WindGrid::apply_subgrid_stress(double dt) {
   else
     stages_.enqueue_eddy_viscosity(static_cast<float>(setup_.settings.smagorinsky_constant), cap,
                                    pressure_.mask(), vel_, eddy_viscosity_);
+  // A halo cell across a cut periodic seam sees the seam's face n, which a whole grid reads as face 0 there
+  // (the two differ between boundary passes): its nu_t is its owner's.
+  exchange_cells(eddy_viscosity_);
   stages_.enqueue_diffuse_eddy(wall_stress_enabled(), pressure_.mask(), eddy_viscosity_, vel_, tmp_);
   std::swap(vel_, tmp_);
+  exchange(vel_);
 }
 
 void WindGrid::apply_wall_stress() {
   stages_.enqueue_wall_stress(static_cast<float>(wall_drag_coefficient_), wall_faces_, vel_);
+  exchange(vel_);
 }
 
 void WindGrid::enforce_boundaries(DeviceVelocity& vel) {
   for (int c = 0; c < 3; ++c) stages_.enqueue_enforce_boundaries(c, pressure_.mask(), vel.component(c));
+  // A cut periodic axis: the whole grid's rule that its face n repeats face 0, across the seam's blocks.
+  for (int c = 0; c < 2; ++c)
+    if (face_halo_[std::size_t(c)]) face_halo_[std::size_t(c)]->copy_seam(vel.component(c));
 }
 
 PressureSolveStatus WindGrid::project(DeviceVelocity& vel) {
@@ -369,6 +442,7 @@ PressureSolveStatus WindGrid::project(DeviceVelocity& vel) {
   timed("gradient", [&] {
     for (int c = 0; c < 3; ++c)
       stages_.enqueue_subtract_gradient(c, pressure_.mask(), pressure_.solution(), vel.component(c));
+    exchange(vel);
   });
   return status;
 }
@@ -395,7 +469,8 @@ double WindGrid::courant_number(const std::array<double, 3>& maxima, double dt) 
 WindStepReport WindGrid::step() {
   double dt = setup_.settings.dt;
   if (setup_.settings.cfl > 0.0) {
-    const std::array<double, 3> maxima = stages_.max_speed_components(vel_);
+    std::array<double, 3> maxima = stages_.max_speed_components(vel_);
+    for (double& m : maxima) m = world_->max(m);  // every face is some rank's, and halos are copies
     if (!(std::isfinite(maxima[0]) && std::isfinite(maxima[1]) && std::isfinite(maxima[2])))
       throw std::runtime_error(fmt::format("WindGrid: velocity is not finite before step {}", steps_ + 1));
     dt = cfl_dt(maxima);
@@ -439,6 +514,7 @@ WindStepReport WindGrid::step_by(double dt) {
           stages_.enqueue_diffuse(c, coefficient, vel_.component(c), tmp_.component(c));
         std::swap(vel_, tmp_);
         enforce_boundaries();
+        exchange(vel_);
       }
     });
   }
@@ -453,7 +529,7 @@ WindStepReport WindGrid::step_by(double dt) {
 }
 
 fluid::MacVelocity WindGrid::download_velocity() {
-  fluid::MacVelocity vel(setup_.spec);
+  fluid::MacVelocity vel(local_);
   for (int c = 0; c < 3; ++c)
     cc_.queue().enqueueReadBuffer(vel_.component(c), CL_TRUE, 0, vel.component(c).size() * sizeof(float),
                                   vel.component(c).data());
@@ -463,15 +539,14 @@ fluid::MacVelocity WindGrid::download_velocity() {
 void WindGrid::upload_velocity(const fluid::MacVelocity& vel) {
   for (int c = 0; c < 3; ++c) {
     const auto& q = vel.component(c);
-    const std::size_t expected =
-        c == 0 ? setup_.spec.u_count() : (c == 1 ? setup_.spec.v_count() : setup_.spec.w_count());
+    const std::size_t expected = c == 0 ? local_.u_count() : (c == 1 ? local_.v_count() : local_.w_count());
     if (q.size() != expected) throw std::invalid_argument("WindGrid: uploaded velocity has the wrong size");
     cc_.queue().enqueueWriteBuffer(vel_.component(c), CL_TRUE, 0, q.size() * sizeof(float), q.data());
   }
 }
 
 std::vector<float> WindGrid::download_pressure() {
-  std::vector<float> phi(setup_.spec.cell_count());
+  std::vector<float> phi(local_.cell_count());
   cc_.queue().enqueueReadBuffer(pressure_.solution(), CL_TRUE, 0, phi.size() * sizeof(float), phi.data());
   const double inv_dt = last_dt_ > 0.0 ? 1.0 / last_dt_ : 0.0;
   for (auto& p : phi) p = static_cast<float>(p * inv_dt);
@@ -481,6 +556,7 @@ std::vector<float> WindGrid::download_pressure() {
 void WindGrid::start_subgrid_energy() {
   if (subgrid_energy_set_) return;
   stages_.enqueue_tke_equilibrium(pressure_.mask(), vel_, subgrid_energy_);
+  exchange_cells(subgrid_energy_);
   subgrid_energy_set_ = true;
 }
 
@@ -489,16 +565,18 @@ void WindGrid::advance_subgrid_energy(float cap) {
   // update back into subgrid_energy_; all read the forced velocity.
   start_subgrid_energy();
   stages_.enqueue_tke_viscosity(cap, pressure_.mask(), subgrid_energy_, eddy_viscosity_);
+  exchange_cells(eddy_viscosity_);
   stages_.enqueue_tke_advect(pressure_.mask(), vel_, subgrid_energy_, advected_energy_);
   stages_.enqueue_tke_update(cap, pressure_.mask(), vel_, eddy_viscosity_, canopy_on_ ? &canopy_ : nullptr,
                              advected_energy_, subgrid_energy_);
+  exchange_cells(subgrid_energy_);
 }
 
 std::vector<float> WindGrid::download_subgrid_energy() {
   if (!subgrid_tke_enabled())
     throw std::logic_error("WindGrid: no subgrid energy without solver.subgrid tke");
   start_subgrid_energy();
-  std::vector<float> energy(setup_.spec.cell_count());
+  std::vector<float> energy(local_.cell_count());
   cc_.queue().enqueueReadBuffer(subgrid_energy_, CL_TRUE, 0, energy.size() * sizeof(float), energy.data());
   return energy;
 }
@@ -508,7 +586,7 @@ std::vector<float> WindGrid::download_eddy_viscosity() {
     throw std::logic_error(
         "WindGrid: no eddy viscosity without a subgrid stage (solver.smagorinsky_constant or "
         "solver.subgrid tke)");
-  std::vector<float> viscosity(setup_.spec.cell_count());
+  std::vector<float> viscosity(local_.cell_count());
   cc_.queue().enqueueReadBuffer(eddy_viscosity_, CL_TRUE, 0, viscosity.size() * sizeof(float),
                                 viscosity.data());
   return viscosity;
@@ -517,9 +595,9 @@ std::vector<float> WindGrid::download_eddy_viscosity() {
 void WindGrid::upload_subgrid_energy(const std::vector<float>& energy) {
   if (!subgrid_tke_enabled())
     throw std::logic_error("WindGrid: no subgrid energy without solver.subgrid tke");
-  if (energy.size() != setup_.spec.cell_count())
+  if (energy.size() != local_.cell_count())
     throw std::invalid_argument(fmt::format("WindGrid: subgrid energy has {} cells, the grid {}",
-                                            energy.size(), setup_.spec.cell_count()));
+                                            energy.size(), local_.cell_count()));
   for (float e : energy)
     if (!std::isfinite(e) || e < 0.0f)
       throw std::invalid_argument(fmt::format("WindGrid: subgrid energy must be finite and >= 0, got {}", e));

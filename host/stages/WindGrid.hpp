@@ -17,12 +17,19 @@
 // -> viscosity (explicit, sub-stepped) -> prescribed faces (inflow profile + turbulence) -> divergence ->
 // pressure solve -> subtract the gradient. Everything stays on the device; only the scalars of reductions
 // (residual norms, max speed for the CFL step) and, with a mean forcing, two layers of u and v come back.
+//
+// Over MPI ranks (WindBlocks, docs/parallel.md) each rank steps its block of the grid with the halo the
+// decomposition gives it. The stages compute the block as a grid of its own (block_spec), and the velocity's
+// halo is exchanged after every stage that changes it, so that the next stage reads what one process would
+// have; maxima and sums are taken over all ranks. The arrays a rank uploads and downloads are its block with
+// the halo (block_array, face_array).
 #pragma once
 
 #include <array>
 #include <cstdint>
 #include <map>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -33,7 +40,9 @@
 #include "fluid/MacVelocity.hpp"
 #include "fluid/TurbulenceBox.hpp"
 #include "fluid/WindSettings.hpp"
+#include "host/stages/BlockGrid.hpp"
 #include "host/stages/FluidStages.hpp"
+#include "host/stages/HaloExchange.hpp"
 #include "host/stages/PressureSolver.hpp"
 
 namespace fw::host {
@@ -60,6 +69,12 @@ struct WindGridSetup {
   MeanForcing forcing;
 };
 
+/// A wind grid over ranks: this rank's place in the decomposition.
+struct WindBlocks {
+  const Communicator* world = nullptr;
+  fluid::Decomposition decomposition;
+};
+
 struct WindStepReport {
   long step = 0;      // index of the step just taken (1-based)
   double time = 0.0;  // simulated time after the step, s
@@ -71,8 +86,9 @@ struct WindStepReport {
 class WindGrid {
  public:
   /// Validates setup (GridSpec, WindSettings, InflowProfile, sizes) and the device memory estimate, then
-  /// allocates. Throws std::invalid_argument naming the problem before any allocation.
-  WindGrid(ComputeContext& cc, WindGridSetup setup);
+  /// allocates. Throws std::invalid_argument naming the problem before any allocation. blocks: null in one
+  /// process; else this rank steps its block (setup stays the whole grid's).
+  WindGrid(ComputeContext& cc, WindGridSetup setup, const WindBlocks* blocks = nullptr);
 
   /// Throws std::invalid_argument naming the problem in `setup` (GridSpec, WindSettings, InflowProfile,
   /// sizes, gusts, forcing): every check the constructor makes except the device's memory. The planner
@@ -119,6 +135,10 @@ class WindGrid {
   double time() const { return time_; }
   long steps() const { return steps_; }
   const fluid::GridSpec& spec() const { return setup_.spec; }
+  /// The grid this rank's arrays cover: its block with the halo over ranks, else spec().
+  const fluid::GridSpec& local_spec() const { return local_; }
+  /// This rank's block's cells with the halo (the whole grid in one process).
+  const BlockArray& block() const { return block_; }
   const WindGridSetup& setup() const { return setup_; }
   fluid::InflowState inflow_state() const;
 
@@ -188,10 +208,22 @@ class WindGrid {
   void apply_wall_stress();
   void update_mean_forcing(double dt);
   void upload_step_inflow();
+  /// Fills the halo of every component of vel from the neighbours (nothing in one process).
+  void exchange(DeviceVelocity& vel);
+  /// Fills the halo of a cell field.
+  void exchange_cells(cl::Buffer& field);
 
   ComputeContext& cc_;
   WindGridSetup setup_;
-  std::vector<float> profile_shape_;  // the profile at the nz cell-centre heights, sampled once
+  const Communicator* world_ = &Communicator::alone();
+  fluid::Decomposition decomposition_;
+  BlockArray block_;       // this rank's cells with the halo (the whole grid in one process)
+  fluid::GridSpec local_;  // the grid of block_
+  PressureBlocks pressure_blocks_;
+  std::array<std::optional<HaloExchange>, 3> face_halo_;  // per velocity component, over several ranks
+  std::optional<HaloExchange> cell_halo_;
+  std::optional<HaloExchange> vorticity_halo_;  // four floats a cell (vorticity and its magnitude)
+  std::vector<float> profile_shape_;            // the profile at the nz cell-centre heights, sampled once
   FluidStages stages_;
   PressureSolver pressure_;
   DeviceVelocity vel_, tmp_, back_, padded_, padded_forward_;

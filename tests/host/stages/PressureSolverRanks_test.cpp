@@ -20,20 +20,6 @@ namespace {
 // The velocity's halo, which the fine level shares: upwind5's reach.
 constexpr int kFineHalo = FW_PAD;
 
-// Rank `rank`'s block of a whole-grid field (x fastest), its halo included, wrapped across periodic faces.
-std::vector<float> block_of(const std::vector<float>& whole, const fluid::GridSpec& spec,
-                            const host::BlockArray& a) {
-  std::vector<float> block(a.cells());
-  const auto wrap = [](int i, int n) { return ((i % n) + n) % n; };
-  for (int k = 0; k < a.extent[2]; ++k)
-    for (int j = 0; j < a.extent[1]; ++j)
-      for (int i = 0; i < a.extent[0]; ++i)
-        block[i + std::size_t(a.extent[0]) * (j + std::size_t(a.extent[1]) * k)] =
-            whole[wrap(a.origin[0] + i, spec.nx) +
-                  std::size_t(spec.nx) * (wrap(a.origin[1] + j, spec.ny) + std::size_t(spec.ny) * k)];
-  return block;
-}
-
 // Every split px x py of the ranks.
 std::vector<std::array<int, 2>> splits(int ranks) {
   std::vector<std::array<int, 2>> all;
@@ -78,13 +64,13 @@ TEST_CASE("PressureSolver over ranks: every split solves to the bits of one proc
           &world, fluid::Decomposition::make(spec, world.size(), blocks, kFineHalo), kFineHalo};
       const host::BlockArray a = host::block_array(split.decomposition, world.rank(), 0, spec.nz, kFineHalo);
       host::PressureSolver solver(*cc, spec, levels, settings, &split);
-      test::upload(*cc, block_of(b, spec, a), solver.rhs());
+      test::upload(*cc, host::block_of(b, spec.nx, spec.ny, a), solver.rhs());
       const host::PressureSolveStatus status = solver.solve();
       CHECK(status.iterations == expected.iterations);
       CHECK(status.relative_residual == expected.relative_residual);
       // The block's own cells, bit for bit (the halo is the neighbours' to own).
       const auto mine = test::download(*cc, solver.solution(), a.cells());
-      const auto reference = block_of(phi, spec, a);
+      const auto reference = host::block_of(phi, spec.nx, spec.ny, a);
       long differing = 0;
       for (int k = 0; k < a.extent[2]; ++k)
         for (int j = a.halo_low[1]; j < a.extent[1] - a.halo_high[1]; ++j)

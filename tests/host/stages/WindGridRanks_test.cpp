@@ -1,0 +1,181 @@
+// host/stages/WindGrid over MPI ranks (CTest runs this binary at 1, 2 and 4 ranks): every split of the
+// ranks steps the wind to the bits of one process, with obstacles across the blocks' borders, under each
+// advection scheme, on a periodic channel held by the mean forcing, and with every stage of a forest's wind.
+#include <catch2/catch.hpp>
+
+#include <algorithm>
+#include <memory>
+#include <numbers>
+#include <vector>
+
+#include "fluid/SolidMap.hpp"
+#include "fluid/TurbulenceBox.hpp"
+#include "host/stages/WindGrid.hpp"
+#include "tests/support/TestDevice.hpp"
+#include "tests/support/TestWorld.hpp"
+
+using namespace fw;
+using B = fluid::BoundaryType;
+
+namespace {
+
+// Every split px x py of the ranks.
+std::vector<std::array<int, 2>> splits(int ranks) {
+  std::vector<std::array<int, 2>> all;
+  for (int px = 1; px <= ranks; ++px)
+    if (ranks % px == 0) all.push_back({px, ranks / px});
+  return all;
+}
+
+// A wind tunnel with a rotated box and a cylinder in it, 32 x 16 x 8 cells of 1 m: inflow on the west,
+// outflow on the east, slip sides and lid, a no-slip floor. The solids sit across the cuts of every split
+// of up to 4 ranks.
+host::WindGridSetup tunnel(fluid::AdvectionScheme scheme) {
+  host::WindGridSetup setup;
+  auto& spec = setup.spec;
+  spec.nx = 32, spec.ny = 16, spec.nz = 8, spec.h = 1.0;
+  spec.origin = {-4.0, 2.0, 0.0};
+  spec.boundary = {B::inflow, B::outflow, B::slip, B::slip, B::no_slip, B::slip};
+  fluid::SolidMap solids(spec);
+  solids.add(fluid::SolidBox{"box", {12.0, 10.0, 2.0}, {6.0, 5.0, 4.0}, 30.0 * std::numbers::pi / 180.0});
+  solids.add(fluid::SolidCylinder{"mast", {20.0, 6.0, 0.0}, 1.5, 6.0});
+  setup.solid = solids.cells();
+  setup.settings.advection = scheme;
+  setup.settings.cfl = 0.8;
+  setup.settings.max_dt = 0.5;
+  setup.ambient = {6.0, 1.0, 0.0};
+  return setup;
+}
+
+// A periodic channel over a no-slip floor, held at the ambient wind by the mean forcing (the layer mean is a
+// sum over every rank's faces), with a gust travelling through it, Smagorinsky and vorticity confinement
+// (whose cell fields a halo cell across the periodic seam must take from their owner).
+host::WindGridSetup channel() {
+  host::WindGridSetup setup;
+  auto& spec = setup.spec;
+  spec.nx = 32, spec.ny = 16, spec.nz = 8, spec.h = 1.0;
+  spec.boundary = {B::periodic, B::periodic, B::periodic, B::periodic, B::no_slip, B::slip};
+  setup.settings.advection = fluid::AdvectionScheme::maccormack;
+  setup.settings.smagorinsky_constant = 0.16;
+  setup.settings.vorticity_confinement = 0.2;
+  setup.settings.dt = 0.2;
+  setup.forcing.relaxation_time = 5.0;
+  setup.ambient = {4.0, 0.0, 0.0};
+  FwGust gust{};
+  gust.start = 0.0f, gust.duration = 2.0f, gust.peak_speed = 3.0f, gust.radius = 4.0f;
+  gust.center[0] = 8.0f, gust.center[1] = 8.0f, gust.center[2] = 4.0f;
+  gust.travel[0] = 4.0f, gust.direction[0] = 1.0f;
+  setup.gusts = {gust};
+  return setup;
+}
+
+// The tunnel with everything a forest's wind has: inflow turbulence, a canopy across the cuts (drag density
+// 0.3 / m in a block of cells), the tke model, a rough floor (wall stress) and vorticity confinement.
+host::WindGridSetup turbulent_tunnel() {
+  host::WindGridSetup setup = tunnel(fluid::AdvectionScheme::upwind5);
+  setup.spec.boundary[FW_FACE_GROUND] = B::slip;  // the rough floor's stress is the wall stage's
+  setup.settings.subgrid = fluid::SubgridModel::tke;
+  setup.settings.wall_roughness_length = 0.1;
+  setup.settings.vorticity_confinement = 0.2;
+  fluid::TurbulenceBoxSpec box;
+  box.cells = {64, 32, 16};
+  box.spacing = 0.5;
+  box.spectrum = {1.0, 6.0};
+  box.seed = 5;
+  setup.turbulence = std::make_shared<const fluid::TurbulenceBox>(box);
+  return setup;
+}
+
+// Drag density of the turbulent tunnel's canopy: 0.3 / m in cells 6-25 x 3-12 x 0-4, across every cut.
+std::vector<float> canopy(const fluid::GridSpec& spec) {
+  std::vector<float> k(spec.cell_count(), 0.0f);
+  for (int z = 0; z < 5; ++z)
+    for (int y = 3; y < 13; ++y)
+      for (int x = 6; x < 26; ++x) k[x + std::size_t(spec.nx) * (y + std::size_t(spec.ny) * z)] = 0.3f;
+  return k;
+}
+
+constexpr int kSteps = 8;
+
+// Steps `setup` alone and over the ranks in every split (with the canopy above if asked), and compares each
+// rank's block of the velocity, halo included, bit for bit; and the steps' dt and pressure iterations.
+void check_equal_to_one_process(const host::WindGridSetup& setup, bool with_canopy = false) {
+  auto* cc = test::device_or_skip();
+  if (!cc) return;
+  const host::Communicator& world = test::world();
+  host::WindGrid alone(*cc, setup);
+  if (setup.turbulence) alone.set_turbulence_sigma(1.0);
+  if (with_canopy) alone.set_canopy(canopy(setup.spec));
+  alone.initialise_ambient();
+  std::vector<host::WindStepReport> expected;
+  for (int n = 0; n < kSteps; ++n) expected.push_back(alone.step());
+  const fluid::MacVelocity whole = alone.download_velocity();
+
+  for (const auto blocks : splits(world.size())) {
+    INFO(blocks[0] << " x " << blocks[1] << " blocks on " << world.size() << " ranks");
+    const host::WindBlocks split{
+        &world, fluid::Decomposition::make(setup.spec, world.size(), blocks,
+                                           fluid::halo_cells(setup.settings.advection, setup.settings.cfl))};
+    host::WindGrid wind(*cc, setup, &split);
+    if (setup.turbulence) wind.set_turbulence_sigma(1.0);
+    if (with_canopy) wind.set_canopy(canopy(setup.spec));  // the whole grid's; each rank takes its block
+    wind.initialise_ambient();
+    for (int n = 0; n < kSteps; ++n) {
+      INFO("step " << n + 1);
+      const host::WindStepReport report = wind.step();
+      CHECK(report.dt == expected[n].dt);
+      CHECK(report.pressure.iterations == expected[n].pressure.iterations);
+    }
+    const fluid::MacVelocity mine = wind.download_velocity();
+    for (int c = 0; c < 3; ++c) {
+      INFO("component " << c);
+      const host::BlockArray faces = host::face_array(wind.block(), c);
+      const auto reference =
+          host::block_of(whole.component(c), setup.spec.nx + (c == 0), setup.spec.ny + (c == 1), faces);
+      // Where they part first, to say which stage to look at.
+      long differing = 0;
+      std::size_t first = reference.size();
+      for (std::size_t at = 0; at < reference.size(); ++at)
+        if (mine.component(c)[at] != reference[at]) {
+          first = std::min(first, at);
+          ++differing;
+        }
+      const std::size_t ex = std::size_t(faces.values(0)), ey = std::size_t(faces.values(1));
+      if (differing > 0)
+        UNSCOPED_INFO("first differing face ("
+                      << first % ex << ", " << first / ex % ey << ", " << first / (ex * ey)
+                      << ") of the block: " << mine.component(c)[first] << " against " << reference[first]);
+      CHECK(differing == 0);
+    }
+  }
+}
+
+}  // namespace
+
+TEST_CASE("WindGrid over ranks: a tunnel with obstacles steps to the bits of one process, semi-Lagrangian",
+          "[mpi]") {
+  check_equal_to_one_process(tunnel(fluid::AdvectionScheme::semi_lagrangian));
+}
+
+TEST_CASE("WindGrid over ranks: a tunnel with obstacles steps to the bits of one process, MacCormack",
+          "[mpi]") {
+  check_equal_to_one_process(tunnel(fluid::AdvectionScheme::maccormack));
+}
+
+TEST_CASE("WindGrid over ranks: a tunnel with obstacles steps to the bits of one process, upwind5", "[mpi]") {
+  check_equal_to_one_process(tunnel(fluid::AdvectionScheme::upwind5));
+}
+
+TEST_CASE(
+    "WindGrid over ranks: a periodic channel with mean forcing, a gust, Smagorinsky and vorticity "
+    "confinement, bit for bit",
+    "[mpi]") {
+  check_equal_to_one_process(channel());
+}
+
+TEST_CASE(
+    "WindGrid over ranks: inflow turbulence, a canopy, the tke model, a rough floor and vorticity "
+    "confinement, bit for bit",
+    "[mpi]") {
+  check_equal_to_one_process(turbulent_tunnel(), true);
+}
