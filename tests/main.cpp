@@ -4,10 +4,12 @@
 #include <catch2/catch.hpp>
 
 #include "host/runtime/Communicator.hpp"
+#include "host/runtime/Device.hpp"
 #include "tests/support/TestWorld.hpp"
 
 int main(int argc, char** argv) {
   fw::host::MpiSession mpi(argc, argv);
+  fw::host::share_cpu_cores(mpi.world().node_size());
   fw::test::set_world(mpi.world());
   return Catch::Session().run(argc, argv);
 }

@@ -9,6 +9,7 @@
 #include "host/cli/Commands.hpp"
 #include "host/runtime/ClError.hpp"
 #include "host/runtime/Communicator.hpp"
+#include "host/runtime/Device.hpp"
 
 namespace {
 
@@ -29,6 +30,7 @@ int main(int argc, char** argv) {
   using namespace fw;
   host::MpiSession mpi(argc, argv);
   const host::Communicator& world = mpi.world();
+  host::share_cpu_cores(world.node_size());  // before any OpenCL call: PoCL reads it once
   CLI::App app{"forestwind: a forest in a resolved wind field (OpenCL)"};
   app.require_subcommand(1);
   app.fallthrough();  // --device and --profile may follow the subcommand

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cctype>
 #include <cstdlib>
+#include <thread>
 
 #include "host/runtime/ClError.hpp"
 
@@ -75,23 +76,42 @@ std::vector<DeviceInfo> list_devices() {
 }
 
 DeviceInfo select_device(const std::string& filter) {
+  return select_device(filter, 0);
+}
+
+DeviceInfo select_device(const std::string& filter, int node_rank) {
   auto devices = list_devices();
+  std::vector<DeviceInfo> candidates;
   if (!filter.empty()) {
     const std::string needle = lower(filter);
     for (const auto& d : devices) {
       if (lower(d.platform_name).find(needle) != std::string::npos ||
           lower(d.device_name).find(needle) != std::string::npos)
-        return d;
+        candidates.push_back(d);
     }
-    std::string names;
-    for (const auto& d : devices) names += fmt::format("\n  {} / {}", d.platform_name, d.device_name);
-    throw NoDeviceError(
-        fmt::format("no OpenCL device matches the filter '{}'; the devices are:{}", filter, names));
+    if (candidates.empty()) {
+      std::string names;
+      for (const auto& d : devices) names += fmt::format("\n  {} / {}", d.platform_name, d.device_name);
+      throw NoDeviceError(
+          fmt::format("no OpenCL device matches the filter '{}'; the devices are:{}", filter, names));
+    }
   }
-  for (const char* wanted : {"GPU", "CPU"})
+  for (const char* wanted : {"GPU", "CPU"}) {
+    if (!candidates.empty()) break;
     for (const auto& d : devices)
-      if (d.type == wanted) return d;
-  return devices.front();
+      if (d.type == wanted) candidates.push_back(d);
+  }
+  if (candidates.empty()) candidates = devices;
+  return candidates[std::size_t(std::max(node_rank, 0)) % candidates.size()];
+}
+
+int share_cpu_cores(int node_ranks) {
+  constexpr const char* kVariable = "POCL_MAX_PTHREAD_COUNT";
+  if (node_ranks <= 1) return 0;
+  if (const char* set = std::getenv(kVariable)) return std::max(1, std::atoi(set));
+  const int share = std::max(1, int(std::thread::hardware_concurrency()) / node_ranks);
+  ::setenv(kVariable, std::to_string(share).c_str(), 0);
+  return share;
 }
 
 std::string device_filter_from_env(const std::string& command_line_filter) {

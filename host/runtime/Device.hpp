@@ -37,6 +37,15 @@ std::vector<DeviceInfo> list_devices();
 
 /// The device chosen by `filter` (see the header comment).
 DeviceInfo select_device(const std::string& filter);
+/// The device of a machine's rank `node_rank` (docs/parallel.md): of the devices the filter matches (else the
+/// GPUs, else the CPUs, else all), the node_rank-th, counted round; node_rank 0 is select_device(filter).
+/// Ranks beyond the count share devices; ranks on a CPU share it (see share_cpu_cores).
+DeviceInfo select_device(const std::string& filter, int node_rank);
+
+/// Gives each of `node_ranks` ranks on this machine its share of the cores under PoCL: sets
+/// POCL_MAX_PTHREAD_COUNT to max(1, cores / node_ranks) unless the environment already sets it, and returns
+/// the share in force (0: one rank, nothing set). It must run before the first OpenCL call of the process.
+int share_cpu_cores(int node_ranks);
 
 /// `command_line_filter` if not empty, else the environment variable FORESTWIND_DEVICE, else "".
 std::string device_filter_from_env(const std::string& command_line_filter);

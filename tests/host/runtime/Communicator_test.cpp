@@ -1,13 +1,16 @@
 // host/runtime/Communicator under mpirun -np 1, 2 and 4 (CTest runs this binary at each): sums over ranks
 // equal the sum of the same terms in one process, bit for bit; maxima see every rank's NaN.
 #include "host/runtime/Communicator.hpp"
+#include "host/runtime/Device.hpp"
 
 #include <catch2/catch.hpp>
 
 #include <cmath>
+#include <cstdlib>
 #include <random>
 #include <vector>
 
+#include "tests/support/TestDevice.hpp"
 #include "tests/support/TestWorld.hpp"
 
 namespace {
@@ -47,4 +50,25 @@ TEST_CASE("Communicator: a process started without a launcher is one rank alone"
   CHECK(alone.rank() == 0);
   CHECK_FALSE(alone.uses_mpi());
   CHECK(fw::test::world().uses_mpi() == fw::host::launched_by_mpi());
+}
+
+TEST_CASE("Communicator: a machine's ranks share its cores under PoCL and take its devices in turn",
+          "[mpi]") {
+  const auto& world = fw::test::world();
+  // The tests' main shared the cores before any OpenCL call: with several ranks on this machine PoCL runs
+  // each on its share, unless the environment set one.
+  if (world.node_size() > 1) {
+    const char* share = std::getenv("POCL_MAX_PTHREAD_COUNT");
+    REQUIRE(share != nullptr);
+    CHECK(std::atoi(share) >= 1);
+  }
+  CHECK(fw::host::share_cpu_cores(1) == 0);  // one rank: nothing to share
+  // Rank r of a machine takes the r-th of the devices the filter leaves, counted round.
+  if (!fw::test::device_or_skip()) return;
+  const auto devices = fw::host::list_devices();
+  const auto first = fw::host::select_device("", 0);
+  CHECK(first.device_name == fw::host::select_device("").device_name);
+  std::size_t same_type = 0;
+  for (const auto& d : devices) same_type += d.type == first.type;
+  CHECK(fw::host::select_device("", int(same_type)).device_name == first.device_name);
 }
