@@ -71,8 +71,8 @@ int axis_alignment(const GridSpec& spec, int axis, int p, int halo) {
 
 int halo_cells(AdvectionScheme scheme, double courant) {
   if (scheme == AdvectionScheme::upwind5) return FW_PAD;
-  const double reach = std::ceil(std::max(courant, 0.0));
-  return reach + 2 > FW_PAD ? int(std::min(reach + 2, double(std::numeric_limits<int>::max()))) : FW_PAD;
+  const double reach = std::floor(std::max(courant, 0.0)) + 1.0;
+  return reach > FW_PAD ? int(std::min(reach, double(std::numeric_limits<int>::max()))) : FW_PAD;
 }
 
 Decomposition Decomposition::make(const GridSpec& spec, int ranks,

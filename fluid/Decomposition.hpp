@@ -37,9 +37,10 @@ struct DecompositionError : std::invalid_argument {
 };
 
 /// The halo, in cells, that a step of `scheme` needs around a block when the largest Courant number of a
-/// component is `courant`: upwind5's stencil reaches FW_PAD cells; a semi-Lagrangian back-trace (and
-/// MacCormack's) reaches ceil(courant) cells, its trilinear stencil one more, with one of margin for the
-/// RK2 midpoint; never less than FW_PAD, the ghost layers every scheme's padded copies have.
+/// component is `courant`: upwind5's stencil reaches FW_PAD cells; the corners of a semi-Lagrangian
+/// back-trace (and of MacCormack's forward trace) lie within floor(courant) + 1 cells of the face, and its
+/// RK2 midpoint's within half that; never less than FW_PAD, the ghost layers every scheme's padded copies
+/// have.
 int halo_cells(AdvectionScheme scheme, double courant);
 
 /// One rank's block: cells first .. first + count - 1 along x and y, every z, and the halo it receives on

@@ -14,13 +14,18 @@
 namespace fw::host {
 namespace {
 
-// Validates everything before a single buffer exists (members are built after this returns).
-WindGridSetup validated(ComputeContext& cc, WindGridSetup setup) {
+// Validates everything before a single buffer exists (members are built after this returns). Over ranks the
+// device holds the rank's block with its halo.
+WindGridSetup validated(ComputeContext& cc, WindGridSetup setup, const WindBlocks* blocks) {
   WindGrid::validate(setup);
   const std::size_t box_bytes = setup.turbulence ? WindGrid::estimate_turbulence_bytes(*setup.turbulence) : 0;
+  fluid::GridSpec held = setup.spec;
+  if (blocks && blocks->world && blocks->world->size() > 1) {
+    const fluid::Decomposition& d = blocks->decomposition;
+    held = block_spec(setup.spec, d, block_array(d, blocks->world->rank(), 0, setup.spec.nz, d.halo()));
+  }
   WindGrid::check_fits_device(
-      setup.spec, WindGrid::estimate_device_bytes(setup.spec, setup.settings, cc.row_chunk()) + box_bytes,
-      cc.device());
+      held, WindGrid::estimate_device_bytes(held, setup.settings, cc.row_chunk()) + box_bytes, cc.device());
   return setup;
 }
 
@@ -110,7 +115,7 @@ void WindGrid::check_fits_device(const fluid::GridSpec& spec, std::size_t bytes,
 
 WindGrid::WindGrid(ComputeContext& cc, WindGridSetup setup, const WindBlocks* blocks)
     : cc_(cc),
-      setup_(validated(cc, std::move(setup))),
+      setup_(validated(cc, std::move(setup), blocks)),
       world_(blocks && blocks->world ? blocks->world : &Communicator::alone()),
       decomposition_(blocks ? blocks->decomposition : fluid::Decomposition()),
       block_(held_cells(setup_.spec, *world_, decomposition_)),
@@ -478,9 +483,28 @@ WindStepReport WindGrid::step() {
   return step_by(dt);
 }
 
+void WindGrid::check_halo_reach(double dt) {
+  // upwind5's stencil reaches FW_PAD faces whatever dt; its Courant limit is the plan's and cfl_dt's.
+  if (world_->size() == 1 || setup_.settings.advection == fluid::AdvectionScheme::upwind5) return;
+  std::array<double, 3> maxima = stages_.max_speed_components(vel_);
+  for (double& m : maxima) m = world_->max(m);
+  const double largest = std::max({maxima[0], maxima[1], maxima[2]});
+  const double courant = largest * dt / setup_.spec.h;
+  const int halo = decomposition_.halo();
+  if (!(fluid::halo_cells(setup_.settings.advection, courant) <= halo))
+    throw std::runtime_error(fmt::format(
+        "WindGrid: step {}: the velocity's largest component, {:.4g} m/s, carries a back-trace {:.3g} cells "
+        "in "
+        "dt = {:.4g} s, past the {} cells of halo the ranks exchange (its corners lie up to floor(C) + 1 "
+        "cells "
+        "away); lower time.dt, or time.cfl with dt: auto",
+        steps_ + 1, largest, courant, dt, halo));
+}
+
 WindStepReport WindGrid::step_by(double dt) {
   if (!std::isfinite(dt) || !(dt > 0.0))
     throw std::invalid_argument(fmt::format("WindGrid: a step needs a finite dt > 0 s, got {}", dt));
+  check_halo_reach(dt);
   const auto& st = setup_.settings;
   const auto& spec = setup_.spec;
   if (setup_.turbulence) {

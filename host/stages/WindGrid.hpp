@@ -212,6 +212,9 @@ class WindGrid {
   void exchange(DeviceVelocity& vel);
   /// Fills the halo of a cell field.
   void exchange_cells(cl::Buffer& field);
+  /// Over ranks: throws std::runtime_error naming the step when a semi-Lagrangian back-trace over dt would
+  /// reach past the halo (fluid::halo_cells of the step's Courant number above the decomposition's).
+  void check_halo_reach(double dt);
 
   ComputeContext& cc_;
   WindGridSetup setup_;

@@ -113,5 +113,6 @@ TEST_CASE("Decomposition: the halo follows the advection scheme and the Courant 
   using fw::fluid::AdvectionScheme;
   CHECK(fw::fluid::halo_cells(AdvectionScheme::upwind5, 1.2) == FW_PAD);
   CHECK(fw::fluid::halo_cells(AdvectionScheme::semi_lagrangian, 0.8) == FW_PAD);
-  CHECK(fw::fluid::halo_cells(AdvectionScheme::maccormack, 2.5) == 5);  // 3 cells reached, +1 trilinear, +1
+  CHECK(fw::fluid::halo_cells(AdvectionScheme::maccormack, 2.5) == FW_PAD);  // corners within 3 cells
+  CHECK(fw::fluid::halo_cells(AdvectionScheme::semi_lagrangian, 4.5) == 5);  // corners within floor + 1
 }

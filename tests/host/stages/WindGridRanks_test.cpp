@@ -179,3 +179,25 @@ TEST_CASE(
     "[mpi]") {
   check_equal_to_one_process(turbulent_tunnel(), true);
 }
+
+TEST_CASE("WindGrid over ranks: a step whose back-trace would outrun the halo stops, naming the step",
+          "[mpi]") {
+  auto* cc = test::device_or_skip();
+  if (!cc) return;
+  const host::Communicator& world = test::world();
+  // 6 m/s across 1 m cells at dt = 1 s: a back-trace of 6 cells, which needs a halo of 8; the ranks
+  // exchange 3.
+  host::WindGridSetup setup = tunnel(fluid::AdvectionScheme::semi_lagrangian);
+  setup.settings.cfl = 0.0;
+  setup.settings.dt = 1.0;
+  const host::WindBlocks split{&world,
+                               fluid::Decomposition::make(setup.spec, world.size(), std::nullopt,
+                                                          fluid::halo_cells(setup.settings.advection, 0.8))};
+  host::WindGrid wind(*cc, setup, &split);
+  wind.initialise_ambient();
+  if (world.size() == 1) {
+    CHECK_NOTHROW(wind.step());  // one process reads its ghosts as ever: nothing to outrun
+    return;
+  }
+  CHECK_THROWS_WITH(wind.step(), Catch::Contains("step 1:") && Catch::Contains("past the 3 cells of halo"));
+}
