@@ -44,10 +44,6 @@ long long Communicator::sum(long long local) const {
   return total;
 }
 
-void Communicator::barrier() const {
-  if (uses_mpi()) MPI_Barrier(comm_);
-}
-
 void Communicator::abort(int code) const {
   if (uses_mpi()) MPI_Abort(comm_, code);
   std::exit(code);

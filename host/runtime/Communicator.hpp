@@ -49,8 +49,6 @@ class Communicator {
   double max(double local) const;
   /// The sum of every rank's count. Collective.
   long long sum(long long local) const;
-  /// Waits for every rank. Collective.
-  void barrier() const;
   /// Stops every rank with `code` (MPI_Abort), or exits this process when alone. Never returns.
   [[noreturn]] void abort(int code) const;
 

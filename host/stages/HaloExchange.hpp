@@ -33,17 +33,31 @@ class HaloExchange {
   /// face 0 (block 0's), as a whole grid's boundary pass makes it. Nothing elsewhere. Collective with the
   /// seam's two blocks.
   void copy_seam(cl::Buffer& field);
-  /// Bytes sent by this rank in one exchange.
-  std::size_t bytes_sent() const { return bytes_sent_; }
-  const BlockArray& layout() const { return layout_; }
+
+  /// A box of the layout's values: first value and extent along x, y, z.
+  struct Box {
+    std::array<std::size_t, 3> first, extent;
+    std::size_t values() const { return extent[0] * extent[1] * extent[2]; }
+  };
 
  private:
   void exchange_axis(cl::Buffer& field, int axis);
+  /// The strip along `axis` from `at`, `width` values wide, over the whole of the other axes.
+  Box strip(int axis, int at, int width) const;
+  /// A box as the rectangle calls take it: device origin and region (x in bytes), the layout's pitches and
+  /// those of a packed host copy.
+  struct Rect {
+    std::array<cl::size_type, 3> origin, region;
+    std::size_t row, slice, host_row, host_slice;
+  };
+  Rect rect(const Box& box) const;
+  /// Blocking copies of a box of `field` to and from `host` (resized to the box).
+  void read_box(cl::Buffer& field, const Box& box, std::vector<float>& host);
+  void write_box(cl::Buffer& field, const Box& box, const std::vector<float>& host);
 
   ComputeContext& cc_;
   const Communicator& world_;
   BlockArray layout_;
-  std::size_t bytes_sent_ = 0;
   std::array<std::vector<float>, 4> staging_;  // send low, send high, receive low, receive high
 };
 

@@ -366,7 +366,7 @@ void WindGrid::apply_forces() {
       stages_.enqueue_vorticity_confinement(c, static_cast<float>(st.vorticity_confinement), vorticity_,
                                             vel_.component(c));
   }
-  exchange(vel_);
+  if (any_body || !setup_.gusts.empty() || st.vorticity_confinement > 0.0) exchange(vel_);
 }
 
 void WindGrid::exchange(DeviceVelocity& vel) {
@@ -471,23 +471,24 @@ double WindGrid::courant_number(const std::array<double, 3>& maxima, double dt) 
   return speed * dt / setup_.spec.h;
 }
 
-WindStepReport WindGrid::step() {
-  double dt = setup_.settings.dt;
-  if (setup_.settings.cfl > 0.0) {
-    std::array<double, 3> maxima = stages_.max_speed_components(vel_);
-    for (double& m : maxima) m = world_->max(m);  // every face is some rank's, and halos are copies
-    if (!(std::isfinite(maxima[0]) && std::isfinite(maxima[1]) && std::isfinite(maxima[2])))
-      throw std::runtime_error(fmt::format("WindGrid: velocity is not finite before step {}", steps_ + 1));
-    dt = cfl_dt(maxima);
-  }
-  return step_by(dt);
+std::array<double, 3> WindGrid::global_max_speed_components() {
+  std::array<double, 3> maxima = stages_.max_speed_components(vel_);
+  for (double& m : maxima) m = world_->max(m);  // every face is some rank's, and halos are copies
+  return maxima;
 }
 
-void WindGrid::check_halo_reach(double dt) {
+WindStepReport WindGrid::step() {
+  if (!(setup_.settings.cfl > 0.0)) return step_by(setup_.settings.dt);
+  const std::array<double, 3> maxima = global_max_speed_components();
+  if (!(std::isfinite(maxima[0]) && std::isfinite(maxima[1]) && std::isfinite(maxima[2])))
+    throw std::runtime_error(fmt::format("WindGrid: velocity is not finite before step {}", steps_ + 1));
+  return step_by(cfl_dt(maxima), maxima);
+}
+
+void WindGrid::check_halo_reach(double dt, const std::optional<std::array<double, 3>>& known_maxima) {
   // upwind5's stencil reaches FW_PAD faces whatever dt; its Courant limit is the plan's and cfl_dt's.
   if (world_->size() == 1 || setup_.settings.advection == fluid::AdvectionScheme::upwind5) return;
-  std::array<double, 3> maxima = stages_.max_speed_components(vel_);
-  for (double& m : maxima) m = world_->max(m);
+  const std::array<double, 3> maxima = known_maxima ? *known_maxima : global_max_speed_components();
   const double largest = std::max({maxima[0], maxima[1], maxima[2]});
   const double courant = largest * dt / setup_.spec.h;
   const int halo = decomposition_.halo();
@@ -502,9 +503,13 @@ void WindGrid::check_halo_reach(double dt) {
 }
 
 WindStepReport WindGrid::step_by(double dt) {
+  return step_by(dt, std::nullopt);
+}
+
+WindStepReport WindGrid::step_by(double dt, const std::optional<std::array<double, 3>>& maxima) {
   if (!std::isfinite(dt) || !(dt > 0.0))
     throw std::invalid_argument(fmt::format("WindGrid: a step needs a finite dt > 0 s, got {}", dt));
-  check_halo_reach(dt);
+  check_halo_reach(dt, maxima);
   const auto& st = setup_.settings;
   const auto& spec = setup_.spec;
   if (setup_.turbulence) {

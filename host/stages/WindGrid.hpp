@@ -213,8 +213,13 @@ class WindGrid {
   /// Fills the halo of a cell field.
   void exchange_cells(cl::Buffer& field);
   /// Over ranks: throws std::runtime_error naming the step when a semi-Lagrangian back-trace over dt would
-  /// reach past the halo (fluid::halo_cells of the step's Courant number above the decomposition's).
-  void check_halo_reach(double dt);
+  /// reach past the halo (fluid::halo_cells of the step's Courant number above the decomposition's). maxima:
+  /// the velocity's, when the step already took them (else they are taken here).
+  void check_halo_reach(double dt, const std::optional<std::array<double, 3>>& maxima);
+  /// The largest |u|, |v| and |w| over every rank.
+  std::array<double, 3> global_max_speed_components();
+  /// step_by with the maxima the CFL step took, so that they are not read twice.
+  WindStepReport step_by(double dt, const std::optional<std::array<double, 3>>& maxima);
 
   ComputeContext& cc_;
   WindGridSetup setup_;

@@ -13,4 +13,11 @@ void set_world(const host::Communicator& world) {
   the_world = &world;
 }
 
+std::vector<std::array<int, 2>> splits(int ranks) {
+  std::vector<std::array<int, 2>> all;
+  for (int px = 1; px <= ranks; ++px)
+    if (ranks % px == 0) all.push_back({px, ranks / px});
+  return all;
+}
+
 }  // namespace fw::test

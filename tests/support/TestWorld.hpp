@@ -6,6 +6,9 @@
 //   }
 #pragma once
 
+#include <array>
+#include <vector>
+
 #include "host/runtime/Communicator.hpp"
 
 namespace fw::test {
@@ -13,5 +16,8 @@ namespace fw::test {
 const host::Communicator& world();
 /// Called once by the tests' main.
 void set_world(const host::Communicator& world);
+
+/// Every split {px, py} of `ranks` into x-y blocks, px rising.
+std::vector<std::array<int, 2>> splits(int ranks);
 
 }  // namespace fw::test

@@ -20,14 +20,6 @@ namespace {
 // The velocity's halo, which the fine level shares: upwind5's reach.
 constexpr int kFineHalo = FW_PAD;
 
-// Every split px x py of the ranks.
-std::vector<std::array<int, 2>> splits(int ranks) {
-  std::vector<std::array<int, 2>> all;
-  for (int px = 1; px <= ranks; ++px)
-    if (ranks % px == 0) all.push_back({px, ranks / px});
-  return all;
-}
-
 }  // namespace
 
 TEST_CASE("PressureSolver over ranks: every split solves to the bits of one process", "[mpi]") {
@@ -58,7 +50,7 @@ TEST_CASE("PressureSolver over ranks: every split solves to the bits of one proc
     const host::PressureSolveStatus expected = alone.solve();
     const auto phi = test::download(*cc, alone.solution(), spec.cell_count());
 
-    for (const auto blocks : splits(world.size())) {
+    for (const auto blocks : test::splits(world.size())) {
       INFO(c.name << ", " << blocks[0] << " x " << blocks[1] << " blocks on " << world.size() << " ranks");
       const host::PressureBlocks split{
           &world, fluid::Decomposition::make(spec, world.size(), blocks, kFineHalo), kFineHalo};

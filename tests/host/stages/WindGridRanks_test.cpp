@@ -19,14 +19,6 @@ using B = fluid::BoundaryType;
 
 namespace {
 
-// Every split px x py of the ranks.
-std::vector<std::array<int, 2>> splits(int ranks) {
-  std::vector<std::array<int, 2>> all;
-  for (int px = 1; px <= ranks; ++px)
-    if (ranks % px == 0) all.push_back({px, ranks / px});
-  return all;
-}
-
 // A wind tunnel with a rotated box and a cylinder in it, 32 x 16 x 8 cells of 1 m: inflow on the west,
 // outflow on the east, slip sides and lid, a no-slip floor. The solids sit across the cuts of every split
 // of up to 4 ranks.
@@ -111,7 +103,7 @@ void check_equal_to_one_process(const host::WindGridSetup& setup, bool with_cano
   for (int n = 0; n < kSteps; ++n) expected.push_back(alone.step());
   const fluid::MacVelocity whole = alone.download_velocity();
 
-  for (const auto blocks : splits(world.size())) {
+  for (const auto blocks : test::splits(world.size())) {
     INFO(blocks[0] << " x " << blocks[1] << " blocks on " << world.size() << " ranks");
     const host::WindBlocks split{
         &world, fluid::Decomposition::make(setup.spec, world.size(), blocks,
