@@ -47,6 +47,9 @@ struct GridSpec {
   /// cells along it, by which positions wrap as a whole grid wraps them (so a back-trace rounds alike). 0
   /// elsewhere, and for a whole grid.
   std::array<int, 2> block_period{0, 0};
+  /// For a rank's block: the domain's cells along x and y, the lattice a point sample clamps to (so that a
+  /// block samples a point as the whole grid does). {0, 0} for a whole grid, whose own nx, ny they are.
+  std::array<int, 2> block_domain{0, 0};
   std::array<BoundaryType, 6> boundary{BoundaryType::slip, BoundaryType::slip, BoundaryType::slip,
                                        BoundaryType::slip, BoundaryType::slip, BoundaryType::slip};
 

@@ -171,18 +171,22 @@ FW_INLINE float fetch_face(__global const float* q, int c, int i, int j, int k, 
   return sign * q[face_index(g, c, idx[0], idx[1], idx[2])];
 }
 
-/* Component c of the MAC velocity at X (cell units, world = origin + h X), for point samples (trees,
- * probes): trilinear on the component's own staggered lattice, the position clamped to that lattice
- * (constant beyond the outermost faces). */
+/* Component c of the MAC velocity at X (cell units of the domain, world = origin + h X), for point samples
+ * (trees, probes, leaves): trilinear on the component's own staggered lattice, the position clamped to the
+ * domain's lattice (constant beyond its outermost faces). On a rank's block the corners and fractions are the
+ * whole grid's, and only the corners' indices come back into the block's arrays (by ox, oy), so a block
+ * holding a point's corners in its cells or halo samples the bits one process would. */
 FW_INLINE float sample_mac_component(const FwGrid* g, __global const float* q, int c, const float X[3]) {
   int lo[3], hi[3];
   float t[3];
   for (int a = 0; a < 3; ++a) {
-    const int extent = face_extent(g, c, a);
+    const int extent = (a < 2 ? g->domain[a] : g->nz) + (c == a ? 1 : 0);
+    const int offset = a == 0 ? g->ox : (a == 1 ? g->oy : 0);
     const float x = clamp(X[a] - face_offset(c, a), 0.0f, (float)(extent - 1));
-    lo[a] = min((int)x, extent - 1);
-    hi[a] = min(lo[a] + 1, extent - 1);
-    t[a] = x - (float)lo[a];
+    const int first = min((int)x, extent - 1);
+    t[a] = x - (float)first;
+    lo[a] = first - offset;
+    hi[a] = min(first + 1, extent - 1) - offset;
   }
   const float c00 =
       mix(q[face_index(g, c, lo[0], lo[1], lo[2])], q[face_index(g, c, hi[0], lo[1], lo[2])], t[0]);

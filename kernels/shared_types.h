@@ -60,6 +60,7 @@ typedef struct FwGrid {
   float origin[3];   /* world position of the domain's minimum corner, m */
   fw_int ox, oy;     /* a rank's block: the domain's cell index of local cell (0, 0) along x, y; 0 alone */
   fw_int wrap[2];    /* a rank's block on a cut periodic axis x, y: the domain's cells along it, else 0 */
+  fw_int domain[2];  /* the domain's cells along x, y (nx, ny alone): where a point sample clamps */
 } FwGrid;
 
 /* One level of the pressure hierarchy (the fine grid is level 0), or a rank's block of it with its halo.

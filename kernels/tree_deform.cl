@@ -5,7 +5,9 @@
  * shapes are stored mode-major (trees/Forest.hpp), so for one mode the x y z of 8 consecutive nodes are 24
  * contiguous floats: three vload8 and three float8 multiply-adds with the same q_i. Eight nodes in flight
  * keep the FMA pipelines busy where one node's three sums would wait on each other's latency. A block whose
- * nodes belong to two instances (at most one per instance boundary) takes the per-node path.
+ * nodes belong to two instances (at most one per instance boundary) takes the per-node path, which does the
+ * same fma()s in the same order: a node's bits do not depend on where the blocks fall, so a tree gives the
+ * same frame whichever trees come before it (over MPI ranks, a rank holds only some of them).
  *
  * The strong-wind correction (trees/StrongWindCorrection.hpp) is Diener's fitted quadratic correction (per
  * node, parallel: tree_deform_strong), followed by a projection that restores each element's rest length
@@ -24,8 +26,8 @@
  * loop iteration (FW_FLAT_FOR over the instances) walking the species' packed walk (trees/Forest.hpp,
  * ForestPacking::walk and rest_elements, from FwSpecies.skeleton_offset).
  *
- * tree_deform stays the linear path, untouched, so that with the correction off frames are bit for bit
- * what they were. Reference: trees/ForestReference.cpp displacements. */
+ * tree_deform stays the linear path, for frames with the correction off. Reference: trees/ForestReference.cpp
+ * displacements. */
 #include "common.cl"
 
 FW_INLINE void store_displacement(__global float* displacements, const size_t n, const FwTreeInstance* tree,
@@ -79,9 +81,9 @@ __kernel void tree_deform(const int total_nodes, __global const int* node_instan
         float x = 0.0f, y = 0.0f, z = 0.0f;
         for (int i = 0; i < m; ++i) {
           const float qi = q[2 * i];
-          x += phi[i * row] * qi;
-          y += phi[i * row + 1] * qi;
-          z += phi[i * row + 2] * qi;
+          x = fma(phi[i * row], qi, x);
+          y = fma(phi[i * row + 1], qi, y);
+          z = fma(phi[i * row + 2], qi, z);
         }
         store_displacement(displacements, (size_t)n, &tree, x, y, z);
       }
@@ -165,9 +167,9 @@ __kernel void tree_deform_strong(const int total_nodes, __global const int* node
         for (int i = 0; i < m; ++i) {
           const float ti = t[i], t2 = ti * ti;
           const int at = offset + i * row;
-          x += strong_v[at] * ti + strong_w[at] * t2;
-          y += strong_v[at + 1] * ti + strong_w[at + 1] * t2;
-          z += strong_v[at + 2] * ti + strong_w[at + 2] * t2;
+          x = fma(strong_v[at], ti, fma(strong_w[at], t2, x));
+          y = fma(strong_v[at + 1], ti, fma(strong_w[at + 1], t2, y));
+          z = fma(strong_v[at + 2], ti, fma(strong_w[at + 2], t2, z));
         }
         store_grown_displacement(displacements, (size_t)n, &tree, x, y, z);
       }

@@ -2,20 +2,41 @@
  * (docs/design.md, "Numerics: Trees: Wind basis"). Reference: trees/ForestReference.cpp sample_wind,
  * modal_forces.
  *
- * Work mapping: one instance per loop iteration (FW_FLAT_FOR over instances). Sampling (S x 3 trilinear
- * interpolations of 8 faces each) costs more than the m dot products of length 3S that follow, so an
- * instance samples once and reuses the loads for all its modes, instead of every instance-mode sampling
- * again. On a CPU each work-item takes a contiguous block of instances, whose modes are contiguous too. */
+ * Three kernels: tree_sample_positions once, when the forest is uploaded (the sample points' world
+ * positions as floats); then every step probe_sample (kernels/probe_sample.cl) over those positions, and
+ * tree_wind_forces. Over MPI ranks the samples that lie in another rank's block come from that rank between
+ * the two (host/stages/SampleExchange), which is why sampling and forces are apart.
+ *
+ * Work mapping: one instance per loop iteration (FW_FLAT_FOR over instances). An instance's m dot products of
+ * length 3S reuse one pass over its sampled wind. On a CPU each work-item takes a contiguous block of
+ * instances, whose modes are contiguous too. */
 #include "common.cl"
 
-/* For every instance: sampled_wind (3 floats per flat sample, m/s, world frame) and
+/* For every instance: sample_world (3 floats per flat sample, m, world frame) = x + s R p_s. */
+__kernel void tree_sample_positions(const int instance_count, __global const FwTreeInstance* instances,
+                                    __global const FwSpecies* species, __global const float* sample_points,
+                                    __global float* sample_world) {
+  FW_FLAT_FOR(k, instance_count) {
+    const FwTreeInstance tree = instances[k];
+    const FwSpecies sp = species[tree.species];
+    const float cs = tree.cos_yaw, sn = tree.sin_yaw;
+    for (int s = 0; s < sp.sample_count; ++s) {
+      __global const float* p = sample_points + sp.sample_point_offset + 3 * s;
+      __global float* out = sample_world + 3 * (tree.sample_offset + s);
+      out[0] = tree.position[0] + tree.scale * (cs * p[0] - sn * p[1]);
+      out[1] = tree.position[1] + tree.scale * (sn * p[0] + cs * p[1]);
+      out[2] = tree.position[2] + tree.scale * p[2];
+    }
+  }
+}
+
+/* For every instance, from its sampled wind (3 floats per flat sample, m/s, world frame):
  * forces[mode_offset + i] = sum_s f(|v_s|) |v_s| v_s . (s^1/2 R p_i^s)  (N / kg^1/2), f the drag law's factor
  * (the same as the air's canopy drag). */
-__kernel void tree_wind_load(const FwGrid g, const FwDragLaw law, const int instance_count,
-                             __global const FwTreeInstance* instances, __global const FwSpecies* species,
-                             __global const float* projections, __global const float* sample_points,
-                             __global const float* u, __global const float* v, __global const float* w,
-                             __global float* sampled_wind, __global float* forces) {
+__kernel void tree_wind_forces(const FwDragLaw law, const int instance_count,
+                               __global const FwTreeInstance* instances, __global const FwSpecies* species,
+                               __global const float* projections, __global const float* sampled_wind,
+                               __global float* forces) {
   FW_FLAT_FOR(k, instance_count) {
     const FwTreeInstance tree = instances[k];
     const FwSpecies sp = species[tree.species];
@@ -24,19 +45,8 @@ __kernel void tree_wind_load(const FwGrid g, const FwDragLaw law, const int inst
     /* s^1/2 R^T (|v| v) per sample: the load in the skeleton frame, so that p_i^s needs no rotation. */
     float load[3 * FW_MAX_TREE_SAMPLES];
     for (int s = 0; s < sp.sample_count; ++s) {
-      __global const float* p = sample_points + sp.sample_point_offset + 3 * s;
-      const float world[3] = {tree.position[0] + tree.scale * (cs * p[0] - sn * p[1]),
-                              tree.position[1] + tree.scale * (sn * p[0] + cs * p[1]),
-                              tree.position[2] + tree.scale * p[2]};
-      float X[3];
-      for (int a = 0; a < 3; ++a) X[a] = (world[a] - g.origin[a]) / g.h;
-      const float vx = sample_mac_component(&g, u, 0, X);
-      const float vy = sample_mac_component(&g, v, 1, X);
-      const float vz = sample_mac_component(&g, w, 2, X);
-      __global float* out = sampled_wind + 3 * (tree.sample_offset + s);
-      out[0] = vx;
-      out[1] = vy;
-      out[2] = vz;
+      __global const float* v = sampled_wind + 3 * (tree.sample_offset + s);
+      const float vx = v[0], vy = v[1], vz = v[2];
       const float world_speed = sqrt(vx * vx + vy * vy + vz * vz);
       const float speed = world_speed * drag_law_factor(law, world_speed) * root_scale;
       load[3 * s] = speed * (cs * vx + sn * vy);
@@ -53,8 +63,17 @@ __kernel void tree_wind_load(const FwGrid g, const FwDragLaw law, const int inst
   }
 }
 
+/* Values that other ranks sampled, written into their flat samples: sampled_wind[3 slots[n] + a] =
+ * values[3 n + a]. */
+__kernel void tree_place_samples(const int count, __global const int* slots, __global const float* values,
+                                 __global float* sampled_wind) {
+  FW_FLAT_FOR(n, count) {
+    for (int a = 0; a < 3; ++a) sampled_wind[3 * slots[n] + a] = values[3 * n + a];
+  }
+}
+
 /* Unresolved turbulence (trees/UnresolvedTurbulence.hpp; reference: trees/ForestReference.cpp
- * unresolved_modal_forces, advance_travelled). Run right after tree_wind_load, only when the forcing is on,
+ * unresolved_modal_forces, advance_travelled). Run right after tree_wind_forces, only when the forcing is on,
  * so that the resolved forces stay bit for bit what they are without it.
  *
  * table: N points (N a power of two), 6 floats each: the unit-intensity series (l, t1, t2) and its running

@@ -85,6 +85,20 @@ const SpeciesBasis& Forest::species_of(int instance) const {
   return species_.at(std::size_t(instances_.at(std::size_t(instance)).species));
 }
 
+Forest Forest::subset(const std::vector<int>& ids) const {
+  std::vector<TreeInstance> chosen;
+  std::vector<int> original;
+  for (int k : ids) {
+    if (k < 0 || k >= instance_count())
+      fail(fmt::format("subset: instance {} is not one of the {} instances", k, instance_count()));
+    chosen.push_back(instances_[std::size_t(k)]);
+    original.push_back(id(k));
+  }
+  Forest part(species_, std::move(chosen));
+  part.ids_ = std::move(original);
+  return part;
+}
+
 Eigen::Matrix3d Forest::rotation(int instance) const {
   const double psi = instances_.at(std::size_t(instance)).yaw_rad;
   Eigen::Matrix3d r;

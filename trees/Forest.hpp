@@ -76,6 +76,12 @@ class Forest {
   const std::vector<TreeInstance>& instances() const { return instances_; }
   int instance_count() const { return int(instances_.size()); }
   const SpeciesBasis& species_of(int instance) const;
+  /// The forest of the instances `ids` (indices into this one, in the order given) with all its species: a
+  /// rank's own trees over MPI ranks. Throws std::invalid_argument("Forest: ...") for an id out of range.
+  Forest subset(const std::vector<int>& ids) const;
+  /// Instance k's index in the forest this one was cut from by subset() (through every cut), else k: what
+  /// outputs call the tree and what seeds its random series.
+  int id(int instance) const { return ids_.empty() ? instance : ids_.at(std::size_t(instance)); }
 
   int mode_offset(int instance) const { return mode_offsets_.at(std::size_t(instance)); }
   int node_offset(int instance) const { return node_offsets_.at(std::size_t(instance)); }
@@ -108,6 +114,7 @@ class Forest {
   std::vector<TreeInstance> instances_;
   // Prefix sums over the instances: entry k is instance k's first, the last entry the total.
   std::vector<int> mode_offsets_{0}, node_offsets_{0}, sample_offsets_{0};
+  std::vector<int> ids_;  // id() per instance; empty for a forest that is not a subset
 };
 
 }  // namespace fw::trees

@@ -1,5 +1,7 @@
 #include "host/app/CoupledStep.hpp"
 
+#include "host/runtime/Communicator.hpp"
+
 #include <fmt/format.h>
 
 #include <algorithm>
@@ -17,17 +19,42 @@ std::string where(long step, double time) {
   return fmt::format("step {} (t = {:.3f} s)", step, time);
 }
 
+// Over ranks, the trees whose root's cell column this rank's block holds.
+trees::Forest rank_trees(const trees::Forest& forest, const WindGrid& wind, const WindBlocks* blocks) {
+  if (blocks == nullptr || blocks->world->size() == 1) return {};
+  std::vector<int> mine;
+  for (int k = 0; k < forest.instance_count(); ++k) {
+    const Eigen::Vector3d& root = forest.instances()[std::size_t(k)].position;
+    const float point[3] = {float(root.x()), float(root.y()), float(root.z())};
+    if (SampleExchange::holder(wind.local_spec(), blocks->decomposition, point) == blocks->world->rank())
+      mine.push_back(k);
+  }
+  return forest.subset(mine);
+}
+
+// The plan's decomposition over `world`'s ranks; null alone. The stages copy what they keep of it.
+std::unique_ptr<WindBlocks> blocks_of(const SimulationPlan& plan, const Communicator* world) {
+  if (world == nullptr || world->size() == 1) return nullptr;
+  return std::make_unique<WindBlocks>(WindBlocks{world, plan.decomposition});
+}
+
+const WindBlocks* over_ranks(const WindBlocks* blocks) {
+  return blocks != nullptr && blocks->world->size() > 1 ? blocks : nullptr;
+}
+
 }  // namespace
 
-CoupledStep::CoupledStep(ComputeContext& cc, const SimulationPlan& plan)
-    : CoupledStep(cc, plan.wind, plan.forest, plan.coupling, plan.inputs) {}
+CoupledStep::CoupledStep(ComputeContext& cc, const SimulationPlan& plan, const Communicator* world)
+    : CoupledStep(cc, plan.wind, plan.forest, plan.coupling, plan.inputs, blocks_of(plan, world).get()) {}
 
 CoupledStep::CoupledStep(ComputeContext& cc, WindGridSetup wind, const trees::Forest& forest,
-                         CouplingSettings coupling, TimeInputs inputs)
+                         CouplingSettings coupling, TimeInputs inputs, const WindBlocks* blocks)
     : cc_(cc),
       inputs_(std::move(inputs)),
-      wind_(cc, std::move(wind)),
-      trees_(cc, wind_.spec(), forest),
+      wind_(cc, std::move(wind), over_ranks(blocks)),
+      rank_forest_(rank_trees(forest, wind_, over_ranks(blocks))),
+      own_forest_(over_ranks(blocks) != nullptr ? &rank_forest_ : &forest),
+      trees_(cc, wind_.local_spec(), *own_forest_, over_ranks(blocks)),
       tree_count_(forest.instance_count()) {
   if (!coupling.drag_density.empty()) wind_.set_canopy(std::move(coupling.drag_density), coupling.drag_law);
   trees_.set_drag_law(coupling.drag_law);
@@ -41,6 +68,10 @@ CoupledStep::CoupledStep(ComputeContext& cc, WindGridSetup wind, const trees::Fo
     integrator_dt_limit_ = forest.semi_implicit_dt_limit();
   const bool any_leaves = std::any_of(coupling.leaves.begin(), coupling.leaves.end(),
                                       [](const trees::SpeciesLeaves& l) { return l.count() > 0; });
+  if (any_leaves && has_trees() && over_ranks(blocks) != nullptr)
+    throw std::invalid_argument(
+        "CoupledStep: leaves do not run over MPI ranks yet (docs/parallel.md); run in one process, or set "
+        "the species' leaves to none");
   if (any_leaves && has_trees())
     leaves_ = std::make_unique<LeafStages>(cc, wind_.spec(), forest, coupling.leaves);
 }
@@ -100,7 +131,7 @@ CoupledStepReport CoupledStep::step(double max_dt) {
         where(next, time()), dt, integrator_dt_limit_));
   }
 
-  report.wind = wind_.step_by(dt);
+  report.wind = wind_.step_by(dt, maxima);
   if (has_trees()) {
     const auto trees_start = Clock::now();
     trees_.enqueue_wind_load(wind_.velocity());

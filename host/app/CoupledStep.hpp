@@ -65,10 +65,14 @@ class CoupledStep {
 
   /// Uploads the wind grid, the canopy drag and the forest. Throws std::invalid_argument when the grid does
   /// not fit the device or a setting is invalid (see WindGrid, ForestStages). `forest` must outlive this.
+  /// blocks: null in one process; over ranks this rank steps its block of the wind and the trees whose roots
+  /// it holds (own_forest()), and every call is collective. Leaves do not run over ranks yet
+  /// (std::invalid_argument).
   CoupledStep(ComputeContext& cc, WindGridSetup wind, const trees::Forest& forest, CouplingSettings coupling,
-              TimeInputs inputs);
-  /// The plan's wind, forest, coupling and time inputs; the plan must outlive this.
-  CoupledStep(ComputeContext& cc, const SimulationPlan& plan);
+              TimeInputs inputs, const WindBlocks* blocks = nullptr);
+  /// The plan's wind, forest, coupling and time inputs, over the plan's decomposition when `world` has
+  /// more than one rank; the plan must outlive this.
+  CoupledStep(ComputeContext& cc, const SimulationPlan& plan, const Communicator* world = nullptr);
 
   /// Applies the time inputs at t = 0 and starts from them: every face on the inflow profile, projected;
   /// the trees at rest.
@@ -80,7 +84,11 @@ class CoupledStep {
 
   double time() const { return wind_.time(); }
   long steps() const { return wind_.steps(); }
+  /// Whether the run has trees (on any rank).
   bool has_trees() const { return tree_count_ > 0; }
+  /// The trees this rank steps: the whole forest in one process; over ranks, those whose roots its block
+  /// holds (their Forest::id is the whole forest's index).
+  const trees::Forest& own_forest() const { return *own_forest_; }
   /// The largest stable dt of the semi-implicit integrator over every instance's modes, s; infinity with
   /// the exact integrator or without trees.
   double integrator_dt_limit() const { return integrator_dt_limit_; }
@@ -107,6 +115,8 @@ class CoupledStep {
   ComputeContext& cc_;
   TimeInputs inputs_;
   WindGrid wind_;
+  trees::Forest rank_forest_;  // over ranks, this rank's trees (own_forest_ points here); else empty
+  const trees::Forest* own_forest_;
   ForestStages trees_;
   std::unique_ptr<LeafStages> leaves_;  // null without leaves
   int tree_count_ = 0;

@@ -1,8 +1,11 @@
 #include "host/runtime/Communicator.hpp"
 
+#include <fmt/format.h>
+
 #include <cmath>
 #include <cstdlib>
 #include <limits>
+#include <stdexcept>
 
 namespace fw::host {
 
@@ -42,6 +45,44 @@ long long Communicator::sum(long long local) const {
   long long total = 0;
   MPI_Allreduce(&local, &total, 1, MPI_LONG_LONG, MPI_SUM, comm_);
   return total;
+}
+
+long long Communicator::min(long long local) const {
+  if (!uses_mpi()) return local;
+  long long least = 0;
+  MPI_Allreduce(&local, &least, 1, MPI_LONG_LONG, MPI_MIN, comm_);
+  return least;
+}
+
+std::vector<std::vector<std::byte>> Communicator::exchange_bytes(
+    const std::vector<std::vector<std::byte>>& to_each) const {
+  if (to_each.size() != std::size_t(size_))
+    throw std::invalid_argument(
+        fmt::format("Communicator::exchange: {} lists for {} ranks", to_each.size(), size_));
+  if (!uses_mpi()) return to_each;
+  const auto ranks = static_cast<std::size_t>(size_);
+  std::vector<int> send_counts(ranks), send_offsets(ranks);
+  std::vector<std::byte> sent;
+  for (std::size_t r = 0; r < to_each.size(); ++r) {
+    send_offsets[r] = int(sent.size());
+    send_counts[r] = int(to_each[r].size());
+    sent.insert(sent.end(), to_each[r].begin(), to_each[r].end());
+  }
+  std::vector<int> receive_counts(ranks), receive_offsets(ranks);
+  MPI_Alltoall(send_counts.data(), 1, MPI_INT, receive_counts.data(), 1, MPI_INT, comm_);
+  int total = 0;
+  for (std::size_t r = 0; r < receive_counts.size(); ++r) {
+    receive_offsets[r] = total;
+    total += receive_counts[r];
+  }
+  std::vector<std::byte> received(static_cast<std::size_t>(total));
+  MPI_Alltoallv(sent.data(), send_counts.data(), send_offsets.data(), MPI_BYTE, received.data(),
+                receive_counts.data(), receive_offsets.data(), MPI_BYTE, comm_);
+  std::vector<std::vector<std::byte>> from_each(ranks);
+  for (std::size_t r = 0; r < from_each.size(); ++r)
+    from_each[r].assign(received.begin() + receive_offsets[r],
+                        received.begin() + receive_offsets[r] + receive_counts[r]);
+  return from_each;
 }
 
 void Communicator::abort(int code) const {

@@ -21,6 +21,10 @@
 #include <mpi.h>
 
 #include <array>
+#include <cstddef>
+#include <cstring>
+#include <type_traits>
+#include <vector>
 
 #include "base/ExactSum.hpp"
 
@@ -49,12 +53,36 @@ class Communicator {
   double max(double local) const;
   /// The sum of every rank's count. Collective.
   long long sum(long long local) const;
+  /// The smallest of every rank's count. Collective.
+  long long min(long long local) const;
+  /// Sends to_each[r] to rank r (to_each has size() lists; this rank's own list comes back to it) and
+  /// returns what each rank sent this one, by rank. Collective.
+  template <typename T>
+  std::vector<std::vector<T>> exchange(const std::vector<std::vector<T>>& to_each) const {
+    static_assert(std::is_trivially_copyable_v<T>);
+    std::vector<std::vector<std::byte>> bytes(to_each.size());
+    for (std::size_t r = 0; r < to_each.size(); ++r) {
+      bytes[r].resize(to_each[r].size() * sizeof(T));
+      if (!bytes[r].empty()) std::memcpy(bytes[r].data(), to_each[r].data(), bytes[r].size());
+    }
+    const std::vector<std::vector<std::byte>> received = exchange_bytes(bytes);
+    std::vector<std::vector<T>> from_each(received.size());
+    for (std::size_t r = 0; r < received.size(); ++r) {
+      from_each[r].resize(received[r].size() / sizeof(T));
+      if (!received[r].empty()) std::memcpy(from_each[r].data(), received[r].data(), received[r].size());
+    }
+    return from_each;
+  }
   /// Stops every rank with `code` (MPI_Abort), or exits this process when alone. Never returns.
   [[noreturn]] void abort(int code) const;
 
  private:
   friend class MpiSession;
   Communicator() = default;
+  /// exchange() on bytes: MPI_Alltoall of the counts, then MPI_Alltoallv. Throws std::invalid_argument
+  /// unless to_each has size() lists.
+  std::vector<std::vector<std::byte>> exchange_bytes(
+      const std::vector<std::vector<std::byte>>& to_each) const;
   MPI_Comm comm_ = MPI_COMM_NULL;
   int rank_ = 0, size_ = 1, node_rank_ = 0, node_size_ = 1;
 };

@@ -42,6 +42,7 @@ fluid::GridSpec block_spec(const fluid::GridSpec& spec, const fluid::Decompositi
   local.nx = cells.extent[0];
   local.ny = cells.extent[1];
   local.block_offset = cells.origin;  // the domain's origin stays, so positions round as the whole grid's
+  local.block_domain = {spec.nx, spec.ny};
   for (int axis = 0; axis < 2; ++axis) {
     if (decomposition.blocks()[axis] == 1) continue;  // not cut: the domain's faces, wrapped if periodic
     if (spec.periodic(axis)) local.block_period[axis] = axis == 0 ? spec.nx : spec.ny;

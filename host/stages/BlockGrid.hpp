@@ -20,6 +20,15 @@
 
 namespace fw::host {
 
+class Communicator;
+
+/// The stages over ranks (the wind grid, the trees' samples, the probes): the ranks and this run's
+/// decomposition of the grid among them.
+struct WindBlocks {
+  const Communicator* world = nullptr;
+  fluid::Decomposition decomposition;
+};
+
 /// The layout of a rank's array: its block's cells plus the halo, x fastest, then y, then z; or the faces
 /// of a velocity component across one axis (staggered), one more along that axis.
 struct BlockArray {

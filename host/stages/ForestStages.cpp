@@ -1,5 +1,7 @@
 #include "host/stages/ForestStages.hpp"
 
+#include "host/runtime/Communicator.hpp"
+
 #include <fmt/format.h>
 
 #include <cmath>
@@ -12,7 +14,8 @@ namespace {
 constexpr std::size_t kTravelFloats = 3;
 
 // The forest's buffers as the constructor allocates them: every packed table, then the state (forces, strong
-// amplitudes, q and qdot: 4 floats a mode), the sampled wind (3 a sample) and the displacements (3 a node).
+// amplitudes, q and qdot: 4 floats a mode), the samples' positions and wind (3 each a sample) and the
+// displacements (3 a node).
 std::size_t forest_buffer_bytes(const trees::ForestPacking& p) {
   std::size_t bytes = 0;
   const auto add = [&bytes](const auto& table) {
@@ -26,7 +29,7 @@ std::size_t forest_buffer_bytes(const trees::ForestPacking& p) {
   };
   const std::size_t modes = std::size_t(p.total_modes);
   bytes += 2 * floats(modes) + floats(2 * modes);
-  bytes += floats(3 * std::size_t(p.total_samples)) + floats(3 * std::size_t(p.total_nodes));
+  bytes += 2 * floats(3 * std::size_t(p.total_samples)) + floats(3 * std::size_t(p.total_nodes));
   return bytes;
 }
 
@@ -47,7 +50,8 @@ std::size_t ForestStages::estimate_unresolved_bytes(const trees::UnresolvedTurbu
                                           sizeof(float));
 }
 
-ForestStages::ForestStages(ComputeContext& cc, const fluid::GridSpec& spec, const trees::Forest& forest)
+ForestStages::ForestStages(ComputeContext& cc, const fluid::GridSpec& spec, const trees::Forest& forest,
+                           const WindBlocks* blocks)
     : cc_(cc) {
   try {
     spec.validate();
@@ -83,10 +87,19 @@ ForestStages::ForestStages(ComputeContext& cc, const fluid::GridSpec& spec, cons
   sampled_wind_ = cc_.zero_floats(3 * std::size_t(total_samples_));
   displacements_ = cc_.zero_floats(3 * std::size_t(total_nodes_));
 
+  sample_world_ = cc_.zero_floats(3 * std::size_t(total_samples_));
+  for (int k = 0; k < instance_count_; ++k) instance_ids_.push_back(forest.id(k));
+
   wind_load_program_ = cc_.build("tree_wind_load.cl");
-  wind_load_ = Kernel(wind_load_program_, "tree_wind_load");
+  wind_forces_ = Kernel(wind_load_program_, "tree_wind_forces");
+  sample_wind_ = Kernel(cc_.build("probe_sample.cl"), "probe_sample");
   for (const FwTreeInstance& t : p.instances)
     instance_samples_.push_back(p.species[std::size_t(t.species)].sample_count);
+  if (instance_count_ > 0)
+    Kernel(wind_load_program_, "tree_sample_positions")
+        .set_args(instance_count_, instances_, species_, sample_points_, sample_world_)
+        .enqueue(cc_, cl::NDRange(cc_.flat_items(std::size_t(instance_count_))));
+  if (blocks != nullptr && blocks->world->size() > 1) share_samples(spec, *blocks);
   cl::Program step = cc_.build("tree_modal_step.cl");
   step_exact_ = Kernel(step, "tree_modal_step_exact");
   step_semi_implicit_ = Kernel(step, "tree_modal_step_semi_implicit");
@@ -97,11 +110,42 @@ ForestStages::ForestStages(ComputeContext& cc, const fluid::GridSpec& spec, cons
   restore_lengths_ = Kernel(deform, "tree_restore_lengths");
 }
 
+void ForestStages::share_samples(const fluid::GridSpec& spec, const WindBlocks& blocks) {
+  const std::vector<float> world = read(sample_world_, 3 * std::size_t(total_samples_));
+  std::vector<int> slots;
+  std::vector<float> needed;
+  for (int n = 0; n < total_samples_; ++n) {
+    const float* point = &world[3 * std::size_t(n)];
+    if (SampleExchange::holder(spec, blocks.decomposition, point) == blocks.world->rank()) continue;
+    slots.push_back(n);
+    needed.insert(needed.end(), point, point + 3);
+  }
+  exchange_ = std::make_unique<SampleExchange>(cc_, spec, &blocks, needed);
+  if (slots.empty()) return;
+  remote_slots_ = cc_.upload(slots, CL_MEM_READ_ONLY);
+  remote_wind_ = cc_.zero_floats(needed.size());
+  place_samples_ = Kernel(wind_load_program_, "tree_place_samples");
+}
+
 void ForestStages::enqueue_wind_load(DeviceVelocity& velocity) {
+  if (total_samples_ > 0)
+    sample_wind_
+        .set_args(grid_, total_samples_, sample_world_, velocity.u, velocity.v, velocity.w, sampled_wind_)
+        .enqueue(cc_, cl::NDRange(cc_.flat_items(std::size_t(total_samples_))));
+  if (exchange_) {
+    // Every rank takes part, with or without trees of its own.
+    const std::vector<float> wind = exchange_->exchange(velocity);
+    const int count = exchange_->point_count();
+    if (count > 0) {
+      cc_.queue().enqueueWriteBuffer(remote_wind_, CL_TRUE, 0, wind.size() * sizeof(float), wind.data());
+      place_samples_.set_args(count, remote_slots_, remote_wind_, sampled_wind_)
+          .enqueue(cc_, cl::NDRange(cc_.flat_items(std::size_t(count))));
+    }
+  }
   if (instance_count_ == 0) return;
-  wind_load_
-      .set_args(grid_, drag_law_.to_device(), instance_count_, instances_, species_, projections_,
-                sample_points_, velocity.u, velocity.v, velocity.w, sampled_wind_, forces_)
+  wind_forces_
+      .set_args(drag_law_.to_device(), instance_count_, instances_, species_, projections_, sampled_wind_,
+                forces_)
       .enqueue(cc_, cl::NDRange(cc_.flat_items(std::size_t(instance_count_))));
   if (unresolved_on_)
     unresolved_load_
@@ -209,7 +253,8 @@ void ForestStages::set_unresolved_turbulence(const trees::UnresolvedTurbulence& 
   std::vector<fw_int> offsets(static_cast<std::size_t>(total_samples_));
   std::size_t flat = 0;
   for (int k = 0; k < instance_count_; ++k)
-    for (int s = 0; s < instance_samples_[std::size_t(k)]; ++s) offsets[flat++] = series.offset(k, s);
+    for (int s = 0; s < instance_samples_[std::size_t(k)]; ++s)
+      offsets[flat++] = series.offset(instance_ids_[std::size_t(k)], s);
   constexpr cl_mem_flags ro = CL_MEM_READ_ONLY;
   series_ = cc_.upload(series.device_table(), ro);
   sample_offsets_ = cc_.upload(offsets, ro);

@@ -14,11 +14,15 @@
 //   trees.enqueue_deform();                               // output frame: u = s^-3/2 R Phi q, corrected
 //   std::vector<float> u = trees.download_displacements();   // #total nodes by 3, m, world frame
 //
-// Kernels: kernels/tree_wind_load.cl (one instance per iteration: sample once, reuse for all modes),
-// kernels/tree_modal_step.cl and kernels/tree_deform.cl (one instance-mode / block of 8 instance nodes per
-// iteration; with the strong-wind correction tree_strong_amplitudes, tree_deform_strong, then
-// tree_restore_lengths, one instance per iteration; tree_deform without).
-// The CPU oracle is trees/ForestReference.
+// Over MPI ranks (WindBlocks, docs/parallel.md) a rank holds the trees whose roots lie in its block (a
+// Forest::subset) and samples the wind on its block; the samples that lie in another rank's block come from
+// that rank through a SampleExchange, so enqueue_wind_load is collective.
+//
+// Kernels: kernels/tree_wind_load.cl (the sample points' world positions once; then the wind at them through
+// kernels/probe_sample.cl, and the modal forces, one instance per iteration), kernels/tree_modal_step.cl and
+// kernels/tree_deform.cl (one instance-mode / block of 8 instance nodes per iteration; with the strong-wind
+// correction tree_strong_amplitudes, tree_deform_strong, then tree_restore_lengths, one instance per
+// iteration; tree_deform without). The CPU oracle is trees/ForestReference.
 #pragma once
 
 #include <vector>
@@ -26,7 +30,9 @@
 #include "fluid/DragLaw.hpp"
 #include "fluid/GridSpec.hpp"
 #include "host/runtime/ComputeContext.hpp"
+#include "host/stages/BlockGrid.hpp"
 #include "host/stages/FluidStages.hpp"
+#include "host/stages/SampleExchange.hpp"
 #include "kernels/shared_types.h"
 #include "trees/Forest.hpp"
 #include "trees/ModalIntegrator.hpp"
@@ -42,8 +48,10 @@ struct ModalState {
 class ForestStages {
  public:
   /// Packs `forest` and uploads it. The forest is not referenced afterwards. Throws
-  /// std::invalid_argument("ForestStages: ...") when `spec` is invalid.
-  ForestStages(ComputeContext& cc, const fluid::GridSpec& spec, const trees::Forest& forest);
+  /// std::invalid_argument("ForestStages: ...") when `spec` is invalid. Over ranks: spec is this rank's
+  /// block_spec, forest its own trees, and every rank constructs one (collective).
+  ForestStages(ComputeContext& cc, const fluid::GridSpec& spec, const trees::Forest& forest,
+               const WindBlocks* blocks = nullptr);
 
   /// Bytes of device memory the constructor allocates for `forest` (the packed species and instances, the
   /// modal state, forces, sampled wind and displacements).
@@ -73,8 +81,11 @@ class ForestStages {
   }
   bool strong_wind_correction() const { return strong_wind_correction_; }
 
-  /// Samples `velocity` at every instance's sample points and computes the modal forces.
+  /// Samples `velocity` at every instance's sample points and computes the modal forces. Over ranks it
+  /// waits for the samples other ranks take, and is collective.
   void enqueue_wind_load(DeviceVelocity& velocity);
+  /// The samples another rank's block holds, which travel between ranks every step (0 alone).
+  int remote_samples() const { return exchange_ ? exchange_->point_count() : 0; }
   /// Advances every instance-mode by dt (s, finite and >= 0, else std::invalid_argument) with the forces of
   /// the last wind load held constant.
   void enqueue_modal_step(float dt);
@@ -118,6 +129,8 @@ class ForestStages {
 
  private:
   std::vector<float> read(cl::Buffer& buffer, std::size_t count);
+  /// Over ranks: the samples whose cells another rank holds, and the exchange that brings their wind.
+  void share_samples(const fluid::GridSpec& spec, const WindBlocks& blocks);
 
   ComputeContext& cc_;
   FwGrid grid_;
@@ -131,8 +144,13 @@ class ForestStages {
   cl::Buffer strong_amplitudes_buffer_;        // its q~ per instance-mode, on each output frame
   cl::Buffer walk_, rest_elements_;  // its length-restoring pass (ForestPacking::walk, rest_elements)
   cl::Buffer forces_, state_, sampled_wind_, displacements_;
-  Kernel wind_load_, step_exact_, step_semi_implicit_, deform_, strong_amplitudes_, deform_strong_,
-      restore_lengths_;
+  cl::Buffer sample_world_;  // the sample points' world positions, 3 floats a flat sample
+  // Over ranks: the samples other ranks take, their flat indices and the wind they send.
+  std::unique_ptr<SampleExchange> exchange_;
+  cl::Buffer remote_slots_, remote_wind_;
+  std::vector<int> instance_ids_;  // Forest::id of each instance: what seeds its unresolved series
+  Kernel sample_wind_, wind_forces_, place_samples_, step_exact_, step_semi_implicit_, deform_,
+      strong_amplitudes_, deform_strong_, restore_lengths_;
   // Unresolved turbulence: wind samples per instance (for the offsets), the series' size, and its buffers:
   // series table (6 N floats), offsets (an int per flat sample), travel (whole points, fraction and last
   // step per instance).

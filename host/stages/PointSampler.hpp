@@ -5,7 +5,9 @@
 //   std::vector<std::array<float, 3>> wind = probes.sample(grid.velocity());      // m/s, blocks
 //
 // Each point is sampled like a tree's wind sample (trilinear on each component's staggered lattice, clamped
-// to it), so that a probe and a tree at the same place see the same wind.
+// to it), so that a probe and a tree at the same place see the same wind. On a rank's block, only points
+// whose cell lies in the block's cells (or a cell or two into its halo) sample correctly; over ranks,
+// host/stages/SampleExchange sends each point to the rank that holds it.
 #pragma once
 
 #include <array>
@@ -23,6 +25,8 @@ class PointSampler {
   /// a non-finite position.
   PointSampler(ComputeContext& cc, const fluid::GridSpec& spec,
                const std::vector<std::array<double, 3>>& points);
+  /// positions: 3 floats a point, world frame, m, as the device rounds them.
+  PointSampler(ComputeContext& cc, const fluid::GridSpec& spec, std::vector<float> positions);
 
   /// Bytes the constructor allocates for `point_count` points: their positions and their sampled wind.
   static std::size_t estimate_device_bytes(std::size_t point_count);
@@ -30,6 +34,8 @@ class PointSampler {
   int point_count() const { return count_; }
   /// The velocity at every point, m/s, in the constructor's order. Blocks until read back.
   std::vector<std::array<float, 3>> sample(DeviceVelocity& velocity);
+  /// The same as 3 floats a point.
+  std::vector<float> sample_flat(DeviceVelocity& velocity);
 
  private:
   ComputeContext& cc_;

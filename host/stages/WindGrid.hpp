@@ -69,12 +69,6 @@ struct WindGridSetup {
   MeanForcing forcing;
 };
 
-/// A wind grid over ranks: this rank's place in the decomposition.
-struct WindBlocks {
-  const Communicator* world = nullptr;
-  fluid::Decomposition decomposition;
-};
-
 struct WindStepReport {
   long step = 0;      // index of the step just taken (1-based)
   double time = 0.0;  // simulated time after the step, s
@@ -120,6 +114,9 @@ class WindGrid {
   /// One step of exactly dt (s, finite and > 0, else std::invalid_argument): for callers that choose dt
   /// themselves (the coupled step lands on the run's end time).
   WindStepReport step_by(double dt);
+  /// step_by with the maxima a caller already took (max_speed_components() before the step), so that over
+  /// ranks the halo guard does not take them again.
+  WindStepReport step_by(double dt, const std::optional<std::array<double, 3>>& maxima);
   /// The CFL time step for the largest |u|, |v| and |w| (m/s): min(max_dt, cfl h / the largest of them,
   /// courant_limit h / their sum), max_dt at rest; the fixed dt when the settings have no CFL number.
   double cfl_dt(const std::array<double, 3>& max_speed_components) const {
@@ -149,7 +146,8 @@ class WindGrid {
   /// Max over fluid cells of |div u|, 1/s.
   double max_divergence() { return stages_.max_divergence(pressure_.mask(), vel_); }
   double max_speed_component() { return stages_.max_speed_component(vel_); }
-  std::array<double, 3> max_speed_components() { return stages_.max_speed_components(vel_); }
+  /// The largest |u|, |v| and |w| over every rank's faces (collective over ranks; NaN when any is).
+  std::array<double, 3> max_speed_components() { return global_max_speed_components(); }
   /// Projects the current velocity (divergence -> solve -> gradient) and returns the solve's status.
   PressureSolveStatus project() { return project(vel_); }
 
@@ -218,8 +216,6 @@ class WindGrid {
   void check_halo_reach(double dt, const std::optional<std::array<double, 3>>& maxima);
   /// The largest |u|, |v| and |w| over every rank.
   std::array<double, 3> global_max_speed_components();
-  /// step_by with the maxima the CFL step took, so that they are not read twice.
-  WindStepReport step_by(double dt, const std::optional<std::array<double, 3>>& maxima);
 
   ComputeContext& cc_;
   WindGridSetup setup_;

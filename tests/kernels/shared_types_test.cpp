@@ -30,6 +30,7 @@ namespace {
   X(FwGrid, ox);                 \
   X(FwGrid, oy);                 \
   X(FwGrid, wrap);               \
+  X(FwGrid, domain);             \
   X(FwLevel, nx);                \
   X(FwLevel, ny);                \
   X(FwLevel, nz);                \
@@ -136,9 +137,9 @@ std::string layout_kernel_source(const std::vector<LayoutEntry>& entries) {
 }  // namespace
 
 TEST_CASE("shared_types: host structs are packed 32-bit fields without padding") {
-  // Field counts: FwGrid 3 + 6 + 1 + 3 + 2 + 2, FwLevel 6, FwStep 2 + 3 + 1 + 3 + 3 + 1, FwGust 4 + 3 * 3,
-  // FwTke 2 + 2 + 4.
-  CHECK(sizeof(FwGrid) == 17 * 4);
+  // Field counts: FwGrid 3 + 6 + 1 + 3 + 2 + 2 + 2, FwLevel 6, FwStep 2 + 3 + 1 + 3 + 3 + 1, FwGust 4 + 3 *
+  // 3, FwTke 2 + 2 + 4.
+  CHECK(sizeof(FwGrid) == 19 * 4);
   CHECK(sizeof(FwLevel) == 6 * 4);
   CHECK(sizeof(FwStep) == 13 * 4);
   CHECK(sizeof(FwGust) == 13 * 4);
@@ -183,7 +184,7 @@ TEST_CASE("shared_types: OpenCL C and the host agree on sizeof and offsetof of e
   if (!cc) return;
   const auto entries = host_layout();
   // Shared structs and fields (FwTke's 1 and 6 among them), the trees', the leaves' (1 struct, 13 fields).
-  REQUIRE(entries.size() == 5 + 35 + 2 + 16 + 1 + 13);
+  REQUIRE(entries.size() == 5 + 36 + 2 + 16 + 1 + 13);
   const std::string source = layout_kernel_source(entries);
   INFO(source);
 

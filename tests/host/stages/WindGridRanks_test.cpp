@@ -13,31 +13,12 @@
 #include "host/stages/WindGrid.hpp"
 #include "tests/support/TestDevice.hpp"
 #include "tests/support/TestWorld.hpp"
+#include "tests/support/Tunnels.hpp"
 
 using namespace fw;
 using B = fluid::BoundaryType;
 
 namespace {
-
-// A wind tunnel with a rotated box and a cylinder in it, 32 x 16 x 8 cells of 1 m: inflow on the west,
-// outflow on the east, slip sides and lid, a no-slip floor. The solids sit across the cuts of every split
-// of up to 4 ranks.
-host::WindGridSetup tunnel(fluid::AdvectionScheme scheme) {
-  host::WindGridSetup setup;
-  auto& spec = setup.spec;
-  spec.nx = 32, spec.ny = 16, spec.nz = 8, spec.h = 1.0;
-  spec.origin = {-4.0, 2.0, 0.0};
-  spec.boundary = {B::inflow, B::outflow, B::slip, B::slip, B::no_slip, B::slip};
-  fluid::SolidMap solids(spec);
-  solids.add(fluid::SolidBox{"box", {12.0, 10.0, 2.0}, {6.0, 5.0, 4.0}, 30.0 * std::numbers::pi / 180.0});
-  solids.add(fluid::SolidCylinder{"mast", {20.0, 6.0, 0.0}, 1.5, 6.0});
-  setup.solid = solids.cells();
-  setup.settings.advection = scheme;
-  setup.settings.cfl = 0.8;
-  setup.settings.max_dt = 0.5;
-  setup.ambient = {6.0, 1.0, 0.0};
-  return setup;
-}
 
 // A periodic channel over a no-slip floor, held at the ambient wind by the mean forcing (the layer mean is a
 // sum over every rank's faces), with a gust travelling through it, Smagorinsky and vorticity confinement
@@ -61,32 +42,6 @@ host::WindGridSetup channel() {
   return setup;
 }
 
-// The tunnel with everything a forest's wind has: inflow turbulence, a canopy across the cuts (drag density
-// 0.3 / m in a block of cells), the tke model, a rough floor (wall stress) and vorticity confinement.
-host::WindGridSetup turbulent_tunnel() {
-  host::WindGridSetup setup = tunnel(fluid::AdvectionScheme::upwind5);
-  setup.spec.boundary[FW_FACE_GROUND] = B::slip;  // the rough floor's stress is the wall stage's
-  setup.settings.subgrid = fluid::SubgridModel::tke;
-  setup.settings.wall_roughness_length = 0.1;
-  setup.settings.vorticity_confinement = 0.2;
-  fluid::TurbulenceBoxSpec box;
-  box.cells = {64, 32, 16};
-  box.spacing = 0.5;
-  box.spectrum = {1.0, 6.0};
-  box.seed = 5;
-  setup.turbulence = std::make_shared<const fluid::TurbulenceBox>(box);
-  return setup;
-}
-
-// Drag density of the turbulent tunnel's canopy: 0.3 / m in cells 6-25 x 3-12 x 0-4, across every cut.
-std::vector<float> canopy(const fluid::GridSpec& spec) {
-  std::vector<float> k(spec.cell_count(), 0.0f);
-  for (int z = 0; z < 5; ++z)
-    for (int y = 3; y < 13; ++y)
-      for (int x = 6; x < 26; ++x) k[x + std::size_t(spec.nx) * (y + std::size_t(spec.ny) * z)] = 0.3f;
-  return k;
-}
-
 constexpr int kSteps = 8;
 
 // Steps `setup` alone and over the ranks in every split (with the canopy above if asked), and compares each
@@ -97,7 +52,7 @@ void check_equal_to_one_process(const host::WindGridSetup& setup, bool with_cano
   const host::Communicator& world = test::world();
   host::WindGrid alone(*cc, setup);
   if (setup.turbulence) alone.set_turbulence_sigma(1.0);
-  if (with_canopy) alone.set_canopy(canopy(setup.spec));
+  if (with_canopy) alone.set_canopy(test::tunnel_canopy(setup.spec));
   alone.initialise_ambient();
   std::vector<host::WindStepReport> expected;
   for (int n = 0; n < kSteps; ++n) expected.push_back(alone.step());
@@ -110,7 +65,8 @@ void check_equal_to_one_process(const host::WindGridSetup& setup, bool with_cano
                                            fluid::halo_cells(setup.settings.advection, setup.settings.cfl))};
     host::WindGrid wind(*cc, setup, &split);
     if (setup.turbulence) wind.set_turbulence_sigma(1.0);
-    if (with_canopy) wind.set_canopy(canopy(setup.spec));  // the whole grid's; each rank takes its block
+    if (with_canopy)
+      wind.set_canopy(test::tunnel_canopy(setup.spec));  // the whole grid's; each rank takes its block
     wind.initialise_ambient();
     for (int n = 0; n < kSteps; ++n) {
       INFO("step " << n + 1);
@@ -146,16 +102,16 @@ void check_equal_to_one_process(const host::WindGridSetup& setup, bool with_cano
 
 TEST_CASE("WindGrid over ranks: a tunnel with obstacles steps to the bits of one process, semi-Lagrangian",
           "[mpi]") {
-  check_equal_to_one_process(tunnel(fluid::AdvectionScheme::semi_lagrangian));
+  check_equal_to_one_process(test::tunnel(fluid::AdvectionScheme::semi_lagrangian));
 }
 
 TEST_CASE("WindGrid over ranks: a tunnel with obstacles steps to the bits of one process, MacCormack",
           "[mpi]") {
-  check_equal_to_one_process(tunnel(fluid::AdvectionScheme::maccormack));
+  check_equal_to_one_process(test::tunnel(fluid::AdvectionScheme::maccormack));
 }
 
 TEST_CASE("WindGrid over ranks: a tunnel with obstacles steps to the bits of one process, upwind5", "[mpi]") {
-  check_equal_to_one_process(tunnel(fluid::AdvectionScheme::upwind5));
+  check_equal_to_one_process(test::tunnel(fluid::AdvectionScheme::upwind5));
 }
 
 TEST_CASE(
@@ -169,7 +125,7 @@ TEST_CASE(
     "WindGrid over ranks: inflow turbulence, a canopy, the tke model, a rough floor and vorticity "
     "confinement, bit for bit",
     "[mpi]") {
-  check_equal_to_one_process(turbulent_tunnel(), true);
+  check_equal_to_one_process(test::turbulent_tunnel(), true);
 }
 
 TEST_CASE("WindGrid over ranks: a step whose back-trace would outrun the halo stops, naming the step",
@@ -179,7 +135,7 @@ TEST_CASE("WindGrid over ranks: a step whose back-trace would outrun the halo st
   const host::Communicator& world = test::world();
   // 6 m/s across 1 m cells at dt = 1 s: a back-trace of 6 cells, which needs a halo of 8; the ranks
   // exchange 3.
-  host::WindGridSetup setup = tunnel(fluid::AdvectionScheme::semi_lagrangian);
+  host::WindGridSetup setup = test::tunnel(fluid::AdvectionScheme::semi_lagrangian);
   setup.settings.cfl = 0.0;
   setup.settings.dt = 1.0;
   const host::WindBlocks split{&world,

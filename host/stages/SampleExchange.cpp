@@ -1,0 +1,64 @@
+#include "host/stages/SampleExchange.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "host/runtime/Communicator.hpp"
+
+namespace fw::host {
+
+int SampleExchange::holder(const fluid::GridSpec& spec, const fluid::Decomposition& decomposition,
+                           const float point[3]) {
+  const int cells[2] = {spec.block_domain[0] > 0 ? spec.block_domain[0] : spec.nx,
+                        spec.block_domain[1] > 0 ? spec.block_domain[1] : spec.ny};
+  int column[2];
+  for (int a = 0; a < 2; ++a) {
+    const double x = std::floor((double(point[a]) - spec.origin[std::size_t(a)]) / spec.h);
+    column[a] = int(std::clamp(x, 0.0, double(cells[a] - 1)));
+  }
+  return decomposition.rank_holding(column[0], column[1]);
+}
+
+SampleExchange::SampleExchange(ComputeContext& cc, const fluid::GridSpec& spec, const WindBlocks* blocks,
+                               const std::vector<float>& needed)
+    : world_(blocks != nullptr ? blocks->world : &Communicator::alone()) {
+  const int ranks = world_->size();
+  const std::size_t count = needed.size() / 3;
+  holder_of_.assign(count, world_->rank());
+  std::vector<std::vector<float>> asked(static_cast<std::size_t>(ranks));
+  order_.resize(count);
+  for (std::size_t n = 0; n < count; ++n) {
+    if (blocks != nullptr && ranks > 1) holder_of_[n] = holder(spec, blocks->decomposition, &needed[3 * n]);
+    auto& list = asked[std::size_t(holder_of_[n])];
+    order_[n] = int(list.size() / 3);
+    list.insert(list.end(), needed.begin() + std::ptrdiff_t(3 * n),
+                needed.begin() + std::ptrdiff_t(3 * n + 3));
+  }
+  const std::vector<std::vector<float>> requests = world_->exchange(asked);
+  std::vector<float> flat;
+  for (const auto& list : requests) {
+    request_counts_.push_back(int(list.size() / 3));
+    flat.insert(flat.end(), list.begin(), list.end());
+  }
+  requests_ = std::make_unique<PointSampler>(cc, spec, std::move(flat));
+}
+
+std::vector<float> SampleExchange::exchange(DeviceVelocity& velocity) {
+  const std::vector<float> sampled = requests_->sample_flat(velocity);
+  std::vector<std::vector<float>> answers(request_counts_.size());
+  std::size_t at = 0;
+  for (std::size_t r = 0; r < answers.size(); ++r) {
+    const std::size_t floats = 3 * std::size_t(request_counts_[r]);
+    answers[r].assign(sampled.begin() + std::ptrdiff_t(at), sampled.begin() + std::ptrdiff_t(at + floats));
+    at += floats;
+  }
+  const std::vector<std::vector<float>> answered = world_->exchange(answers);
+  std::vector<float> wind(3 * order_.size());
+  for (std::size_t n = 0; n < order_.size(); ++n) {
+    const std::vector<float>& from = answered[std::size_t(holder_of_[n])];
+    std::copy_n(from.begin() + 3 * std::ptrdiff_t(order_[n]), 3, wind.begin() + 3 * std::ptrdiff_t(n));
+  }
+  return wind;
+}
+
+}  // namespace fw::host

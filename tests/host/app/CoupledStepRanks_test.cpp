@@ -1,0 +1,133 @@
+// host/app/CoupledStep over MPI ranks (CTest runs this binary at 1, 2 and 4 ranks): trees whose crowns
+// straddle the blocks' borders get the modal state of one process, and points anywhere are sampled to the
+// bits of one process by the rank that holds them (host/stages/SampleExchange).
+#include <catch2/catch.hpp>
+
+#include <array>
+#include <vector>
+
+#include "host/app/CoupledStep.hpp"
+#include "host/stages/PointSampler.hpp"
+#include "host/stages/SampleExchange.hpp"
+#include "tests/support/SmallSpecies.hpp"
+#include "tests/support/TestDevice.hpp"
+#include "tests/support/TestWorld.hpp"
+#include "tests/support/Tunnels.hpp"
+
+using namespace fw;
+
+namespace {
+
+// Six 6 m broadleaves whose roots lie within a cell or two of the cuts of every split of up to 4 ranks (x at
+// 8, 16, 24 cells; y at 4, 8, 12), clear of the tunnel's solids. The last one's top samples lie 0.2 m past
+// the cuts at x = 12 m and y = 6 m (cells 16 and 4), in another block than its root in every split.
+trees::Forest forest_across_cuts() {
+  std::vector<trees::SpeciesBasis> species = {test::small_species("broadleaf", 6.0, 3, 4, 6, 12)};
+  std::vector<trees::TreeInstance> instances = {
+      {0, {3.8, 9.9, 0.0}, 0.3, 1.0},  {0, {19.9, 10.2, 0.0}, 1.1, 0.9}, {0, {6.1, 13.8, 0.0}, 2.0, 1.1},
+      {0, {-1.2, 5.7, 0.0}, 0.0, 1.0}, {0, {24.5, 14.2, 0.0}, 4.0, 1.2}, {0, {11.95, 6.1, 0.0}, 0.0, 1.0}};
+  return trees::Forest(std::move(species), std::move(instances));
+}
+
+host::CouplingSettings coupling(const fluid::GridSpec& spec) {
+  host::CouplingSettings c;
+  c.drag_density = test::tunnel_canopy(spec);
+  c.unresolved.enabled = true;  // its series is seeded per tree: by the whole forest's index
+  c.unresolved.series_length = 1 << 12;
+  c.unresolved.intensity = 0.2;
+  return c;
+}
+
+constexpr int kSteps = 6;
+
+// Points over the whole domain and just outside it (clamped), a different share on every rank.
+std::vector<float> points_of_rank(int rank) {
+  std::vector<float> points;
+  for (int n = 0; n < 24; ++n) {
+    if ((n + rank) % 3 == 0) continue;
+    points.insert(points.end(), {-4.5f + 1.37f * float(n), 2.0f + 0.71f * float(n), 0.3f + 0.33f * float(n)});
+  }
+  return points;
+}
+
+}  // namespace
+
+TEST_CASE("CoupledStep over ranks: trees across the blocks' borders step to the modal state of one process",
+          "[mpi]") {
+  auto* cc = test::device_or_skip();
+  if (!cc) return;
+  const host::Communicator& world = test::world();
+  const host::WindGridSetup setup = test::turbulent_tunnel();
+  const trees::Forest forest = forest_across_cuts();
+  const auto inputs = host::TimeInputs::steady(setup.ambient);
+
+  host::CoupledStep alone(*cc, setup, forest, coupling(setup.spec), inputs);
+  alone.start();
+  for (int n = 0; n < kSteps; ++n) alone.step();
+  const host::ModalState expected = alone.trees().download_modal_state();
+  const std::vector<float> expected_wind = alone.trees().download_sampled_wind();
+
+  for (const auto blocks : test::splits(world.size())) {
+    INFO(blocks[0] << " x " << blocks[1] << " blocks on " << world.size() << " ranks");
+    const host::WindBlocks split{
+        &world, fluid::Decomposition::make(setup.spec, world.size(), blocks,
+                                           fluid::halo_cells(setup.settings.advection, setup.settings.cfl))};
+    host::CoupledStep coupled(*cc, setup, forest, coupling(setup.spec), inputs, &split);
+    coupled.start();
+    for (int n = 0; n < kSteps; ++n) {
+      const host::CoupledStepReport report = coupled.step();
+      CHECK(report.wind.step == n + 1);
+    }
+    // Every tree is some rank's, and one rank's only.
+    const trees::Forest& mine = coupled.own_forest();
+    CHECK(world.sum(static_cast<long long>(mine.instance_count())) == forest.instance_count());
+    // With a split, the crowns reach into other blocks, so samples travel.
+    if (world.size() > 1) CHECK(world.sum(static_cast<long long>(coupled.trees().remote_samples())) > 0);
+    const host::ModalState state = coupled.trees().download_modal_state();
+    const std::vector<float> wind = coupled.trees().download_sampled_wind();
+    for (int k = 0; k < mine.instance_count(); ++k) {
+      const int id = mine.id(k);
+      INFO("tree " << id);
+      for (int i = 0; i < forest.species_of(id).modes().mode_count(); ++i) {
+        CHECK(state.q[std::size_t(mine.mode_offset(k) + i)] ==
+              expected.q[std::size_t(forest.mode_offset(id) + i)]);
+        CHECK(state.qdot[std::size_t(mine.mode_offset(k) + i)] ==
+              expected.qdot[std::size_t(forest.mode_offset(id) + i)]);
+      }
+      for (int s = 0; s < 3 * forest.species_of(id).wind().sample_count(); ++s)
+        CHECK(wind[std::size_t(3 * mine.sample_offset(k) + s)] ==
+              expected_wind[std::size_t(3 * forest.sample_offset(id) + s)]);
+    }
+  }
+}
+
+TEST_CASE("SampleExchange: each point is sampled by the rank that holds it, to the bits of one process",
+          "[mpi]") {
+  auto* cc = test::device_or_skip();
+  if (!cc) return;
+  const host::Communicator& world = test::world();
+  const host::WindGridSetup setup = test::turbulent_tunnel();
+  host::WindGrid alone(*cc, setup);
+  alone.set_turbulence_sigma(1.0);
+  alone.initialise_ambient();
+  for (int n = 0; n < kSteps; ++n) alone.step();
+  const std::vector<float> points = points_of_rank(world.rank());
+  host::PointSampler whole(*cc, setup.spec, points);
+  const std::vector<float> expected = whole.sample_flat(alone.velocity());
+
+  const host::WindBlocks split{
+      &world, fluid::Decomposition::make(setup.spec, world.size(), std::nullopt,
+                                         fluid::halo_cells(setup.settings.advection, setup.settings.cfl))};
+  host::WindGrid wind(*cc, setup, &split);
+  wind.set_turbulence_sigma(1.0);
+  wind.initialise_ambient();
+  for (int n = 0; n < kSteps; ++n) wind.step();
+  host::SampleExchange exchange(*cc, wind.local_spec(), &split, points);
+  CHECK(exchange.point_count() == int(points.size() / 3));
+  const std::vector<float> sampled = exchange.exchange(wind.velocity());
+  REQUIRE(sampled.size() == expected.size());
+  for (std::size_t n = 0; n < sampled.size(); ++n) {
+    INFO("value " << n);
+    CHECK(sampled[n] == expected[n]);
+  }
+}
