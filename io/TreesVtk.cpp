@@ -120,6 +120,10 @@ TreesVtp::TreesVtp(const std::vector<TreesFrame::Tree>& trees) : layout_(std::ma
 
 TreesVtp::~TreesVtp() = default;
 
+VtkArrays TreesVtp::arrays() const {
+  return describe_arrays(layout_->data);
+}
+
 std::size_t TreesVtp::point_count() const {
   return layout_->rest.size() / 3;
 }

@@ -36,7 +36,9 @@
 #include <Eigen/Core>
 
 #include <filesystem>
+
 #include <vector>
+#include "io/ParallelVtk.hpp"
 
 namespace fw::io {
 
@@ -71,6 +73,8 @@ class TreesVtp {
 
   /// Number of points: every node of every tree.
   std::size_t point_count() const;
+  /// The arrays every write() writes, as a .pvtp declares them (io/ParallelVtk.hpp).
+  VtkArrays arrays() const;
 
   /// Writes one frame at `time` (s). displacement: 3 floats per point in point order (m), or empty for the
   /// rest shape. Throws std::invalid_argument("write_trees_vtp: ...") for another size or a non-finite

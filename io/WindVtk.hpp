@@ -18,8 +18,10 @@
 // Files are written by io/VtkXml (binary appended data, LZ4, 64-bit headers, through AtomicFile).
 #pragma once
 
+#include "io/ParallelVtk.hpp"
 #include "io/WindFrame.hpp"
 
+#include <array>
 #include <filesystem>
 #include <string>
 #include <vector>
@@ -29,12 +31,24 @@ namespace fw::io {
 /// The field names write_wind_vti understands, in the order arrays are written.
 const std::vector<std::string>& wind_field_names();
 
+/// Over MPI ranks, the cells of a frame that one rank writes: `count` cells along x and y from `first`
+/// (indices into the frame's cells), which are the domain's cells from `domain_first` on. The derived arrays
+/// (speed, vorticity) are computed over the whole frame before the piece is cut, so that a piece's cells at
+/// its border see the frame's cells beyond it (the rank's halo) as one process's cells see their
+/// neighbours. Its extent is then the domain's, at the domain's origin (the frame's).
+struct WindPiece {
+  std::array<int, 2> first{0, 0}, count{0, 0}, domain_first{0, 0};
+};
+
 /// Writes the requested cell arrays of `frame` (by name, see above; duplicates are ignored, and pressure,
 /// solid or canopy_density are skipped when the frame holds none). An empty `fields` writes the geometry
 /// and TimeValue only. Throws std::invalid_argument("write_wind_vti: ...") for an unknown field name (listing
 /// the choices) or an inconsistent frame, and std::runtime_error naming the path if the folder does not exist
 /// or the file cannot be written; no partial file or temporary is left behind.
+/// With a piece, only its cells (a .pvti then lists the pieces, io/ParallelVtk.hpp); `declared`, when
+/// given, receives the arrays written.
 void write_wind_vti(const std::filesystem::path& path, const WindFrame& frame,
-                    const std::vector<std::string>& fields);
+                    const std::vector<std::string>& fields, const WindPiece* piece = nullptr,
+                    VtkArrays* declared = nullptr);
 
 }  // namespace fw::io

@@ -15,6 +15,8 @@
 #include <vtkPolyData.h>
 #include <vtkSmartPointer.h>
 #include <vtkXMLImageDataReader.h>
+#include <vtkXMLPImageDataReader.h>
+#include <vtkXMLPPolyDataReader.h>
 #include <vtkXMLPolyDataReader.h>
 
 #include <algorithm>
@@ -105,6 +107,19 @@ vtkSmartPointer<Reader> read_xml(const fs::path& path) {
   return reader;
 }
 
+// A frame's dataset: its one file, or the .pvti / .pvtp summary of the pieces a run over MPI ranks wrote
+// (docs/parallel.md), which the parallel reader joins into one dataset of the whole domain.
+template <class Dataset, class Serial, class Parallel>
+std::pair<vtkSmartPointer<vtkXMLReader>, Dataset*> read_dataset(const fs::path& path) {
+  const std::string extension = path.extension().string();
+  vtkSmartPointer<vtkXMLReader> reader;
+  if (extension == ".pvti" || extension == ".pvtp")
+    reader = read_xml<Parallel>(path);
+  else
+    reader = read_xml<Serial>(path);
+  return {reader, Dataset::SafeDownCast(reader->GetOutputDataObject(0))};
+}
+
 std::vector<float> as_floats(vtkDataArray* array) {
   const vtkIdType count = array->GetNumberOfTuples() * array->GetNumberOfComponents();
   std::vector<float> out(static_cast<std::size_t>(count));
@@ -115,8 +130,8 @@ std::vector<float> as_floats(vtkDataArray* array) {
 }
 
 WindGrid read_wind(const fs::path& path) {
-  auto reader = read_xml<vtkXMLImageDataReader>(path);
-  vtkImageData* image = reader->GetOutput();
+  const auto [reader, image] =
+      read_dataset<vtkImageData, vtkXMLImageDataReader, vtkXMLPImageDataReader>(path);
   int dims[3];
   double origin[3], spacing[3];
   image->GetDimensions(dims);
@@ -147,8 +162,7 @@ WindGrid read_wind(const fs::path& path) {
 }
 
 TreeLines read_trees(const fs::path& path) {
-  auto reader = read_xml<vtkXMLPolyDataReader>(path);
-  vtkPolyData* poly = reader->GetOutput();
+  const auto [reader, poly] = read_dataset<vtkPolyData, vtkXMLPolyDataReader, vtkXMLPPolyDataReader>(path);
   TreeLines trees;
   const vtkIdType points = poly->GetNumberOfPoints();
   vtkDataArray* radius = poly->GetPointData()->GetArray("radius");

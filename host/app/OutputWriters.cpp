@@ -35,6 +35,8 @@ io::RunManifest manifest_of(const SimulationPlan& plan, const DeviceInfo& device
   m.species = plan.species;
   m.two_way_coupling = !plan.coupling.drag_density.empty();
   m.leaves = plan.leaf_count > 0;
+  m.ranks = plan.decomposition.ranks();
+  m.decomposition = plan.decomposition.describe();
   return m;
 }
 
@@ -60,22 +62,58 @@ viz::ViewScriptSettings view_of(const SimulationPlan& plan) {
   return v;
 }
 
+// This rank's wind writer over ranks: its block's solids and canopy, its own cells as the piece, and every
+// rank's piece for the .pvti.
+std::unique_ptr<io::FrameWriter> wind_pieces(const SimulationPlan& plan,
+                                             const std::filesystem::path& directory,
+                                             const OutputShare& share) {
+  const fluid::GridSpec& spec = plan.wind.spec;
+  const auto cut = [&](const auto& whole) {
+    return whole.empty() ? std::decay_t<decltype(whole)>{} : block_of(whole, spec.nx, spec.ny, share.block);
+  };
+  io::WindPieces pieces;
+  pieces.rank = share.rank;
+  pieces.domain_cells = {spec.nx, spec.ny, spec.nz};
+  for (int axis = 0; axis < 2; ++axis) {
+    pieces.piece.first[axis] = share.block.halo_low[axis];
+    pieces.piece.count[axis] =
+        share.block.extent[axis] - share.block.halo_low[axis] - share.block.halo_high[axis];
+    pieces.piece.domain_first[axis] = share.block.origin[axis] + share.block.halo_low[axis];
+  }
+  for (int r = 0; r < share.ranks; ++r) {
+    const fluid::Block b = share.decomposition.block(r);
+    pieces.extents.push_back(
+        {b.first[0], b.first[0] + b.count[0], b.first[1], b.first[1] + b.count[1], 0, spec.nz});
+  }
+  return std::make_unique<io::WindVtkWriter>(directory, share.local, cut(plan.wind.solid),
+                                             cut(plan.canopy_density), plan.output.vtk_fields,
+                                             std::move(pieces));
+}
+
 }  // namespace
 
 std::vector<std::unique_ptr<io::FrameWriter>> make_writers(const SimulationPlan& plan,
                                                            const std::filesystem::path& directory,
                                                            const DeviceInfo& device,
-                                                           const std::vector<int>& tip_trees) {
+                                                           const std::vector<int>& tip_trees,
+                                                           const OutputShare* share) {
   const io::OutputSettings& out = plan.output;
   const bool trees_present = plan.forest.instance_count() > 0;
   const bool leaves_present = plan.leaf_count > 0;
   std::vector<std::unique_ptr<io::FrameWriter>> writers;
-  writers.push_back(std::make_unique<io::ManifestWriter>(directory, manifest_of(plan, device)));
-  if (out.vtk_wind) {
+  if (share != nullptr) {
+    if (out.vtk_wind) writers.push_back(wind_pieces(plan, directory, *share));
+    if (out.vtk_trees && trees_present)
+      writers.push_back(
+          std::make_unique<io::TreesVtkWriter>(directory, *share->own_forest, share->rank, share->ranks));
+    if (share->rank != 0) return writers;
+  }
+  writers.insert(writers.begin(), std::make_unique<io::ManifestWriter>(directory, manifest_of(plan, device)));
+  if (out.vtk_wind && share == nullptr) {
     writers.push_back(std::make_unique<io::WindVtkWriter>(directory, plan.wind.spec, plan.wind.solid,
                                                           plan.canopy_density, out.vtk_fields));
   }
-  if (out.vtk_trees && trees_present)
+  if (out.vtk_trees && trees_present && share == nullptr)
     writers.push_back(std::make_unique<io::TreesVtkWriter>(directory, plan.forest));
   if (out.vtk_leaves && leaves_present) writers.push_back(std::make_unique<io::LeavesVtkWriter>(directory));
   if (out.vdb_enabled) {

@@ -11,16 +11,29 @@
 
 #include "host/app/SimulationPlan.hpp"
 #include "host/runtime/Device.hpp"
+#include "host/stages/BlockGrid.hpp"
 #include "io/writers/FrameWriter.hpp"
 
 namespace fw::host {
 
+/// A run over MPI ranks: what this rank writes (docs/parallel.md, "Output"). Every rank writes its piece of
+/// the wind and its trees' piece; rank 0 also writes what stays one file (run.json, probes.csv, view.py, the
+/// summaries that list the pieces).
+struct OutputShare {
+  int rank = 0, ranks = 1;
+  fluid::GridSpec local;  ///< this rank's grid: its block with the halo (WindGrid::local_spec)
+  BlockArray block;       ///< its layout (WindGrid::block)
+  fluid::Decomposition decomposition;
+  const trees::Forest* own_forest = nullptr;  ///< the trees it holds (CoupledStep::own_forest)
+};
+
 /// In order: the manifest (run.json, scenario copy), wind VTK, trees VTK, VDB, probes, view.py; each only
 /// when the settings enable it (probes when there are probe points or tracked trees: tip_trees, the instance
-/// ids).
+/// ids). Over ranks (share given), each rank only its part.
 std::vector<std::unique_ptr<io::FrameWriter>> make_writers(const SimulationPlan& plan,
                                                            const std::filesystem::path& directory,
                                                            const DeviceInfo& device,
-                                                           const std::vector<int>& tip_trees);
+                                                           const std::vector<int>& tip_trees,
+                                                           const OutputShare* share = nullptr);
 
 }  // namespace fw::host

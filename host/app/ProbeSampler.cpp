@@ -1,5 +1,7 @@
 #include "host/app/ProbeSampler.hpp"
 
+#include "host/runtime/Communicator.hpp"
+
 #include <algorithm>
 #include <cmath>
 
@@ -13,24 +15,45 @@ int tip_node(const trees::Skeleton& skeleton) {
   return tip;
 }
 
-ProbeSampler::ProbeSampler(ComputeContext& cc, const fluid::GridSpec& spec,
-                           const std::vector<std::array<double, 3>>& points, const trees::Forest& forest,
-                           int tip_trees, bool strong_wind_correction)
-    : cc_(cc), points_(cc, spec, points), forest_(forest), strong_wind_correction_(strong_wind_correction) {
-  for (int k = 0; k < std::min(tip_trees, forest.instance_count()); ++k) {
-    tip_trees_.push_back(k);
-    tip_nodes_.push_back(tip_node(forest.species_of(k).skeleton()));
+namespace {
+
+// Rank 0 asks for every probe's wind, the other ranks for none.
+std::vector<float> asked_points(const std::vector<std::array<double, 3>>& points, const Communicator& world) {
+  std::vector<float> flat;
+  if (world.rank() != 0) return flat;
+  for (const auto& p : points)
+    for (double x : p) flat.push_back(static_cast<float>(x));
+  return flat;
+}
+
+const Communicator& world_of(const WindBlocks* blocks) {
+  return blocks != nullptr ? *blocks->world : Communicator::alone();
+}
+
+}  // namespace
+
+ProbeSampler::ProbeSampler(ComputeContext& cc, CoupledStep& coupled,
+                           const std::vector<std::array<double, 3>>& points, int all_trees, int tip_trees,
+                           bool strong_wind_correction, const WindBlocks* blocks)
+    : cc_(cc),
+      world_(&world_of(blocks)),
+      point_count_(int(points.size())),
+      points_(cc, coupled.wind().local_spec(), blocks, asked_points(points, world_of(blocks))),
+      forest_(coupled.own_forest()),
+      strong_wind_correction_(strong_wind_correction) {
+  for (int id = 0; id < std::min(tip_trees, all_trees); ++id) tip_trees_.push_back(id);
+  for (int k = 0; k < forest_.instance_count(); ++k) {
+    if (forest_.id(k) >= int(tip_trees_.size())) continue;
+    own_tips_.push_back(k);
+    tip_nodes_.push_back(tip_node(forest_.species_of(k).skeleton()));
   }
 }
 
-io::ProbeSample ProbeSampler::sample(CoupledStep& coupled) {
-  io::ProbeSample out;
-  out.time = coupled.time();
-  out.wind = points_.sample(coupled.wind().velocity());
-  for (std::size_t t = 0; t < tip_trees_.size(); ++t) {
-    const int k = tip_trees_[t];
-    const trees::SpeciesBasis& species = forest_.species_of(k);
-    const int modes = species.modes().mode_count();
+std::vector<double> ProbeSampler::own_tips(CoupledStep& coupled) const {
+  std::vector<double> tips;
+  for (std::size_t t = 0; t < own_tips_.size(); ++t) {
+    const int k = own_tips_[t];
+    const int modes = forest_.species_of(k).modes().mode_count();
     // The state holds (q, qdot) per flat mode.
     std::vector<float> state(2 * std::size_t(modes));
     cc_.queue().enqueueReadBuffer(coupled.trees().state(), CL_TRUE,
@@ -41,8 +64,25 @@ io::ProbeSample ProbeSampler::sample(CoupledStep& coupled) {
     // The whole tree: the strong-wind correction's length pass walks it from the root.
     const Eigen::Vector3d world =
         forest_.instance_displacements(k, q, strong_wind_correction_).row(tip_nodes_[t]).transpose();
-    out.tips.push_back({world.x(), world.y(), world.z()});
+    tips.insert(tips.end(), {double(forest_.id(k)), world.x(), world.y(), world.z()});
   }
+  return tips;
+}
+
+io::ProbeSample ProbeSampler::sample(CoupledStep& coupled) {
+  io::ProbeSample out;
+  out.time = coupled.time();
+  const std::vector<float> wind = points_.exchange(coupled.wind().velocity());
+  for (std::size_t p = 0; p + 2 < wind.size(); p += 3)
+    out.wind.push_back({wind[p], wind[p + 1], wind[p + 2]});
+  // Every rank's tracked tips go to rank 0, which puts them in column (id) order.
+  std::vector<std::vector<double>> to_each(std::size_t(world_->size()));
+  to_each[0] = own_tips(coupled);
+  const std::vector<std::vector<double>> received = world_->exchange(to_each);
+  out.tips.resize(world_->rank() == 0 ? tip_trees_.size() : 0);
+  for (const std::vector<double>& tips : received)
+    for (std::size_t at = 0; at + 3 < tips.size(); at += 4)
+      out.tips[std::size_t(tips[at])] = {tips[at + 1], tips[at + 2], tips[at + 3]};
   if (coupled.has_leaves()) out.leaf_counts = coupled.leaves().counts();
   return out;
 }

@@ -9,6 +9,10 @@
 // A tip is the highest node of the tree's skeleton; its displacement is the one the trees' VTK frames show
 // (trees::Forest::instance_displacements, with or without the strong-wind correction), from the
 // tree's modal coordinates read back (2 m floats a tree).
+//
+// Over MPI ranks (docs/parallel.md) the rank whose block holds a probe samples it
+// (host/stages/SampleExchange) and the rank that holds a tracked tree computes its tip; both go to rank 0,
+// whose sample is the one written. sample() is then collective.
 #pragma once
 
 #include <array>
@@ -16,7 +20,7 @@
 
 #include "fluid/GridSpec.hpp"
 #include "host/app/CoupledStep.hpp"
-#include "host/stages/PointSampler.hpp"
+#include "host/stages/SampleExchange.hpp"
 #include "io/writers/FrameWriter.hpp"
 #include "trees/Forest.hpp"
 
@@ -27,24 +31,30 @@ int tip_node(const trees::Skeleton& skeleton);
 
 class ProbeSampler {
  public:
-  /// points: probe positions, m, world frame; tip_trees: how many of the first instances are tracked (fewer
-  /// when the forest is smaller). Keeps a reference to `forest`, which must outlive the sampler.
-  ProbeSampler(ComputeContext& cc, const fluid::GridSpec& spec,
-               const std::vector<std::array<double, 3>>& points, const trees::Forest& forest, int tip_trees,
-               bool strong_wind_correction);
+  /// points: probe positions, m, world frame; tip_trees: how many of the first instances (Forest::id 0, 1,
+  /// ...) of the whole forest of `all_trees` trees are tracked (fewer when it is smaller). `coupled` is the
+  /// step it samples (its own_forest() must outlive the sampler); blocks: null in one process.
+  ProbeSampler(ComputeContext& cc, CoupledStep& coupled, const std::vector<std::array<double, 3>>& points,
+               int all_trees, int tip_trees, bool strong_wind_correction, const WindBlocks* blocks = nullptr);
 
   /// The instance ids whose tips are tracked, in column order.
   const std::vector<int>& tip_trees() const { return tip_trees_; }
-  bool empty() const { return points_.point_count() == 0 && tip_trees_.empty(); }
+  bool empty() const { return point_count_ == 0 && tip_trees_.empty(); }
   /// One sample of the coupled state now (blocks for a few floats).
   io::ProbeSample sample(CoupledStep& coupled);
 
  private:
+  /// The tips of the tracked trees this rank holds: (id, x, y, z) each, m.
+  std::vector<double> own_tips(CoupledStep& coupled) const;
+
   ComputeContext& cc_;
-  PointSampler points_;
-  const trees::Forest& forest_;
+  const Communicator* world_;
+  int point_count_ = 0;
+  SampleExchange points_;        // rank 0 asks for every probe
+  const trees::Forest& forest_;  // this rank's trees
   bool strong_wind_correction_ = true;
-  std::vector<int> tip_trees_, tip_nodes_;
+  std::vector<int> tip_trees_;             // ids, in column order
+  std::vector<int> own_tips_, tip_nodes_;  // of this rank's tracked trees: the index in forest_, the tip node
 };
 
 }  // namespace fw::host

@@ -8,12 +8,17 @@
 #include <cmath>
 #include <exception>
 #include <iostream>
+#include <optional>
 #include <utility>
 #include <vector>
 
 #include "host/app/OutputWriters.hpp"
 #include "host/app/ProbeSampler.hpp"
+#include "host/runtime/Communicator.hpp"
+#include "io/PvdCollection.hpp"
 #include "io/writers/OutputPipeline.hpp"
+#include "io/writers/TreesVtkWriter.hpp"
+#include "io/writers/WindVtkWriter.hpp"
 
 namespace fw::host {
 
@@ -107,16 +112,26 @@ void print_progress(const WindStepReport& step, double end, double wall_seconds)
 class RunLoop {
  public:
   RunLoop(ComputeContext& cc, const SimulationPlan& plan, const std::filesystem::path& directory,
-          CoupledStep& coupled, const RunOptions& options)
+          CoupledStep& coupled, const RunOptions& options, const Communicator& world)
       : cc_(cc),
         plan_(plan),
         directory_(directory),
         options_(options),
         coupled_(coupled),
-        probes_(cc, plan.wind.spec, probe_points(plan), plan.forest, options.tip_trees,
-                plan.coupling.strong_wind_correction),
-        output_(make_writers(plan, directory, cc.device(), probes_.tip_trees())),
-        needs_(output_.needs()) {}
+        world_(world),
+        blocks_(world.size() > 1 ? std::optional<WindBlocks>(WindBlocks{&world, plan.decomposition})
+                                 : std::nullopt),
+        share_(output_share(plan, coupled, world)),
+        probes_(cc, coupled, probe_points(plan), plan.forest.instance_count(), options.tip_trees,
+                plan.coupling.strong_wind_correction, blocks_ ? &*blocks_ : nullptr),
+        output_(make_writers(plan, directory, cc.device(), probes_.tip_trees(), share_ ? &*share_ : nullptr)),
+        needs_(output_.needs()) {
+    if (share_ && world.rank() == 0) {
+      if (plan.output.vtk_wind) wind_pvd_.emplace(directory / "wind.pvd");
+      if (plan.output.vtk_trees && plan.forest.instance_count() > 0)
+        trees_pvd_.emplace(directory / "trees.pvd");
+    }
+  }
 
   /// Steps from t = 0 to `end` (or a stop request), then finishes the output; see Simulation::run.
   RunSummary run(double end) {
@@ -131,9 +146,12 @@ class RunLoop {
     } catch (const std::exception& e) {
       if (options_.progress) std::cerr << "\n";
       // The frames captured before the failure are still written; a second error while finishing is
-      // secondary to the first, which is the one reported.
+      // secondary to the first, which is the one reported. Over ranks, only a blow-up is found by every rank
+      // alike (the checks take global maxima); any other error is this rank's alone, and its caller stops
+      // every rank, so it finishes without waiting for the others.
+      const bool every_rank = dynamic_cast<const SimulationError*>(&e) != nullptr;
       try {
-        finish("failed", e.what());
+        finish("failed", e.what(), every_rank);
       } catch (const std::exception&) {
       }
       throw;
@@ -144,6 +162,31 @@ class RunLoop {
   }
 
  private:
+  static std::optional<OutputShare> output_share(const SimulationPlan& plan, CoupledStep& coupled,
+                                                 const Communicator& world) {
+    if (world.size() == 1) return std::nullopt;
+    return OutputShare{world.rank(),           world.size(),       coupled.wind().local_spec(),
+                       coupled.wind().block(), plan.decomposition, &coupled.own_forest()};
+  }
+
+  // Over ranks, rank 0 lists in the .pvd collections the frames that every rank has written (a collective
+  // call): a frame some rank has not finished is never listed, so every listed frame opens.
+  void list_complete_frames() {
+    if (!share_) return;
+    const long long complete = world_.min(output_.frames_written());
+    for (; listed_ < complete; ++listed_) {
+      const double time = frame_times_[std::size_t(listed_)];
+      if (wind_pvd_) wind_pvd_->add(time, io::WindVtkWriter::frame_file(int(listed_), true));
+      if (trees_pvd_) trees_pvd_->add(time, io::TreesVtkWriter::frame_file(int(listed_), true));
+    }
+  }
+
+  // A stop request (SIGINT on any rank) stops every rank at the same step.
+  bool stop_requested() const {
+    const bool local = options_.stop && options_.stop->load();
+    return world_.size() > 1 ? world_.max(local ? 1.0 : 0.0) > 0.0 : local;
+  }
+
   static std::vector<std::array<double, 3>> probe_points(const SimulationPlan& plan) {
     std::vector<std::array<double, 3>> points;
     for (const auto& probe : plan.output.probes) points.push_back(probe.position);
@@ -155,7 +198,7 @@ class RunLoop {
     Schedule frames(interval), samples(plan_.probe_interval);
     auto last_progress = Clock::now();
     while (coupled_.time() < end - kTimeTolerance * interval) {
-      if (options_.stop && options_.stop->load()) {
+      if (stop_requested()) {
         summary_.interrupted = true;
         return;
       }
@@ -182,13 +225,15 @@ class RunLoop {
     io::OutputFrame frame = capture_frame(coupled_, needs_, plan_.output.leaves_attached_stride, frames_++);
     frame.probe_samples = std::move(pending_samples_);
     pending_samples_.clear();
+    frame_times_.push_back(frame.time);
     output_.push(std::move(frame));
+    list_complete_frames();
     output_ms_ += ms_since(start);
   }
 
   // Every frame captured so far is written before run.json: a writer's error found while waiting for them
   // fails the run (unless it failed already) and is rethrown once run.json records it.
-  void finish(const std::string& status, const std::string& message) {
+  void finish(const std::string& status, const std::string& message, bool every_rank = true) {
     cc_.finish();
     io::RunOutcome outcome;
     outcome.status = status;
@@ -211,6 +256,7 @@ class RunLoop {
         outcome.message = e.what();
       }
     }
+    if (every_rank && !write_error) list_complete_frames();
     output_ms_ += ms_since(drain_start);
     outcome.steps = summary_.steps = coupled_.steps();
     outcome.simulated_time = summary_.simulated_time = coupled_.time();
@@ -232,6 +278,9 @@ class RunLoop {
   const std::filesystem::path& directory_;
   const RunOptions& options_;
   CoupledStep& coupled_;
+  const Communicator& world_;
+  const std::optional<WindBlocks> blocks_;  // over ranks
+  const std::optional<OutputShare> share_;  // over ranks
   const Clock::time_point wall_start_ = Clock::now();
   ProbeSampler probes_;
   io::OutputPipeline output_;
@@ -240,20 +289,28 @@ class RunLoop {
   double output_ms_ = 0.0, probe_ms_ = 0.0;
   int frames_ = 0;
   std::vector<io::ProbeSample> pending_samples_;
+  // Over ranks, rank 0's collections, the frames' times and how many frames they list.
+  std::optional<io::PvdCollection> wind_pvd_, trees_pvd_;
+  std::vector<double> frame_times_;
+  long long listed_ = 0;
 };
 
 }  // namespace
 
-Simulation::Simulation(ComputeContext& cc, SimulationPlan plan, std::filesystem::path output_directory)
-    : cc_(cc), plan_(std::move(plan)), directory_(std::move(output_directory)) {
-  coupled_ = std::make_unique<CoupledStep>(cc_, plan_);
+Simulation::Simulation(ComputeContext& cc, SimulationPlan plan, std::filesystem::path output_directory,
+                       const Communicator* world)
+    : cc_(cc),
+      plan_(std::move(plan)),
+      directory_(std::move(output_directory)),
+      world_(world != nullptr ? world : &Communicator::alone()) {
+  coupled_ = std::make_unique<CoupledStep>(cc_, plan_, world_);
 }
 
 Simulation::~Simulation() = default;
 
 RunSummary Simulation::run(const RunOptions& options) {
   const double end = options.end_time > 0.0 ? options.end_time : plan_.end_time;
-  RunLoop loop(cc_, plan_, directory_, *coupled_, options);
+  RunLoop loop(cc_, plan_, directory_, *coupled_, options, *world_);
   return loop.run(end);
 }
 

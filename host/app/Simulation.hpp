@@ -59,8 +59,10 @@ struct RunSummary {
 class Simulation {
  public:
   /// Uploads the plan to the device; the output folder is created by run(). Throws std::invalid_argument when
-  /// the grid does not fit the device.
-  Simulation(ComputeContext& cc, SimulationPlan plan, std::filesystem::path output_directory);
+  /// the grid does not fit the device. world: the run's ranks (null: one process); over several, every rank
+  /// constructs one and runs it (docs/parallel.md), writing its pieces of the output into the same folder.
+  Simulation(ComputeContext& cc, SimulationPlan plan, std::filesystem::path output_directory,
+             const Communicator* world = nullptr);
   ~Simulation();
   Simulation(const Simulation&) = delete;
   Simulation& operator=(const Simulation&) = delete;
@@ -73,6 +75,7 @@ class Simulation {
   ComputeContext& cc_;
   SimulationPlan plan_;
   std::filesystem::path directory_;
+  const Communicator* world_;
   std::unique_ptr<CoupledStep> coupled_;
 };
 

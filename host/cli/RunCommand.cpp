@@ -55,33 +55,29 @@ int run_scenario(const RunCommandOptions& options, const GlobalOptions& global,
                  const host::Communicator& world) {
   // Everything that can be wrong with the input is found before the device or the output folder is touched.
   const io::Scenario scenario = io::load_scenario(options.scenario);
-  if (world.size() > 1) {
-    // Planned first, so that a decomposition that cannot work is named as such.
-    trees::BasisCache planning_cache(trees::BasisCache::default_directory());
-    const host::SimulationPlan plan = host::plan_simulation(scenario, &planning_cache, nullptr, world.size());
-    throw std::invalid_argument(fmt::format(
-        "{}: a run over {} ranks ({}) needs the wind grid's stages on blocks, which are not built yet "
-        "(docs/parallel.md); `mpirun -np {} forestwind check` shows the blocks it will take",
-        options.scenario, world.size(), plan.decomposition.describe(), world.size()));
-  }
   const std::filesystem::path directory =
       options.output_dir.empty() ? scenario.output.directory : std::filesystem::absolute(options.output_dir);
-  const bool terminal = ::isatty(STDERR_FILENO) == 1 && !options.quiet;
-  std::ostream* log = options.quiet ? nullptr : &std::cerr;
+  // Over ranks, rank 0 speaks for all: they plan alike.
+  const bool speaks = world.rank() == 0 && !options.quiet;
+  const bool terminal = ::isatty(STDERR_FILENO) == 1 && speaks;
+  std::ostream* log = speaks ? &std::cerr : nullptr;
   trees::BasisCache cache(trees::BasisCache::default_directory());
-  host::SimulationPlan plan = host::plan_simulation(scenario, &cache, log);
+  host::SimulationPlan plan = host::plan_simulation(scenario, &cache, log, world.size());
   if (log)
     for (const std::string& warning : plan.warnings) *log << "warning: " << warning << "\n";
   const bool leaves = plan.leaf_count > 0;
 
-  host::ComputeContext cc(host::select_device(host::device_filter_from_env(global.device_filter)),
-                          global.profile);
+  host::ComputeContext cc(
+      host::select_device(host::device_filter_from_env(global.device_filter), world.node_rank()),
+      global.profile);
   if (log) {
     *log << fmt::format("{}: {} x {} x {} cells, {} trees, device {} ({})\n", scenario.name,
                         plan.wind.spec.nx, plan.wind.spec.ny, plan.wind.spec.nz, plan.forest.instance_count(),
                         cc.device().device_name, cc.device().platform_name);
+    if (world.size() > 1)
+      *log << fmt::format("{} ranks: {}, a device each\n", world.size(), plan.decomposition.describe());
   }
-  host::Simulation simulation(cc, std::move(plan), directory);
+  host::Simulation simulation(cc, std::move(plan), directory, &world);
   host::RunOptions run = options.run;
   run.progress = terminal;
   run.stop = &g_interrupted;
@@ -89,7 +85,7 @@ int run_scenario(const RunCommandOptions& options, const GlobalOptions& global,
   InterruptGuard guard;
   const host::RunSummary summary = simulation.run(run);
 
-  if (!options.quiet) {
+  if (speaks) {
     std::cout << fmt::format("{} steps to t = {:.2f} s in {:.1f} s ({:.1f} ms/step), {} frames{}\n",
                              summary.steps, summary.simulated_time, summary.wall_seconds,
                              summary.steps ? summary.wall_seconds * 1e3 / double(summary.steps) : 0.0,

@@ -56,6 +56,8 @@ void ManifestWriter::finish(const RunOutcome& outcome) {
   }
   json.end_array();
   json.key("two_way_coupling").value(m.two_way_coupling);
+  json.key("ranks").value(m.ranks);
+  if (m.ranks > 1) json.key("decomposition").value(m.decomposition);
   json.key("steps").value(std::int64_t(outcome.steps));
   json.key("simulated_time_s").value(outcome.simulated_time);
   json.key("frames").value(outcome.frames);

@@ -48,7 +48,9 @@ struct RunManifest {
   int trees = 0;
   std::vector<SpeciesSummary> species;
   bool two_way_coupling = false;
-  bool leaves = false;  ///< the run has leaves: run.json reports their counts
+  bool leaves = false;        ///< the run has leaves: run.json reports their counts
+  int ranks = 1;              ///< MPI ranks of the run (docs/parallel.md)
+  std::string decomposition;  ///< their blocks (fluid::Decomposition::describe), over several ranks
 };
 
 class ManifestWriter : public FrameWriter {

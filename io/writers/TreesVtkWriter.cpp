@@ -13,7 +13,7 @@ std::vector<TreesFrame::Tree> forest_at_rest(const trees::Forest& forest) {
     const trees::Skeleton world =
         forest.species_of(k).skeleton().transformed(forest.rotation(k), instance.position, instance.scale);
     TreesFrame::Tree tree;
-    tree.tree_id = k;
+    tree.tree_id = forest.id(k);
     tree.species = instance.species;
     tree.rest.resize(world.size(), 3);
     for (int n = 0; n < world.size(); ++n) {
@@ -36,10 +36,30 @@ void TreesVtkWriter::begin() {
   std::filesystem::create_directories(directory_ / "trees");
 }
 
+TreesVtkWriter::TreesVtkWriter(std::filesystem::path directory, const trees::Forest& forest, int rank,
+                               int ranks)
+    : TreesVtkWriter(std::move(directory), forest) {
+  rank_ = rank;
+  ranks_ = ranks;
+}
+
+std::string TreesVtkWriter::frame_file(int index, bool pieces) {
+  return fmt::format("trees/trees_{:06d}.{}", index, pieces ? "pvtp" : "vtp");
+}
+
 void TreesVtkWriter::write(const OutputFrame& frame) {
-  const std::string file = fmt::format("trees/trees_{:06d}.vtp", frame.index);
-  forest_->write(directory_ / file, frame.time, frame.displacement);
-  collection_.add(frame.time, file);
+  if (ranks_ == 0) {
+    const std::string file = frame_file(frame.index, false);
+    forest_->write(directory_ / file, frame.time, frame.displacement);
+    collection_.add(frame.time, file);
+    return;
+  }
+  const auto piece_name = [&](int rank) { return fmt::format("trees_{:06d}_{:04d}.vtp", frame.index, rank); };
+  forest_->write(directory_ / "trees" / piece_name(rank_), frame.time, frame.displacement);
+  if (rank_ != 0) return;
+  std::vector<std::string> sources;
+  for (int r = 0; r < ranks_; ++r) sources.push_back(piece_name(r));
+  write_pvtp(directory_ / frame_file(frame.index, true), forest_->arrays(), sources);
 }
 
 }  // namespace fw::io

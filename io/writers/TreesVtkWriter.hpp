@@ -15,12 +15,19 @@
 
 namespace fw::io {
 
-/// Every instance of the forest at rest in the world frame (x + s R p per node), tree_id = instance index.
+/// Every instance of the forest at rest in the world frame (x + s R p per node), tree_id = Forest::id (the
+/// instance index, or over ranks the whole forest's).
 std::vector<TreesFrame::Tree> forest_at_rest(const trees::Forest& forest);
 
 class TreesVtkWriter : public FrameWriter {
  public:
   TreesVtkWriter(std::filesystem::path directory, const trees::Forest& forest);
+  /// Over MPI ranks: `forest` is this rank's trees; it writes trees/trees_NNNNNN_RRRR.vtp, rank 0 also
+  /// trees/trees_NNNNNN.pvtp listing the `ranks` pieces, and the run adds the frame to trees.pvd once every
+  /// rank has written it.
+  TreesVtkWriter(std::filesystem::path directory, const trees::Forest& forest, int rank, int ranks);
+  /// The file trees.pvd lists for frame `index`: its .vtp, or over ranks its .pvtp.
+  static std::string frame_file(int index, bool pieces);
 
   std::string name() const override { return "trees VTK"; }
   FrameNeeds needs() const override { return {.displacement = true}; }
@@ -30,6 +37,7 @@ class TreesVtkWriter : public FrameWriter {
  private:
   std::filesystem::path directory_;
   std::unique_ptr<TreesVtp> forest_;
+  int rank_ = 0, ranks_ = 0;  // ranks_ 0: one process, no pieces
   PvdCollection collection_;
 };
 

@@ -12,12 +12,13 @@ namespace fw::io {
 
 WindVtkWriter::WindVtkWriter(std::filesystem::path directory, fluid::GridSpec spec,
                              std::vector<std::uint8_t> solid, std::vector<float> canopy_density,
-                             std::vector<std::string> fields)
+                             std::vector<std::string> fields, std::optional<WindPieces> pieces)
     : directory_(std::move(directory)),
       spec_(std::move(spec)),
       solid_(std::move(solid)),
       canopy_density_(std::move(canopy_density)),
       fields_(std::move(fields)),
+      pieces_(std::move(pieces)),
       collection_(directory_ / "wind.pvd") {}
 
 FrameNeeds WindVtkWriter::needs() const {
@@ -31,12 +32,29 @@ void WindVtkWriter::begin() {
   std::filesystem::create_directories(directory_ / "wind");
 }
 
+std::string WindVtkWriter::frame_file(int index, bool pieces) {
+  return fmt::format("wind/wind_{:06d}.{}", index, pieces ? "pvti" : "vti");
+}
+
 void WindVtkWriter::write(const OutputFrame& frame) {
   const WindFrame wind =
       make_wind_frame(spec_, frame.velocity, frame.pressure, solid_, canopy_density_, frame.time, frame.step);
-  const std::string file = fmt::format("wind/wind_{:06d}.vti", frame.index);
-  write_wind_vti(directory_ / file, wind, fields_);
-  collection_.add(frame.time, file);
+  if (!pieces_) {
+    const std::string file = frame_file(frame.index, false);
+    write_wind_vti(directory_ / file, wind, fields_);
+    collection_.add(frame.time, file);
+    return;
+  }
+  const auto piece_name = [&](int rank) { return fmt::format("wind_{:06d}_{:04d}.vti", frame.index, rank); };
+  VtkArrays arrays;
+  write_wind_vti(directory_ / "wind" / piece_name(pieces_->rank), wind, fields_, &pieces_->piece, &arrays);
+  if (pieces_->rank != 0) return;
+  std::vector<std::pair<std::array<int, 6>, std::string>> listed;
+  for (std::size_t r = 0; r < pieces_->extents.size(); ++r)
+    listed.emplace_back(pieces_->extents[r], piece_name(int(r)));
+  const auto& n = pieces_->domain_cells;
+  write_pvti(directory_ / frame_file(frame.index, true), arrays, spec_.origin, spec_.h,
+             {0, n[0], 0, n[1], 0, n[2]}, listed);
 }
 
 }  // namespace fw::io

@@ -1,12 +1,15 @@
 #!/usr/bin/env bash
-# bash mpi_ranks.sh FORESTWIND MPIEXEC WORK
+# bash mpi_ranks.sh FORESTWIND MPIEXEC WORK COMPARE_RUNS
 #
 # Under mpirun: `check` prints the blocks and each rank's wind grid; a split that cannot work exits 2 naming
-# file, line and key on every rank and leaves no rank behind; `run` over several ranks exits 2 before it
-# touches a device or writes anything (the stages on blocks are not built yet, docs/parallel.md).
+# file, line and key on every rank and leaves no rank behind. A forest in turbulent wind with a gust, run in
+# one process and over 2 and 4 ranks, writes the same probes.csv, byte for byte, and the same frames, value
+# for value (compare_runs reads the .pvti and .pvtp pieces as ParaView does). What does not run over ranks
+# yet (leaves) exits 2 before anything is written.
 forestwind=$1
 mpiexec=$2
 work=$3
+compare_runs=$4
 . "$(dirname "$0")/common.sh"
 export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
 ranks() { "$mpiexec" --oversubscribe -np "$@"; }
@@ -36,10 +39,65 @@ grep -q "bad_blocks.yaml:6: domain.decomposition: 3 x 1 blocks for 2 ranks" <<<"
   fail "the error does not name file, line and key: $out"
 
 cd "$work"
-out=$(ranks 2 "$forestwind" run blocks.yaml 2>&1)
+# 25 trees across the cuts of 2 x 1 and 2 x 2 blocks, turbulent inflow, a gust, two-way drag, probes inside
+# and outside the stand; 64 x 32 x 16 cells of 2 m for 2 s.
+cat >forest.yaml <<'YAML'
+scenario: ranks
+seed: 2
+time: {end: 2.0, dt: auto, cfl: 0.8}
+domain: {origin: [0, 0, 0], size: [128, 64, 32], cell_size: 2.0}
+boundaries: {west: auto, east: auto, south: slip, north: slip, ground: rough, top: slip, roughness_length: 0.1}
+wind:
+  speed: 6.0
+  direction: 260.0
+  reference_height: 10.0
+  profile: {type: power, alpha: 0.2}
+  turbulence: {intensity: 0.2, length_scale: 20.0}
+events:
+  - gust: {start: 0.5, duration: 3.0, peak_speed: 8.0, center: [40, 32, 12], radius: 15.0, travel: with_wind}
+forest:
+  two_way_coupling: true
+  species:
+    - name: beech
+      skeleton: {generate: {preset: broadleaf, height: 14.0, seed: 5}}
+      modes: {count: 8, damping_ratio: 0.05, wind_samples: 3}
+      canopy: {leaf_area_index: 3.0, drag_coefficient: 0.4}
+  stands:
+    - {species: beech, region: {min: [40, 10], max: [100, 54]}, layout: poisson, spacing: 9.0,
+       scale: {min: 0.9, max: 1.1}, seed: 4}
+output:
+  directory: out
+  interval: 1.0
+  probes:
+    - {name: upwind, position: [20, 32, 12]}
+    - {name: stand, position: [64.3, 32.1, 10]}
+    - {name: lee, position: [110, 30, 12]}
+YAML
+sed 's/      canopy: {leaf_area_index: 3.0, drag_coefficient: 0.4}/&\n      leaves: {model: stochastic, area: 0.003, fraction: 0.01}/' forest.yaml >leaves.yaml
+# The same over 2 x 2 blocks (4 ranks choose 4 x 1 themselves): cuts along y too, and corners.
+sed 's/cell_size: 2.0}/cell_size: 2.0, decomposition: [2, 2]}/' forest.yaml >forest_2x2.yaml
+
+"$forestwind" run forest.yaml -o one --quiet || fail "the run in one process exited $?"
+for n in 2 4 2x2; do
+  if [ $n = 2x2 ]; then
+    out=$(ranks 4 "$forestwind" run forest_2x2.yaml -o ranks$n 2>&1) || fail "the run over 2 x 2 ranks exited $?: $out"
+    grep -q "4 ranks: 2 x 2 blocks" <<<"$out" || fail "the run did not take 2 x 2 blocks: $out"
+  else
+    out=$(ranks $n "$forestwind" run forest.yaml -o ranks$n 2>&1) || fail "the run over $n ranks exited $?: $out"
+  fi
+  [ "$(grep -c "steps to t" <<<"$out")" -eq 1 ] || fail "more than rank 0 reported over $n ranks: $out"
+  cmp -s one/probes.csv ranks$n/probes.csv || fail "probes.csv over $n ranks differs from one process's"
+  grep -q 'file="wind/wind_000002.pvti"' ranks$n/wind.pvd || fail "wind.pvd over $n ranks lists no .pvti"
+  grep -q 'file="trees/trees_000002.pvtp"' ranks$n/trees.pvd || fail "trees.pvd over $n ranks lists no .pvtp"
+  [ "$(ls ranks$n/wind/wind_000002_*.vti | wc -l)" -eq "${n/2x2/4}" ] || fail "not one wind piece per rank over $n ranks"
+  grep -q '"status":"completed"' ranks$n/run.json || fail "run.json over $n ranks is not complete"
+  out=$("$compare_runs" one ranks$n) || fail "the frames over $n ranks differ from one process's: $out"
+done
+
+out=$(ranks 2 "$forestwind" run leaves.yaml -o leafy 2>&1)
 code=$?
-[ $code -eq 2 ] || fail "run over 2 ranks exited $code, not 2: $out"
-grep -q "rank [01] of 2: blocks.yaml: a run over 2 ranks (2 x 1 blocks of 16 x 16 x 8 cells)" <<<"$out" ||
-  fail "run over 2 ranks did not say why: $out"
-[ ! -e out ] || fail "run over 2 ranks created its output folder"
-echo "mpi ranks: check prints the blocks, bad splits and runs over ranks exit 2"
+[ $code -eq 2 ] || fail "a run with leaves over 2 ranks exited $code, not 2: $out"
+grep -q "leaves.yaml:[0-9]*: domain.decomposition: a run over 2 ranks cannot have leaves" <<<"$out" ||
+  fail "the run with leaves over 2 ranks did not say why: $out"
+[ ! -e leafy ] || fail "the run with leaves over 2 ranks created its output folder"
+echo "mpi ranks: check prints the blocks, bad splits exit 2, runs over 1, 2 and 4 ranks write the same files"
