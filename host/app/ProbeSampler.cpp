@@ -19,11 +19,7 @@ namespace {
 
 // Rank 0 asks for every probe's wind, the other ranks for none.
 std::vector<float> asked_points(const std::vector<std::array<double, 3>>& points, const Communicator& world) {
-  std::vector<float> flat;
-  if (world.rank() != 0) return flat;
-  for (const auto& p : points)
-    for (double x : p) flat.push_back(static_cast<float>(x));
-  return flat;
+  return world.rank() == 0 ? PointSampler::flat_positions(points) : std::vector<float>{};
 }
 
 const Communicator& world_of(const WindBlocks* blocks) {

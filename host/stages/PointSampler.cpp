@@ -12,16 +12,12 @@ std::size_t PointSampler::estimate_device_bytes(std::size_t point_count) {
   return 2 * ComputeContext::allocation_bytes(3 * point_count * sizeof(float));
 }
 
-namespace {
-
-std::vector<float> flat_positions(const std::vector<std::array<double, 3>>& points) {
+std::vector<float> PointSampler::flat_positions(const std::vector<std::array<double, 3>>& points) {
   std::vector<float> flat;
   for (const auto& p : points)
     for (double x : p) flat.push_back(static_cast<float>(x));
   return flat;
 }
-
-}  // namespace
 
 PointSampler::PointSampler(ComputeContext& cc, const fluid::GridSpec& spec,
                            const std::vector<std::array<double, 3>>& points)

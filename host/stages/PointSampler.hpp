@@ -28,6 +28,9 @@ class PointSampler {
   /// positions: 3 floats a point, world frame, m, as the device rounds them.
   PointSampler(ComputeContext& cc, const fluid::GridSpec& spec, std::vector<float> positions);
 
+  /// points as 3 floats a point, as the device rounds them (what the second constructor takes).
+  static std::vector<float> flat_positions(const std::vector<std::array<double, 3>>& points);
+
   /// Bytes the constructor allocates for `point_count` points: their positions and their sampled wind.
   static std::size_t estimate_device_bytes(std::size_t point_count);
 
