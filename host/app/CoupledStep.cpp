@@ -21,7 +21,7 @@ std::string where(long step, double time) {
 
 // Over ranks, the trees whose root's cell column this rank's block holds.
 trees::Forest rank_trees(const trees::Forest& forest, const WindGrid& wind, const WindBlocks* blocks) {
-  if (blocks == nullptr || blocks->world->size() == 1) return {};
+  if (blocks == nullptr) return {};
   std::vector<int> mine;
   for (int k = 0; k < forest.instance_count(); ++k) {
     const Eigen::Vector3d& root = forest.instances()[std::size_t(k)].position;
@@ -38,8 +38,9 @@ std::unique_ptr<WindBlocks> blocks_of(const SimulationPlan& plan, const Communic
   return std::make_unique<WindBlocks>(WindBlocks{world, plan.decomposition});
 }
 
-const WindBlocks* over_ranks(const WindBlocks* blocks) {
-  return blocks != nullptr && blocks->world->size() > 1 ? blocks : nullptr;
+std::optional<WindBlocks> over_ranks(const WindBlocks* blocks) {
+  if (blocks == nullptr || blocks->world->size() == 1) return std::nullopt;
+  return *blocks;
 }
 
 }  // namespace
@@ -51,10 +52,11 @@ CoupledStep::CoupledStep(ComputeContext& cc, WindGridSetup wind, const trees::Fo
                          CouplingSettings coupling, TimeInputs inputs, const WindBlocks* blocks)
     : cc_(cc),
       inputs_(std::move(inputs)),
-      wind_(cc, std::move(wind), over_ranks(blocks)),
-      rank_forest_(rank_trees(forest, wind_, over_ranks(blocks))),
-      own_forest_(over_ranks(blocks) != nullptr ? &rank_forest_ : &forest),
-      trees_(cc, wind_.local_spec(), *own_forest_, over_ranks(blocks)),
+      blocks_(over_ranks(blocks)),
+      wind_(cc, std::move(wind), this->blocks()),
+      rank_forest_(rank_trees(forest, wind_, this->blocks())),
+      own_forest_(blocks_ ? &rank_forest_ : &forest),
+      trees_(cc, wind_.local_spec(), *own_forest_, this->blocks()),
       tree_count_(forest.instance_count()) {
   if (!coupling.drag_density.empty()) wind_.set_canopy(std::move(coupling.drag_density), coupling.drag_law);
   trees_.set_drag_law(coupling.drag_law);
@@ -68,7 +70,7 @@ CoupledStep::CoupledStep(ComputeContext& cc, WindGridSetup wind, const trees::Fo
     integrator_dt_limit_ = forest.semi_implicit_dt_limit();
   const bool any_leaves = std::any_of(coupling.leaves.begin(), coupling.leaves.end(),
                                       [](const trees::SpeciesLeaves& l) { return l.count() > 0; });
-  if (any_leaves && has_trees() && over_ranks(blocks) != nullptr)
+  if (any_leaves && has_trees() && blocks_)
     throw std::invalid_argument(
         "CoupledStep: leaves do not run over MPI ranks yet (docs/parallel.md); run in one process, or set "
         "the species' leaves to none");

@@ -29,6 +29,7 @@
 #include <limits>
 #include <map>
 #include <memory>
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -89,6 +90,8 @@ class CoupledStep {
   /// The trees this rank steps: the whole forest in one process; over ranks, those whose roots its block
   /// holds (their Forest::id is the whole forest's index).
   const trees::Forest& own_forest() const { return *own_forest_; }
+  /// The ranks and their decomposition over several ranks; null in one process.
+  const WindBlocks* blocks() const { return blocks_ ? &*blocks_ : nullptr; }
   /// The largest stable dt of the semi-implicit integrator over every instance's modes, s; infinity with
   /// the exact integrator or without trees.
   double integrator_dt_limit() const { return integrator_dt_limit_; }
@@ -114,6 +117,7 @@ class CoupledStep {
 
   ComputeContext& cc_;
   TimeInputs inputs_;
+  std::optional<WindBlocks> blocks_;  // over several ranks
   WindGrid wind_;
   trees::Forest rank_forest_;  // over ranks, this rank's trees (own_forest_ points here); else empty
   const trees::Forest* own_forest_;

@@ -119,11 +119,9 @@ class RunLoop {
         options_(options),
         coupled_(coupled),
         world_(world),
-        blocks_(world.size() > 1 ? std::optional<WindBlocks>(WindBlocks{&world, plan.decomposition})
-                                 : std::nullopt),
         share_(output_share(plan, coupled, world)),
         probes_(cc, coupled, probe_points(plan), plan.forest.instance_count(), options.tip_trees,
-                plan.coupling.strong_wind_correction, blocks_ ? &*blocks_ : nullptr),
+                plan.coupling.strong_wind_correction, coupled.blocks()),
         output_(make_writers(plan, directory, cc.device(), probes_.tip_trees(), share_ ? &*share_ : nullptr)),
         needs_(output_.needs()) {
     if (share_ && world.rank() == 0) {
@@ -279,7 +277,6 @@ class RunLoop {
   const RunOptions& options_;
   CoupledStep& coupled_;
   const Communicator& world_;
-  const std::optional<WindBlocks> blocks_;  // over ranks
   const std::optional<OutputShare> share_;  // over ranks
   const Clock::time_point wall_start_ = Clock::now();
   ProbeSampler probes_;
