@@ -76,8 +76,8 @@ FwGrid GridSpec::to_device() const {
   g.oy = block_offset[1];
   g.wrap[0] = block_period[0];
   g.wrap[1] = block_period[1];
-  g.domain[0] = block_domain[0] > 0 ? block_domain[0] : nx;
-  g.domain[1] = block_domain[1] > 0 ? block_domain[1] : ny;
+  g.domain[0] = domain_cells()[0];
+  g.domain[1] = domain_cells()[1];
   return g;
 }
 

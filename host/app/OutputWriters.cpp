@@ -73,13 +73,8 @@ std::unique_ptr<io::FrameWriter> wind_pieces(const SimulationPlan& plan,
   };
   io::WindPieces pieces;
   pieces.rank = share.rank;
-  pieces.domain_cells = {spec.nx, spec.ny, spec.nz};
-  for (int axis = 0; axis < 2; ++axis) {
-    pieces.piece.first[axis] = share.block.halo_low[axis];
-    pieces.piece.count[axis] =
-        share.block.extent[axis] - share.block.halo_low[axis] - share.block.halo_high[axis];
-    pieces.piece.domain_first[axis] = share.block.origin[axis] + share.block.halo_low[axis];
-  }
+  const fluid::Block own = share.decomposition.block(share.rank);
+  pieces.piece = {share.block.halo_low, own.count, own.first};  // its cells lie after the low halo
   for (int r = 0; r < share.ranks; ++r) {
     const fluid::Block b = share.decomposition.block(r);
     pieces.extents.push_back(

@@ -30,11 +30,11 @@ const Communicator& world_of(const WindBlocks* blocks) {
 
 ProbeSampler::ProbeSampler(ComputeContext& cc, CoupledStep& coupled,
                            const std::vector<std::array<double, 3>>& points, int all_trees, int tip_trees,
-                           bool strong_wind_correction, const WindBlocks* blocks)
+                           bool strong_wind_correction)
     : cc_(cc),
-      world_(&world_of(blocks)),
+      world_(&world_of(coupled.blocks())),
       point_count_(int(points.size())),
-      points_(cc, coupled.wind().local_spec(), blocks, asked_points(points, world_of(blocks))),
+      points_(cc, coupled.wind().local_spec(), coupled.blocks(), asked_points(points, *world_)),
       forest_(coupled.own_forest()),
       strong_wind_correction_(strong_wind_correction) {
   for (int id = 0; id < std::min(tip_trees, all_trees); ++id) tip_trees_.push_back(id);

@@ -33,9 +33,9 @@ class ProbeSampler {
  public:
   /// points: probe positions, m, world frame; tip_trees: how many of the first instances (Forest::id 0, 1,
   /// ...) of the whole forest of `all_trees` trees are tracked (fewer when it is smaller). `coupled` is the
-  /// step it samples (its own_forest() must outlive the sampler); blocks: null in one process.
+  /// step it samples, over its ranks when it has blocks (its own_forest() must outlive the sampler).
   ProbeSampler(ComputeContext& cc, CoupledStep& coupled, const std::vector<std::array<double, 3>>& points,
-               int all_trees, int tip_trees, bool strong_wind_correction, const WindBlocks* blocks = nullptr);
+               int all_trees, int tip_trees, bool strong_wind_correction);
 
   /// The instance ids whose tips are tracked, in column order.
   const std::vector<int>& tip_trees() const { return tip_trees_; }

@@ -121,7 +121,7 @@ class RunLoop {
         world_(world),
         share_(output_share(plan, coupled, world)),
         probes_(cc, coupled, probe_points(plan), plan.forest.instance_count(), options.tip_trees,
-                plan.coupling.strong_wind_correction, coupled.blocks()),
+                plan.coupling.strong_wind_correction),
         output_(make_writers(plan, directory, cc.device(), probes_.tip_trees(), share_ ? &*share_ : nullptr)),
         needs_(output_.needs()) {
     if (share_ && world.rank() == 0) {

@@ -1,7 +1,7 @@
 #include "host/stages/SampleExchange.hpp"
 
 #include <algorithm>
-#include <cmath>
+#include <array>
 
 #include "host/runtime/Communicator.hpp"
 
@@ -9,14 +9,12 @@ namespace fw::host {
 
 int SampleExchange::holder(const fluid::GridSpec& spec, const fluid::Decomposition& decomposition,
                            const float point[3]) {
-  const int cells[2] = {spec.block_domain[0] > 0 ? spec.block_domain[0] : spec.nx,
-                        spec.block_domain[1] > 0 ? spec.block_domain[1] : spec.ny};
-  int column[2];
-  for (int a = 0; a < 2; ++a) {
-    const double x = std::floor((double(point[a]) - spec.origin[std::size_t(a)]) / spec.h);
-    column[a] = int(std::clamp(x, 0.0, double(cells[a] - 1)));
-  }
-  return decomposition.rank_holding(column[0], column[1]);
+  // The domain's cell, not the block's: a block's grid keeps the domain's origin.
+  fluid::GridSpec domain = spec;
+  domain.nx = spec.domain_cells()[0];
+  domain.ny = spec.domain_cells()[1];
+  const std::array<int, 3> cell = domain.cell_holding({point[0], point[1], point[2]});
+  return decomposition.rank_holding(cell[0], cell[1]);
 }
 
 SampleExchange::SampleExchange(ComputeContext& cc, const fluid::GridSpec& spec, const WindBlocks* blocks,

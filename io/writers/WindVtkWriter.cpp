@@ -52,9 +52,9 @@ void WindVtkWriter::write(const OutputFrame& frame) {
   std::vector<std::pair<std::array<int, 6>, std::string>> listed;
   for (std::size_t r = 0; r < pieces_->extents.size(); ++r)
     listed.emplace_back(pieces_->extents[r], piece_name(int(r)));
-  const auto& n = pieces_->domain_cells;
+  const std::array<int, 2> n = spec_.domain_cells();  // the block's grid knows the domain's
   write_pvti(directory_ / frame_file(frame.index, true), arrays, spec_.origin, spec_.h,
-             {0, n[0], 0, n[1], 0, n[2]}, listed);
+             {0, n[0], 0, n[1], 0, spec_.nz}, listed);
 }
 
 }  // namespace fw::io

@@ -23,7 +23,6 @@ namespace fw::io {
 struct WindPieces {
   int rank = 0;
   WindPiece piece;
-  std::array<int, 3> domain_cells{0, 0, 0};
   std::vector<std::array<int, 6>> extents;  ///< per rank: its piece's point extent in the domain
 };
 
