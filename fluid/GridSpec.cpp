@@ -81,12 +81,26 @@ FwGrid GridSpec::to_device() const {
   return g;
 }
 
-std::array<int, 3> GridSpec::cell_holding(const std::array<double, 3>& world) const {
-  const int n[3] = {nx, ny, nz};
+namespace {
+
+// The cell of n[0] x n[1] x n[2] cells from `origin` that holds `world`, clamped into them.
+std::array<int, 3> clamped_cell(const GridSpec& spec, const std::array<double, 3>& world, const int n[3]) {
   std::array<int, 3> cell{};
   for (std::size_t a = 0; a < 3; ++a)
-    cell[a] = std::clamp(int(std::floor((world[a] - origin[a]) / h)), 0, n[a] - 1);
+    cell[a] = std::clamp(int(std::floor((world[a] - spec.origin[a]) / spec.h)), 0, n[a] - 1);
   return cell;
+}
+
+}  // namespace
+
+std::array<int, 3> GridSpec::cell_holding(const std::array<double, 3>& world) const {
+  const int n[3] = {nx, ny, nz};
+  return clamped_cell(*this, world, n);
+}
+
+std::array<int, 3> GridSpec::domain_cell_holding(const std::array<double, 3>& world) const {
+  const int n[3] = {domain_cells()[0], domain_cells()[1], nz};
+  return clamped_cell(*this, world, n);
 }
 
 }  // namespace fw::fluid

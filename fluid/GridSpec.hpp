@@ -67,6 +67,9 @@ struct GridSpec {
   bool has_dirichlet_pressure() const;
   /// The cell (i, j, k) that holds a world position (m); positions outside the grid take the nearest cell.
   std::array<int, 3> cell_holding(const std::array<double, 3>& world) const;
+  /// The same in the domain's cells (domain_cells() along x and y): for a rank's block, the cell of the
+  /// whole domain that holds the position, whichever block holds it.
+  std::array<int, 3> domain_cell_holding(const std::array<double, 3>& world) const;
   /// The domain's cells along x and y: block_domain for a rank's block, else nx, ny.
   std::array<int, 2> domain_cells() const {
     return {block_domain[0] > 0 ? block_domain[0] : nx, block_domain[1] > 0 ? block_domain[1] : ny};

@@ -13,6 +13,7 @@
 #include <vtkPointData.h>
 #include <vtkPoints.h>
 #include <vtkPolyData.h>
+#include <vtkSmartPointer.h>
 #include <vtkTypeInt32Array.h>
 #include <vtkUnsignedCharArray.h>
 #include <vtkXMLPolyDataWriter.h>
@@ -53,8 +54,10 @@ void validate_leaf_frame(const char* function, const LeafFrame& leaves) {
   }
 }
 
-void write_leaves_vtp(const std::filesystem::path& path, double time, const LeafFrame& leaves) {
-  validate_leaf_frame("write_leaves_vtp", leaves);
+namespace {
+
+// The poly data of `leaves` at `time`, as the header describes it.
+vtkSmartPointer<vtkPolyData> leaves_poly_data(double time, const LeafFrame& leaves) {
   const std::size_t n = leaves.size_written();
   // Vertex ids are stored in 32 bits (half the connectivity of 64-bit ids); a frame never comes near 2^31.
   if (n > std::size_t(std::numeric_limits<std::int32_t>::max())) {
@@ -103,7 +106,7 @@ void write_leaves_vtp(const std::filesystem::path& path, double time, const Leaf
   vtkNew<vtkCellArray> verts;
   verts->SetData(offsets.Get(), connectivity.Get());
 
-  vtkNew<vtkPolyData> data;
+  auto data = vtkSmartPointer<vtkPolyData>::New();
   data->SetPoints(points);
   data->SetVerts(verts);
   data->GetPointData()->AddArray(normal);
@@ -116,7 +119,18 @@ void write_leaves_vtp(const std::filesystem::path& path, double time, const Leaf
   time_value->SetNumberOfTuples(1);
   time_value->SetValue(0, time);
   data->GetFieldData()->AddArray(time_value);
+  return data;
+}
 
+}  // namespace
+
+VtkArrays leaves_vtp_arrays() {
+  return describe_arrays(leaves_poly_data(0.0, LeafFrame{}));
+}
+
+void write_leaves_vtp(const std::filesystem::path& path, double time, const LeafFrame& leaves) {
+  validate_leaf_frame("write_leaves_vtp", leaves);
+  vtkSmartPointer<vtkPolyData> data = leaves_poly_data(time, leaves);
   vtkNew<vtkXMLPolyDataWriter> writer;
   writer->SetInputData(data);
   write_vtk_xml("write_leaves_vtp", path, writer);

@@ -25,6 +25,7 @@
 
 #include <filesystem>
 
+#include "io/ParallelVtk.hpp"
 #include "io/writers/FrameWriter.hpp"
 
 namespace fw::io {
@@ -39,5 +40,8 @@ void validate_leaf_frame(const char* function, const LeafFrame& leaves);
 /// std::runtime_error naming the path when the folder does not exist or the file cannot be written (no
 /// partial file or temporary is left behind).
 void write_leaves_vtp(const std::filesystem::path& path, double time, const LeafFrame& leaves);
+
+/// The arrays every leaves file has, for the .pvtp that lists a frame's pieces over ranks.
+VtkArrays leaves_vtp_arrays();
 
 }  // namespace fw::io

@@ -2,9 +2,9 @@
  * landing and exits; and on output frames every leaf's blade, the attached ones at their deformed anchors.
  * Reference: trees/LeafReference.cpp. Host: host/stages/LeafStages.
  *
- * A step runs three kernels:
- *  - leaf_site_wind: the wind of every site (a cell that holds the rest centre of at least one leaf), the
- *    cell-centred velocity. Attached leaves read their site's wind: one load a leaf instead of 24.
+ * Before a step, the host samples the wind at every site (the centre of a cell that holds the rest centre of
+ * at least one leaf: host/stages/WindAtPoints). Attached leaves read their site's wind: one load a leaf
+ * instead of 24. A step then runs two kernels:
  *  - leaves_flying_step: one leaf at a time, over blocks of FW_LANES flat leaves (FW_FLAT_FOR); blocks
  *    without a flying leaf are skipped with one vector compare. It runs before the attached leaves, so that
  *    a leaf shed in a step flies from the next one on.
@@ -15,8 +15,14 @@
  * table: FW_REST_* in shared_types.h). Per flat leaf, every array padded by FW_LANES values: state (uchar,
  * FW_LEAF_*); theta and theta_rate (attached, pseudo-branch: rad, rad/s); position, velocity and normal
  * (4 floats: the blade centre, m; m/s; unit), kept for leaves that are no longer attached, from the step
- * that shed them on. Counters (FW_LEAF_COUNT_*) are atomics: the totals do not depend on the order of the
- * leaves. */
+ * that shed them on; flight (4 floats: the world tumble axis and the blade's side, m) and flight_drag (1/m),
+ * set when a leaf is shed, so that a flying leaf needs nothing of its tree. Counters (FW_LEAF_COUNT_*) are
+ * atomics: the totals do not depend on the order of the leaves.
+ *
+ * Over MPI ranks a rank steps the leaves of its own trees, and the flying and landed leaves in its block's
+ * own columns: after each step leaves_leaving lists those outside them, and the host sends them on. Their
+ * flight samples and tests cells in the domain's indices, so a leaf moves by the bits one process gives it.
+ */
 #include "common.cl"
 #include "lanes.cl"
 
@@ -27,24 +33,6 @@
 #define FW_PI 3.14159265358979f
 #define FW_MAX_FLUTTER_ANGLE (0.5f * FW_PI) /* theta is clamped to [-pi/2, pi/2] */
 #define FW_MAX_SUB_STEP_CELLS 0.5f          /* a flying leaf moves at most half a cell per sub-step */
-
-/* ---- Sites ------------------------------------------------------------------------------------------ */
-
-/* The wind of every site: at the centre of its cell, each component the mean of the cell's two faces along
- * its axis (reference: trees/ForestReference.cpp cell_centred_velocity). site_cells: the sites' cell
- * indices; site_wind: 3 rows of site_stride floats (x, y, z). */
-__kernel void leaf_site_wind(const FwGrid g, const int site_count, __global const int* site_cells,
-                             __global const float* u, __global const float* v, __global const float* w,
-                             const int site_stride, __global float* site_wind) {
-  FW_FLAT_FOR(n, site_count) {
-    const int cell = site_cells[n];
-    const int i = cell % g.nx, j = (cell / g.nx) % g.ny, k = cell / (g.nx * g.ny);
-    site_wind[n] = 0.5f * (u[face_index(&g, 0, i, j, k)] + u[face_index(&g, 0, i + 1, j, k)]);
-    site_wind[site_stride + n] = 0.5f * (v[face_index(&g, 1, i, j, k)] + v[face_index(&g, 1, i, j + 1, k)]);
-    site_wind[2 * site_stride + n] =
-        0.5f * (w[face_index(&g, 2, i, j, k)] + w[face_index(&g, 2, i, j, k + 1)]);
-  }
-}
 
 /* ---- One leaf at a time: flying leaves --------------------------------------------------------------- */
 
@@ -68,16 +56,25 @@ FW_INLINE float3 wind_at(const FwGrid* g, __global const float* u, __global cons
                   sample_mac_component(g, w, 2, X));
 }
 
-/* Below the ground or in a solid cell (world position x). Outside the grid's sides nothing is solid (exits
- * come first). Reference: LeafReference.cpp Terrain::blocked. */
-FW_INLINE int blocked(const FwGrid* g, __global const uchar* mask, const float3 x) {
+/* Below the ground or in a solid cell (world position x). Outside the domain's sides nothing is solid (exits
+ * come first). A cell in the domain beyond a rank's block and its halo counts a FW_LEAF_COUNT_PAST_HALO and
+ * reads as free. Reference: LeafReference.cpp Terrain::blocked. */
+FW_INLINE int blocked(const FwGrid* g, __global const uchar* mask, const float3 x, __global int* counters) {
   if (x.z < g->origin[2]) return 1;
-  const int n[3] = {g->nx, g->ny, g->nz};
+  const int n[3] = {g->domain[0], g->domain[1], g->nz}, offset[3] = {g->ox, g->oy, 0};
+  const int extent[3] = {g->nx, g->ny, g->nz};
   const float p[3] = {x.x, x.y, x.z};
   int cell[3];
   for (int a = 0; a < 3; ++a) {
     cell[a] = (int)floor((p[a] - g->origin[a]) / g->h);
     if (cell[a] < 0 || cell[a] >= n[a]) return 0;
+  }
+  for (int a = 0; a < 3; ++a) {
+    cell[a] -= offset[a];
+    if (cell[a] < 0 || cell[a] >= extent[a]) {
+      atomic_inc(&counters[FW_LEAF_COUNT_PAST_HALO]);
+      return 0;
+    }
   }
   return !(mask[cell_index(g, cell[0], cell[1], cell[2])] & FW_MASK_FLUID);
 }
@@ -88,10 +85,10 @@ FW_INLINE float top_face(const FwGrid* g, const float3 x) {
   return g->origin[2] + (float)(k + 1) * g->h;
 }
 
-/* Wraps q (and p with it) through periodic x and y sides; 0 when q left through any other side or the top
- * (the ground is no side: below it is blocked). */
+/* Wraps q (and p with it) through the domain's periodic x and y sides; 0 when q left through any other side
+ * or the top (the ground is no side: below it is blocked). */
 FW_INLINE int inside_or_wrapped(const FwGrid* g, float3* p, float3* q) {
-  const int n[2] = {g->nx, g->ny};
+  const int n[2] = {g->domain[0], g->domain[1]};
   for (int a = 0; a < 2; ++a) {
     const float lo = g->origin[a], span = (float)n[a] * g->h;
     float qa = a == 0 ? q->x : q->y;
@@ -149,13 +146,13 @@ FW_INLINE void step_flying(const FwGrid* g, const FwStep* s, const float flight_
       atomic_inc(&counters[FW_LEAF_COUNT_EXITED]);
       return;
     }
-    if (!blocked(g, mask, q)) {
+    if (!blocked(g, mask, q, counters)) {
       x = q;
       continue;
     }
     /* Solid below: the sub-step started above the blocking cell's top face, and the point on it is free. */
     const float3 on_top = (float3)(q.x, q.y, top_face(g, q));
-    if (p.z >= on_top.z && !blocked(g, mask, on_top)) {
+    if (p.z >= on_top.z && !blocked(g, mask, on_top, counters)) {
       land(j, on_top, state, position, velocity, counters);
       return;
     }
@@ -164,7 +161,7 @@ FW_INLINE void step_flying(const FwGrid* g, const FwStep* s, const float flight_
     vel.x = vel.y = 0.0f;
     travel.x = travel.y = 0.0f;
     const float3 down = (float3)(p.x, p.y, q.z);
-    if (!blocked(g, mask, down)) {
+    if (!blocked(g, mask, down, counters)) {
       x = down;
       continue;
     }
@@ -175,18 +172,11 @@ FW_INLINE void step_flying(const FwGrid* g, const FwStep* s, const float flight_
   velocity[j] = (float4)(vel, 0.0f);
 }
 
-/* Field `field` (one row) of rest leaf r. */
-FW_INLINE float rest_value(__global const float* rest, const int stride, const int field, const int r) {
-  return rest[field * stride + r];
-}
-
 /* One step of every flying leaf over s.dt. */
 __kernel void leaves_flying_step(const FwGrid g, const FwStep s, const int leaf_count,
-                                 __global const int* leaf_instance, __global const int* first_leaf,
-                                 __global const FwTreeInstance* instances,
-                                 __global const FwLeafSpecies* leaf_species, __global const float* rest,
-                                 const int rest_stride, __global const uchar* mask, __global const float* u,
-                                 __global const float* v, __global const float* w, __global uchar* state,
+                                 __global const uchar* mask, __global const float* u, __global const float* v,
+                                 __global const float* w, __global const float4* flight,
+                                 __global const float* flight_drag, __global uchar* state,
                                  __global float4* position, __global float4* velocity,
                                  __global float4* normal, __global int* counters) {
   /* FW_LANES states at a time: most leaves are attached or landed, and a block without a flying leaf costs
@@ -196,17 +186,52 @@ __kernel void leaves_flying_step(const FwGrid g, const FwStep s, const int leaf_
     if (!any(convert_lanei(lane_load(0, state + j0) == (uchar)(FW_LEAF_FLYING)))) continue;
     for (int j = j0; j < min(j0 + FW_LANES, leaf_count); ++j) {
       if (state[j] != FW_LEAF_FLYING) continue;
-      const int k = leaf_instance[j];
-      const FwTreeInstance tree = instances[k];
-      const FwLeafSpecies sp = leaf_species[tree.species];
-      const int r = sp.leaf_offset + (j - first_leaf[k]);
-      const float3 axis = (float3)(rest_value(rest, rest_stride, FW_REST_TUMBLE_AXIS, r),
-                                   rest_value(rest, rest_stride, FW_REST_TUMBLE_AXIS + 1, r),
-                                   rest_value(rest, rest_stride, FW_REST_TUMBLE_AXIS + 2, r));
-      step_flying(&g, &s, sp.flight_drag, sp.side * tree.scale, turn(&tree, axis), mask, u, v, w, j, state,
-                  position, velocity, normal, counters);
+      const float4 f = flight[j];
+      step_flying(&g, &s, flight_drag[j], f.w, f.xyz, mask, u, v, w, j, state, position, velocity, normal,
+                  counters);
     }
   }
+}
+
+/* Over ranks, after a step: the flying and landed leaves whose cell column lies outside the block's own cells
+ * (own_lo <= i < own_hi along x, y, the domain's indices), their slots appended to `leaving` (in no order:
+ * the host sorts them) and counted in FW_LEAF_COUNT_LEAVING. */
+__kernel void leaves_leaving(const FwGrid g, const int leaf_count, const int own_lo_x, const int own_hi_x,
+                             const int own_lo_y, const int own_hi_y, __global const uchar* state,
+                             __global const float4* position, __global int* leaving, __global int* counters) {
+  FW_FLAT_FOR(block, (leaf_count + FW_LANES - 1) / FW_LANES) {
+    const int j0 = (int)block * FW_LANES;
+    const lanei st = convert_lanei(lane_load(0, state + j0));
+    if (!any((st == (lanei)(FW_LEAF_FLYING)) | (st == (lanei)(FW_LEAF_LANDED)))) continue;
+    for (int j = j0; j < min(j0 + FW_LANES, leaf_count); ++j) {
+      if (state[j] != FW_LEAF_FLYING && state[j] != FW_LEAF_LANDED) continue;
+      const float4 p = position[j];
+      const int i = (int)floor((p.x - g.origin[0]) / g.h), k = (int)floor((p.y - g.origin[1]) / g.h);
+      if (i >= own_lo_x && i < own_hi_x && k >= own_lo_y && k < own_hi_y) continue;
+      leaving[atomic_inc(&counters[FW_LEAF_COUNT_LEAVING])] = j;
+    }
+  }
+}
+
+/* Over ranks: the leaves in `slots` packed for the host (FW_LEAF_PACKED_FLOATS each, shared_types.h), and
+ * their slots emptied (FW_LEAF_MOVED; the host restores a leaf it keeps). */
+__kernel void leaves_pack(const int count, __global const int* slots, __global uchar* state,
+                          __global const float4* position, __global const float4* velocity,
+                          __global const float4* normal, __global const float4* flight,
+                          __global const float* flight_drag, __global float4* packed) {
+  FW_FLAT_FOR(n, count) {
+    const int j = slots[n];
+    packed[4 * n] = (float4)(position[j].xyz, (float)state[j]);
+    packed[4 * n + 1] = (float4)(velocity[j].xyz, flight_drag[j]);
+    packed[4 * n + 2] = normal[j];
+    packed[4 * n + 3] = flight[j];
+    state[j] = FW_LEAF_MOVED;
+  }
+}
+
+/* Field `field` (one row) of rest leaf r. */
+FW_INLINE float rest_value(__global const float* rest, const int stride, const int field, const int r) {
+  return rest[field * stride + r];
 }
 
 /* ---- FW_LANES leaves at a time: attached leaves ------------------------------------------------------ */
@@ -295,9 +320,10 @@ FW_INLINE RestLanes rest_lanes(__global const float* rest, const int stride, con
 
 /* The wind of the lanes' sites (leaf_site_wind), in the instance's skeleton frame. */
 FW_INLINE lane3 site_wind_lanes(const FwTreeInstance* tree, __global const float* site_wind,
-                                const int site_stride, const lanei site) {
-  return to_skeleton(tree, lane3_of(gather(site_wind, site), gather(site_wind + site_stride, site),
-                                    gather(site_wind + 2 * site_stride, site)));
+                                const lanei site) {
+  const lanei at = 3 * site;
+  return to_skeleton(tree,
+                     lane3_of(gather(site_wind, at), gather(site_wind + 1, at), gather(site_wind + 2, at)));
 }
 
 /* The blade's normal at pseudo-branch angle theta (cosine c, sine s): the rest normal turned about the
@@ -442,13 +468,14 @@ FW_INLINE lane3 blade_centres(const FwTreeInstance* tree, const FwLeafSpecies* s
 FW_INLINE void attached_block(const FwTreeInstance* tree, const FwLeafSpecies* sp, const int first_leaf,
                               const int i0, const FwStep* s, __global const float* rest,
                               const int rest_stride, __global const int* leaf_site,
-                              __global const float* site_wind, const int site_stride, __global uchar* state,
-                              __global float* theta, __global float* theta_rate, __global float4* position,
-                              __global float4* velocity, __global float4* normal, __global int* counters) {
+                              __global const float* site_wind, __global uchar* state, __global float* theta,
+                              __global float* theta_rate, __global float4* position,
+                              __global float4* velocity, __global float4* normal, __global float4* flight,
+                              __global float* flight_drag, __global int* counters) {
   FW_LEAF_BLOCK_SETUP
   if (!any(attached)) return;
   const RestLanes r = rest_lanes(rest, rest_stride, r0);
-  const lane3 u = site_wind_lanes(tree, site_wind, site_stride, lane_load(0, leaf_site + j0));
+  const lane3 u = site_wind_lanes(tree, site_wind, lane_load(0, leaf_site + j0));
   const lanef speed = sqrt(dot3(u, u));
   lanef angle = lane_load(0, theta + j0), rate = lane_load(0, theta_rate + j0);
   /* The blades at the step's start: the pose the last step left (the pseudo-branch's angle; the stochastic
@@ -470,28 +497,32 @@ FW_INLINE void attached_block(const FwTreeInstance* tree, const FwLeafSpecies* s
   for (int l = 0; l < FW_LANES; ++l) {
     if (!flag[l]) continue;
     const int j = j0 + l;
+    const int rl = r0 + l;
+    const float3 axis = (float3)(rest_value(rest, rest_stride, FW_REST_TUMBLE_AXIS, rl),
+                                 rest_value(rest, rest_stride, FW_REST_TUMBLE_AXIS + 1, rl),
+                                 rest_value(rest, rest_stride, FW_REST_TUMBLE_AXIS + 2, rl));
     state[j] = FW_LEAF_FLYING;
     position[j] = (float4)(lane_value(&centre, l), 0.0f);
     normal[j] = (float4)(lane_value(&nw, l), 0.0f);
     velocity[j] = (float4)(0.0f);
+    flight[j] = (float4)(turn(tree, axis), sp->side * tree->scale);
+    flight_drag[j] = sp->flight_drag;
     atomic_inc(&counters[FW_LEAF_COUNT_SHED]);
   }
 }
 
-#define FW_ATTACHED_BLOCK(tree, sp, first_leaf, i0)                                                         \
-  attached_block(tree, sp, first_leaf, i0, &s, rest, rest_stride, leaf_site, site_wind, site_stride, state, \
-                 theta, theta_rate, position, velocity, normal, counters)
+#define FW_ATTACHED_BLOCK(tree, sp, first_leaf, i0)                                                   \
+  attached_block(tree, sp, first_leaf, i0, &s, rest, rest_stride, leaf_site, site_wind, state, theta, \
+                 theta_rate, position, velocity, normal, flight, flight_drag, counters)
 
-__kernel void leaves_attached_step(const FwStep s, const int block_count, const int instance_count,
-                                   __global const int* first_block, __global const int* first_leaf,
-                                   __global const FwTreeInstance* instances,
-                                   __global const FwLeafSpecies* leaf_species, __global const float* rest,
-                                   const int rest_stride, __global const int* leaf_site,
-                                   __global const float* site_wind, const int site_stride,
-                                   __global uchar* state, __global float* theta, __global float* theta_rate,
-                                   __global float4* position, __global float4* velocity,
-                                   __global float4* normal,
-                                   __global int* counters){FW_FOR_LEAF_BLOCKS(FW_ATTACHED_BLOCK)}
+__kernel void leaves_attached_step(
+    const FwStep s, const int block_count, const int instance_count, __global const int* first_block,
+    __global const int* first_leaf, __global const FwTreeInstance* instances,
+    __global const FwLeafSpecies* leaf_species, __global const float* rest, const int rest_stride,
+    __global const int* leaf_site, __global const float* site_wind, __global uchar* state,
+    __global float* theta, __global float* theta_rate, __global float4* position, __global float4* velocity,
+    __global float4* normal, __global float4* flight, __global float* flight_drag,
+    __global int* counters){FW_FOR_LEAF_BLOCKS(FW_ATTACHED_BLOCK)}
 
 /* Every leaf's blade at time t (the last step's end): the attached ones from their angles (and the wind of
  * that step, for the stochastic amplitudes), at their anchors moved by their element's displacement
@@ -501,14 +532,14 @@ __kernel void leaves_attached_step(const FwStep s, const int block_count, const 
 FW_INLINE void frame_block(const FwTreeInstance* tree, const FwLeafSpecies* sp, const int first_leaf,
                            const int i0, const float t, __global const float* rest, const int rest_stride,
                            __global const int* rest_nodes, __global const int* leaf_site,
-                           __global const float* site_wind, const int site_stride, const int displaced,
+                           __global const float* site_wind, const int displaced,
                            __global const float* displacements, __global const uchar* state,
                            __global const float* theta, __global const float4* position,
                            __global const float4* normal, __global float4* frame_position,
                            __global float4* frame_normal) {
   FW_LEAF_BLOCK_SETUP
   const RestLanes r = rest_lanes(rest, rest_stride, r0);
-  const lane3 u = site_wind_lanes(tree, site_wind, site_stride, lane_load(0, leaf_site + j0));
+  const lane3 u = site_wind_lanes(tree, site_wind, lane_load(0, leaf_site + j0));
   lane3 petiole, n;
   blade_lanes(sp, &r, lane_load(0, theta + j0), t, sqrt(dot3(u, u)), &petiole, &n);
   const LaneArrays centre = split3(blade_centres(tree, sp, &r, petiole)), nw = split3(to_world(tree, n));
@@ -536,9 +567,9 @@ FW_INLINE void frame_block(const FwTreeInstance* tree, const FwLeafSpecies* sp, 
   }
 }
 
-#define FW_FRAME_BLOCK(tree, sp, first_leaf, i0)                                                             \
-  frame_block(tree, sp, first_leaf, i0, t, rest, rest_stride, rest_nodes, leaf_site, site_wind, site_stride, \
-              displaced, displacements, state, theta, position, normal, frame_position, frame_normal)
+#define FW_FRAME_BLOCK(tree, sp, first_leaf, i0)                                                           \
+  frame_block(tree, sp, first_leaf, i0, t, rest, rest_stride, rest_nodes, leaf_site, site_wind, displaced, \
+              displacements, state, theta, position, normal, frame_position, frame_normal)
 
 __kernel void leaves_frame(const float t, const int block_count, const int instance_count,
                            __global const int* first_block, __global const int* first_leaf,
@@ -546,7 +577,7 @@ __kernel void leaves_frame(const float t, const int block_count, const int insta
                            __global const FwLeafSpecies* leaf_species, __global const float* rest,
                            const int rest_stride, __global const int* rest_nodes,
                            __global const int* leaf_site, __global const float* site_wind,
-                           const int site_stride, const int displaced, __global const float* displacements,
+                           const int displaced, __global const float* displacements,
                            __global const uchar* state, __global const float* theta,
                            __global const float4* position, __global const float4* normal,
                            __global float4* frame_position, __global float4* frame_normal) {

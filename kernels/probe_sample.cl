@@ -15,3 +15,12 @@ __kernel void probe_sample(const FwGrid g, const int point_count, __global const
     wind[3 * n + 2] = sample_mac_component(&g, w, 2, X);
   }
 }
+
+/* Points that other ranks sampled (host/stages/WindAtPoints), written into their places: wind[3 slots[n] + a]
+ * = values[3 n + a]. */
+__kernel void probe_place(const int count, __global const int* slots, __global const float* values,
+                          __global float* wind) {
+  FW_FLAT_FOR(n, count) {
+    for (int a = 0; a < 3; ++a) wind[3 * slots[n] + a] = values[3 * n + a];
+  }
+}

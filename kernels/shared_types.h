@@ -210,6 +210,9 @@ typedef struct FwTreeInstance {
 #define FW_LEAF_FLYING 1
 #define FW_LEAF_LANDED 2
 #define FW_LEAF_EXITED 3
+/* A slot whose leaf moved on to the rank whose block it flew into (host/stages/LeafStages): never stepped,
+ * never written. */
+#define FW_LEAF_MOVED 4
 /* Flutter models (trees/LeafSettings.hpp FlutterModel). */
 #define FW_FLUTTER_NONE 0
 #define FW_FLUTTER_PSEUDO_BRANCH 1
@@ -218,7 +221,14 @@ typedef struct FwTreeInstance {
 #define FW_LEAF_COUNT_SHED 0
 #define FW_LEAF_COUNT_LANDED 1
 #define FW_LEAF_COUNT_EXITED 2
-#define FW_LEAF_COUNTERS 3
+/* Over ranks, each step: the leaves found outside the block's own columns (their slots listed for the host),
+ * and the sub-steps that reached past the block's halo (the run stops: the halo is too narrow). */
+#define FW_LEAF_COUNT_LEAVING 3
+#define FW_LEAF_COUNT_PAST_HALO 4
+#define FW_LEAF_COUNTERS 5
+/* A leaf moving to another rank (kernels/leaves.cl leaves_pack): its position, velocity, normal and flight
+ * (4 floats each), with its state in the position's 4th float and its flight drag in the velocity's. */
+#define FW_LEAF_PACKED_FLOATS 16
 
 /* A species' leaf parameters at scale 1 (an instance of scale s: side, lever times s, area, mass times s^2).
  */

@@ -63,15 +63,6 @@ __kernel void tree_wind_forces(const FwDragLaw law, const int instance_count,
   }
 }
 
-/* Values that other ranks sampled, written into their flat samples: sampled_wind[3 slots[n] + a] =
- * values[3 n + a]. */
-__kernel void tree_place_samples(const int count, __global const int* slots, __global const float* values,
-                                 __global float* sampled_wind) {
-  FW_FLAT_FOR(n, count) {
-    for (int a = 0; a < 3; ++a) sampled_wind[3 * slots[n] + a] = values[3 * n + a];
-  }
-}
-
 /* Unresolved turbulence (trees/UnresolvedTurbulence.hpp; reference: trees/ForestReference.cpp
  * unresolved_modal_forces, advance_travelled). Run right after tree_wind_forces, only when the forcing is on,
  * so that the resolved forces stay bit for bit what they are without it.

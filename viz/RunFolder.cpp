@@ -188,8 +188,7 @@ TreeLines read_trees(const fs::path& path) {
 }
 
 LeafPoints read_leaves(const fs::path& path) {
-  auto reader = read_xml<vtkXMLPolyDataReader>(path);
-  vtkPolyData* poly = reader->GetOutput();
+  const auto [reader, poly] = read_dataset<vtkPolyData, vtkXMLPolyDataReader, vtkXMLPPolyDataReader>(path);
   LeafPoints leaves;
   vtkDataArray* state = poly->GetPointData()->GetArray("state");
   vtkDataArray* size = poly->GetPointData()->GetArray("size");

@@ -70,12 +70,10 @@ CoupledStep::CoupledStep(ComputeContext& cc, WindGridSetup wind, const trees::Fo
     integrator_dt_limit_ = forest.semi_implicit_dt_limit();
   const bool any_leaves = std::any_of(coupling.leaves.begin(), coupling.leaves.end(),
                                       [](const trees::SpeciesLeaves& l) { return l.count() > 0; });
-  if (any_leaves && has_trees() && blocks_)
-    throw std::invalid_argument(
-        "CoupledStep: leaves do not run over MPI ranks yet (docs/parallel.md); run in one process, or set "
-        "the species' leaves to none");
+  // Over ranks every rank takes part, with or without trees of its own.
   if (any_leaves && has_trees())
-    leaves_ = std::make_unique<LeafStages>(cc, wind_.spec(), forest, coupling.leaves);
+    leaves_ =
+        std::make_unique<LeafStages>(cc, wind_.local_spec(), *own_forest_, coupling.leaves, this->blocks());
 }
 
 LeafStages& CoupledStep::leaves() {

@@ -67,8 +67,8 @@ class CoupledStep {
   /// Uploads the wind grid, the canopy drag and the forest. Throws std::invalid_argument when the grid does
   /// not fit the device or a setting is invalid (see WindGrid, ForestStages). `forest` must outlive this.
   /// blocks: null in one process; over ranks this rank steps its block of the wind and the trees whose roots
-  /// it holds (own_forest()), and every call is collective. Leaves do not run over ranks yet
-  /// (std::invalid_argument).
+  /// it holds (own_forest()) with their leaves, and the flying leaves its block holds; every call is
+  /// collective.
   CoupledStep(ComputeContext& cc, WindGridSetup wind, const trees::Forest& forest, CouplingSettings coupling,
               TimeInputs inputs, const WindBlocks* blocks = nullptr);
   /// The plan's wind, forest, coupling and time inputs, over the plan's decomposition when `world` has

@@ -101,6 +101,8 @@ std::vector<std::unique_ptr<io::FrameWriter>> make_writers(const SimulationPlan&
     if (out.vtk_trees && trees_present)
       writers.push_back(
           std::make_unique<io::TreesVtkWriter>(directory, *share->own_forest, share->rank, share->ranks));
+    if (out.vtk_leaves && leaves_present)
+      writers.push_back(std::make_unique<io::LeavesVtkWriter>(directory, share->rank, share->ranks));
     if (share->rank != 0) return writers;
   }
   writers.insert(writers.begin(), std::make_unique<io::ManifestWriter>(directory, manifest_of(plan, device)));
@@ -110,7 +112,8 @@ std::vector<std::unique_ptr<io::FrameWriter>> make_writers(const SimulationPlan&
   }
   if (out.vtk_trees && trees_present && share == nullptr)
     writers.push_back(std::make_unique<io::TreesVtkWriter>(directory, plan.forest));
-  if (out.vtk_leaves && leaves_present) writers.push_back(std::make_unique<io::LeavesVtkWriter>(directory));
+  if (out.vtk_leaves && leaves_present && share == nullptr)
+    writers.push_back(std::make_unique<io::LeavesVtkWriter>(directory));
   if (out.vdb_enabled) {
     writers.push_back(std::make_unique<io::WindVdbWriter>(
         directory, plan.wind.spec, plan.wind.solid, contains(out.vdb_grids, "vel"),

@@ -12,10 +12,12 @@
 #include <utility>
 #include <vector>
 
+#include "host/app/FrameGather.hpp"
 #include "host/app/OutputWriters.hpp"
 #include "host/app/ProbeSampler.hpp"
 #include "host/runtime/Communicator.hpp"
 #include "io/PvdCollection.hpp"
+#include "io/writers/LeavesVtkWriter.hpp"
 #include "io/writers/OutputPipeline.hpp"
 #include "io/writers/TreesVtkWriter.hpp"
 #include "io/writers/WindVtkWriter.hpp"
@@ -41,22 +43,23 @@ std::string format_duration(double seconds) {
   return fmt::format("{}s", s);
 }
 
-// The leaves the writers get: flying and landed ones always, every attached_stride-th attached one (none for
-// 0), exited ones never (they are outside the domain).
+// The leaves the writers get: flying and landed ones always, of the attached ones those whose index among
+// their tree's leaves is a multiple of attached_stride (none for 0), so that a frame shows the same attached
+// leaves however many have been shed and however the forest is split over ranks; exited ones never (they
+// are outside the domain).
 io::LeafFrame leaf_frame(const LeafSnapshot& snap, const trees::LeafCounts& counts, int attached_stride) {
   io::LeafFrame out;
   out.counts = counts;
-  long attached_seen = 0;
   for (std::size_t j = 0; j < snap.state.size(); ++j) {
     const auto state = static_cast<trees::LeafState>(snap.state[j]);
     if (state == trees::LeafState::exited) continue;
-    if (state == trees::LeafState::attached &&
-        (attached_stride <= 0 || attached_seen++ % attached_stride != 0))
+    if (state == trees::LeafState::attached && (attached_stride <= 0 || snap.leaf[j] % attached_stride != 0))
       continue;
     out.position.push_back({snap.position[3 * j], snap.position[3 * j + 1], snap.position[3 * j + 2]});
     out.normal.push_back({snap.normal[3 * j], snap.normal[3 * j + 1], snap.normal[3 * j + 2]});
     out.state.push_back(snap.state[j]);
     out.tree_id.push_back(snap.tree_id[j]);
+    out.leaf.push_back(snap.leaf[j]);
     out.side.push_back(snap.side[j]);
   }
   return out;
@@ -123,11 +126,12 @@ class RunLoop {
         probes_(cc, coupled, probe_points(plan), plan.forest.instance_count(), options.tip_trees,
                 plan.coupling.strong_wind_correction),
         output_(make_writers(plan, directory, cc.device(), probes_.tip_trees(), share_ ? &*share_ : nullptr)),
-        needs_(output_.needs()) {
+        needs_(agreed_needs(output_.needs(), world)) {
     if (share_ && world.rank() == 0) {
       if (plan.output.vtk_wind) wind_pvd_.emplace(directory / "wind.pvd");
       if (plan.output.vtk_trees && plan.forest.instance_count() > 0)
         trees_pvd_.emplace(directory / "trees.pvd");
+      if (plan.output.vtk_leaves && plan.leaf_count > 0) leaves_pvd_.emplace(directory / "leaves.pvd");
     }
   }
 
@@ -167,6 +171,16 @@ class RunLoop {
                        coupled.wind().block(), plan.decomposition, &coupled.own_forest()};
   }
 
+  // Over ranks every rank copies back what any rank's writers need: the copies of the leaves and the frame's
+  // gathering are collective. Collective.
+  static io::FrameNeeds agreed_needs(io::FrameNeeds needs, const Communicator& world) {
+    if (world.size() == 1) return needs;
+    for (bool* flag :
+         {&needs.velocity, &needs.pressure, &needs.displacement, &needs.probe_samples, &needs.leaves})
+      *flag = world.max(*flag ? 1.0 : 0.0) > 0.0;
+    return needs;
+  }
+
   // Over ranks, rank 0 lists in the .pvd collections the frames that every rank has written (a collective
   // call): a frame some rank has not finished is never listed, so every listed frame opens.
   void list_complete_frames() {
@@ -176,6 +190,7 @@ class RunLoop {
       const double time = frame_times_[std::size_t(listed_)];
       if (wind_pvd_) wind_pvd_->add(time, io::WindVtkWriter::frame_file(int(listed_), true));
       if (trees_pvd_) trees_pvd_->add(time, io::TreesVtkWriter::frame_file(int(listed_), true));
+      if (leaves_pvd_) leaves_pvd_->add(time, io::LeavesVtkWriter::frame_file(int(listed_), true));
     }
   }
 
@@ -221,6 +236,9 @@ class RunLoop {
   void hand_over_frame() {
     const auto start = Clock::now();
     io::OutputFrame frame = capture_frame(coupled_, needs_, plan_.output.leaves_attached_stride, frames_++);
+    // The VDB frames hold the whole domain: rank 0 writes them from every rank's part.
+    if (share_ && plan_.output.vdb_enabled)
+      frame.gathered = gather_frame(frame, plan_.wind.spec, *coupled_.blocks(), coupled_.wind().block());
     frame.probe_samples = std::move(pending_samples_);
     pending_samples_.clear();
     frame_times_.push_back(frame.time);
@@ -287,7 +305,7 @@ class RunLoop {
   int frames_ = 0;
   std::vector<io::ProbeSample> pending_samples_;
   // Over ranks, rank 0's collections, the frames' times and how many frames they list.
-  std::optional<io::PvdCollection> wind_pvd_, trees_pvd_;
+  std::optional<io::PvdCollection> wind_pvd_, trees_pvd_, leaves_pvd_;
   std::vector<double> frame_times_;
   long long listed_ = 0;
 };

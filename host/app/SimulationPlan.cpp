@@ -11,23 +11,6 @@
 
 namespace fw::host {
 
-namespace {
-
-// What does not run over MPI ranks yet (docs/parallel.md) stops the plan, so that `check` says so and `run`
-// exits 2 before it touches a device.
-void check_parts_over_ranks(const io::Scenario& scenario, const SimulationPlan& plan, int ranks) {
-  const auto refuse = [&](const std::string& what) {
-    throw std::invalid_argument(
-        fmt::format("{}:{}: domain.decomposition: a run over {} ranks cannot {} yet "
-                    "(docs/parallel.md); run it in one process",
-                    scenario.file.string(), scenario.domain.decomposition_line, ranks, what));
-  };
-  if (plan.leaf_count > 0) refuse(fmt::format("have leaves ({} in this forest)", plan.leaf_count));
-  if (plan.output.vdb_enabled) refuse("write VDB frames (output.vdb.enabled)");
-}
-
-}  // namespace
-
 SimulationPlan plan_simulation(const io::Scenario& scenario, const trees::BasisCache* cache,
                                std::ostream* log, int ranks) {
   SimulationPlan plan;
@@ -36,7 +19,6 @@ SimulationPlan plan_simulation(const io::Scenario& scenario, const trees::BasisC
   plan_forest(scenario, plan_species(scenario, cache, log, plan), plan);
   plan_coupling(scenario, plan);
   plan_outputs(scenario, plan);
-  if (ranks > 1) check_parts_over_ranks(scenario, plan, ranks);
   return plan;
 }
 

@@ -197,7 +197,7 @@ CoupledBenchResult run_coupled_bench(host::ComputeContext& cc, const CoupledBenc
       c.turbulent = variant.turbulent;
       const trees::Forest& forest = plan.forest;
       host::CoupledStep coupled(cc, plan);
-      if (variant.leaves) c.leaves = coupled.leaves().leaf_count();
+      if (variant.leaves) c.leaves = coupled.leaves().own_count();
       coupled.start();
       for (int s = 0; s < options.warmup_steps; ++s) coupled.step();
       cc.finish();

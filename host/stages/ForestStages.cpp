@@ -84,7 +84,6 @@ ForestStages::ForestStages(ComputeContext& cc, const fluid::GridSpec& spec, cons
   forces_ = cc_.zero_floats(std::size_t(total_modes_));
   strong_amplitudes_buffer_ = cc_.zero_floats(std::size_t(total_modes_));
   state_ = cc_.zero_floats(2 * std::size_t(total_modes_));
-  sampled_wind_ = cc_.zero_floats(3 * std::size_t(total_samples_));
   displacements_ = cc_.zero_floats(3 * std::size_t(total_nodes_));
 
   sample_world_ = cc_.zero_floats(3 * std::size_t(total_samples_));
@@ -92,14 +91,13 @@ ForestStages::ForestStages(ComputeContext& cc, const fluid::GridSpec& spec, cons
 
   wind_load_program_ = cc_.build("tree_wind_load.cl");
   wind_forces_ = Kernel(wind_load_program_, "tree_wind_forces");
-  sample_wind_ = Kernel(cc_.build("probe_sample.cl"), "probe_sample");
   for (const FwTreeInstance& t : p.instances)
     instance_samples_.push_back(p.species[std::size_t(t.species)].sample_count);
   if (instance_count_ > 0)
     Kernel(wind_load_program_, "tree_sample_positions")
         .set_args(instance_count_, instances_, species_, sample_points_, sample_world_)
         .enqueue(cc_, cl::NDRange(cc_.flat_items(std::size_t(instance_count_))));
-  if (blocks != nullptr && blocks->world->size() > 1) share_samples(spec, *blocks);
+  samples_.emplace(cc_, spec, blocks, sample_world_, total_samples_);
   cl::Program step = cc_.build("tree_modal_step.cl");
   step_exact_ = Kernel(step, "tree_modal_step_exact");
   step_semi_implicit_ = Kernel(step, "tree_modal_step_semi_implicit");
@@ -110,47 +108,18 @@ ForestStages::ForestStages(ComputeContext& cc, const fluid::GridSpec& spec, cons
   restore_lengths_ = Kernel(deform, "tree_restore_lengths");
 }
 
-void ForestStages::share_samples(const fluid::GridSpec& spec, const WindBlocks& blocks) {
-  const std::vector<float> world = read(sample_world_, 3 * std::size_t(total_samples_));
-  std::vector<int> slots;
-  std::vector<float> needed;
-  for (int n = 0; n < total_samples_; ++n) {
-    const float* point = &world[3 * std::size_t(n)];
-    if (SampleExchange::holder(spec, blocks.decomposition, point) == blocks.world->rank()) continue;
-    slots.push_back(n);
-    needed.insert(needed.end(), point, point + 3);
-  }
-  exchange_ = std::make_unique<SampleExchange>(cc_, spec, &blocks, needed);
-  if (slots.empty()) return;
-  remote_slots_ = cc_.upload(slots, CL_MEM_READ_ONLY);
-  remote_wind_ = cc_.zero_floats(needed.size());
-  place_samples_ = Kernel(wind_load_program_, "tree_place_samples");
-}
-
 void ForestStages::enqueue_wind_load(DeviceVelocity& velocity) {
-  if (total_samples_ > 0)
-    sample_wind_
-        .set_args(grid_, total_samples_, sample_world_, velocity.u, velocity.v, velocity.w, sampled_wind_)
-        .enqueue(cc_, cl::NDRange(cc_.flat_items(std::size_t(total_samples_))));
-  if (exchange_) {
-    // Every rank takes part, with or without trees of its own.
-    const std::vector<float> wind = exchange_->exchange(velocity);
-    const int count = exchange_->point_count();
-    if (count > 0) {
-      cc_.queue().enqueueWriteBuffer(remote_wind_, CL_TRUE, 0, wind.size() * sizeof(float), wind.data());
-      place_samples_.set_args(count, remote_slots_, remote_wind_, sampled_wind_)
-          .enqueue(cc_, cl::NDRange(cc_.flat_items(std::size_t(count))));
-    }
-  }
+  samples_->enqueue_sample(velocity);  // collective over ranks, with or without trees of its own
   if (instance_count_ == 0) return;
   wind_forces_
-      .set_args(drag_law_.to_device(), instance_count_, instances_, species_, projections_, sampled_wind_,
+      .set_args(drag_law_.to_device(), instance_count_, instances_, species_, projections_, samples_->wind(),
                 forces_)
       .enqueue(cc_, cl::NDRange(cc_.flat_items(std::size_t(instance_count_))));
   if (unresolved_on_)
     unresolved_load_
-        .set_args(instance_count_, instances_, species_, projections_, sampled_wind_, series_, series_length_,
-                  float(series_spacing_), sample_offsets_, travel_, unresolved_intensity_, forces_)
+        .set_args(instance_count_, instances_, species_, projections_, samples_->wind(), series_,
+                  series_length_, float(series_spacing_), sample_offsets_, travel_, unresolved_intensity_,
+                  forces_)
         .enqueue(cc_, cl::NDRange(cc_.flat_items(std::size_t(instance_count_))));
 }
 
@@ -163,7 +132,7 @@ void ForestStages::enqueue_modal_step(float dt) {
       .enqueue(cc_, cl::NDRange(cc_.flat_items(std::size_t(total_modes_))));
   if (unresolved_on_)
     unresolved_advance_
-        .set_args(instance_count_, instances_, sampled_wind_, series_length_, float(series_spacing_), dt,
+        .set_args(instance_count_, instances_, samples_->wind(), series_length_, float(series_spacing_), dt,
                   travel_)
         .enqueue(cc_, cl::NDRange(cc_.flat_items(std::size_t(instance_count_))));
 }
@@ -209,7 +178,7 @@ std::vector<float> ForestStages::download_displacements() {
 }
 
 std::vector<float> ForestStages::download_sampled_wind() {
-  return read(sampled_wind_, 3 * std::size_t(total_samples_));
+  return read(samples_->wind(), 3 * std::size_t(total_samples_));
 }
 
 std::vector<float> ForestStages::download_modal_forces() {

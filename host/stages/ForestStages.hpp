@@ -16,7 +16,7 @@
 //
 // Over MPI ranks (WindBlocks, docs/parallel.md) a rank holds the trees whose roots lie in its block (a
 // Forest::subset) and samples the wind on its block; the samples that lie in another rank's block come from
-// that rank through a SampleExchange, so enqueue_wind_load is collective.
+// that rank (WindAtPoints), so enqueue_wind_load is collective.
 //
 // Kernels: kernels/tree_wind_load.cl (the sample points' world positions once; then the wind at them through
 // kernels/probe_sample.cl, and the modal forces, one instance per iteration), kernels/tree_modal_step.cl and
@@ -25,6 +25,7 @@
 // iteration; tree_deform without). The CPU oracle is trees/ForestReference.
 #pragma once
 
+#include <optional>
 #include <vector>
 
 #include "fluid/DragLaw.hpp"
@@ -32,7 +33,7 @@
 #include "host/runtime/ComputeContext.hpp"
 #include "host/stages/BlockGrid.hpp"
 #include "host/stages/FluidStages.hpp"
-#include "host/stages/SampleExchange.hpp"
+#include "host/stages/WindAtPoints.hpp"
 #include "kernels/shared_types.h"
 #include "trees/Forest.hpp"
 #include "trees/ModalIntegrator.hpp"
@@ -85,7 +86,7 @@ class ForestStages {
   /// waits for the samples other ranks take, and is collective.
   void enqueue_wind_load(DeviceVelocity& velocity);
   /// The samples another rank's block holds, which travel between ranks every step (0 alone).
-  int remote_samples() const { return exchange_ ? exchange_->point_count() : 0; }
+  int remote_samples() const { return samples_->remote_count(); }
   /// Advances every instance-mode by dt (s, finite and >= 0, else std::invalid_argument) with the forces of
   /// the last wind load held constant.
   void enqueue_modal_step(float dt);
@@ -123,14 +124,12 @@ class ForestStages {
   /// sampled wind (3 per sample), displacements (3 per node), instances (FwTreeInstance each).
   cl::Buffer& forces() { return forces_; }
   cl::Buffer& state() { return state_; }
-  cl::Buffer& sampled_wind() { return sampled_wind_; }
+  cl::Buffer& sampled_wind() { return samples_->wind(); }
   cl::Buffer& displacements() { return displacements_; }
   cl::Buffer& instances() { return instances_; }
 
  private:
   std::vector<float> read(cl::Buffer& buffer, std::size_t count);
-  /// Over ranks: the samples whose cells another rank holds, and the exchange that brings their wind.
-  void share_samples(const fluid::GridSpec& spec, const WindBlocks& blocks);
 
   ComputeContext& cc_;
   FwGrid grid_;
@@ -143,14 +142,12 @@ class ForestStages {
   cl::Buffer strong_v_, strong_w_, strong_b_;  // the strong-wind correction (trees/Forest.hpp, ForestPacking)
   cl::Buffer strong_amplitudes_buffer_;        // its q~ per instance-mode, on each output frame
   cl::Buffer walk_, rest_elements_;  // its length-restoring pass (ForestPacking::walk, rest_elements)
-  cl::Buffer forces_, state_, sampled_wind_, displacements_;
-  cl::Buffer sample_world_;  // the sample points' world positions, 3 floats a flat sample
-  // Over ranks: the samples other ranks take, their flat indices and the wind they send.
-  std::unique_ptr<SampleExchange> exchange_;
-  cl::Buffer remote_slots_, remote_wind_;
-  std::vector<int> instance_ids_;  // Forest::id of each instance: what seeds its unresolved series
-  Kernel sample_wind_, wind_forces_, place_samples_, step_exact_, step_semi_implicit_, deform_,
-      strong_amplitudes_, deform_strong_, restore_lengths_;
+  cl::Buffer forces_, state_, displacements_;
+  cl::Buffer sample_world_;              // the sample points' world positions, 3 floats a flat sample
+  std::optional<WindAtPoints> samples_;  // the wind at sample_world_, each sampled by the rank holding it
+  std::vector<int> instance_ids_;        // Forest::id of each instance: what seeds its unresolved series
+  Kernel wind_forces_, step_exact_, step_semi_implicit_, deform_, strong_amplitudes_, deform_strong_,
+      restore_lengths_;
   // Unresolved turbulence: wind samples per instance (for the offsets), the series' size, and its buffers:
   // series table (6 N floats), offsets (an int per flat sample), travel (whole points, fraction and last
   // step per instance).

@@ -2,12 +2,15 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <limits>
 #include <numbers>
 #include <stdexcept>
 #include <unordered_map>
+
+#include "host/runtime/Communicator.hpp"
 
 namespace fw::host {
 namespace {
@@ -95,9 +98,11 @@ std::size_t LeafStages::estimate_device_bytes(const trees::Forest& forest,
     return ComputeContext::allocation_bytes(count * size);
   };
   constexpr std::size_t f = sizeof(float), i = sizeof(std::int32_t), float4 = 4 * sizeof(float);
-  // Per leaf: instance, site (padded), state, angle, rate, five float4; the sites (at most one a leaf).
-  std::size_t total = bytes(leaves, i) + bytes(padded, i) + bytes(padded, 1) + 2 * bytes(padded, f) +
-                      5 * bytes(padded, float4) + bytes(leaves, i) + bytes(3 * (leaves + FW_LANES), f);
+  // Per leaf: site (padded), state, angle, rate, flight drag, leaving slot, six float4; the sites (at most
+  // one a leaf): their centres and their wind.
+  std::size_t total = bytes(padded, i) + bytes(padded, 1) + 3 * bytes(padded, f) + bytes(padded, i) +
+                      6 * bytes(padded, float4) + bytes(3 * leaves, f) +
+                      WindAtPoints::estimate_device_bytes(leaves);
   // Per instance its first leaf and (one more) first block, the instances, the species and their rest table.
   total += bytes(instances, i) + bytes(instances + 1, i) + bytes(instances, sizeof(FwTreeInstance));
   total += bytes(species_leaves.size(), sizeof(FwLeafSpecies)) + bytes(FW_REST_FIELDS * (rest + FW_LANES), f);
@@ -106,8 +111,8 @@ std::size_t LeafStages::estimate_device_bytes(const trees::Forest& forest,
 }
 
 LeafStages::LeafStages(ComputeContext& cc, const fluid::GridSpec& spec, const trees::Forest& forest,
-                       const std::vector<trees::SpeciesLeaves>& species_leaves)
-    : cc_(cc) {
+                       const std::vector<trees::SpeciesLeaves>& species_leaves, const WindBlocks* blocks)
+    : cc_(cc), blocks_(blocks != nullptr && blocks->world->size() > 1 ? blocks : nullptr), spec_(spec) {
   try {
     spec.validate();
   } catch (const std::invalid_argument& e) {
@@ -117,6 +122,15 @@ LeafStages::LeafStages(ComputeContext& cc, const fluid::GridSpec& spec, const tr
     throw std::invalid_argument(fmt::format("LeafStages: {} leaf sets for {} species", species_leaves.size(),
                                             forest.species().size()));
   grid_ = spec.to_device();
+  const std::array<int, 2> domain = spec.domain_cells();
+  own_hi_ = domain;
+  if (blocks_ != nullptr) {
+    const fluid::Block own = blocks_->decomposition.block(blocks_->world->rank());
+    for (int a = 0; a < 2; ++a) {
+      own_lo_[std::size_t(a)] = own.first[std::size_t(a)];
+      own_hi_[std::size_t(a)] = own.first[std::size_t(a)] + own.count[std::size_t(a)];
+    }
+  }
 
   // The species: their parameters and the rest-leaf table with each leaf's element nodes.
   int rest_count = 0;
@@ -138,10 +152,12 @@ LeafStages::LeafStages(ComputeContext& cc, const fluid::GridSpec& spec, const tr
   }
   rest_stride_ = rest.stride();
 
-  // Flat leaves: per instance its species' leaves, each with the site of its rest blade centre (sites in
-  // the order the leaves first reach them).
-  std::vector<std::int32_t> first_leaf, first_block, leaf_site, site_cells;
-  std::unordered_map<int, int> site_of_cell;
+  // Own leaves: per instance its species' leaves, each with the site of its rest blade centre: the centre of
+  // the domain's cell that holds it (sites in the order the leaves first reach them), the same point on any
+  // rank.
+  std::vector<std::int32_t> first_leaf, first_block, leaf_site;
+  std::vector<float> site_positions;
+  std::unordered_map<long long, int> site_of_cell;
   long long total = 0;
   for (int k = 0; k < forest.instance_count(); ++k) {
     const trees::TreeInstance& tree = forest.instances()[std::size_t(k)];
@@ -153,29 +169,34 @@ LeafStages::LeafStages(ComputeContext& cc, const fluid::GridSpec& spec, const tr
     if (total > kMaxLeaves)
       throw std::invalid_argument(fmt::format("LeafStages: more than {} leaves", kMaxLeaves));
     const Eigen::Matrix3d R = forest.rotation(k);
-    for (const auto& leaf : leaves.leaves()) {
+    for (int i = 0; i < leaves.count(); ++i) {
+      const trees::RestLeaf& leaf = leaves.leaves()[std::size_t(i)];
       const Eigen::Vector3d centre =
           tree.position + tree.scale * R * (leaf.anchor + leaves.lever() * leaf.petiole);
-      const std::array<int, 3> cell = spec.cell_holding({centre.x(), centre.y(), centre.z()});
-      const int cell_index = cell[0] + spec.nx * (cell[1] + spec.ny * cell[2]);
-      const auto [site, added] = site_of_cell.try_emplace(cell_index, int(site_cells.size()));
-      if (added) site_cells.push_back(site->first);
+      const std::array<int, 3> cell = spec.domain_cell_holding({centre.x(), centre.y(), centre.z()});
+      const long long cell_index =
+          cell[0] + (long long)domain[0] * (cell[1] + (long long)domain[1] * cell[2]);
+      const auto [site, added] = site_of_cell.try_emplace(cell_index, int(site_positions.size() / 3));
+      if (added)
+        for (int a = 0; a < 3; ++a)
+          site_positions.push_back(
+              static_cast<float>(spec.origin[std::size_t(a)] + spec.h * (cell[std::size_t(a)] + 0.5)));
       leaf_site.push_back(site->second);
-      leaf_instance_host_.push_back(k);
-      side_host_.push_back(static_cast<float>(leaves.side() * tree.scale));
+      slot_tree_.push_back(forest.id(k));
+      slot_leaf_.push_back(i);
+      slot_side_.push_back(static_cast<float>(leaves.side() * tree.scale));
     }
   }
   first_block.push_back(block_count_);
-  leaf_count_ = static_cast<int>(total);
+  own_count_ = static_cast<int>(total);
+  slot_count_ = own_count_;
   instance_count_ = forest.instance_count();
-  site_count_ = int(site_cells.size());
-  site_stride_ = site_count_ + FW_LANES;
+  leaf_total_ = blocks_ != nullptr ? blocks_->world->sum(total) : total;
 
   // Every per-leaf array is padded by FW_LANES values, so that the last leaves' lanes may load past the end.
-  const std::size_t padded = std::size_t(leaf_count_) + FW_LANES;
+  const std::size_t padded = std::size_t(own_count_) + FW_LANES;
   leaf_site.resize(padded, 0);
   constexpr cl_mem_flags ro = CL_MEM_READ_ONLY;
-  leaf_instance_ = cc_.upload(leaf_instance_host_, ro);
   first_leaf_ = cc_.upload(first_leaf, ro);
   first_block_ = cc_.upload(first_block, ro);
   instances_ = cc_.upload(forest.pack_instances(), ro);
@@ -183,89 +204,214 @@ LeafStages::LeafStages(ComputeContext& cc, const fluid::GridSpec& spec, const tr
   rest_ = cc_.upload(rest.values(), ro);
   rest_nodes_ = cc_.upload(rest_nodes, ro);
   leaf_site_ = cc_.upload(leaf_site, ro);
-  site_cells_ = cc_.upload(site_cells, ro);
-  site_wind_ = cc_.zero_floats(3 * std::size_t(site_stride_));
-  state_ = cc_.upload(std::vector<std::uint8_t>(padded, FW_LEAF_ATTACHED));
+  site_positions_ = cc_.upload(site_positions, ro);
+  sites_.emplace(cc_, spec, blocks_, site_positions_, int(site_positions.size() / 3));
   theta_ = cc_.zero_floats(padded);
   theta_rate_ = cc_.zero_floats(padded);
-  position_ = cc_.zero_floats(4 * padded);
-  velocity_ = cc_.zero_floats(4 * padded);
-  normal_ = cc_.zero_floats(4 * padded);
   frame_position_ = cc_.zero_floats(4 * padded);
   frame_normal_ = cc_.zero_floats(4 * padded);
+  reserve_slots(own_count_);
   counters_ = cc_.upload(std::vector<std::int32_t>(FW_LEAF_COUNTERS, 0));
   no_displacements_ = cc_.zero_floats(1);
 
   // Denormals flushed: a blade's decayed motion reaches them, and on CPUs they cost a hundred times a float.
   cl::Program program = cc_.build("leaves.cl", "-cl-denorms-are-zero");
-  site_wind_kernel_ = Kernel(program, "leaf_site_wind");
   flying_ = Kernel(program, "leaves_flying_step");
   attached_ = Kernel(program, "leaves_attached_step");
   frame_ = Kernel(program, "leaves_frame");
+  leaving_kernel_ = Kernel(program, "leaves_leaving");
+  pack_ = Kernel(program, "leaves_pack");
+}
+
+void LeafStages::reserve_slots(int slots) {
+  if (slots <= slot_capacity_ && slot_capacity_ > 0) return;
+  // Grow by half again, so that a stream of arriving leaves copies each slot a bounded number of times.
+  const int capacity = std::max(slots, slot_capacity_ + slot_capacity_ / 2);
+  const std::size_t padded = std::size_t(capacity) + FW_LANES;
+  const auto grown = [&](cl::Buffer& old, std::size_t value_bytes) {
+    cl::Buffer fresh = cc_.buffer(padded * value_bytes);
+    cc_.queue().enqueueFillBuffer(fresh, std::uint8_t(0), 0, padded * value_bytes);
+    if (slot_capacity_ > 0 && slot_count_ > 0)
+      cc_.queue().enqueueCopyBuffer(old, fresh, 0, 0, std::size_t(slot_count_) * value_bytes);
+    old = fresh;
+  };
+  // A fresh slot holds zeros: FW_LEAF_ATTACHED, which only the own leaves' kernels step.
+  grown(state_, 1);
+  for (cl::Buffer* b : {&position_, &velocity_, &normal_, &flight_}) grown(*b, 4 * sizeof(float));
+  grown(flight_drag_, sizeof(float));
+  grown(leaving_, sizeof(std::int32_t));
+  slot_capacity_ = capacity;
 }
 
 void LeafStages::enqueue_step(const FwStep& step, cl::Buffer& mask, DeviceVelocity& vel) {
   frame_ready_ = false;
   time_ = step.time + step.dt;
-  if (leaf_count_ == 0) return;
-  site_wind_kernel_.set_args(grid_, site_count_, site_cells_, vel.u, vel.v, vel.w, site_stride_, site_wind_)
-      .enqueue(cc_, cl::NDRange(cc_.flat_items(std::size_t(site_count_))));
-  flying_
-      .set_args(grid_, step, leaf_count_, leaf_instance_, first_leaf_, instances_, leaf_species_, rest_,
-                rest_stride_, mask, vel.u, vel.v, vel.w, state_, position_, velocity_, normal_, counters_)
-      .enqueue(cc_, cl::NDRange(cc_.flat_items(std::size_t(leaf_count_))));
-  attached_
-      .set_args(step, block_count_, instance_count_, first_block_, first_leaf_, instances_, leaf_species_,
-                rest_, rest_stride_, leaf_site_, site_wind_, site_stride_, state_, theta_, theta_rate_,
-                position_, velocity_, normal_, counters_)
-      .enqueue(cc_, cl::NDRange(cc_.flat_items(std::size_t(block_count_))));
+  if (leaf_total_ == 0) return;
+  sites_->enqueue_sample(vel);
+  if (slot_count_ > 0)
+    flying_
+        .set_args(grid_, step, slot_count_, mask, vel.u, vel.v, vel.w, flight_, flight_drag_, state_,
+                  position_, velocity_, normal_, counters_)
+        .enqueue(cc_, cl::NDRange(cc_.flat_items(std::size_t(slot_count_))));
+  if (own_count_ > 0)
+    attached_
+        .set_args(step, block_count_, instance_count_, first_block_, first_leaf_, instances_, leaf_species_,
+                  rest_, rest_stride_, leaf_site_, sites_->wind(), state_, theta_, theta_rate_, position_,
+                  velocity_, normal_, flight_, flight_drag_, counters_)
+        .enqueue(cc_, cl::NDRange(cc_.flat_items(std::size_t(block_count_))));
+  if (blocks_ != nullptr) move_leaves();
+}
+
+void LeafStages::read_counters(std::int32_t (&c)[FW_LEAF_COUNTERS]) {
+  cc_.queue().enqueueReadBuffer(counters_, CL_TRUE, 0, sizeof(c), c);
+}
+
+void LeafStages::move_leaves() {
+  const Communicator& world = *blocks_->world;
+  if (slot_count_ > 0)
+    leaving_kernel_
+        .set_args(grid_, slot_count_, own_lo_[0], own_hi_[0], own_lo_[1], own_hi_[1], state_, position_,
+                  leaving_, counters_)
+        .enqueue(cc_, cl::NDRange(cc_.flat_items(std::size_t(slot_count_))));
+  std::int32_t c[FW_LEAF_COUNTERS] = {};
+  read_counters(c);
+  if (c[FW_LEAF_COUNT_PAST_HALO] > 0)
+    throw std::runtime_error(
+        fmt::format("LeafStages: a flying leaf's step on rank {} reached past its block's halo ({} cells); "
+                    "the leaf moved "
+                    "faster than the wind's Courant number allows for",
+                    world.rank(), grid_.nx - (own_hi_[0] - own_lo_[0])));
+  const int leaving = c[FW_LEAF_COUNT_LEAVING];
+  std::vector<std::vector<MovingLeaf>> to_each(std::size_t(world.size()));
+  if (leaving > 0) {
+    const std::int32_t reset = 0;
+    cc_.queue().enqueueWriteBuffer(counters_, CL_FALSE, FW_LEAF_COUNT_LEAVING * sizeof(std::int32_t),
+                                   sizeof(reset), &reset);
+    // The kernel listed the slots in no order; sorted, they leave in slot order on every run.
+    std::vector<std::int32_t> slots(static_cast<std::size_t>(leaving));
+    cc_.queue().enqueueReadBuffer(leaving_, CL_TRUE, 0, slots.size() * sizeof(std::int32_t), slots.data());
+    std::sort(slots.begin(), slots.end());
+    cc_.queue().enqueueWriteBuffer(leaving_, CL_TRUE, 0, slots.size() * sizeof(std::int32_t), slots.data());
+    packed_ = cc_.buffer(slots.size() * FW_LEAF_PACKED_FLOATS * sizeof(float));
+    pack_.set_args(leaving, leaving_, state_, position_, velocity_, normal_, flight_, flight_drag_, packed_)
+        .enqueue(cc_, cl::NDRange(cc_.flat_items(slots.size())));
+    std::vector<float> packed(slots.size() * FW_LEAF_PACKED_FLOATS);
+    cc_.queue().enqueueReadBuffer(packed_, CL_TRUE, 0, packed.size() * sizeof(float), packed.data());
+    for (std::size_t n = 0; n < slots.size(); ++n) {
+      const float* values = &packed[n * FW_LEAF_PACKED_FLOATS];
+      const int j = slots[n];
+      const int holder = SampleExchange::holder(spec_, blocks_->decomposition, values);
+      if (holder == world.rank()) {
+        // The device's float and the host's double put the leaf on either side of a cut: it stays.
+        const auto state = static_cast<std::uint8_t>(values[3]);
+        cc_.queue().enqueueWriteBuffer(state_, CL_TRUE, std::size_t(j), 1, &state);
+        continue;
+      }
+      MovingLeaf leaf;
+      leaf.tree = slot_tree_[std::size_t(j)];
+      leaf.leaf = slot_leaf_[std::size_t(j)];
+      leaf.side = slot_side_[std::size_t(j)];
+      std::copy_n(values, FW_LEAF_PACKED_FLOATS, leaf.packed);
+      to_each[std::size_t(holder)].push_back(leaf);
+    }
+  }
+  // Every rank takes part, whether leaves leave it or not.
+  std::vector<MovingLeaf> arrived;
+  for (const auto& from : world.exchange(to_each)) arrived.insert(arrived.end(), from.begin(), from.end());
+  if (arrived.empty()) return;
+  // New slots in the order of the leaves in one process (tree, then leaf), whichever rank sent them.
+  std::sort(arrived.begin(), arrived.end(), [](const MovingLeaf& a, const MovingLeaf& b) {
+    return a.tree != b.tree ? a.tree < b.tree : a.leaf < b.leaf;
+  });
+  const std::size_t n = arrived.size(), first = std::size_t(slot_count_);
+  reserve_slots(slot_count_ + int(n));
+  std::vector<std::uint8_t> state(n);
+  std::vector<float> position(4 * n), velocity(4 * n), normal(4 * n), flight(4 * n), drag(n);
+  for (std::size_t m = 0; m < n; ++m) {
+    const float* v = arrived[m].packed;
+    state[m] = static_cast<std::uint8_t>(v[3]);
+    drag[m] = v[7];
+    for (int a = 0; a < 4; ++a) {
+      position[4 * m + a] = a < 3 ? v[a] : 0.0f;
+      velocity[4 * m + a] = a < 3 ? v[4 + a] : 0.0f;
+      normal[4 * m + a] = v[8 + a];
+      flight[4 * m + a] = v[12 + a];
+    }
+    slot_tree_.push_back(arrived[m].tree);
+    slot_leaf_.push_back(arrived[m].leaf);
+    slot_side_.push_back(arrived[m].side);
+  }
+  constexpr std::size_t float4 = 4 * sizeof(float);
+  auto& q = cc_.queue();
+  q.enqueueWriteBuffer(state_, CL_FALSE, first, n, state.data());
+  q.enqueueWriteBuffer(position_, CL_FALSE, first * float4, n * float4, position.data());
+  q.enqueueWriteBuffer(velocity_, CL_FALSE, first * float4, n * float4, velocity.data());
+  q.enqueueWriteBuffer(normal_, CL_FALSE, first * float4, n * float4, normal.data());
+  q.enqueueWriteBuffer(flight_, CL_FALSE, first * float4, n * float4, flight.data());
+  q.enqueueWriteBuffer(flight_drag_, CL_TRUE, first * sizeof(float), n * sizeof(float), drag.data());
+  slot_count_ += int(n);
 }
 
 void LeafStages::enqueue_blades(cl::Buffer& displacements, bool displaced) {
   frame_
       .set_args(time_, block_count_, instance_count_, first_block_, first_leaf_, instances_, leaf_species_,
-                rest_, rest_stride_, rest_nodes_, leaf_site_, site_wind_, site_stride_, cl_int(displaced),
+                rest_, rest_stride_, rest_nodes_, leaf_site_, sites_->wind(), cl_int(displaced),
                 displacements, state_, theta_, position_, normal_, frame_position_, frame_normal_)
       .enqueue(cc_, cl::NDRange(cc_.flat_items(std::size_t(block_count_))));
 }
 
 void LeafStages::enqueue_frame(cl::Buffer& displacements) {
-  if (leaf_count_ == 0) return;
+  if (own_count_ == 0) return;
   enqueue_blades(displacements, true);
   frame_ready_ = true;
 }
 
 LeafSnapshot LeafStages::download() {
   LeafSnapshot snap;
-  const std::size_t n = std::size_t(leaf_count_);
-  snap.state.resize(n);
-  snap.tree_id = leaf_instance_host_;
-  snap.side = side_host_;
-  if (n == 0) return snap;
-  if (!frame_ready_) enqueue_blades(no_displacements_, false);
-  std::vector<float> position4(4 * n), normal4(4 * n);
-  cc_.queue().enqueueReadBuffer(state_, CL_FALSE, 0, n, snap.state.data());
-  cc_.queue().enqueueReadBuffer(frame_position_, CL_FALSE, 0, 4 * n * sizeof(float), position4.data());
-  cc_.queue().enqueueReadBuffer(frame_normal_, CL_TRUE, 0, 4 * n * sizeof(float), normal4.data());
-  snap.position.resize(3 * n);
-  snap.normal.resize(3 * n);
-  for (std::size_t j = 0; j < n; ++j)
+  const std::size_t own = std::size_t(own_count_), slots = std::size_t(slot_count_);
+  if (slots == 0) return snap;
+  if (own > 0 && !frame_ready_) enqueue_blades(no_displacements_, false);
+  // Own leaves from the frame's blades, the leaves sent here (never attached) from where they are.
+  std::vector<std::uint8_t> state(slots);
+  std::vector<float> position4(4 * slots), normal4(4 * slots);
+  constexpr std::size_t float4 = 4 * sizeof(float);
+  auto& q = cc_.queue();
+  q.enqueueReadBuffer(state_, CL_FALSE, 0, slots, state.data());
+  if (own > 0) {
+    q.enqueueReadBuffer(frame_position_, CL_FALSE, 0, own * float4, position4.data());
+    q.enqueueReadBuffer(frame_normal_, CL_FALSE, 0, own * float4, normal4.data());
+  }
+  if (slots > own) {
+    q.enqueueReadBuffer(position_, CL_FALSE, own * float4, (slots - own) * float4, &position4[4 * own]);
+    q.enqueueReadBuffer(normal_, CL_FALSE, own * float4, (slots - own) * float4, &normal4[4 * own]);
+  }
+  q.finish();
+  for (std::size_t j = 0; j < slots; ++j) {
+    if (state[j] == FW_LEAF_MOVED) continue;
+    snap.state.push_back(state[j]);
+    snap.tree_id.push_back(slot_tree_[j]);
+    snap.leaf.push_back(slot_leaf_[j]);
+    snap.side.push_back(slot_side_[j]);
     for (int a = 0; a < 3; ++a) {
-      snap.position[3 * j + a] = position4[4 * j + a];
-      snap.normal[3 * j + a] = normal4[4 * j + a];
+      snap.position.push_back(position4[4 * j + a]);
+      snap.normal.push_back(normal4[4 * j + a]);
     }
+  }
   return snap;
 }
 
 trees::LeafCounts LeafStages::counts() {
   std::int32_t c[FW_LEAF_COUNTERS] = {};
-  cc_.queue().enqueueReadBuffer(counters_, CL_TRUE, 0, sizeof(c), c);
+  read_counters(c);
+  const auto total = [&](int counter) {
+    return blocks_ != nullptr ? blocks_->world->sum((long long)c[counter]) : (long long)c[counter];
+  };
   trees::LeafCounts counts;
-  counts.shed = c[FW_LEAF_COUNT_SHED];
-  counts.landed = c[FW_LEAF_COUNT_LANDED];
-  counts.exited = c[FW_LEAF_COUNT_EXITED];
+  counts.shed = long(total(FW_LEAF_COUNT_SHED));
+  counts.landed = long(total(FW_LEAF_COUNT_LANDED));
+  counts.exited = long(total(FW_LEAF_COUNT_EXITED));
   counts.flying = counts.shed - counts.landed - counts.exited;
-  counts.attached = leaf_count_ - counts.shed;
+  counts.attached = long(leaf_total_) - counts.shed;
   return counts;
 }
 

@@ -10,10 +10,7 @@ namespace fw::host {
 int SampleExchange::holder(const fluid::GridSpec& spec, const fluid::Decomposition& decomposition,
                            const float point[3]) {
   // The domain's cell, not the block's: a block's grid keeps the domain's origin.
-  fluid::GridSpec domain = spec;
-  domain.nx = spec.domain_cells()[0];
-  domain.ny = spec.domain_cells()[1];
-  const std::array<int, 3> cell = domain.cell_holding({point[0], point[1], point[2]});
+  const std::array<int, 3> cell = spec.domain_cell_holding({point[0], point[1], point[2]});
   return decomposition.rank_holding(cell[0], cell[1]);
 }
 

@@ -16,6 +16,7 @@
 #include <array>
 #include <cstdint>
 #include <map>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -39,6 +40,8 @@ struct LeafFrame {
   std::vector<std::array<float, 3>> normal;    ///< blade normal, unit
   std::vector<std::uint8_t> state;             ///< trees::LeafState: 0 attached, 1 flying, 2 landed
   std::vector<std::int32_t> tree_id;           ///< instance index of the tree the leaf grew on
+  std::vector<std::int32_t>
+      leaf;  ///< its index among that tree's leaves (orders the leaves gathered over ranks)
   std::vector<float>
       side;  ///< blade side l = sqrt(area), m (the files' array "size", Houdini's pscale l / 2)
   trees::LeafCounts counts;  ///< over every leaf of the run, written or not
@@ -56,6 +59,14 @@ struct OutputFrame {
   std::vector<float>
       displacement;  ///< 3 per forest node (instance order, world frame), m; empty unless needed
   LeafFrame leaves;  ///< empty unless a writer needs the leaves
+  /// Over MPI ranks a rank's frame holds its block's velocity (with the halo) and its leaves. For the files
+  /// that hold the whole domain (VDB), rank 0's frame also holds every rank's part, gathered: the domain's
+  /// faces and every leaf in one process's order. Empty in one process, and on the other ranks.
+  struct Gathered {
+    fluid::MacVelocity velocity;
+    LeafFrame leaves;
+  };
+  std::optional<Gathered> gathered;
   /// The probe samples taken since the previous frame, this frame's time included, in time order.
   std::vector<ProbeSample> probe_samples;
   /// A last batch of probe samples after the last frame: only writers that need probe samples get it, and

@@ -17,6 +17,12 @@ namespace fw::io {
 class LeavesVtkWriter : public FrameWriter {
  public:
   explicit LeavesVtkWriter(std::filesystem::path directory);
+  /// Over MPI ranks: it writes this rank's leaves as leaves/leaves_NNNNNN_RRRR.vtp, rank 0 also
+  /// leaves/leaves_NNNNNN.pvtp listing the `ranks` pieces, and the run adds the frame to leaves.pvd once
+  /// every rank has written it.
+  LeavesVtkWriter(std::filesystem::path directory, int rank, int ranks);
+  /// The file leaves.pvd lists for frame `index`: its .vtp, or over ranks its .pvtp.
+  static std::string frame_file(int index, bool pieces);
 
   std::string name() const override { return "leaves VTK"; }
   FrameNeeds needs() const override { return {.leaves = true}; }
@@ -26,6 +32,7 @@ class LeavesVtkWriter : public FrameWriter {
  private:
   std::filesystem::path directory_;
   PvdCollection collection_;
+  int rank_ = 0, ranks_ = 0;  // ranks_ 0: one process, no pieces
 };
 
 }  // namespace fw::io

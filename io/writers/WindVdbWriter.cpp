@@ -23,9 +23,12 @@ void WindVdbWriter::begin() {
 }
 
 void WindVdbWriter::write(const OutputFrame& frame) {
-  const WindFrame wind = make_wind_frame(spec_, frame.velocity, {}, solid_, {}, frame.time, frame.step);
+  // Over ranks this is rank 0, and the frame's gathered parts are the whole domain.
+  const fluid::MacVelocity& velocity = frame.gathered ? frame.gathered->velocity : frame.velocity;
+  const LeafFrame& leaves = frame.gathered ? frame.gathered->leaves : frame.leaves;
+  const WindFrame wind = make_wind_frame(spec_, velocity, {}, solid_, {}, frame.time, frame.step);
   write_wind_vdb(directory_ / fmt::format("vdb/wind.{:04d}.vdb", frame.index), wind, vel_, speed_,
-                 leaves_ ? &frame.leaves : nullptr);
+                 leaves_ ? &leaves : nullptr);
 }
 
 }  // namespace fw::io

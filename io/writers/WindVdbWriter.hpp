@@ -1,5 +1,6 @@
 // vdb/wind.NNNN.vdb: the wind grid of every frame as OpenVDB grids, for Houdini and Blender (io/VdbWriter.hpp
-// has the layout), and with leaves on the frame's leaves as the points grid "leaves".
+// has the layout), and with leaves on the frame's leaves as the points grid "leaves". Over MPI ranks only
+// rank 0 has one, and it writes the frame's gathered velocity and leaves (OutputFrame::gathered).
 //
 //   fw::io::WindVdbWriter vdb("out/storm", spec, solid, /*vel=*/true, /*speed=*/true, /*leaves=*/true);
 #pragma once

@@ -99,7 +99,7 @@ TEST_CASE("leaves: the device step matches the CPU reference through shedding, f
 
     trees::LeafReference ref(forest, leaves);
     host::LeafStages stages(*cc, spec, forest, leaves);
-    REQUIRE(stages.leaf_count() == ref.count());
+    REQUIRE(stages.own_count() == ref.count());
 
     const auto wind = shear_wind(spec, 18.0);
     host::DeviceVelocity dwind;
@@ -200,10 +200,10 @@ TEST_CASE("LeafStages: the device memory estimate bounds what the stage allocate
   host::LeafStages stages(*cc, leaf_grid(), forest, leaves);
   const std::size_t allocated = cc->allocated_bytes() - before;
   const std::size_t estimate = host::LeafStages::estimate_device_bytes(forest, leaves);
-  // The estimate takes one site (a cell and its wind, 16 bytes) per leaf, the most there can be; the stage
-  // allocates one per cell that holds a leaf. Everything else is counted exactly.
-  const std::size_t leaf_total = std::size_t(stages.leaf_count());
-  constexpr std::size_t kSiteBytes = sizeof(std::int32_t) + 3 * sizeof(float);
+  // The estimate takes one site (its centre and its wind, 24 bytes) per leaf, the most there can be; the
+  // stage allocates one per cell that holds a leaf. Everything else is counted exactly.
+  const std::size_t leaf_total = std::size_t(stages.own_count());
+  constexpr std::size_t kSiteBytes = 6 * sizeof(float);
   CHECK(allocated <= estimate);
   CHECK(allocated + leaf_total * kSiteBytes >= estimate);
 }

@@ -2,7 +2,8 @@
 // run in one process writes .vti and .vtp, one over MPI ranks .pvti and .pvtp pieces; docs/parallel.md).
 // Every frame of A's wind.pvd and trees.pvd against B's: the same times, every cell array of the wind equal
 // value for value, and the trees' points with their radius and displacement equal as sets (pieces list the
-// trees in another order). Exit 0 when equal; 1 with the first difference; 2 when a folder does not read.
+// trees in another order), and the same for the leaves' points with their state and size. Exit 0 when equal;
+// 1 with the first difference; 2 when a folder does not read.
 #include <fmt/format.h>
 #include <fmt/ranges.h>
 
@@ -25,6 +26,27 @@ std::vector<Point> sorted_points(const fw::viz::TreeLines& trees) {
         {trees.points[n][0], trees.points[n][1], trees.points[n][2], trees.radius[n], trees.displacement[n]});
   std::sort(points.begin(), points.end());
   return points;
+}
+
+using LeafPoint = std::array<double, 5>;  // x, y, z, state, size
+
+std::vector<LeafPoint> sorted_points(const fw::viz::LeafPoints& leaves) {
+  std::vector<LeafPoint> points;
+  for (std::size_t n = 0; n < leaves.position.size(); ++n)
+    points.push_back({leaves.position[n][0], leaves.position[n][1], leaves.position[n][2],
+                      double(leaves.state[n]), leaves.size[n]});
+  std::sort(points.begin(), points.end());
+  return points;
+}
+
+// The first difference between two point sets of `what`, or empty.
+template <typename P>
+std::string point_difference(const char* what, const std::vector<P>& x, const std::vector<P>& y) {
+  if (x.size() != y.size()) return fmt::format("{} {} points against {}", x.size(), what, y.size());
+  const auto at = std::mismatch(x.begin(), x.end(), y.begin());
+  if (at.first == x.end()) return "";
+  return fmt::format("{} point {} of {} (sorted): ({}) against ({})", what, at.first - x.begin(), x.size(),
+                     fmt::join(*at.first, ", "), fmt::join(*at.second, ", "));
 }
 
 // The first difference between two frames, or empty.
@@ -50,13 +72,11 @@ std::string difference(const fw::viz::FrameData& a, const fw::viz::FrameData& b)
   }
   if (a.trees.has_value() != b.trees.has_value()) return "one has trees, the other not";
   if (a.trees) {
-    const std::vector<Point> x = sorted_points(*a.trees), y = sorted_points(*b.trees);
-    if (x.size() != y.size()) return fmt::format("{} tree points against {}", x.size(), y.size());
-    const auto at = std::mismatch(x.begin(), x.end(), y.begin());
-    if (at.first != x.end())
-      return fmt::format("tree point {} of {} (sorted): ({}) against ({})", at.first - x.begin(), x.size(),
-                         fmt::join(*at.first, ", "), fmt::join(*at.second, ", "));
+    const std::string what = point_difference("tree", sorted_points(*a.trees), sorted_points(*b.trees));
+    if (!what.empty()) return what;
   }
+  if (a.leaves.has_value() != b.leaves.has_value()) return "one has leaves, the other not";
+  if (a.leaves) return point_difference("leaf", sorted_points(*a.leaves), sorted_points(*b.leaves));
   return "";
 }
 

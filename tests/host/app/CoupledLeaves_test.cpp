@@ -9,53 +9,20 @@
 #include "fluid/SolidMap.hpp"
 #include "fluid/WindSettings.hpp"
 #include "host/app/CoupledStep.hpp"
+#include "tests/support/LeafRun.hpp"
 #include "tests/support/SmallSpecies.hpp"
 #include "tests/support/TestDevice.hpp"
 #include "trees/Foliage.hpp"
 
 using namespace fw;
-using B = fluid::BoundaryType;
 
 namespace {
-
-constexpr double kLeafAreaIndex = 3.0;
-
-// 48 x 16 x 16 cells of 1 m: inflow west, outflow east, periodic sides, a no-slip ground and a 4 m high
-// block downwind of two small broadleaf trees in leaf.
-struct LeafRun {
-  host::WindGridSetup wind;
-  trees::Forest forest;
-  host::CouplingSettings coupling;
-
-  explicit LeafRun(double speed, fluid::AdvectionScheme advection = fluid::AdvectionScheme::semi_lagrangian) {
-    wind.spec.nx = 48;
-    wind.spec.ny = 16;
-    wind.spec.nz = 16;
-    wind.spec.h = 1.0;
-    wind.spec.boundary = {B::inflow, B::outflow, B::periodic, B::periodic, B::no_slip, B::slip};
-    wind.settings.cfl = 0.8;
-    wind.settings.max_dt = 0.1;
-    wind.settings.advection = advection;
-    wind.ambient = {speed, 0.0, 0.0};
-    fluid::SolidMap solids(wind.spec);
-    solids.add(fluid::SolidBox{"block", {30.0, 8.0, 2.0}, {6.0, 16.0, 4.0}});
-    wind.solid = solids.cells();
-    const trees::SpeciesBasis species = test::small_species("broadleaf", 8.0, 3, 5, 6, 2, kLeafAreaIndex);
-    trees::LeafSettings leaves;
-    leaves.area = 0.01;             // m^2: big leaves, a few thousand a tree
-    leaves.petiole_strength = 0.3;  // N: the median leaf goes near 12 m/s
-    leaves.strength_spread = 0.8;
-    coupling.leaves = {trees::SpeciesLeaves::generate(
-        species.skeleton(), trees::Foliage::of(species.skeleton(), kLeafAreaIndex), leaves)};
-    forest = trees::Forest({species}, {{0, {8.0, 5.0, 0.0}, 0.4, 1.0}, {0, {12.0, 11.0, 0.0}, 2.0, 1.1}});
-  }
-};
 
 // Runs `seconds` of the coupled step at `speed` and returns the final leaves and counts.
 std::pair<host::LeafSnapshot, trees::LeafCounts> run(
     host::ComputeContext& cc, double speed, double seconds,
     fluid::AdvectionScheme advection = fluid::AdvectionScheme::semi_lagrangian) {
-  LeafRun setup(speed, advection);
+  test::LeafRun setup(speed, advection);
   host::CoupledStep coupled(cc, setup.wind, setup.forest, setup.coupling,
                             host::TimeInputs::steady(setup.wind.ambient));
   coupled.start();
@@ -91,7 +58,7 @@ TEST_CASE(
   const auto advection = GENERATE(fluid::AdvectionScheme::semi_lagrangian, fluid::AdvectionScheme::maccormack,
                                   fluid::AdvectionScheme::upwind5);
   // 8 m/s: a leaf falling at ~1.3 m/s from the crowns (4-8 m) comes down within the domain's 48 m.
-  const LeafRun setup(8.0, advection);
+  const test::LeafRun setup(8.0, advection);
   const auto [snap, counts] = run(*cc, 8.0, 12.0, advection);
   INFO("advection " << fluid::to_string(advection) << ": shed " << counts.shed << " flying " << counts.flying
                     << " landed " << counts.landed << " exited " << counts.exited);

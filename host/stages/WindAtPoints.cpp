@@ -1,0 +1,55 @@
+#include "host/stages/WindAtPoints.hpp"
+
+#include <vector>
+
+#include "host/runtime/Communicator.hpp"
+
+namespace fw::host {
+
+std::size_t WindAtPoints::estimate_device_bytes(std::size_t count) {
+  return ComputeContext::allocation_bytes(3 * count * sizeof(float));
+}
+
+WindAtPoints::WindAtPoints(ComputeContext& cc, const fluid::GridSpec& spec, const WindBlocks* blocks,
+                           cl::Buffer positions, int count)
+    : cc_(cc), grid_(spec.to_device()), count_(count), positions_(std::move(positions)) {
+  wind_ = cc_.zero_floats(3 * std::size_t(count_));
+  const cl::Program program = cc_.build("probe_sample.cl");
+  sample_ = Kernel(program, "probe_sample");
+  place_ = Kernel(program, "probe_place");
+  if (blocks != nullptr && blocks->world->size() > 1) share(spec, *blocks);
+}
+
+void WindAtPoints::share(const fluid::GridSpec& spec, const WindBlocks& blocks) {
+  std::vector<float> world(3 * std::size_t(count_));
+  if (count_ > 0)
+    cc_.queue().enqueueReadBuffer(positions_, CL_TRUE, 0, world.size() * sizeof(float), world.data());
+  std::vector<int> slots;
+  std::vector<float> needed;
+  for (int n = 0; n < count_; ++n) {
+    const float* point = &world[3 * std::size_t(n)];
+    if (SampleExchange::holder(spec, blocks.decomposition, point) == blocks.world->rank()) continue;
+    slots.push_back(n);
+    needed.insert(needed.end(), point, point + 3);
+  }
+  exchange_ = std::make_unique<SampleExchange>(cc_, spec, &blocks, needed);
+  if (slots.empty()) return;
+  remote_slots_ = cc_.upload(slots, CL_MEM_READ_ONLY);
+  remote_wind_ = cc_.zero_floats(needed.size());
+}
+
+void WindAtPoints::enqueue_sample(DeviceVelocity& velocity) {
+  if (count_ > 0)
+    sample_.set_args(grid_, count_, positions_, velocity.u, velocity.v, velocity.w, wind_)
+        .enqueue(cc_, cl::NDRange(cc_.flat_items(std::size_t(count_))));
+  if (!exchange_) return;
+  // Every rank takes part, with or without points of its own.
+  const std::vector<float> wind = exchange_->exchange(velocity);
+  const int remote = exchange_->point_count();
+  if (remote == 0) return;
+  cc_.queue().enqueueWriteBuffer(remote_wind_, CL_TRUE, 0, wind.size() * sizeof(float), wind.data());
+  place_.set_args(remote, remote_slots_, remote_wind_, wind_)
+      .enqueue(cc_, cl::NDRange(cc_.flat_items(std::size_t(remote))));
+}
+
+}  // namespace fw::host
