@@ -142,6 +142,63 @@ io::Scenario bench_scenario(const CoupledBenchOptions& options, const std::array
   return scenario;
 }
 
+// The bench's one species (kSpecies) and the foliage's leaves of one of its trees at scale 1.
+struct BenchSpecies {
+  io::Species species;
+  double real_leaves_per_tree = 0.0;
+};
+
+// A broadleaf generated at about nodes_per_tree nodes, with the options' modes and wind samples, in full leaf
+// (LAI kLeafAreaIndex, leaves of the default size) simulated as a sample of leaves_per_tree of them
+// (LeafSettings::fraction).
+BenchSpecies bench_species(const CoupledBenchOptions& options) {
+  trees::GeneratorSettings generator;
+  generator.preset = "broadleaf";
+  generator.height = 15.0;
+  generator.seed = 1;
+  const trees::Skeleton skeleton =
+      trees::generate_tree_with_nodes(generator, options.nodes_per_tree, &generator.max_element_length);
+  BenchSpecies bench;
+  io::Species& species = bench.species;
+  species.name = kSpecies;
+  species.skeleton.kind = io::SkeletonSource::Kind::generate;
+  species.skeleton.generate = generator;
+  species.modes.count = options.modes;
+  species.modes.wind_samples = options.samples;
+  species.canopy.leaf_area_index = kLeafAreaIndex;
+  const trees::Foliage foliage = trees::Foliage::of(skeleton, kLeafAreaIndex);
+  species.leaves = trees::LeafSettings{};
+  bench.real_leaves_per_tree = foliage.leaf_area / species.leaves.area;
+  species.leaves.fraction =
+      std::min(1.0, options.leaves_per_tree / std::max(bench.real_leaves_per_tree, 1.0));
+  return bench;
+}
+
+// Starts `coupled`, steps it through the warm-up, then times options.steps steps into c, every rank of
+// `world` starting its clock at the same moment: ms per step, the stages, the pressure iterations and this
+// rank's halo traffic.
+void time_steps(host::ComputeContext& cc, host::CoupledStep& coupled, const CoupledBenchOptions& options,
+                const host::Communicator& world, CoupledBenchCase& c) {
+  coupled.start();
+  for (int s = 0; s < options.warmup_steps; ++s) coupled.step();
+  cc.finish();
+
+  coupled.set_stage_timing(true);
+  coupled.reset_stage_ms();
+  const host::HaloTraffic halo_before = coupled.wind().halo_traffic();
+  world.barrier();
+  const auto start = Clock::now();
+  for (int s = 0; s < options.steps; ++s) c.pressure_iterations += coupled.step().wind.pressure.iterations;
+  c.ms_per_step = ms_since(start) / options.steps;
+  c.halo = coupled.wind().halo_traffic() - halo_before;
+  c.pressure_iterations /= options.steps;
+  for (const auto& [stage, ms] : coupled.stage_ms()) {
+    c.stages_ms[stage] = ms / options.steps;
+    if (stage != "trees" && stage != "leaves") c.fluid_ms += ms / options.steps;
+  }
+  c.trees_ms = c.stages_ms["trees"];
+}
+
 }  // namespace
 
 CoupledBenchResult run_coupled_bench(host::ComputeContext& cc, const CoupledBenchOptions& options) {
@@ -151,29 +208,11 @@ CoupledBenchResult run_coupled_bench(host::ComputeContext& cc, const CoupledBenc
   result.modes = options.modes;
   result.samples = options.samples;
 
-  // One species, generated at about nodes_per_tree nodes; its basis is computed once, by the first plan,
-  // and loaded from a cache of the bench's own by the others (the point of the similarity laws: one basis
-  // for every instance).
-  trees::GeneratorSettings generator;
-  generator.preset = "broadleaf";
-  generator.height = 15.0;
-  generator.seed = 1;
-  const trees::Skeleton skeleton =
-      trees::generate_tree_with_nodes(generator, options.nodes_per_tree, &generator.max_element_length);
-  io::Species species;
-  species.name = kSpecies;
-  species.skeleton.kind = io::SkeletonSource::Kind::generate;
-  species.skeleton.generate = generator;
-  species.modes.count = options.modes;
-  species.modes.wind_samples = options.samples;
-  species.canopy.leaf_area_index = kLeafAreaIndex;
-  // The species in full leaf (LAI kLeafAreaIndex, leaves of the default size), simulated as a sample of
-  // leaves_per_tree of them (LeafSettings::fraction).
-  const trees::Foliage foliage = trees::Foliage::of(skeleton, kLeafAreaIndex);
-  species.leaves = trees::LeafSettings{};
-  result.real_leaves_per_tree = foliage.leaf_area / species.leaves.area;
-  species.leaves.fraction =
-      std::min(1.0, options.leaves_per_tree / std::max(result.real_leaves_per_tree, 1.0));
+  // One species; its basis is computed once, by the first plan, and loaded from a cache of the bench's own
+  // by the others (the point of the similarity laws: one basis for every instance).
+  const BenchSpecies bench = bench_species(options);
+  const io::Species& species = bench.species;
+  result.real_leaves_per_tree = bench.real_leaves_per_tree;
   const ScratchCache cache;
 
   for (const auto& grid : options.grids) {
@@ -198,22 +237,7 @@ CoupledBenchResult run_coupled_bench(host::ComputeContext& cc, const CoupledBenc
       const trees::Forest& forest = plan.forest;
       host::CoupledStep coupled(cc, plan);
       if (variant.leaves) c.leaves = coupled.leaves().own_count();
-      coupled.start();
-      for (int s = 0; s < options.warmup_steps; ++s) coupled.step();
-      cc.finish();
-
-      coupled.set_stage_timing(true);
-      coupled.reset_stage_ms();
-      const auto start = Clock::now();
-      for (int s = 0; s < options.steps; ++s)
-        c.pressure_iterations += coupled.step().wind.pressure.iterations;
-      c.ms_per_step = ms_since(start) / options.steps;
-      c.pressure_iterations /= options.steps;
-      for (const auto& [stage, ms] : coupled.stage_ms()) {
-        c.stages_ms[stage] = ms / options.steps;
-        if (stage != "trees" && stage != "leaves") c.fluid_ms += ms / options.steps;
-      }
-      c.trees_ms = c.stages_ms["trees"];
+      time_steps(cc, coupled, options, host::Communicator::alone(), c);
       result.cases.push_back(c);
 
       // Once, on the first case (neither depends on the grid): the deformation of every node, as on an
@@ -254,6 +278,46 @@ CoupledBenchResult run_coupled_bench(host::ComputeContext& cc, const CoupledBenc
   result.fma_peak_gfma_s = measure_fma_peak(cc, 5);
   // 3 FMAs (x, y, z) per node and mode.
   result.deform_fraction_of_peak = 3.0 * result.node_modes_per_s / (result.fma_peak_gfma_s * 1e9);
+  return result;
+}
+
+RanksBenchResult run_coupled_bench_ranks(host::ComputeContext& cc, const CoupledBenchOptions& options,
+                                         const host::Communicator& world) {
+  RanksBenchResult result;
+  result.bench = "coupled";
+  result.device = cc.device().device_name;
+  result.workload = fmt::format("{} trees of ~{} nodes x {} modes, two-way coupling, cg to 1e-3",
+                                options.trees, options.nodes_per_tree, options.modes);
+  result.skipped =
+      "turbulence, leaves (timed in one process), the Jacobi baseline, the deformation, the CPU reference "
+      "and "
+      "the FMA peak";
+  result.ranks = world.size();
+  result.steps = options.steps;
+  const BenchSpecies bench = bench_species(options);
+  const ScratchCache cache;
+  const Variant converged{};
+  for (const auto& grid : options.grids) {
+    const io::Scenario scenario = bench_scenario(options, grid, converged, bench.species);
+    // The one-rank baseline: every rank steps the whole grid and forest at once, each on its own device.
+    double alone_ms = 0.0;
+    {
+      const host::SimulationPlan alone = host::plan_simulation(scenario, &cache.cache, nullptr);
+      if (alone_run_fits(world, cc.device(), alone.memory.total())) {
+        CoupledBenchCase c;
+        host::CoupledStep coupled(cc, alone);
+        time_steps(cc, coupled, options, world, c);
+        alone_ms = c.ms_per_step;
+      }
+    }
+    const host::SimulationPlan plan = host::plan_simulation(scenario, &cache.cache, nullptr, world.size());
+    CoupledBenchCase split;
+    host::CoupledStep coupled(cc, plan, &world);
+    time_steps(cc, coupled, options, world, split);
+    result.cases.push_back(
+        gather_case(world, grid, plan.decomposition,
+                    {split.ms_per_step, alone_ms, split.halo, options.steps, split.pressure_iterations}));
+  }
   return result;
 }
 

@@ -23,6 +23,13 @@
 //   CoupledBenchOptions opt;                                 // 1,000 trees x ~3,437 nodes x 25 modes
 //   CoupledBenchResult r = run_coupled_bench(cc, opt);       // on 128x128x32 and 256x256x16
 //   print_coupled_bench_table(r, std::cout);                 // or coupled_bench_json(r)
+//
+// Over MPI ranks (mpirun -np N, N > 1) run_coupled_bench_ranks times the converged laminar case on each grid,
+// the wind split into the blocks a run would take and each tree stepped by the rank holding its root, against
+// every rank stepping the whole case alone at the same time (host/bench/RanksBench.hpp). The other cases and
+// the baselines run in one process only.
+//
+//   RanksBenchResult r = run_coupled_bench_ranks(cc, opt, world);   // collective; r.cases filled on rank 0
 #pragma once
 
 #include <array>
@@ -31,7 +38,10 @@
 #include <string>
 #include <vector>
 
+#include "host/bench/RanksBench.hpp"
+#include "host/runtime/Communicator.hpp"
 #include "host/runtime/ComputeContext.hpp"
+#include "host/stages/HaloExchange.hpp"
 
 namespace fw::bench {
 
@@ -62,6 +72,7 @@ struct CoupledBenchCase {
   double fluid_ms = 0.0;                    // the wind grid's share of a step
   double trees_ms = 0.0;                    // sampling + modal forces + modal step
   double pressure_iterations = 0.0;
+  host::HaloTraffic halo;  // this rank's halo exchanges over the timed steps (none in one process)
 };
 
 struct CoupledBenchResult {
@@ -84,6 +95,9 @@ struct CoupledBenchResult {
 };
 
 CoupledBenchResult run_coupled_bench(host::ComputeContext& cc, const CoupledBenchOptions& options);
+/// The converged laminar case on each grid over the ranks of `world` (see above). Collective.
+RanksBenchResult run_coupled_bench_ranks(host::ComputeContext& cc, const CoupledBenchOptions& options,
+                                         const host::Communicator& world);
 void print_coupled_bench_table(const CoupledBenchResult& result, std::ostream& out);
 std::string coupled_bench_json(const CoupledBenchResult& result);
 

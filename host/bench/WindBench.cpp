@@ -4,6 +4,7 @@
 
 #include <chrono>
 #include <cmath>
+#include <optional>
 
 #include "fluid/ReferenceStages.hpp"
 #include "fluid/SolidMap.hpp"
@@ -42,10 +43,18 @@ host::WindGridSetup bench_setup(const std::array<int, 3>& grid, fluid::PressureS
   return setup;
 }
 
+// How a timed run shares the machine with other ranks (the default: one process). Every rank of `world`
+// starts its clock at the same moment; over `blocks` each steps its block of the grid, without them each
+// steps the whole grid on its own (the one-rank baseline of the run over ranks).
+struct RanksRun {
+  const host::Communicator* world = &host::Communicator::alone();
+  const host::WindBlocks* blocks = nullptr;
+};
+
 SolverRun time_solver(host::ComputeContext& cc, const std::array<int, 3>& grid,
                       fluid::PressureSolverType solver, const WindBenchOptions& opt,
-                      Turbulence turbulence = Turbulence::none) {
-  host::WindGrid wind(cc, bench_setup(grid, solver, opt, turbulence));
+                      Turbulence turbulence = Turbulence::none, const RanksRun& ranks = {}) {
+  host::WindGrid wind(cc, bench_setup(grid, solver, opt, turbulence), ranks.blocks);
   if (turbulence != Turbulence::none) wind.set_turbulence_sigma(kBenchTurbulenceSigma);
   wind.initialise_ambient();
   cc.finish();
@@ -66,6 +75,8 @@ SolverRun time_solver(host::ComputeContext& cc, const std::array<int, 3>& grid,
                                            : turbulence == Turbulence::inflow_subgrid ? "+turb+sgs"
                                                                                       : "");
   const double traffic_before = wind.pressure().traffic_bytes();
+  const host::HaloTraffic halo_before = wind.halo_traffic();
+  ranks.world->barrier();
   const auto start = Clock::now();
   for (int s = 0; s < opt.steps; ++s) {
     const auto report = wind.step();
@@ -75,6 +86,7 @@ SolverRun time_solver(host::ComputeContext& cc, const std::array<int, 3>& grid,
   cc.finish();
   const double total_ms = ms_since(start);
   run.ms_per_step = total_ms / opt.steps;
+  run.halo = wind.halo_traffic() - halo_before;
   run.pressure_iterations /= opt.steps;
   run.relative_residual /= opt.steps;
   for (const auto& [stage, ms] : wind.stage_ms()) run.stages_ms[stage] = ms / opt.steps;
@@ -157,6 +169,16 @@ double time_reference_step(const std::array<int, 3>& grid) {
   fluid::reference::solve_pressure_cg(spec, level, b, phi, 1e-3, 10000);
   fluid::reference::subtract_gradient(spec, level, phi, vel);
   return ms_since(start);
+}
+
+// The ranks' blocks of the wind tunnel, made as the planner makes a run's (host/app/plan/WindPlan.cpp): the
+// split that exchanges the fewest halo cells, and the halo a back-trace needs at the ambient wind's Courant
+// number.
+host::WindBlocks bench_blocks(const host::WindGridSetup& setup, const host::Communicator& world) {
+  const double speed = std::hypot(setup.ambient[0], setup.ambient[1], setup.ambient[2]);
+  const double courant = speed * setup.settings.dt / setup.spec.h;
+  return {&world, fluid::Decomposition::make(setup.spec, world.size(), std::nullopt,
+                                             fluid::halo_cells(setup.settings.advection, courant))};
 }
 
 }  // namespace
@@ -255,6 +277,35 @@ WindBenchResult run_wind_bench(host::ComputeContext& cc, const WindBenchOptions&
     if (opt.reference && std::size_t(grid[0]) * grid[1] * grid[2] <= (std::size_t(1) << 18))
       c.reference_ms_per_step = time_reference_step(grid);
     result.cases.push_back(std::move(c));
+  }
+  return result;
+}
+
+RanksBenchResult run_wind_bench_ranks(host::ComputeContext& cc, const WindBenchOptions& opt,
+                                      const host::Communicator& world) {
+  constexpr auto cg = fluid::PressureSolverType::cg;
+  RanksBenchResult result;
+  result.bench = "wind";
+  result.device = cc.device().device_name;
+  result.workload = "the wind tunnel, cg to 1e-3";
+  result.skipped =
+      "the multigrid and Jacobi solvers, turbulence, the advection schemes, the smoother, the CPU reference "
+      "and the roofline (STREAM triad, corner loads)";
+  result.ranks = world.size();
+  result.steps = opt.steps;
+  for (const auto& grid : opt.grids) {
+    const host::WindGridSetup setup = bench_setup(grid, cg, opt, Turbulence::none);
+    const host::WindBlocks blocks = bench_blocks(setup, world);
+    // The one-rank baseline: every rank steps the whole grid at once, each on its own device, so that each
+    // has the share of the machine it has in the run over ranks.
+    double alone_ms = 0.0;
+    if (alone_run_fits(world, cc.device(),
+                       host::WindGrid::estimate_device_bytes(setup.spec, setup.settings, 1)))
+      alone_ms = time_solver(cc, grid, cg, opt, Turbulence::none, {&world, nullptr}).ms_per_step;
+    const SolverRun split = time_solver(cc, grid, cg, opt, Turbulence::none, {&world, &blocks});
+    result.cases.push_back(
+        gather_case(world, grid, blocks.decomposition,
+                    {split.ms_per_step, alone_ms, split.halo, opt.steps, split.pressure_iterations}));
   }
   return result;
 }

@@ -12,6 +12,12 @@
 //   WindBenchOptions opt;                 // default grids 128x128x64, 64x64x32, 256x256x16
 //   WindBenchResult r = run_wind_bench(cc, opt);
 //   print_wind_bench_table(r, std::cout);
+//
+// Over MPI ranks (mpirun -np N, N > 1) run_wind_bench_ranks times the converging solver's case on each grid,
+// split into the blocks a run would take, against every rank stepping the whole grid alone at the same time
+// (host/bench/RanksBench.hpp); the comparison solvers and the baselines above run in one process only.
+//
+//   RanksBenchResult r = run_wind_bench_ranks(cc, opt, world);   // collective; r.cases filled on rank 0
 #pragma once
 
 #include <array>
@@ -21,6 +27,7 @@
 #include <vector>
 
 #include "host/bench/GatherThroughput.hpp"
+#include "host/bench/RanksBench.hpp"
 
 #include "host/runtime/ComputeContext.hpp"
 #include "host/stages/WindGrid.hpp"
@@ -52,6 +59,7 @@ struct SolverRun {
   // What the stages reach against the limit that binds them (host/bench/StageTraffic.hpp):
   double advect_loads_per_s = 0.0;  ///< corner loads of the advection kernels (padding included in the time)
   double divergence_gb_s = 0.0, pressure_gb_s = 0.0, gradient_gb_s = 0.0;
+  host::HaloTraffic halo;  ///< this rank's halo exchanges over the timed steps (none in one process)
 };
 
 /// One advection scheme on the turbulent wind tunnel (cg, inflow turbulence, Smagorinsky and wall stress) at
@@ -93,6 +101,9 @@ host::WindGridSetup wind_tunnel_setup(int nx, int ny, int nz, fluid::PressureSol
                                       int jacobi_iterations);
 
 WindBenchResult run_wind_bench(host::ComputeContext& cc, const WindBenchOptions& options);
+/// The converging solver's case on each grid over the ranks of `world` (see above). Collective.
+RanksBenchResult run_wind_bench_ranks(host::ComputeContext& cc, const WindBenchOptions& options,
+                                      const host::Communicator& world);
 void print_wind_bench_table(const WindBenchResult& result, std::ostream& out);
 std::string wind_bench_json(const WindBenchResult& result);
 

@@ -31,7 +31,9 @@ struct BenchOptions {
   bool json = false;
 };
 
-int run_bench(const BenchOptions& options, const GlobalOptions& global);
+/// `forestwind bench`: in one process, or under mpirun the wind and coupled cases over the ranks (rank 0
+/// prints).
+int run_bench(const BenchOptions& options, const GlobalOptions& global, const host::Communicator& world);
 
 struct TreeGenerateOptions {
   std::string preset;   // broadleaf | conifer | palm | weeping

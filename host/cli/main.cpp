@@ -162,7 +162,7 @@ int main(int argc, char** argv) {
     }
     if (bench_cmd->parsed()) {
       for (const auto& g : grids) bench.grids.push_back(cli::parse_grid(g));
-      return cli::run_bench(bench, global);
+      return cli::run_bench(bench, global, world);
     }
   } catch (const host::NoDeviceError& e) {
     return failed(world, e, 3);

@@ -54,6 +54,10 @@ long long Communicator::min(long long local) const {
   return least;
 }
 
+void Communicator::barrier() const {
+  if (uses_mpi()) MPI_Barrier(comm_);
+}
+
 std::vector<std::vector<std::byte>> Communicator::exchange_bytes(
     const std::vector<std::vector<std::byte>>& to_each) const {
   if (to_each.size() != std::size_t(size_))

@@ -7,6 +7,7 @@
 //   fw::base::ExactSum local = ...;
 //   double total = world.sum(local);                  // the same bits on every rank, whatever the split
 //   double largest = world.max(x);                    // NaN on any rank wins
+//   world.barrier();                                  // every rank here before any goes on
 //   world.abort(1);                                   // stops every rank (never returns)
 //
 // Without a launcher (no OMPI_COMM_WORLD_SIZE, PMIX_RANK or PMI_RANK in the environment) MPI is never
@@ -55,6 +56,8 @@ class Communicator {
   long long sum(long long local) const;
   /// The smallest of every rank's count. Collective.
   long long min(long long local) const;
+  /// Returns once every rank has called it (benchmarks start their clocks together). Collective.
+  void barrier() const;
   /// Sends to_each[r] to rank r (to_each has size() lists; this rank's own list comes back to it) and
   /// returns what each rank sent this one, by rank. Collective.
   template <typename T>

@@ -1,7 +1,14 @@
 #include "host/stages/HaloExchange.hpp"
 
+#include <chrono>
+
 namespace fw::host {
 namespace {
+
+using Clock = std::chrono::steady_clock;
+double seconds_since(Clock::time_point start) {
+  return std::chrono::duration<double>(Clock::now() - start).count();
+}
 
 // Message tags: the axis and the direction the data travels, so that two messages between the same two
 // ranks (two blocks along a periodic axis are each other's low and high neighbour) stay apart.
@@ -12,6 +19,19 @@ int tag(int axis, bool towards_high) {
 constexpr int kSeamTag = 4;
 
 }  // namespace
+
+HaloTraffic& HaloTraffic::operator+=(const HaloTraffic& other) {
+  messages += other.messages;
+  bytes += other.bytes;
+  seconds += other.seconds;
+  copy_seconds += other.copy_seconds;
+  return *this;
+}
+
+HaloTraffic HaloTraffic::operator-(const HaloTraffic& earlier) const {
+  return {messages - earlier.messages, bytes - earlier.bytes, seconds - earlier.seconds,
+          copy_seconds - earlier.copy_seconds};
+}
 
 HaloExchange::HaloExchange(ComputeContext& cc, const Communicator& world, const BlockArray& layout)
     : cc_(cc), world_(world), layout_(layout) {}
@@ -36,22 +56,37 @@ HaloExchange::Rect HaloExchange::rect(const Box& box) const {
 }
 
 void HaloExchange::read_box(cl::Buffer& field, const Box& box, std::vector<float>& host) {
+  const auto start = Clock::now();
   host.resize(box.values());
   const Rect r = rect(box);
   cc_.queue().enqueueReadBufferRect(field, CL_TRUE, r.origin, {0, 0, 0}, r.region, r.row, r.slice, r.host_row,
                                     r.host_slice, host.data());
+  traffic_.copy_seconds += seconds_since(start);
 }
 
 void HaloExchange::write_box(cl::Buffer& field, const Box& box, const std::vector<float>& host) {
+  const auto start = Clock::now();
   const Rect r = rect(box);
   cc_.queue().enqueueWriteBufferRect(field, CL_TRUE, r.origin, {0, 0, 0}, r.region, r.row, r.slice,
                                      r.host_row, r.host_slice, host.data());
+  traffic_.copy_seconds += seconds_since(start);
+}
+
+void HaloExchange::send(const std::vector<float>& values, int peer, int message_tag, MPI_Request& request) {
+  MPI_Isend(values.data(), int(values.size()), MPI_FLOAT, peer, message_tag, world_.comm(), &request);
+  ++traffic_.messages;
+  traffic_.bytes += static_cast<long long>(values.size() * sizeof(float));
 }
 
 void HaloExchange::exchange(cl::Buffer& field) {
   if (!world_.uses_mpi() || world_.size() == 1) return;
+  // The first halo read would wait for the kernels queued before it: they are the step's work, not the
+  // exchange's, so they finish before the clock starts.
+  cc_.finish();
+  const auto start = Clock::now();
   exchange_axis(field, 0);
   exchange_axis(field, 1);
+  traffic_.seconds += seconds_since(start);
 }
 
 void HaloExchange::copy_seam(cl::Buffer& field) {
@@ -60,6 +95,8 @@ void HaloExchange::copy_seam(cl::Buffer& field) {
   if (!world_.uses_mpi() || axis < 0 || axis > 1) return;
   const int to = a.seam_low[axis], from = a.seam_high[axis];
   if (to < 0 && from < 0) return;
+  cc_.finish();  // as in exchange(): the kernels before are not the copy's
+  const auto start = Clock::now();
   // One layer of faces across the axis: face 0 of the domain is block 0's first own face, face n the last
   // block's face after its own cells.
   const Box first = strip(axis, a.halo_low[axis], 1),
@@ -70,7 +107,7 @@ void HaloExchange::copy_seam(cl::Buffer& field) {
   if (to >= 0) {
     read_box(field, first, sent);
     requests.emplace_back();
-    MPI_Isend(sent.data(), int(sent.size()), MPI_FLOAT, to, kSeamTag, world_.comm(), &requests.back());
+    send(sent, to, kSeamTag, requests.back());
   }
   if (from >= 0) {
     received.resize(last.values());
@@ -80,6 +117,7 @@ void HaloExchange::copy_seam(cl::Buffer& field) {
   }
   MPI_Waitall(int(requests.size()), requests.data(), MPI_STATUSES_IGNORE);
   if (from >= 0) write_box(field, last, received);
+  traffic_.seconds += seconds_since(start);
 }
 
 void HaloExchange::exchange_axis(cl::Buffer& field, int axis) {
@@ -95,16 +133,15 @@ void HaloExchange::exchange_axis(cl::Buffer& field, int axis) {
 
   std::vector<MPI_Request> requests;
   requests.reserve(4);
-  const auto post = [&](int peer, const Box& out, const Box& in, std::vector<float>& send,
+  const auto post = [&](int peer, const Box& out, const Box& in, std::vector<float>& sent,
                         std::vector<float>& receive, bool towards_high) {
-    read_box(field, out, send);
+    read_box(field, out, sent);
     receive.resize(in.values());
     requests.emplace_back();
     MPI_Irecv(receive.data(), int(receive.size()), MPI_FLOAT, peer, tag(axis, !towards_high), world_.comm(),
               &requests.back());
     requests.emplace_back();
-    MPI_Isend(send.data(), int(send.size()), MPI_FLOAT, peer, tag(axis, towards_high), world_.comm(),
-              &requests.back());
+    send(sent, peer, tag(axis, towards_high), requests.back());
   };
   if (low_rank >= 0) post(low_rank, send_low, receive_low, staging_[0], staging_[2], false);
   if (high_rank >= 0) post(high_rank, send_high, receive_high, staging_[1], staging_[3], true);

@@ -10,6 +10,15 @@
 // the halo. The y phase sends whole rows, x halos included, so the corners arrive from the diagonal blocks
 // without messages of their own. A side without a neighbour (a domain face, or an axis that is not cut) has
 // no halo and sends nothing. In one process there is nothing to exchange, and exchange() does nothing.
+//
+// Each exchange counts what it sent and the wall time it took (traffic()), for `forestwind bench` over
+// ranks: the bytes are the halo's floats, the time runs from the queue's last kernel to the last halo
+// written back, so it holds the device-host copies (copy_seconds) and the wait for the neighbours, which
+// includes waiting for a slower neighbour to reach the exchange.
+//
+//   const fw::host::HaloTraffic before = halo.traffic();
+//   halo.exchange(field);
+//   const fw::host::HaloTraffic one = halo.traffic() - before;   // one.bytes, one.messages, one.seconds
 #pragma once
 
 #include <array>
@@ -22,6 +31,18 @@
 
 namespace fw::host {
 
+/// What halo exchanges sent, and the wall time they took; zero in one process.
+struct HaloTraffic {
+  long long messages = 0;     // MPI messages sent
+  long long bytes = 0;        // bytes sent (the halo's floats)
+  double seconds = 0.0;       // wall time of the exchanges, copies and waits included
+  double copy_seconds = 0.0;  // of which the device-host copies of the sent and received halos
+
+  HaloTraffic& operator+=(const HaloTraffic& other);
+  /// The traffic since `earlier`, a snapshot of the same counters.
+  HaloTraffic operator-(const HaloTraffic& earlier) const;
+};
+
 class HaloExchange {
  public:
   HaloExchange(ComputeContext& cc, const Communicator& world, const BlockArray& layout);
@@ -33,6 +54,8 @@ class HaloExchange {
   /// face 0 (block 0's), as a whole grid's boundary pass makes it. Nothing elsewhere. Collective with the
   /// seam's two blocks.
   void copy_seam(cl::Buffer& field);
+  /// Everything this exchange has sent since it was made (exchange() and copy_seam()).
+  const HaloTraffic& traffic() const { return traffic_; }
 
   /// A box of the layout's values: first value and extent along x, y, z.
   struct Box {
@@ -51,14 +74,18 @@ class HaloExchange {
     std::size_t row, slice, host_row, host_slice;
   };
   Rect rect(const Box& box) const;
-  /// Blocking copies of a box of `field` to and from `host` (resized to the box).
+  /// Blocking copies of a box of `field` to and from `host` (resized to the box), timed into
+  /// traffic_.copy_seconds.
   void read_box(cl::Buffer& field, const Box& box, std::vector<float>& host);
   void write_box(cl::Buffer& field, const Box& box, const std::vector<float>& host);
+  /// MPI_Isend of `values` to `peer`, counted in traffic_.
+  void send(const std::vector<float>& values, int peer, int message_tag, MPI_Request& request);
 
   ComputeContext& cc_;
   const Communicator& world_;
   BlockArray layout_;
   std::array<std::vector<float>, 4> staging_;  // send low, send high, receive low, receive high
+  HaloTraffic traffic_;
 };
 
 }  // namespace fw::host

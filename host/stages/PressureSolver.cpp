@@ -183,6 +183,13 @@ void PressureSolver::exchange(int l, cl::Buffer& field) {
   if (split(l)) levels_[l].halo->exchange(field);
 }
 
+HaloTraffic PressureSolver::halo_traffic() const {
+  HaloTraffic total;
+  for (const DeviceLevel& level : levels_)
+    if (level.halo) total += level.halo->traffic();
+  return total;
+}
+
 double PressureSolver::dot(int level, cl::Buffer& a, cl::Buffer& b) {
   dot_.set_args(levels_[level].dims, a, b, columns_).enqueue(cc_, column_rows(level));
   count_traffic(level, traffic::kDot);

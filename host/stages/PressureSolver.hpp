@@ -79,6 +79,8 @@ class PressureSolver {
   /// Device memory traffic of every kernel this solver has enqueued so far, bytes: each kernel's arrays per
   /// cell of its level, counted once (the model in PressureSolver.cpp), for the benchmark's bandwidth.
   double traffic_bytes() const { return traffic_bytes_; }
+  /// What this solver's halo exchanges have sent over ranks, and their time (zero in one process).
+  HaloTraffic halo_traffic() const;
   void set_settings(const fluid::PressureSettings& s) { settings_ = s; }
   int level_count() const { return static_cast<int>(levels_.size()); }
   const fluid::PressureLevel& level(int l) const { return host_levels_[l]; }

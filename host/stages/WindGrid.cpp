@@ -378,6 +378,15 @@ void WindGrid::exchange_cells(cl::Buffer& field) {
   if (cell_halo_) cell_halo_->exchange(field);
 }
 
+HaloTraffic WindGrid::halo_traffic() const {
+  HaloTraffic total = pressure_.halo_traffic();
+  for (const auto& halo : face_halo_)
+    if (halo) total += halo->traffic();
+  if (cell_halo_) total += cell_halo_->traffic();
+  if (vorticity_halo_) total += vorticity_halo_->traffic();
+  return total;
+}
+
 void WindGrid::set_canopy(std::vector<float> drag_density, const fluid::DragLaw& law) {
   law.validate();
   drag_law_ = law;

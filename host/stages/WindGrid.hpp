@@ -185,6 +185,9 @@ class WindGrid {
   void set_stage_timing(bool on) { stage_timing_ = on; }
   const std::map<std::string, double>& stage_ms() const { return stage_ms_; }
   void reset_stage_ms() { stage_ms_.clear(); }
+  /// What every halo exchange of this grid has sent over ranks, the pressure solver's included, and the
+  /// time they took (zero in one process): the benchmark's halo bytes and time per step.
+  HaloTraffic halo_traffic() const;
 
   FluidStages& stages() { return stages_; }
   PressureSolver& pressure() { return pressure_; }
