@@ -277,15 +277,14 @@ void LeafStages::move_leaves() {
   read_counters(c);
   if (c[FW_LEAF_COUNT_PAST_HALO] > 0)
     throw std::runtime_error(
-        fmt::format("LeafStages: a flying leaf's step on rank {} reached past its block's halo ({} cells); "
-                    "the leaf moved "
-                    "faster than the wind's Courant number allows for",
-                    world.rank(), grid_.nx - (own_hi_[0] - own_lo_[0])));
+        fmt::format("LeafStages: a flying leaf's step on rank {} reached past its block's halo: the leaf "
+                    "moved faster than the wind's Courant number, which sizes the halo, allows for",
+                    world.rank()));
   const int leaving = c[FW_LEAF_COUNT_LEAVING];
   std::vector<std::vector<MovingLeaf>> to_each(std::size_t(world.size()));
   if (leaving > 0) {
     const std::int32_t reset = 0;
-    cc_.queue().enqueueWriteBuffer(counters_, CL_FALSE, FW_LEAF_COUNT_LEAVING * sizeof(std::int32_t),
+    cc_.queue().enqueueWriteBuffer(counters_, CL_TRUE, FW_LEAF_COUNT_LEAVING * sizeof(std::int32_t),
                                    sizeof(reset), &reset);
     // The kernel listed the slots in no order; sorted, they leave in slot order on every run.
     std::vector<std::int32_t> slots(static_cast<std::size_t>(leaving));
