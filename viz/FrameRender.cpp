@@ -271,11 +271,23 @@ void draw_trees(Canvas& canvas, const std::vector<TreeStroke>& strokes) {
   }
 }
 
-// Leaves (all, or those `below` / above the slice in the perspective view).
+// Leaves (all, or those `below` / above the slice in the perspective view), painted far to near, and in one
+// order whatever order the files list them in (a run over MPI ranks writes them rank by rank), so that the
+// same leaves give the same picture.
 void draw_leaves(Canvas& canvas, const Camera& camera, const LeafPoints& leaves, std::optional<bool> below,
                  double slice_z) {
   const double ppm = camera.pixels_per_metre();
-  for (std::size_t n = 0; n < leaves.position.size(); ++n) {
+  std::vector<std::size_t> order(leaves.position.size());
+  std::iota(order.begin(), order.end(), std::size_t(0));
+  const auto depth = [&](std::size_t n) {
+    const auto& p = leaves.position[n];
+    return camera.depth({p[0], p[1], p[2]});
+  };
+  std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
+    const double da = depth(a), db = depth(b);
+    return da != db ? da > db : leaves.position[a] < leaves.position[b];
+  });
+  for (const std::size_t n : order) {
     const auto& p = leaves.position[n];
     if (below && ((p[2] < slice_z) != *below)) continue;
     const int state = std::min<int>(leaves.state[n], 2);

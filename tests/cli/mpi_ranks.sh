@@ -103,6 +103,9 @@ out=$(ranks 4 "$forestwind" run leaves.yaml -o leafy_ranks 2>&1) || fail "the ru
 cmp -s leafy_one/probes.csv leafy_ranks/probes.csv || fail "probes.csv with leaves over 2 x 2 ranks differs from one process's"
 grep -q 'file="leaves/leaves_000002.pvtp"' leafy_ranks/leaves.pvd || fail "leaves.pvd over ranks lists no .pvtp"
 out=$("$compare_runs" leafy_one leafy_ranks) || fail "the frames with leaves over 2 x 2 ranks differ from one process's: $out"
+"$forestwind" render leafy_one -o leafy_one.png >/dev/null || fail "render of the leaves in one process exited $?"
+"$forestwind" render leafy_ranks -o leafy_ranks.png >/dev/null || fail "render of the leaves over ranks exited $?"
+cmp -s leafy_one.png leafy_ranks.png || fail "render draws the leaves over 2 x 2 ranks otherwise than one process's"
 # A VDB file's first 57 bytes hold OpenVDB's header with a random UUID of the file; the rest is the grids.
 for vdb in leafy_one/vdb/wind.000[0-2].vdb; do
   other=leafy_ranks/vdb/$(basename "$vdb")
