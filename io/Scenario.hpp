@@ -314,8 +314,8 @@ struct OutputSettings {
   /// Subset of schema::kVdbGridWords, in the file's order ("leaves": a points grid, in runs with leaves).
   std::vector<std::string> vdb_grids = schema::strings(schema::key("output.vdb.grids").chosen);
   bool vtk_leaves = schema::key("output.leaves.vtk").flag;  ///< leaves.pvd, in runs with leaves
-  /// output.leaves.attached: the frames hold every N-th attached leaf; 1 all, 0 none. Flying and landed
-  /// leaves are always written.
+  /// output.leaves.attached: the frames hold the attached leaves whose index on their tree is a multiple of
+  /// N; 1 all, 0 none. Flying and landed leaves are always written.
   int leaves_attached_stride = schema::value_of(schema::kLeafStrideWords, schema::kLeafStrides,
                                                 schema::key("output.leaves.attached").word);
   std::vector<Probe> probes;

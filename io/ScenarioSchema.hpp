@@ -1098,10 +1098,12 @@ inline constexpr Key kKeys[] = {
      .highest = kNoUpperLimit,
      .words = kLeafStrideWords,
      .word = "all",
-     .description = "Which attached leaves the frames hold (`leaves.pvd` and the VDB `leaves` grid): `all`, "
-                    "`none`, or every N-th attached leaf in the flat leaf order (trees in order, each tree's "
-                    "leaves in order), to keep the files of a big forest small. Flying and landed leaves are "
-                    "always written, leaves that left the domain never."},
+     .description =
+         "Which attached leaves the frames hold (`leaves.pvd` and the VDB `leaves` grid): `all`, "
+         "`none`, or the attached leaves whose index among their tree's leaves is a multiple of N "
+         "(the same leaves in every frame, however many have been shed and however the run is "
+         "split over MPI ranks), to keep the files of a big forest small. Flying and landed leaves "
+         "are always written, leaves that left the domain never."},
     {.path = "output.leaves.vtk",
      .type = Type::boolean,
      .flag = true,
