@@ -13,6 +13,7 @@
 
 #include "base/AtomicFile.hpp"
 #include "base/Fnv1a.hpp"
+#include "base/SealedRecord.hpp"
 
 namespace fw::trees {
 
@@ -21,58 +22,6 @@ namespace {
 constexpr char kMagic[8] = {'F', 'W', 'B', 'A', 'S', 'I', 'S', '\0'};
 
 using base::Fnv1a;
-
-// Appends plain values to a byte buffer.
-class Writer {
- public:
-  template <typename T>
-  void value(const T& v) {
-    const auto* p = reinterpret_cast<const char*>(&v);
-    buffer_.insert(buffer_.end(), p, p + sizeof v);
-  }
-  void doubles(const double* data, std::size_t count) {
-    const auto* p = reinterpret_cast<const char*>(data);
-    buffer_.insert(buffer_.end(), p, p + count * sizeof(double));
-  }
-  void text(const std::string& s) {
-    value(std::uint32_t(s.size()));
-    buffer_.insert(buffer_.end(), s.begin(), s.end());
-  }
-  std::vector<char>& buffer() { return buffer_; }
-
- private:
-  std::vector<char> buffer_;
-};
-
-// Reads plain values from a byte buffer; every read checks the remaining length.
-class Reader {
- public:
-  explicit Reader(std::span<const char> bytes) : bytes_(bytes) {}
-  template <typename T>
-  T value() {
-    T v;
-    take(&v, sizeof v);
-    return v;
-  }
-  void doubles(double* data, std::size_t count) { take(data, count * sizeof(double)); }
-  std::string text() {
-    const auto size = value<std::uint32_t>();
-    if (size > bytes_.size() - offset_) throw std::runtime_error("truncated text");
-    std::string s(bytes_.data() + offset_, size);
-    offset_ += size;
-    return s;
-  }
-  std::size_t offset() const { return offset_; }
-
- private:
-  void take(void* out, std::size_t size) {
-    if (size > bytes_.size() - offset_) throw std::runtime_error("the entry is truncated");
-    std::memcpy(out, bytes_.data() + offset_, size);
-    offset_ += size;
-  }
-  std::span<const char> bytes_;
-  std::size_t offset_ = 0;
-};
 
 }  // namespace
 
@@ -155,16 +104,7 @@ std::optional<SpeciesBasis> BasisCache::load(const Skeleton& skeleton, const Spe
   const std::vector<char> bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
 
   try {
-    if (bytes.size() < sizeof kMagic + sizeof(std::uint64_t))
-      throw std::runtime_error("the entry is truncated");
-    const std::size_t body = bytes.size() - sizeof(std::uint64_t);
-    Fnv1a checksum;
-    checksum.bytes(bytes.data(), body);
-    std::uint64_t stored_checksum;
-    std::memcpy(&stored_checksum, bytes.data() + body, sizeof stored_checksum);
-    if (stored_checksum != checksum.digest()) throw std::runtime_error("the checksum does not match");
-
-    Reader reader(std::span<const char>(bytes.data(), body));
+    base::RecordReader reader(base::open_sealed(std::string_view(bytes.data(), bytes.size())));
     char magic[sizeof kMagic];
     for (char& c : magic) c = reader.value<char>();
     if (std::memcmp(magic, kMagic, sizeof kMagic) != 0) throw std::runtime_error("not a forestwind basis");
@@ -187,18 +127,18 @@ std::optional<SpeciesBasis> BasisCache::load(const Skeleton& skeleton, const Spe
     status.method = reader.text();
 
     Eigen::VectorXd omega(modes);
-    reader.doubles(omega.data(), std::size_t(modes));
+    reader.values(omega.data(), std::size_t(modes));
     Eigen::MatrixXd shapes(dofs, modes);
-    reader.doubles(shapes.data(), std::size_t(dofs) * std::size_t(modes));
+    reader.values(shapes.data(), std::size_t(dofs) * std::size_t(modes));
     Eigen::MatrixXd projection(3 * samples, modes);
-    reader.doubles(projection.data(), std::size_t(3 * samples) * std::size_t(modes));
+    reader.values(projection.data(), std::size_t(3 * samples) * std::size_t(modes));
     Eigen::MatrixX3d sample_points(samples, 3);
-    reader.doubles(sample_points.data(), std::size_t(samples) * 3);
+    reader.values(sample_points.data(), std::size_t(samples) * 3);
     Eigen::MatrixXd strong_v(3 * nodes, modes), strong_w(3 * nodes, modes);
-    reader.doubles(strong_v.data(), std::size_t(strong_v.size()));
-    reader.doubles(strong_w.data(), std::size_t(strong_w.size()));
+    reader.values(strong_v.data(), std::size_t(strong_v.size()));
+    reader.values(strong_w.data(), std::size_t(strong_w.size()));
     Eigen::VectorXd strong_b(modes);
-    reader.doubles(strong_b.data(), std::size_t(modes));
+    reader.values(strong_b.data(), std::size_t(modes));
     std::vector<StrongWindModeFit> fits(static_cast<std::size_t>(modes));
     for (StrongWindModeFit& fit : fits) {
       fit.q_max = reader.value<double>();
@@ -206,7 +146,7 @@ std::optional<SpeciesBasis> BasisCache::load(const Skeleton& skeleton, const Spe
       fit.linear_relative_residual = reader.value<double>();
       fit.shape_change = reader.value<double>();
     }
-    if (reader.offset() != body) throw std::runtime_error("the entry has trailing bytes");
+    reader.expect_end();
 
     ModalBasis modal = ModalBasis::from_values(std::move(omega), std::move(shapes), settings.modal.damping,
                                                std::move(status));
@@ -224,7 +164,7 @@ void BasisCache::store(const SpeciesBasis& species) const {
   const std::uint64_t entry_key = key(species.skeleton(), species.settings());
   const ModalBasis& modal = species.modes();
   const WindBasis& wind = species.wind();
-  Writer writer;
+  base::RecordWriter writer;
   for (char c : kMagic) writer.value(c);
   writer.value(kFormatVersion);
   writer.value(entry_key);
@@ -237,23 +177,20 @@ void BasisCache::store(const SpeciesBasis& species) const {
   writer.value(std::int32_t(modal.status().operations));
   writer.value(modal.status().max_residual);
   writer.text(modal.status().method);
-  writer.doubles(modal.omega().data(), std::size_t(modal.omega().size()));
-  writer.doubles(modal.shapes().data(), std::size_t(modal.shapes().size()));
-  writer.doubles(wind.projection_matrix().data(), std::size_t(wind.projection_matrix().size()));
-  writer.doubles(wind.sample_points().data(), std::size_t(wind.sample_points().size()));
+  writer.values(modal.omega().data(), std::size_t(modal.omega().size()));
+  writer.values(modal.shapes().data(), std::size_t(modal.shapes().size()));
+  writer.values(wind.projection_matrix().data(), std::size_t(wind.projection_matrix().size()));
+  writer.values(wind.sample_points().data(), std::size_t(wind.sample_points().size()));
   const StrongWindCorrection& strong = species.strong_wind();
-  writer.doubles(strong.linear_shapes().data(), std::size_t(strong.linear_shapes().size()));
-  writer.doubles(strong.quadratic_shapes().data(), std::size_t(strong.quadratic_shapes().size()));
-  writer.doubles(strong.b().data(), std::size_t(strong.b().size()));
+  writer.values(strong.linear_shapes().data(), std::size_t(strong.linear_shapes().size()));
+  writer.values(strong.quadratic_shapes().data(), std::size_t(strong.quadratic_shapes().size()));
+  writer.values(strong.b().data(), std::size_t(strong.b().size()));
   for (const StrongWindModeFit& fit : strong.fits()) {
     writer.value(fit.q_max);
     writer.value(fit.relative_residual);
     writer.value(fit.linear_relative_residual);
     writer.value(fit.shape_change);
   }
-  Fnv1a checksum;
-  checksum.bytes(writer.buffer().data(), writer.buffer().size());
-  writer.value(checksum.digest());
 
   const auto path = entry_path(entry_key);
   std::error_code error;
@@ -262,8 +199,7 @@ void BasisCache::store(const SpeciesBasis& species) const {
     throw std::runtime_error(fmt::format("BasisCache: cannot create the cache folder {}: {}",
                                          directory_.string(), error.message()));
   }
-  base::write_text_atomically("BasisCache", path,
-                              std::string_view(writer.buffer().data(), writer.buffer().size()));
+  base::write_text_atomically("BasisCache", path, writer.sealed());
 }
 
 SpeciesBasis BasisCache::load_or_compute(const Skeleton& skeleton, const SpeciesSettings& settings,
