@@ -126,4 +126,15 @@ void write_pvtp(const std::filesystem::path& path, const VtkArrays& arrays,
   base::write_text_atomically("write_pvtp", path, text);
 }
 
+std::string piece_file(const std::string& stem, int index, int rank, const std::string& extension) {
+  return fmt::format("{}_{:06d}_{:04d}.{}", stem, index, rank, extension);
+}
+
+std::vector<std::string> piece_files(const std::string& stem, int index, int ranks,
+                                     const std::string& extension) {
+  std::vector<std::string> files;
+  for (int r = 0; r < ranks; ++r) files.push_back(piece_file(stem, index, r, extension));
+  return files;
+}
+
 }  // namespace fw::io

@@ -53,4 +53,11 @@ void write_pvti(const std::filesystem::path& path, const VtkArrays& arrays,
 void write_pvtp(const std::filesystem::path& path, const VtkArrays& arrays,
                 const std::vector<std::string>& sources);
 
+/// The file name of rank `rank`'s piece of frame `index`: "<stem>_NNNNNN_RRRR.<extension>", beside the
+/// frame's summary.
+std::string piece_file(const std::string& stem, int index, int rank, const std::string& extension);
+/// Every rank's piece_file of frame `index`, in rank order: a summary's sources.
+std::vector<std::string> piece_files(const std::string& stem, int index, int ranks,
+                                     const std::string& extension);
+
 }  // namespace fw::io

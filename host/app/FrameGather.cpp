@@ -57,7 +57,7 @@ struct GatheredLeaf {
 
 std::optional<io::OutputFrame::Gathered> gather_frame(const io::OutputFrame& frame,
                                                       const fluid::GridSpec& whole, const WindBlocks& blocks,
-                                                      const BlockArray& cells) {
+                                                      const BlockArray& cells, bool leaves) {
   const Communicator& world = *blocks.world;
   const std::array<int, 3> domain{whole.nx, whole.ny, whole.nz};
   const int rank = world.rank();
@@ -65,12 +65,12 @@ std::optional<io::OutputFrame::Gathered> gather_frame(const io::OutputFrame& fra
   if (rank == 0) out.emplace().velocity = fluid::MacVelocity(whole);
 
   for (int c = 0; c < 3; ++c) {
-    std::vector<std::vector<float>> to_each(std::size_t(world.size()));
-    const std::vector<float>& mine = frame.velocity.component(c);
+    const std::vector<float>& block = frame.velocity.component(c);
     const BlockArray faces = face_array(cells, c);
+    std::vector<float> mine;
     for_each_face(own_faces(blocks.decomposition, rank, c, domain),
-                  [&](int i, int j, int k) { to_each[0].push_back(mine[block_face(faces, i, j, k)]); });
-    const std::vector<std::vector<float>> from = world.exchange(to_each);
+                  [&](int i, int j, int k) { mine.push_back(block[block_face(faces, i, j, k)]); });
+    const std::vector<std::vector<float>> from = world.gather(mine);
     if (!out) continue;
     // Rank 0 places each rank's faces in the order that rank visited them.
     std::vector<float>& whole_faces = out->velocity.component(c);
@@ -82,26 +82,25 @@ std::optional<io::OutputFrame::Gathered> gather_frame(const io::OutputFrame& fra
     }
   }
 
-  std::vector<std::vector<GatheredLeaf>> leaves_to(std::size_t(world.size()));
+  if (!leaves) return out;
   const io::LeafFrame& own = frame.leaves;
+  std::vector<GatheredLeaf> mine;
   for (std::size_t n = 0; n < own.size_written(); ++n)
-    leaves_to[0].push_back(
-        {own.position[n], own.normal[n], own.tree_id[n], own.leaf[n], own.side[n], own.state[n]});
-  std::vector<GatheredLeaf> all;
-  for (const auto& from : world.exchange(leaves_to)) all.insert(all.end(), from.begin(), from.end());
+    mine.push_back({own.position[n], own.normal[n], own.tree_id[n], own.leaf[n], own.side[n], own.state[n]});
+  std::vector<GatheredLeaf> all = joined(world.gather(mine));
   if (!out) return out;
   std::sort(all.begin(), all.end(), [](const GatheredLeaf& a, const GatheredLeaf& b) {
     return a.tree != b.tree ? a.tree < b.tree : a.leaf < b.leaf;
   });
-  io::LeafFrame& leaves = out->leaves;
-  leaves.counts = own.counts;
+  io::LeafFrame& gathered = out->leaves;
+  gathered.counts = own.counts;
   for (const GatheredLeaf& leaf : all) {
-    leaves.position.push_back(leaf.position);
-    leaves.normal.push_back(leaf.normal);
-    leaves.state.push_back(leaf.state);
-    leaves.tree_id.push_back(leaf.tree);
-    leaves.leaf.push_back(leaf.leaf);
-    leaves.side.push_back(leaf.side);
+    gathered.position.push_back(leaf.position);
+    gathered.normal.push_back(leaf.normal);
+    gathered.state.push_back(leaf.state);
+    gathered.tree_id.push_back(leaf.tree);
+    gathered.leaf.push_back(leaf.leaf);
+    gathered.side.push_back(leaf.side);
   }
   return out;
 }

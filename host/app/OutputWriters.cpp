@@ -87,6 +87,10 @@ std::unique_ptr<io::FrameWriter> wind_pieces(const SimulationPlan& plan,
 
 }  // namespace
 
+bool vdb_holds_leaves(const SimulationPlan& plan) {
+  return plan.output.vdb_enabled && plan.leaf_count > 0 && contains(plan.output.vdb_grids, "leaves");
+}
+
 std::vector<std::unique_ptr<io::FrameWriter>> make_writers(const SimulationPlan& plan,
                                                            const std::filesystem::path& directory,
                                                            const DeviceInfo& device,
@@ -117,7 +121,7 @@ std::vector<std::unique_ptr<io::FrameWriter>> make_writers(const SimulationPlan&
   if (out.vdb_enabled) {
     writers.push_back(std::make_unique<io::WindVdbWriter>(
         directory, plan.wind.spec, plan.wind.solid, contains(out.vdb_grids, "vel"),
-        contains(out.vdb_grids, "speed"), leaves_present && contains(out.vdb_grids, "leaves")));
+        contains(out.vdb_grids, "speed"), vdb_holds_leaves(plan)));
   }
   std::vector<std::string> probe_names;
   for (const auto& probe : out.probes) probe_names.push_back(probe.name);

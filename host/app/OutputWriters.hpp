@@ -27,6 +27,10 @@ struct OutputShare {
   const trees::Forest* own_forest = nullptr;  ///< the trees it holds (CoupledStep::own_forest)
 };
 
+/// Whether the VDB frames hold the leaves' points grid: VDB on, a forest with leaves, and "leaves" among
+/// output.vdb.grids.
+bool vdb_holds_leaves(const SimulationPlan& plan);
+
 /// In order: the manifest (run.json, scenario copy), wind VTK, trees VTK, VDB, probes, view.py; each only
 /// when the settings enable it (probes when there are probe points or tracked trees: tip_trees, the instance
 /// ids). Over ranks (share given), each rank only its part.

@@ -72,13 +72,10 @@ io::ProbeSample ProbeSampler::sample(CoupledStep& coupled) {
   for (std::size_t p = 0; p + 2 < wind.size(); p += 3)
     out.wind.push_back({wind[p], wind[p + 1], wind[p + 2]});
   // Every rank's tracked tips go to rank 0, which puts them in column (id) order.
-  std::vector<std::vector<double>> to_each(std::size_t(world_->size()));
-  to_each[0] = own_tips(coupled);
-  const std::vector<std::vector<double>> received = world_->exchange(to_each);
+  const std::vector<double> tips = joined(world_->gather(own_tips(coupled)));
   out.tips.resize(world_->rank() == 0 ? tip_trees_.size() : 0);
-  for (const std::vector<double>& tips : received)
-    for (std::size_t at = 0; at + 3 < tips.size(); at += 4)
-      out.tips[std::size_t(tips[at])] = {tips[at + 1], tips[at + 2], tips[at + 3]};
+  for (std::size_t at = 0; at + 3 < tips.size(); at += 4)
+    out.tips[std::size_t(tips[at])] = {tips[at + 1], tips[at + 2], tips[at + 3]};
   if (coupled.has_leaves()) out.leaf_counts = coupled.leaves().counts();
   return out;
 }

@@ -238,7 +238,8 @@ class RunLoop {
     io::OutputFrame frame = capture_frame(coupled_, needs_, plan_.output.leaves_attached_stride, frames_++);
     // The VDB frames hold the whole domain: rank 0 writes them from every rank's part.
     if (share_ && plan_.output.vdb_enabled)
-      frame.gathered = gather_frame(frame, plan_.wind.spec, *coupled_.blocks(), coupled_.wind().block());
+      frame.gathered = gather_frame(frame, plan_.wind.spec, *coupled_.blocks(), coupled_.wind().block(),
+                                    vdb_holds_leaves(plan_));
     frame.probe_samples = std::move(pending_samples_);
     pending_samples_.clear();
     frame_times_.push_back(frame.time);

@@ -290,8 +290,7 @@ RanksBenchResult run_coupled_bench_ranks(host::ComputeContext& cc, const Coupled
                                 options.trees, options.nodes_per_tree, options.modes);
   result.skipped =
       "turbulence, leaves (timed in one process), the Jacobi baseline, the deformation, the CPU reference "
-      "and "
-      "the FMA peak";
+      "and the FMA peak";
   result.ranks = world.size();
   result.steps = options.steps;
   const BenchSpecies bench = bench_species(options);

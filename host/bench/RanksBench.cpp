@@ -43,12 +43,7 @@ RankStep rank_step(double ms_per_step, double alone_ms, const host::HaloTraffic&
 }
 
 std::vector<RankStep> gather_rank_steps(const host::Communicator& world, const RankStep& mine) {
-  // An exchange in which every rank sends its one RankStep to rank 0 and nothing to the others.
-  std::vector<std::vector<RankStep>> to_each(std::size_t(world.size()));
-  to_each[0] = {mine};
-  std::vector<RankStep> all;
-  for (const auto& from : world.exchange(to_each)) all.insert(all.end(), from.begin(), from.end());
-  return all;
+  return host::joined(world.gather(std::vector<RankStep>{mine}));
 }
 
 RanksCase gather_case(const host::Communicator& world, const std::array<int, 3>& grid,

@@ -61,20 +61,13 @@ class Communicator {
   /// Sends to_each[r] to rank r (to_each has size() lists; this rank's own list comes back to it) and
   /// returns what each rank sent this one, by rank. Collective.
   template <typename T>
-  std::vector<std::vector<T>> exchange(const std::vector<std::vector<T>>& to_each) const {
-    static_assert(std::is_trivially_copyable_v<T>);
-    std::vector<std::vector<std::byte>> bytes(to_each.size());
-    for (std::size_t r = 0; r < to_each.size(); ++r) {
-      bytes[r].resize(to_each[r].size() * sizeof(T));
-      if (!bytes[r].empty()) std::memcpy(bytes[r].data(), to_each[r].data(), bytes[r].size());
-    }
-    const std::vector<std::vector<std::byte>> received = exchange_bytes(bytes);
-    std::vector<std::vector<T>> from_each(received.size());
-    for (std::size_t r = 0; r < received.size(); ++r) {
-      from_each[r].resize(received[r].size() / sizeof(T));
-      if (!received[r].empty()) std::memcpy(from_each[r].data(), received[r].data(), received[r].size());
-    }
-    return from_each;
+  std::vector<std::vector<T>> exchange(const std::vector<std::vector<T>>& to_each) const;
+  /// Every rank's `mine` on rank 0, by rank; on the other ranks empty lists. Collective (an exchange).
+  template <typename T>
+  std::vector<std::vector<T>> gather(const std::vector<T>& mine) const {
+    std::vector<std::vector<T>> to_each(static_cast<std::size_t>(size_));
+    to_each[0] = mine;
+    return exchange(to_each);
   }
   /// Stops every rank with `code` (MPI_Abort), or exits this process when alone. Never returns.
   [[noreturn]] void abort(int code) const;
@@ -89,6 +82,31 @@ class Communicator {
   MPI_Comm comm_ = MPI_COMM_NULL;
   int rank_ = 0, size_ = 1, node_rank_ = 0, node_size_ = 1;
 };
+
+/// The lists one after another (what an exchange or a gather brought, from every rank in rank order).
+template <typename T>
+std::vector<T> joined(const std::vector<std::vector<T>>& lists) {
+  std::vector<T> all;
+  for (const auto& list : lists) all.insert(all.end(), list.begin(), list.end());
+  return all;
+}
+
+template <typename T>
+std::vector<std::vector<T>> Communicator::exchange(const std::vector<std::vector<T>>& to_each) const {
+  static_assert(std::is_trivially_copyable_v<T>);
+  std::vector<std::vector<std::byte>> bytes(to_each.size());
+  for (std::size_t r = 0; r < to_each.size(); ++r) {
+    bytes[r].resize(to_each[r].size() * sizeof(T));
+    if (!bytes[r].empty()) std::memcpy(bytes[r].data(), to_each[r].data(), bytes[r].size());
+  }
+  const std::vector<std::vector<std::byte>> received = exchange_bytes(bytes);
+  std::vector<std::vector<T>> from_each(received.size());
+  for (std::size_t r = 0; r < received.size(); ++r) {
+    from_each[r].resize(received[r].size() / sizeof(T));
+    if (!received[r].empty()) std::memcpy(from_each[r].data(), received[r].data(), received[r].size());
+  }
+  return from_each;
+}
 
 /// MPI for the life of main(): initialised when launched_by_mpi(), finalised at the end.
 class MpiSession {

@@ -112,7 +112,10 @@ std::size_t LeafStages::estimate_device_bytes(const trees::Forest& forest,
 
 LeafStages::LeafStages(ComputeContext& cc, const fluid::GridSpec& spec, const trees::Forest& forest,
                        const std::vector<trees::SpeciesLeaves>& species_leaves, const WindBlocks* blocks)
-    : cc_(cc), blocks_(blocks != nullptr && blocks->world->size() > 1 ? blocks : nullptr), spec_(spec) {
+    : cc_(cc),
+      blocks_(blocks != nullptr && blocks->world->size() > 1 ? blocks : nullptr),
+      world_(blocks_ != nullptr ? blocks_->world : &Communicator::alone()),
+      spec_(spec) {
   try {
     spec.validate();
   } catch (const std::invalid_argument& e) {
@@ -191,7 +194,7 @@ LeafStages::LeafStages(ComputeContext& cc, const fluid::GridSpec& spec, const tr
   own_count_ = static_cast<int>(total);
   slot_count_ = own_count_;
   instance_count_ = forest.instance_count();
-  leaf_total_ = blocks_ != nullptr ? blocks_->world->sum(total) : total;
+  leaf_total_ = world_->sum(total);
 
   // Every per-leaf array is padded by FW_LANES values, so that the last leaves' lanes may load past the end.
   const std::size_t padded = std::size_t(own_count_) + FW_LANES;
@@ -267,7 +270,7 @@ void LeafStages::read_counters(std::int32_t (&c)[FW_LEAF_COUNTERS]) {
 }
 
 void LeafStages::move_leaves() {
-  const Communicator& world = *blocks_->world;
+  const Communicator& world = *world_;
   if (slot_count_ > 0)
     leaving_kernel_
         .set_args(grid_, slot_count_, own_lo_[0], own_hi_[0], own_lo_[1], own_hi_[1], state_, position_,
@@ -286,16 +289,16 @@ void LeafStages::move_leaves() {
     const std::int32_t reset = 0;
     cc_.queue().enqueueWriteBuffer(counters_, CL_TRUE, FW_LEAF_COUNT_LEAVING * sizeof(std::int32_t),
                                    sizeof(reset), &reset);
-    // The kernel listed the slots in no order; sorted, they leave in slot order on every run.
+    // The kernel listed the slots in no order, and so they leave; the ranks they reach sort them.
     std::vector<std::int32_t> slots(static_cast<std::size_t>(leaving));
-    cc_.queue().enqueueReadBuffer(leaving_, CL_TRUE, 0, slots.size() * sizeof(std::int32_t), slots.data());
-    std::sort(slots.begin(), slots.end());
-    cc_.queue().enqueueWriteBuffer(leaving_, CL_TRUE, 0, slots.size() * sizeof(std::int32_t), slots.data());
-    packed_ = cc_.buffer(slots.size() * FW_LEAF_PACKED_FLOATS * sizeof(float));
-    pack_.set_args(leaving, leaving_, state_, position_, velocity_, normal_, flight_, flight_drag_, packed_)
+    cc_.queue().enqueueReadBuffer(leaving_, CL_FALSE, 0, slots.size() * sizeof(std::int32_t), slots.data());
+    cl::Buffer packed_leaves = cc_.buffer(slots.size() * FW_LEAF_PACKED_FLOATS * sizeof(float));
+    pack_
+        .set_args(leaving, leaving_, state_, position_, velocity_, normal_, flight_, flight_drag_,
+                  packed_leaves)
         .enqueue(cc_, cl::NDRange(cc_.flat_items(slots.size())));
     std::vector<float> packed(slots.size() * FW_LEAF_PACKED_FLOATS);
-    cc_.queue().enqueueReadBuffer(packed_, CL_TRUE, 0, packed.size() * sizeof(float), packed.data());
+    cc_.queue().enqueueReadBuffer(packed_leaves, CL_TRUE, 0, packed.size() * sizeof(float), packed.data());
     for (std::size_t n = 0; n < slots.size(); ++n) {
       const float* values = &packed[n * FW_LEAF_PACKED_FLOATS];
       const int j = slots[n];
@@ -315,8 +318,7 @@ void LeafStages::move_leaves() {
     }
   }
   // Every rank takes part, whether leaves leave it or not.
-  std::vector<MovingLeaf> arrived;
-  for (const auto& from : world.exchange(to_each)) arrived.insert(arrived.end(), from.begin(), from.end());
+  std::vector<MovingLeaf> arrived = joined(world.exchange(to_each));
   if (arrived.empty()) return;
   // New slots in the order of the leaves in one process (tree, then leaf), whichever rank sent them.
   std::sort(arrived.begin(), arrived.end(), [](const MovingLeaf& a, const MovingLeaf& b) {
@@ -402,9 +404,7 @@ LeafSnapshot LeafStages::download() {
 trees::LeafCounts LeafStages::counts() {
   std::int32_t c[FW_LEAF_COUNTERS] = {};
   read_counters(c);
-  const auto total = [&](int counter) {
-    return blocks_ != nullptr ? blocks_->world->sum((long long)c[counter]) : (long long)c[counter];
-  };
+  const auto total = [&](int counter) { return world_->sum((long long)c[counter]); };
   trees::LeafCounts counts;
   counts.shed = long(total(FW_LEAF_COUNT_SHED));
   counts.landed = long(total(FW_LEAF_COUNT_LANDED));

@@ -110,6 +110,7 @@ class LeafStages {
 
   ComputeContext& cc_;
   const WindBlocks* blocks_ = nullptr;  // null alone
+  const Communicator* world_;           // the ranks whose counts add up (alone: this process)
   fluid::GridSpec spec_;
   FwGrid grid_{};
   int own_count_ = 0, instance_count_ = 0;
@@ -128,7 +129,7 @@ class LeafStages {
   std::optional<WindAtPoints> sites_;
   cl::Buffer theta_, theta_rate_, frame_position_, frame_normal_;                     // own leaves
   cl::Buffer state_, position_, velocity_, normal_, flight_, flight_drag_, leaving_;  // every slot
-  cl::Buffer counters_, no_displacements_, packed_;
+  cl::Buffer counters_, no_displacements_;
   Kernel flying_, attached_, frame_, leaving_kernel_, pack_;
 };
 

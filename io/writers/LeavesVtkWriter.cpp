@@ -17,6 +17,7 @@ LeavesVtkWriter::LeavesVtkWriter(std::filesystem::path directory, int rank, int 
     : LeavesVtkWriter(std::move(directory)) {
   rank_ = rank;
   ranks_ = ranks;
+  arrays_ = leaves_vtp_arrays();
 }
 
 std::string LeavesVtkWriter::frame_file(int index, bool pieces) {
@@ -34,14 +35,11 @@ void LeavesVtkWriter::write(const OutputFrame& frame) {
     collection_.add(frame.time, file);
     return;
   }
-  const auto piece_name = [&](int rank) {
-    return fmt::format("leaves_{:06d}_{:04d}.vtp", frame.index, rank);
-  };
-  write_leaves_vtp(directory_ / "leaves" / piece_name(rank_), frame.time, frame.leaves);
+  write_leaves_vtp(directory_ / "leaves" / piece_file("leaves", frame.index, rank_, "vtp"), frame.time,
+                   frame.leaves);
   if (rank_ != 0) return;
-  std::vector<std::string> sources;
-  for (int r = 0; r < ranks_; ++r) sources.push_back(piece_name(r));
-  write_pvtp(directory_ / frame_file(frame.index, true), leaves_vtp_arrays(), sources);
+  write_pvtp(directory_ / frame_file(frame.index, true), arrays_,
+             piece_files("leaves", frame.index, ranks_, "vtp"));
 }
 
 }  // namespace fw::io

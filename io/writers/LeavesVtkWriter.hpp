@@ -9,6 +9,7 @@
 #include <filesystem>
 #include <string>
 
+#include "io/ParallelVtk.hpp"
 #include "io/PvdCollection.hpp"
 #include "io/writers/FrameWriter.hpp"
 
@@ -33,6 +34,7 @@ class LeavesVtkWriter : public FrameWriter {
   std::filesystem::path directory_;
   PvdCollection collection_;
   int rank_ = 0, ranks_ = 0;  // ranks_ 0: one process, no pieces
+  VtkArrays arrays_;          // over ranks: what the .pvtp declares
 };
 
 }  // namespace fw::io

@@ -54,12 +54,11 @@ void TreesVtkWriter::write(const OutputFrame& frame) {
     collection_.add(frame.time, file);
     return;
   }
-  const auto piece_name = [&](int rank) { return fmt::format("trees_{:06d}_{:04d}.vtp", frame.index, rank); };
-  forest_->write(directory_ / "trees" / piece_name(rank_), frame.time, frame.displacement);
+  forest_->write(directory_ / "trees" / piece_file("trees", frame.index, rank_, "vtp"), frame.time,
+                 frame.displacement);
   if (rank_ != 0) return;
-  std::vector<std::string> sources;
-  for (int r = 0; r < ranks_; ++r) sources.push_back(piece_name(r));
-  write_pvtp(directory_ / frame_file(frame.index, true), forest_->arrays(), sources);
+  write_pvtp(directory_ / frame_file(frame.index, true), forest_->arrays(),
+             piece_files("trees", frame.index, ranks_, "vtp"));
 }
 
 }  // namespace fw::io

@@ -45,13 +45,13 @@ void WindVtkWriter::write(const OutputFrame& frame) {
     collection_.add(frame.time, file);
     return;
   }
-  const auto piece_name = [&](int rank) { return fmt::format("wind_{:06d}_{:04d}.vti", frame.index, rank); };
   VtkArrays arrays;
-  write_wind_vti(directory_ / "wind" / piece_name(pieces_->rank), wind, fields_, &pieces_->piece, &arrays);
+  write_wind_vti(directory_ / "wind" / piece_file("wind", frame.index, pieces_->rank, "vti"), wind, fields_,
+                 &pieces_->piece, &arrays);
   if (pieces_->rank != 0) return;
   std::vector<std::pair<std::array<int, 6>, std::string>> listed;
   for (std::size_t r = 0; r < pieces_->extents.size(); ++r)
-    listed.emplace_back(pieces_->extents[r], piece_name(int(r)));
+    listed.emplace_back(pieces_->extents[r], piece_file("wind", frame.index, int(r), "vti"));
   const std::array<int, 2> n = spec_.domain_cells();  // the block's grid knows the domain's
   write_pvti(directory_ / frame_file(frame.index, true), arrays, spec_.origin, spec_.h,
              {0, n[0], 0, n[1], 0, spec_.nz}, listed);
