@@ -29,10 +29,11 @@
 namespace fw::io {
 
 /// A checkpoint that cannot be used: unreadable, truncated, another format version, a failed checksum, or a
-/// section missing or of another kind. The message names the file (when read from one) and the reason.
-class CheckpointError : public std::runtime_error {
+/// section missing or of another kind. The message names the file (when read from one) and the reason. It
+/// is bad input to a resume, a std::invalid_argument, so the command line exits 2 with it.
+class CheckpointError : public std::invalid_argument {
  public:
-  using std::runtime_error::runtime_error;
+  using std::invalid_argument::invalid_argument;
 };
 
 class Checkpoint {

@@ -8,7 +8,9 @@
 #include <cerrno>
 #include <cstdio>
 #include <cstring>
+#include <fstream>
 #include <set>
+#include <sstream>
 #include <stdexcept>
 #include <utility>
 
@@ -16,6 +18,51 @@ namespace fw::io {
 
 ProbesCsv::ProbesCsv(std::filesystem::path path, std::vector<std::string> probe_names,
                      std::vector<int> tree_ids, std::size_t rewrite_limit_bytes, bool leaf_counts)
+    : ProbesCsv(std::move(path), std::move(probe_names), std::move(tree_ids), rewrite_limit_bytes,
+                leaf_counts, Start::fresh) {}
+
+ProbesCsv ProbesCsv::continued(std::filesystem::path path, std::vector<std::string> probe_names,
+                               std::vector<int> tree_ids, std::size_t rows, std::size_t rewrite_limit_bytes,
+                               bool leaf_counts) {
+  if (!std::filesystem::exists(path))
+    return ProbesCsv(std::move(path), std::move(probe_names), std::move(tree_ids), rewrite_limit_bytes,
+                     leaf_counts);
+  ProbesCsv csv(std::move(path), std::move(probe_names), std::move(tree_ids), rewrite_limit_bytes,
+                leaf_counts, Start::continued);
+  std::ifstream in(csv.path_, std::ios::binary);
+  std::ostringstream text;
+  text << in.rdbuf();
+  if (!in) throw std::runtime_error(fmt::format("ProbesCsv: cannot read {}", csv.path_.string()));
+  const std::string content = text.str();
+  // The header line and `rows` whole lines after it; anything later is dropped.
+  std::size_t end = content.find('\n');
+  if (end == std::string::npos || content.compare(0, end, csv.header_) != 0)
+    throw std::invalid_argument(fmt::format(
+        "{}: the columns differ from this run's (output.probes or the tracked trees changed): resume into "
+        "another folder (-o), or keep the probes as they were",
+        csv.path_.string()));
+  for (std::size_t row = 0; row < rows; ++row) {
+    const std::size_t next = content.find('\n', end + 1);
+    if (next == std::string::npos)
+      throw std::invalid_argument(
+          fmt::format("{}: holds {} rows, and the checkpoint was written after {}: it is "
+                      "not the checkpoint's run's file",
+                      csv.path_.string(), row, rows));
+    end = next;
+  }
+  csv.content_ = content.substr(0, end + 1);
+  base::write_text_atomically("ProbesCsv", csv.path_, csv.content_);
+  csv.rows_ = rows;
+  if (csv.content_.size() > csv.rewrite_limit_) {
+    csv.appending_ = true;
+    csv.content_.clear();
+  }
+  return csv;
+}
+
+ProbesCsv::ProbesCsv(std::filesystem::path path, std::vector<std::string> probe_names,
+                     std::vector<int> tree_ids, std::size_t rewrite_limit_bytes, bool leaf_counts,
+                     Start start)
     : path_(std::move(path)),
       probes_(probe_names.size()),
       trees_(tree_ids.size()),
@@ -43,6 +90,7 @@ ProbesCsv::ProbesCsv(std::filesystem::path path, std::vector<std::string> probe_
   for (const std::string& name : probe_names) header_ += fmt::format(",{0}_u,{0}_v,{0}_w", name);
   for (int id : tree_ids) header_ += fmt::format(",tree{0}_tip_dx,tree{0}_tip_dy,tree{0}_tip_dz", id);
   if (leaf_counts_) header_ += ",leaves_shed,leaves_flying,leaves_landed,leaves_exited";
+  if (start == Start::continued) return;
   content_ = header_ + "\n";
   base::write_text_atomically("ProbesCsv", path_, content_);
 }

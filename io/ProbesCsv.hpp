@@ -41,6 +41,16 @@ class ProbesCsv {
   ProbesCsv(std::filesystem::path path, std::vector<std::string> probe_names, std::vector<int> tree_ids,
             std::size_t rewrite_limit_bytes = kDefaultRewriteLimit, bool leaf_counts = false);
 
+  /// A resumed run's file: takes over the probes.csv at `path` written with the same columns, keeping its
+  /// header and first `rows` rows (the samples up to the checkpoint) and dropping later ones; appends go on
+  /// after them. Without a file there, a new one (as the constructor). Throws std::invalid_argument naming
+  /// the path when its header differs from these columns' or it holds fewer rows, and std::runtime_error
+  /// when it cannot be read or written.
+  static ProbesCsv continued(std::filesystem::path path, std::vector<std::string> probe_names,
+                             std::vector<int> tree_ids, std::size_t rows,
+                             std::size_t rewrite_limit_bytes = kDefaultRewriteLimit,
+                             bool leaf_counts = false);
+
   /// Appends one row. probe_velocity: one (u, v, w) per probe, m/s; tip_displacement: one (dx, dy, dz) per
   /// tree, m, both in constructor order. Throws std::invalid_argument for the wrong counts or, in a file
   /// with leaf count columns, for a row without leaf counts (nothing is written), and std::runtime_error
@@ -69,6 +79,10 @@ class ProbesCsv {
   std::size_t rows() const { return rows_; }
 
  private:
+  enum class Start { fresh, continued };  // continued: the header is not written
+  ProbesCsv(std::filesystem::path path, std::vector<std::string> probe_names, std::vector<int> tree_ids,
+            std::size_t rewrite_limit_bytes, bool leaf_counts, Start start);
+
   std::filesystem::path path_;
   std::size_t probes_ = 0, trees_ = 0;
   std::size_t rewrite_limit_ = kDefaultRewriteLimit;

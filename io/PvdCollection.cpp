@@ -110,6 +110,14 @@ void PvdCollection::add(double time, const std::string& file) {
   write();
 }
 
+void PvdCollection::continue_existing(double last_time) {
+  entries_.clear();
+  if (std::filesystem::exists(path_))
+    for (const Entry& entry : read_pvd(path_))
+      if (entry.time <= last_time) entries_.push_back(entry);
+  write();
+}
+
 void PvdCollection::write() const {
   std::string text =
       "<?xml version=\"1.0\"?>\n"

@@ -33,6 +33,10 @@ class PvdCollection {
   /// name, and std::runtime_error naming the path if the .pvd cannot be written (the entry is kept).
   void add(double time, const std::string& file);
 
+  /// A resumed run's collection: takes over the .pvd at path(), when there is one, keeping its entries up
+  /// to `last_time` (s) and dropping later ones, and rewrites it. Throws std::runtime_error naming the path
+  /// when the file cannot be read or written.
+  void continue_existing(double last_time);
   /// Writes the .pvd (also with no entries: an empty, valid collection). Throws std::runtime_error naming
   /// the path on failure; no temporary is left behind.
   void write() const;

@@ -319,6 +319,9 @@ struct OutputSettings {
   int leaves_attached_stride = schema::value_of(schema::kLeafStrideWords, schema::kLeafStrides,
                                                 schema::key("output.leaves.attached").word);
   std::vector<Probe> probes;
+  /// output.checkpoint.interval, s; 0 without the key (checkpoints only when a signal stops the run).
+  double checkpoint_interval = 0.0;
+  int checkpoints_kept = int(schema::key("output.checkpoint.keep").number);  ///< the newest ones kept
 };
 
 /// The ambient wind of `wind` at the reference height at time t (s), m/s: Scenario::wind_vector without the

@@ -1124,6 +1124,23 @@ inline constexpr Key kKeys[] = {
      .required = true,
      .allowed = "inside the domain, faces included",
      .description = "Probe location. The velocity there is interpolated trilinearly."},
+    {.path = "output.checkpoint",
+     .description = "Checkpoints of the whole state in `checkpoints/`, from which `forestwind run --resume` "
+                    "continues bit for bit. Without this key a run still writes one when a signal stops it "
+                    "(SIGTERM, SIGUSR1, SIGINT)."},
+    {.path = "output.checkpoint.interval",
+     .type = Type::number,
+     .unit = "s",
+     .required = true,
+     .bound = Bound::positive,
+     .description = "Simulated time between checkpoints; the run also writes one when it reaches its end, "
+                    "so that it can be extended."},
+    {.path = "output.checkpoint.keep",
+     .type = Type::integer,
+     .lowest = 1,
+     .highest = kNoUpperLimit,
+     .number = 2,
+     .description = "How many of the newest checkpoints are kept; older ones are removed."},
 };
 
 // --- look-ups ----------------------------------------------------------------------------------------------

@@ -146,9 +146,14 @@ void TreesVtp::write(const std::filesystem::path& path, double time, std::span<c
     moved[v] = d;
     points[v] = l.rest[v] + d;
   }
-  l.points->Modified();
-  l.displacement->Modified();
   l.time->SetValue(0, time);
+  // A written array keeps its range in its information, and the next write prints it (an empty information
+  // element) or, for a changed value, the stale range: every array starts each write afresh, so that a
+  // frame's file does not depend on the frames written before it (a resumed run writes the same bytes).
+  l.points->Modified();
+  vtkPointData* point_data = l.data->GetPointData();
+  for (int a = 0; a < point_data->GetNumberOfArrays(); ++a) point_data->GetArray(a)->Modified();
+  l.time->Modified();
 
   vtkNew<vtkXMLPolyDataWriter> writer;
   writer->SetInputData(l.data);

@@ -100,6 +100,26 @@ void CoupledStep::start() {
   if (has_trees()) trees_.reset_state();
 }
 
+std::map<std::string, StageState> CoupledStep::save_state() {
+  std::map<std::string, StageState> states;
+  states["wind"] = wind_.save_state();
+  if (has_trees()) states["trees"] = trees_.save_state();
+  if (leaves_) states["leaves"] = leaves_->save_state();
+  return states;
+}
+
+void CoupledStep::restore_state(const std::map<std::string, StageState>& states) {
+  const auto of = [&](const std::string& stage) -> const StageState& {
+    const auto at = states.find(stage);
+    if (at == states.end())
+      throw std::invalid_argument(fmt::format("the saved state has no {} stage: it is another run's", stage));
+    return at->second;
+  };
+  wind_.restore_state(of("wind"));
+  if (has_trees()) trees_.restore_state(of("trees"));
+  if (leaves_) leaves_->restore_state(of("leaves"));
+}
+
 CoupledStepReport CoupledStep::step(double max_dt) {
   const long next = wind_.steps() + 1;
   apply_inputs(time());

@@ -79,6 +79,13 @@ class CoupledStep {
   /// the trees at rest.
   void start();
 
+  /// Every stage's state by its name ("wind", "trees" with trees, "leaves" with leaves): what a checkpoint
+  /// keeps of the step (host/app/RunCheckpoint). Blocking.
+  std::map<std::string, StageState> save_state();
+  /// Continues from save_state()'s states, instead of start(): the next step is the one that would have
+  /// followed. Throws std::invalid_argument naming the stage and value that do not fit this set-up.
+  void restore_state(const std::map<std::string, StageState>& states);
+
   /// One coupled step of at most max_dt seconds (the settings' dt otherwise), with the time inputs at the
   /// step's start. Throws SimulationError (see the header comment) before the step when a check fails.
   CoupledStepReport step(double max_dt = std::numeric_limits<double>::infinity());

@@ -88,6 +88,9 @@ io::OutputFrame capture_frame(CoupledStep& coupled, const io::FrameNeeds& needs,
 class Schedule {
  public:
   explicit Schedule(double interval) : interval_(interval), next_(interval) {}
+  /// The next due time, s (what a checkpoint keeps), and going on from one.
+  double next() const { return next_; }
+  void resume(double next) { next_ = next; }
   /// Whether time t (s) has reached the next due time; if so, the next one moves past t.
   bool due(double t) {
     if (!(interval_ > 0.0)) return true;
@@ -126,7 +129,12 @@ class RunLoop {
         probes_(cc, coupled, probe_points(plan), plan.forest.instance_count(), options.tip_trees,
                 plan.coupling.strong_wind_correction),
         output_(make_writers(plan, directory, cc.device(), probes_.tip_trees(), share_ ? &*share_ : nullptr)),
-        needs_(agreed_needs(output_.needs(), world)) {
+        needs_(agreed_needs(output_.needs(), world)),
+        checkpoints_(directory / "checkpoints", world),
+        state_keys_(io::state_keys(plan.scenario.text)),
+        frames_due_(plan.output.interval),
+        samples_due_(plan.probe_interval),
+        checkpoints_due_(plan.output.checkpoint_interval) {
     if (share_ && world.rank() == 0) {
       if (plan.output.vtk_wind) wind_pvd_.emplace(directory / "wind.pvd");
       if (plan.output.vtk_trees && plan.forest.instance_count() > 0)
@@ -135,16 +143,26 @@ class RunLoop {
     }
   }
 
-  /// Steps from t = 0 to `end` (or a stop request), then finishes the output; see Simulation::run.
+  /// Steps from t = 0, or from the checkpoint of options.resume, to `end` (or a stop request), then finishes
+  /// the output; see Simulation::run.
   RunSummary run(double end) {
+    // A checkpoint that does not fit this run is refused before the output folder is touched.
+    if (options_.resume) coupled_.restore_state(options_.resume->stages);
     try {
       std::filesystem::create_directories(directory_);
-      output_.begin();
       coupled_.set_stage_timing(true);
-      coupled_.start();
-      sample_probes();
-      hand_over_frame();
+      if (options_.resume) {
+        resume(*options_.resume);
+      } else {
+        output_.begin();
+        coupled_.start();
+        sample_probes();
+        hand_over_frame();
+      }
+      start_time_ = coupled_.time();
+      start_step_ = coupled_.steps();
       step_until(end);
+      if (checkpoints_on() && !summary_.interrupted) write_checkpoint();
     } catch (const std::exception& e) {
       if (options_.progress) std::cerr << "\n";
       // The frames captured before the failure are still written; a second error while finishing is
@@ -185,19 +203,78 @@ class RunLoop {
   // call): a frame some rank has not finished is never listed, so every listed frame opens.
   void list_complete_frames() {
     if (!share_) return;
-    const long long complete = world_.min(output_.frames_written());
+    const long long complete = first_frame_ + world_.min(output_.frames_written());
     for (; listed_ < complete; ++listed_) {
-      const double time = frame_times_[std::size_t(listed_)];
+      const double time = frame_times_[std::size_t(listed_ - first_frame_)];
       if (wind_pvd_) wind_pvd_->add(time, io::WindVtkWriter::frame_file(int(listed_), true));
       if (trees_pvd_) trees_pvd_->add(time, io::TreesVtkWriter::frame_file(int(listed_), true));
       if (leaves_pvd_) leaves_pvd_->add(time, io::LeavesVtkWriter::frame_file(int(listed_), true));
     }
   }
 
-  // A stop request (SIGINT on any rank) stops every rank at the same step.
-  bool stop_requested() const {
-    const bool local = options_.stop && options_.stop->load();
-    return world_.size() > 1 ? world_.max(local ? 1.0 : 0.0) > 0.0 : local;
+  // A stop request (a signal on any rank) stops every rank at the same step: the signal's number, else 0.
+  int stop_requested() const {
+    const int local = options_.stop ? options_.stop->load() : 0;
+    return world_.size() > 1 ? int(world_.max(double(local))) : local;
+  }
+
+  bool checkpoints_on() const { return plan_.output.checkpoint_interval > 0.0; }
+
+  // Goes on from a checkpoint whose stages are restored already: the schedules, the frame and sample
+  // counts, the segments so far, and the output folder up to the checkpoint.
+  void resume(const RunSnapshot& from) {
+    checkpoints_.remove_after(from.step);
+    const RunProgress& progress = from.progress;
+    frames_ = first_frame_ = listed_ = progress.frames;
+    samples_taken_ = progress.probe_samples;
+    frames_due_.resume(progress.next_frame);
+    samples_due_.resume(progress.next_sample);
+    checkpoints_due_.resume(progress.next_checkpoint);
+    earlier_segments_ = progress.segments;
+    last_checkpoint_step_ = from.step;
+    output_.resume({from.time, progress.frames, progress.probe_samples});
+    for (auto* pvd : {&wind_pvd_, &trees_pvd_, &leaves_pvd_})
+      if (*pvd) (*pvd)->continue_existing(from.time);
+  }
+
+  // This run's segment up to now, with how it ended.
+  io::RunSegment segment(const std::string& status) const {
+    return {start_time_, coupled_.time(), start_step_, coupled_.steps(), ms_since(wall_start_) * 1e-3,
+            status};
+  }
+
+  // Everything handed out so far is written first, so that the checkpoint never describes output a crash
+  // could still lose; then every rank writes its part. Collective.
+  void write_checkpoint() {
+    if (coupled_.steps() == last_checkpoint_step_) return;
+    const auto start = Clock::now();
+    push_pending_samples();
+    output_.drain();
+    list_complete_frames();
+    RunSnapshot snapshot;
+    snapshot.time = coupled_.time();
+    snapshot.step = coupled_.steps();
+    snapshot.stages = coupled_.save_state();
+    snapshot.progress = {
+        frames_,          samples_taken_, frames_due_.next(), samples_due_.next(), checkpoints_due_.next(),
+        earlier_segments_};
+    snapshot.progress.segments.push_back(segment("stopped"));
+    snapshot.state_keys = state_keys_;
+    snapshot.ranks = world_.size();
+    snapshot.decomposition = plan_.decomposition.describe();
+    summary_.checkpoint = checkpoints_.write(snapshot, plan_.output.checkpoints_kept);
+    last_checkpoint_step_ = coupled_.steps();
+    checkpoint_ms_ += ms_since(start);
+  }
+
+  // The probe samples not yet handed to the writers, as a batch of their own.
+  void push_pending_samples() {
+    if (pending_samples_.empty()) return;
+    io::OutputFrame last;
+    last.probe_samples_only = true;
+    last.probe_samples = std::move(pending_samples_);
+    pending_samples_.clear();
+    output_.push(std::move(last));
   }
 
   static std::vector<std::array<double, 3>> probe_points(const SimulationPlan& plan) {
@@ -208,17 +285,19 @@ class RunLoop {
 
   void step_until(double end) {
     const double interval = plan_.output.interval;
-    Schedule frames(interval), samples(plan_.probe_interval);
     auto last_progress = Clock::now();
     while (coupled_.time() < end - kTimeTolerance * interval) {
-      if (stop_requested()) {
+      if (const int signal = stop_requested()) {
         summary_.interrupted = true;
+        summary_.stop_signal = signal;
+        write_checkpoint();
         return;
       }
       output_.check();
       const CoupledStepReport report = coupled_.step(end - coupled_.time());
-      if (samples.due(report.wind.time)) sample_probes();
-      if (frames.due(report.wind.time)) hand_over_frame();
+      if (samples_due_.due(report.wind.time)) sample_probes();
+      if (frames_due_.due(report.wind.time)) hand_over_frame();
+      if (checkpoints_on() && checkpoints_due_.due(report.wind.time)) write_checkpoint();
       if (options_.progress && ms_since(last_progress) > kProgressMs) {
         last_progress = Clock::now();
         print_progress(report.wind, end, ms_since(wall_start_) * 1e-3);
@@ -230,6 +309,7 @@ class RunLoop {
     if (probes_.empty()) return;
     const auto start = Clock::now();
     pending_samples_.push_back(probes_.sample(coupled_));
+    ++samples_taken_;
     probe_ms_ += ms_since(start);
   }
 
@@ -258,13 +338,7 @@ class RunLoop {
     std::exception_ptr write_error;
     const auto drain_start = Clock::now();
     try {
-      if (!pending_samples_.empty()) {
-        io::OutputFrame last;
-        last.probe_samples_only = true;
-        last.probe_samples = std::move(pending_samples_);
-        pending_samples_.clear();
-        output_.push(std::move(last));
-      }
+      push_pending_samples();
       output_.drain();
     } catch (const std::exception& e) {
       write_error = std::current_exception();
@@ -281,8 +355,12 @@ class RunLoop {
     summary_.stage_ms["output"] = output_ms_;
     summary_.stage_ms["probes"] = probe_ms_;
     summary_.stage_ms["output_write"] = output_.write_ms();
-    outcome.frames = summary_.frames = output_.frames_written();
-    outcome.wall_seconds = summary_.wall_seconds = ms_since(wall_start_) * 1e-3;
+    if (checkpoint_ms_ > 0.0) summary_.stage_ms["checkpoint"] = checkpoint_ms_;
+    outcome.frames = summary_.frames = first_frame_ + output_.frames_written();
+    summary_.wall_seconds = ms_since(wall_start_) * 1e-3;
+    outcome.segments = earlier_segments_;
+    outcome.segments.push_back(segment(outcome.status));
+    for (const io::RunSegment& s : outcome.segments) outcome.wall_seconds += s.wall_seconds;
     outcome.stage_ms = summary_.stage_ms;
     output_.finish(outcome);
     if (write_error) std::rethrow_exception(write_error);
@@ -307,8 +385,19 @@ class RunLoop {
   std::vector<io::ProbeSample> pending_samples_;
   // Over ranks, rank 0's collections, the frames' times and how many frames they list.
   std::optional<io::PvdCollection> wind_pvd_, trees_pvd_, leaves_pvd_;
-  std::vector<double> frame_times_;
+  std::vector<double> frame_times_;  // of the frames from first_frame_ on
   long long listed_ = 0;
+  // Checkpoints, and where a resumed run started: its first frame's index, time and step.
+  RunCheckpoints checkpoints_;
+  const std::vector<io::StateKey> state_keys_;
+  Schedule frames_due_, samples_due_, checkpoints_due_;
+  int first_frame_ = 0;
+  long samples_taken_ = 0;
+  double start_time_ = 0.0;
+  long start_step_ = 0;
+  long last_checkpoint_step_ = -1;
+  double checkpoint_ms_ = 0.0;
+  std::vector<io::RunSegment> earlier_segments_;
 };
 
 }  // namespace

@@ -4,8 +4,11 @@
 //   fw::host::SimulationPlan plan = fw::host::plan_simulation(scenario, &cache, &std::cerr);
 //   fw::host::Simulation sim(cc, std::move(plan), "out/storm");
 //   fw::host::RunOptions options;
-//   options.stop = &interrupted;                  // std::atomic<bool>, set by a SIGINT handler
+//   options.stop = &stop_signal;                  // std::atomic<int>, set by a signal handler
 //   fw::host::RunSummary summary = sim.run(options);
+//
+//   fw::host::RunSnapshot from = fw::host::read_checkpoint(fw::host::find_checkpoint("out/storm"), world);
+//   options.resume = &from;                       // goes on from a checkpoint (host/app/RunCheckpoint.hpp)
 //
 // Each step is host/app/CoupledStep. Frames are captured at t = 0 and at the first step that reaches each
 // multiple of the output interval: the velocity, the pressure and the trees' displacements (only what a
@@ -21,9 +24,18 @@
 //   run.json                           version, device, scenario hash, counts, timings per stage, status
 //   <scenario file name>               a copy of the scenario
 //
+//   checkpoints/step_NNNNNNNNNN/       the whole state (host/app/RunCheckpoint.hpp), every
+//                                      output.checkpoint.interval, at the end, and when a signal stops it
+//
 // A blow-up (CoupledStep's SimulationError), a device error or a writer's error stops the run: the frames
 // already captured are still written, run.json records the failure, and the error is rethrown. A stop
-// request (SIGINT) ends the run the same way with status "interrupted".
+// request (a signal) ends the run after a checkpoint, with status "interrupted".
+//
+// Checkpoints and resuming (docs/design.md "Long runs"): before a checkpoint the loop waits until every
+// frame and probe sample so far is on disk, so that a checkpoint never describes output that a crash could
+// still lose. A resumed run restores every stage (CoupledStep::restore_state) and the loop's schedules, and
+// the writers take over the folder's collections and probes.csv up to the checkpoint (FrameWriter::resume):
+// the run goes on bit for bit as if it had never stopped. Its earlier segments go to run.json.
 #pragma once
 
 #include <atomic>
@@ -33,16 +45,21 @@
 #include <string>
 
 #include "host/app/CoupledStep.hpp"
+#include "host/app/RunCheckpoint.hpp"
 #include "host/app/SimulationPlan.hpp"
 #include "host/runtime/ComputeContext.hpp"
 
 namespace fw::host {
 
 struct RunOptions {
-  double end_time = 0.0;                    ///< s; > 0 overrides the plan's end time
-  bool progress = false;                    ///< one self-overwriting progress line on stderr
-  const std::atomic<bool>* stop = nullptr;  ///< checked after every step: true stops the run cleanly
-  int tip_trees = 4;                        ///< trees whose tip displacement goes to probes.csv
+  double end_time = 0.0;  ///< s; > 0 overrides the plan's end time
+  bool progress = false;  ///< one self-overwriting progress line on stderr
+  /// Checked before every step: a signal number (> 0) stops the run cleanly, after a checkpoint.
+  const std::atomic<int>* stop = nullptr;
+  int tip_trees = 4;  ///< trees whose tip displacement goes to probes.csv
+  /// A checkpoint of this plan's run (read_checkpoint) to go on from, instead of t = 0; its scenario's
+  /// state keys are the caller's to check (io::require_same_state).
+  const RunSnapshot* resume = nullptr;
 };
 
 struct RunSummary {
@@ -50,6 +67,8 @@ struct RunSummary {
   double simulated_time = 0.0;  ///< s
   int frames = 0;
   bool interrupted = false;
+  int stop_signal = 0;               ///< the signal that stopped the run (interrupted), else 0
+  std::filesystem::path checkpoint;  ///< the last checkpoint written; empty when none was
   double wall_seconds = 0.0;
   /// Totals over the run, ms: the coupled step's stages, "output" (the loop's own time for output: copies
   /// from the device and waits for room in the queue) and "output_write" (the output thread, overlapped).

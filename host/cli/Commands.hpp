@@ -63,15 +63,18 @@ int run_tree_modes(const TreeModesOptions& options);
 struct RunCommandOptions {
   std::string scenario;    // SCENARIO.yaml
   std::string output_dir;  // -o: overrides output.directory
+  std::string resume;      // --resume DIR|CHECKPOINT: go on from a checkpoint
   bool quiet = false;
   host::RunOptions run;  // --end: run.end_time, s, > 0 overrides time.end
 };
 
-/// `forestwind run`: 0 completed, 130 interrupted by SIGINT (frames so far kept), exceptions otherwise.
+/// `forestwind run`: 0 completed; stopped by a signal after a checkpoint, 128 + the signal's number (130
+/// SIGINT, 138 SIGUSR1, 143 SIGTERM), the frames so far kept; exceptions otherwise.
 int run_scenario(const RunCommandOptions& options, const GlobalOptions& global,
                  const host::Communicator& world);
-/// `forestwind check`: validates and summarises without a device.
-int run_check(const std::string& scenario_path, const host::Communicator& world);
+/// `forestwind check`: validates and summarises without a device; with `resume` (a --resume argument) also
+/// says what would continue, from which time.
+int run_check(const std::string& scenario_path, const std::string& resume, const host::Communicator& world);
 
 struct RenderOptions {
   std::string folder;                 // DIR: a run's output folder

@@ -7,6 +7,8 @@
 #include <csignal>
 #include <filesystem>
 #include <iostream>
+#include <iterator>
+#include <optional>
 
 #include "host/app/Simulation.hpp"
 #include "host/app/SimulationPlan.hpp"
@@ -14,32 +16,57 @@
 #include "host/runtime/ComputeContext.hpp"
 #include "host/runtime/Device.hpp"
 #include "io/Scenario.hpp"
+#include "io/ScenarioStateKeys.hpp"
 #include "trees/BasisCache.hpp"
 
 namespace fw::cli {
 
 namespace {
 
-std::atomic<bool> g_interrupted{false};
+// The signals that stop a run after a checkpoint (docs/design.md "Long runs"): Ctrl-C, a batch system's stop,
+// and the notice some clusters send before a job's time limit.
+constexpr int kStopSignals[] = {SIGINT, SIGTERM, SIGUSR1};
+// A run stopped by signal S exits with 128 + S, as a shell reports a process a signal ended.
+constexpr int kSignalExitBase = 128;
 
-extern "C" void on_interrupt(int) {
-  g_interrupted.store(true);
+std::atomic<int> g_stop_signal{0};
+
+extern "C" void on_stop_signal(int signal) {
+  g_stop_signal.store(signal);
 }
 
-// Restores the previous SIGINT handler when the run ends, however it ends.
-class InterruptGuard {
+// Restores the previous handlers when the run ends, however it ends.
+class StopSignalGuard {
  public:
-  InterruptGuard() { previous_ = std::signal(SIGINT, on_interrupt); }
-  ~InterruptGuard() { std::signal(SIGINT, previous_); }
+  StopSignalGuard() {
+    for (std::size_t s = 0; s < std::size(kStopSignals); ++s)
+      previous_[s] = std::signal(kStopSignals[s], on_stop_signal);
+  }
+  ~StopSignalGuard() {
+    for (std::size_t s = 0; s < std::size(kStopSignals); ++s) std::signal(kStopSignals[s], previous_[s]);
+  }
 
  private:
-  void (*previous_)(int) = SIG_DFL;
+  void (*previous_[std::size(kStopSignals)])(int) = {};
 };
+
+// The checkpoint `given` names, read for this rank, after checking that the scenario keeps what its state
+// depends on: everything but time.end and output (exit 2 naming the key otherwise).
+host::RunSnapshot checkpoint_to_resume(const std::string& given, const io::Scenario& scenario,
+                                       const host::Communicator& world, std::filesystem::path& folder) {
+  folder = host::find_checkpoint(given);
+  host::RunSnapshot snapshot = host::read_checkpoint(folder, world);
+  io::require_same_state(snapshot.state_keys, io::state_keys(scenario.text), scenario.file.string());
+  return snapshot;
+}
 
 }  // namespace
 
-int run_check(const std::string& scenario_path, const host::Communicator& world) {
+int run_check(const std::string& scenario_path, const std::string& resume, const host::Communicator& world) {
   const io::Scenario scenario = io::load_scenario(scenario_path);
+  std::filesystem::path resume_folder;
+  std::optional<host::RunSnapshot> from;
+  if (!resume.empty()) from = checkpoint_to_resume(resume, scenario, world, resume_folder);
   // The plan `run` builds, with the same cache (species bases are computed or loaded here once): valid means
   // that nothing short of the device itself can fail. Under mpirun every rank plans; rank 0 reports.
   trees::BasisCache cache(trees::BasisCache::default_directory());
@@ -47,6 +74,16 @@ int run_check(const std::string& scenario_path, const host::Communicator& world)
   if (world.rank() != 0) return 0;
   std::cout << fmt::format("{}: scenario '{}' is valid\n", scenario_path, scenario.name);
   host::print_plan(plan, std::cout);
+  if (from) {
+    const double more = plan.end_time - from->time;
+    std::cout << fmt::format(
+        "resume: from {} at t = {:.6g} s (step {}, {} frames and {} probe rows written), to time.end {} "
+        "s{}\n",
+        resume_folder.string(), from->time, from->step, from->progress.frames, from->progress.probe_samples,
+        plan.end_time,
+        more > 0.0 ? fmt::format(": {:.6g} s more", more)
+                   : ": nothing more to run (raise time.end to extend)");
+  }
   for (const std::string& warning : plan.warnings) std::cerr << "warning: " << warning << "\n";
   return 0;
 }
@@ -61,6 +98,9 @@ int run_scenario(const RunCommandOptions& options, const GlobalOptions& global,
   const bool speaks = world.rank() == 0 && !options.quiet;
   const bool terminal = ::isatty(STDERR_FILENO) == 1 && speaks;
   std::ostream* log = speaks ? &std::cerr : nullptr;
+  std::filesystem::path resume_folder;
+  std::optional<host::RunSnapshot> from;
+  if (!options.resume.empty()) from = checkpoint_to_resume(options.resume, scenario, world, resume_folder);
   trees::BasisCache cache(trees::BasisCache::default_directory());
   host::SimulationPlan plan = host::plan_simulation(scenario, &cache, log, world.size());
   if (log)
@@ -76,13 +116,17 @@ int run_scenario(const RunCommandOptions& options, const GlobalOptions& global,
                         cc.device().device_name, cc.device().platform_name);
     if (world.size() > 1)
       *log << fmt::format("{} ranks: {}, a device each\n", world.size(), plan.decomposition.describe());
+    if (from)
+      *log << fmt::format("resuming from {} at t = {:.6g} s (step {})\n", resume_folder.string(), from->time,
+                          from->step);
   }
   host::Simulation simulation(cc, std::move(plan), directory, &world);
   host::RunOptions run = options.run;
   run.progress = terminal;
-  run.stop = &g_interrupted;
-  g_interrupted.store(false);
-  InterruptGuard guard;
+  run.stop = &g_stop_signal;
+  run.resume = from ? &*from : nullptr;
+  g_stop_signal.store(0);
+  StopSignalGuard guard;
   const host::RunSummary summary = simulation.run(run);
 
   if (speaks) {
@@ -105,9 +149,13 @@ int run_scenario(const RunCommandOptions& options, const GlobalOptions& global,
                                grids);
     }
     std::cout << fmt::format("  probes: {0}/probes.csv   timings: {0}/run.json\n", directory.string());
+    if (!summary.checkpoint.empty())
+      std::cout << fmt::format("  checkpoint: {}   go on: forestwind run {} -o {} --resume {}\n",
+                               summary.checkpoint.string(), options.scenario, directory.string(),
+                               directory.string());
   }
   if (cc.profiling()) cc.profiler()->print(std::cout);
-  return summary.interrupted ? 130 : 0;
+  return summary.interrupted ? kSignalExitBase + summary.stop_signal : 0;
 }
 
 }  // namespace fw::cli

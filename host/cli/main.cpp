@@ -67,10 +67,15 @@ int main(int argc, char** argv) {
   run_cmd->add_option("--end", run.run.end_time, "stop at this simulated time, s (default: time.end)")
       ->check(CLI::PositiveNumber);
   run_cmd->add_flag("--quiet", run.quiet, "no progress line or summary");
+  run_cmd->add_option(
+      "--resume", run.resume,
+      "go on from a checkpoint: DIR (a run's output folder or its checkpoints/: the newest) or "
+      "one checkpoint's folder");
 
-  std::string check_path;
+  std::string check_path, check_resume;
   auto* check_cmd = app.add_subcommand("check", "validate a scenario and summarise it (no device needed)");
   check_cmd->add_option("scenario", check_path, "SCENARIO.yaml")->required();
+  check_cmd->add_option("--resume", check_resume, "also say what `run --resume` would continue, from when");
 
   auto* tree = app.add_subcommand("tree", "tree species: generate skeletons, compute vibration modes");
   tree->require_subcommand(1);
@@ -152,7 +157,7 @@ int main(int argc, char** argv) {
   try {
     if (devices->parsed()) return cli::run_devices(devices_json);
     if (run_cmd->parsed()) return cli::run_scenario(run, global, world);
-    if (check_cmd->parsed()) return cli::run_check(check_path, world);
+    if (check_cmd->parsed()) return cli::run_check(check_path, check_resume, world);
     if (tree_generate->parsed()) return cli::run_tree_generate(generate);
     if (tree_modes->parsed()) return cli::run_tree_modes(modes);
     if (plot_cmd->parsed()) return cli::run_plot(plot);

@@ -158,6 +158,19 @@ void ForestStages::enqueue_deform() {
   }
 }
 
+StageState ForestStages::save_state() {
+  StageState state;
+  state.save(cc_, "modal_state", state_);
+  if (unresolved_on_) state.save(cc_, "travelled", travel_);
+  return state;
+}
+
+void ForestStages::restore_state(const StageState& state) {
+  static constexpr const char* kStage = "trees";
+  state.restore(cc_, kStage, "modal_state", state_);
+  if (unresolved_on_) state.restore(cc_, kStage, "travelled", travel_);
+}
+
 void ForestStages::reset_state() {
   if (total_modes_ == 0) return;
   cc_.queue().enqueueFillBuffer(state_, 0.0f, 0, 2 * std::size_t(total_modes_) * sizeof(float));

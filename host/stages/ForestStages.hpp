@@ -33,6 +33,7 @@
 #include "host/runtime/ComputeContext.hpp"
 #include "host/stages/BlockGrid.hpp"
 #include "host/stages/FluidStages.hpp"
+#include "host/stages/StageState.hpp"
 #include "host/stages/WindAtPoints.hpp"
 #include "kernels/shared_types.h"
 #include "trees/Forest.hpp"
@@ -103,6 +104,12 @@ class ForestStages {
   ModalState download_modal_state();
   /// Sets the modal state (restarts, tests). Throws std::invalid_argument unless both have total_modes().
   void upload_modal_state(const ModalState& state);
+
+  /// What the next step reads (StageState, for checkpoints): every instance-mode's q and qdot, and with the
+  /// unresolved forcing each tree's travelled distance along its series. Blocking.
+  StageState save_state();
+  /// Sets what save_state() saved from the same forest and settings; std::invalid_argument otherwise.
+  void restore_state(const StageState& state);
 
   /// Per-tree stochastic forcing of the unresolved turbulence (trees/UnresolvedTurbulence.hpp), off by
   /// default (and then nothing of it runs: the results are bit for bit those without it). Uploads the series

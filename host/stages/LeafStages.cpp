@@ -229,13 +229,17 @@ LeafStages::LeafStages(ComputeContext& cc, const fluid::GridSpec& spec, const tr
 void LeafStages::reserve_slots(int slots) {
   if (slots <= slot_capacity_ && slot_capacity_ > 0) return;
   // Grow by half again, so that a stream of arriving leaves copies each slot a bounded number of times.
-  const int capacity = std::max(slots, slot_capacity_ + slot_capacity_ / 2);
+  allocate_slots(std::max(slots, slot_capacity_ + slot_capacity_ / 2));
+}
+
+void LeafStages::allocate_slots(int capacity) {
   const std::size_t padded = std::size_t(capacity) + FW_LANES;
+  const int kept = std::min(slot_count_, capacity);
   const auto grown = [&](cl::Buffer& old, std::size_t value_bytes) {
     cl::Buffer fresh = cc_.buffer(padded * value_bytes);
     cc_.queue().enqueueFillBuffer(fresh, std::uint8_t(0), 0, padded * value_bytes);
-    if (slot_capacity_ > 0 && slot_count_ > 0)
-      cc_.queue().enqueueCopyBuffer(old, fresh, 0, 0, std::size_t(slot_count_) * value_bytes);
+    if (slot_capacity_ > 0 && kept > 0)
+      cc_.queue().enqueueCopyBuffer(old, fresh, 0, 0, std::size_t(kept) * value_bytes);
     old = fresh;
   };
   // A fresh slot holds zeros: FW_LEAF_ATTACHED, which only the own leaves' kernels step.
@@ -244,6 +248,45 @@ void LeafStages::reserve_slots(int slots) {
   grown(flight_drag_, sizeof(float));
   grown(leaving_, sizeof(std::int32_t));
   slot_capacity_ = capacity;
+}
+
+StageState LeafStages::save_state() {
+  StageState state;
+  for (const auto& [name, buffer] : state_buffers()) state.save(cc_, name, *buffer);
+  state.numbers["time"] = {double(time_)};
+  state.numbers["slots"] = {double(slot_count_), double(slot_capacity_)};
+  state.numbers["slot_tree"].assign(slot_tree_.begin(), slot_tree_.end());
+  state.numbers["slot_leaf"].assign(slot_leaf_.begin(), slot_leaf_.end());
+  state.numbers["slot_side"].assign(slot_side_.begin(), slot_side_.end());
+  return state;
+}
+
+void LeafStages::restore_state(const StageState& state) {
+  static constexpr const char* kStage = "leaves";
+  const std::vector<double>& slots = state.number(kStage, "slots", 2);
+  const int count = int(slots[0]), capacity = int(slots[1]);
+  if (count < own_count_ || capacity < count)
+    throw std::invalid_argument(fmt::format(
+        "leaves: the saved state has {} slots, and this run's trees have {} leaves: it is another run's",
+        count, own_count_));
+  if (capacity != slot_capacity_) allocate_slots(capacity);
+  slot_count_ = count;
+  for (const auto& [name, buffer] : state_buffers()) state.restore(cc_, kStage, name, *buffer);
+  const auto copy = [&](const char* name, auto& values) {
+    const std::vector<double>& saved = state.number(kStage, name, std::size_t(count));
+    values.assign(saved.begin(), saved.end());
+  };
+  copy("slot_tree", slot_tree_);
+  copy("slot_leaf", slot_leaf_);
+  copy("slot_side", slot_side_);
+  time_ = float(state.number(kStage, "time", 1)[0]);
+  frame_ready_ = false;
+}
+
+std::vector<std::pair<const char*, cl::Buffer*>> LeafStages::state_buffers() {
+  return {{"theta", &theta_},       {"theta_rate", &theta_rate_},   {"state", &state_},
+          {"position", &position_}, {"velocity", &velocity_},       {"normal", &normal_},
+          {"flight", &flight_},     {"flight_drag", &flight_drag_}, {"counters", &counters_}};
 }
 
 void LeafStages::enqueue_step(const FwStep& step, cl::Buffer& mask, DeviceVelocity& vel) {

@@ -31,6 +31,7 @@
 #include "host/runtime/ComputeContext.hpp"
 #include "host/stages/BlockGrid.hpp"
 #include "host/stages/FluidStages.hpp"
+#include "host/stages/StageState.hpp"
 #include "host/stages/WindAtPoints.hpp"
 #include "kernels/shared_types.h"
 #include "trees/Forest.hpp"
@@ -86,6 +87,12 @@ class LeafStages {
   /// Blocks. The blades of this rank's leaves at the last step's end: attached leaves at their deformed
   /// anchors when enqueue_frame ran since that step, else at their rest anchors.
   LeafSnapshot download();
+  /// What the next step reads (StageState, for checkpoints): every slot's leaf (state, position, velocity,
+  /// normal, flight, drag) and which tree and leaf it holds, the own leaves' flutter angles and rates, the
+  /// counters and the last step's end. Blocking.
+  StageState save_state();
+  /// Sets what save_state() saved on the same rank of the same forest; std::invalid_argument otherwise.
+  void restore_state(const StageState& state);
   /// Blocks: shed, landed and exited from the device counters, summed over ranks (collective); flying and
   /// attached follow.
   trees::LeafCounts counts();
@@ -106,6 +113,10 @@ class LeafStages {
   void move_leaves();
   /// Room for `slots` slots in every per-slot array, their values kept.
   void reserve_slots(int slots);
+  /// Every per-slot array reallocated for `capacity` slots, the values of the first slots kept.
+  void allocate_slots(int capacity);
+  /// The device buffers a step carries to the next, by their names in a saved state.
+  std::vector<std::pair<const char*, cl::Buffer*>> state_buffers();
   void read_counters(std::int32_t (&c)[FW_LEAF_COUNTERS]);
 
   ComputeContext& cc_;

@@ -14,6 +14,9 @@
 namespace fw::host {
 namespace {
 
+// The velocity components' names in a saved state.
+constexpr const char* kVelocityNames[] = {"u", "v", "w"};
+
 // Validates everything before a single buffer exists (members are built after this returns). Over ranks the
 // device holds the rank's block with its halo.
 WindGridSetup validated(ComputeContext& cc, WindGridSetup setup, const WindBlocks* blocks) {
@@ -564,6 +567,55 @@ WindStepReport WindGrid::step_by(double dt, const std::optional<std::array<doubl
   report.time = time_;
   report.dt = dt;
   return report;
+}
+
+StageState WindGrid::save_state() {
+  StageState state;
+  for (int c = 0; c < 3; ++c) state.save(cc_, kVelocityNames[c], vel_.component(c));
+  state.save(cc_, "phi", pressure_.solution());
+  if (subgrid_enabled()) state.save(cc_, "eddy_viscosity", eddy_viscosity_);
+  if (subgrid_tke_enabled() && subgrid_energy_set_) state.save(cc_, "subgrid_energy", subgrid_energy_);
+  const FwStep& s = stages_.step();
+  state.numbers = {
+      {"time", {time_}},
+      {"last_dt", {last_dt_}},
+      {"steps", {double(steps_)}},
+      {"step_start", {double(s.time), double(s.dt)}},
+      {"ambient", {setup_.ambient.begin(), setup_.ambient.end()}},
+      {"turbulence_sigma", {turbulence_sigma_}},
+      {"turbulence_offset", {turbulence_offset_.begin(), turbulence_offset_.end()}},
+      {"forcing_integral", {forcing_integral_.begin(), forcing_integral_.end()}},
+      {"forcing_acceleration", {forcing_acceleration_.begin(), forcing_acceleration_.end()}},
+  };
+  return state;
+}
+
+void WindGrid::restore_state(const StageState& state) {
+  static constexpr const char* kStage = "wind grid";
+  for (int c = 0; c < 3; ++c) state.restore(cc_, kStage, kVelocityNames[c], vel_.component(c));
+  state.restore(cc_, kStage, "phi", pressure_.solution());
+  if (subgrid_enabled()) state.restore(cc_, kStage, "eddy_viscosity", eddy_viscosity_);
+  // Without a saved subgrid energy the next stage starts it at equilibrium, as the run that saved it would.
+  subgrid_energy_set_ = subgrid_tke_enabled() && state.buffers.count("subgrid_energy") > 0;
+  if (subgrid_energy_set_) state.restore(cc_, kStage, "subgrid_energy", subgrid_energy_);
+  time_ = state.number(kStage, "time", 1)[0];
+  last_dt_ = state.number(kStage, "last_dt", 1)[0];
+  steps_ = long(state.number(kStage, "steps", 1)[0]);
+  const auto& copy = [&](const char* name, auto& values) {
+    const std::vector<double>& saved = state.number(kStage, name, values.size());
+    std::copy(saved.begin(), saved.end(), values.begin());
+  };
+  copy("ambient", setup_.ambient);
+  copy("turbulence_offset", turbulence_offset_);
+  copy("forcing_integral", forcing_integral_);
+  copy("forcing_acceleration", forcing_acceleration_);
+  turbulence_sigma_ = state.number(kStage, "turbulence_sigma", 1)[0];
+  const std::vector<double>& start = state.number(kStage, "step_start", 2);
+  FwStep s = stages_.step();
+  s.time = static_cast<float>(start[0]);
+  s.dt = static_cast<float>(start[1]);
+  stages_.set_step(s);
+  upload_step_inflow();
 }
 
 fluid::MacVelocity WindGrid::download_velocity() {

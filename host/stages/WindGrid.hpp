@@ -44,6 +44,7 @@
 #include "host/stages/FluidStages.hpp"
 #include "host/stages/HaloExchange.hpp"
 #include "host/stages/PressureSolver.hpp"
+#include "host/stages/StageState.hpp"
 
 namespace fw::host {
 
@@ -150,6 +151,14 @@ class WindGrid {
   std::array<double, 3> max_speed_components() { return global_max_speed_components(); }
   /// Projects the current velocity (divergence -> solve -> gradient) and returns the solve's status.
   PressureSolveStatus project() { return project(vel_); }
+
+  /// What the next step reads (StageState, for checkpoints): the velocity, the pressure solution that
+  /// warm-starts the solver, the subgrid energy and eddy viscosity where kept; the time, step count and last
+  /// dt, the inflow turbulence's offset and sigma, the ambient wind, the mean forcing's integral. Blocking.
+  StageState save_state();
+  /// Sets what save_state() saved from a grid of the same setup; throws std::invalid_argument naming what
+  /// does not fit.
+  void restore_state(const StageState& state);
 
   /// Canopy drag F = -k |u| u from the drag density k = sum Cd a (1/m, one float a cell, x-fastest; see
   /// fluid/CanopyField), applied implicitly right after the body forces (stage "canopy"). Uploaded once; an

@@ -104,6 +104,11 @@ void read_output(const Loader& loader, const Field& field, Scenario& scenario) {
   if (const auto probes = map.get<"probes">())
     for (const Field& item : loader.items(*probes))
       output.probes.push_back(read_probe(loader, item, output.probes, scenario.domain));
+  if (const auto checkpoint = map.get<"checkpoint">()) {
+    const Section<"output.checkpoint"> settings(loader, *checkpoint);
+    output.checkpoint_interval = loader.number(settings.require<"interval">());
+    if (const auto keep = settings.get<"keep">()) output.checkpoints_kept = loader.integer(*keep);
+  }
 }
 
 }  // namespace fw::io::reader

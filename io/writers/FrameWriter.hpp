@@ -91,6 +91,24 @@ struct FrameNeeds {
   }
 };
 
+/// One stretch of a run between a start (or a resume) and its stop (docs/design.md "Long runs"): run.json
+/// lists them, so that a run resumed from checkpoints accounts for every wall second.
+struct RunSegment {
+  double start_time = 0.0, end_time = 0.0;  ///< simulated, s
+  long start_step = 0, end_step = 0;        ///< solver steps taken at its start and end
+  double wall_seconds = 0.0;
+  std::string status;  ///< how it ended: "completed", "interrupted", "failed" or "stopped" (a later segment
+                       ///< resumed from a checkpoint before its end)
+};
+
+/// Where a resumed run's output goes on (docs/design.md "Long runs"): the checkpoint's time, the frames and
+/// probe samples written before it, in a folder that may hold the stopped run's files (or be a new one).
+struct OutputResume {
+  double time = 0.0;       ///< s: collections keep their frames up to it, later ones are dropped
+  int frames = 0;          ///< frames handed out before the checkpoint: the next frame's index
+  long probe_samples = 0;  ///< probes.csv rows before the checkpoint
+};
+
 /// How a run ended, for the writers' finish().
 struct RunOutcome {
   std::string status = "completed";  ///< "completed", "interrupted" or "failed"
@@ -100,6 +118,9 @@ struct RunOutcome {
   int frames = 0;               ///< frames written
   double wall_seconds = 0.0;
   std::map<std::string, double> stage_ms;  ///< totals over the run, ms
+  /// The run's segments in order, this one last; empty for a run that was never resumed (its one segment
+  /// is the run).
+  std::vector<RunSegment> segments;
 };
 
 class FrameWriter {
@@ -110,6 +131,10 @@ class FrameWriter {
   virtual FrameNeeds needs() const { return {}; }
   /// Creates folders and headers. Throws std::runtime_error naming the path on failure.
   virtual void begin() {}
+  /// begin() for a run resumed from a checkpoint: a writer of a collection or of a growing file takes over
+  /// what the folder holds up to `resume` and drops what came after it (a resumed run writes it again).
+  /// Writers of one file per frame need nothing more than begin(), the default.
+  virtual void resume(const OutputResume& /*resume*/) { begin(); }
   /// Writes one frame. Throws std::runtime_error naming the path on failure.
   virtual void write(const OutputFrame& frame) = 0;
   /// After the last frame was written (also after a failure or an interruption).

@@ -28,6 +28,11 @@ void LeavesVtkWriter::begin() {
   std::filesystem::create_directories(directory_ / "leaves");
 }
 
+void LeavesVtkWriter::resume(const OutputResume& resume) {
+  begin();
+  if (ranks_ == 0) collection_.continue_existing(resume.time);
+}
+
 void LeavesVtkWriter::write(const OutputFrame& frame) {
   if (ranks_ == 0) {
     const std::string file = frame_file(frame.index, false);

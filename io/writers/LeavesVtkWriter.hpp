@@ -28,6 +28,8 @@ class LeavesVtkWriter : public FrameWriter {
   std::string name() const override { return "leaves VTK"; }
   FrameNeeds needs() const override { return {.leaves = true}; }
   void begin() override;
+  /// In one process the .pvd keeps its frames up to the checkpoint (over ranks the run lists them).
+  void resume(const OutputResume& resume) override;
   void write(const OutputFrame& frame) override;
 
  private:

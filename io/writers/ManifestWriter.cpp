@@ -67,6 +67,20 @@ void ManifestWriter::finish(const RunOutcome& outcome) {
   json.key("stages_ms").begin_object();
   for (const auto& [stage, ms] : outcome.stage_ms) json.key(stage).value(ms);
   json.end_object();
+  if (!outcome.segments.empty()) {
+    json.key("segments").begin_array();
+    for (const RunSegment& segment : outcome.segments) {
+      json.begin_object();
+      json.key("start_time_s").value(segment.start_time);
+      json.key("end_time_s").value(segment.end_time);
+      json.key("start_step").value(std::int64_t(segment.start_step));
+      json.key("end_step").value(std::int64_t(segment.end_step));
+      json.key("wall_seconds").value(segment.wall_seconds);
+      json.key("status").value(segment.status);
+      json.end_object();
+    }
+    json.end_array();
+  }
   if (m.leaves) {
     json.key("leaves");
     if (leaf_counts_) {

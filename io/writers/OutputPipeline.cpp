@@ -43,6 +43,10 @@ void OutputPipeline::begin() {
   for (auto& writer : writers_) writer->begin();
 }
 
+void OutputPipeline::resume(const OutputResume& resume) {
+  for (auto& writer : writers_) writer->resume(resume);
+}
+
 void OutputPipeline::rethrow_locked() {
   if (error_ && !error_reported_) {
     error_reported_ = true;

@@ -45,6 +45,8 @@ class OutputPipeline {
   bool empty() const { return writers_.empty(); }
   /// Each writer's begin(), on the calling thread.
   void begin();
+  /// Each writer's resume(resume) instead of begin(), for a run resumed from a checkpoint.
+  void resume(const OutputResume& resume);
   /// Queues a frame; waits while the queue is full. Rethrows a writer's error.
   void push(OutputFrame frame);
   /// Rethrows a writer's error, if one happened; cheap.

@@ -16,6 +16,12 @@ void ProbesWriter::begin() {
                leaf_counts_);
 }
 
+void ProbesWriter::resume(const OutputResume& resume) {
+  csv_.emplace(ProbesCsv::continued(directory_ / "probes.csv", probe_names_, tip_trees_,
+                                    std::size_t(resume.probe_samples), ProbesCsv::kDefaultRewriteLimit,
+                                    leaf_counts_));
+}
+
 void ProbesWriter::write(const OutputFrame& frame) {
   std::vector<ProbesCsv::Row> rows;
   rows.reserve(frame.probe_samples.size());

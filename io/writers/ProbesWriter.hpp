@@ -27,6 +27,8 @@ class ProbesWriter : public FrameWriter {
   std::string name() const override { return "probes"; }
   FrameNeeds needs() const override { return {.probe_samples = true}; }
   void begin() override;
+  /// probes.csv keeps its header and the rows sampled up to the checkpoint (a new file in a new folder).
+  void resume(const OutputResume& resume) override;
   /// Appends frame.probe_samples (throws std::invalid_argument when a sample has the wrong counts).
   void write(const OutputFrame& frame) override;
 

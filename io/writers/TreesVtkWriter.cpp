@@ -43,6 +43,11 @@ TreesVtkWriter::TreesVtkWriter(std::filesystem::path directory, const trees::For
   ranks_ = ranks;
 }
 
+void TreesVtkWriter::resume(const OutputResume& resume) {
+  begin();
+  if (ranks_ == 0) collection_.continue_existing(resume.time);
+}
+
 std::string TreesVtkWriter::frame_file(int index, bool pieces) {
   return fmt::format("trees/trees_{:06d}.{}", index, pieces ? "pvtp" : "vtp");
 }

@@ -32,6 +32,8 @@ class TreesVtkWriter : public FrameWriter {
   std::string name() const override { return "trees VTK"; }
   FrameNeeds needs() const override { return {.displacement = true}; }
   void begin() override;
+  /// In one process the .pvd keeps its frames up to the checkpoint (over ranks the run lists them).
+  void resume(const OutputResume& resume) override;
   void write(const OutputFrame& frame) override;
 
  private:

@@ -32,6 +32,11 @@ void WindVtkWriter::begin() {
   std::filesystem::create_directories(directory_ / "wind");
 }
 
+void WindVtkWriter::resume(const OutputResume& resume) {
+  begin();
+  if (!pieces_) collection_.continue_existing(resume.time);
+}
+
 std::string WindVtkWriter::frame_file(int index, bool pieces) {
   return fmt::format("wind/wind_{:06d}.{}", index, pieces ? "pvti" : "vti");
 }

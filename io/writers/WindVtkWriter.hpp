@@ -42,6 +42,8 @@ class WindVtkWriter : public FrameWriter {
   std::string name() const override { return "wind VTK"; }
   FrameNeeds needs() const override;
   void begin() override;
+  /// In one process the .pvd keeps its frames up to the checkpoint (over ranks the run lists them).
+  void resume(const OutputResume& resume) override;
   void write(const OutputFrame& frame) override;
 
  private:

@@ -1,0 +1,223 @@
+#include "host/app/RunCheckpoint.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <bit>
+#include <charconv>
+#include <stdexcept>
+#include <string_view>
+#include <system_error>
+
+#include "io/Checkpoint.hpp"
+
+namespace fw::host {
+
+namespace {
+
+constexpr std::string_view kStepPrefix = "step_";
+constexpr std::string_view kPartial = ".partial";
+constexpr std::string_view kStagePrefix = "stage.";
+constexpr std::string_view kBuffer = ".buffer.";
+constexpr std::string_view kNumber = ".number.";
+// The numbers of a segment in "run.segments": start and end time, start and end step, wall seconds.
+constexpr std::size_t kSegmentValues = 5;
+// How a segment in a checkpoint ended: the run after it resumed from that checkpoint.
+constexpr const char* kStoppedSegment = "stopped";
+
+std::string rank_file(int rank) {
+  return fmt::format("rank_{:04d}.fwcheck", rank);
+}
+
+std::vector<std::uint8_t> text_bytes(const std::string& text) {
+  return {text.begin(), text.end()};
+}
+
+std::string bytes_text(const std::vector<std::uint8_t>& bytes) {
+  return {bytes.begin(), bytes.end()};
+}
+
+io::Checkpoint to_checkpoint(const RunSnapshot& snapshot) {
+  io::Checkpoint c;
+  c.time = snapshot.time;
+  c.step = snapshot.step;
+  for (const auto& [stage, state] : snapshot.stages) {
+    for (const auto& [name, bytes] : state.buffers)
+      c.put(std::string(kStagePrefix) + stage + std::string(kBuffer) + name, bytes);
+    for (const auto& [name, numbers] : state.numbers)
+      c.put(std::string(kStagePrefix) + stage + std::string(kNumber) + name, numbers);
+  }
+  const RunProgress& p = snapshot.progress;
+  c.put("run.progress", std::vector<double>{double(p.frames), double(p.probe_samples), p.next_frame,
+                                            p.next_sample, p.next_checkpoint});
+  std::vector<double> segments;
+  for (const io::RunSegment& s : p.segments)
+    segments.insert(segments.end(),
+                    {s.start_time, s.end_time, double(s.start_step), double(s.end_step), s.wall_seconds});
+  c.put("run.segments", segments);
+  c.put("run.ranks", std::vector<std::int64_t>{snapshot.ranks});
+  c.put("run.decomposition", text_bytes(snapshot.decomposition));
+  std::string keys;
+  std::vector<std::int64_t> hashes;
+  for (const io::StateKey& key : snapshot.state_keys) {
+    keys += key.key + "\n";
+    hashes.push_back(std::bit_cast<std::int64_t>(key.hash));
+  }
+  c.put("run.state_keys", text_bytes(keys));
+  c.put("run.state_hashes", hashes);
+  return c;
+}
+
+RunSnapshot from_checkpoint(const io::Checkpoint& c) {
+  RunSnapshot snapshot;
+  snapshot.time = c.time;
+  snapshot.step = long(c.step);
+  for (const std::string& name : c.names()) {
+    if (!name.starts_with(kStagePrefix)) continue;
+    const std::string_view rest = std::string_view(name).substr(kStagePrefix.size());
+    const std::size_t dot = rest.find('.');
+    if (dot == std::string_view::npos) throw io::CheckpointError("an unknown section \"" + name + "\"");
+    StageState& state = snapshot.stages[std::string(rest.substr(0, dot))];
+    const std::string_view tail = rest.substr(dot);
+    if (tail.starts_with(kBuffer))
+      state.buffers[std::string(tail.substr(kBuffer.size()))] = c.get<std::uint8_t>(name);
+    else if (tail.starts_with(kNumber))
+      state.numbers[std::string(tail.substr(kNumber.size()))] = c.get<double>(name);
+    else
+      throw io::CheckpointError("an unknown section \"" + name + "\"");
+  }
+  const std::vector<double>& p = c.get<double>("run.progress");
+  if (p.size() != 5) throw io::CheckpointError("the section \"run.progress\" has the wrong size");
+  snapshot.progress.frames = int(p[0]);
+  snapshot.progress.probe_samples = long(p[1]);
+  snapshot.progress.next_frame = p[2];
+  snapshot.progress.next_sample = p[3];
+  snapshot.progress.next_checkpoint = p[4];
+  const std::vector<double>& segments = c.get<double>("run.segments");
+  if (segments.size() % kSegmentValues != 0)
+    throw io::CheckpointError("the section \"run.segments\" has the wrong size");
+  for (std::size_t s = 0; s < segments.size(); s += kSegmentValues)
+    snapshot.progress.segments.push_back({segments[s], segments[s + 1], long(segments[s + 2]),
+                                          long(segments[s + 3]), segments[s + 4], kStoppedSegment});
+  const std::vector<std::int64_t>& ranks = c.get<std::int64_t>("run.ranks");
+  if (ranks.size() != 1) throw io::CheckpointError("the section \"run.ranks\" has the wrong size");
+  snapshot.ranks = int(ranks[0]);
+  snapshot.decomposition = bytes_text(c.get<std::uint8_t>("run.decomposition"));
+  const std::string keys = bytes_text(c.get<std::uint8_t>("run.state_keys"));
+  const std::vector<std::int64_t>& hashes = c.get<std::int64_t>("run.state_hashes");
+  std::size_t from = 0;
+  for (const std::int64_t hash : hashes) {
+    const std::size_t end = keys.find('\n', from);
+    if (end == std::string::npos)
+      throw io::CheckpointError("the state keys and their hashes differ in number");
+    snapshot.state_keys.push_back({keys.substr(from, end - from), 0, std::bit_cast<std::uint64_t>(hash)});
+    from = end + 1;
+  }
+  return snapshot;
+}
+
+// The step of a whole checkpoint's folder name ("step_0000000120"), or -1 for anything else.
+long step_of(const std::string& name) {
+  if (!name.starts_with(kStepPrefix)) return -1;
+  long step = -1;
+  const char* first = name.data() + kStepPrefix.size();
+  const char* last = name.data() + name.size();
+  const auto [end, error] = std::from_chars(first, last, step);
+  return error == std::errc() && end == last ? step : -1;
+}
+
+bool cut_short(const std::filesystem::path& entry) {
+  return entry.filename().string().starts_with(kStepPrefix) && entry.extension() == kPartial;
+}
+
+}  // namespace
+
+RunCheckpoints::RunCheckpoints(std::filesystem::path folder, const Communicator& world)
+    : folder_(std::move(folder)), world_(world) {}
+
+std::filesystem::path RunCheckpoints::folder_of(long step) const {
+  return folder_ / fmt::format("{}{:010d}", kStepPrefix, step);
+}
+
+std::map<long, std::filesystem::path> RunCheckpoints::list(const std::filesystem::path& folder) {
+  std::map<long, std::filesystem::path> found;
+  std::error_code error;
+  for (const auto& entry : std::filesystem::directory_iterator(folder, error)) {
+    const long step = step_of(entry.path().filename().string());
+    if (step >= 0 && std::filesystem::exists(entry.path() / rank_file(0))) found[step] = entry.path();
+  }
+  return found;
+}
+
+std::filesystem::path RunCheckpoints::write(const RunSnapshot& snapshot, int keep) {
+  const std::filesystem::path whole = folder_of(snapshot.step);
+  std::filesystem::path partial = whole;
+  partial += std::string(kPartial);
+  if (world_.rank() == 0) {
+    std::filesystem::remove_all(partial);
+    std::filesystem::create_directories(partial);
+  }
+  world_.barrier();
+  to_checkpoint(snapshot).write(partial / rank_file(world_.rank()));
+  world_.barrier();
+  if (world_.rank() == 0) {
+    // Only now is the checkpoint whole: a crash before the rename leaves the previous ones as they were.
+    std::filesystem::remove_all(whole);
+    std::filesystem::rename(partial, whole);
+    const std::map<long, std::filesystem::path> kept = list(folder_);
+    int newer = 0;
+    for (auto it = kept.rbegin(); it != kept.rend(); ++it)
+      if (++newer > keep) std::filesystem::remove_all(it->second);
+    for (const auto& entry : std::filesystem::directory_iterator(folder_))
+      if (cut_short(entry.path())) std::filesystem::remove_all(entry.path());
+  }
+  world_.barrier();
+  return whole;
+}
+
+void RunCheckpoints::remove_after(long step) {
+  if (world_.rank() == 0 && std::filesystem::is_directory(folder_)) {
+    for (const auto& [later, path] : list(folder_))
+      if (later > step) std::filesystem::remove_all(path);
+    for (const auto& entry : std::filesystem::directory_iterator(folder_))
+      if (cut_short(entry.path())) std::filesystem::remove_all(entry.path());
+  }
+  world_.barrier();
+}
+
+std::filesystem::path find_checkpoint(const std::filesystem::path& given) {
+  if (std::filesystem::exists(given / rank_file(0))) return given;
+  const std::filesystem::path folder =
+      std::filesystem::is_directory(given / "checkpoints") ? given / "checkpoints" : given;
+  const std::map<long, std::filesystem::path> found = RunCheckpoints::list(folder);
+  if (found.empty())
+    throw std::invalid_argument(fmt::format(
+        "{}: no checkpoint there (a run writes them with output.checkpoint, and when a signal stops it)",
+        given.string()));
+  return found.rbegin()->second;
+}
+
+RunSnapshot read_checkpoint(const std::filesystem::path& folder, const Communicator& world) {
+  int files = 0;
+  std::error_code error;
+  for (const auto& entry : std::filesystem::directory_iterator(folder, error))
+    files += entry.path().extension() == ".fwcheck" ? 1 : 0;
+  if (files != world.size())
+    throw io::CheckpointError(fmt::format("{}: holds the parts of {} MPI ranks; resume it on {} ranks",
+                                          folder.string(), files, files));
+  const std::filesystem::path file = folder / rank_file(world.rank());
+  const io::Checkpoint c = io::Checkpoint::read(file);
+  RunSnapshot snapshot;
+  try {
+    snapshot = from_checkpoint(c);
+  } catch (const io::CheckpointError& e) {
+    throw io::CheckpointError(fmt::format("{}: {}", file.string(), e.what()));
+  }
+  if (snapshot.ranks != world.size())
+    throw io::CheckpointError(fmt::format("{}: written by {} MPI ranks ({}); resume it on {} ranks",
+                                          folder.string(), snapshot.ranks, snapshot.decomposition,
+                                          snapshot.ranks));
+  return snapshot;
+}
+
+}  // namespace fw::host
