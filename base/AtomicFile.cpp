@@ -14,9 +14,28 @@
 
 namespace fw::base {
 
+namespace {
+constexpr std::string_view kTemporaryTag = ".tmp-";
+}  // namespace
+
+int remove_stale_temporaries(const std::filesystem::path& folder) {
+  int removed = 0;
+  std::error_code error;
+  for (auto it = std::filesystem::recursive_directory_iterator(folder, error);
+       it != std::filesystem::recursive_directory_iterator(); it.increment(error)) {
+    const std::string name = it->path().filename().string();
+    const std::size_t at = name.rfind(kTemporaryTag);
+    const bool temporary =
+        at != std::string::npos && at > 0 && at + kTemporaryTag.size() < name.size() &&
+        name.find_first_not_of("0123456789", at + kTemporaryTag.size()) == std::string::npos;
+    if (temporary && it->is_regular_file()) removed += std::filesystem::remove(it->path(), error) ? 1 : 0;
+  }
+  return removed;
+}
+
 AtomicFile::AtomicFile(std::filesystem::path target) : target_(std::move(target)) {
   temporary_ = target_;
-  temporary_ += fmt::format(".tmp-{}", static_cast<long>(::getpid()));
+  temporary_ += fmt::format("{}{}", kTemporaryTag, static_cast<long>(::getpid()));
 }
 
 AtomicFile::~AtomicFile() {

@@ -36,6 +36,11 @@ class AtomicFile {
   bool committed_ = false;
 };
 
+/// Removes, in `folder` and below, the temporaries of atomic writes whose process was killed before its
+/// commit (kill -9 leaves "<target>.tmp-<pid>"); a resumed run calls it on its output folder, which no other
+/// process writes. Returns how many it removed.
+int remove_stale_temporaries(const std::filesystem::path& folder);
+
 // The two helpers every writer shares: the same folder check and the same atomic text write, with the
 // same error messages.
 

@@ -47,6 +47,8 @@ class RecordWriter {
     value(std::uint32_t(s.size()));
     bytes_.append(s);
   }
+  /// The bytes of another record, as they are.
+  void record(const RecordWriter& other) { bytes_.append(other.bytes_); }
   std::size_t size() const { return bytes_.size(); }
   /// The bytes so far followed by their u64 FNV-1a checksum.
   std::string sealed() const;

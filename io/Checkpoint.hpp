@@ -12,7 +12,8 @@
 //   reason const std::vector<float>& u = back.get<float>("wind.u");
 //
 // Layout (binary, the host's byte order: a checkpoint resumes on the machine type that wrote it):
-//   "FWCHECK\0", u32 format version (kFormatVersion), f64 time, i64 step, u32 section count, then per
+//   "FWCHECK\0", u32 format version (kFormatVersion), u64 size of the whole file, f64 time, i64 step, u32
+//   section count, then per
 //   section: u32 name length and the name, u8 element kind (1 float32, 2 float64, 3 int32, 4 int64,
 //   5 uint8), u64 element count, the elements; then the u64 FNV-1a checksum of every byte before it
 //   (base/SealedRecord). Sections are written in name order, so the same state gives the same bytes.

@@ -12,6 +12,7 @@
 #include <utility>
 #include <vector>
 
+#include "base/AtomicFile.hpp"
 #include "host/app/FrameGather.hpp"
 #include "host/app/OutputWriters.hpp"
 #include "host/app/ProbeSampler.hpp"
@@ -223,7 +224,8 @@ class RunLoop {
   // Goes on from a checkpoint whose stages are restored already: the schedules, the frame and sample
   // counts, the segments so far, and the output folder up to the checkpoint.
   void resume(const RunSnapshot& from) {
-    checkpoints_.remove_after(from.step);
+    checkpoints_.remove_after(from.step);  // collective: every rank has stopped writing past it
+    if (world_.rank() == 0) base::remove_stale_temporaries(directory_);
     const RunProgress& progress = from.progress;
     frames_ = first_frame_ = listed_ = progress.frames;
     samples_taken_ = progress.probe_samples;

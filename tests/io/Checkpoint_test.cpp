@@ -2,6 +2,8 @@
 // other-version file is refused with its path and reason (what `--resume` turns into exit 2).
 #include <catch2/catch.hpp>
 
+#include <fmt/format.h>
+
 #include <cmath>
 #include <cstdint>
 #include <cstring>
@@ -90,12 +92,17 @@ TEST_CASE("Checkpoint: a damaged, cut, foreign or other-version file is refused 
   std::string flipped = bytes;
   flipped[bytes.size() / 2] = char(flipped[bytes.size() / 2] ^ 1);
   CHECK(refused(flipped) == prefix + "the checksum does not match");
-  CHECK(refused(bytes.substr(0, bytes.size() / 2)) == prefix + "the checksum does not match");
-  CHECK(refused(bytes.substr(0, 3)) == prefix + "the record is truncated");
+  // A file cut short is named as such (its header gives its size), however short.
+  CHECK(refused(bytes.substr(0, bytes.size() / 2)) ==
+        prefix + fmt::format("the file is truncated: {} of its {} bytes", bytes.size() / 2, bytes.size()));
+  CHECK(refused(bytes.substr(0, 3)) == prefix + "the file is truncated");
+  CHECK(refused(bytes + "x") == prefix + fmt::format("the file goes on past its end: {} bytes, {} expected",
+                                                     bytes.size() + 1, bytes.size()));
   // A well-sealed file of another version, and one that is not a checkpoint at all.
   base::RecordWriter other;
   other.values("FWCHECK", 8);
   other.value(io::Checkpoint::kFormatVersion + 1);
+  other.value(std::uint64_t{0});
   CHECK(refused(other.sealed()) == prefix + "checkpoint format version 2, and this build reads version 1");
   base::RecordWriter foreign;
   foreign.values("FWBASIS", 8);
