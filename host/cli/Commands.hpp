@@ -65,6 +65,9 @@ struct RunCommandOptions {
   std::string output_dir;  // -o: overrides output.directory
   bool quiet = false;
   host::RunOptions run;  // --end: run.end_time, s, > 0 overrides time.end
+  bool force = false;    // --force: start even when the output may not fit its disk
+  /// The free space the disk check assumes instead of measuring it: FORESTWIND_FAKE_FREE_BYTES, a test hook.
+  std::optional<std::uint64_t> free_bytes;
 };
 
 /// `forestwind run`: 0 completed, 130 interrupted by SIGINT (frames so far kept), exceptions otherwise.
