@@ -72,7 +72,7 @@ TEST_CASE("OutputSize: the prediction holds within 15% of what each example scen
       std::uint64_t listed = 0;
       for (const fw::host::OutputSizeRow& row : predicted.rows) {
         if (row.path.empty()) continue;
-        const std::uint64_t measured = bytes_under(dir.path() / row.path);
+        const std::uint64_t measured = bytes_under(fs::path(dir.path()) / row.path);
         listed += measured;
         INFO(name << ": " << row.output << ": predicted " << row.total << " (at most " << row.most
                   << "), measured " << measured);
@@ -128,7 +128,7 @@ TEST_CASE("Simulation: trees every third frame write frames 0, 3, 6 listed at th
   const fw::io::Scenario scenario = fw::io::load_scenario(dir.write("calm.yaml", text));
   fw::trees::BasisCache cache(fw::trees::BasisCache::default_directory());
   fw::host::SimulationPlan plan = fw::host::plan_simulation(scenario, &cache, nullptr);
-  const fs::path out = dir.path() / "out";
+  const fs::path out = fs::path(dir.path()) / "out";
   fw::host::Simulation simulation(*cc, std::move(plan), out);
   fw::host::RunOptions options;
   options.end_time = 14.0;  // frames 0..7 at output.interval 2 s
