@@ -308,6 +308,12 @@ struct OutputSettings {
   std::optional<double> probe_interval;
   bool vtk_wind = schema::key("output.vtk.wind").flag;
   bool vtk_trees = schema::key("output.vtk.trees").flag;
+  /// Each output's every-N: it writes the frames K with K % N == 0, keeping K as the file's number, so that
+  /// the outputs' collections line up in time (>= 1; 1 every frame).
+  int vtk_wind_every = int(schema::key("output.vtk.wind_every").number);
+  int vtk_trees_every = int(schema::key("output.vtk.trees_every").number);
+  int vdb_every = int(schema::key("output.vdb.every").number);
+  int leaves_every = int(schema::key("output.leaves.every").number);
   /// Subset of schema::kVtkFieldWords, in the file's order.
   std::vector<std::string> vtk_fields = schema::strings(schema::key("output.vtk.fields").chosen);
   bool vdb_enabled = schema::key("output.vdb.enabled").flag;

@@ -1072,6 +1072,21 @@ inline constexpr Key kKeys[] = {
      .type = Type::boolean,
      .flag = true,
      .description = "Write `trees.pvd` with `trees/trees_NNNNNN.vtp` (when there are trees)."},
+    {.path = "output.vtk.wind_every",
+     .type = Type::integer,
+     .lowest = 1,
+     .highest = kNoUpperLimit,
+     .number = 1,
+     .description =
+         "Write `wind.pvd` on every N-th frame only: the frames K (0, 1, 2, ... every `output.interval`) "
+         "with K mod N = 0. A file keeps its frame's number, so that the collections of different "
+         "outputs line up in time. To keep the folder small (`forestwind check` predicts its size)."},
+    {.path = "output.vtk.trees_every",
+     .type = Type::integer,
+     .lowest = 1,
+     .highest = kNoUpperLimit,
+     .number = 1,
+     .description = "As `output.vtk.wind_every`, for `trees.pvd`."},
     {.path = "output.vtk.fields",
      .type = Type::word_set,
      .words = kVtkFieldWords,
@@ -1091,6 +1106,12 @@ inline constexpr Key kKeys[] = {
          "Grids in each VDB file: `vel` (Vec3s, m/s), `speed` (float, m/s), `leaves` (a points grid "
          "of the written leaves with `P`, `N`, `state`, `tree_id` and `pscale`; in runs with "
          "leaves, ignored in runs without)."},
+    {.path = "output.vdb.every",
+     .type = Type::integer,
+     .lowest = 1,
+     .highest = kNoUpperLimit,
+     .number = 1,
+     .description = "As `output.vtk.wind_every`, for the VDB files."},
     {.path = "output.leaves", .description = "Leaves in the frames (runs whose species have `leaves`)."},
     {.path = "output.leaves.attached",
      .type = Type::integer_or_word,
@@ -1108,6 +1129,13 @@ inline constexpr Key kKeys[] = {
      .type = Type::boolean,
      .flag = true,
      .description = "Write `leaves.pvd` with `leaves/leaves_NNNNNN.vtp` (when the run has leaves)."},
+    {.path = "output.leaves.every",
+     .type = Type::integer,
+     .lowest = 1,
+     .highest = kNoUpperLimit,
+     .number = 1,
+     .description =
+         "As `output.vtk.wind_every`, for `leaves.pvd` (the VDB `leaves` grid comes with the VDB files)."},
     {.path = "output.probes",
      .type = Type::list,
      .noun = "a list of probes",

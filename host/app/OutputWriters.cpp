@@ -40,28 +40,6 @@ io::RunManifest manifest_of(const SimulationPlan& plan, const DeviceInfo& device
   return m;
 }
 
-// view.py's domain, slice and speed scale; which collections it opens is decided by make_writers.
-viz::ViewScriptSettings view_of(const SimulationPlan& plan) {
-  const fluid::GridSpec& spec = plan.wind.spec;
-  viz::ViewScriptSettings v;
-  v.scenario_name = plan.scenario.name;
-  v.origin = spec.origin;
-  v.size = {spec.nx * spec.h, spec.ny * spec.h, spec.nz * spec.h};
-  v.cell_size = spec.h;
-  v.slice_height = viz::default_slice_height(v.origin, v.size, v.cell_size);
-  // The speed scale starts at 0 to the ambient wind's peak over the run (at its reference height).
-  if (plan.inputs.ambient_wind) {
-    constexpr int kSamples = 256;
-    double peak = 0.0;  // m/s
-    for (int n = 0; n <= kSamples; ++n) {
-      const std::array<double, 3> u = plan.inputs.ambient_wind(plan.end_time * n / kSamples);
-      peak = std::max(peak, std::sqrt(u[0] * u[0] + u[1] * u[1] + u[2] * u[2]));
-    }
-    if (peak > 0.0) v.speed_range = std::array<double, 2>{0.0, peak};
-  }
-  return v;
-}
-
 // This rank's wind writer over ranks: its block's solids and canopy, its own cells as the piece, and every
 // rank's piece for the .pvti.
 std::unique_ptr<io::FrameWriter> wind_pieces(const SimulationPlan& plan,
@@ -85,7 +63,37 @@ std::unique_ptr<io::FrameWriter> wind_pieces(const SimulationPlan& plan,
                                              std::move(pieces));
 }
 
+// A writer that takes every `every`-th frame only.
+std::unique_ptr<io::FrameWriter> taking_every(std::unique_ptr<io::FrameWriter> writer, int every) {
+  writer->set_every(every);
+  return writer;
+}
+
 }  // namespace
+
+viz::ViewScriptSettings view_settings(const SimulationPlan& plan) {
+  const fluid::GridSpec& spec = plan.wind.spec;
+  viz::ViewScriptSettings v;
+  v.scenario_name = plan.scenario.name;
+  v.origin = spec.origin;
+  v.size = {spec.nx * spec.h, spec.ny * spec.h, spec.nz * spec.h};
+  v.cell_size = spec.h;
+  v.slice_height = viz::default_slice_height(v.origin, v.size, v.cell_size);
+  // The speed scale starts at 0 to the ambient wind's peak over the run (at its reference height).
+  if (plan.inputs.ambient_wind) {
+    constexpr int kSamples = 256;
+    double peak = 0.0;  // m/s
+    for (int n = 0; n <= kSamples; ++n) {
+      const std::array<double, 3> u = plan.inputs.ambient_wind(plan.end_time * n / kSamples);
+      peak = std::max(peak, std::sqrt(u[0] * u[0] + u[1] * u[1] + u[2] * u[2]));
+    }
+    if (peak > 0.0) v.speed_range = std::array<double, 2>{0.0, peak};
+  }
+  v.wind = plan.output.vtk_wind;
+  v.trees = plan.output.vtk_trees && plan.forest.instance_count() > 0;
+  v.leaves = plan.output.vtk_leaves && plan.leaf_count > 0;
+  return v;
+}
 
 bool vdb_holds_leaves(const SimulationPlan& plan) {
   return plan.output.vdb_enabled && plan.leaf_count > 0 && contains(plan.output.vdb_grids, "leaves");
@@ -101,38 +109,42 @@ std::vector<std::unique_ptr<io::FrameWriter>> make_writers(const SimulationPlan&
   const bool leaves_present = plan.leaf_count > 0;
   std::vector<std::unique_ptr<io::FrameWriter>> writers;
   if (share != nullptr) {
-    if (out.vtk_wind) writers.push_back(wind_pieces(plan, directory, *share));
+    if (out.vtk_wind)
+      writers.push_back(taking_every(wind_pieces(plan, directory, *share), out.vtk_wind_every));
     if (out.vtk_trees && trees_present)
-      writers.push_back(
-          std::make_unique<io::TreesVtkWriter>(directory, *share->own_forest, share->rank, share->ranks));
+      writers.push_back(taking_every(
+          std::make_unique<io::TreesVtkWriter>(directory, *share->own_forest, share->rank, share->ranks),
+          out.vtk_trees_every));
     if (out.vtk_leaves && leaves_present)
-      writers.push_back(std::make_unique<io::LeavesVtkWriter>(directory, share->rank, share->ranks));
+      writers.push_back(taking_every(
+          std::make_unique<io::LeavesVtkWriter>(directory, share->rank, share->ranks), out.leaves_every));
     if (share->rank != 0) return writers;
   }
   writers.insert(writers.begin(), std::make_unique<io::ManifestWriter>(directory, manifest_of(plan, device)));
   if (out.vtk_wind && share == nullptr) {
-    writers.push_back(std::make_unique<io::WindVtkWriter>(directory, plan.wind.spec, plan.wind.solid,
-                                                          plan.canopy_density, out.vtk_fields));
+    writers.push_back(
+        taking_every(std::make_unique<io::WindVtkWriter>(directory, plan.wind.spec, plan.wind.solid,
+                                                         plan.canopy_density, out.vtk_fields),
+                     out.vtk_wind_every));
   }
   if (out.vtk_trees && trees_present && share == nullptr)
-    writers.push_back(std::make_unique<io::TreesVtkWriter>(directory, plan.forest));
+    writers.push_back(
+        taking_every(std::make_unique<io::TreesVtkWriter>(directory, plan.forest), out.vtk_trees_every));
   if (out.vtk_leaves && leaves_present && share == nullptr)
-    writers.push_back(std::make_unique<io::LeavesVtkWriter>(directory));
+    writers.push_back(taking_every(std::make_unique<io::LeavesVtkWriter>(directory), out.leaves_every));
   if (out.vdb_enabled) {
-    writers.push_back(std::make_unique<io::WindVdbWriter>(
-        directory, plan.wind.spec, plan.wind.solid, contains(out.vdb_grids, "vel"),
-        contains(out.vdb_grids, "speed"), vdb_holds_leaves(plan)));
+    writers.push_back(taking_every(
+        std::make_unique<io::WindVdbWriter>(directory, plan.wind.spec, plan.wind.solid,
+                                            contains(out.vdb_grids, "vel"), contains(out.vdb_grids, "speed"),
+                                            vdb_holds_leaves(plan)),
+        out.vdb_every));
   }
   std::vector<std::string> probe_names;
   for (const auto& probe : out.probes) probe_names.push_back(probe.name);
   if (!probe_names.empty() || !tip_trees.empty())
     writers.push_back(
         std::make_unique<io::ProbesWriter>(directory, std::move(probe_names), tip_trees, leaves_present));
-  viz::ViewScriptSettings view = view_of(plan);
-  view.wind = out.vtk_wind;
-  view.trees = out.vtk_trees && trees_present;
-  view.leaves = out.vtk_leaves && leaves_present;
-  writers.push_back(std::make_unique<viz::ViewScriptWriter>(directory, std::move(view)));
+  writers.push_back(std::make_unique<viz::ViewScriptWriter>(directory, view_settings(plan)));
   return writers;
 }
 

@@ -13,6 +13,7 @@
 #include "host/runtime/Device.hpp"
 #include "host/stages/BlockGrid.hpp"
 #include "io/writers/FrameWriter.hpp"
+#include "viz/ViewScript.hpp"
 
 namespace fw::host {
 
@@ -31,9 +32,13 @@ struct OutputShare {
 /// output.vdb.grids.
 bool vdb_holds_leaves(const SimulationPlan& plan);
 
+/// view.py's settings: the domain, slice and speed scale, and which collections it opens.
+viz::ViewScriptSettings view_settings(const SimulationPlan& plan);
+
 /// In order: the manifest (run.json, scenario copy), wind VTK, trees VTK, VDB, probes, view.py; each only
 /// when the settings enable it (probes when there are probe points or tracked trees: tip_trees, the instance
-/// ids). Over ranks (share given), each rank only its part.
+/// ids), the frame writers with their every-N (output.vtk.wind_every, ...). Over ranks (share given), each
+/// rank only its part.
 std::vector<std::unique_ptr<io::FrameWriter>> make_writers(const SimulationPlan& plan,
                                                            const std::filesystem::path& directory,
                                                            const DeviceInfo& device,

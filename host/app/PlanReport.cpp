@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "host/app/OutputSize.hpp"
 #include "host/app/SimulationPlan.hpp"
 
 namespace fw::host {
@@ -114,9 +115,8 @@ void print_plan(const SimulationPlan& plan, std::ostream& out) {
     out << fmt::format("steps: {} (dt {} s to t = {} s)\n", long(std::ceil(plan.end_time / settings.dt)),
                        settings.dt, plan.end_time);
   } else {
-    // A wind along one axis at the peak speed: the largest component and the sum of the components agree.
     const double peak = peak_wind_speed(plan);
-    const double dt = host::WindGrid::cfl_dt(settings, spec, {peak, 0.0, 0.0});
+    const double dt = planned_dt(plan);
     out << fmt::format(
         "steps: about {} or more (dt auto, CFL {}{}: {:.3f} s at the peak wind plus gusts, {:.1f} m/s, to t "
         "= "
@@ -130,6 +130,7 @@ void print_plan(const SimulationPlan& plan, std::ostream& out) {
   }
   out << fmt::format("output: {} every {} s, {} probes\n", plan.output.directory.string(),
                      plan.output.interval, plan.output.probes.size());
+  print_output_size(predict_output_size(plan, plan.end_time), out);
 }
 
 }  // namespace fw::host

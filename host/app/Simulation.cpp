@@ -81,6 +81,8 @@ io::OutputFrame capture_frame(CoupledStep& coupled, const io::FrameNeeds& needs,
     frame.displacement = coupled.trees().download_displacements();
   if (leaves)
     frame.leaves = leaf_frame(coupled.leaves().download(), coupled.leaves().counts(), attached_stride);
+  else if (needs.leaf_counts && coupled.has_leaves())
+    frame.leaves.counts = coupled.leaves().counts();
   return frame;
 }
 
@@ -130,7 +132,6 @@ class RunLoop {
         probes_(cc, coupled, probe_points(plan), plan.forest.instance_count(), options.tip_trees,
                 plan.coupling.strong_wind_correction),
         output_(make_writers(plan, directory, cc.device(), probes_.tip_trees(), share_ ? &*share_ : nullptr)),
-        needs_(agreed_needs(output_.needs(), world)),
         checkpoints_(directory / "checkpoints", world),
         state_keys_(io::state_keys(plan.scenario.text)),
         frames_due_(plan.output.interval),
@@ -190,12 +191,12 @@ class RunLoop {
                        coupled.wind().block(), plan.decomposition, &coupled.own_forest()};
   }
 
-  // Over ranks every rank copies back what any rank's writers need: the copies of the leaves and the frame's
-  // gathering are collective. Collective.
+  // Over ranks every rank copies back what any rank's writers need on a frame: the copies of the leaves and
+  // the frame's gathering are collective. Collective.
   static io::FrameNeeds agreed_needs(io::FrameNeeds needs, const Communicator& world) {
     if (world.size() == 1) return needs;
-    for (bool* flag :
-         {&needs.velocity, &needs.pressure, &needs.displacement, &needs.probe_samples, &needs.leaves})
+    for (bool* flag : {&needs.velocity, &needs.pressure, &needs.displacement, &needs.probe_samples,
+                       &needs.leaves, &needs.leaf_counts})
       *flag = world.max(*flag ? 1.0 : 0.0) > 0.0;
     return needs;
   }
@@ -207,9 +208,14 @@ class RunLoop {
     const long long complete = first_frame_ + world_.min(output_.frames_written());
     for (; listed_ < complete; ++listed_) {
       const double time = frame_times_[std::size_t(listed_ - first_frame_)];
-      if (wind_pvd_) wind_pvd_->add(time, io::WindVtkWriter::frame_file(int(listed_), true));
-      if (trees_pvd_) trees_pvd_->add(time, io::TreesVtkWriter::frame_file(int(listed_), true));
-      if (leaves_pvd_) leaves_pvd_->add(time, io::LeavesVtkWriter::frame_file(int(listed_), true));
+      const int k = int(listed_);
+      const io::OutputSettings& out = plan_.output;  // each collection lists its own frames
+      if (wind_pvd_ && k % out.vtk_wind_every == 0)
+        wind_pvd_->add(time, io::WindVtkWriter::frame_file(k, true));
+      if (trees_pvd_ && k % out.vtk_trees_every == 0)
+        trees_pvd_->add(time, io::TreesVtkWriter::frame_file(k, true));
+      if (leaves_pvd_ && k % out.leaves_every == 0)
+        leaves_pvd_->add(time, io::LeavesVtkWriter::frame_file(k, true));
     }
   }
 
@@ -317,9 +323,11 @@ class RunLoop {
 
   void hand_over_frame() {
     const auto start = Clock::now();
-    io::OutputFrame frame = capture_frame(coupled_, needs_, plan_.output.leaves_attached_stride, frames_++);
+    // Only what this frame's writers take is copied back (each output's every-N).
+    const io::FrameNeeds needs = agreed_needs(output_.needs(frames_), world_);
+    io::OutputFrame frame = capture_frame(coupled_, needs, plan_.output.leaves_attached_stride, frames_++);
     // The VDB frames hold the whole domain: rank 0 writes them from every rank's part.
-    if (share_ && plan_.output.vdb_enabled)
+    if (share_ && plan_.output.vdb_enabled && frame.index % plan_.output.vdb_every == 0)
       frame.gathered = gather_frame(frame, plan_.wind.spec, *coupled_.blocks(), coupled_.wind().block(),
                                     vdb_holds_leaves(plan_));
     frame.probe_samples = std::move(pending_samples_);
@@ -380,7 +388,6 @@ class RunLoop {
   const Clock::time_point wall_start_ = Clock::now();
   ProbeSampler probes_;
   io::OutputPipeline output_;
-  const io::FrameNeeds needs_;
   RunSummary summary_;
   double output_ms_ = 0.0, probe_ms_ = 0.0;
   int frames_ = 0;

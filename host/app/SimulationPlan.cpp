@@ -36,4 +36,10 @@ double peak_wind_speed(const SimulationPlan& plan) {
   return peak * factor + gust;
 }
 
+double planned_dt(const SimulationPlan& plan) {
+  const fluid::WindSettings& settings = plan.wind.settings;
+  if (!(settings.cfl > 0.0)) return settings.dt;
+  return WindGrid::cfl_dt(settings, plan.wind.spec, {peak_wind_speed(plan), 0.0, 0.0});
+}
+
 }  // namespace fw::host

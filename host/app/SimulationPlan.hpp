@@ -105,4 +105,10 @@ void print_plan(const SimulationPlan& plan, std::ostream& out);
 /// largest face speed exceeds it.
 double peak_wind_speed(const SimulationPlan& plan);
 
+/// The time step `check` plans with, s: time.dt when fixed; with dt auto the CFL step at peak_wind_speed
+/// along one axis (the largest component and the sum of the components agree), the shortest step the
+/// ambient wind and gusts allow. ceil(end / dt) is then about the run's steps, or fewer when turbulence
+/// speeds the flow past the peak.
+double planned_dt(const SimulationPlan& plan);
+
 }  // namespace fw::host

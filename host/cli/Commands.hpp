@@ -66,6 +66,9 @@ struct RunCommandOptions {
   std::string resume;      // --resume DIR|CHECKPOINT: go on from a checkpoint
   bool quiet = false;
   host::RunOptions run;  // --end: run.end_time, s, > 0 overrides time.end
+  bool force = false;    // --force: start even when the output may not fit its disk
+  /// The free space the disk check assumes instead of measuring it: FORESTWIND_FAKE_FREE_BYTES, a test hook.
+  std::optional<std::uint64_t> free_bytes;
 };
 
 /// `forestwind run`: 0 completed; stopped by a signal after a checkpoint, 128 + the signal's number (130

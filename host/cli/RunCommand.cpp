@@ -10,6 +10,7 @@
 #include <iterator>
 #include <optional>
 
+#include "host/app/OutputSpace.hpp"
 #include "host/app/Simulation.hpp"
 #include "host/app/SimulationPlan.hpp"
 #include "host/cli/Commands.hpp"
@@ -106,6 +107,8 @@ int run_scenario(const RunCommandOptions& options, const GlobalOptions& global,
   if (log)
     for (const std::string& warning : plan.warnings) *log << "warning: " << warning << "\n";
   const bool leaves = plan.leaf_count > 0;
+  const double end = options.run.end_time > 0.0 ? options.run.end_time : plan.end_time;
+  if (!options.force) host::require_output_space(plan, directory, end, world, options.free_bytes);
 
   host::ComputeContext cc(
       host::select_device(host::device_filter_from_env(global.device_filter), world.node_rank()),

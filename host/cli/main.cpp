@@ -2,7 +2,12 @@
 #include <fmt/format.h>
 #include <CLI/CLI.hpp>
 
+#include <charconv>
+#include <cstdint>
+#include <cstdlib>
+#include <cstring>
 #include <iostream>
+#include <optional>
 #include <stdexcept>
 #include <tuple>
 
@@ -22,6 +27,20 @@ int failed(const fw::host::Communicator& world, const std::exception& error, int
   }
   std::cerr << "forestwind: rank " << world.rank() << " of " << world.size() << ": " << error.what() << "\n";
   world.abort(code);
+}
+
+// FORESTWIND_FAKE_FREE_BYTES: the free space `run`'s disk check assumes (a test hook). Throws
+// std::invalid_argument (exit 2) for anything but a whole number of bytes.
+std::optional<std::uint64_t> fake_free_bytes() {
+  const char* text = std::getenv("FORESTWIND_FAKE_FREE_BYTES");
+  if (text == nullptr) return std::nullopt;
+  std::uint64_t bytes = 0;
+  const char* end = text + std::strlen(text);
+  const auto [at, error] = std::from_chars(text, end, bytes);
+  if (error != std::errc() || at != end || at == text)
+    throw std::invalid_argument(
+        fmt::format("FORESTWIND_FAKE_FREE_BYTES: \"{}\": expected a whole number of bytes", text));
+  return bytes;
 }
 
 }  // namespace
@@ -71,6 +90,8 @@ int main(int argc, char** argv) {
       "--resume", run.resume,
       "go on from a checkpoint: DIR (a run's output folder or its checkpoints/: the newest) or "
       "one checkpoint's folder");
+  run_cmd->add_flag("--force", run.force,
+                    "start even when the output folder's disk lacks the predicted output plus a margin");
 
   std::string check_path, check_resume;
   auto* check_cmd = app.add_subcommand("check", "validate a scenario and summarise it (no device needed)");
@@ -156,7 +177,10 @@ int main(int argc, char** argv) {
 
   try {
     if (devices->parsed()) return cli::run_devices(devices_json);
-    if (run_cmd->parsed()) return cli::run_scenario(run, global, world);
+    if (run_cmd->parsed()) {
+      run.free_bytes = fake_free_bytes();
+      return cli::run_scenario(run, global, world);
+    }
     if (check_cmd->parsed()) return cli::run_check(check_path, check_resume, world);
     if (tree_generate->parsed()) return cli::run_tree_generate(generate);
     if (tree_modes->parsed()) return cli::run_tree_modes(modes);

@@ -23,6 +23,8 @@ void read_vtk(const Loader& loader, const Field& field, OutputSettings& output) 
   const Section<"output.vtk"> map(loader, field);
   if (const auto wind = map.get<"wind">()) output.vtk_wind = loader.boolean(*wind);
   if (const auto trees = map.get<"trees">()) output.vtk_trees = loader.boolean(*trees);
+  if (const auto every = map.get<"wind_every">()) output.vtk_wind_every = loader.integer(*every);
+  if (const auto every = map.get<"trees_every">()) output.vtk_trees_every = loader.integer(*every);
   if (const auto fields = map.get<"fields">()) output.vtk_fields = loader.word_set(*fields);
 }
 
@@ -30,6 +32,7 @@ void read_vdb(const Loader& loader, const Field& field, OutputSettings& output) 
   const Section<"output.vdb"> map(loader, field);
   if (const auto enabled = map.get<"enabled">()) output.vdb_enabled = loader.boolean(*enabled);
   if (const auto grids = map.get<"grids">()) output.vdb_grids = loader.word_set(*grids);
+  if (const auto every = map.get<"every">()) output.vdb_every = loader.integer(*every);
 }
 
 void read_leaves(const Loader& loader, const Field& field, OutputSettings& output) {
@@ -51,6 +54,7 @@ void read_leaves(const Loader& loader, const Field& field, OutputSettings& outpu
     }
   }
   if (const auto vtk = map.get<"vtk">()) output.vtk_leaves = loader.boolean(*vtk);
+  if (const auto every = map.get<"every">()) output.leaves_every = loader.integer(*every);
 }
 
 /// One item of output.probes, after the probes `earlier`.

@@ -9,14 +9,16 @@
 //   output.finish(outcome);                              // waits for the queue, then each writer's finish
 //
 // A writer's begin() and finish() run on the run loop's thread, write() on the output thread, one frame at
-// a time in frame order. Every file is written under a temporary name and renamed (io/AtomicFile), and a
-// collection (.pvd) lists a frame only once its file is complete.
+// a time in frame order; an output with an every-N (set_every) gets only the frames it takes. Every file is
+// written under a temporary name and renamed (io/AtomicFile), and a collection (.pvd) lists a frame only once
+// its file is complete.
 #pragma once
 
 #include <array>
 #include <cstdint>
 #include <map>
 #include <optional>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -81,12 +83,14 @@ struct FrameNeeds {
   bool displacement = false;
   bool probe_samples = false;
   bool leaves = false;
+  bool leaf_counts = false;  ///< the counts over every leaf only (LeafFrame::counts); implied by leaves
   FrameNeeds& operator|=(const FrameNeeds& other) {
     velocity = velocity || other.velocity;
     pressure = pressure || other.pressure;
     displacement = displacement || other.displacement;
     probe_samples = probe_samples || other.probe_samples;
     leaves = leaves || other.leaves;
+    leaf_counts = leaf_counts || other.leaf_counts;
     return *this;
   }
 };
@@ -139,6 +143,19 @@ class FrameWriter {
   virtual void write(const OutputFrame& frame) = 0;
   /// After the last frame was written (also after a failure or an interruption).
   virtual void finish(const RunOutcome& /*outcome*/) {}
+
+  /// The output's every-N (output.vtk.wind_every, ...): it gets the frames whose index is a multiple of
+  /// `every` only. Throws std::invalid_argument for every < 1.
+  void set_every(int every) {
+    if (every < 1) throw std::invalid_argument(name() + ": every " + std::to_string(every) + " is not >= 1");
+    every_ = every;
+  }
+  int every() const { return every_; }
+  /// Whether write() gets frame `index`.
+  bool takes(int index) const { return index % every_ == 0; }
+
+ private:
+  int every_ = 1;
 };
 
 }  // namespace fw::io

@@ -60,8 +60,8 @@ class ManifestWriter : public FrameWriter {
   ManifestWriter(std::filesystem::path directory, RunManifest manifest);
 
   std::string name() const override { return "run.json"; }
-  /// The leaves' counts travel with the frames' leaves.
-  FrameNeeds needs() const override { return {.leaves = manifest_.leaves}; }
+  /// The leaves' counts travel with every frame (LeafFrame::counts), the leaves themselves need not.
+  FrameNeeds needs() const override { return {.leaf_counts = manifest_.leaves}; }
   /// Writes the scenario copy.
   void begin() override;
   /// Keeps the frame's leaf counts (runs with leaves).

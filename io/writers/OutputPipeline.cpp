@@ -39,6 +39,13 @@ FrameNeeds OutputPipeline::needs() const {
   return all;
 }
 
+FrameNeeds OutputPipeline::needs(int index) const {
+  FrameNeeds all;
+  for (const auto& writer : writers_)
+    if (writer->takes(index)) all |= writer->needs();
+  return all;
+}
+
 void OutputPipeline::begin() {
   for (auto& writer : writers_) writer->begin();
 }
@@ -112,7 +119,8 @@ void OutputPipeline::run() {
     const auto start = Clock::now();
     std::exception_ptr failure;
     for (auto& writer : writers_) {
-      if (frame.probe_samples_only && !writer->needs().probe_samples) continue;
+      // A last batch of probe samples is not a frame: its index says nothing.
+      if (frame.probe_samples_only ? !writer->needs().probe_samples : !writer->takes(frame.index)) continue;
       try {
         writer->write(frame);
       } catch (const std::exception& e) {

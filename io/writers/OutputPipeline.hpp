@@ -5,7 +5,7 @@
 //   output.begin();
 //   for (...) {
 //     output.check();                     // rethrows a writer's error at the next step
-//     if (frame_due) output.push(capture_frame());   // blocks only while `capacity` frames wait
+//     if (frame_due) output.push(capture_frame(output.needs(index)));   // blocks while `capacity` wait
 //   }
 //   output.finish(outcome);                // every queued frame written, then each writer's finish
 //
@@ -42,6 +42,9 @@ class OutputPipeline {
 
   /// The union of every writer's needs.
   FrameNeeds needs() const;
+  /// The union of the needs of the writers that take frame `index` (FrameWriter::takes): what that frame
+  /// must carry.
+  FrameNeeds needs(int index) const;
   bool empty() const { return writers_.empty(); }
   /// Each writer's begin(), on the calling thread.
   void begin();

@@ -76,7 +76,7 @@ output:
 YAML
 # Weak petioles (0.05 N median): thousands of leaves are shed at once and fly downwind across the cuts.
 sed 's/      canopy: {leaf_area_index: 3.0, drag_coefficient: 0.4}/&\n      leaves: {model: stochastic, area: 0.003, fraction: 0.01, petiole_strength: 0.05, strength_spread: 0.7}/
-     s/  interval: 1.0/&\n  vdb: {enabled: true, grids: [vel, speed, leaves]}\n  leaves: {attached: 5}/
+     s/  interval: 1.0/&\n  vdb: {enabled: true, grids: [vel, speed, leaves]}\n  leaves: {attached: 5}\n  checkpoint: {interval: 1.0}/
      s/cell_size: 2.0}/cell_size: 2.0, decomposition: [2, 2]}/' forest.yaml >leaves.yaml
 # The same over 2 x 2 blocks (4 ranks choose 4 x 1 themselves): cuts along y too, and corners.
 sed 's/cell_size: 2.0}/cell_size: 2.0, decomposition: [2, 2]}/' forest.yaml >forest_2x2.yaml
@@ -101,6 +101,18 @@ done
 "$forestwind" run leaves.yaml -o leafy_one --quiet || fail "the run with leaves in one process exited $?"
 out=$(ranks 4 "$forestwind" run leaves.yaml -o leafy_ranks 2>&1) || fail "the run with leaves over 2 x 2 ranks exited $?: $out"
 cmp -s leafy_one/probes.csv leafy_ranks/probes.csv || fail "probes.csv with leaves over 2 x 2 ranks differs from one process's"
+# Resumed over the same 2 x 2 ranks from the checkpoint at 1 s (every rank its own part): the same bytes.
+# On another number of ranks the checkpoint is refused (exit 2), saying how many wrote it.
+cp -r leafy_ranks leafy_resumed
+first=$(ls leafy_resumed/checkpoints | head -n 1)
+[ "$(ls "leafy_resumed/checkpoints/$first" | wc -l)" -eq 4 ] || fail "the checkpoint over 4 ranks is not 4 parts"
+out=$(ranks 4 "$forestwind" run leaves.yaml -o leafy_resumed --resume "leafy_resumed/checkpoints/$first" 2>&1) ||
+  fail "the resume over 2 x 2 ranks exited $?: $out"
+cmp -s leafy_ranks/probes.csv leafy_resumed/probes.csv || fail "probes.csv resumed over 2 x 2 ranks differs"
+out=$("$compare_runs" leafy_ranks leafy_resumed) || fail "the frames resumed over 2 x 2 ranks differ: $out"
+out=$(ranks 2 "$forestwind" run leaves.yaml -o leafy_resumed --resume leafy_resumed --quiet 2>&1)
+[ $? -eq 2 ] && grep -q "holds the parts of 4 MPI ranks; resume it on 4 ranks" <<<"$out" ||
+  fail "a checkpoint of 4 ranks resumed on 2 was not refused: $out"
 grep -q 'file="leaves/leaves_000002.pvtp"' leafy_ranks/leaves.pvd || fail "leaves.pvd over ranks lists no .pvtp"
 out=$("$compare_runs" leafy_one leafy_ranks) || fail "the frames with leaves over 2 x 2 ranks differ from one process's: $out"
 "$forestwind" render leafy_one -o leafy_one.png >/dev/null || fail "render of the leaves in one process exited $?"

@@ -242,3 +242,34 @@ TEST_CASE("ProbesCsv: bad names throw invalid_argument, a missing or unwritable 
   ::chmod(locked.c_str(), 0755);
   CHECK_FALSE(has_temporary(dir.path()));
 }
+
+TEST_CASE(
+    "ProbesCsv: a resumed run keeps the header and the rows up to its checkpoint, and appends after them",
+    "[output]") {
+  fw::test::TempDir dir("fw_probes_resume");
+  const fs::path path = fs::path(dir.path()) / "probes.csv";
+  // Rows past the rewrite limit (64 bytes): the file is appended, as in a long run.
+  constexpr std::size_t kSmallLimit = 64;
+  {
+    fw::io::ProbesCsv csv(path, {"mast"}, {}, kSmallLimit);
+    for (int row = 0; row < 6; ++row) csv.append(0.5 * row, {{float(row), 0.0f, 0.0f}}, {});
+  }
+  auto resumed = fw::io::ProbesCsv::continued(path, {"mast"}, {}, 3, kSmallLimit);
+  CHECK(resumed.rows() == 3);
+  resumed.append(9.0, {{9.0f, 0.0f, 0.0f}}, {});
+  const std::vector<std::string> lines = lines_of(path);
+  REQUIRE(lines.size() == 5);  // the header, rows 0-2, the new row
+  CHECK(lines[0] == "time_s,mast_u,mast_v,mast_w");
+  CHECK(split(lines[3])[1] == "2");
+  CHECK(split(lines[4])[0] == "9");
+  CHECK_FALSE(has_temporary(dir.path()));
+
+  // Other columns, or fewer rows than the checkpoint counted: not this run's file, which stays as it was.
+  CHECK_THROWS_AS(fw::io::ProbesCsv::continued(path, {"gap"}, {}, 3), std::invalid_argument);
+  CHECK_THROWS_AS(fw::io::ProbesCsv::continued(path, {"mast"}, {}, 10), std::invalid_argument);
+  CHECK(lines_of(path) == lines);
+  // No file (a resume into a new folder): a new one with the header only.
+  fs::remove(path);
+  CHECK(fw::io::ProbesCsv::continued(path, {"mast"}, {}, 3).rows() == 0);
+  CHECK(lines_of(path) == std::vector<std::string>{"time_s,mast_u,mast_v,mast_w"});
+}

@@ -142,3 +142,24 @@ TEST_CASE("PvdCollection: read_pvd gives back what add wrote, times bit for bit 
                     Catch::Contains("timestep: expected a finite number, got 'soon'"));
   CHECK_THROWS_WITH(fw::io::read_pvd(fs::path(dir.path()) / "none.pvd"), Catch::Contains("cannot open"));
 }
+
+TEST_CASE(
+    "PvdCollection: a resumed run keeps the frames up to its checkpoint's time and drops the later ones",
+    "[output]") {
+  fw::test::TempDir dir("fw_pvd_resume");
+  const fs::path path = fs::path(dir.path()) / "wind.pvd";
+  {
+    fw::io::PvdCollection wind(path);
+    for (int k = 0; k < 5; ++k) wind.add(0.1 * k, "wind/wind_00000" + std::to_string(k) + ".vti");
+  }
+  fw::io::PvdCollection resumed(path);
+  resumed.continue_existing(0.2);  // 0.1 * 2 as the run computed it: the same double
+  CHECK(datasets(path) ==
+        List{{0.0, "wind/wind_000000.vti"}, {0.1, "wind/wind_000001.vti"}, {0.2, "wind/wind_000002.vti"}});
+  resumed.add(0.3, "wind/wind_000003.vti");  // written again: listed once
+  CHECK(datasets(path).size() == 4);
+  // No file yet (a resume into a new folder): an empty collection.
+  fw::io::PvdCollection fresh(fs::path(dir.path()) / "trees.pvd");
+  fresh.continue_existing(0.2);
+  CHECK(datasets(fresh.path()).empty());
+}

@@ -126,7 +126,7 @@ TEST_CASE("schema: the loader's messages come from the key's type, bound and uni
   CHECK(schema::expected(schema::key("forest.species[].leaves.model")) ==
         "one of none | pseudo_branch | stochastic");
   CHECK(schema::expected(schema::key("output.leaves.attached")) == "one of all | none or an integer >= 1");
-  CHECK(schema::child_names("output.leaves") == std::vector<std::string>{"attached", "vtk"});
+  CHECK(schema::child_names("output.leaves") == std::vector<std::string>{"attached", "vtk", "every"});
 }
 
 TEST_CASE("schema: a reader's key is looked up below its map, so that a key the map lacks cannot be read",

@@ -1485,6 +1485,33 @@ TEST_CASE("load_scenario: bad rough-ground, forcing, Smagorinsky and probe keys 
                "forest.strong_wind_correction", "true or false expected, got 'yes'");
 }
 
+TEST_CASE("load_scenario: each output's every-N is a whole number >= 1, else FILE:LINE: KEY", "[scenario]") {
+  fw::test::TempDir dir("fw_scenario");
+  const std::string path =
+      dir.write("every.yaml", kBase +
+                                  "output:\n  vtk: {wind_every: 2, trees_every: 3}\n  vdb: {every: 4}\n"
+                                  "  leaves: {every: 5}\n");
+  const fw::io::OutputSettings output = fw::io::load_scenario(path).output;
+  CHECK(output.vtk_wind_every == 2);
+  CHECK(output.vtk_trees_every == 3);
+  CHECK(output.vdb_every == 4);
+  CHECK(output.leaves_every == 5);
+  const fw::io::OutputSettings defaults = fw::io::load_scenario(dir.write("plain.yaml", kBase)).output;
+  CHECK(defaults.vtk_wind_every == 1);
+  CHECK(defaults.vtk_trees_every == 1);
+  CHECK(defaults.vdb_every == 1);
+  CHECK(defaults.leaves_every == 1);
+
+  expect_error(dir, "trees_zero", kBase + "output:\n  vtk: {trees_every: 0}\n", 6, "output.vtk.trees_every",
+               "an integer >= 1 expected, got '0'");
+  expect_error(dir, "wind_fraction", kBase + "output:\n  vtk: {wind_every: 1.5}\n", 6,
+               "output.vtk.wind_every", "got '1.5'");
+  expect_error(dir, "vdb_word", kBase + "output:\n  vdb: {every: often}\n", 6, "output.vdb.every",
+               "got 'often'");
+  expect_error(dir, "leaves_negative", kBase + "output:\n  leaves: {every: -2}\n", 6, "output.leaves.every",
+               "got '-2'");
+}
+
 namespace {
 
 // A species with foliage on lines 7-9 and its `leaves` on line 10 (leaves_line), on the first lines of kBase.
@@ -1677,7 +1704,7 @@ TEST_CASE("load_scenario: output.leaves takes all, none or a stride, and vtk", "
   expect_error(dir, "leaves_vtk", kBase + "output: {leaves: {vtk: yes}}\n", 5, "output.leaves.vtk",
                "true or false expected, got 'yes'");
   expect_error(dir, "leaves_unknown", kBase + "output: {leaves: {flying: all}}\n", 5, "output.leaves.flying",
-               "one of the keys attached, vtk expected, got 'flying'");
+               "one of the keys attached, vtk, every expected, got 'flying'");
   expect_error(dir, "vdb_grid", kBase + "output: {vdb: {grids: [vel, leaf]}}\n", 5, "output.vdb.grids[1]",
                "one of vel | speed | leaves expected, got 'leaf'");
 }

@@ -47,7 +47,8 @@ TEST_CASE("run.json: with leaves on, a leaves object holds the counts of the las
   fw::test::TempDir dir("fw_out");
   const fs::path out = fs::path(dir.path()) / "run";
   fw::io::ManifestWriter writer(out, manifest(true));
-  CHECK(writer.needs().leaves);
+  CHECK(writer.needs().leaf_counts);  // the counts only: no frame's leaves are copied back for run.json
+  CHECK_FALSE(writer.needs().leaves);
   CHECK_FALSE(writer.needs().velocity);
   writer.begin();
   writer.write(frame_with_counts(0, 0.0, {.shed = 0, .flying = 0, .landed = 0, .exited = 0, .attached = 40}));

@@ -1,0 +1,55 @@
+// io/ScenarioStateKeys: the keys a checkpoint's state depends on, compared as YAML data; a resume may change
+// only time.end and output, and an error names the key and its line.
+#include "io/ScenarioStateKeys.hpp"
+
+#include <catch2/catch.hpp>
+
+#include <string>
+
+#include "base/SourceError.hpp"
+
+namespace {
+
+const std::string kScenario =
+    "scenario: a\nseed: 3\ntime: {end: 10.0, dt: auto}\n"
+    "domain: {size: [64, 32, 16], cell_size: 2.0}\n"
+    "wind: {speed: 5.0, direction: 270}\n"
+    "output: {directory: out, interval: 1.0}\n";
+
+std::string refusal(const std::string& changed) {
+  try {
+    fw::io::require_same_state(fw::io::state_keys(kScenario), fw::io::state_keys(changed), "b.yaml");
+  } catch (const fw::base::SourceError& e) {
+    return e.what();
+  }
+  return "accepted";
+}
+
+}  // namespace
+
+TEST_CASE("ScenarioStateKeys: time.end, output and the name may change; layout and comments do not count",
+          "[io]") {
+  CHECK(refusal(kScenario) == "accepted");
+  CHECK(refusal("# extended\nscenario: b\nseed: 3\ntime:\n  end: 60.0\n  dt: auto\n"
+                "domain: {cell_size: 2.0, size: [64, 32, 16]}\n"
+                "wind:\n  speed: 5.0\n  direction: 270\n"
+                "output: {directory: elsewhere, interval: 0.5, vdb: {enabled: true}}\n") == "accepted");
+}
+
+TEST_CASE("ScenarioStateKeys: a changed, added or removed key is refused with its file, line and name",
+          "[io]") {
+  const std::string expected = "the value the checkpoint was written with";
+  std::string changed = kScenario;
+  changed.replace(changed.find("[64, 32, 16]"), 12, "[64, 32, 24]");
+  CHECK(refusal(changed).starts_with("b.yaml:4: domain.size: " + expected));
+  changed = kScenario;
+  changed.replace(changed.find("seed: 3"), 7, "seed: 4");
+  CHECK(refusal(changed).starts_with("b.yaml:2: seed: " + expected));
+  changed = kScenario;
+  changed.replace(changed.find("dt: auto"), 8, "dt: 0.1");
+  CHECK(refusal(changed).starts_with("b.yaml:3: time.dt: " + expected));
+  CHECK(refusal(kScenario + "solver: {advection: upwind5}\n").starts_with("b.yaml:7: solver.advection: "));
+  changed = kScenario;
+  changed.erase(changed.find("seed: 3\n"), 8);
+  CHECK(refusal(changed).starts_with("b.yaml: seed: " + expected));
+}
