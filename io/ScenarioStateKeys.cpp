@@ -14,8 +14,9 @@ namespace fw::io {
 
 namespace {
 
-// What a resume may change (docs/design.md "Long runs").
-constexpr std::array<std::string_view, 3> kFreeKeys = {"scenario", "output", "time.end"};
+// What a resume may change (docs/design.md "Long runs"): a checkpoint of other blocks is redistributed.
+constexpr std::array<std::string_view, 4> kFreeKeys = {"scenario", "output", "time.end",
+                                                       "domain.decomposition"};
 
 bool free_key(const std::string& key) {
   return std::find(kFreeKeys.begin(), kFreeKeys.end(), key) != kFreeKeys.end();

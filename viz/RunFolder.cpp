@@ -213,6 +213,16 @@ fs::path file_at(const fs::path& folder, const std::vector<io::PvdCollection::En
   return {};
 }
 
+// The file of `entries` at `time`, else of the latest entry before it: an output written every N-th frame
+// (output.vtk.trees_every, output.leaves.every) holds still between its frames instead of vanishing.
+fs::path file_at_or_before(const fs::path& folder, const std::vector<io::PvdCollection::Entry>& entries,
+                           double time) {
+  const io::PvdCollection::Entry* latest = nullptr;
+  for (const auto& e : entries)
+    if (e.time <= time && (latest == nullptr || e.time >= latest->time)) latest = &e;
+  return latest ? folder / latest->file : fs::path();
+}
+
 std::string json_string_value(const std::string& json, const std::string& key) {
   const std::regex pattern("\"" + key + R"re("\s*:\s*"((?:[^"\\]|\\.)*)")re");
   std::smatch match;
@@ -300,8 +310,8 @@ RunFolder::RunFolder(fs::path folder) : folder_(std::move(folder)) {
     frame.index = int(frames_.size());
     frame.time = entry.time;
     frame.wind = file_at(folder_, wind, entry.time);
-    frame.trees = file_at(folder_, trees, entry.time);
-    frame.leaves = file_at(folder_, leaves, entry.time);
+    frame.trees = file_at_or_before(folder_, trees, entry.time);
+    frame.leaves = file_at_or_before(folder_, leaves, entry.time);
     frames_.push_back(frame);
   }
   scenario_name_ = scenario_name_of(folder_);

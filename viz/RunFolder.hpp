@@ -7,9 +7,11 @@
 //   const fw::viz::ScalarField speed = data.wind->field("speed");
 //
 // Frames are the entries of wind.pvd (or of trees.pvd in a run without wind output), each matched with the
-// trees and leaves entries of the same time. A .pvd lists a frame only once its file is complete
-// (io/writers/FrameWriter.hpp), but a folder copied mid-run or damaged may still hold a listed file that
-// does not read: load_last_complete() then falls back to the frame before it and says which one it used.
+// trees and leaves entries of the same time, or, for outputs written every N-th frame, of the latest time
+// before it (the trees hold still between their frames rather than vanish). A .pvd lists a frame only once
+// its file is complete (io/writers/FrameWriter.hpp), but a folder copied mid-run or damaged may still hold a
+// listed file that does not read: load_last_complete() then falls back to the frame before it and says which
+// one it used.
 #pragma once
 
 #include <array>
@@ -80,7 +82,8 @@ class RunFolder {
   struct Frame {
     int index = 0;                              ///< position in the list, 0 = the first frame
     double time = 0.0;                          ///< s
-    std::filesystem::path wind, trees, leaves;  ///< empty where that output has no entry at this time
+    std::filesystem::path wind, trees, leaves;  ///< empty where that output has no entry at (trees, leaves:
+                                                ///< or before) this time
   };
 
   /// Reads the folder's .pvd files and the scenario's name. Throws std::invalid_argument("render: ...") when

@@ -1,6 +1,7 @@
 #include "host/app/CoupledStep.hpp"
 
 #include "host/runtime/Communicator.hpp"
+#include "host/stages/SavedStateNames.hpp"
 
 #include <fmt/format.h>
 
@@ -102,9 +103,9 @@ void CoupledStep::start() {
 
 std::map<std::string, StageState> CoupledStep::save_state() {
   std::map<std::string, StageState> states;
-  states["wind"] = wind_.save_state();
-  if (has_trees()) states["trees"] = trees_.save_state();
-  if (leaves_) states["leaves"] = leaves_->save_state();
+  states[saved::kWindStage] = wind_.save_state();
+  if (has_trees()) states[saved::kTreesStage] = trees_.save_state();
+  if (leaves_) states[saved::kLeavesStage] = leaves_->save_state();
   return states;
 }
 
@@ -115,9 +116,9 @@ void CoupledStep::restore_state(const std::map<std::string, StageState>& states)
       throw std::invalid_argument(fmt::format("the saved state has no {} stage: it is another run's", stage));
     return at->second;
   };
-  wind_.restore_state(of("wind"));
-  if (has_trees()) trees_.restore_state(of("trees"));
-  if (leaves_) leaves_->restore_state(of("leaves"));
+  wind_.restore_state(of(saved::kWindStage));
+  if (has_trees()) trees_.restore_state(of(saved::kTreesStage));
+  if (leaves_) leaves_->restore_state(of(saved::kLeavesStage));
 }
 
 CoupledStepReport CoupledStep::step(double max_dt) {

@@ -8,6 +8,7 @@
 
 #include "host/app/OutputWriters.hpp"
 #include "host/app/Simulation.hpp"
+#include "host/stages/ForestStages.hpp"
 #include "viz/ViewScript.hpp"
 
 namespace fw::host {
@@ -83,6 +84,18 @@ constexpr Bytes kVdbFileBytes = 4096;  // file and grid metadata, transforms, th
 
 // Characters a value takes with its comma, measured on the examples' rows: {:.12g} times, {:.9g} floats
 // (12.5 on average: a sign half the time, a leading "0." often), small counts.
+// A checkpoint (host/app/RunCheckpoint) holds every stage's state buffers whole (host/stages/StageState):
+// per leaf slot its state byte, four float4 (position, velocity, normal, flight) and its flight drag; per
+// own leaf its flutter angle and rate; and per slot its tree, leaf and side as doubles. Every per-leaf
+// buffer is padded by FW_LANES. Section names, the loop's progress and the state keys: about 4 kB.
+constexpr Bytes kLeafSlotBytes = 1 + 4 * 16 + 4;
+constexpr Bytes kOwnLeafBytes = 2 * 4;
+constexpr Bytes kLeafSlotNumbers = 3 * 8;
+constexpr Bytes kCheckpointRestBytes = 4096;
+constexpr const char* kEveryLeafShed = "when every leaf is shed";
+// Simulated times closer than this fraction are the same time (the run loop's schedules: sums of float dt).
+constexpr double kTimeTolerance = 1e-9;
+
 constexpr double kCsvTimeChars = 15.0;
 constexpr double kCsvFloatChars = 12.5;
 constexpr double kCsvCountChars = 6.0;
@@ -204,6 +217,26 @@ OutputSizeRow frame_row(std::string output, std::string path, WindFrames bytes, 
   return row;
 }
 
+// One checkpoint of the run: the sum of every rank's part, without the halos (a few per cent over ranks).
+Bytes checkpoint_bytes(const SimulationPlan& plan) {
+  const fluid::GridSpec& spec = plan.wind.spec;
+  const fluid::WindSettings& settings = plan.wind.settings;
+  const Bytes cells = spec.cell_count();
+  Bytes floats = spec.u_count() + spec.v_count() + spec.w_count() + cells;  // velocity, pressure solution
+  const bool tke = settings.subgrid == fluid::SubgridModel::tke;
+  if (tke || settings.smagorinsky_constant > 0.0) floats += cells;  // eddy viscosity
+  if (tke) floats += cells;                                         // subgrid energy
+  floats += 2 * Bytes(plan.forest.total_modes());                   // q, qdot
+  if (plan.coupling.unresolved.enabled)
+    floats += ForestStages::kTravelFloats * Bytes(plan.forest.instance_count());
+  Bytes bytes = floats * kFloat + kCheckpointRestBytes;
+  if (plan.leaf_count > 0) {
+    const Bytes padded = Bytes(plan.leaf_count) + FW_LANES;
+    bytes += padded * (kLeafSlotBytes + kOwnLeafBytes) + Bytes(plan.leaf_count) * kLeafSlotNumbers;
+  }
+  return bytes;
+}
+
 Bytes pvd_bytes(int entries) {
   return kPvdBytes + Bytes(entries) * kPvdEntryBytes;
 }
@@ -222,7 +255,6 @@ std::uint64_t OutputSize::most() const {
 
 int frame_count(const SimulationPlan& plan, double end_time) {
   // As the run loop's schedule: a multiple of the interval within a hair of the end is reached.
-  constexpr double kTimeTolerance = 1e-9;
   return 1 + int(std::floor(end_time / plan.output.interval + kTimeTolerance));
 }
 
@@ -252,6 +284,7 @@ OutputSize predict_output_size(const SimulationPlan& plan, double end_time) {
     const Bytes file = leaves_vtp(leaves_first);
     OutputSizeRow row = frame_row("leaves .vtp", "leaves", {file, file}, taken);
     row.most = Bytes(taken) * leaves_vtp(leaves_all);
+    row.bound = kEveryLeafShed;
     size.rows.push_back(row);
     pvd += pvd_bytes(taken);
   }
@@ -260,6 +293,7 @@ OutputSize predict_output_size(const SimulationPlan& plan, double end_time) {
     OutputSizeRow row = frame_row("VDB", "vdb", vdb_file(plan, leaves_first), taken);
     const WindFrames most = vdb_file(plan, leaves_all);
     row.most = taken > 0 ? most.first + Bytes(taken - 1) * most.later : 0;
+    if (leaves) row.bound = kEveryLeafShed;
     size.rows.push_back(row);
   }
   const int tips = trees ? std::min(RunOptions{}.tip_trees, plan.forest.instance_count()) : 0;
@@ -275,6 +309,22 @@ OutputSize predict_output_size(const SimulationPlan& plan, double end_time) {
     if (leaves) header += ",leaves_shed,leaves_flying,leaves_landed,leaves_exited";
     const Bytes bytes = header.size() + 1 + Bytes(std::llround(samples * row));
     size.rows.push_back({"probes.csv", "probes.csv", 0, 1, bytes, bytes});
+  }
+  // Checkpoints: one at each multiple of the interval and one at the end, of which the newest `keep` stay,
+  // with one more while the next is written. Without output.checkpoint, one when a signal stops the run:
+  // not part of the run's total, but of the bound the disk check holds free.
+  const Bytes checkpoint = checkpoint_bytes(plan);
+  if (out.checkpoint_interval > 0.0) {
+    // As the run loop's schedule: each multiple reached, and the end unless it is one of them.
+    const int multiples = int(std::floor(end_time / out.checkpoint_interval + kTimeTolerance));
+    const bool end_extra = end_time - multiples * out.checkpoint_interval > kTimeTolerance * end_time;
+    const int written = multiples + (end_extra ? 1 : 0);
+    const Bytes kept = Bytes(std::min(written, out.checkpoints_kept));
+    size.rows.push_back({"checkpoints", "checkpoints", checkpoint, written, kept * checkpoint,
+                         (kept + 1) * checkpoint, "while the next is written"});
+  } else {
+    size.rows.push_back({"checkpoint on a signal", "checkpoints", checkpoint, 0, 0, checkpoint,
+                         "when a signal stops the run"});
   }
   size.rows.push_back({"run.json", "run.json", 0, 1, kRunJsonBytes, kRunJsonBytes});
   const Bytes rest = viz::view_script(view_settings(plan)).size() + plan.scenario.text.size() + pvd;
@@ -298,8 +348,7 @@ void print_output_size(const OutputSize& size, std::ostream& out) {
     out << fmt::format("  {:<30} {:>10} {:>7} {:>10}", row.output,
                        row.per_frame > 0 ? human_bytes(row.per_frame) : "-", row.files,
                        human_bytes(row.total));
-    if (row.most > row.total)
-      out << fmt::format("   (up to {} when every leaf is shed)", human_bytes(row.most));
+    if (row.most > row.total) out << fmt::format("   (up to {} {})", human_bytes(row.most), row.bound);
     out << "\n";
   }
   out << fmt::format("  {:<30} {:>10} {:>7} {:>10}   ({} bytes", "total", "", "", human_bytes(size.total()),

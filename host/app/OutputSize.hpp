@@ -23,6 +23,9 @@
 //   the bound where every leaf is written, which the disk check uses.
 // - probes.csv: one row per sample, numbers of {:.9g} (12.5 characters each on average, measured); with
 //   samples every step the step count of planned_dt, a bound for a steady wind.
+// - Checkpoints (host/app/RunCheckpoint): every state buffer whole, from the grid, the modes and the leaves
+//   (within a per cent of the storm's 16.29 MB); the newest `keep` stay, and one more while the next is
+//   written (the bound). Without output.checkpoint a signal still writes one: the bound holds room for it.
 // - run.json, view.py (its text, exact), the scenario's copy (exact) and the .pvd collections.
 // Over MPI ranks the pieces add a few kB of headers a frame, which the model leaves out.
 #pragma once
@@ -45,6 +48,7 @@ struct OutputSizeRow {
   int files = 0;                ///< files over the run (frames it takes), 1 for files written once
   std::uint64_t total = 0;      ///< bytes over the run
   std::uint64_t most = 0;       ///< total's upper bound (leaves: every leaf shed); total elsewhere
+  std::string bound;            ///< when `most` is reached, for the table ("when every leaf is shed")
 };
 
 struct OutputSize {

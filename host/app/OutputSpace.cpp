@@ -24,7 +24,8 @@ std::filesystem::path nearest_existing(const std::filesystem::path& path) {
 }
 
 void require_output_space(const SimulationPlan& plan, const std::filesystem::path& directory, double end_time,
-                          const Communicator& world, std::optional<std::uint64_t> free_bytes) {
+                          const Communicator& world, std::optional<std::uint64_t> free_bytes,
+                          double resumed_at) {
   double measured = 0.0;  // bytes; rank 0's, shared (a double holds them exactly below 2^53)
   const std::filesystem::path existing = nearest_existing(directory);
   if (world.rank() == 0) {
@@ -39,7 +40,9 @@ void require_output_space(const SimulationPlan& plan, const std::filesystem::pat
   }
   const double available = world.size() > 1 ? world.max(measured) : measured;
   const OutputSize size = predict_output_size(plan, end_time);
-  const std::uint64_t needed = size.most();  // with every leaf shed: the bound, not the estimate
+  // With every leaf shed: the bound, not the estimate; after a checkpoint, what the run adds to the folder.
+  const std::uint64_t before = resumed_at > 0.0 ? predict_output_size(plan, resumed_at).most() : 0;
+  const std::uint64_t needed = size.most() - std::min(before, size.most());
   const std::uint64_t margin =
       std::uint64_t(std::llround(kSpaceMarginFraction * double(needed))) + kSpaceMarginBytes;
   if (double(needed + margin) <= available) return;

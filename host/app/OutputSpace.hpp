@@ -30,8 +30,10 @@ std::filesystem::path nearest_existing(const std::filesystem::path& path);
 /// ancestor's filesystem; `free_bytes` instead when given, a test hook) is less than the predicted output of
 /// a run to `end_time` (s) plus the margin. The message gives the prediction, the free space and the margin
 /// and names the keys that shrink the output. Over ranks rank 0 measures and every rank decides alike
-/// (collective).
+/// (collective). resumed_at: a run resumed from a checkpoint at that time (s) writes only what comes after
+/// it (what came before is in the folder already, or is not written in a new one).
 void require_output_space(const SimulationPlan& plan, const std::filesystem::path& directory, double end_time,
-                          const Communicator& world, std::optional<std::uint64_t> free_bytes = std::nullopt);
+                          const Communicator& world, std::optional<std::uint64_t> free_bytes = std::nullopt,
+                          double resumed_at = 0.0);
 
 }  // namespace fw::host

@@ -22,6 +22,8 @@ constexpr std::string_view kBuffer = ".buffer.";
 constexpr std::string_view kNumber = ".number.";
 // The numbers of a segment in "run.segments": start and end time, start and end step, wall seconds.
 constexpr std::size_t kSegmentValues = 5;
+// A part's block in "run.block": extent (3), halo low and high (2 each), origin (2).
+constexpr std::size_t kBlockValues = 9;
 // How a segment in a checkpoint ended: the run after it resumed from that checkpoint.
 constexpr const char* kStoppedSegment = "stopped";
 
@@ -65,6 +67,11 @@ io::Checkpoint to_checkpoint(const RunSnapshot& snapshot) {
   }
   c.put("run.state_keys", text_bytes(keys));
   c.put("run.state_hashes", hashes);
+  const BlockArray& b = snapshot.block;
+  c.put("run.block",
+        std::vector<std::int32_t>{b.extent[0], b.extent[1], b.extent[2], b.halo_low[0], b.halo_low[1],
+                                  b.halo_high[0], b.halo_high[1], b.origin[0], b.origin[1]});
+  c.put("run.tree_ids", snapshot.tree_ids);
   return c;
 }
 
@@ -113,6 +120,13 @@ RunSnapshot from_checkpoint(const io::Checkpoint& c) {
     snapshot.state_keys.push_back({keys.substr(from, end - from), 0, std::bit_cast<std::uint64_t>(hash)});
     from = end + 1;
   }
+  const std::vector<std::int32_t>& b = c.get<std::int32_t>("run.block");
+  if (b.size() != kBlockValues) throw io::CheckpointError("the section \"run.block\" has the wrong size");
+  snapshot.block.extent = {b[0], b[1], b[2]};
+  snapshot.block.halo_low = {b[3], b[4]};
+  snapshot.block.halo_high = {b[5], b[6]};
+  snapshot.block.origin = {b[7], b[8]};
+  snapshot.tree_ids = c.get<std::int32_t>("run.tree_ids");
   return snapshot;
 }
 
@@ -197,27 +211,43 @@ std::filesystem::path find_checkpoint(const std::filesystem::path& given) {
   return found.rbegin()->second;
 }
 
-RunSnapshot read_checkpoint(const std::filesystem::path& folder, const Communicator& world) {
+namespace {
+
+// One rank's part of the checkpoint in `folder`.
+RunSnapshot read_part(const std::filesystem::path& folder, int rank) {
+  const std::filesystem::path file = folder / rank_file(rank);
+  const io::Checkpoint c = io::Checkpoint::read(file);
+  try {
+    return from_checkpoint(c);
+  } catch (const io::CheckpointError& e) {
+    throw io::CheckpointError(fmt::format("{}: {}", file.string(), e.what()));
+  }
+}
+
+}  // namespace
+
+CheckpointParts read_checkpoint(const std::filesystem::path& folder, const Communicator& world,
+                                const std::string& decomposition) {
   int files = 0;
   std::error_code error;
   for (const auto& entry : std::filesystem::directory_iterator(folder, error))
     files += entry.path().extension() == ".fwcheck" ? 1 : 0;
-  if (files != world.size())
-    throw io::CheckpointError(fmt::format("{}: holds the parts of {} MPI ranks; resume it on {} ranks",
-                                          folder.string(), files, files));
-  const std::filesystem::path file = folder / rank_file(world.rank());
-  const io::Checkpoint c = io::Checkpoint::read(file);
-  RunSnapshot snapshot;
-  try {
-    snapshot = from_checkpoint(c);
-  } catch (const io::CheckpointError& e) {
-    throw io::CheckpointError(fmt::format("{}: {}", file.string(), e.what()));
+  CheckpointParts read;
+  read.folder = folder;
+  RunSnapshot first = read_part(folder, 0);
+  if (first.ranks != files)
+    throw io::CheckpointError(
+        fmt::format("{}: holds the parts of {} MPI ranks, and was written by {}: a part "
+                    "is missing",
+                    folder.string(), files, first.ranks));
+  read.own = first.ranks == world.size() && first.decomposition == decomposition;
+  if (read.own) {
+    read.parts.push_back(world.rank() == 0 ? std::move(first) : read_part(folder, world.rank()));
+    return read;
   }
-  if (snapshot.ranks != world.size())
-    throw io::CheckpointError(fmt::format("{}: written by {} MPI ranks ({}); resume it on {} ranks",
-                                          folder.string(), snapshot.ranks, snapshot.decomposition,
-                                          snapshot.ranks));
-  return snapshot;
+  read.parts.push_back(std::move(first));
+  for (int rank = 1; rank < files; ++rank) read.parts.push_back(read_part(folder, rank));
+  return read;
 }
 
 }  // namespace fw::host

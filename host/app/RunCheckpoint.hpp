@@ -13,7 +13,8 @@
 // had them, with the loop's progress and the scenario's state keys (io/ScenarioStateKeys). The ranks write
 // into step_N.partial/, and rank 0 renames it to step_N/ once every rank's file is complete: a folder
 // without ".partial" is a whole checkpoint, and one a crash cut short is never read (the next checkpoint
-// removes it).
+// removes it). A run over other ranks or blocks reads every part and redistributes them
+// (host/app/CheckpointRedistribution).
 #pragma once
 
 #include <cstdint>
@@ -23,6 +24,7 @@
 #include <vector>
 
 #include "host/runtime/Communicator.hpp"
+#include "host/stages/BlockGrid.hpp"
 #include "host/stages/StageState.hpp"
 #include "io/ScenarioStateKeys.hpp"
 #include "io/writers/FrameWriter.hpp"
@@ -49,6 +51,19 @@ struct RunSnapshot {
   std::vector<io::StateKey> state_keys;  ///< of the scenario that wrote it
   int ranks = 1;                         ///< the MPI ranks that wrote it
   std::string decomposition;             ///< their blocks (fluid::Decomposition::describe)
+  /// This part's cells of the wind grid, its halo included (WindGrid::block): what its arrays cover.
+  BlockArray block;
+  std::vector<std::int32_t> tree_ids;  ///< the trees it stepped (Forest::id), in its order
+};
+
+/// A checkpoint read back for this rank: its own part when the run has the ranks and blocks that wrote it;
+/// else every part, which the run redistributes over its own blocks (host/app/CheckpointRedistribution).
+struct CheckpointParts {
+  std::filesystem::path folder;
+  std::vector<RunSnapshot> parts;
+  bool own = true;  ///< parts holds this rank's part alone
+  /// What every part shares: the time, step, progress and state keys.
+  const RunSnapshot& any() const { return parts.front(); }
 };
 
 class RunCheckpoints {
@@ -78,9 +93,11 @@ class RunCheckpoints {
 /// newest whole checkpoint). Throws std::invalid_argument naming the path when there is none.
 std::filesystem::path find_checkpoint(const std::filesystem::path& given);
 
-/// This rank's part of the checkpoint in `folder`. Throws io::CheckpointError (a std::invalid_argument)
-/// naming the file and the reason when it is missing, damaged, of another format version, or was written
-/// by another number of ranks.
-RunSnapshot read_checkpoint(const std::filesystem::path& folder, const Communicator& world);
+/// The checkpoint in `folder` for this rank of a run whose blocks `decomposition` describes
+/// (fluid::Decomposition::describe): this rank's part when the checkpoint was written by the same ranks and
+/// blocks, else every part. Throws io::CheckpointError (a std::invalid_argument) naming the file and the
+/// reason when a part is missing, damaged or of another format version.
+CheckpointParts read_checkpoint(const std::filesystem::path& folder, const Communicator& world,
+                                const std::string& decomposition);
 
 }  // namespace fw::host

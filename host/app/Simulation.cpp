@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "base/AtomicFile.hpp"
+#include "host/app/CheckpointRedistribution.hpp"
 #include "host/app/FrameGather.hpp"
 #include "host/app/OutputWriters.hpp"
 #include "host/app/ProbeSampler.hpp"
@@ -149,12 +150,22 @@ class RunLoop {
   /// the output; see Simulation::run.
   RunSummary run(double end) {
     // A checkpoint that does not fit this run is refused before the output folder is touched.
-    if (options_.resume) coupled_.restore_state(options_.resume->stages);
+    const RunSnapshot* from = nullptr;
+    if (options_.resume) {
+      const CheckpointParts& read = *options_.resume;
+      if (read.own) {
+        from = &read.parts.front();
+      } else {
+        redistributed_ = redistribute_checkpoint(read.parts, coupled_, plan_);
+        from = &*redistributed_;
+      }
+      coupled_.restore_state(from->stages);
+    }
     try {
       std::filesystem::create_directories(directory_);
       coupled_.set_stage_timing(true);
-      if (options_.resume) {
-        resume(*options_.resume);
+      if (from) {
+        resume(*from);
       } else {
         output_.begin();
         coupled_.start();
@@ -270,6 +281,9 @@ class RunLoop {
     snapshot.state_keys = state_keys_;
     snapshot.ranks = world_.size();
     snapshot.decomposition = plan_.decomposition.describe();
+    snapshot.block = coupled_.wind().block();
+    const trees::Forest& own = coupled_.own_forest();
+    for (int k = 0; k < own.instance_count(); ++k) snapshot.tree_ids.push_back(own.id(k));
     summary_.checkpoint = checkpoints_.write(snapshot, plan_.output.checkpoints_kept);
     last_checkpoint_step_ = coupled_.steps();
     checkpoint_ms_ += ms_since(start);
@@ -407,6 +421,7 @@ class RunLoop {
   long last_checkpoint_step_ = -1;
   double checkpoint_ms_ = 0.0;
   std::vector<io::RunSegment> earlier_segments_;
+  std::optional<RunSnapshot> redistributed_;  // a checkpoint of other ranks or blocks, made this rank's
 };
 
 }  // namespace

@@ -7,7 +7,8 @@
 //   options.stop = &stop_signal;                  // std::atomic<int>, set by a signal handler
 //   fw::host::RunSummary summary = sim.run(options);
 //
-//   fw::host::RunSnapshot from = fw::host::read_checkpoint(fw::host::find_checkpoint("out/storm"), world);
+//   fw::host::CheckpointParts from = fw::host::read_checkpoint(fw::host::find_checkpoint("out/storm"), world,
+//                                                              plan.decomposition.describe());
 //   options.resume = &from;                       // goes on from a checkpoint (host/app/RunCheckpoint.hpp)
 //
 // Each step is host/app/CoupledStep. Frames are captured at t = 0 and at the first step that reaches each
@@ -58,8 +59,9 @@ struct RunOptions {
   const std::atomic<int>* stop = nullptr;
   int tip_trees = 4;  ///< trees whose tip displacement goes to probes.csv
   /// A checkpoint of this plan's run (read_checkpoint) to go on from, instead of t = 0; its scenario's
-  /// state keys are the caller's to check (io::require_same_state).
-  const RunSnapshot* resume = nullptr;
+  /// state keys are the caller's to check (io::require_same_state). Parts of other ranks or blocks are
+  /// redistributed over this run's (host/app/CheckpointRedistribution).
+  const CheckpointParts* resume = nullptr;
 };
 
 struct RunSummary {

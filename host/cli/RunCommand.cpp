@@ -51,39 +51,45 @@ class StopSignalGuard {
   void (*previous_[std::size(kStopSignals)])(int) = {};
 };
 
-// The checkpoint `given` names, read for this rank, after checking that the scenario keeps what its state
-// depends on: everything but time.end and output (exit 2 naming the key otherwise).
-host::RunSnapshot checkpoint_to_resume(const std::string& given, const io::Scenario& scenario,
-                                       const host::Communicator& world, std::filesystem::path& folder) {
-  folder = host::find_checkpoint(given);
-  host::RunSnapshot snapshot = host::read_checkpoint(folder, world);
-  io::require_same_state(snapshot.state_keys, io::state_keys(scenario.text), scenario.file.string());
-  return snapshot;
+// The checkpoint `given` names, read for this rank of the run `plan` describes, after checking that the
+// scenario keeps what its state depends on: everything but time.end, output and the decomposition (exit 2
+// naming the key otherwise).
+host::CheckpointParts checkpoint_to_resume(const std::string& given, const io::Scenario& scenario,
+                                           const host::SimulationPlan& plan,
+                                           const host::Communicator& world) {
+  host::CheckpointParts read =
+      host::read_checkpoint(host::find_checkpoint(given), world, plan.decomposition.describe());
+  io::require_same_state(read.any().state_keys, io::state_keys(scenario.text), scenario.file.string());
+  return read;
+}
+
+// What `check` and `run` say of a resume: the checkpoint, its time and step, and the ranks it came from.
+std::string resume_summary(const host::CheckpointParts& from) {
+  const host::RunSnapshot& any = from.any();
+  return fmt::format(
+      "from {} at t = {:.6g} s (step {}, {} frames and {} probe rows written{})", from.folder.string(),
+      any.time, any.step, any.progress.frames, any.progress.probe_samples,
+      from.own ? "" : fmt::format("; written by {} ranks ({}), redistributed", any.ranks, any.decomposition));
 }
 
 }  // namespace
 
 int run_check(const std::string& scenario_path, const std::string& resume, const host::Communicator& world) {
   const io::Scenario scenario = io::load_scenario(scenario_path);
-  std::filesystem::path resume_folder;
-  std::optional<host::RunSnapshot> from;
-  if (!resume.empty()) from = checkpoint_to_resume(resume, scenario, world, resume_folder);
   // The plan `run` builds, with the same cache (species bases are computed or loaded here once): valid means
   // that nothing short of the device itself can fail. Under mpirun every rank plans; rank 0 reports.
   trees::BasisCache cache(trees::BasisCache::default_directory());
   const host::SimulationPlan plan = host::plan_simulation(scenario, &cache, nullptr, world.size());
+  std::optional<host::CheckpointParts> from;
+  if (!resume.empty()) from = checkpoint_to_resume(resume, scenario, plan, world);
   if (world.rank() != 0) return 0;
   std::cout << fmt::format("{}: scenario '{}' is valid\n", scenario_path, scenario.name);
   host::print_plan(plan, std::cout);
   if (from) {
-    const double more = plan.end_time - from->time;
-    std::cout << fmt::format(
-        "resume: from {} at t = {:.6g} s (step {}, {} frames and {} probe rows written), to time.end {} "
-        "s{}\n",
-        resume_folder.string(), from->time, from->step, from->progress.frames, from->progress.probe_samples,
-        plan.end_time,
-        more > 0.0 ? fmt::format(": {:.6g} s more", more)
-                   : ": nothing more to run (raise time.end to extend)");
+    const double more = plan.end_time - from->any().time;
+    std::cout << fmt::format("resume: {}, to time.end {} s{}\n", resume_summary(*from), plan.end_time,
+                             more > 0.0 ? fmt::format(": {:.6g} s more", more)
+                                        : ": nothing more to run (raise time.end to extend)");
   }
   for (const std::string& warning : plan.warnings) std::cerr << "warning: " << warning << "\n";
   return 0;
@@ -99,16 +105,17 @@ int run_scenario(const RunCommandOptions& options, const GlobalOptions& global,
   const bool speaks = world.rank() == 0 && !options.quiet;
   const bool terminal = ::isatty(STDERR_FILENO) == 1 && speaks;
   std::ostream* log = speaks ? &std::cerr : nullptr;
-  std::filesystem::path resume_folder;
-  std::optional<host::RunSnapshot> from;
-  if (!options.resume.empty()) from = checkpoint_to_resume(options.resume, scenario, world, resume_folder);
   trees::BasisCache cache(trees::BasisCache::default_directory());
   host::SimulationPlan plan = host::plan_simulation(scenario, &cache, log, world.size());
+  std::optional<host::CheckpointParts> from;
+  if (!options.resume.empty()) from = checkpoint_to_resume(options.resume, scenario, plan, world);
   if (log)
     for (const std::string& warning : plan.warnings) *log << "warning: " << warning << "\n";
   const bool leaves = plan.leaf_count > 0;
   const double end = options.run.end_time > 0.0 ? options.run.end_time : plan.end_time;
-  if (!options.force) host::require_output_space(plan, directory, end, world, options.free_bytes);
+  if (!options.force)
+    host::require_output_space(plan, directory, end, world, options.free_bytes,
+                               from ? from->any().time : 0.0);
 
   host::ComputeContext cc(
       host::select_device(host::device_filter_from_env(global.device_filter), world.node_rank()),
@@ -119,9 +126,7 @@ int run_scenario(const RunCommandOptions& options, const GlobalOptions& global,
                         cc.device().device_name, cc.device().platform_name);
     if (world.size() > 1)
       *log << fmt::format("{} ranks: {}, a device each\n", world.size(), plan.decomposition.describe());
-    if (from)
-      *log << fmt::format("resuming from {} at t = {:.6g} s (step {})\n", resume_folder.string(), from->time,
-                          from->step);
+    if (from) *log << fmt::format("resuming {}\n", resume_summary(*from));
   }
   host::Simulation simulation(cc, std::move(plan), directory, &world);
   host::RunOptions run = options.run;

@@ -1,5 +1,7 @@
 #include "host/stages/ForestStages.hpp"
 
+#include "host/stages/SavedStateNames.hpp"
+
 #include "host/runtime/Communicator.hpp"
 
 #include <fmt/format.h>
@@ -9,9 +11,6 @@
 
 namespace fw::host {
 namespace {
-
-// Per instance in the unresolved turbulence's travel buffer: whole points, fraction, last step (points).
-constexpr std::size_t kTravelFloats = 3;
 
 // The forest's buffers as the constructor allocates them: every packed table, then the state (forces, strong
 // amplitudes, q and qdot: 4 floats a mode), the samples' positions and wind (3 each a sample) and the
@@ -160,15 +159,15 @@ void ForestStages::enqueue_deform() {
 
 StageState ForestStages::save_state() {
   StageState state;
-  state.save(cc_, "modal_state", state_);
-  if (unresolved_on_) state.save(cc_, "travelled", travel_);
+  state.save(cc_, saved::kModalState, state_);
+  if (unresolved_on_) state.save(cc_, saved::kTravelled, travel_);
   return state;
 }
 
 void ForestStages::restore_state(const StageState& state) {
   static constexpr const char* kStage = "trees";
-  state.restore(cc_, kStage, "modal_state", state_);
-  if (unresolved_on_) state.restore(cc_, kStage, "travelled", travel_);
+  state.restore(cc_, kStage, saved::kModalState, state_);
+  if (unresolved_on_) state.restore(cc_, kStage, saved::kTravelled, travel_);
 }
 
 void ForestStages::reset_state() {

@@ -49,6 +49,9 @@ struct ModalState {
 
 class ForestStages {
  public:
+  /// Per instance in the unresolved turbulence's travel buffer: whole points, fraction, last step (points).
+  static constexpr std::size_t kTravelFloats = 3;
+
   /// Packs `forest` and uploads it. The forest is not referenced afterwards. Throws
   /// std::invalid_argument("ForestStages: ...") when `spec` is invalid. Over ranks: spec is this rank's
   /// block_spec, forest its own trees, and every rank constructs one (collective).

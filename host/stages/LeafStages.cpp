@@ -1,5 +1,7 @@
 #include "host/stages/LeafStages.hpp"
 
+#include "host/stages/SavedStateNames.hpp"
+
 #include <fmt/format.h>
 
 #include <algorithm>
@@ -284,9 +286,10 @@ void LeafStages::restore_state(const StageState& state) {
 }
 
 std::vector<std::pair<const char*, cl::Buffer*>> LeafStages::state_buffers() {
-  return {{"theta", &theta_},       {"theta_rate", &theta_rate_},   {"state", &state_},
-          {"position", &position_}, {"velocity", &velocity_},       {"normal", &normal_},
-          {"flight", &flight_},     {"flight_drag", &flight_drag_}, {"counters", &counters_}};
+  using namespace saved;
+  return {{kFlutterAngle, &theta_},      {kFlutterRate, &theta_rate_},  {kLeafState, &state_},
+          {kLeafVectors[0], &position_}, {kLeafVectors[1], &velocity_}, {kLeafVectors[2], &normal_},
+          {kLeafVectors[3], &flight_},   {kFlightDrag, &flight_drag_},  {kLeafCounters, &counters_}};
 }
 
 void LeafStages::enqueue_step(const FwStep& step, cl::Buffer& mask, DeviceVelocity& vel) {

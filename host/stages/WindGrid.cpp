@@ -1,5 +1,7 @@
 #include "host/stages/WindGrid.hpp"
 
+#include "host/stages/SavedStateNames.hpp"
+
 #include <fmt/format.h>
 
 #include <algorithm>
@@ -13,9 +15,6 @@
 
 namespace fw::host {
 namespace {
-
-// The velocity components' names in a saved state.
-constexpr const char* kVelocityNames[] = {"u", "v", "w"};
 
 // Validates everything before a single buffer exists (members are built after this returns). Over ranks the
 // device holds the rank's block with its halo.
@@ -571,10 +570,10 @@ WindStepReport WindGrid::step_by(double dt, const std::optional<std::array<doubl
 
 StageState WindGrid::save_state() {
   StageState state;
-  for (int c = 0; c < 3; ++c) state.save(cc_, kVelocityNames[c], vel_.component(c));
-  state.save(cc_, "phi", pressure_.solution());
-  if (subgrid_enabled()) state.save(cc_, "eddy_viscosity", eddy_viscosity_);
-  if (subgrid_tke_enabled() && subgrid_energy_set_) state.save(cc_, "subgrid_energy", subgrid_energy_);
+  for (int c = 0; c < 3; ++c) state.save(cc_, saved::kVelocity[c], vel_.component(c));
+  state.save(cc_, saved::kPressureSolution, pressure_.solution());
+  if (subgrid_enabled()) state.save(cc_, saved::kEddyViscosity, eddy_viscosity_);
+  if (subgrid_tke_enabled() && subgrid_energy_set_) state.save(cc_, saved::kSubgridEnergy, subgrid_energy_);
   const FwStep& s = stages_.step();
   state.numbers = {
       {"time", {time_}},
@@ -592,12 +591,12 @@ StageState WindGrid::save_state() {
 
 void WindGrid::restore_state(const StageState& state) {
   static constexpr const char* kStage = "wind grid";
-  for (int c = 0; c < 3; ++c) state.restore(cc_, kStage, kVelocityNames[c], vel_.component(c));
-  state.restore(cc_, kStage, "phi", pressure_.solution());
-  if (subgrid_enabled()) state.restore(cc_, kStage, "eddy_viscosity", eddy_viscosity_);
+  for (int c = 0; c < 3; ++c) state.restore(cc_, kStage, saved::kVelocity[c], vel_.component(c));
+  state.restore(cc_, kStage, saved::kPressureSolution, pressure_.solution());
+  if (subgrid_enabled()) state.restore(cc_, kStage, saved::kEddyViscosity, eddy_viscosity_);
   // Without a saved subgrid energy the next stage starts it at equilibrium, as the run that saved it would.
-  subgrid_energy_set_ = subgrid_tke_enabled() && state.buffers.count("subgrid_energy") > 0;
-  if (subgrid_energy_set_) state.restore(cc_, kStage, "subgrid_energy", subgrid_energy_);
+  subgrid_energy_set_ = subgrid_tke_enabled() && state.buffers.count(saved::kSubgridEnergy) > 0;
+  if (subgrid_energy_set_) state.restore(cc_, kStage, saved::kSubgridEnergy, subgrid_energy_);
   time_ = state.number(kStage, "time", 1)[0];
   last_dt_ = state.number(kStage, "last_dt", 1)[0];
   steps_ = long(state.number(kStage, "steps", 1)[0]);

@@ -172,3 +172,18 @@ TEST_CASE("RunFolder: a folder whose last listed frame does not read renders the
   fs::remove(fs::path(dir.path()) / "trees" / "trees_000001.vtp");
   CHECK(run.load_last_complete(run.select(std::nullopt, std::nullopt)).index == 0);
 }
+
+TEST_CASE("RunFolder: trees written every N-th frame hold still between their frames", "[viz]") {
+  fw::test::TempDir dir("fw_viz");
+  fw::test::write_run(dir.path(), fw::test::UniformWind{}, {fw::test::trunk(12, 10, 8, 0.4, 5, 0.5)}, 4, 0.5);
+  // As output.vtk.trees_every: 2 writes them: trees.pvd lists frames 0 and 2 only.
+  fw::io::PvdCollection trees(fs::path(dir.path()) / "trees.pvd");
+  trees.add(0.0, "trees/trees_000000.vtp");
+  trees.add(1.0, "trees/trees_000002.vtp");
+  const fw::viz::RunFolder run(dir.path());
+  REQUIRE(run.frames().size() == 4);
+  CHECK(run.frames()[1].trees.filename() == "trees_000000.vtp");
+  CHECK(run.frames()[2].trees.filename() == "trees_000002.vtp");
+  CHECK(run.frames()[3].trees.filename() == "trees_000002.vtp");
+  CHECK(run.load(run.frames()[3]).trees.has_value());
+}

@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "base/SourceError.hpp"
+#include "host/app/OutputSize.hpp"
 #include "host/app/Simulation.hpp"
 #include "host/app/SimulationPlan.hpp"
 #include "io/Checkpoint.hpp"
@@ -29,6 +30,9 @@ namespace fs = std::filesystem;
 using fw::test::TempDir;
 
 namespace {
+
+// A VDB file's first 57 bytes are OpenVDB's header with a random UUID of the file; the rest is the grids.
+constexpr std::size_t kVdbHeaderBytes = 57;
 
 // The parts every test scenario shares: a 48 x 24 x 16 grid of 2 m cells, probes, frames every second and
 // a checkpoint every 1.5 s (all kept), so that the run of 6 s has checkpoints in its middle.
@@ -67,7 +71,7 @@ Run plan_run(const TempDir& dir, const std::string& yaml, fw::trees::BasisCache&
 }
 
 fw::host::RunSummary run_to_end(fw::host::ComputeContext& cc, const Run& run, const fs::path& out,
-                                const fw::host::RunSnapshot* resume = nullptr) {
+                                const fw::host::CheckpointParts* resume = nullptr) {
   fw::host::Simulation sim(cc, run.plan, out);
   fw::host::RunOptions options;
   options.resume = resume;
@@ -117,21 +121,36 @@ Resumed check_resumes_bit_for_bit(const std::string& yaml) {
 
   const auto checkpoints = fw::host::RunCheckpoints::list(b / "checkpoints");
   REQUIRE(checkpoints.size() >= 3);  // 6 s at 1.5 s, and the end
+  // check's size prediction of a checkpoint (host/app/OutputSize) holds within the 15%.
+  const fw::host::OutputSize size = fw::host::predict_output_size(run.plan, run.plan.end_time);
+  const auto row = std::find_if(size.rows.begin(), size.rows.end(),
+                                [](const fw::host::OutputSizeRow& r) { return r.path == "checkpoints"; });
+  REQUIRE(row != size.rows.end());
+  CHECK(row->files == int(checkpoints.size()));
+  for (const auto& [step, folder] : checkpoints)
+    CHECK(double(fs::file_size(folder / "rank_0000.fwcheck")) ==
+          Approx(double(row->per_frame)).epsilon(0.15));
   const auto middle = std::next(checkpoints.begin(), long((checkpoints.size() - 1) / 2));
-  const fw::host::RunSnapshot from =
-      fw::host::read_checkpoint(middle->second, fw::host::Communicator::alone());
+  fw::host::CheckpointParts read = fw::host::read_checkpoint(middle->second, fw::host::Communicator::alone(),
+                                                             run.plan.decomposition.describe());
+  REQUIRE(read.own);  // the same process and block: its own part
+  const fw::host::RunSnapshot& from = read.any();
   REQUIRE(from.step == middle->first);
   REQUIRE(from.time > 0.0);
-  const fw::host::RunSummary resumed = run_to_end(*cc, run, b, &from);
+  const fw::host::RunSummary resumed = run_to_end(*cc, run, b, &read);
   CHECK(resumed.steps == whole.steps);
+  // The same checkpoint taken apart and put together again (host/app/CheckpointRedistribution, as a run
+  // over other ranks does) into a new folder: the frames after the checkpoint, byte for byte.
+  const fs::path c = fs::path(dir.path()) / "C";
+  read.own = false;
+  run_to_end(*cc, run, c, &read);
 
   const std::vector<std::string> files = output_files(a);
   CHECK(output_files(b) == files);
   for (const std::string& file : files) {
     INFO(file);
+    const bool after = fs::exists(c / file);
     std::string was = fw::test::file_text(a / file), is = fw::test::file_text(b / file);
-    // A VDB file's first 57 bytes are OpenVDB's header with a random UUID of the file; the rest is the grids.
-    constexpr std::size_t kVdbHeaderBytes = 57;
     if (file.ends_with(".vdb")) {
       REQUIRE(std::min(was.size(), is.size()) > kVdbHeaderBytes);
       was.erase(0, kVdbHeaderBytes);
@@ -139,7 +158,19 @@ Resumed check_resumes_bit_for_bit(const std::string& yaml) {
     }
     const bool same = was == is;
     CHECK(same);
+    if (after && !file.ends_with(".pvd") && file != "probes.csv") {
+      std::string redistributed = fw::test::file_text(c / file);
+      if (file.ends_with(".vdb")) redistributed.erase(0, std::min(redistributed.size(), kVdbHeaderBytes));
+      const bool same_redistributed = redistributed == is;
+      CHECK(same_redistributed);
+    }
   }
+  // The new folder's probes.csv holds the rows after the checkpoint: the last rows of the whole run's.
+  const std::string whole_probes = fw::test::file_text(a / "probes.csv"),
+                    redistributed_probes = fw::test::file_text(c / "probes.csv");
+  const std::size_t header = redistributed_probes.find('\n') + 1;
+  REQUIRE(redistributed_probes.size() > header);
+  CHECK(whole_probes.ends_with(redistributed_probes.substr(header)));
   for (const std::string key : {"steps", "simulated_time_s", "frames"}) {
     INFO(key);
     CHECK(json_value(a / "run.json", key) == json_value(b / "run.json", key));

@@ -1,0 +1,35 @@
+// The names under which the stages save what they carry from step to step (StageState), and the stages'
+// own names in a checkpoint: one list for the stages that save and restore it and for the redistribution of
+// a checkpoint over other ranks (host/app/CheckpointRedistribution), which takes the arrays apart.
+//
+//   state.save(cc, fw::host::saved::kModalState, state_);      // ForestStages::save_state
+#pragma once
+
+namespace fw::host::saved {
+
+// The stages, as CoupledStep::save_state names them.
+inline constexpr const char* kWindStage = "wind";
+inline constexpr const char* kTreesStage = "trees";
+inline constexpr const char* kLeavesStage = "leaves";
+
+// WindGrid: the velocity's face arrays, one a component; cell arrays.
+inline constexpr const char* kVelocity[] = {"u", "v", "w"};
+inline constexpr const char* kPressureSolution = "phi";
+inline constexpr const char* kEddyViscosity = "eddy_viscosity";
+inline constexpr const char* kSubgridEnergy = "subgrid_energy";
+inline constexpr const char* kWindCellArrays[] = {kPressureSolution, kEddyViscosity, kSubgridEnergy};
+
+// ForestStages: 2 floats (q, qdot) an instance-mode; ForestStages::kTravelFloats an instance.
+inline constexpr const char* kModalState = "modal_state";
+inline constexpr const char* kTravelled = "travelled";
+
+// LeafStages: per slot a state byte, four float4 and the flight drag; per own leaf the flutter angle and
+// rate; the counters.
+inline constexpr const char* kLeafState = "state";
+inline constexpr const char* kLeafVectors[] = {"position", "velocity", "normal", "flight"};
+inline constexpr const char* kFlightDrag = "flight_drag";
+inline constexpr const char* kFlutterAngle = "theta";
+inline constexpr const char* kFlutterRate = "theta_rate";
+inline constexpr const char* kLeafCounters = "counters";
+
+}  // namespace fw::host::saved
