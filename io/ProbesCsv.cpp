@@ -29,28 +29,7 @@ ProbesCsv ProbesCsv::continued(std::filesystem::path path, std::vector<std::stri
                      leaf_counts);
   ProbesCsv csv(std::move(path), std::move(probe_names), std::move(tree_ids), rewrite_limit_bytes,
                 leaf_counts, Start::continued);
-  std::ifstream in(csv.path_, std::ios::binary);
-  std::ostringstream text;
-  text << in.rdbuf();
-  if (!in) throw std::runtime_error(fmt::format("ProbesCsv: cannot read {}", csv.path_.string()));
-  const std::string content = text.str();
-  // The header line and `rows` whole lines after it; anything later is dropped.
-  std::size_t end = content.find('\n');
-  if (end == std::string::npos || content.compare(0, end, csv.header_) != 0)
-    throw std::invalid_argument(fmt::format(
-        "{}: the columns differ from this run's (output.probes or the tracked trees changed): resume into "
-        "another folder (-o), or keep the probes as they were",
-        csv.path_.string()));
-  for (std::size_t row = 0; row < rows; ++row) {
-    const std::size_t next = content.find('\n', end + 1);
-    if (next == std::string::npos)
-      throw std::invalid_argument(
-          fmt::format("{}: holds {} rows, and the checkpoint was written after {}: it is "
-                      "not the checkpoint's run's file",
-                      csv.path_.string(), row, rows));
-    end = next;
-  }
-  csv.content_ = content.substr(0, end + 1);
+  csv.content_ = csv.kept_rows(rows);
   base::write_text_atomically("ProbesCsv", csv.path_, csv.content_);
   csv.rows_ = rows;
   if (csv.content_.size() > csv.rewrite_limit_) {
@@ -58,6 +37,38 @@ ProbesCsv ProbesCsv::continued(std::filesystem::path path, std::vector<std::stri
     csv.content_.clear();
   }
   return csv;
+}
+
+void ProbesCsv::check_continuable(std::filesystem::path path, std::vector<std::string> probe_names,
+                                  std::vector<int> tree_ids, std::size_t rows, bool leaf_counts) {
+  if (!std::filesystem::exists(path)) return;
+  ProbesCsv(std::move(path), std::move(probe_names), std::move(tree_ids), kDefaultRewriteLimit, leaf_counts,
+            Start::continued)
+      .kept_rows(rows);
+}
+
+std::string ProbesCsv::kept_rows(std::size_t rows) const {
+  std::ifstream in(path_, std::ios::binary);
+  std::ostringstream text;
+  text << in.rdbuf();
+  if (!in) throw std::runtime_error(fmt::format("ProbesCsv: cannot read {}", path_.string()));
+  const std::string content = text.str();
+  // The header line and `rows` whole lines after it; anything later is dropped.
+  std::size_t end = content.find('\n');
+  if (end == std::string::npos || content.compare(0, end, header_) != 0)
+    throw std::invalid_argument(fmt::format(
+        "{}: the columns differ from this run's (output.probes or the tracked trees changed): resume into "
+        "another folder (-o), or keep the probes as they were",
+        path_.string()));
+  for (std::size_t row = 0; row < rows; ++row) {
+    const std::size_t next = content.find('\n', end + 1);
+    if (next == std::string::npos)
+      throw std::invalid_argument(fmt::format(
+          "{}: holds {} rows, and the checkpoint was written after {}: it is not the checkpoint's run's file",
+          path_.string(), row, rows));
+    end = next;
+  }
+  return content.substr(0, end + 1);
 }
 
 ProbesCsv::ProbesCsv(std::filesystem::path path, std::vector<std::string> probe_names,

@@ -51,6 +51,10 @@ class ProbesCsv {
                              std::size_t rewrite_limit_bytes = kDefaultRewriteLimit,
                              bool leaf_counts = false);
 
+  /// What continued() checks, without writing: throws as it would (nothing when there is no file).
+  static void check_continuable(std::filesystem::path path, std::vector<std::string> probe_names,
+                                std::vector<int> tree_ids, std::size_t rows, bool leaf_counts = false);
+
   /// Appends one row. probe_velocity: one (u, v, w) per probe, m/s; tip_displacement: one (dx, dy, dz) per
   /// tree, m, both in constructor order. Throws std::invalid_argument for the wrong counts or, in a file
   /// with leaf count columns, for a row without leaf counts (nothing is written), and std::runtime_error
@@ -82,6 +86,9 @@ class ProbesCsv {
   enum class Start { fresh, continued };  // continued: the header is not written
   ProbesCsv(std::filesystem::path path, std::vector<std::string> probe_names, std::vector<int> tree_ids,
             std::size_t rewrite_limit_bytes, bool leaf_counts, Start start);
+  /// The file's header and first `rows` rows (std::invalid_argument when its header is not this one's or it
+  /// holds fewer rows).
+  std::string kept_rows(std::size_t rows) const;
 
   std::filesystem::path path_;
   std::size_t probes_ = 0, trees_ = 0;

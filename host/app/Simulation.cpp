@@ -160,6 +160,7 @@ class RunLoop {
         from = &*redistributed_;
       }
       coupled_.restore_state(from->stages);
+      output_.check_resume(resume_point(*from));  // a probes.csv of other columns: refused, nothing touched
     }
     try {
       std::filesystem::create_directories(directory_);
@@ -240,7 +241,12 @@ class RunLoop {
 
   // Goes on from a checkpoint whose stages are restored already: the schedules, the frame and sample
   // counts, the segments so far, and the output folder up to the checkpoint.
+  static io::OutputResume resume_point(const RunSnapshot& from) {
+    return {from.time, from.progress.frames, from.progress.probe_samples};
+  }
+
   void resume(const RunSnapshot& from) {
+    output_.resume(resume_point(from));
     checkpoints_.remove_after(from.step);  // collective: every rank has stopped writing past it
     if (world_.rank() == 0) base::remove_stale_temporaries(directory_);
     const RunProgress& progress = from.progress;
@@ -251,7 +257,6 @@ class RunLoop {
     checkpoints_due_.resume(progress.next_checkpoint);
     earlier_segments_ = progress.segments;
     last_checkpoint_step_ = from.step;
-    output_.resume({from.time, progress.frames, progress.probe_samples});
     for (auto* pvd : {&wind_pvd_, &trees_pvd_, &leaves_pvd_})
       if (*pvd) (*pvd)->continue_existing(from.time);
   }

@@ -139,6 +139,9 @@ class FrameWriter {
   /// what the folder holds up to `resume` and drops what came after it (a resumed run writes it again).
   /// Writers of one file per frame need nothing more than begin(), the default.
   virtual void resume(const OutputResume& /*resume*/) { begin(); }
+  /// Throws std::invalid_argument when resume() would refuse the folder (a growing file of other columns),
+  /// before any writer touches it; nothing by default.
+  virtual void check_resume(const OutputResume& /*resume*/) const {}
   /// Writes one frame. Throws std::runtime_error naming the path on failure.
   virtual void write(const OutputFrame& frame) = 0;
   /// After the last frame was written (also after a failure or an interruption).

@@ -50,6 +50,10 @@ void OutputPipeline::begin() {
   for (auto& writer : writers_) writer->begin();
 }
 
+void OutputPipeline::check_resume(const OutputResume& resume) const {
+  for (const auto& writer : writers_) writer->check_resume(resume);
+}
+
 void OutputPipeline::resume(const OutputResume& resume) {
   for (auto& writer : writers_) writer->resume(resume);
 }

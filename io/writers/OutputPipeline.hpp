@@ -48,6 +48,9 @@ class OutputPipeline {
   bool empty() const { return writers_.empty(); }
   /// Each writer's begin(), on the calling thread.
   void begin();
+  /// Each writer's check_resume: throws std::invalid_argument when one would refuse the folder. Call it
+  /// before anything is written, so that a refusal leaves the folder as it was.
+  void check_resume(const OutputResume& resume) const;
   /// Each writer's resume(resume) instead of begin(), for a run resumed from a checkpoint.
   void resume(const OutputResume& resume);
   /// Queues a frame; waits while the queue is full. Rethrows a writer's error.

@@ -22,6 +22,11 @@ void ProbesWriter::resume(const OutputResume& resume) {
                                     leaf_counts_));
 }
 
+void ProbesWriter::check_resume(const OutputResume& resume) const {
+  ProbesCsv::check_continuable(directory_ / "probes.csv", probe_names_, tip_trees_,
+                               std::size_t(resume.probe_samples), leaf_counts_);
+}
+
 void ProbesWriter::write(const OutputFrame& frame) {
   std::vector<ProbesCsv::Row> rows;
   rows.reserve(frame.probe_samples.size());

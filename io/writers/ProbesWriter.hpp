@@ -29,6 +29,7 @@ class ProbesWriter : public FrameWriter {
   void begin() override;
   /// probes.csv keeps its header and the rows sampled up to the checkpoint (a new file in a new folder).
   void resume(const OutputResume& resume) override;
+  void check_resume(const OutputResume& resume) const override;
   /// Appends frame.probe_samples (throws std::invalid_argument when a sample has the wrong counts).
   void write(const OutputFrame& frame) override;
 

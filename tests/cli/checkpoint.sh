@@ -9,8 +9,9 @@
 # - kill -9 while a checkpoint is being written leaves its folder cut short (.partial); --resume takes the
 #   whole one before it and still ends on the same bytes. Three kills at random moments of a run that
 #   checkpoints every step resume to the same bytes too.
-# - A checkpoint with a flipped byte, one cut short and a scenario whose grid changed each exit 2 with the
-#   reason (file, line and key for the scenario), and leave the output folder as it was.
+# - A checkpoint with a flipped byte, one cut short, a scenario whose grid changed and one with another probe
+#   (probes.csv cannot change its columns) each exit 2 with the reason (file, line and key for the scenario),
+#   and leave the output folder as it was.
 # - `check --resume` says from which checkpoint and time the run would go on.
 forestwind=$1
 work=$2
@@ -127,6 +128,11 @@ truncate -s $((size - 9)) "$checkpoint/rank_0000.fwcheck"
 expect_refusal "a checkpoint cut short" "rank_0000.fwcheck: the file is truncated: $((size - 9)) of its $size bytes" \
   "$forestwind" run palm.yaml -o ref --resume "$checkpoint" --quiet
 cp good.fwcheck "$checkpoint/rank_0000.fwcheck"
+# Another probe: output may change on resume, but probes.csv cannot take other columns in the same folder.
+sed 's/    - {name: mast, position: \[4, 8, 10\]}/&\n    - {name: gap, position: [20, 8, 10]}/' palm.yaml >more_probes.yaml
+grep -q "name: gap" more_probes.yaml || fail "could not add a probe"
+expect_refusal "another probe" "probes.csv: the columns differ from this run's" \
+  "$forestwind" run more_probes.yaml -o ref --resume "$checkpoint" --quiet
 sed 's/size: \[32, 16, 16\]/size: [32, 16, 24]/' palm.yaml >taller.yaml
 line=$(grep -n "^domain:" taller.yaml | cut -d: -f1)
 expect_refusal "a taller domain" "taller.yaml:$line: domain.size: the value the checkpoint was written with" \
@@ -136,5 +142,5 @@ expect_refusal "check with a taller domain" "taller.yaml:$line: domain.size" \
 expect_refusal "a folder without checkpoints" "no checkpoint there" \
   "$forestwind" run palm.yaml -o ref --resume "$work/ref/wind" --quiet
 
-echo "SIGTERM (143) and SIGUSR1 (138) resumed to the same bytes; kill -9 resumed 4 times; 5 refusals exit 2"
+echo "SIGTERM (143) and SIGUSR1 (138) resumed to the same bytes; kill -9 resumed 4 times; 6 refusals exit 2"
 cd / && rm -rf "$work"

@@ -223,13 +223,16 @@ TEST_CASE("RunCheckpoint: laminar flow past obstacles, with a gust halfway throu
 }
 
 TEST_CASE(
-    "RunCheckpoint: turbulent inflow with MacCormack and Smagorinsky, trees under Stam's forcing and leaves "
-    "shedding and in flight, resumes bit for bit",
+    "RunCheckpoint: turbulent inflow with MacCormack or upwind5 and Smagorinsky, trees under Stam's forcing "
+    "and leaves shedding and in flight, resumes bit for bit",
     "[simulation][checkpoint]") {
+  const std::string advection = GENERATE(as<std::string>{}, "maccormack", "upwind5");
+  INFO(advection);
   const Resumed resumed = check_resumes_bit_for_bit(scenario(
       "wind: {speed: 14.0, direction: 270.0, reference_height: 10.0, profile: {type: power, alpha: 0.2},\n"
       "       turbulence: {intensity: 0.2, length_scale: 12.0, unresolved: true}}\n"
-      "solver: {advection: maccormack, smagorinsky_constant: 0.17}\n" +
+      "solver: {advection: " +
+      advection + ", smagorinsky_constant: 0.17}\n" +
       stand("      leaves: {model: stochastic, area: 0.004, fraction: 0.05, petiole_strength: 0.1,"
             " strength_spread: 0.6}\n")));
   // Leaves are in the air when the checkpoint is taken: their flight state goes through it.
