@@ -122,8 +122,8 @@ struct RunOutcome {
   int frames = 0;               ///< frames written
   double wall_seconds = 0.0;
   std::map<std::string, double> stage_ms;  ///< totals over the run, ms
-  /// The run's segments in order, this one last; empty for a run that was never resumed (its one segment
-  /// is the run).
+  /// The run's segments in order, this one last: one for a run that was never resumed. Empty only for a
+  /// caller that does not keep them (run.json then lists none).
   std::vector<RunSegment> segments;
 };
 
