@@ -379,6 +379,7 @@ class RunLoop {
     if (every_rank && !write_error) list_complete_frames();
     output_ms_ += ms_since(drain_start);
     outcome.steps = summary_.steps = coupled_.steps();
+    summary_.start_step = start_step_;
     outcome.simulated_time = summary_.simulated_time = coupled_.time();
     summary_.stage_ms = coupled_.stage_ms();
     summary_.stage_ms["output"] = output_ms_;

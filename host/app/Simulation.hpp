@@ -65,7 +65,8 @@ struct RunOptions {
 };
 
 struct RunSummary {
-  long steps = 0;
+  long steps = 0;               ///< solver steps taken, a resumed run's earlier segments included
+  long start_step = 0;          ///< steps taken before this run started (the checkpoint's, when resumed)
   double simulated_time = 0.0;  ///< s
   int frames = 0;
   bool interrupted = false;

@@ -138,10 +138,12 @@ int run_scenario(const RunCommandOptions& options, const GlobalOptions& global,
   const host::RunSummary summary = simulation.run(run);
 
   if (speaks) {
-    std::cout << fmt::format("{} steps to t = {:.2f} s in {:.1f} s ({:.1f} ms/step), {} frames{}\n",
-                             summary.steps, summary.simulated_time, summary.wall_seconds,
-                             summary.steps ? summary.wall_seconds * 1e3 / double(summary.steps) : 0.0,
-                             summary.frames, summary.interrupted ? " (interrupted)" : "");
+    const long steps = summary.steps - summary.start_step;  // this run's, a resumed run's from its checkpoint
+    std::cout << fmt::format("{} steps{} to t = {:.2f} s in {:.1f} s ({:.1f} ms/step), {} frames{}\n", steps,
+                             summary.start_step > 0 ? fmt::format(" from step {}", summary.start_step) : "",
+                             summary.simulated_time, summary.wall_seconds,
+                             steps > 0 ? summary.wall_seconds * 1e3 / double(steps) : 0.0, summary.frames,
+                             summary.interrupted ? " (interrupted)" : "");
     std::cout << fmt::format("outputs in {}\n", directory.string());
     std::cout << fmt::format(
         "  ParaView: paraview --script={}/view.py   (a speed slice, the trees as tubes{})\n",
