@@ -153,7 +153,7 @@ struct LeafRecord {
 
 using LeafKey = std::pair<int, int>;  // tree id, leaf index on its tree
 
-// The leaves of each instance of `forest` with ids `ids` (species' counts).
+// The leaves of tree `id` of the plan's forest (its species' count).
 std::size_t leaves_of(const SimulationPlan& plan, int id) {
   const int species = plan.forest.instances()[std::size_t(id)].species;
   return std::size_t(plan.coupling.leaves[std::size_t(species)].count());

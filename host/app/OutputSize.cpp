@@ -93,8 +93,6 @@ constexpr Bytes kOwnLeafBytes = 2 * 4;
 constexpr Bytes kLeafSlotNumbers = 3 * 8;
 constexpr Bytes kCheckpointRestBytes = 4096;
 constexpr const char* kEveryLeafShed = "when every leaf is shed";
-// Simulated times closer than this fraction are the same time (the run loop's schedules: sums of float dt).
-constexpr double kTimeTolerance = 1e-9;
 
 constexpr double kCsvTimeChars = 15.0;
 constexpr double kCsvFloatChars = 12.5;
@@ -211,7 +209,7 @@ WindFrames vdb_file(const SimulationPlan& plan, Bytes leaves) {
 
 // One row of a frame output: `taken` files, the first at t = 0.
 OutputSizeRow frame_row(std::string output, std::string path, WindFrames bytes, int taken) {
-  OutputSizeRow row{std::move(output), std::move(path), bytes.later, taken, 0, 0};
+  OutputSizeRow row{std::move(output), std::move(path), bytes.later, taken, 0, 0, {}};
   if (taken > 0) row.total = bytes.first + Bytes(taken - 1) * bytes.later;
   row.most = row.total;
   return row;
@@ -255,7 +253,7 @@ std::uint64_t OutputSize::most() const {
 
 int frame_count(const SimulationPlan& plan, double end_time) {
   // As the run loop's schedule: a multiple of the interval within a hair of the end is reached.
-  return 1 + int(std::floor(end_time / plan.output.interval + kTimeTolerance));
+  return 1 + int(std::floor(end_time / plan.output.interval + kScheduleTolerance));
 }
 
 OutputSize predict_output_size(const SimulationPlan& plan, double end_time) {
@@ -308,7 +306,7 @@ OutputSize predict_output_size(const SimulationPlan& plan, double end_time) {
       header += fmt::format(",tree{0}_tip_dx,tree{0}_tip_dy,tree{0}_tip_dz", id);
     if (leaves) header += ",leaves_shed,leaves_flying,leaves_landed,leaves_exited";
     const Bytes bytes = header.size() + 1 + Bytes(std::llround(samples * row));
-    size.rows.push_back({"probes.csv", "probes.csv", 0, 1, bytes, bytes});
+    size.rows.push_back({"probes.csv", "probes.csv", 0, 1, bytes, bytes, {}});
   }
   // Checkpoints: one at each multiple of the interval and one at the end, of which the newest `keep` stay,
   // with one more while the next is written. Without output.checkpoint, one when a signal stops the run:
@@ -316,8 +314,8 @@ OutputSize predict_output_size(const SimulationPlan& plan, double end_time) {
   const Bytes checkpoint = checkpoint_bytes(plan);
   if (out.checkpoint_interval > 0.0) {
     // As the run loop's schedule: each multiple reached, and the end unless it is one of them.
-    const int multiples = int(std::floor(end_time / out.checkpoint_interval + kTimeTolerance));
-    const bool end_extra = end_time - multiples * out.checkpoint_interval > kTimeTolerance * end_time;
+    const int multiples = int(std::floor(end_time / out.checkpoint_interval + kScheduleTolerance));
+    const bool end_extra = end_time - multiples * out.checkpoint_interval > kScheduleTolerance * end_time;
     const int written = multiples + (end_extra ? 1 : 0);
     const Bytes kept = Bytes(std::min(written, out.checkpoints_kept));
     size.rows.push_back({"checkpoints", "checkpoints", checkpoint, written, kept * checkpoint,
@@ -326,9 +324,9 @@ OutputSize predict_output_size(const SimulationPlan& plan, double end_time) {
     size.rows.push_back({"checkpoint on a signal", "checkpoints", checkpoint, 0, 0, checkpoint,
                          "when a signal stops the run"});
   }
-  size.rows.push_back({"run.json", "run.json", 0, 1, kRunJsonBytes, kRunJsonBytes});
+  size.rows.push_back({"run.json", "run.json", 0, 1, kRunJsonBytes, kRunJsonBytes, {}});
   const Bytes rest = viz::view_script(view_settings(plan)).size() + plan.scenario.text.size() + pvd;
-  size.rows.push_back({"view.py, .pvd, scenario copy", "", 0, 1, rest, rest});
+  size.rows.push_back({"view.py, .pvd, scenario copy", "", 0, 1, rest, rest, {}});
   return size;
 }
 

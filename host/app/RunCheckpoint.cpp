@@ -24,8 +24,6 @@ constexpr std::string_view kNumber = ".number.";
 constexpr std::size_t kSegmentValues = 5;
 // A part's block in "run.block": extent (3), halo low and high (2 each), origin (2).
 constexpr std::size_t kBlockValues = 9;
-// How a segment in a checkpoint ended: the run after it resumed from that checkpoint.
-constexpr const char* kStoppedSegment = "stopped";
 
 std::string rank_file(int rank) {
   return fmt::format("rank_{:04d}.fwcheck", rank);

@@ -31,6 +31,10 @@
 
 namespace fw::host {
 
+/// How a segment in a checkpoint ended (io::RunSegment::status): the run after it resumed from that
+/// checkpoint.
+inline constexpr const char* kStoppedSegment = "stopped";
+
 /// Where the run loop stands, besides the stages: what its output and its schedules need to go on.
 struct RunProgress {
   int frames = 0;                ///< frames handed out so far: the next frame's index

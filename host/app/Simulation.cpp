@@ -34,9 +34,6 @@ double ms_since(Clock::time_point start) {
   return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
 }
 
-// Simulated times closer than this fraction of the frame interval are the same time (sums of float dt).
-constexpr double kTimeTolerance = 1e-9;
-
 std::string format_duration(double seconds) {
   if (!std::isfinite(seconds) || seconds < 0) return "?";
   const long s = std::lround(seconds);
@@ -98,8 +95,8 @@ class Schedule {
   /// Whether time t (s) has reached the next due time; if so, the next one moves past t.
   bool due(double t) {
     if (!(interval_ > 0.0)) return true;
-    if (t < next_ - kTimeTolerance * interval_) return false;
-    while (next_ <= t + kTimeTolerance * interval_) next_ += interval_;
+    if (t < next_ - kScheduleTolerance * interval_) return false;
+    while (next_ <= t + kScheduleTolerance * interval_) next_ += interval_;
     return true;
   }
 
@@ -222,11 +219,11 @@ class RunLoop {
       const double time = frame_times_[std::size_t(listed_ - first_frame_)];
       const int k = int(listed_);
       const io::OutputSettings& out = plan_.output;  // each collection lists its own frames
-      if (wind_pvd_ && k % out.vtk_wind_every == 0)
+      if (wind_pvd_ && io::takes_frame(k, out.vtk_wind_every))
         wind_pvd_->add(time, io::WindVtkWriter::frame_file(k, true));
-      if (trees_pvd_ && k % out.vtk_trees_every == 0)
+      if (trees_pvd_ && io::takes_frame(k, out.vtk_trees_every))
         trees_pvd_->add(time, io::TreesVtkWriter::frame_file(k, true));
-      if (leaves_pvd_ && k % out.leaves_every == 0)
+      if (leaves_pvd_ && io::takes_frame(k, out.leaves_every))
         leaves_pvd_->add(time, io::LeavesVtkWriter::frame_file(k, true));
     }
   }
@@ -282,7 +279,7 @@ class RunLoop {
     snapshot.progress = {
         frames_,          samples_taken_, frames_due_.next(), samples_due_.next(), checkpoints_due_.next(),
         earlier_segments_};
-    snapshot.progress.segments.push_back(segment("stopped"));
+    snapshot.progress.segments.push_back(segment(kStoppedSegment));
     snapshot.state_keys = state_keys_;
     snapshot.ranks = world_.size();
     snapshot.decomposition = plan_.decomposition.describe();
@@ -313,7 +310,7 @@ class RunLoop {
   void step_until(double end) {
     const double interval = plan_.output.interval;
     auto last_progress = Clock::now();
-    while (coupled_.time() < end - kTimeTolerance * interval) {
+    while (coupled_.time() < end - kScheduleTolerance * interval) {
       if (const int signal = stop_requested()) {
         summary_.interrupted = true;
         summary_.stop_signal = signal;
@@ -346,7 +343,7 @@ class RunLoop {
     const io::FrameNeeds needs = agreed_needs(output_.needs(frames_), world_);
     io::OutputFrame frame = capture_frame(coupled_, needs, plan_.output.leaves_attached_stride, frames_++);
     // The VDB frames hold the whole domain: rank 0 writes them from every rank's part.
-    if (share_ && plan_.output.vdb_enabled && frame.index % plan_.output.vdb_every == 0)
+    if (share_ && plan_.output.vdb_enabled && io::takes_frame(frame.index, plan_.output.vdb_every))
       frame.gathered = gather_frame(frame, plan_.wind.spec, *coupled_.blocks(), coupled_.wind().block(),
                                     vdb_holds_leaves(plan_));
     frame.probe_samples = std::move(pending_samples_);

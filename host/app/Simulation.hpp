@@ -52,6 +52,10 @@
 
 namespace fw::host {
 
+/// Simulated times closer than this fraction of an interval are the same time (sums of float dt): the run
+/// loop's schedules of frames, probe samples and checkpoints, and the output size that counts them.
+inline constexpr double kScheduleTolerance = 1e-9;
+
 struct RunOptions {
   double end_time = 0.0;  ///< s; > 0 overrides the plan's end time
   bool progress = false;  ///< one self-overwriting progress line on stderr

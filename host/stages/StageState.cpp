@@ -6,14 +6,10 @@
 
 namespace fw::host {
 
-std::vector<std::uint8_t> read_buffer_bytes(ComputeContext& cc, cl::Buffer& buffer) {
-  std::vector<std::uint8_t> bytes(buffer.getInfo<CL_MEM_SIZE>());
-  cc.queue().enqueueReadBuffer(buffer, CL_TRUE, 0, bytes.size(), bytes.data());
-  return bytes;
-}
-
 void StageState::save(ComputeContext& cc, const std::string& name, cl::Buffer& buffer) {
-  buffers[name] = read_buffer_bytes(cc, buffer);
+  std::vector<std::uint8_t>& bytes = buffers[name];
+  bytes.resize(buffer.getInfo<CL_MEM_SIZE>());  // the whole allocation
+  cc.queue().enqueueReadBuffer(buffer, CL_TRUE, 0, bytes.size(), bytes.data());
 }
 
 const std::vector<std::uint8_t>& StageState::bytes(const std::string& stage, const std::string& name) const {

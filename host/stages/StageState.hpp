@@ -37,7 +37,4 @@ struct StageState {
   const std::vector<std::uint8_t>& bytes(const std::string& stage, const std::string& name) const;
 };
 
-/// The bytes of a device buffer (its whole allocation; blocking).
-std::vector<std::uint8_t> read_buffer_bytes(ComputeContext& cc, cl::Buffer& buffer);
-
 }  // namespace fw::host

@@ -127,6 +127,12 @@ struct RunOutcome {
   std::vector<RunSegment> segments;
 };
 
+/// Whether an output written every `every`-th frame takes frame `index`: the multiples of `every`, so that
+/// every output's files keep the frame's number and line up in time.
+inline bool takes_frame(int index, int every) {
+  return index % every == 0;
+}
+
 class FrameWriter {
  public:
   virtual ~FrameWriter() = default;
@@ -155,7 +161,7 @@ class FrameWriter {
   }
   int every() const { return every_; }
   /// Whether write() gets frame `index`.
-  bool takes(int index) const { return index % every_ == 0; }
+  bool takes(int index) const { return takes_frame(index, every_); }
 
  private:
   int every_ = 1;
