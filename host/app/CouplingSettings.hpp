@@ -9,6 +9,7 @@
 
 #include "trees/ModalIntegrator.hpp"
 #include "trees/SpeciesLeaves.hpp"
+#include "trees/TreeDynamics.hpp"
 #include "trees/UnresolvedTurbulence.hpp"
 
 namespace fw::host {
@@ -27,6 +28,9 @@ struct CouplingSettings {
   /// The leaves of each species (docs/leaves.md), one per forest species, in the skeleton frame of its
   /// basis; empty, or none with leaves: no leaf stage.
   std::vector<trees::SpeciesLeaves> leaves;
+  /// The model that moves each species' trees (trees/TreeDynamics.hpp), one per forest species; empty: every
+  /// species modal.
+  std::vector<trees::SpeciesDynamics> dynamics;
 };
 
 }  // namespace fw::host
