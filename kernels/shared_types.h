@@ -205,6 +205,65 @@ typedef struct FwTreeInstance {
   float scale; /* s > 0: lengths times s, frequencies over s */
 } FwTreeInstance;
 
+/* --- Element tree models (trees/TreeDynamics.hpp: rigid_bodies, springs) ---------------------------------
+ * A species moved by an element model has a table of FwBranch entries (trees/BranchElements.hpp), n per
+ * species in the order of its skeleton walk (FwSpecies.skeleton_offset): entry 0 the root, without an
+ * element. Values at scale 1; kernels/tree_branches.cl scales them per instance. */
+#define FW_DYNAMICS_MODAL 0
+#define FW_DYNAMICS_RIGID_BODIES 1
+#define FW_DYNAMICS_SPRINGS 2
+
+typedef struct FwBranch {
+  fw_int node;         /* the element's outer node, index within the tree */
+  fw_int parent_node;  /* its base node, where its joint is */
+  fw_int parent_entry; /* the table entry of parent_node, 0 at the root */
+  float rest[3];       /* node minus parent node at rest, m, skeleton frame */
+  float centre[3];     /* the element's midpoint at rest, m, skeleton frame */
+  float length;        /* m */
+  float mass;          /* kg */
+  float axial_inertia; /* kg m^2 */
+  float stiffness[6];  /* K_e, N m/rad: xx yy zz xy xz yz */
+  float branch_drag;   /* 1/2 rho_air C_Db D_e, kg/m^2 */
+  float leaf_drag;     /* 1/2 rho_air C_Df lambda_e, kg/m^2 */
+  float spring;        /* k = E D^4 / (4 L^3), N/m */
+} FwBranch;
+
+/* A species' element model (trees/TreeDynamics.hpp), at scale 1. */
+typedef struct FwBranchSpecies {
+  fw_int model;         /* FW_DYNAMICS_* */
+  fw_int normal_drag;   /* 1: the wood drags with the wind normal to it only (branch_normal_drag) */
+  float damping;        /* rigid_bodies: beta = 2 zeta / omega_1 of C = beta K, s */
+  float max_angle;      /* springs: the largest bend, rad */
+  float sway_amplitude; /* springs: the stochastic sine's amplitude at the largest bend */
+  float sway_omega;     /* springs: its angular frequency 2 pi f, rad/s */
+} FwBranchSpecies;
+
+/* A tree moved by an element model: its instance, its first entry in the flat element arrays (joint state,
+ * sampled wind, orientation) and the id that seeds its phases (Forest::id). */
+typedef struct FwBranchTree {
+  fw_int instance;
+  fw_int entry_offset;
+  fw_int id;
+} FwBranchTree;
+
+/* The joint state of an entry in the flat arrays: its angle and rate (rotation vectors, rad and rad/s). */
+#define FW_JOINT_FLOATS 6
+/* Floats a rigid tree's recursion keeps per entry between its passes (kernels/tree_branches.cl). */
+#define FW_RIGID_SCRATCH_FLOATS 33
+
+/* b_e of entry `entry` of tree `id` (trees/SpringBranches.hpp spring_phases), as the fraction of a turn
+ * fw_phase_bits / 2^24: an integer hash (Wellons' lowbias32), the same bits on the host and the device. */
+#define FW_PHASE_BITS 24
+static inline fw_uint fw_phase_bits(fw_uint id, fw_uint entry) {
+  fw_uint x = id * 0x9E3779B9u ^ entry;
+  x ^= x >> 16;
+  x *= 0x7FEB352Du;
+  x ^= x >> 15;
+  x *= 0x846CA68Bu;
+  x ^= x >> 16;
+  return x >> (32 - FW_PHASE_BITS);
+}
+
 /* Leaves (docs/leaves.md). State of a leaf, one byte each (trees/LeafState.hpp). */
 #define FW_LEAF_ATTACHED 0
 #define FW_LEAF_FLYING 1

@@ -55,3 +55,18 @@ __kernel void tree_modal_step_semi_implicit(const int total_modes, const float d
     state[2 * j + 1] = qdot;
   }
 }
+
+/* The start in equilibrium with the wind of the last load: q = f / omega^2 and qdot = 0, the static answer
+ * of every mode (docs/design.md, "Numerics: Trees: Integration"). */
+__kernel void tree_modal_equilibrium(const int total_modes, __global const int* mode_instance,
+                                     __global const FwTreeInstance* instances,
+                                     __global const FwSpecies* species, __global const float* omega,
+                                     __global const float* forces, __global float* state) {
+  FW_FLAT_FOR(j, total_modes) {
+    const FwTreeInstance tree = instances[mode_instance[j]];
+    const int m = species[tree.species].modal_offset + ((int)j - tree.mode_offset);
+    const float w = omega[m] / tree.scale;
+    state[2 * j] = forces[j] / (w * w);
+    state[2 * j + 1] = 0.0f;
+  }
+}

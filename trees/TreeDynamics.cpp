@@ -34,13 +34,13 @@ std::optional<TreeDynamics> parse_dynamics(std::string_view word) {
 }
 
 void SpeciesDynamics::validate() const {
-  const auto fail = [](const std::string& what) {
-    throw std::invalid_argument("SpeciesDynamics: " + what);
-  };
+  const auto fail = [](const std::string& what) { throw std::invalid_argument("SpeciesDynamics: " + what); };
   if (!(std::isfinite(rigid_bodies.damping_ratio) && rigid_bodies.damping_ratio >= 0.0))
-    fail(fmt::format("rigid_bodies.damping_ratio must be finite and >= 0, got {}", rigid_bodies.damping_ratio));
+    fail(fmt::format("rigid_bodies.damping_ratio must be finite and >= 0, got {}",
+                     rigid_bodies.damping_ratio));
   if (!(springs.max_angle_deg > 0.0 && springs.max_angle_deg < kRightAngleDeg))
-    fail(fmt::format("springs.max_angle_deg must lie in (0, {}), got {}", kRightAngleDeg, springs.max_angle_deg));
+    fail(fmt::format("springs.max_angle_deg must lie in (0, {}), got {}", kRightAngleDeg,
+                     springs.max_angle_deg));
   if (!(std::isfinite(springs.sway_amplitude) && springs.sway_amplitude >= 0.0))
     fail(fmt::format("springs.sway_amplitude must be finite and >= 0, got {}", springs.sway_amplitude));
   if (!(std::isfinite(springs.sway_frequency_hz) && springs.sway_frequency_hz > 0.0))

@@ -57,7 +57,7 @@ CoupledStep::CoupledStep(ComputeContext& cc, WindGridSetup wind, const trees::Fo
       wind_(cc, std::move(wind), this->blocks()),
       rank_forest_(rank_trees(forest, wind_, this->blocks())),
       own_forest_(blocks_ ? &rank_forest_ : &forest),
-      trees_(cc, wind_.local_spec(), *own_forest_, this->blocks()),
+      trees_(cc, wind_.local_spec(), *own_forest_, this->blocks(), coupling.dynamics),
       tree_count_(forest.instance_count()) {
   if (!coupling.drag_density.empty()) wind_.set_canopy(std::move(coupling.drag_density), coupling.drag_law);
   trees_.set_drag_law(coupling.drag_law);

@@ -34,8 +34,13 @@ std::size_t forest_buffer_bytes(const trees::ForestPacking& p) {
 
 }  // namespace
 
-std::size_t ForestStages::estimate_device_bytes(const trees::Forest& forest) {
-  return forest_buffer_bytes(forest.pack());
+std::size_t ForestStages::estimate_device_bytes(const trees::Forest& forest,
+                                                const std::vector<trees::SpeciesDynamics>& dynamics) {
+  std::size_t bytes = forest_buffer_bytes(forest.pack());
+  // The element trees' work-items: at most one a tree (ComputeContext::flat_items).
+  if (BranchStages::needed(dynamics))
+    bytes += BranchStages::estimate_device_bytes(forest, dynamics, std::size_t(forest.instance_count()));
+  return bytes;
 }
 
 std::size_t ForestStages::estimate_unresolved_bytes(const trees::UnresolvedTurbulenceSettings& settings,
@@ -50,7 +55,7 @@ std::size_t ForestStages::estimate_unresolved_bytes(const trees::UnresolvedTurbu
 }
 
 ForestStages::ForestStages(ComputeContext& cc, const fluid::GridSpec& spec, const trees::Forest& forest,
-                           const WindBlocks* blocks)
+                           const WindBlocks* blocks, const std::vector<trees::SpeciesDynamics>& dynamics)
     : cc_(cc) {
   try {
     spec.validate();
@@ -58,7 +63,11 @@ ForestStages::ForestStages(ComputeContext& cc, const fluid::GridSpec& spec, cons
     throw std::invalid_argument(std::string("ForestStages: ") + e.what());
   }
   grid_ = spec.to_device();
-  const trees::ForestPacking p = forest.pack();
+  trees::ForestPacking p = forest.pack();
+  // An element model's species has no modes on the device: its trees' modal forces, state and
+  // displacements stay zero, at the cost of a loop of no iterations per tree.
+  for (std::size_t sp = 0; sp < p.species.size() && !dynamics.empty(); ++sp)
+    if (dynamics.at(sp).model != trees::TreeDynamics::modal) p.species[sp].mode_count = 0;
   instance_count_ = int(p.instances.size());
   total_modes_ = p.total_modes;
   total_nodes_ = p.total_nodes;
@@ -105,10 +114,14 @@ ForestStages::ForestStages(ComputeContext& cc, const fluid::GridSpec& spec, cons
   strong_amplitudes_ = Kernel(deform, "tree_strong_amplitudes");
   deform_strong_ = Kernel(deform, "tree_deform_strong");
   restore_lengths_ = Kernel(deform, "tree_restore_lengths");
+  equilibrium_ = Kernel(step, "tree_modal_equilibrium");
+  if (BranchStages::needed(dynamics))
+    branches_.emplace(cc_, spec, forest, dynamics, blocks, instances_, species_);
 }
 
 void ForestStages::enqueue_wind_load(DeviceVelocity& velocity) {
   samples_->enqueue_sample(velocity);  // collective over ranks, with or without trees of its own
+  if (branches_) branches_->enqueue_sample(velocity);
   if (instance_count_ == 0) return;
   wind_forces_
       .set_args(drag_law_.to_device(), instance_count_, instances_, species_, projections_, samples_->wind(),
@@ -125,6 +138,7 @@ void ForestStages::enqueue_wind_load(DeviceVelocity& velocity) {
 void ForestStages::enqueue_modal_step(float dt) {
   if (!std::isfinite(dt) || dt < 0.0f)
     throw std::invalid_argument(fmt::format("ForestStages: dt must be finite and >= 0, got {}", dt));
+  if (branches_) branches_->enqueue_step(dt);
   if (total_modes_ == 0) return;
   Kernel& kernel = integrator_ == trees::ModalIntegrator::exact ? step_exact_ : step_semi_implicit_;
   kernel.set_args(total_modes_, dt, mode_instance_, instances_, species_, omega_, zeta_, forces_, state_)
@@ -138,6 +152,13 @@ void ForestStages::enqueue_modal_step(float dt) {
 
 void ForestStages::enqueue_deform() {
   if (total_nodes_ == 0) return;
+  // The element trees' nodes after the modal kernels', which write zeros there (their species' modes never
+  // move); the in-order queue keeps that order.
+  enqueue_modal_deform();
+  if (branches_) branches_->enqueue_deform(displacements_);
+}
+
+void ForestStages::enqueue_modal_deform() {
   const cl::NDRange blocks(cc_.flat_items((std::size_t(total_nodes_) + 7) / 8));  // blocks of 8 nodes
   if (strong_wind_correction_) {
     strong_amplitudes_
@@ -161,6 +182,7 @@ StageState ForestStages::save_state() {
   StageState state;
   state.save(cc_, saved::kModalState, state_);
   if (unresolved_on_) state.save(cc_, saved::kTravelled, travel_);
+  if (branches_) branches_->save_state(state);
   return state;
 }
 
@@ -168,9 +190,18 @@ void ForestStages::restore_state(const StageState& state) {
   static constexpr const char* kStage = "trees";
   state.restore(cc_, kStage, saved::kModalState, state_);
   if (unresolved_on_) state.restore(cc_, kStage, saved::kTravelled, travel_);
+  if (branches_) branches_->restore_state(state);
+}
+
+void ForestStages::enqueue_equilibrium() {
+  if (branches_) branches_->enqueue_equilibrium();
+  if (total_modes_ == 0) return;
+  equilibrium_.set_args(total_modes_, mode_instance_, instances_, species_, omega_, forces_, state_)
+      .enqueue(cc_, cl::NDRange(cc_.flat_items(std::size_t(total_modes_))));
 }
 
 void ForestStages::reset_state() {
+  if (branches_) branches_->reset_state();
   if (total_modes_ == 0) return;
   cc_.queue().enqueueFillBuffer(state_, 0.0f, 0, 2 * std::size_t(total_modes_) * sizeof(float));
   cc_.queue().enqueueFillBuffer(forces_, 0.0f, 0, std::size_t(total_modes_) * sizeof(float));

@@ -32,6 +32,7 @@
 #include "fluid/GridSpec.hpp"
 #include "host/runtime/ComputeContext.hpp"
 #include "host/stages/BlockGrid.hpp"
+#include "host/stages/BranchStages.hpp"
 #include "host/stages/FluidStages.hpp"
 #include "host/stages/StageState.hpp"
 #include "host/stages/WindAtPoints.hpp"
@@ -55,12 +56,15 @@ class ForestStages {
   /// Packs `forest` and uploads it. The forest is not referenced afterwards. Throws
   /// std::invalid_argument("ForestStages: ...") when `spec` is invalid. Over ranks: spec is this rank's
   /// block_spec, forest its own trees, and every rank constructs one (collective).
+  /// dynamics: the model of each species (trees/TreeDynamics.hpp; empty, all modal): the trees of an element
+  /// model's species are moved by a BranchStages of this stage's own, and their modes stay at rest.
   ForestStages(ComputeContext& cc, const fluid::GridSpec& spec, const trees::Forest& forest,
-               const WindBlocks* blocks = nullptr);
+               const WindBlocks* blocks = nullptr, const std::vector<trees::SpeciesDynamics>& dynamics = {});
 
   /// Bytes of device memory the constructor allocates for `forest` (the packed species and instances, the
   /// modal state, forces, sampled wind and displacements).
-  static std::size_t estimate_device_bytes(const trees::Forest& forest);
+  static std::size_t estimate_device_bytes(const trees::Forest& forest,
+                                           const std::vector<trees::SpeciesDynamics>& dynamics = {});
   /// Bytes set_unresolved_turbulence allocates for a series of `settings` over `forest`.
   static std::size_t estimate_unresolved_bytes(const trees::UnresolvedTurbulenceSettings& settings,
                                                const trees::Forest& forest);
@@ -83,6 +87,7 @@ class ForestStages {
   void set_drag_law(const fluid::DragLaw& law) {
     law.validate();
     drag_law_ = law;
+    if (branches_) branches_->set_drag_law(law);
   }
   bool strong_wind_correction() const { return strong_wind_correction_; }
 
@@ -94,10 +99,17 @@ class ForestStages {
   /// Advances every instance-mode by dt (s, finite and >= 0, else std::invalid_argument) with the forces of
   /// the last wind load held constant.
   void enqueue_modal_step(float dt);
-  /// Nodal displacements from the current modal state (with or without the strong-wind correction).
+  /// Nodal displacements from the current modal state (with or without the strong-wind correction), and
+  /// the element trees' from their joints.
   void enqueue_deform();
-  /// q = qdot = 0 and forces = 0.
+  /// q = qdot = 0 and forces = 0; the element trees' joints at rest.
   void reset_state();
+  /// Every tree in equilibrium with the last wind load (the run's start, docs/design.md): q = f / omega^2
+  /// and qdot = 0 for each mode, the rigid bodies' joints at rest under their load, the springs bent by it.
+  void enqueue_equilibrium();
+
+  /// The element models' stage, when any species has one (over ranks on every rank); else null.
+  BranchStages* branches() { return branches_ ? &*branches_ : nullptr; }
 
   /// Blocking reads. Displacements: #total nodes by 3 (m, world frame); sampled wind: #total samples by 3
   /// (m/s, world frame); forces: #total modes (N / kg^1/2).
@@ -140,6 +152,7 @@ class ForestStages {
 
  private:
   std::vector<float> read(cl::Buffer& buffer, std::size_t count);
+  void enqueue_modal_deform();
 
   ComputeContext& cc_;
   FwGrid grid_;
@@ -169,6 +182,8 @@ class ForestStages {
   double series_spacing_ = 0.0;
   cl::Buffer series_, sample_offsets_, travel_;
   Kernel unresolved_load_, unresolved_advance_;
+  Kernel equilibrium_;
+  std::optional<BranchStages> branches_;
 };
 
 }  // namespace fw::host

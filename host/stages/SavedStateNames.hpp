@@ -22,6 +22,9 @@ inline constexpr const char* kWindCellArrays[] = {kPressureSolution, kEddyViscos
 // ForestStages: 2 floats (q, qdot) an instance-mode; ForestStages::kTravelFloats an instance.
 inline constexpr const char* kModalState = "modal_state";
 inline constexpr const char* kTravelled = "travelled";
+// BranchStages (the element tree models): FW_JOINT_FLOATS an entry of an element tree; the springs' clock.
+inline constexpr const char* kJointState = "joints";
+inline constexpr const char* kBranchClock = "branch_clock";
 
 // LeafStages: per slot a state byte, four float4 and the flight drag; per own leaf the flutter angle and
 // rate; the counters.

@@ -60,24 +60,48 @@ namespace {
 // The trees' structs (packed by trees/Forest.hpp), kept in their own lists.
 #define FW_TREE_STRUCTS(X) \
   X(FwSpecies);            \
-  X(FwTreeInstance)
-#define FW_TREE_FIELDS(X)            \
-  X(FwSpecies, node_count);          \
-  X(FwSpecies, mode_count);          \
-  X(FwSpecies, sample_count);        \
-  X(FwSpecies, shape_offset);        \
-  X(FwSpecies, projection_offset);   \
-  X(FwSpecies, sample_point_offset); \
-  X(FwSpecies, modal_offset);        \
-  X(FwSpecies, skeleton_offset);     \
-  X(FwTreeInstance, species);        \
-  X(FwTreeInstance, mode_offset);    \
-  X(FwTreeInstance, node_offset);    \
-  X(FwTreeInstance, sample_offset);  \
-  X(FwTreeInstance, position);       \
-  X(FwTreeInstance, cos_yaw);        \
-  X(FwTreeInstance, sin_yaw);        \
-  X(FwTreeInstance, scale)
+  X(FwTreeInstance);       \
+  X(FwBranch);             \
+  X(FwBranchSpecies);      \
+  X(FwBranchTree)
+#define FW_TREE_FIELDS(X)             \
+  X(FwSpecies, node_count);           \
+  X(FwSpecies, mode_count);           \
+  X(FwSpecies, sample_count);         \
+  X(FwSpecies, shape_offset);         \
+  X(FwSpecies, projection_offset);    \
+  X(FwSpecies, sample_point_offset);  \
+  X(FwSpecies, modal_offset);         \
+  X(FwSpecies, skeleton_offset);      \
+  X(FwTreeInstance, species);         \
+  X(FwTreeInstance, mode_offset);     \
+  X(FwTreeInstance, node_offset);     \
+  X(FwTreeInstance, sample_offset);   \
+  X(FwTreeInstance, position);        \
+  X(FwTreeInstance, cos_yaw);         \
+  X(FwTreeInstance, sin_yaw);         \
+  X(FwTreeInstance, scale);           \
+  X(FwBranch, node);                  \
+  X(FwBranch, parent_node);           \
+  X(FwBranch, parent_entry);          \
+  X(FwBranch, rest);                  \
+  X(FwBranch, centre);                \
+  X(FwBranch, length);                \
+  X(FwBranch, mass);                  \
+  X(FwBranch, axial_inertia);         \
+  X(FwBranch, stiffness);             \
+  X(FwBranch, branch_drag);           \
+  X(FwBranch, leaf_drag);             \
+  X(FwBranch, spring);                \
+  X(FwBranchSpecies, model);          \
+  X(FwBranchSpecies, normal_drag);    \
+  X(FwBranchSpecies, damping);        \
+  X(FwBranchSpecies, max_angle);      \
+  X(FwBranchSpecies, sway_amplitude); \
+  X(FwBranchSpecies, sway_omega);     \
+  X(FwBranchTree, instance);          \
+  X(FwBranchTree, entry_offset);      \
+  X(FwBranchTree, id)
 // The leaves' structs (packed by host/stages/LeafStages).
 #define FW_LEAF_STRUCTS(X) X(FwLeafSpecies)
 #define FW_LEAF_FIELDS(X)            \
@@ -183,8 +207,9 @@ TEST_CASE("shared_types: OpenCL C and the host agree on sizeof and offsetof of e
   auto* cc = fw::test::device_or_skip();
   if (!cc) return;
   const auto entries = host_layout();
-  // Shared structs and fields (FwTke's 1 and 6 among them), the trees', the leaves' (1 struct, 13 fields).
-  REQUIRE(entries.size() == 5 + 36 + 2 + 16 + 1 + 13);
+  // Shared structs and fields (FwTke's 1 and 6 among them), the trees' (the element models' 3 structs and
+  // 21 fields among them), the leaves' (1 struct, 13 fields).
+  REQUIRE(entries.size() == 5 + 36 + 5 + 37 + 1 + 13);
   const std::string source = layout_kernel_source(entries);
   INFO(source);
 

@@ -101,7 +101,7 @@ void plan_forest(const io::Scenario& scenario, std::vector<trees::SpeciesBasis> 
   }
   plan.forest = trees::Forest(std::move(bases), std::move(instances));
   if (plan.forest.instance_count() == 0) return;
-  plan.memory.add("trees", ForestStages::estimate_device_bytes(plan.forest));
+  plan.memory.add("trees", ForestStages::estimate_device_bytes(plan.forest, plan.coupling.dynamics));
   if (plan.leaf_count == 0) return;
   if (plan.leaf_count > LeafStages::kMaxLeaves)
     throw std::invalid_argument(fmt::format(

@@ -1,0 +1,386 @@
+/* The element tree models (trees/TreeDynamics.hpp): Oliapuram's articulated rigid branches and Ota's
+ * cantilever springs, on every tree whose species one of them moves. References: trees/RigidBranches.cpp,
+ * trees/SpringBranches.cpp, trees/BranchPose.cpp; the table: trees/BranchElements.hpp (FwBranch).
+ *
+ * Work mapping: one tree per loop iteration (FW_FLAT_FOR over the element trees). Both models walk each tree
+ * in its table's order, parents before children, or back up it: an element needs its children's results
+ * (the recursion up) or its parent's (the pose down), so one work-item keeps a tree's entries in order. A
+ * rigid tree's recursion keeps FW_RIGID_SCRATCH_FLOATS per entry in `scratch`, a slice of `scratch_stride`
+ * floats per work-item (the host sizes it for its largest tree).
+ *
+ * Flat arrays, per element tree t at trees[t].entry_offset: the wind sampled at each entry's element centre
+ * (3 floats, world frame), the joint state (FW_JOINT_FLOATS: angle, rate), the orientation (a quaternion,
+ * 4 floats: w, x, y, z). Instance k of scale s: lengths s, masses s^3, inertias s^5, joint stiffness s^3,
+ * drag per metre s, spring constants s (trees/BranchElements.hpp). */
+#include "common.cl"
+
+/* A 3 x 3 matrix by rows. */
+typedef struct {
+  float3 r0, r1, r2;
+} Mat3;
+
+FW_INLINE Mat3 mat_rows(const float3 r0, const float3 r1, const float3 r2) {
+  Mat3 m;
+  m.r0 = r0;
+  m.r1 = r1;
+  m.r2 = r2;
+  return m;
+}
+
+FW_INLINE float3 mat_vec(const Mat3 m, const float3 v) {
+  return (float3)(dot(m.r0, v), dot(m.r1, v), dot(m.r2, v));
+}
+
+FW_INLINE Mat3 mat_transpose(const Mat3 m) {
+  Mat3 t;
+  t.r0 = (float3)(m.r0.x, m.r1.x, m.r2.x);
+  t.r1 = (float3)(m.r0.y, m.r1.y, m.r2.y);
+  t.r2 = (float3)(m.r0.z, m.r1.z, m.r2.z);
+  return t;
+}
+
+FW_INLINE Mat3 mat_mul(const Mat3 a, const Mat3 b) {
+  const Mat3 bt = mat_transpose(b);
+  return mat_rows(mat_vec(bt, a.r0), mat_vec(bt, a.r1), mat_vec(bt, a.r2));
+}
+
+FW_INLINE Mat3 mat_add(const Mat3 a, const Mat3 b) {
+  Mat3 c;
+  c.r0 = a.r0 + b.r0;
+  c.r1 = a.r1 + b.r1;
+  c.r2 = a.r2 + b.r2;
+  return c;
+}
+
+FW_INLINE Mat3 mat_sub(const Mat3 a, const Mat3 b) {
+  Mat3 c;
+  c.r0 = a.r0 - b.r0;
+  c.r1 = a.r1 - b.r1;
+  c.r2 = a.r2 - b.r2;
+  return c;
+}
+
+FW_INLINE Mat3 mat_scale(const float s, const Mat3 a) {
+  Mat3 c;
+  c.r0 = s * a.r0;
+  c.r1 = s * a.r1;
+  c.r2 = s * a.r2;
+  return c;
+}
+
+/* [r]: [r] v = r x v. */
+FW_INLINE Mat3 mat_skew(const float3 r) {
+  Mat3 m;
+  m.r0 = (float3)(0.0f, -r.z, r.y);
+  m.r1 = (float3)(r.z, 0.0f, -r.x);
+  m.r2 = (float3)(-r.y, r.x, 0.0f);
+  return m;
+}
+
+FW_INLINE Mat3 mat_diagonal(const float d) {
+  Mat3 m;
+  m.r0 = (float3)(d, 0.0f, 0.0f);
+  m.r1 = (float3)(0.0f, d, 0.0f);
+  m.r2 = (float3)(0.0f, 0.0f, d);
+  return m;
+}
+
+/* The inverse by the adjugate; the joint terms inverted here are symmetric positive definite. */
+FW_INLINE Mat3 mat_inverse(const Mat3 m) {
+  const float3 c0 = cross(m.r1, m.r2), c1 = cross(m.r2, m.r0), c2 = cross(m.r0, m.r1);
+  const float inverse_det = 1.0f / dot(m.r0, c0);
+  return mat_scale(inverse_det, mat_transpose(mat_rows(c0, c1, c2)));
+}
+
+FW_INLINE Mat3 mat_load(__global const float* p) {
+  return mat_rows(vload3(0, p), vload3(1, p), vload3(2, p));
+}
+
+FW_INLINE void mat_store(const Mat3 m, __global float* p) {
+  vstore3(m.r0, 0, p);
+  vstore3(m.r1, 1, p);
+  vstore3(m.r2, 2, p);
+}
+
+/* K_e from its six stored values (xx yy zz xy xz yz). */
+FW_INLINE Mat3 joint_stiffness(const FwBranch* e) {
+  const float* k = e->stiffness;
+  return mat_rows((float3)(k[0], k[3], k[4]), (float3)(k[3], k[1], k[5]), (float3)(k[4], k[5], k[2]));
+}
+
+FW_INLINE float3 branch_rest(const FwBranch* e) {
+  return (float3)(e->rest[0], e->rest[1], e->rest[2]);
+}
+
+/* The drag on entry j's element of tree `tree` (N, skeleton frame, at scale s) from the wind sampled at its
+ * centre (world frame): s^2 L (b P v + l v) |v| f(|v|), f the drag law's factor. */
+FW_INLINE float3 element_load(const FwBranch* e, const FwTreeInstance* tree, const FwDragLaw law,
+                              __global const float* wind, const int normal_drag) {
+  const float3 w = vload3(0, wind);
+  const float cs = tree->cos_yaw, sn = tree->sin_yaw;
+  const float3 v = (float3)(cs * w.x + sn * w.y, -sn * w.x + cs * w.y, w.z);
+  const float speed = length(v);
+  float3 wood = v;
+  if (normal_drag) {
+    const float3 axis = branch_rest(e) / e->length;
+    wood -= dot(axis, v) * axis;
+  }
+  const float s = tree->scale;
+  return (s * s * e->length * speed * drag_law_factor(law, speed)) *
+         (e->branch_drag * wood + e->leaf_drag * v);
+}
+
+/* Once, when the forest is uploaded: every entry's element centre in the world frame, x + s R c (the root's
+ * entry: the root), where its wind is sampled. */
+__kernel void branch_sample_positions(const int tree_count, __global const FwBranchTree* trees,
+                                      __global const FwTreeInstance* instances,
+                                      __global const FwSpecies* species, __global const FwBranch* branches,
+                                      __global float* sample_world) {
+  FW_FLAT_FOR(t, tree_count) {
+    const FwBranchTree bt = trees[t];
+    const FwTreeInstance tree = instances[bt.instance];
+    const FwSpecies sp = species[tree.species];
+    const float cs = tree.cos_yaw, sn = tree.sin_yaw;
+    for (int j = 0; j < sp.node_count; ++j) {
+      const FwBranch e = branches[sp.skeleton_offset + j];
+      const float3 c = (float3)(e.centre[0], e.centre[1], e.centre[2]);
+      const float3 world = (float3)(tree.position[0], tree.position[1], tree.position[2]) +
+                           tree.scale * (float3)(cs * c.x - sn * c.y, sn * c.x + cs * c.y, c.z);
+      vstore3(world, bt.entry_offset + j, sample_world);
+    }
+  }
+}
+
+/* Springs (trees/SpringBranches.hpp): every entry's joint angle from its own load at time t; no rate. */
+__kernel void spring_angles(const int tree_count, __global const FwBranchTree* trees,
+                            __global const FwTreeInstance* instances, __global const FwSpecies* species,
+                            __global const FwBranchSpecies* models, __global const FwBranch* branches,
+                            const FwDragLaw law, __global const float* wind, const float time,
+                            __global float* joints) {
+  FW_FLAT_FOR(t, tree_count) {
+    const FwBranchTree bt = trees[t];
+    const FwTreeInstance tree = instances[bt.instance];
+    const FwSpecies sp = species[tree.species];
+    const FwBranchSpecies model = models[tree.species];
+    const float s = tree.scale;
+    const float turn = 2.0f * M_PI_F / (float)(1u << FW_PHASE_BITS);
+    vstore3((float3)(0.0f), 0, joints + FW_JOINT_FLOATS * bt.entry_offset);
+    for (int j = 1; j < sp.node_count; ++j) {
+      const FwBranch e = branches[sp.skeleton_offset + j];
+      const int flat = bt.entry_offset + j;
+      const float3 F = element_load(&e, &tree, law, wind + 3 * flat, model.normal_drag);
+      const float3 axis = branch_rest(&e) / e.length;
+      const float3 normal = F - dot(F, axis) * axis;
+      const float load = length(normal);
+      float3 angle = (float3)(0.0f);
+      if (load > 0.0f) {
+        const float bend = load / (s * e.spring) / (s * e.length);
+        const float steady = fmin(atan(bend), model.max_angle);
+        const float amplitude = model.sway_amplitude * steady / model.max_angle;
+        const float phase = turn * (float)fw_phase_bits((fw_uint)bt.id, (fw_uint)j);
+        const float swayed = bend * (1.0f + amplitude * sin(model.sway_omega * time + phase));
+        const float theta = clamp(atan(swayed), -model.max_angle, model.max_angle);
+        angle = theta * cross(axis, normal / load);
+      }
+      __global float* joint = joints + FW_JOINT_FLOATS * flat;
+      vstore3(angle, 0, joint);
+      vstore3((float3)(0.0f), 1, joint);
+    }
+  }
+}
+
+/* Scratch slot of an entry during the recursion up: accumulated A, B, M (9 floats each) and the bias force's
+ * moment and force (3 each); rewritten once the entry is done with A, B, D^-1 (9 each) and u (3). */
+#define SLOT_A 0
+#define SLOT_B 9
+#define SLOT_M 18
+#define SLOT_N 27
+#define SLOT_F 30
+#define SLOT_D_INVERSE 18
+#define SLOT_U 27
+
+/* Rigid bodies (trees/RigidBranches.hpp): one implicit Euler step of every joint, the articulated-body
+ * recursion up the tree, then the accelerations down it. */
+__kernel void rigid_branches_step(const int tree_count, __global const FwBranchTree* trees,
+                                  __global const FwTreeInstance* instances, __global const FwSpecies* species,
+                                  __global const FwBranchSpecies* models, __global const FwBranch* branches,
+                                  const FwDragLaw law, __global const float* wind, const float dt,
+                                  __global float* joints, __global float* scratch, const int scratch_stride) {
+  __global float* work = scratch + get_global_id(0) * (size_t)scratch_stride;
+  FW_FLAT_FOR(t, tree_count) {
+    const FwBranchTree bt = trees[t];
+    const FwTreeInstance tree = instances[bt.instance];
+    const FwSpecies sp = species[tree.species];
+    const int n = sp.node_count;
+    const float s = tree.scale, s3 = s * s * s, s5 = s3 * s * s;
+    /* C = beta K at scale s: beta = 2 zeta / (omega_1 / s). */
+    const FwBranchSpecies model = models[tree.species];
+    const float beta = model.damping * s;
+    const float joint_term = dt * beta + dt * dt;
+    for (int i = 0; i < FW_RIGID_SCRATCH_FLOATS * n; ++i) work[i] = 0.0f;
+
+    for (int j = n - 1; j >= 1; --j) {
+      const FwBranch e = branches[sp.skeleton_offset + j];
+      __global float* slot = work + FW_RIGID_SCRATCH_FLOATS * j;
+      const float3 rest = s * branch_rest(&e);
+      const float3 axis = branch_rest(&e) / e.length;
+      const float mass = s3 * e.mass;
+      /* The rod about its joint: inertia about its centre c = rest / 2, moved to the joint. */
+      const Mat3 along = mat_rows(axis.x * axis, axis.y * axis, axis.z * axis);
+      const Mat3 centre_inertia =
+          mat_add(mat_scale(s5 * e.mass * e.length * e.length / 12.0f, mat_sub(mat_diagonal(1.0f), along)),
+                  mat_scale(s5 * e.axial_inertia, along));
+      const Mat3 c = mat_skew(0.5f * rest);
+      const Mat3 A =
+          mat_add(mat_load(slot + SLOT_A), mat_sub(centre_inertia, mat_scale(mass, mat_mul(c, c))));
+      const Mat3 B = mat_add(mat_load(slot + SLOT_B), mat_scale(mass, c));
+      const Mat3 M = mat_add(mat_load(slot + SLOT_M), mat_diagonal(mass));
+      const float3 F = element_load(&e, &tree, law, wind + 3 * (bt.entry_offset + j), model.normal_drag);
+      const float3 pn = vload3(0, slot + SLOT_N) - cross(0.5f * rest, F);
+      const float3 pf = vload3(0, slot + SLOT_F) - F;
+
+      __global const float* joint = joints + FW_JOINT_FLOATS * (bt.entry_offset + j);
+      const float3 theta = vload3(0, joint), rate = vload3(1, joint);
+      const Mat3 K = mat_scale(s3, joint_stiffness(&e));
+      const float3 torque = -mat_vec(K, theta + dt * rate) - beta * mat_vec(K, rate);
+      const Mat3 D_inverse = mat_inverse(mat_add(A, mat_scale(joint_term, K)));
+      const float3 u = torque - pn;
+
+      if (e.parent_entry > 0) {
+        const Mat3 AD = mat_mul(A, D_inverse);
+        const Mat3 BtD = mat_mul(mat_transpose(B), D_inverse);
+        const Mat3 Aa = mat_sub(A, mat_mul(AD, A));
+        const Mat3 Ba = mat_sub(B, mat_mul(AD, B));
+        const Mat3 Ma = mat_sub(M, mat_mul(BtD, B));
+        const float3 na = pn + mat_vec(AD, u), fa = pf + mat_vec(BtD, u);
+        /* Moved to the parent's joint, r = this joint - the parent's: trees/RigidBranches.cpp shift_into. */
+        const FwBranch parent = branches[sp.skeleton_offset + e.parent_entry];
+        const float3 r = s * branch_rest(&parent);
+        const Mat3 R = mat_skew(r);
+        __global float* up = work + FW_RIGID_SCRATCH_FLOATS * e.parent_entry;
+        const Mat3 shifted_A = mat_add(mat_sub(Aa, mat_mul(Ba, R)),
+                                       mat_sub(mat_mul(R, mat_transpose(Ba)), mat_mul(mat_mul(R, Ma), R)));
+        mat_store(mat_add(mat_load(up + SLOT_A), shifted_A), up + SLOT_A);
+        mat_store(mat_add(mat_load(up + SLOT_B), mat_add(Ba, mat_mul(R, Ma))), up + SLOT_B);
+        mat_store(mat_add(mat_load(up + SLOT_M), Ma), up + SLOT_M);
+        vstore3(vload3(0, up + SLOT_N) + na + cross(r, fa), 0, up + SLOT_N);
+        vstore3(vload3(0, up + SLOT_F) + fa, 0, up + SLOT_F);
+      }
+      mat_store(A, slot + SLOT_A);
+      mat_store(B, slot + SLOT_B);
+      mat_store(D_inverse, slot + SLOT_D_INVERSE);
+      vstore3(u, 0, slot + SLOT_U);
+    }
+
+    /* Down: the joint's angular acceleration from its parent's; the parent's accelerations (angular, and
+     * linear at its joint) replace its A's first two rows, which nothing reads any more. */
+    for (int j = 1; j < n; ++j) {
+      const FwBranch e = branches[sp.skeleton_offset + j];
+      __global float* slot = work + FW_RIGID_SCRATCH_FLOATS * j;
+      float3 alpha = (float3)(0.0f), a = (float3)(0.0f);
+      if (e.parent_entry > 0) {
+        __global const float* up = work + FW_RIGID_SCRATCH_FLOATS * e.parent_entry;
+        const FwBranch parent = branches[sp.skeleton_offset + e.parent_entry];
+        alpha = vload3(0, up + SLOT_A);
+        a = vload3(1, up + SLOT_A) + cross(alpha, s * branch_rest(&parent));
+      }
+      const Mat3 A = mat_load(slot + SLOT_A), B = mat_load(slot + SLOT_B);
+      const float3 acceleration = mat_vec(mat_load(slot + SLOT_D_INVERSE),
+                                          vload3(0, slot + SLOT_U) - mat_vec(A, alpha) - mat_vec(B, a));
+      vstore3(alpha + acceleration, 0, slot + SLOT_A);
+      vstore3(a, 1, slot + SLOT_A);
+      __global float* joint = joints + FW_JOINT_FLOATS * (bt.entry_offset + j);
+      const float3 rate = vload3(1, joint) + dt * acceleration;
+      vstore3(vload3(0, joint) + dt * rate, 0, joint);
+      vstore3(rate, 1, joint);
+    }
+  }
+}
+
+/* Rigid bodies at rest in the sampled wind (trees/RigidBranches.cpp equilibrium): theta = K^-1 M, M the
+ * moment about the joint of everything beyond it, and no rate. The scratch holds each entry's moment and
+ * force (SLOT_N, SLOT_F). */
+__kernel void rigid_branches_equilibrium(const int tree_count, __global const FwBranchTree* trees,
+                                         __global const FwTreeInstance* instances,
+                                         __global const FwSpecies* species,
+                                         __global const FwBranchSpecies* models,
+                                         __global const FwBranch* branches, const FwDragLaw law,
+                                         __global const float* wind, __global float* joints,
+                                         __global float* scratch, const int scratch_stride) {
+  __global float* work = scratch + get_global_id(0) * (size_t)scratch_stride;
+  FW_FLAT_FOR(t, tree_count) {
+    const FwBranchTree bt = trees[t];
+    const FwTreeInstance tree = instances[bt.instance];
+    const FwSpecies sp = species[tree.species];
+    const int n = sp.node_count;
+    const float s = tree.scale;
+    for (int j = 0; j < n; ++j) {
+      vstore3((float3)(0.0f), 0, work + FW_RIGID_SCRATCH_FLOATS * j + SLOT_N);
+      vstore3((float3)(0.0f), 0, work + FW_RIGID_SCRATCH_FLOATS * j + SLOT_F);
+    }
+    vstore3((float3)(0.0f), 0, joints + FW_JOINT_FLOATS * bt.entry_offset);
+    vstore3((float3)(0.0f), 1, joints + FW_JOINT_FLOATS * bt.entry_offset);
+    for (int j = n - 1; j >= 1; --j) {
+      const FwBranch e = branches[sp.skeleton_offset + j];
+      __global float* slot = work + FW_RIGID_SCRATCH_FLOATS * j;
+      const float3 F =
+          element_load(&e, &tree, law, wind + 3 * (bt.entry_offset + j), models[tree.species].normal_drag);
+      const float3 moment = vload3(0, slot + SLOT_N) + cross(0.5f * s * branch_rest(&e), F);
+      const float3 force = vload3(0, slot + SLOT_F) + F;
+      if (e.parent_entry > 0) {
+        const FwBranch parent = branches[sp.skeleton_offset + e.parent_entry];
+        __global float* up = work + FW_RIGID_SCRATCH_FLOATS * e.parent_entry;
+        vstore3(vload3(0, up + SLOT_N) + moment + cross(s * branch_rest(&parent), force), 0, up + SLOT_N);
+        vstore3(vload3(0, up + SLOT_F) + force, 0, up + SLOT_F);
+      }
+      __global float* joint = joints + FW_JOINT_FLOATS * (bt.entry_offset + j);
+      const Mat3 K = mat_scale(s * s * s, joint_stiffness(&e));
+      vstore3(mat_vec(mat_inverse(K), moment), 0, joint);
+      vstore3((float3)(0.0f), 1, joint);
+    }
+  }
+}
+
+/* q p, quaternions as (w, x, y, z). */
+FW_INLINE float4 quaternion_mul(const float4 q, const float4 p) {
+  const float3 qv = q.yzw, pv = p.yzw;
+  const float3 v = q.x * pv + p.x * qv + cross(qv, pv);
+  return (float4)(q.x * p.x - dot(qv, pv), v.x, v.y, v.z);
+}
+
+/* The pose (trees/BranchPose.hpp): every entry's orientation Q = Q_parent Exp(theta) from the root down, and
+ * its node's displacement u = u_parent + R (Q - I) s rest (world frame), written into the forest's
+ * displacements. (Q - I) r = 2 w (v x r) + 2 v x (v x r) for the unit quaternion (w, v) of Q keeps its
+ * digits at small angles. */
+__kernel void branch_deform(const int tree_count, __global const FwBranchTree* trees,
+                            __global const FwTreeInstance* instances, __global const FwSpecies* species,
+                            __global const FwBranch* branches, __global const float* joints,
+                            __global float* orientations, __global float* displacements) {
+  FW_FLAT_FOR(t, tree_count) {
+    const FwBranchTree bt = trees[t];
+    const FwTreeInstance tree = instances[bt.instance];
+    const FwSpecies sp = species[tree.species];
+    const float s = tree.scale, cs = tree.cos_yaw, sn = tree.sin_yaw;
+    __global float* u = displacements + 3 * (size_t)tree.node_offset;
+    __global float* orientation = orientations + 4 * (size_t)bt.entry_offset;
+    vstore4((float4)(1.0f, 0.0f, 0.0f, 0.0f), 0, orientation);
+    vstore3((float3)(0.0f), branches[sp.skeleton_offset].node, u);
+    for (int j = 1; j < sp.node_count; ++j) {
+      const FwBranch e = branches[sp.skeleton_offset + j];
+      const float3 theta = vload3(0, joints + FW_JOINT_FLOATS * (bt.entry_offset + j));
+      const float angle = length(theta);
+      float4 turn = (float4)(1.0f, 0.0f, 0.0f, 0.0f);
+      if (angle > 0.0f) {
+        const float3 v = (sin(0.5f * angle) / angle) * theta;
+        turn = (float4)(cos(0.5f * angle), v.x, v.y, v.z);
+      }
+      const float4 q = quaternion_mul(vload4(e.parent_entry, orientation), turn);
+      vstore4(q, j, orientation);
+      const float3 r = s * branch_rest(&e);
+      const float3 vr = cross(q.yzw, r);
+      const float3 change = 2.0f * q.x * vr + 2.0f * cross(q.yzw, vr);
+      const float3 world = (float3)(cs * change.x - sn * change.y, sn * change.x + cs * change.y, change.z);
+      vstore3(vload3(e.parent_node, u) + world, e.node, u);
+    }
+  }
+}

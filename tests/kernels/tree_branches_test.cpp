@@ -1,0 +1,268 @@
+// The element tree models' kernels (host/stages/BranchStages, kernels/tree_branches.cl) against their CPU
+// oracles (trees/RigidBranches, trees/SpringBranches, trees/BranchPose), on a smooth random MAC wind and a
+// forest of three species: one moved by rigid bodies, one by springs, one modal, at various yaws and scales.
+#include <catch2/catch.hpp>
+
+#include <cmath>
+#include <random>
+
+#include "host/stages/ForestStages.hpp"
+#include "tests/support/Fields.hpp"
+#include "tests/support/SmallSpecies.hpp"
+#include "tests/support/TestDevice.hpp"
+#include "trees/BranchPose.hpp"
+#include "trees/ForestReference.hpp"
+#include "trees/RigidBranches.hpp"
+#include "trees/SpringBranches.hpp"
+
+using namespace fw;
+
+namespace {
+
+// Tolerances (float32 kernels against the double oracles), relative to the largest value; the float
+// rounding of the sampled wind (~1e-7) carries into every result, and each is measured near 1e-7 on PoCL:
+// equilibrium angles, a 3 x 3 solve per joint of moments summed up the tree (a few dozen float terms);
+constexpr double kEquilibriumTolerance = 1e-5;
+// 40 implicit steps of the articulated-body recursion, whose rounding carries from step to step (3e-7);
+constexpr double kStepTolerance = 1e-5;
+// spring angles: float atan and sin of the same loads (1.3e-7);
+constexpr double kSpringTolerance = 1e-5;
+// the pose from the device's own angles: quaternion products along root-to-tip paths of a few dozen
+// elements (2e-7).
+constexpr double kPoseTolerance = 1e-5;
+
+constexpr int kRigid = 0, kSprings = 1, kModal = 2;
+
+fluid::GridSpec forest_grid() {
+  fluid::GridSpec spec;
+  spec.nx = 28;
+  spec.ny = 24;
+  spec.nz = 12;
+  spec.h = 1.0;
+  spec.origin = {-2.0, 2.0, -1.0};
+  return spec;
+}
+
+// A mean flow of ~7 m/s with a smooth random part: every element feels its own wind.
+fluid::MacVelocity smooth_wind(const fluid::GridSpec& spec, std::uint32_t seed) {
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<double> unit(-1.0, 1.0);
+  const double mean[3] = {6.0, -3.0, 0.5};
+  double amplitude[3], k[3][3], phase[3];
+  for (int c = 0; c < 3; ++c) {
+    amplitude[c] = 2.0 * unit(rng);
+    phase[c] = M_PI * unit(rng);
+    for (double& kc : k[c]) kc = 0.5 * unit(rng);
+  }
+  fluid::MacVelocity vel(spec);
+  for (int c = 0; c < 3; ++c) {
+    const int ex = spec.nx + (c == 0), ey = spec.ny + (c == 1), ez = spec.nz + (c == 2);
+    for (int kz = 0; kz < ez; ++kz)
+      for (int j = 0; j < ey; ++j)
+        for (int i = 0; i < ex; ++i) {
+          const double x[3] = {spec.origin[0] + spec.h * (i + (c == 0 ? 0.0 : 0.5)),
+                               spec.origin[1] + spec.h * (j + (c == 1 ? 0.0 : 0.5)),
+                               spec.origin[2] + spec.h * (kz + (c == 2 ? 0.0 : 0.5))};
+          vel.component(c)[std::size_t(i + ex * (j + ey * kz))] = float(
+              mean[c] + amplitude[c] * std::sin(k[c][0] * x[0] + k[c][1] * x[1] + k[c][2] * x[2] + phase[c]));
+        }
+  }
+  return vel;
+}
+
+trees::Forest test_forest() {
+  std::vector<trees::SpeciesBasis> species = {test::small_species("broadleaf", 6.0, 1, 5, 8, 3, 2.0),
+                                              test::small_species("conifer", 5.0, 2, 4, 10, 2, 1.0),
+                                              test::small_species("broadleaf", 5.0, 3, 4, 6, 2)};
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> x(1.0, 22.0), y(5.0, 22.0), yaw(-M_PI, M_PI), scale(0.6, 1.5);
+  std::vector<trees::TreeInstance> trees;
+  for (int k = 0; k < 9; ++k) trees.push_back({k % 3, {x(rng), y(rng), 0.0}, yaw(rng), scale(rng)});
+  return trees::Forest(std::move(species), std::move(trees));
+}
+
+std::vector<trees::SpeciesDynamics> test_dynamics() {
+  std::vector<trees::SpeciesDynamics> dynamics(3);
+  dynamics[kRigid].model = trees::TreeDynamics::rigid_bodies;
+  dynamics[kRigid].rigid_bodies.damping_ratio = 0.08;
+  dynamics[kSprings].model = trees::TreeDynamics::springs;
+  dynamics[kSprings].springs.max_angle_deg = 25.0;
+  dynamics[kSprings].springs.sway_amplitude = 0.5;
+  return dynamics;
+}
+
+// The CPU side of one element tree: its table and the loads of the wind at its element centres.
+struct ElementTree {
+  trees::BranchElements elements;
+  std::vector<Eigen::Vector3d> loads;
+};
+
+ElementTree element_tree(const trees::Forest& forest, int k, const fluid::GridSpec& spec,
+                         const fluid::MacVelocity& wind) {
+  const trees::SpeciesBasis& basis = forest.species_of(k);
+  ElementTree tree{
+      trees::BranchElements::of(basis.skeleton(), basis.settings().material, basis.settings().wind), {}};
+  const trees::TreeInstance& instance = forest.instances()[std::size_t(k)];
+  const Eigen::Matrix3d R = forest.rotation(k);
+  const double s = instance.scale;
+  tree.loads.assign(std::size_t(tree.elements.size()), Eigen::Vector3d::Zero());
+  for (int j = 1; j < tree.elements.size(); ++j) {
+    const Eigen::Vector3d world = instance.position + s * R * tree.elements[j].centre;
+    const Eigen::Vector3d v = R.transpose() * trees::sample_mac_velocity(spec, wind, world);
+    tree.loads[std::size_t(j)] = s * s * tree.elements.load(j, v);
+  }
+  return tree;
+}
+
+// The largest |device - expected| over the largest |expected| of instance k's angles.
+double angle_error(const std::vector<float>& joints, int offset, const std::vector<Eigen::Vector3d>& expected,
+                   double& largest) {
+  double diff = 0.0;
+  for (std::size_t j = 0; j < expected.size(); ++j)
+    for (int c = 0; c < 3; ++c) {
+      diff = std::max(diff,
+                      std::abs(double(joints[FW_JOINT_FLOATS * (std::size_t(offset) + j) + std::size_t(c)]) -
+                               expected[j](c)));
+      largest = std::max(largest, std::abs(expected[j](c)));
+    }
+  return diff;
+}
+
+struct BranchFixture {
+  host::ComputeContext& cc;
+  fluid::GridSpec spec = forest_grid();
+  trees::Forest forest = test_forest();
+  std::vector<trees::SpeciesDynamics> dynamics = test_dynamics();
+  fluid::MacVelocity wind = smooth_wind(spec, 23);
+  host::ForestStages stages{cc, spec, forest, nullptr, dynamics};
+  host::DeviceVelocity dwind;
+
+  explicit BranchFixture(host::ComputeContext& c) : cc(c) {
+    dwind.u = cc.buffer(spec.u_count() * sizeof(float));
+    dwind.v = cc.buffer(spec.v_count() * sizeof(float));
+    dwind.w = cc.buffer(spec.w_count() * sizeof(float));
+    test::upload(cc, wind, dwind);
+  }
+  int species(int k) const { return forest.instances()[std::size_t(k)].species; }
+  double scale(int k) const { return forest.instances()[std::size_t(k)].scale; }
+  double damping(int k) const {
+    return trees::rigid_damping(dynamics[kRigid].rigid_bodies.damping_ratio,
+                                forest.species_of(k).modes().omega()(0) / scale(k));
+  }
+};
+
+}  // namespace
+
+TEST_CASE("tree_branches: the rigid trees' equilibrium and 40 implicit steps from rest match the reference",
+          "[forest][branches]") {
+  auto* cc = test::device_or_skip();
+  if (!cc) return;
+  BranchFixture f(*cc);
+  REQUIRE(f.stages.branches() != nullptr);
+  host::BranchStages& branches = *f.stages.branches();
+  REQUIRE(branches.tree_count() == 6);
+  f.stages.enqueue_wind_load(f.dwind);
+  f.stages.enqueue_equilibrium();
+  const std::vector<float> equilibrium = branches.download_joints();
+
+  // From rest in the wind: each tree swings towards its equilibrium and past it.
+  f.stages.reset_state();
+  constexpr double dt = 0.01;
+  constexpr int kSteps = 40;
+  for (int n = 0; n < kSteps; ++n) {
+    f.stages.enqueue_wind_load(f.dwind);
+    f.stages.enqueue_modal_step(float(dt));
+  }
+  const std::vector<float> stepped = branches.download_joints();
+  int rigid_trees = 0;
+  for (int k = 0; k < f.forest.instance_count(); ++k) {
+    if (f.species(k) != kRigid) continue;
+    ++rigid_trees;
+    const ElementTree tree = element_tree(f.forest, k, f.spec, f.wind);
+    const trees::RigidBranches rigid(tree.elements, f.scale(k), f.damping(k));
+    const trees::RigidBranchState at_rest = rigid.equilibrium(tree.loads);
+    double largest = 0.0;
+    const double equilibrium_error =
+        angle_error(equilibrium, branches.entry_offset(k), at_rest.angle, largest) / largest;
+    trees::RigidBranchState state{
+        std::vector<Eigen::Vector3d>(at_rest.angle.size(), Eigen::Vector3d::Zero()),
+        std::vector<Eigen::Vector3d>(at_rest.angle.size(), Eigen::Vector3d::Zero())};
+    for (int n = 0; n < kSteps; ++n) rigid.step(tree.loads, double(float(dt)), state);
+    largest = 0.0;
+    const double step_error = angle_error(stepped, branches.entry_offset(k), state.angle, largest) / largest;
+    // The steps did move the tree, and not simply to its equilibrium.
+    double moved = 0.0, off_equilibrium = 0.0;
+    for (std::size_t j = 0; j < state.angle.size(); ++j) {
+      moved = std::max(moved, state.angle[j].norm());
+      off_equilibrium = std::max(off_equilibrium, (state.angle[j] - at_rest.angle[j]).norm());
+    }
+    WARN("rigid tree " << k << ": equilibrium error " << equilibrium_error << ", after " << kSteps
+                       << " steps " << step_error << " (largest angle " << moved << " rad, "
+                       << off_equilibrium << " from equilibrium)");
+    CHECK(equilibrium_error < kEquilibriumTolerance);
+    CHECK(step_error < kStepTolerance);
+    CHECK(off_equilibrium > 0.05 * moved);
+  }
+  CHECK(rigid_trees == 3);
+}
+
+TEST_CASE("tree_branches: the spring trees' angles and every element tree's pose match the reference",
+          "[forest][branches]") {
+  auto* cc = test::device_or_skip();
+  if (!cc) return;
+  BranchFixture f(*cc);
+  host::BranchStages& branches = *f.stages.branches();
+  // Steps of 0.37 s: the springs' sine at 1.85 s differs from its value at 0.
+  constexpr double dt = 0.37;
+  constexpr int kSteps = 5;
+  for (int n = 0; n < kSteps; ++n) {
+    f.stages.enqueue_wind_load(f.dwind);
+    f.stages.enqueue_modal_step(float(dt));
+  }
+  // The springs' last bend was taken at the last step's start.
+  const double time = double(float(dt)) * (kSteps - 1);
+  const std::vector<float> joints = branches.download_joints();
+  f.stages.enqueue_deform();
+  const std::vector<float> u = f.stages.download_displacements();
+  int spring_trees = 0;
+  for (int k = 0; k < f.forest.instance_count(); ++k) {
+    const int offset = branches.entry_offset(k);
+    const int first_node = f.forest.node_offset(k);
+    const int nodes = f.forest.species_of(k).skeleton().size();
+    if (f.species(k) == kModal) {
+      // The modal kernels' (tests/kernels/forest_stages_test.cpp); no element entries.
+      REQUIRE(offset == -1);
+      continue;
+    }
+    const ElementTree tree = element_tree(f.forest, k, f.spec, f.wind);
+    if (f.species(k) == kSprings) {
+      ++spring_trees;
+      const std::vector<Eigen::Vector3d> angles =
+          trees::spring_angles(tree.elements, f.dynamics[kSprings].springs, f.scale(k), tree.loads,
+                               trees::spring_phases(f.forest.id(k), tree.elements.size()), time);
+      double largest = 0.0;
+      const double error = angle_error(joints, offset, angles, largest) / largest;
+      WARN("spring tree " << k << ": angle error " << error << " (largest " << largest << " rad)");
+      CHECK(error < kSpringTolerance);
+      CHECK(largest > 1e-3);
+    }
+    // The pose from the device's own angles.
+    std::vector<Eigen::Vector3d> angles(static_cast<std::size_t>(nodes));
+    for (int j = 0; j < nodes; ++j)
+      for (int c = 0; c < 3; ++c)
+        angles[std::size_t(j)](c) = joints[FW_JOINT_FLOATS * std::size_t(offset + j) + std::size_t(c)];
+    const Eigen::MatrixX3d expected =
+        (trees::branch_displacements(tree.elements, f.scale(k), angles) * f.forest.rotation(k).transpose())
+            .eval();
+    double diff = 0.0, largest = 0.0;
+    for (int n = 0; n < nodes; ++n)
+      for (int c = 0; c < 3; ++c) {
+        diff = std::max(
+            diff, std::abs(double(u[3 * std::size_t(first_node + n) + std::size_t(c)]) - expected(n, c)));
+        largest = std::max(largest, std::abs(expected(n, c)));
+      }
+    WARN("tree " << k << ": pose error " << diff / largest << " (largest displacement " << largest << " m)");
+    CHECK(diff / largest < kPoseTolerance);
+  }
+  CHECK(spring_trees == 3);
+}
