@@ -47,6 +47,7 @@
 #include "trees/LeafSettings.hpp"
 #include "trees/Material.hpp"
 #include "trees/ModalIntegrator.hpp"
+#include "trees/TreeDynamics.hpp"
 #include "trees/TreeGenerator.hpp"
 
 namespace fw::io {
@@ -231,6 +232,10 @@ struct Species {
       schema::key("forest.species[].material.youngs_modulus").number,
       schema::key("forest.species[].material.shear_modulus").number,
       schema::key("forest.species[].material.density").number};  ///< E, G (Pa), rho (kg/m^3)
+  /// forest.species[].dynamics and the keys of its model (rigid_bodies, springs) over trees::SpeciesDynamics'
+  /// defaults (the schema's); validated. The keys of another model are errors, `modes` included: every
+  /// species' modes are still computed from `modes` (its defaults, for the other models).
+  trees::SpeciesDynamics dynamics;
   ModeSettings modes;
   /// C_D of the branches (cylinders in cross flow) per frontal area, >= 0.
   double drag_coefficient = schema::key("forest.species[].drag_coefficient").number;
@@ -374,7 +379,14 @@ struct Scenario {
 Scenario load_scenario(const std::filesystem::path& file);
 
 /// The checks that need a species' skeleton, once it is built or read (`check` and `run` both call this):
-/// modes.count must stay below the skeleton's 6 (nodes - 1) DOFs. Throws ScenarioError at modes.count.
+/// a modal species' modes.count must stay below the skeleton's 6 (nodes - 1) DOFs. Throws ScenarioError at
+/// modes.count.
 void check_species_skeleton(const Scenario& scenario, int species_index, int skeleton_nodes);
+
+/// The modes a species' basis keeps on a skeleton of `skeleton_nodes` nodes: modes.count for a modal species
+/// (check_species_skeleton has checked it); for the other models, which cannot set `modes` and read only the
+/// basis' first frequency, the default count, or as many modes as the skeleton has DOFs less one when that
+/// is fewer (a small skeleton file).
+int species_mode_count(const Scenario& scenario, int species_index, int skeleton_nodes);
 
 }  // namespace fw::io

@@ -40,6 +40,7 @@
 #include "trees/ModalBasis.hpp"
 #include "trees/ModalIntegrator.hpp"
 #include "trees/StandDensity.hpp"
+#include "trees/TreeDynamics.hpp"
 #include "trees/WindBasis.hpp"
 
 namespace fw::io::schema {
@@ -158,6 +159,11 @@ inline constexpr std::string_view kLeafModelWords[] = {"none", "pseudo_branch", 
 inline constexpr trees::FlutterModel kLeafModels[] = {
     trees::FlutterModel::none, trees::FlutterModel::pseudo_branch, trees::FlutterModel::stochastic};
 
+/// In the order of trees::TreeDynamics (trees::dynamics_name gives the same words).
+inline constexpr std::string_view kDynamicsWords[] = {"modal", "rigid_bodies", "springs"};
+inline constexpr trees::TreeDynamics kDynamicsModels[] = {
+    trees::TreeDynamics::modal, trees::TreeDynamics::rigid_bodies, trees::TreeDynamics::springs};
+
 /// The words of output.leaves.attached and the stride each stands for (io::OutputSettings).
 inline constexpr std::string_view kLeafStrideWords[] = {"all", "none"};
 inline constexpr int kLeafStrides[] = {1, 0};
@@ -179,6 +185,11 @@ std::vector<std::string> preset_words();
 inline constexpr fluid::PressureSettings kPressureDefaults{};
 inline constexpr trees::WindBasisSettings kDragDefaults{};
 inline constexpr trees::LeafSettings kLeafDefaults{};
+inline constexpr trees::SpeciesDynamics kDynamicsDefaults{};
+/// springs.max_angle_deg stays below a right angle, as trees::SpeciesDynamics::validate checks (a bend past
+/// it has no meaning for one element turning about its base). TreeDynamics.cpp keeps its limit to itself, so
+/// it is written here too; tests/io/ScenarioSchema_test.cpp holds the two equal.
+inline constexpr double kSpringMaxAngleBelowDeg = 90.0;
 /// How far domain.size may lie from a whole multiple of cell_size, relative to the size.
 inline constexpr double kCellMultipleTolerance = 1e-6;
 /// The fewest cells of wind.turbulence.box_size along an axis (a box given smaller is rounded up to it).
@@ -620,7 +631,7 @@ inline constexpr Key kKeys[] = {
      .description = "The modal time step. `exact` solves each mode's damped oscillator exactly for the force "
                     "held over the step, stable at any dt. `semi_implicit` is Diener's semi-implicit Euler, "
                     "stable only while dt² ω² + 2 γ dt < 4 for every mode; a run whose dt breaks that stops "
-                    "with exit code 1 at that step."},
+                    "with exit code 1 at that step. Modal species only (`forest.species[].dynamics`)."},
     {.path = "forest.strong_wind_correction",
      .type = Type::boolean,
      .flag = true,
@@ -629,7 +640,7 @@ inline constexpr Key kKeys[] = {
                     "moves every node along a straight line, which stretches the branches as the tree bends "
                     "far, and the correction keeps branch lengths nearly constant under strong wind. It "
                     "changes the written geometry only; the modal dynamics stay linear. With `false`, frames "
-                    "show the linear displacement."},
+                    "show the linear displacement. Modal species only (`forest.species[].dynamics`)."},
     {.path = "forest.drag_law",
      .default_note = "a constant drag coefficient",
      .description = "How the drag coefficients of every species (branches and foliage) vary with the local "
@@ -720,7 +731,27 @@ inline constexpr Key kKeys[] = {
      .bound = Bound::positive,
      .number = trees::kDefaultWood.density,
      .description = "Wood density rho."},
-    {.path = "forest.species[].modes", .description = "Modal model."},
+    {.path = "forest.species[].dynamics",
+     .type = Type::word,
+     .words = kDynamicsWords,
+     .word = word_of(kDynamicsWords, kDynamicsModels, kDynamicsDefaults.model),
+     .description =
+         "The model that moves the species' trees; all three read the same wind samples, give the air the "
+         "same drag and write the same outputs. `modal`: the FEM's lowest vibration modes, driven through "
+         "the "
+         "wind basis (Diener 2008). `rigid_bodies`: Oliapuram & Kumar (2010, §3.1): each element a rigid "
+         "body "
+         "rotating about its parent's end against a joint spring of stiffness of the form E I / L, "
+         "integrated "
+         "implicitly. `springs`: Ota et al. (2004) as Yildiz implements it: each element a quasi-static "
+         "cantilever flat spring, k = E b t³ / (4 l³), bent by its own wind load to the angle "
+         "atan(deflection / l), capped at `springs.max_angle_deg`, with a stochastic sine on top; no "
+         "inertia. "
+         "Every species' modes are computed (with the default `modes` for the other two models), because "
+         "those models build on the same skeleton, beam model and first frequency."},
+    {.path = "forest.species[].modes",
+     .constraint = "only for a species whose `dynamics` is `modal`",
+     .description = "Modal model."},
     {.path = "forest.species[].modes.count",
      .type = Type::integer,
      .lowest = 1,
@@ -740,6 +771,40 @@ inline constexpr Key kKeys[] = {
      .number = 3,
      .description = "Number of height bands per tree. Each band samples the wind separately, which captures "
                     "shear and gust fronts within one crown."},
+    {.path = "forest.species[].rigid_bodies",
+     .constraint = "only for a species whose `dynamics` is `rigid_bodies`",
+     .description = "Articulated rigid branches (`dynamics: rigid_bodies`)."},
+    {.path = "forest.species[].rigid_bodies.damping_ratio",
+     .type = Type::number,
+     .bound = Bound::non_negative,
+     .number = kDynamicsDefaults.rigid_bodies.damping_ratio,
+     .description =
+         "Damping ratio zeta of the tree's first mode. The joints' damping is proportional to their "
+         "stiffness, C = 2 zeta / omega_1 K with omega_1 the species' first FEM frequency, so that "
+         "the slowest sway decays as a modal tree's with the same ratio."},
+    {.path = "forest.species[].springs",
+     .constraint = "only for a species whose `dynamics` is `springs`",
+     .description = "Quasi-static cantilever springs (`dynamics: springs`)."},
+    {.path = "forest.species[].springs.max_angle_deg",
+     .type = Type::number,
+     .unit = "degrees",
+     .bound = Bound::positive,
+     .below = kSpringMaxAngleBelowDeg,
+     .number = kDynamicsDefaults.springs.max_angle_deg,
+     .description = "The largest bend of one element from its parent, theta_max (Yildiz's cap)."},
+    {.path = "forest.species[].springs.sway_amplitude",
+     .type = Type::number,
+     .bound = Bound::non_negative,
+     .number = kDynamicsDefaults.springs.sway_amplitude,
+     .description = "The stochastic sine's amplitude at the largest bend: an element's load is F (1 + a "
+                    "sin(2 pi f t + b)), with a = `sway_amplitude` theta / theta_max (a bent element sways "
+                    "more) and a random phase b per element."},
+    {.path = "forest.species[].springs.sway_frequency",
+     .type = Type::number,
+     .unit = "Hz",
+     .bound = Bound::positive,
+     .number = kDynamicsDefaults.springs.sway_frequency_hz,
+     .description = "f, the stochastic sine's frequency."},
     {.path = "forest.species[].drag_coefficient",
      .type = Type::number,
      .bound = Bound::non_negative,

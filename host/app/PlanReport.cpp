@@ -98,8 +98,8 @@ void print_plan(const SimulationPlan& plan, std::ostream& out) {
     const io::SpeciesSummary& s = plan.species[i];
     const int leaves = plan.coupling.leaves[i].count();
     out << fmt::format(
-        "species {}: {} nodes, {} modes from {:.3f} Hz, {} wind samples, {} trees{} (basis {})\n", s.name,
-        s.nodes, s.modes, s.first_hz, s.samples, s.trees,
+        "species {}: {}, {} nodes, {} modes from {:.3f} Hz, {} wind samples, {} trees{} (basis {})\n", s.name,
+        s.dynamics, s.nodes, s.modes, s.first_hz, s.samples, s.trees,
         leaves > 0 ? fmt::format(", {} leaves a tree", leaves) : "", s.cache);
   }
   out << fmt::format("trees: {}, leaves: {}, two-way coupling: {}\n", plan.forest.instance_count(),

@@ -1,5 +1,5 @@
-// forest.species: skeletons, wood, modes, drag, canopy and leaves of each species; and the checks that need
-// the skeleton (check_species_skeleton).
+// forest.species: skeletons, wood, tree model (dynamics and its keys), modes, drag, canopy and leaves of
+// each species; and the checks that need the skeleton (check_species_skeleton).
 #include "io/scenario/Sections.hpp"
 
 #include <fmt/format.h>
@@ -54,6 +54,62 @@ void read_modes(const Loader& loader, const Field& field, ModeSettings& modes) {
   if (const auto samples = map.get<"wind_samples">()) modes.wind_samples = loader.integer(*samples);
 }
 
+/// forest.species[].rigid_bodies over trees::RigidBodySettings' defaults (the schema's).
+void read_rigid_bodies(const Loader& loader, const Field& field, trees::RigidBodySettings& rigid_bodies) {
+  const Section<"forest.species[].rigid_bodies"> map(loader, field);
+  if (const auto zeta = map.get<"damping_ratio">()) rigid_bodies.damping_ratio = loader.number(*zeta);
+}
+
+/// forest.species[].springs over trees::SpringSettings' defaults (the schema's).
+void read_springs(const Loader& loader, const Field& field, trees::SpringSettings& springs) {
+  const Section<"forest.species[].springs"> map(loader, field);
+  if (const auto angle = map.get<"max_angle_deg">()) springs.max_angle_deg = loader.number(*angle);
+  if (const auto amplitude = map.get<"sway_amplitude">()) springs.sway_amplitude = loader.number(*amplitude);
+  if (const auto frequency = map.get<"sway_frequency">())
+    springs.sway_frequency_hz = loader.number(*frequency);
+}
+
+/// A key of one model's settings (`modes` of modal, `rigid_bodies`, `springs`) on a species that another
+/// model moves is refused, not ignored: it would tune what does not move the tree. `dynamics`: the species'
+/// dynamics key, where the file gives it.
+void refuse_other_model(const Loader& loader, const std::optional<Field>& model_key,
+                        trees::TreeDynamics owner, trees::TreeDynamics model,
+                        const std::optional<Field>& dynamics) {
+  if (!model_key || owner == model) return;
+  const std::string name = model_key->key.substr(model_key->key.rfind('.') + 1);
+  const std::string where = dynamics ? fmt::format("on line {}", dynamics->line) : std::string("the default");
+  loader.fail(*model_key,
+              fmt::format("a key of the {} model, but this species' dynamics is {} ({}); leave {} out or set "
+                          "dynamics: {}",
+                          trees::dynamics_name(owner), trees::dynamics_name(model), where, name,
+                          trees::dynamics_name(owner)));
+}
+
+/// forest.species[].dynamics and its model's keys over trees::SpeciesDynamics' defaults (the schema's); `map`
+/// is the species `item`.
+trees::SpeciesDynamics read_dynamics(const Loader& loader, const Field& item,
+                                     const Section<"forest.species[]">& map) {
+  trees::SpeciesDynamics dynamics;
+  const auto word = map.get<"dynamics">();
+  if (word) dynamics.model = value(schema::kDynamicsWords, schema::kDynamicsModels, loader.word(*word));
+  const auto rigid_bodies = map.get<"rigid_bodies">();
+  const auto springs = map.get<"springs">();
+  refuse_other_model(loader, map.get<"modes">(), trees::TreeDynamics::modal, dynamics.model, word);
+  refuse_other_model(loader, rigid_bodies, trees::TreeDynamics::rigid_bodies, dynamics.model, word);
+  refuse_other_model(loader, springs, trees::TreeDynamics::springs, dynamics.model, word);
+  if (rigid_bodies) read_rigid_bodies(loader, *rigid_bodies, dynamics.rigid_bodies);
+  if (springs) read_springs(loader, *springs, dynamics.springs);
+  try {
+    dynamics
+        .validate();  // passes: the keys' ranges are SpeciesDynamics' own (tests/io/ScenarioSchema_test.cpp)
+  } catch (const std::invalid_argument& error) {
+    const Field& blamed = springs ? *springs : rigid_bodies ? *rigid_bodies : item;
+    loader.expected(blamed,
+                    fmt::format("tree model settings trees::SpeciesDynamics accepts ({})", error.what()));
+  }
+  return dynamics;
+}
+
 /// forest.species[].leaves over trees::LeafSettings' defaults (the schema's); `seed` unless the file gives
 /// one.
 trees::LeafSettings read_leaves(const Loader& loader, const Field& field, std::uint64_t seed) {
@@ -100,6 +156,7 @@ Species read_species(const Loader& loader, const Field& item, const std::vector<
 
   species.skeleton = read_skeleton(loader, map.require<"skeleton">(), global_seed + 1 + earlier.size());
   if (const auto material = map.get<"material">()) read_material(loader, *material, species.material);
+  species.dynamics = read_dynamics(loader, item, map);
   if (const auto modes = map.get<"modes">()) read_modes(loader, *modes, species.modes);
   if (const auto drag = map.get<"drag_coefficient">()) species.drag_coefficient = loader.number(*drag);
 
@@ -137,10 +194,21 @@ Species read_species(const Loader& loader, const Field& item, const std::vector<
 
 namespace fw::io {
 
+namespace {
+
+// A skeleton of n nodes, root clamped, has 6 (n - 1) DOFs; the modal analysis keeps fewer modes than that.
+constexpr long kDofsPerNode = 6;
+
+long skeleton_dofs(int skeleton_nodes) {
+  return kDofsPerNode * (skeleton_nodes - 1);
+}
+
+}  // namespace
+
 void check_species_skeleton(const Scenario& scenario, int species_index, int skeleton_nodes) {
   const Species& species = scenario.forest.species.at(std::size_t(species_index));
-  // A skeleton of n nodes, root clamped, has 6 (n - 1) DOFs; the modal analysis keeps fewer modes than that.
-  const long dofs = 6L * (skeleton_nodes - 1);
+  if (species.dynamics.model != trees::TreeDynamics::modal) return;  // its count is not the file's
+  const long dofs = skeleton_dofs(skeleton_nodes);
   if (species.modes.count >= dofs) {
     throw ScenarioError(
         scenario.file.string(), species.modes.count_line,
@@ -148,6 +216,12 @@ void check_species_skeleton(const Scenario& scenario, int species_index, int ske
         fmt::format("at most {} modes for this skeleton of {} nodes ({} DOFs) expected, got '{}'",
                     std::max(0L, dofs - 1), skeleton_nodes, dofs, species.modes.count));
   }
+}
+
+int species_mode_count(const Scenario& scenario, int species_index, int skeleton_nodes) {
+  const Species& species = scenario.forest.species.at(std::size_t(species_index));
+  if (species.dynamics.model == trees::TreeDynamics::modal) return species.modes.count;
+  return int(std::clamp(skeleton_dofs(skeleton_nodes) - 1, 1L, long(species.modes.count)));
 }
 
 }  // namespace fw::io

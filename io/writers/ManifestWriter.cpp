@@ -46,6 +46,7 @@ void ManifestWriter::finish(const RunOutcome& outcome) {
   for (const SpeciesSummary& s : m.species) {
     json.begin_object();
     json.key("name").value(s.name);
+    json.key("dynamics").value(s.dynamics);
     json.key("nodes").value(s.nodes);
     json.key("modes").value(s.modes);
     json.key("wind_samples").value(s.samples);

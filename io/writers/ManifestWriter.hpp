@@ -5,8 +5,8 @@
 //
 // run.json keys: version, scenario, scenario_file, scenario_hash (64-bit FNV-1a of the scenario text), seed,
 // device, platform, status ("completed", "interrupted", "failed"), message (when failed), grid, cell_size_m,
-// trees, species (name, nodes, modes, wind_samples, trees, first_hz, cache), two_way_coupling, steps,
-// simulated_time_s, frames, interrupted, wall_seconds, ms_per_step, stages_ms, "segments" (each with
+// trees, species (name, dynamics, nodes, modes, wind_samples, trees, first_hz, cache), two_way_coupling,
+// steps, simulated_time_s, frames, interrupted, wall_seconds, ms_per_step, stages_ms, "segments" (each with
 // start_time_s, end_time_s, start_step, end_step, wall_seconds, status: one for a run never resumed; steps,
 // frames and wall_seconds count every segment, stages_ms the last one), and in runs with leaves
 // (RunManifest::leaves) "leaves": {shed, flying, landed, exited, attached, time_s}, the counts over all
@@ -28,6 +28,7 @@ namespace fw::io {
 
 struct SpeciesSummary {
   std::string name;
+  std::string dynamics = "modal";  ///< the model that moves its trees (trees::dynamics_name)
   int nodes = 0;
   int modes = 0;
   int samples = 0;

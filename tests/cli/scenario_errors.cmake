@@ -96,6 +96,15 @@ expect_bad(leaves_without_foliage "${WORK}/leaves_without_foliage.yaml:7"
 expect_bad(leaves_attached "${WORK}/leaves_attached.yaml:12" "output.leaves.attached"
            "interval: 1.0}" "interval: 1.0, leaves: {attached: 0}}")
 
+# Tree models: an unknown dynamics word; the modal model's `modes` on a springs species; the springs model's
+# keys on a modal one (the default).
+expect_bad(dynamics_word "${WORK}/dynamics_word.yaml:10" "forest.species[0].dynamics"
+           "modes: {count: 4}" "modes: {count: 4}\n      dynamics: pendulum")
+expect_bad(modes_on_springs "${WORK}/modes_on_springs.yaml:9" "forest.species[0].modes"
+           "modes: {count: 4}" "modes: {count: 4}\n      dynamics: springs")
+expect_bad(springs_on_modal "${WORK}/springs_on_modal.yaml:10" "forest.species[0].springs"
+           "modes: {count: 4}" "modes: {count: 4}\n      springs: {max_angle_deg: 10}")
+
 # A stand's own leaf area index: past the forests' largest (the loader), and on the shrub, a stick whose crown
 # has no horizontal extent to carry leaves (the plan, once the skeleton is read).
 expect_bad(stand_lai_above "${WORK}/stand_lai_above.yaml:11" "forest.stands[0].leaf_area_index" "  trees:"

@@ -6,6 +6,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <limits>
 #include <set>
 #include <sstream>
 #include <string>
@@ -15,6 +16,7 @@
 #include "fluid/WindSettings.hpp"
 #include "io/Scenario.hpp"
 #include "trees/LeafSettings.hpp"
+#include "trees/TreeDynamics.hpp"
 
 namespace schema = fw::io::schema;
 
@@ -282,6 +284,62 @@ TEST_CASE("schema: the leaf keys take trees::LeafSettings' defaults, words and l
   CHECK(output.leaves_attached_stride == 1);
   CHECK(output.vtk_leaves);
   CHECK(output.vdb_grids == std::vector<std::string>{"vel", "speed", "leaves"});
+}
+
+TEST_CASE("schema: the tree model keys take trees::SpeciesDynamics' defaults, words and limits", "[schema]") {
+  using fw::trees::SpeciesDynamics;
+  const SpeciesDynamics defaults;
+  const auto model_key = [](const char* path) {
+    return *schema::find(std::string("forest.species[].") + path);
+  };
+  CHECK(schema::value_of(schema::kDynamicsWords, schema::kDynamicsModels, model_key("dynamics").word) ==
+        defaults.model);
+  CHECK(model_key("rigid_bodies.damping_ratio").number == defaults.rigid_bodies.damping_ratio);
+  CHECK(model_key("springs.max_angle_deg").number == defaults.springs.max_angle_deg);
+  CHECK(model_key("springs.sway_amplitude").number == defaults.springs.sway_amplitude);
+  CHECK(model_key("springs.sway_frequency").number == defaults.springs.sway_frequency_hz);
+  // The words are trees' own, in the order of the enum, and parse back to it.
+  REQUIRE(std::size(schema::kDynamicsWords) == std::size(schema::kDynamicsModels));
+  for (std::size_t i = 0; i < std::size(schema::kDynamicsModels); ++i) {
+    CHECK(fw::trees::dynamics_name(schema::kDynamicsModels[i]) == schema::kDynamicsWords[i]);
+    CHECK(fw::trees::parse_dynamics(schema::kDynamicsWords[i]) == schema::kDynamicsModels[i]);
+  }
+  CHECK(schema::expected(model_key("dynamics")) == "one of modal | rigid_bodies | springs");
+  CHECK(schema::child_names("forest.species[].springs") ==
+        std::vector<std::string>{"max_angle_deg", "sway_amplitude", "sway_frequency"});
+
+  // Every model number's range is the one SpeciesDynamics::validate checks: the schema's limits in or out as
+  // the schema says, so that a file the loader takes never fails validate (which the loader still calls).
+  const auto valid = [](const auto& change) {
+    SpeciesDynamics dynamics;
+    change(dynamics);
+    try {
+      dynamics.validate();
+      return true;
+    } catch (const std::invalid_argument&) {
+      return false;
+    }
+  };
+  const std::pair<const char*, double* (*)(SpeciesDynamics&)> numbers[] = {
+      {"rigid_bodies.damping_ratio", [](SpeciesDynamics& d) { return &d.rigid_bodies.damping_ratio; }},
+      {"springs.max_angle_deg", [](SpeciesDynamics& d) { return &d.springs.max_angle_deg; }},
+      {"springs.sway_amplitude", [](SpeciesDynamics& d) { return &d.springs.sway_amplitude; }},
+      {"springs.sway_frequency", [](SpeciesDynamics& d) { return &d.springs.sway_frequency_hz; }}};
+  const double step = 1e-12;  // relative, well above rounding and far below any limit's meaning
+  for (const auto& [name, member] : numbers) {
+    INFO(name);
+    const schema::Key& key = model_key(name);
+    const auto with = [&](double value) { return valid([&](SpeciesDynamics& d) { *member(d) = value; }); };
+    CHECK(with(key.bound == schema::Bound::any ? -1e6 : step) == true);
+    CHECK(with(0.0) == (key.bound != schema::Bound::positive));
+    CHECK(with(-step) == (key.bound == schema::Bound::any));
+    CHECK_FALSE(with(std::numeric_limits<double>::infinity()));
+    if (key.below < schema::kNoNumberLimit) {
+      CHECK(with(key.below * (1.0 - step)));
+      CHECK_FALSE(with(key.below));
+    }
+  }
+  CHECK(model_key("springs.max_angle_deg").below == schema::kSpringMaxAngleBelowDeg);
 }
 
 TEST_CASE("schema: a page whose tables leave a key out, or leave a table open, is refused", "[schema]") {

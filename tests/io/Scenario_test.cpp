@@ -1673,6 +1673,167 @@ TEST_CASE("load_scenario: bad leaf keys name the key and say what is expected", 
       fw::io::load_scenario(dir.write("winter.yaml", leafy_species("      leaves: {model: none}\n", ""))));
 }
 
+namespace {
+
+// A species oak on lines 7-8 and the lines `model_lines` from line 9 on, on the first lines of kBase.
+std::string model_species(const std::string& model_lines) {
+  return kBase +
+         "forest:\n"                                            // 5
+         "  species:\n"                                         // 6
+         "    - name: oak\n"                                    // 7
+         "      skeleton: {generate: {preset: broadleaf}}\n" +  // 8
+         model_lines;                                           // 9 on
+}
+
+}  // namespace
+
+TEST_CASE(
+    "load_scenario: each species' dynamics and its model's keys are read over SpeciesDynamics' defaults",
+    "[scenario]") {
+  fw::test::TempDir dir("fw_scenario");
+  const Scenario s = fw::io::load_scenario(dir.write("models.yaml", R"(scenario: models
+time: {end: 10.0}
+domain: {size: [40, 20, 10], cell_size: 2.0}
+wind: {speed: 4.0, direction: 270}
+forest:
+  species:
+    - name: plain
+      skeleton: {generate: {preset: broadleaf}}
+      modes: {count: 8}
+    - name: modal
+      skeleton: {generate: {preset: broadleaf}}
+      dynamics: modal
+    - name: rigid
+      skeleton: {generate: {preset: broadleaf}}
+      dynamics: rigid_bodies
+      rigid_bodies: {damping_ratio: 0.12}
+    - name: springs
+      skeleton: {generate: {preset: broadleaf}}
+      dynamics: springs
+      springs:
+        max_angle_deg: 15
+        sway_amplitude: 0.35
+        sway_frequency: 0.8
+    - name: rigid_default
+      skeleton: {generate: {preset: broadleaf}}
+      dynamics: rigid_bodies
+    - name: springs_default
+      skeleton: {generate: {preset: broadleaf}}
+      dynamics: springs
+      springs: {}
+)"));
+  using fw::trees::TreeDynamics;
+  REQUIRE(s.forest.species.size() == 6);
+  const fw::trees::SpeciesDynamics defaults;
+  CHECK(s.forest.species[0].dynamics.model == TreeDynamics::modal);  // no `dynamics`: modal
+  CHECK(s.forest.species[0].modes.count == 8);
+  CHECK(s.forest.species[1].dynamics.model == TreeDynamics::modal);
+
+  const fw::trees::SpeciesDynamics& rigid = s.forest.species[2].dynamics;
+  CHECK(rigid.model == TreeDynamics::rigid_bodies);
+  CHECK(rigid.rigid_bodies.damping_ratio == 0.12);
+
+  const fw::trees::SpeciesDynamics& springs = s.forest.species[3].dynamics;
+  CHECK(springs.model == TreeDynamics::springs);
+  CHECK(springs.springs.max_angle_deg == 15.0);
+  CHECK(springs.springs.sway_amplitude == 0.35);
+  CHECK(springs.springs.sway_frequency_hz == 0.8);
+
+  // Without its map, or with an empty one, a model takes every default of trees::SpeciesDynamics, and the
+  // modes of every species not modal are the default ones.
+  const fw::trees::SpeciesDynamics& rigid_default = s.forest.species[4].dynamics;
+  CHECK(rigid_default.model == TreeDynamics::rigid_bodies);
+  CHECK(rigid_default.rigid_bodies.damping_ratio == defaults.rigid_bodies.damping_ratio);
+  const fw::trees::SpeciesDynamics& springs_default = s.forest.species[5].dynamics;
+  CHECK(springs_default.model == TreeDynamics::springs);
+  CHECK(springs_default.springs.max_angle_deg == defaults.springs.max_angle_deg);
+  CHECK(springs_default.springs.sway_amplitude == defaults.springs.sway_amplitude);
+  CHECK(springs_default.springs.sway_frequency_hz == defaults.springs.sway_frequency_hz);
+  const fw::io::ModeSettings modes;
+  for (std::size_t k = 2; k < s.forest.species.size(); ++k) {
+    INFO("species " << k);
+    CHECK(s.forest.species[k].modes.count == modes.count);
+    CHECK(s.forest.species[k].modes.damping_ratio == modes.damping_ratio);
+    CHECK(s.forest.species[k].modes.wind_samples == modes.wind_samples);
+  }
+  // The defaults the docs print are these (io/ScenarioSchema_test.cpp holds the schema to them).
+  CHECK(defaults.model == TreeDynamics::modal);
+  CHECK(defaults.rigid_bodies.damping_ratio == 0.05);
+  CHECK(defaults.springs.max_angle_deg == 20.0);
+  CHECK(defaults.springs.sway_amplitude == 0.2);
+  CHECK(defaults.springs.sway_frequency_hz == 0.5);
+}
+
+TEST_CASE("load_scenario: a bad dynamics word, a bad model value and a key of another model name the key",
+          "[scenario]") {
+  fw::test::TempDir dir("fw_scenario");
+  const std::string species = "forest.species[0].";
+  expect_error(dir, "dynamics_word", model_species("      dynamics: pendulum\n"), 9, species + "dynamics",
+               "one of modal | rigid_bodies | springs expected, got 'pendulum'");
+  expect_error(dir, "dynamics_list", model_species("      dynamics: [modal]\n"), 9, species + "dynamics",
+               "one of modal | rigid_bodies | springs expected, got '[modal]'");
+
+  // A key of one model on a species that another moves: the key's line, its model and the species' dynamics.
+  expect_error(dir, "springs_on_default", model_species("      springs: {max_angle_deg: 10}\n"), 9,
+               species + "springs",
+               "a key of the springs model, but this species' dynamics is modal (the default); leave springs "
+               "out or set dynamics: springs");
+  expect_error(dir, "springs_on_rigid",
+               model_species("      dynamics: rigid_bodies\n      springs: {max_angle_deg: 10}\n"), 10,
+               species + "springs",
+               "a key of the springs model, but this species' dynamics is rigid_bodies (on line 9); leave "
+               "springs out or set dynamics: springs");
+  expect_error(dir, "rigid_on_modal",
+               model_species("      rigid_bodies: {damping_ratio: 0.1}\n      dynamics: modal\n"), 9,
+               species + "rigid_bodies",
+               "a key of the rigid_bodies model, but this species' dynamics is modal (on line 10); leave "
+               "rigid_bodies out or set dynamics: rigid_bodies");
+  expect_error(dir, "rigid_on_springs", model_species("      dynamics: springs\n      rigid_bodies: {}\n"),
+               10, species + "rigid_bodies",
+               "a key of the rigid_bodies model, but this species' dynamics is springs (on line 9); leave "
+               "rigid_bodies out or set dynamics: rigid_bodies");
+  expect_error(
+      dir, "modes_on_rigid", model_species("      dynamics: rigid_bodies\n      modes: {count: 8}\n"), 10,
+      species + "modes",
+      "a key of the modal model, but this species' dynamics is rigid_bodies (on line 9); leave modes "
+      "out or set dynamics: modal");
+  expect_error(
+      dir, "modes_on_springs", model_species("      modes: {count: 8}\n      dynamics: springs\n"), 9,
+      species + "modes",
+      "a key of the modal model, but this species' dynamics is springs (on line 10); leave modes out "
+      "or set dynamics: modal");
+  // The second species is blamed by its index.
+  expect_error(dir, "second_species",
+               model_species("    - name: elm\n"                                  // 9
+                             "      skeleton: {generate: {preset: broadleaf}}\n"  // 10
+                             "      dynamics: rigid_bodies\n"                     // 11
+                             "      springs: {sway_amplitude: 0.1}\n"),           // 12
+               12, "forest.species[1].springs",
+               "a key of the springs model, but this species' dynamics is rigid_bodies (on line 11)");
+
+  // The model's own keys, out of range or unknown.
+  const std::string springs = species + "springs.";
+  const auto spring = [&](const std::string& map) {
+    return model_species("      dynamics: springs\n" + map);
+  };
+  expect_error(dir, "angle_right", spring("      springs: {max_angle_deg: 90}\n"), 10,
+               springs + "max_angle_deg", "a number > 0 and < 90 (degrees) expected, got '90'");
+  expect_error(dir, "angle_zero", spring("      springs: {max_angle_deg: 0}\n"), 10,
+               springs + "max_angle_deg", "a number > 0 and < 90 (degrees) expected, got '0'");
+  expect_error(dir, "sway_amplitude", spring("      springs: {sway_amplitude: -0.1}\n"), 10,
+               springs + "sway_amplitude", "a number >= 0 expected, got '-0.1'");
+  expect_error(dir, "sway_frequency", spring("      springs: {sway_frequency: 0}\n"), 10,
+               springs + "sway_frequency", "a number > 0 (Hz) expected, got '0'");
+  expect_error(dir, "springs_unknown", spring("      springs: {stiffness: 3}\n"), 10, springs + "stiffness",
+               "one of the keys max_angle_deg, sway_amplitude, sway_frequency expected, got 'stiffness'");
+  expect_error(dir, "rigid_damping",
+               model_species("      dynamics: rigid_bodies\n      rigid_bodies: {damping_ratio: -0.05}\n"),
+               10, species + "rigid_bodies.damping_ratio", "a number >= 0 expected, got '-0.05'");
+  expect_error(dir, "rigid_not_a_map",
+               model_species("      dynamics: rigid_bodies\n      rigid_bodies: 0.1\n"), 10,
+               species + "rigid_bodies", "a map with the keys damping_ratio expected, got '0.1'");
+}
+
 TEST_CASE("load_scenario: output.leaves takes all, none or a stride, and vtk", "[scenario]") {
   fw::test::TempDir dir("fw_scenario");
   const auto stride = [&](const std::string& name, const std::string& attached) {

@@ -4,8 +4,8 @@
 // species; and the device memory of the trees' and the leaves' stages.
 //
 // A stand that gives its own leaf area index gets a basis of its own (SpeciesBasis::with_leaf_area_index,
-// appended after the scenario's species, with its leaves and its summary): its species' with the crown leaf
-// area index at which the stand's trees, as placed, carry that leaf area index over its region
+// appended after the scenario's species, with its leaves, its model and its summary): its species' with the
+// crown leaf area index at which the stand's trees, as placed, carry that leaf area index over its region
 // (trees/StandDensity.hpp). The species' own index stays for its other stands and its single trees.
 #include <fmt/format.h>
 
@@ -30,7 +30,7 @@ double ground_z(const io::Scenario& scenario, double x, double y) {
   return z;
 }
 
-// The stand's own basis (header comment), appended to `bases` with its leaves and summary; its index.
+// The stand's own basis (header comment), appended to `bases` with its leaves, model and summary; its index.
 int stand_basis(const io::Scenario& scenario, std::size_t index, const std::vector<trees::PlacedTree>& placed,
                 StandPlan& stand, std::vector<trees::SpeciesBasis>& bases, SimulationPlan& plan) {
   const auto start = std::chrono::steady_clock::now();
@@ -48,8 +48,9 @@ int stand_basis(const io::Scenario& scenario, std::size_t index, const std::vect
                     error.what(), *stand.leaf_area_index));
   }
   bases.push_back(species.with_leaf_area_index(stand.crown_leaf_area_index));
-  plan.coupling.leaves.push_back(
-      species_leaves(bases.back(), scenario.forest.species[std::size_t(stand.species_index)].leaves));
+  const io::Species& given_species = scenario.forest.species[std::size_t(stand.species_index)];
+  plan.coupling.leaves.push_back(species_leaves(bases.back(), given_species.leaves));
+  plan.coupling.dynamics.push_back(given_species.dynamics);
   io::SpeciesSummary summary = plan.species[std::size_t(stand.species_index)];
   summary.name = fmt::format("{} (stand {})", stand.species, index);
   summary.trees = 0;

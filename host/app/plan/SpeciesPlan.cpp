@@ -1,6 +1,7 @@
 // The species' part of the plan: each species' skeleton (generated, or read from its .tree or TreeQSM file),
-// its modal and wind basis (through the disk cache when there is one), its leaves on the basis' own
-// skeleton, and the summary that run.json and `check` report.
+// its modal and wind basis (through the disk cache when there is one; every model builds on it), its leaves
+// on the basis' own skeleton, the model that moves its trees, and the summary that run.json and `check`
+// report.
 #include <fmt/format.h>
 
 #include <chrono>
@@ -34,7 +35,7 @@ trees::Skeleton species_skeleton(const io::Species& species) {
 trees::SpeciesSettings species_settings(const io::Species& species) {
   trees::SpeciesSettings settings;
   settings.material = species.material;
-  settings.modal.mode_count = species.modes.count;
+  // modal.mode_count: io::species_mode_count, once the skeleton is known.
   settings.modal.damping = trees::Damping::modal_ratio(species.modes.damping_ratio);
   settings.wind.samples = species.modes.wind_samples;
   // One drag convention on both sides of the coupling (trees/CanopyDrag.hpp): 1/2 rho C_D A |u| u.
@@ -59,11 +60,13 @@ std::vector<trees::SpeciesBasis> plan_species(const io::Scenario& scenario, cons
   for (std::size_t index = 0; index < scenario.forest.species.size(); ++index) {
     const io::Species& species = scenario.forest.species[index];
     const auto start = Clock::now();
-    const trees::SpeciesSettings settings = species_settings(species);
     const trees::Skeleton skeleton = species_skeleton(species);
     io::check_species_skeleton(scenario, int(index), skeleton.size());
+    trees::SpeciesSettings settings = species_settings(species);
+    settings.modal.mode_count = io::species_mode_count(scenario, int(index), skeleton.size());
     io::SpeciesSummary summary;
     summary.name = species.name;
+    summary.dynamics = trees::dynamics_name(species.dynamics.model);
     if (cache) {
       trees::CacheOutcome outcome{};
       std::string store_error;
@@ -80,12 +83,15 @@ std::vector<trees::SpeciesBasis> plan_species(const io::Scenario& scenario, cons
     summary.samples = basis.wind().sample_count();
     summary.first_hz = basis.modes().frequencies_hz()(0);
     plan.coupling.leaves.push_back(species_leaves(basis, species.leaves));
+    species.dynamics.validate();  // the loader's ranges are its own: a failure here is a bug, not the file's
+    plan.coupling.dynamics.push_back(species.dynamics);
     if (log) {
       const int leaves = plan.coupling.leaves.back().count();
-      *log << fmt::format("species {}: {} nodes, {} modes from {:.3f} Hz, {} wind samples{} ({}, {:.2f} s)\n",
-                          summary.name, summary.nodes, summary.modes, summary.first_hz, summary.samples,
-                          species.leaves.has_leaves() ? fmt::format(", {} leaves", leaves) : "",
-                          summary.cache, summary.seconds);
+      *log << fmt::format(
+          "species {}: {}, {} nodes, {} modes from {:.3f} Hz, {} wind samples{} ({}, {:.2f} s)\n",
+          summary.name, summary.dynamics, summary.nodes, summary.modes, summary.first_hz, summary.samples,
+          species.leaves.has_leaves() ? fmt::format(", {} leaves", leaves) : "", summary.cache,
+          summary.seconds);
     }
     plan.species.push_back(summary);
   }

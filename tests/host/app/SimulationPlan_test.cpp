@@ -1,7 +1,7 @@
 // The plan on the host, no device: every species' leaves, generated on the skeleton of its basis, their
 // totals and device memory, and the same leaves from the same scenario; each stand's leaf and frontal area
 // index against a stand worked out by hand, the warning for a stand no forest is like, and a stand's own
-// leaf area index.
+// leaf area index; each species' tree model.
 #include "host/app/SimulationPlan.hpp"
 #include "host/stages/LeafStages.hpp"
 
@@ -349,6 +349,81 @@ TEST_CASE("SimulationPlan: the same scenario twice gives identical leaves, anoth
   for (int k = 0; k < a.count(); ++k)
     differ = differ || !(reseeded.coupling.leaves[0].leaf(k).anchor == a.leaf(k).anchor);
   CHECK(differ);
+}
+
+TEST_CASE("SimulationPlan: every forest species gets its model, a stand's own basis its species'",
+          "[simulation][plan]") {
+  TempDir dir("fw_plan");
+  using fw::trees::TreeDynamics;
+  // The modal scenario: no `dynamics`, so every species modal.
+  const auto modal = plan_of(dir, "modal", "");
+  REQUIRE(modal.coupling.dynamics.size() == 2);
+  CHECK(modal.coupling.dynamics[0].model == TreeDynamics::modal);
+  CHECK(modal.coupling.dynamics[1].model == TreeDynamics::modal);
+  CHECK(modal.species[0].dynamics == "modal");
+
+  // The stand's oak as springs (without `modes`, the springs' modes are the default ones): the stand's own
+  // basis, after the species', carries the species' model and settings.
+  std::string text = stand_scenario(3.0, "layout: grid, spacing: 4.5, leaf_area_index: 4");
+  const std::string modes = "      modes: {count: 4, wind_samples: 2}\n";
+  REQUIRE(text.find(modes) != std::string::npos);
+  text.replace(text.find(modes), modes.size(),
+               "      dynamics: springs\n      springs: {max_angle_deg: 15}\n");
+  const auto plan = stand_plan(dir, "springs", text);
+  REQUIRE(plan.forest.species().size() == 2);
+  REQUIRE(plan.coupling.dynamics.size() == plan.forest.species().size());
+  REQUIRE(plan.coupling.leaves.size() == plan.forest.species().size());
+  for (const fw::trees::SpeciesDynamics& dynamics : plan.coupling.dynamics) {
+    CHECK(dynamics.model == TreeDynamics::springs);
+    CHECK(dynamics.springs.max_angle_deg == 15.0);
+  }
+  // check's summary names the model of each.
+  std::ostringstream out;
+  fw::host::print_plan(plan, out);
+  INFO(out.str());
+  CHECK_THAT(out.str(), Contains("species oak: springs, "));
+  CHECK_THAT(out.str(), Contains("species oak (stand 0): springs, "));
+}
+
+TEST_CASE(
+    "SimulationPlan: a rigid or springs species on a small skeleton keeps the modes it has, a modal one "
+    "is refused",
+    "[simulation][plan]") {
+  TempDir dir("fw_plan");
+  // A vertical stick of 3 nodes: 12 DOFs, fewer than the default 20 modes.
+  dir.write("stick.tree", "0 -1 0 0 0 0.1\n1 0 0 0 1 0.08\n2 1 0 0 2 0.05\n");
+  const auto text = [](const std::string& dynamics) {
+    return "scenario: plan_stick\ntime: {end: 1.0}\n"
+           "domain: {size: [16, 16, 8], cell_size: 2.0}\n"
+           "wind: {speed: 5.0, direction: 270}\n"
+           "forest:\n"
+           "  species:\n"
+           "    - name: stick\n"  // line 7
+           "      skeleton: {file: stick.tree}\n"
+           "      dynamics: " +
+           dynamics +
+           "\n"
+           "  trees:\n"
+           "    - {species: stick, position: [8, 8]}\n";
+  };
+  constexpr int kStickModes = 11;  // 12 DOFs less one
+  for (const char* model : {"rigid_bodies", "springs"}) {
+    INFO(model);
+    const auto plan = stand_plan(dir, model, text(model));
+    REQUIRE(plan.species.size() == 1);
+    CHECK(plan.species[0].modes == kStickModes);
+    CHECK(plan.species[0].dynamics == model);
+  }
+  // A modal species keeps the count the file gives, or its default, and is refused past the DOFs.
+  const std::string path = dir.write("modal.yaml", text("modal"));
+  try {
+    fw::host::plan_simulation(fw::io::load_scenario(path), nullptr, nullptr);
+    FAIL("the plan accepted 20 modes on 12 DOFs");
+  } catch (const fw::io::ScenarioError& error) {
+    INFO(error.what());
+    CHECK(error.line() == 7);
+    CHECK(error.key() == "forest.species[0].modes.count");
+  }
 }
 
 TEST_CASE("SimulationPlan: check names the subgrid model and the constant the solver gets") {
