@@ -248,6 +248,9 @@ typedef struct FwBranchTree {
 
 /* The joint state of an entry in the flat arrays: its angle and rate (rotation vectors, rad and rad/s). */
 #define FW_JOINT_FLOATS 6
+/* The rigid bodies' theta-method weight w (trees/RigidBranches.hpp): 1/2 is the trapezoidal rule, 1 backward
+ * Euler. */
+#define FW_RIGID_IMPLICIT_WEIGHT 0.6f
 /* Floats a rigid tree's recursion keeps per entry between its passes (kernels/tree_branches.cl). */
 #define FW_RIGID_SCRATCH_FLOATS 33
 

@@ -199,8 +199,8 @@ __kernel void spring_angles(const int tree_count, __global const FwBranchTree* t
 #define SLOT_D_INVERSE 18
 #define SLOT_U 27
 
-/* Rigid bodies (trees/RigidBranches.hpp): one implicit Euler step of every joint, the articulated-body
- * recursion up the tree, then the accelerations down it. */
+/* Rigid bodies (trees/RigidBranches.hpp): one implicit (theta-method) step of every joint, the
+ * articulated-body recursion up the tree, then the accelerations down it. */
 __kernel void rigid_branches_step(const int tree_count, __global const FwBranchTree* trees,
                                   __global const FwTreeInstance* instances, __global const FwSpecies* species,
                                   __global const FwBranchSpecies* models, __global const FwBranch* branches,
@@ -216,7 +216,8 @@ __kernel void rigid_branches_step(const int tree_count, __global const FwBranchT
     /* C = beta K at scale s: beta = 2 zeta / (omega_1 / s). */
     const FwBranchSpecies model = models[tree.species];
     const float beta = model.damping * s;
-    const float joint_term = dt * beta + dt * dt;
+    const float w = FW_RIGID_IMPLICIT_WEIGHT;
+    const float joint_term = w * dt * beta + w * w * dt * dt;
     for (int i = 0; i < FW_RIGID_SCRATCH_FLOATS * n; ++i) work[i] = 0.0f;
 
     for (int j = n - 1; j >= 1; --j) {
@@ -242,7 +243,7 @@ __kernel void rigid_branches_step(const int tree_count, __global const FwBranchT
       __global const float* joint = joints + FW_JOINT_FLOATS * (bt.entry_offset + j);
       const float3 theta = vload3(0, joint), rate = vload3(1, joint);
       const Mat3 K = mat_scale(s3, joint_stiffness(&e));
-      const float3 torque = -mat_vec(K, theta + dt * rate) - beta * mat_vec(K, rate);
+      const float3 torque = -mat_vec(K, theta + w * dt * rate) - beta * mat_vec(K, rate);
       const Mat3 D_inverse = mat_inverse(mat_add(A, mat_scale(joint_term, K)));
       const float3 u = torque - pn;
 
@@ -290,9 +291,9 @@ __kernel void rigid_branches_step(const int tree_count, __global const FwBranchT
       vstore3(alpha + acceleration, 0, slot + SLOT_A);
       vstore3(a, 1, slot + SLOT_A);
       __global float* joint = joints + FW_JOINT_FLOATS * (bt.entry_offset + j);
-      const float3 rate = vload3(1, joint) + dt * acceleration;
-      vstore3(vload3(0, joint) + dt * rate, 0, joint);
-      vstore3(rate, 1, joint);
+      const float3 rate = vload3(1, joint), new_rate = rate + dt * acceleration;
+      vstore3(vload3(0, joint) + dt * ((1.0f - w) * rate + w * new_rate), 0, joint);
+      vstore3(new_rate, 1, joint);
     }
   }
 }

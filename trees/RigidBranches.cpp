@@ -5,6 +5,8 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "kernels/shared_types.h"
+
 namespace fw::trees {
 namespace {
 
@@ -133,9 +135,10 @@ void RigidBranches::step(const std::vector<Eigen::Vector3d>& loads, double dt,
     const Eigen::Matrix3d K = s3 * e.joint_stiffness;
     const Eigen::Vector3d& theta = state.angle[std::size_t(j)];
     const Eigen::Vector3d& rate = state.rate[std::size_t(j)];
-    // The joint torque at the step's end, -K theta_{n+1} - C theta'_{n+1}, less its part in theta''.
-    const Eigen::Vector3d torque = -K * (theta + dt * rate) - damping_ * K * rate;
-    const Eigen::Matrix3d D = I.A + (dt * damping_ + dt * dt) * K;
+    // The joint torque at the weighted time, -K theta_w - C theta'_w, less its part in theta''.
+    const double w = double(FW_RIGID_IMPLICIT_WEIGHT);
+    const Eigen::Vector3d torque = -K * (theta + w * dt * rate) - damping_ * K * rate;
+    const Eigen::Matrix3d D = I.A + (w * dt * damping_ + w * w * dt * dt) * K;
     JointSolve& js = solve[std::size_t(j)];
     js.A = I.A;
     js.B = I.B;
@@ -164,8 +167,10 @@ void RigidBranches::step(const std::vector<Eigen::Vector3d>& loads, double dt,
     const Eigen::Vector3d joint = js.D_inverse * (js.u - js.A * alpha - js.B * a);
     angular[std::size_t(j)] = alpha + joint;
     linear[std::size_t(j)] = a;
+    const double w = double(FW_RIGID_IMPLICIT_WEIGHT);
+    const Eigen::Vector3d rate = state.rate[std::size_t(j)];
     state.rate[std::size_t(j)] += dt * joint;
-    state.angle[std::size_t(j)] += dt * state.rate[std::size_t(j)];
+    state.angle[std::size_t(j)] += dt * ((1.0 - w) * rate + w * state.rate[std::size_t(j)]);
   }
 }
 

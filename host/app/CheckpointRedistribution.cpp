@@ -121,7 +121,7 @@ std::map<int, std::vector<float>> tree_slices(const std::vector<RunSnapshot>& pa
 }
 
 StageState trees_state(const std::vector<RunSnapshot>& parts, const trees::Forest& forest,
-                       const trees::Forest& own) {
+                       const std::vector<trees::SpeciesDynamics>& dynamics, const trees::Forest& own) {
   const auto modal = [&](int id) {
     return 2 * std::size_t(forest.mode_offset(id + 1) - forest.mode_offset(id));
   };
@@ -139,8 +139,21 @@ StageState trees_state(const std::vector<RunSnapshot>& parts, const trees::Fores
     }
     state.buffers[name] = bytes_of(mine);
   };
+  // An element model's tree: its joints, one entry a node; a modal tree has none.
+  const auto joints = [&](int id) {
+    const int species = forest.instances()[std::size_t(id)].species;
+    const bool modal = dynamics.empty() || dynamics[std::size_t(species)].model == trees::TreeDynamics::modal;
+    return modal ? std::size_t(0)
+                 : FW_JOINT_FLOATS * std::size_t(forest.species()[std::size_t(species)].skeleton().size());
+  };
   gather(kModalState, modal);
-  if (stage_of(parts.front(), kTreesStage).buffers.count(kTravelled) > 0) gather(kTravelled, travel);
+  const StageState& first = stage_of(parts.front(), kTreesStage);
+  if (first.buffers.count(kTravelled) > 0) gather(kTravelled, travel);
+  if (first.buffers.count(kJointState) > 0) {
+    gather(kJointState, joints);
+    // The springs' clock is the run's time, the same on every rank.
+    state.numbers[kBranchClock] = first.number("trees", kBranchClock, 1);
+  }
   return state;
 }
 
@@ -303,7 +316,8 @@ RunSnapshot redistribute_checkpoint(const std::vector<RunSnapshot>& parts, Coupl
   const trees::Forest& own = coupled.own_forest();
   for (int k = 0; k < own.instance_count(); ++k) mine.tree_ids.push_back(own.id(k));
   mine.stages[kWindStage] = wind_state(parts, plan.wind.spec, mine.block);
-  if (first.stages.count(kTreesStage) > 0) mine.stages[kTreesStage] = trees_state(parts, plan.forest, own);
+  if (first.stages.count(kTreesStage) > 0)
+    mine.stages[kTreesStage] = trees_state(parts, plan.forest, plan.coupling.dynamics, own);
   if (first.stages.count(kLeavesStage) > 0)
     mine.stages[kLeavesStage] = leaves_state(parts, plan, own, rank, ranks);
   return mine;

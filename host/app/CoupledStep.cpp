@@ -98,7 +98,12 @@ void CoupledStep::apply_inputs(double t) {
 void CoupledStep::start() {
   apply_inputs(0.0);
   wind_.initialise_ambient();
-  if (has_trees()) trees_.reset_state();
+  if (!has_trees()) return;
+  // Every tree starts in equilibrium with the first wind (docs/design.md, "Trees"): at rest in a full
+  // storm, a tree would first swing far beyond its steady bend, further than linear modes describe.
+  trees_.reset_state();
+  trees_.enqueue_wind_load(wind_.velocity());
+  trees_.enqueue_equilibrium();
 }
 
 std::map<std::string, StageState> CoupledStep::save_state() {

@@ -76,7 +76,7 @@ class CoupledStep {
   CoupledStep(ComputeContext& cc, const SimulationPlan& plan, const Communicator* world = nullptr);
 
   /// Applies the time inputs at t = 0 and starts from them: every face on the inflow profile, projected;
-  /// the trees at rest.
+  /// every tree in equilibrium with that wind (ForestStages::enqueue_equilibrium). Collective over ranks.
   void start();
 
   /// Every stage's state by its name ("wind", "trees" with trees, "leaves" with leaves): what a checkpoint

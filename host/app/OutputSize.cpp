@@ -225,6 +225,12 @@ Bytes checkpoint_bytes(const SimulationPlan& plan) {
   if (tke || settings.smagorinsky_constant > 0.0) floats += cells;  // eddy viscosity
   if (tke) floats += cells;                                         // subgrid energy
   floats += 2 * Bytes(plan.forest.total_modes());                   // q, qdot
+  for (int k = 0; k < plan.forest.instance_count(); ++k) {          // the element models' joints
+    const int species = plan.forest.instances()[std::size_t(k)].species;
+    if (!plan.coupling.dynamics.empty() &&
+        plan.coupling.dynamics[std::size_t(species)].model != trees::TreeDynamics::modal)
+      floats += FW_JOINT_FLOATS * Bytes(plan.forest.species_of(k).skeleton().size());
+  }
   if (plan.coupling.unresolved.enabled)
     floats += ForestStages::kTravelFloats * Bytes(plan.forest.instance_count());
   Bytes bytes = floats * kFloat + kCheckpointRestBytes;
@@ -270,11 +276,9 @@ OutputSize predict_output_size(const SimulationPlan& plan, double end_time) {
   }
   if (out.vtk_trees && trees) {
     const int taken = frames_taken(size.frames, out.vtk_trees_every);
+    // Trees start in equilibrium with the first wind (CoupledStep::start), so every frame moves them.
     const Bytes file = trees_vtp(plan);
-    // At t = 0 the trees are at rest: their displacements are zeros.
-    const Bytes displacement = Bytes(plan.forest.total_nodes()) * kVec3;
-    const Bytes rest = file - incompressible(displacement) + runs(displacement);
-    size.rows.push_back(frame_row("trees .vtp", "trees", {file, rest}, taken));
+    size.rows.push_back(frame_row("trees .vtp", "trees", {file, file}, taken));
     pvd += pvd_bytes(taken);
   }
   if (out.vtk_leaves && leaves) {

@@ -1,5 +1,7 @@
 #include "host/app/ProbeSampler.hpp"
 
+#include "trees/BranchPose.hpp"
+
 #include "host/runtime/Communicator.hpp"
 
 #include <algorithm>
@@ -42,6 +44,12 @@ ProbeSampler::ProbeSampler(ComputeContext& cc, CoupledStep& coupled,
     if (forest_.id(k) >= int(tip_trees_.size())) continue;
     own_tips_.push_back(k);
     tip_nodes_.push_back(tip_node(forest_.species_of(k).skeleton()));
+    const BranchStages* branches = coupled.trees().branches();
+    const trees::SpeciesBasis& basis = forest_.species_of(k);
+    tip_elements_.push_back(branches != nullptr && branches->entry_offset(k) >= 0
+                                ? std::optional(trees::BranchElements::of(
+                                      basis.skeleton(), basis.settings().material, basis.settings().wind))
+                                : std::nullopt);
   }
 }
 
@@ -49,6 +57,19 @@ std::vector<double> ProbeSampler::own_tips(CoupledStep& coupled) const {
   std::vector<double> tips;
   for (std::size_t t = 0; t < own_tips_.size(); ++t) {
     const int k = own_tips_[t];
+    if (tip_elements_[t]) {
+      // An element model's tree: its pose from its joints (trees/BranchPose, as the device's frames).
+      const trees::BranchElements& elements = *tip_elements_[t];
+      const double scale = forest_.instances()[std::size_t(k)].scale;
+      const Eigen::Vector3d world =
+          forest_.rotation(k) *
+          trees::branch_displacements(elements, scale,
+                                      coupled.trees().branches()->download_angles(k, elements.size()))
+              .row(tip_nodes_[t])
+              .transpose();
+      tips.insert(tips.end(), {double(forest_.id(k)), world.x(), world.y(), world.z()});
+      continue;
+    }
     const int modes = forest_.species_of(k).modes().mode_count();
     // The state holds (q, qdot) per flat mode.
     std::vector<float> state(2 * std::size_t(modes));

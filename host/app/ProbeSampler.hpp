@@ -16,12 +16,14 @@
 #pragma once
 
 #include <array>
+#include <optional>
 #include <vector>
 
 #include "fluid/GridSpec.hpp"
 #include "host/app/CoupledStep.hpp"
 #include "host/stages/SampleExchange.hpp"
 #include "io/writers/FrameWriter.hpp"
+#include "trees/BranchElements.hpp"
 #include "trees/Forest.hpp"
 
 namespace fw::host {
@@ -55,6 +57,8 @@ class ProbeSampler {
   bool strong_wind_correction_ = true;
   std::vector<int> tip_trees_;             // ids, in column order
   std::vector<int> own_tips_, tip_nodes_;  // of this rank's tracked trees: the index in forest_, the tip node
+  // Of the same trees moved by an element model, their element table (trees/BranchPose's input); else empty.
+  std::vector<std::optional<trees::BranchElements>> tip_elements_;
 };
 
 }  // namespace fw::host
