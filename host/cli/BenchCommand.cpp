@@ -6,6 +6,7 @@
 #include "host/bench/CoupledBench.hpp"
 #include "host/bench/RanksBench.hpp"
 #include "host/bench/TreeBench.hpp"
+#include "host/bench/TreeModelsBench.hpp"
 #include "host/bench/WindBench.hpp"
 #include "host/cli/Commands.hpp"
 #include "host/runtime/ComputeContext.hpp"
@@ -60,9 +61,12 @@ int run_bench(const BenchOptions& options, const GlobalOptions& global, const ho
       bench::print_tree_bench_table(result, std::cout);
     return 0;
   }
-  if (options.what != "wind" && options.what != "coupled")
+  if (options.what != "wind" && options.what != "coupled" && options.what != "models")
     throw std::invalid_argument(
-        fmt::format("bench {}: not available in this build (wind, trees or coupled)", options.what));
+        fmt::format("bench {}: not available in this build (wind, trees, coupled or models)", options.what));
+  if (options.what == "models" && ranks)
+    throw std::invalid_argument(
+        "bench models: the trees' kernels alone, in one process; run it without mpirun");
   // Over ranks, as in a run: a machine's r-th rank takes its r-th device, and rank 0 speaks for all.
   host::ComputeContext cc(
       host::select_device(host::device_filter_from_env(global.device_filter), world.node_rank()),
@@ -70,7 +74,9 @@ int run_bench(const BenchOptions& options, const GlobalOptions& global, const ho
   const bool speaks = world.rank() == 0;
   if (speaks && !options.json)
     std::cerr << fmt::format(
-        "running the {} benchmark on {}{} ...\n", options.what == "wind" ? "wind-tunnel" : "coupled forest",
+        "running the {} benchmark on {}{} ...\n",
+        options.what == "wind" ? "wind-tunnel"
+                               : (options.what == "models" ? "tree models" : "coupled forest"),
         cc.device().device_name, ranks ? fmt::format(" over {} ranks, a device each", world.size()) : "");
   if (ranks) {
     bench::RanksBenchResult result;
@@ -84,6 +90,14 @@ int run_bench(const BenchOptions& options, const GlobalOptions& global, const ho
       else
         bench::print_ranks_bench_table(result, std::cout);
     }
+  } else if (options.what == "models") {
+    bench::TreeModelsBenchOptions models;
+    if (options.trees > 0) models.trees = options.trees;
+    const auto result = bench::run_tree_models_bench(cc, models);
+    if (options.json)
+      std::cout << bench::tree_models_bench_json(result) << "\n";
+    else
+      bench::print_tree_models_bench_table(result, std::cout);
   } else if (options.what == "coupled") {
     const auto result = bench::run_coupled_bench(cc, coupled_options(options));
     if (options.json)

@@ -67,14 +67,16 @@ int main(int argc, char** argv) {
   cli::BenchOptions bench;
   std::vector<std::string> grids;
   auto* bench_cmd = app.add_subcommand(
-      "bench", "benchmarks: wind (the wind-tunnel case), trees (modal analysis), coupled (wind + forest)");
+      "bench",
+      "benchmarks: wind (the wind-tunnel case), trees (modal analysis), coupled (wind + forest), models (the "
+      "three tree models)");
   bench_cmd->add_option("what", bench.what, "which benchmark")
       ->required()
-      ->check(CLI::IsMember({"wind", "trees", "coupled"}));
+      ->check(CLI::IsMember({"wind", "trees", "coupled", "models"}));
   bench_cmd->add_option("--grid", grids,
                         "grid size NXxNYxNZ (repeatable; default 128x128x64, 64x64x32, 256x256x16)");
   bench_cmd->add_option("--steps", bench.steps, "timed steps per solver")->check(CLI::PositiveNumber);
-  bench_cmd->add_option("--trees", bench.trees, "trees in the coupled benchmark (default 1000)")
+  bench_cmd->add_option("--trees", bench.trees, "trees in the coupled and models benchmarks (default 1000)")
       ->check(CLI::PositiveNumber);
   bench_cmd->add_flag("--json", bench.json, "one JSON object on stdout");
 
