@@ -184,12 +184,14 @@ typedef struct FwSpecies {
   fw_int node_count;          /* n, skeleton nodes */
   fw_int mode_count;          /* m */
   fw_int sample_count;        /* S, wind samples, 1..FW_MAX_TREE_SAMPLES */
-  fw_int shape_offset;        /* node shapes and strong-wind v, w, floats: [mode 3n + 3 node + axis] */
+  fw_int shape_offset;        /* node shapes, floats: [mode 3n + 3 node + axis]; strong-wind dv, dw: 3 n m
+                                 floats each, in walk blocks (trees/Forest.hpp) */
   fw_int projection_offset;   /* projections, floats: mode-major, [mode 3S + 3 sample + axis], kg^1/2/m */
   fw_int sample_point_offset; /* sample points, floats: [3 sample + axis], m, skeleton frame */
   fw_int modal_offset;        /* omega (rad/s), damping ratio zeta, strong-wind b: one float each per mode */
   fw_int skeleton_offset;     /* first of its n entries in the skeleton walk (2 ints each: node, parent) and
-                                 rest elements (3 floats each), both in walk order (trees/Forest.hpp) */
+                                 rest elements (3 floats each, in walk blocks), both in walk order
+                                 (trees/Forest.hpp) */
 } FwSpecies;
 
 /* One tree instance: world position x + scale R(yaw) p of a skeleton point p; R turns counter-clockwise
@@ -207,7 +209,7 @@ typedef struct FwTreeInstance {
 
 /* --- Element tree models (trees/TreeDynamics.hpp: rigid_bodies, springs) ---------------------------------
  * A species moved by an element model has a table of FwBranch entries (trees/BranchElements.hpp), n per
- * species in the order of its skeleton walk (FwSpecies.skeleton_offset): entry 0 the root, without an
+ * species from FwSpecies.skeleton_offset, in the skeleton's topological order: entry 0 the root, without an
  * element. Values at scale 1; kernels/tree_branches.cl scales them per instance. */
 #define FW_DYNAMICS_MODAL 0
 #define FW_DYNAMICS_RIGID_BODIES 1

@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <queue>
 #include <stdexcept>
 
 namespace fw::trees {
@@ -41,6 +42,62 @@ void validate_species(const SpeciesBasis& sp, std::size_t index) {
 void check_int32(long long total, const char* what) {
   if (total > std::numeric_limits<fw_int>::max())
     fail(fmt::format("{} {} exceed 32-bit indexing on the device", total, what));
+}
+
+// The strong-wind walk's order: parents before children, and of the nodes whose parent is placed, the
+// smallest index first. That is node order itself where every parent has a smaller index than its children
+// (the generator's trees), so that the kernel's stores run through a tree's displacements in order instead of
+// breadth-first's jumps across the crown.
+std::vector<int> walk_order(const Skeleton& skeleton) {
+  std::priority_queue<int, std::vector<int>, std::greater<>> ready;
+  ready.push(skeleton.root());
+  std::vector<int> order;
+  order.reserve(std::size_t(skeleton.size()));
+  while (!ready.empty()) {
+    const int node = ready.top();
+    ready.pop();
+    order.push_back(node);
+    for (int child : skeleton.children(node)) ready.push(child);
+  }
+  return order;
+}
+
+// The strong-wind correction's arrays of one species (ForestPacking: walk, strong_v, strong_w,
+// rest_elements), in walk order and in blocks of ForestPacking::kWalkBlock entries.
+void pack_strong_wind(const SpeciesBasis& sp, ForestPacking& p) {
+  const Skeleton& skeleton = sp.skeleton();
+  const std::vector<int> order = walk_order(skeleton);
+  const StrongWindCorrection& strong = sp.strong_wind();
+  const Eigen::MatrixXd &v = strong.linear_shapes(), &w = strong.quadratic_shapes();
+  const int n = skeleton.size(), m = sp.modes().mode_count();
+  // Element differences in double, so that the float a kernel reads has no cancellation of its own; the
+  // reference walk takes the root's rows as zero (StrongWindCorrection::corrected_deformation), and so do
+  // these.
+  const auto element = [&](const Eigen::MatrixXd& shapes, int node, int row, int mode) {
+    const int parent = skeleton.node(node).parent;
+    if (parent < 0) return 0.0;
+    const double from = parent == skeleton.root() ? 0.0 : shapes(3 * parent + row, mode);
+    return shapes(3 * node + row, mode) - from;
+  };
+  for (int first = 0; first < n; first += ForestPacking::kWalkBlock) {
+    const int count = std::min(ForestPacking::kWalkBlock, n - first);
+    for (int i = 0; i < m; ++i)
+      for (int a = 0; a < 3; ++a)
+        for (int j = first; j < first + count; ++j) {
+          p.strong_v.push_back(float(element(v, order[std::size_t(j)], a, i)));
+          p.strong_w.push_back(float(element(w, order[std::size_t(j)], a, i)));
+        }
+    for (int a = 0; a < 3; ++a)
+      for (int j = first; j < first + count; ++j) {
+        const int node = order[std::size_t(j)], parent = skeleton.node(node).parent;
+        p.rest_elements.push_back(
+            parent < 0 ? 0.0f : float(skeleton.node(node).position(a) - skeleton.node(parent).position(a)));
+      }
+  }
+  for (int node : order) {
+    p.walk.push_back(node);
+    p.walk.push_back(skeleton.node(node).parent);
+  }
 }
 
 }  // namespace
@@ -147,12 +204,6 @@ ForestPacking Forest::pack() const {
     // kernel reads 8 nodes of a mode with three vector loads.
     for (int i = 0; i < m; ++i)
       for (int r = 0; r < 3 * n; ++r) p.node_shapes.push_back(float(shapes(r, i)));
-    const StrongWindCorrection& strong = sp.strong_wind();
-    for (int i = 0; i < m; ++i)
-      for (int r = 0; r < 3 * n; ++r) {
-        p.strong_v.push_back(float(strong.linear_shapes()(r, i)));
-        p.strong_w.push_back(float(strong.quadratic_shapes()(r, i)));
-      }
     // Mode-major, so that one mode's force is a dot product over 3S contiguous values.
     const Eigen::MatrixXd& proj = sp.wind().projection_matrix();
     for (int i = 0; i < m; ++i)
@@ -164,18 +215,9 @@ ForestPacking Forest::pack() const {
     for (int i = 0; i < m; ++i) {
       p.omega.push_back(float(sp.modes().omega()(i)));
       p.damping_ratios.push_back(float(zeta(i)));
-      p.strong_b.push_back(float(strong.b()(i)));
+      p.strong_b.push_back(float(sp.strong_wind().b()(i)));
     }
-    const Skeleton& skeleton = sp.skeleton();
-    for (int node : skeleton.topological_order()) {
-      const int parent = skeleton.node(node).parent;
-      p.walk.push_back(node);
-      p.walk.push_back(parent);
-      const Eigen::Vector3d rest =
-          parent < 0 ? Eigen::Vector3d::Zero()
-                     : Eigen::Vector3d(skeleton.node(node).position - skeleton.node(parent).position);
-      for (int a = 0; a < 3; ++a) p.rest_elements.push_back(float(rest(a)));
-    }
+    pack_strong_wind(sp, p);
   }
 
   p.instances = pack_instances();

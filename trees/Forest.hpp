@@ -46,17 +46,22 @@ struct ForestPacking {
   std::vector<float> damping_ratios;      ///< per species m, zeta (dimensionless)
   std::vector<fw_int> mode_instance;      ///< #total modes: the instance that owns each flat mode
   std::vector<fw_int> node_instance;      ///< #total nodes: the instance that owns each flat node
-  /// Diener's strong-wind correction per species, v and w in the layout of node_shapes (so that
-  /// FwSpecies::shape_offset indexes all three) and b_i per mode (FwSpecies::modal_offset, like omega).
-  std::vector<float> strong_v, strong_w, strong_b;
-  /// The skeleton walk of the strong-wind correction's length-restoring pass
-  /// (trees/StrongWindCorrection.hpp), per species n entries from FwSpecies::skeleton_offset, parents before
-  /// children (topological_order()): walk holds (node, parent) pairs, the root first with parent -1;
-  /// rest_elements holds, for the same entry, the rest element from the parent to the node (x y z, skeleton
-  /// frame, m; zero for the root). Elements, not positions: the pass needs only differences, and lengths from
-  /// these floats keep a tree at rest.
+  /// The strong-wind correction's arrays per species, for its one kernel (kernels/tree_deform.cl,
+  /// tree_deform_strong). walk: the skeleton's walk, n entries from FwSpecies::skeleton_offset, parents
+  /// before children (topological_order()), (node, parent) pairs, the root first with parent -1. strong_b:
+  /// b_i per mode (FwSpecies::modal_offset, like omega). strong_v, strong_w: Diener's v and w of each entry's
+  /// element, node minus parent (the root's rows taken as zero, as the reference walk does; zero for the root
+  /// entry), 3 n m floats each from FwSpecies::shape_offset; rest_elements: each entry's rest element from
+  /// the parent to the node (skeleton frame, m; zero for the root), 3 n floats from 3
+  /// FwSpecies::skeleton_offset. Elements, not positions: the pass needs only differences, and no two nearly
+  /// equal floats are subtracted on the device. All three in blocks of kWalkBlock consecutive walk entries
+  /// (the last block of a species may be shorter, count entries): rest_elements per block the x of its
+  /// entries, then their y, then their z; strong_v and strong_w block-major, per block its m modes one after
+  /// the other, each the x, y and z of its entries like that, so that a block's floats are contiguous and one
+  /// float8 holds an axis.
+  static constexpr int kWalkBlock = 8;
   std::vector<fw_int> walk;
-  std::vector<float> rest_elements;
+  std::vector<float> strong_v, strong_w, strong_b, rest_elements;
   int total_modes = 0;
   int total_nodes = 0;
   int total_samples = 0;

@@ -57,9 +57,10 @@
 // lengths are then exact to rounding, and since Diener's pose nearly keeps lengths already, the pass moves
 // nodes little and the pose stays Diener's (tests/trees/StrongWindCorrection_test.cpp). It is the same walk
 // as the fit's, applied to Diener's pose instead of a linear one: a node depends on all of its ancestors, so
-// on the device it runs one tree per work-item (kernels/tree_deform.cl, tree_restore_lengths), a cost paid
-// only on output frames. Like part 1 it commutes with the instances' scaling and yaw (lengths scale by s,
-// unit vectors turn by R), so an instance's corrected pose is s R times the species'.
+// on the device a tree is never split between work-items (kernels/tree_deform.cl, tree_deform_strong, which
+// does both parts in one walk), a cost paid only on output frames. Like part 1 it commutes with the
+// instances' scaling and yaw (lengths scale by s, unit vectors turn by R), so an instance's corrected pose is
+// s R times the species'.
 //
 // Instances (trees/Forest.hpp): the tree grown by s (modes s^-5/2 D phi, so translations s^-3/2 phi) at
 // modal coordinate q_s has the linear displacement s (s^-5/2 q_s) phi, i.e. s times the species' at

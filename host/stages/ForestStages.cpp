@@ -12,9 +12,9 @@
 namespace fw::host {
 namespace {
 
-// The forest's buffers as the constructor allocates them: every packed table, then the state (forces, strong
-// amplitudes, q and qdot: 4 floats a mode), the samples' positions and wind (3 each a sample) and the
-// displacements (3 a node).
+// The forest's buffers as the constructor allocates them: every packed table, then the state (forces, the
+// strong-wind amplitudes q~ and q~^2, q and qdot: 5 floats a mode), the samples' positions and wind (3 each a
+// sample) and the displacements (3 a node).
 std::size_t forest_buffer_bytes(const trees::ForestPacking& p) {
   std::size_t bytes = 0;
   const auto add = [&bytes](const auto& table) {
@@ -27,7 +27,7 @@ std::size_t forest_buffer_bytes(const trees::ForestPacking& p) {
     return ComputeContext::allocation_bytes(count * sizeof(float));
   };
   const std::size_t modes = std::size_t(p.total_modes);
-  bytes += 2 * floats(modes) + floats(2 * modes);
+  bytes += floats(modes) + 2 * floats(2 * modes);
   bytes += 2 * floats(3 * std::size_t(p.total_samples)) + floats(3 * std::size_t(p.total_nodes));
   return bytes;
 }
@@ -90,7 +90,7 @@ ForestStages::ForestStages(ComputeContext& cc, const fluid::GridSpec& spec, cons
   rest_elements_ = cc_.upload(p.rest_elements, ro);
 
   forces_ = cc_.zero_floats(std::size_t(total_modes_));
-  strong_amplitudes_buffer_ = cc_.zero_floats(std::size_t(total_modes_));
+  strong_amplitudes_buffer_ = cc_.zero_floats(2 * std::size_t(total_modes_));
   state_ = cc_.zero_floats(2 * std::size_t(total_modes_));
   displacements_ = cc_.zero_floats(3 * std::size_t(total_nodes_));
 
@@ -111,9 +111,7 @@ ForestStages::ForestStages(ComputeContext& cc, const fluid::GridSpec& spec, cons
   step_semi_implicit_ = Kernel(step, "tree_modal_step_semi_implicit");
   cl::Program deform = cc_.build("tree_deform.cl");
   deform_ = Kernel(deform, "tree_deform");
-  strong_amplitudes_ = Kernel(deform, "tree_strong_amplitudes");
   deform_strong_ = Kernel(deform, "tree_deform_strong");
-  restore_lengths_ = Kernel(deform, "tree_restore_lengths");
   equilibrium_ = Kernel(step, "tree_modal_equilibrium");
   if (BranchStages::needed(dynamics))
     branches_.emplace(cc_, spec, forest, dynamics, blocks, instances_, species_);
@@ -159,20 +157,15 @@ void ForestStages::enqueue_deform() {
 }
 
 void ForestStages::enqueue_modal_deform() {
-  const cl::NDRange blocks(cc_.flat_items((std::size_t(total_nodes_) + 7) / 8));  // blocks of 8 nodes
   if (strong_wind_correction_) {
-    strong_amplitudes_
-        .set_args(total_modes_, mode_instance_, instances_, species_, strong_b_, state_,
-                  strong_amplitudes_buffer_)
-        .enqueue(cc_, cl::NDRange(cc_.flat_items(std::size_t(total_modes_))));
+    // Groups of a few instances per iteration (kernels/tree_deform.cl): as many items as instances is
+    // enough, whatever the group size.
     deform_strong_
-        .set_args(total_nodes_, node_instance_, instances_, species_, strong_v_, strong_w_,
-                  strong_amplitudes_buffer_, displacements_)
-        .enqueue(cc_, blocks);
-    // In place on Diener's displacements; the in-order queue runs it after them.
-    restore_lengths_.set_args(instance_count_, instances_, species_, walk_, rest_elements_, displacements_)
+        .set_args(instance_count_, instances_, species_, walk_, strong_v_, strong_w_, strong_b_,
+                  rest_elements_, state_, strong_amplitudes_buffer_, displacements_)
         .enqueue(cc_, cl::NDRange(cc_.flat_items(std::size_t(instance_count_))));
   } else {
+    const cl::NDRange blocks(cc_.flat_items((std::size_t(total_nodes_) + 7) / 8));  // blocks of 8 nodes
     deform_.set_args(total_nodes_, node_instance_, instances_, species_, node_shapes_, state_, displacements_)
         .enqueue(cc_, blocks);
   }

@@ -21,8 +21,8 @@
 // Kernels: kernels/tree_wind_load.cl (the sample points' world positions once; then the wind at them through
 // kernels/probe_sample.cl, and the modal forces, one instance per iteration), kernels/tree_modal_step.cl and
 // kernels/tree_deform.cl (one instance-mode / block of 8 instance nodes per iteration; with the strong-wind
-// correction tree_strong_amplitudes, tree_deform_strong, then tree_restore_lengths, one instance per
-// iteration; tree_deform without). The CPU oracle is trees/ForestReference.
+// correction tree_deform_strong, a few instances of a species per iteration; tree_deform without). The CPU
+// oracle is trees/ForestReference.
 #pragma once
 
 #include <optional>
@@ -163,14 +163,13 @@ class ForestStages {
   cl::Buffer species_, instances_, node_shapes_, projections_, sample_points_, omega_, zeta_, mode_instance_,
       node_instance_;
   cl::Buffer strong_v_, strong_w_, strong_b_;  // the strong-wind correction (trees/Forest.hpp, ForestPacking)
-  cl::Buffer strong_amplitudes_buffer_;        // its q~ per instance-mode, on each output frame
+  cl::Buffer strong_amplitudes_buffer_;        // its q~ and q~^2 per instance-mode, on each output frame
   cl::Buffer walk_, rest_elements_;  // its length-restoring pass (ForestPacking::walk, rest_elements)
   cl::Buffer forces_, state_, displacements_;
   cl::Buffer sample_world_;              // the sample points' world positions, 3 floats a flat sample
   std::optional<WindAtPoints> samples_;  // the wind at sample_world_, each sampled by the rank holding it
   std::vector<int> instance_ids_;        // Forest::id of each instance: what seeds its unresolved series
-  Kernel wind_forces_, step_exact_, step_semi_implicit_, deform_, strong_amplitudes_, deform_strong_,
-      restore_lengths_;
+  Kernel wind_forces_, step_exact_, step_semi_implicit_, deform_, deform_strong_;
   // Unresolved turbulence: wind samples per instance (for the offsets), the series' size, and its buffers:
   // series table (6 N floats), offsets (an int per flat sample), travel (whole points, fraction and last
   // step per instance).

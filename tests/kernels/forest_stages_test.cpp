@@ -31,10 +31,11 @@ constexpr double kDeformTolerance = 1e-5;
 // the strong-wind correction from the same q: float atan (a few ulps) and q~^2 w in the same sum, then the
 // length-restoring walk, whose float rounding adds up along each root-to-tip path (a few dozen elements
 // here) and which turns Diener's float error normal to each element into motion of the subtree; measured
-// 2.3e-7 on PoCL (2.5e-7 before the walk), the linear path's margin kept.
+// 1.8e-7 on PoCL (2.3e-7 when the walk read Diener's displacements back instead of summing each element's
+// image), the linear path's margin kept.
 constexpr double kStrongDeformTolerance = 1e-5;
 // Element lengths of the device's corrected frames against their rest lengths: float rounding of the
-// displacements (~1e-7 of the largest, a few m) over the shortest element; measured 1.9e-7 on PoCL.
+// displacements (~1e-7 of the largest, a few m) over the shortest element; measured 1.9-2.1e-7 on PoCL.
 constexpr double kDeviceLengthTolerance = 1e-5;
 
 // 32 x 24 x 14 cells of 1 m; the origin off zero so that the kernels must use it.
@@ -301,6 +302,46 @@ TEST_CASE("tree_deform_strong: the strong-wind correction matches the reference 
   CHECK(std::all_of(rest.begin(), rest.end(), [](float x) { return x == 0.0f; }));
 }
 
+// tree_deform_strong deforms a few consecutive instances of one species together (kernels/tree_deform.cl,
+// FW_STRONG_TREES), and others one by one: a tree's frame must not depend on which trees stand beside it
+// (over MPI ranks a rank holds only some of them). Groups of one species, of the other, mixed, and a short
+// tail.
+TEST_CASE("tree_deform_strong: a tree's frame is the same to the bit alone and among its neighbours",
+          "[forest]") {
+  auto* cc = test::device_or_skip();
+  if (!cc) return;
+  const std::vector<int> kinds = {0, 0, 0, 0, 1, 1, 1, 1, 0, 1, 0, 0, 1, 0, 0};
+  std::mt19937 rng(41);
+  std::uniform_real_distribution<double> x(1.0, 25.0), y(5.0, 25.0), yaw(-M_PI, M_PI), scale(0.6, 1.5);
+  std::vector<trees::TreeInstance> placed;
+  for (int kind : kinds) placed.push_back({kind, {x(rng), y(rng), 0.0}, yaw(rng), scale(rng)});
+  const trees::Forest forest(test_forest().species(), std::move(placed));
+  const fluid::GridSpec spec = forest_grid();
+  host::ForestStages stages(*cc, spec, forest);
+  const host::ModalState state = storm_state(forest, 37);
+  stages.upload_modal_state(state);
+  stages.enqueue_deform();
+  const std::vector<float> together = stages.download_displacements();
+  const trees::ForestReference ref(forest);
+  CHECK(worst_instance_error(forest, together, ref.displacements(to_eigen(state.q), true)) <
+        kStrongDeformTolerance);
+
+  for (int k : {0, 5, 9, 14}) {  // in a group of species 0, of species 1, a mixed group, the tail
+    INFO("instance " << k);
+    const trees::Forest alone = forest.subset({k});
+    host::ForestStages single(*cc, spec, alone);
+    host::ModalState own;
+    const auto modes = state.q.begin() + forest.mode_offset(k);
+    own.q.assign(modes, modes + alone.total_modes());
+    own.qdot.assign(own.q.size(), 0.0f);
+    single.upload_modal_state(own);
+    single.enqueue_deform();
+    const std::vector<float> u = single.download_displacements();
+    const auto from = together.begin() + 3 * std::ptrdiff_t(forest.node_offset(k));
+    CHECK(std::equal(u.begin(), u.end(), from, from + std::ptrdiff_t(u.size())));
+  }
+}
+
 TEST_CASE("tree_deform: with the strong-wind correction off, frames are the linear modal sum", "[forest]") {
   auto* cc = test::device_or_skip();
   if (!cc) return;
@@ -409,10 +450,9 @@ TEST_CASE("ForestStages: wind load + modal step timing", "[.][forest-bench]") {
 }
 
 // Timing, not a check: `kernel_tests "[forest-bench]"`. The deformation of an output frame for 700 instances
-// of the default broadleaf (905 nodes, 20 modes) at storm amplitudes: linear, Diener's part alone, and the
-// whole correction (Diener's part, then the length-restoring pass), and the pass alone.
-TEST_CASE("ForestStages: deformation timing with and without the length-restoring pass",
-          "[.][forest-bench]") {
+// of the default broadleaf (905 nodes, 20 modes) at storm amplitudes: linear, and with the whole strong-wind
+// correction (Diener's part and the length-restoring pass, one kernel).
+TEST_CASE("ForestStages: deformation timing, linear and strong-wind corrected", "[.][forest-bench]") {
   auto* cc = test::device_or_skip();
   if (!cc) return;
   constexpr int kInstances = 700, kModes = 20, kFrames = 20;
@@ -435,21 +475,6 @@ TEST_CASE("ForestStages: deformation timing with and without the length-restorin
   host::ForestStages stages(*cc, spec, forest);
   stages.upload_modal_state(storm_state(forest, 31));
 
-  // Diener's part and the pass on their own, on the stages' state and displacement buffers.
-  const trees::ForestPacking p = forest.pack();
-  auto upload = [&](const auto& values) {
-    cl::Buffer buffer = cc->buffer(values.size() * sizeof(values[0]), CL_MEM_READ_ONLY);
-    cc->queue().enqueueWriteBuffer(buffer, CL_TRUE, 0, values.size() * sizeof(values[0]), values.data());
-    return buffer;
-  };
-  cl::Buffer species_buffer = upload(p.species), node_instance = upload(p.node_instance),
-             strong_v = upload(p.strong_v), strong_w = upload(p.strong_w), strong_b = upload(p.strong_b),
-             walk = upload(p.walk), rest_elements = upload(p.rest_elements);
-  const cl::Program program = cc->build("tree_deform.cl");
-  host::Kernel diener(program, "tree_deform_strong"), pass(program, "tree_restore_lengths");
-  const cl::NDRange blocks(cc->flat_items((std::size_t(p.total_nodes) + 7) / 8));
-  const cl::NDRange instances(cc->flat_items(std::size_t(kInstances)));
-
   auto time_each = [&](auto&& enqueue) {
     enqueue();  // warm-up (kernel compilation for the work sizes)
     cc->finish();
@@ -463,21 +488,10 @@ TEST_CASE("ForestStages: deformation timing with and without the length-restorin
   const double linear_ms = time_each([&] { stages.enqueue_deform(); });
   stages.set_strong_wind_correction(true);
   const double corrected_ms = time_each([&] { stages.enqueue_deform(); });
-  const double diener_ms = time_each([&] {
-    diener
-        .set_args(p.total_nodes, node_instance, stages.instances(), species_buffer, strong_v, strong_w,
-                  strong_b, stages.state(), stages.displacements())
-        .enqueue(*cc, blocks);
-  });
-  const double pass_ms = time_each([&] {
-    pass.set_args(kInstances, stages.instances(), species_buffer, walk, rest_elements, stages.displacements())
-        .enqueue(*cc, instances);
-  });
   WARN(kInstances << " broadleaf instances x " << forest.species()[0].skeleton().size() << " nodes x "
-                  << kModes << " modes (" << p.total_nodes << " nodes) on '" << cc->device().device_name
-                  << "': deform linear " << linear_ms << " ms, Diener's part " << diener_ms
-                  << " ms, whole correction " << corrected_ms << " ms (the length-restoring pass alone "
-                  << pass_ms << " ms)");
+                  << kModes << " modes (" << forest.total_nodes() << " nodes) on '"
+                  << cc->device().device_name << "': deform linear " << linear_ms
+                  << " ms, strong-wind corrected " << corrected_ms << " ms");
 }
 
 TEST_CASE("ForestStages: the device memory estimate is what the stage allocates", "[forest]") {

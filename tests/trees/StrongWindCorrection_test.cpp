@@ -7,6 +7,7 @@
 
 #include <Eigen/Geometry>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <string>
@@ -284,44 +285,85 @@ TEST_CASE(
   }
 }
 
-TEST_CASE("Forest::pack: the strong-wind arrays follow the node shapes' layout", "[strong-wind]") {
-  const trees::SpeciesBasis a = species_of(cantilever(), 4), b = species_of(test::small_broadleaf(), 6);
-  const trees::Forest forest({a, b}, {{1, {0.0, 0.0, 0.0}, 0.0, 1.0}});
+// The cantilever numbered from the tip down: every parent has a larger index than its children.
+trees::Skeleton cantilever_from_the_tip() {
+  const trees::Skeleton upright = cantilever();
+  const int last = upright.size() - 1;
+  std::vector<trees::SkeletonNode> nodes(std::size_t(upright.size()));
+  for (int k = 0; k <= last; ++k) {
+    const trees::SkeletonNode& node = upright.node(k);
+    nodes[std::size_t(last - k)] = {node.parent < 0 ? -1 : last - node.parent, node.position, node.radius};
+  }
+  return trees::Skeleton::from_nodes(std::move(nodes));
+}
+
+// Every walk entry of species `s` of `p` against the species `sp`: the walk is a permutation of the nodes
+// with parents before children, and the strong-wind arrays hold each entry's element (node minus parent, the
+// root's rows taken as zero) in the blocked layout of ForestPacking.
+void check_strong_wind_packing(const trees::ForestPacking& p, int s, const trees::SpeciesBasis& sp) {
+  const FwSpecies& row = p.species[std::size_t(s)];
+  const trees::Skeleton& skeleton = sp.skeleton();
+  const int n = skeleton.size(), m = sp.modes().mode_count();
+  const Eigen::MatrixXd &v = sp.strong_wind().linear_shapes(), &w = sp.strong_wind().quadratic_shapes();
+  std::vector<bool> placed(std::size_t(n), false);
+  for (int j = 0; j < n; ++j) {
+    const std::size_t at = std::size_t(row.skeleton_offset + j);
+    const int node = p.walk[2 * at], parent = p.walk[2 * at + 1];
+    INFO("species " << s << ", walk entry " << j << ": node " << node << ", parent " << parent);
+    REQUIRE(node >= 0);
+    REQUIRE(node < n);
+    CHECK_FALSE(placed[std::size_t(node)]);
+    CHECK(parent == skeleton.node(node).parent);
+    CHECK((parent < 0 ? j == 0 : bool(placed[std::size_t(parent)])));  // the parent came first
+    placed[std::size_t(node)] = true;
+
+    const int first = j - j % trees::ForestPacking::kWalkBlock;
+    const int count = std::min(trees::ForestPacking::kWalkBlock, n - first), lane = j - first;
+    const bool below_root = parent == skeleton.root();
+    for (int a = 0; a < 3; ++a) {
+      const double rest =
+          parent < 0 ? 0.0 : skeleton.node(node).position(a) - skeleton.node(parent).position(a);
+      CHECK(p.rest_elements[std::size_t(3 * (row.skeleton_offset + first) + count * a + lane)] ==
+            float(rest));
+      for (int i = 0; i < m; ++i) {
+        const std::size_t value =
+            std::size_t(row.shape_offset + 3 * first * m + 3 * count * i + count * a + lane);
+        const auto element = [&](const Eigen::MatrixXd& shapes) {
+          if (parent < 0) return 0.0f;
+          return float(shapes(3 * node + a, i) - (below_root ? 0.0 : shapes(3 * parent + a, i)));
+        };
+        CHECK(p.strong_v[value] == element(v));
+        CHECK(p.strong_w[value] == element(w));
+      }
+    }
+  }
+}
+
+TEST_CASE("Forest::pack: the strong-wind arrays hold each walk entry's element, in blocks", "[strong-wind]") {
+  const trees::SpeciesBasis a = species_of(cantilever(), 4), b = species_of(test::small_broadleaf(), 6),
+                            c = species_of(cantilever_from_the_tip(), 3);
+  const trees::Forest forest({a, b, c}, {{1, {0.0, 0.0, 0.0}, 0.0, 1.0}});
   const trees::ForestPacking p = forest.pack();
   REQUIRE(p.strong_v.size() == p.node_shapes.size());
   REQUIRE(p.strong_w.size() == p.node_shapes.size());
   REQUIRE(p.strong_b.size() == p.omega.size());
   const FwSpecies& row = p.species[1];
-  const int n3 = 3 * b.skeleton().size();
-  for (int i = 0; i < 6; ++i) {
+  for (int i = 0; i < 6; ++i)
     CHECK(p.strong_b[std::size_t(row.modal_offset + i)] == float(b.strong_wind().b()(i)));
-    for (int r : {0, 5, n3 - 1}) {
-      CHECK(p.strong_v[std::size_t(row.shape_offset + i * n3 + r)] ==
-            float(b.strong_wind().linear_shapes()(r, i)));
-      CHECK(p.strong_w[std::size_t(row.shape_offset + i * n3 + r)] ==
-            float(b.strong_wind().quadratic_shapes()(r, i)));
-    }
-  }
-  // The length-restoring pass's walk: n entries per species back to back, parents before children.
-  const int n = b.skeleton().size();
+  // n entries per species back to back.
   REQUIRE(p.species[0].skeleton_offset == 0);
   REQUIRE(row.skeleton_offset == a.skeleton().size());
-  REQUIRE(p.walk.size() == 2 * std::size_t(a.skeleton().size() + n));
-  REQUIRE(p.rest_elements.size() == 3 * std::size_t(a.skeleton().size() + n));
-  std::vector<bool> placed(std::size_t(n), false);
-  for (int j = 0; j < n; ++j) {
-    const std::size_t at = std::size_t(row.skeleton_offset + j);
-    const int node = p.walk[2 * at], parent = p.walk[2 * at + 1];
-    INFO("walk entry " << j << ": node " << node << ", parent " << parent);
-    CHECK(node == b.skeleton().topological_order()[std::size_t(j)]);
-    CHECK(parent == b.skeleton().node(node).parent);
-    CHECK((parent < 0 ? j == 0 : bool(placed[std::size_t(parent)])));  // the parent came first
-    placed[std::size_t(node)] = true;
-    const Eigen::Vector3d rest =
-        parent < 0 ? Eigen::Vector3d::Zero()
-                   : Eigen::Vector3d(b.skeleton().node(node).position - b.skeleton().node(parent).position);
-    for (int k = 0; k < 3; ++k) CHECK(p.rest_elements[3 * at + std::size_t(k)] == float(rest(k)));
-  }
+  REQUIRE(p.species[2].skeleton_offset == a.skeleton().size() + b.skeleton().size());
+  const std::size_t entries = std::size_t(a.skeleton().size() + b.skeleton().size() + c.skeleton().size());
+  REQUIRE(p.walk.size() == 2 * entries);
+  REQUIRE(p.rest_elements.size() == 3 * entries);
+  check_strong_wind_packing(p, 0, a);
+  check_strong_wind_packing(p, 1, b);
+  check_strong_wind_packing(p, 2, c);
+  // Where every parent's index is below its children's (the upright cantilever, numbered from the root) the
+  // walk is node order, so that the kernel stores in order; numbered from the tip, it starts at the root.
+  for (int j = 0; j < a.skeleton().size(); ++j) CHECK(p.walk[2 * std::size_t(j)] == j);
+  CHECK(p.walk[2 * std::size_t(p.species[2].skeleton_offset)] == c.skeleton().root());
 }
 
 TEST_CASE("StrongWindCorrection: bad settings, sizes and values throw invalid_argument", "[strong-wind]") {
