@@ -2,9 +2,10 @@
  * cantilever springs, on every tree whose species one of them moves. References: trees/RigidBranches.cpp,
  * trees/SpringBranches.cpp, trees/BranchPose.cpp; the table: trees/BranchElements.hpp (FwBranch).
  *
- * Work mapping: one tree per loop iteration (FW_FLAT_FOR over the element trees). Both models walk each tree
- * in its table's order, parents before children, or back up it: an element needs its children's results
- * (the recursion up) or its parent's (the pose down), so one work-item keeps a tree's entries in order. A
+ * Work mapping: one tree per loop iteration (FW_FLAT_FOR over the element trees) where a tree is walked in
+ * its table's order, parents before children, or back up it: an element needs its children's results (the
+ * rigid bodies' recursion up) or its parent's (the pose down), so one work-item keeps a tree's entries in
+ * order. The springs' angles are independent: one entry per iteration. A
  * rigid tree's recursion keeps FW_RIGID_SCRATCH_FLOATS per entry in `scratch`, a slice of `scratch_stride`
  * floats per work-item (the host sizes it for its largest tree).
  *
@@ -151,28 +152,30 @@ __kernel void branch_sample_positions(const int tree_count, __global const FwBra
   }
 }
 
-/* Springs (trees/SpringBranches.hpp): every entry's joint angle from its own load at time t; no rate. */
-__kernel void spring_angles(const int tree_count, __global const FwBranchTree* trees,
-                            __global const FwTreeInstance* instances, __global const FwSpecies* species,
-                            __global const FwBranchSpecies* models, __global const FwBranch* branches,
-                            const FwDragLaw law, __global const float* wind, const float time,
-                            __global float* joints) {
-  FW_FLAT_FOR(t, tree_count) {
-    const FwBranchTree bt = trees[t];
+/* Springs (trees/SpringBranches.hpp): every entry's joint angle from its own load at time t; no rate. One
+ * entry per loop iteration (FW_FLAT_FOR over the flat entries of every element tree): the elements are
+ * independent, and their atan and sin vectorise across work-items. entry_tree names each flat entry's tree
+ * (an index into `trees`); entries of trees of another model are left alone. */
+__kernel void spring_angles(const int entry_count, __global const int* entry_tree,
+                            __global const FwBranchTree* trees, __global const FwTreeInstance* instances,
+                            __global const FwSpecies* species, __global const FwBranchSpecies* models,
+                            __global const FwBranch* branches, const FwDragLaw law,
+                            __global const float* wind, const float time, __global float* joints) {
+  const float turn = 2.0f * M_PI_F / (float)(1u << FW_PHASE_BITS);
+  FW_FLAT_FOR(flat, entry_count) {
+    const FwBranchTree bt = trees[entry_tree[flat]];
     const FwTreeInstance tree = instances[bt.instance];
-    const FwSpecies sp = species[tree.species];
     const FwBranchSpecies model = models[tree.species];
-    const float s = tree.scale;
-    const float turn = 2.0f * M_PI_F / (float)(1u << FW_PHASE_BITS);
-    vstore3((float3)(0.0f), 0, joints + FW_JOINT_FLOATS * bt.entry_offset);
-    for (int j = 1; j < sp.node_count; ++j) {
-      const FwBranch e = branches[sp.skeleton_offset + j];
-      const int flat = bt.entry_offset + j;
+    if (model.model != FW_DYNAMICS_SPRINGS) continue;
+    const int j = (int)flat - bt.entry_offset;
+    float3 angle = (float3)(0.0f);
+    if (j > 0) {
+      const FwBranch e = branches[species[tree.species].skeleton_offset + j];
+      const float s = tree.scale;
       const float3 F = element_load(&e, &tree, law, wind + 3 * flat, model.normal_drag);
       const float3 axis = branch_rest(&e) / e.length;
       const float3 normal = F - dot(F, axis) * axis;
       const float load = length(normal);
-      float3 angle = (float3)(0.0f);
       if (load > 0.0f) {
         const float bend = load / (s * e.spring) / (s * e.length);
         const float steady = fmin(atan(bend), model.max_angle);
@@ -182,10 +185,10 @@ __kernel void spring_angles(const int tree_count, __global const FwBranchTree* t
         const float theta = clamp(atan(swayed), -model.max_angle, model.max_angle);
         angle = theta * cross(axis, normal / load);
       }
-      __global float* joint = joints + FW_JOINT_FLOATS * flat;
-      vstore3(angle, 0, joint);
-      vstore3((float3)(0.0f), 1, joint);
     }
+    __global float* joint = joints + FW_JOINT_FLOATS * flat;
+    vstore3(angle, 0, joint);
+    vstore3((float3)(0.0f), 1, joint);
   }
 }
 

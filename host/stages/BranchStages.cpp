@@ -76,7 +76,8 @@ std::size_t BranchStages::estimate_device_bytes(const trees::Forest& forest,
   const std::size_t entries = std::size_t(et.entries), count = et.trees.size();
   return ComputeContext::allocation_bytes(forest.species().size() * sizeof(FwBranchSpecies)) +
          ComputeContext::allocation_bytes(table * sizeof(FwBranch)) +
-         3 * ComputeContext::allocation_bytes(count * sizeof(FwBranchTree)) + 2 * floats(3 * entries) +
+         2 * ComputeContext::allocation_bytes(count * sizeof(FwBranchTree)) +
+         ComputeContext::allocation_bytes(entries * sizeof(fw_int)) + 2 * floats(3 * entries) +
          floats(FW_JOINT_FLOATS * entries) + floats(4 * entries) +
          floats(items * FW_RIGID_SCRATCH_FLOATS * std::size_t(et.largest));
 }
@@ -116,15 +117,20 @@ BranchStages::BranchStages(ComputeContext& cc, const fluid::GridSpec& spec, cons
     const int model = models[std::size_t(forest.instances()[std::size_t(tree.instance)].species)].model;
     (model == FW_DYNAMICS_RIGID_BODIES ? rigid : springs).push_back(tree);
   }
-  rigid_.assign(rigid.size(), 0);
-  springs_.assign(springs.size(), 0);
+  rigid_count_ = int(rigid.size());
+  spring_count_ = int(springs.size());
+  std::vector<fw_int> entry_tree(static_cast<std::size_t>(entry_count_));
+  for (std::size_t t = 0; t < trees_.size(); ++t) {
+    const int end = t + 1 < trees_.size() ? trees_[t + 1].entry_offset : entry_count_;
+    for (int flat = trees_[t].entry_offset; flat < end; ++flat) entry_tree[std::size_t(flat)] = fw_int(t);
+  }
 
   constexpr cl_mem_flags ro = CL_MEM_READ_ONLY;
   models_ = cc_.upload(models, ro);
   branches_ = cc_.upload(table, ro);
   trees_buffer_ = cc_.upload(trees_, ro);
   rigid_trees_ = cc_.upload(rigid, ro);
-  spring_trees_ = cc_.upload(springs, ro);
+  entry_tree_ = cc_.upload(entry_tree, ro);
   sample_world_ = cc_.zero_floats(3 * std::size_t(entry_count_));
   joints_ = cc_.zero_floats(FW_JOINT_FLOATS * std::size_t(entry_count_));
   orientations_ = cc_.zero_floats(4 * std::size_t(entry_count_));
@@ -148,12 +154,8 @@ void BranchStages::enqueue_sample(DeviceVelocity& velocity) {
 }
 
 void BranchStages::enqueue_step(float dt) {
-  const int rigid = int(rigid_.size()), springs = int(springs_.size());
-  if (springs > 0)
-    spring_angles_
-        .set_args(springs, spring_trees_, instances_, species_, models_, branches_, drag_law_.to_device(),
-                  samples_->wind(), float(time_), joints_)
-        .enqueue(cc_, cl::NDRange(cc_.flat_items(std::size_t(springs))));
+  const int rigid = rigid_count_, springs = spring_count_;
+  if (springs > 0) enqueue_spring_angles();
   if (rigid > 0)
     rigid_step_
         .set_args(rigid, rigid_trees_, instances_, species_, models_, branches_, drag_law_.to_device(),
@@ -163,17 +165,20 @@ void BranchStages::enqueue_step(float dt) {
 }
 
 void BranchStages::enqueue_equilibrium() {
-  const int rigid = int(rigid_.size()), springs = int(springs_.size());
-  if (springs > 0)
-    spring_angles_
-        .set_args(springs, spring_trees_, instances_, species_, models_, branches_, drag_law_.to_device(),
-                  samples_->wind(), float(time_), joints_)
-        .enqueue(cc_, cl::NDRange(cc_.flat_items(std::size_t(springs))));
+  const int rigid = rigid_count_, springs = spring_count_;
+  if (springs > 0) enqueue_spring_angles();
   if (rigid > 0)
     rigid_equilibrium_
         .set_args(rigid, rigid_trees_, instances_, species_, models_, branches_, drag_law_.to_device(),
                   samples_->wind(), joints_, scratch_, fw_int(FW_RIGID_SCRATCH_FLOATS * largest_tree_))
         .enqueue(cc_, cl::NDRange(scratch_items_));
+}
+
+void BranchStages::enqueue_spring_angles() {
+  spring_angles_
+      .set_args(entry_count_, entry_tree_, trees_buffer_, instances_, species_, models_, branches_,
+                drag_law_.to_device(), samples_->wind(), float(time_), joints_)
+      .enqueue(cc_, cl::NDRange(cc_.flat_items(std::size_t(entry_count_))));
 }
 
 void BranchStages::enqueue_deform(cl::Buffer& displacements) {

@@ -78,16 +78,19 @@ class BranchStages {
   void restore_state(const StageState& state);
 
  private:
+  void enqueue_spring_angles();
+
   ComputeContext& cc_;
   fluid::DragLaw drag_law_;
   std::vector<FwBranchTree> trees_;
-  std::vector<int> entry_offsets_;       // per instance, -1 for a modal tree
-  std::vector<fw_int> rigid_, springs_;  // indices into trees_ per model
+  std::vector<int> entry_offsets_;          // per instance, -1 for a modal tree
+  int rigid_count_ = 0, spring_count_ = 0;  // the trees of each model
   int entry_count_ = 0, largest_tree_ = 0;
   int normal_drag_ = 0;
   double time_ = 0.0;
-  cl::Buffer instances_, species_, models_, branches_, trees_buffer_, rigid_trees_, spring_trees_;
+  cl::Buffer instances_, species_, models_, branches_, trees_buffer_, rigid_trees_;
   cl::Buffer sample_world_, joints_, orientations_, scratch_;
+  cl::Buffer entry_tree_;  // per flat entry, its tree (an index into trees_): the springs' per-entry kernel
   std::optional<WindAtPoints> samples_;
   std::size_t scratch_items_ = 0;
   Kernel spring_angles_, rigid_step_, rigid_equilibrium_, deform_;
