@@ -10,6 +10,7 @@
 #include <utility>
 
 #include "host/runtime/Communicator.hpp"
+#include "host/stages/BranchStages.hpp"
 #include "host/stages/SavedStateNames.hpp"
 
 namespace fw::host {
@@ -141,10 +142,7 @@ StageState trees_state(const std::vector<RunSnapshot>& parts, const trees::Fores
   };
   // An element model's tree: its joints, one entry a node; a modal tree has none.
   const auto joints = [&](int id) {
-    const int species = forest.instances()[std::size_t(id)].species;
-    const bool modal = dynamics.empty() || dynamics[std::size_t(species)].model == trees::TreeDynamics::modal;
-    return modal ? std::size_t(0)
-                 : FW_JOINT_FLOATS * std::size_t(forest.species()[std::size_t(species)].skeleton().size());
+    return FW_JOINT_FLOATS * std::size_t(BranchStages::entries_of(forest, dynamics, id));
   };
   gather(kModalState, modal);
   const StageState& first = stage_of(parts.front(), kTreesStage);

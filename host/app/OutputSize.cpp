@@ -8,6 +8,7 @@
 
 #include "host/app/OutputWriters.hpp"
 #include "host/app/Simulation.hpp"
+#include "host/stages/BranchStages.hpp"
 #include "host/stages/ForestStages.hpp"
 #include "viz/ViewScript.hpp"
 
@@ -225,12 +226,8 @@ Bytes checkpoint_bytes(const SimulationPlan& plan) {
   if (tke || settings.smagorinsky_constant > 0.0) floats += cells;  // eddy viscosity
   if (tke) floats += cells;                                         // subgrid energy
   floats += 2 * Bytes(plan.forest.total_modes());                   // q, qdot
-  for (int k = 0; k < plan.forest.instance_count(); ++k) {          // the element models' joints
-    const int species = plan.forest.instances()[std::size_t(k)].species;
-    if (!plan.coupling.dynamics.empty() &&
-        plan.coupling.dynamics[std::size_t(species)].model != trees::TreeDynamics::modal)
-      floats += FW_JOINT_FLOATS * Bytes(plan.forest.species_of(k).skeleton().size());
-  }
+  for (int k = 0; k < plan.forest.instance_count(); ++k)            // the element models' joints
+    floats += FW_JOINT_FLOATS * Bytes(BranchStages::entries_of(plan.forest, plan.coupling.dynamics, k));
   if (plan.coupling.unresolved.enabled)
     floats += ForestStages::kTravelFloats * Bytes(plan.forest.instance_count());
   Bytes bytes = floats * kFloat + kCheckpointRestBytes;

@@ -13,10 +13,6 @@
 namespace fw::host {
 namespace {
 
-trees::TreeDynamics model_of(const std::vector<trees::SpeciesDynamics>& dynamics, int species) {
-  return dynamics.empty() ? trees::TreeDynamics::modal : dynamics.at(std::size_t(species)).model;
-}
-
 FwBranchSpecies device_model(const trees::SpeciesBasis& basis, const trees::SpeciesDynamics& dynamics) {
   FwBranchSpecies model{};
   model.model = dynamics.model == trees::TreeDynamics::rigid_bodies ? FW_DYNAMICS_RIGID_BODIES
@@ -42,12 +38,11 @@ struct ElementTrees {
 ElementTrees element_trees(const trees::Forest& forest, const std::vector<trees::SpeciesDynamics>& dynamics) {
   ElementTrees out;
   for (int k = 0; k < forest.instance_count(); ++k) {
-    const int species = forest.instances()[std::size_t(k)].species;
-    if (model_of(dynamics, species) == trees::TreeDynamics::modal) {
+    const int n = BranchStages::entries_of(forest, dynamics, k);
+    if (n == 0) {
       out.entry_offsets.push_back(-1);
       continue;
     }
-    const int n = forest.species_of(k).skeleton().size();
     out.trees.push_back(FwBranchTree{k, out.entries, forest.id(k)});
     out.entry_offsets.push_back(out.entries);
     out.entries += n;
@@ -65,6 +60,14 @@ std::size_t floats(std::size_t count) {
 bool BranchStages::needed(const std::vector<trees::SpeciesDynamics>& dynamics) {
   return std::any_of(dynamics.begin(), dynamics.end(),
                      [](const trees::SpeciesDynamics& d) { return d.model != trees::TreeDynamics::modal; });
+}
+
+int BranchStages::entries_of(const trees::Forest& forest, const std::vector<trees::SpeciesDynamics>& dynamics,
+                             int instance) {
+  const int species = forest.instances().at(std::size_t(instance)).species;
+  const bool modal =
+      dynamics.empty() || dynamics.at(std::size_t(species)).model == trees::TreeDynamics::modal;
+  return modal ? 0 : forest.species_of(instance).skeleton().size();
 }
 
 std::size_t BranchStages::estimate_device_bytes(const trees::Forest& forest,

@@ -33,6 +33,11 @@ class BranchStages {
   /// Whether any of `dynamics` (one per species of a forest; empty: all modal) is an element model: then
   /// every rank builds this stage, since its sampling is collective.
   static bool needed(const std::vector<trees::SpeciesDynamics>& dynamics);
+  /// The entries (joints) of instance k of `forest` under `dynamics`: its skeleton's node count when an
+  /// element model moves it, 0 for a modal tree. What the joint state, its checkpoints and their
+  /// redistribution hold per tree.
+  static int entries_of(const trees::Forest& forest, const std::vector<trees::SpeciesDynamics>& dynamics,
+                        int instance);
   /// Bytes of device memory the constructor allocates for `forest` under `dynamics`, with `items` work-items
   /// per kernel (ComputeContext::flat_items of the element trees).
   static std::size_t estimate_device_bytes(const trees::Forest& forest,

@@ -43,33 +43,6 @@ fluid::GridSpec forest_grid() {
   return spec;
 }
 
-// A mean flow of ~7 m/s with a smooth random part: every element feels its own wind.
-fluid::MacVelocity smooth_wind(const fluid::GridSpec& spec, std::uint32_t seed) {
-  std::mt19937 rng(seed);
-  std::uniform_real_distribution<double> unit(-1.0, 1.0);
-  const double mean[3] = {6.0, -3.0, 0.5};
-  double amplitude[3], k[3][3], phase[3];
-  for (int c = 0; c < 3; ++c) {
-    amplitude[c] = 2.0 * unit(rng);
-    phase[c] = M_PI * unit(rng);
-    for (double& kc : k[c]) kc = 0.5 * unit(rng);
-  }
-  fluid::MacVelocity vel(spec);
-  for (int c = 0; c < 3; ++c) {
-    const int ex = spec.nx + (c == 0), ey = spec.ny + (c == 1), ez = spec.nz + (c == 2);
-    for (int kz = 0; kz < ez; ++kz)
-      for (int j = 0; j < ey; ++j)
-        for (int i = 0; i < ex; ++i) {
-          const double x[3] = {spec.origin[0] + spec.h * (i + (c == 0 ? 0.0 : 0.5)),
-                               spec.origin[1] + spec.h * (j + (c == 1 ? 0.0 : 0.5)),
-                               spec.origin[2] + spec.h * (kz + (c == 2 ? 0.0 : 0.5))};
-          vel.component(c)[std::size_t(i + ex * (j + ey * kz))] = float(
-              mean[c] + amplitude[c] * std::sin(k[c][0] * x[0] + k[c][1] * x[1] + k[c][2] * x[2] + phase[c]));
-        }
-  }
-  return vel;
-}
-
 trees::Forest test_forest() {
   std::vector<trees::SpeciesBasis> species = {test::small_species("broadleaf", 6.0, 1, 5, 8, 3, 2.0),
                                               test::small_species("conifer", 5.0, 2, 4, 10, 2, 1.0),
@@ -133,7 +106,8 @@ struct BranchFixture {
   fluid::GridSpec spec = forest_grid();
   trees::Forest forest = test_forest();
   std::vector<trees::SpeciesDynamics> dynamics = test_dynamics();
-  fluid::MacVelocity wind = smooth_wind(spec, 23);
+  // A mean flow of ~7 m/s with a long-wave ripple: every element feels its own wind.
+  fluid::MacVelocity wind = test::smooth_velocity(spec, {6.0, -3.0, 0.5}, {2.0, 1.5, 1.0});
   host::ForestStages stages{cc, spec, forest, nullptr, dynamics};
   host::DeviceVelocity dwind;
 
