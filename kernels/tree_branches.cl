@@ -352,33 +352,57 @@ FW_INLINE float4 quaternion_mul(const float4 q, const float4 p) {
   return (float4)(q.x * p.x - dot(qv, pv), v.x, v.y, v.z);
 }
 
+/* The largest joint angle, rad, whose half-angle cosine and sinc quaternion_exp takes from their series:
+ * at half-angles up to pi/4 the first term left out, x^12 / 12!, is 1e-10, far below a float's digits. */
+#define FW_SERIES_MAX_ANGLE 1.5707963f
+
+/* Exp(theta): the unit quaternion of the rotation by |theta| about theta, (cos(a/2), sin(a/2)/a theta).
+ * Joints turn by far less than a right angle, so their half-angle functions come from Taylor series in
+ * (a/2)^2 = theta.theta / 4: a few FMAs and no square root, where a scalar sin and cos cost tens of ns on
+ * a CPU device. Larger angles take the library's functions. */
+FW_INLINE float4 quaternion_exp(const float3 theta) {
+  const float angle_squared = dot(theta, theta);
+  float c, sinc;
+  if (angle_squared < FW_SERIES_MAX_ANGLE * FW_SERIES_MAX_ANGLE) {
+    const float x2 = 0.25f * angle_squared;
+    c = 1.0f + x2 * (-1.0f / 2 +
+                     x2 * (1.0f / 24 + x2 * (-1.0f / 720 + x2 * (1.0f / 40320 + x2 * (-1.0f / 3628800)))));
+    sinc = 0.5f * (1.0f + x2 * (-1.0f / 6 +
+                                x2 * (1.0f / 120 +
+                                      x2 * (-1.0f / 5040 + x2 * (1.0f / 362880 + x2 * (-1.0f / 39916800))))));
+  } else {
+    const float angle = sqrt(angle_squared);
+    c = cos(0.5f * angle);
+    sinc = sin(0.5f * angle) / angle;
+  }
+  const float3 v = sinc * theta;
+  return (float4)(c, v.x, v.y, v.z);
+}
+
 /* The pose (trees/BranchPose.hpp): every entry's orientation Q = Q_parent Exp(theta) from the root down, and
  * its node's displacement u = u_parent + R (Q - I) s rest (world frame), written into the forest's
  * displacements. (Q - I) r = 2 w (v x r) + 2 v x (v x r) for the unit quaternion (w, v) of Q keeps its
- * digits at small angles. */
+ * digits at small angles. The orientations live only while their tree is posed: in this work-item's slice of
+ * `scratch` (4 floats an entry, `scratch_stride` floats an item), which its next tree reuses while the
+ * slice is still in cache. */
 __kernel void branch_deform(const int tree_count, __global const FwBranchTree* trees,
                             __global const FwTreeInstance* instances, __global const FwSpecies* species,
                             __global const FwBranch* branches, __global const float* joints,
-                            __global float* orientations, __global float* displacements) {
+                            __global float* scratch, const int scratch_stride,
+                            __global float* displacements) {
+  __global float* orientation = scratch + get_global_id(0) * (size_t)scratch_stride;
   FW_FLAT_FOR(t, tree_count) {
     const FwBranchTree bt = trees[t];
     const FwTreeInstance tree = instances[bt.instance];
     const FwSpecies sp = species[tree.species];
     const float s = tree.scale, cs = tree.cos_yaw, sn = tree.sin_yaw;
     __global float* u = displacements + 3 * (size_t)tree.node_offset;
-    __global float* orientation = orientations + 4 * (size_t)bt.entry_offset;
     vstore4((float4)(1.0f, 0.0f, 0.0f, 0.0f), 0, orientation);
     vstore3((float3)(0.0f), branches[sp.skeleton_offset].node, u);
     for (int j = 1; j < sp.node_count; ++j) {
       const FwBranch e = branches[sp.skeleton_offset + j];
       const float3 theta = vload3(0, joints + FW_JOINT_FLOATS * (bt.entry_offset + j));
-      const float angle = length(theta);
-      float4 turn = (float4)(1.0f, 0.0f, 0.0f, 0.0f);
-      if (angle > 0.0f) {
-        const float3 v = (sin(0.5f * angle) / angle) * theta;
-        turn = (float4)(cos(0.5f * angle), v.x, v.y, v.z);
-      }
-      const float4 q = quaternion_mul(vload4(e.parent_entry, orientation), turn);
+      const float4 q = quaternion_mul(vload4(e.parent_entry, orientation), quaternion_exp(theta));
       vstore4(q, j, orientation);
       const float3 r = s * branch_rest(&e);
       const float3 vr = cross(q.yzw, r);

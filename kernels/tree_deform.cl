@@ -55,6 +55,7 @@ __kernel void tree_deform(const int total_nodes, __global const int* node_instan
     if (count == 8 && node_instance[first + 7] == k) {
       const FwTreeInstance tree = instances[k];
       const FwSpecies sp = species[tree.species];
+      if (sp.mode_count == 0) continue; /* an element tree: kernels/tree_branches.cl poses it */
       const int m = sp.mode_count, row = 3 * sp.node_count;
       __global const float* phi = node_shapes + sp.shape_offset + 3 * (first - tree.node_offset);
       __global const float* q = state + 2 * tree.mode_offset;
@@ -78,6 +79,7 @@ __kernel void tree_deform(const int total_nodes, __global const int* node_instan
       for (int n = first; n < first + count; ++n) {
         const FwTreeInstance tree = instances[node_instance[n]];
         const FwSpecies sp = species[tree.species];
+        if (sp.mode_count == 0) continue;
         const int m = sp.mode_count, row = 3 * sp.node_count;
         __global const float* phi = node_shapes + sp.shape_offset + 3 * (n - tree.node_offset);
         __global const float* q = state + 2 * tree.mode_offset;
@@ -232,6 +234,7 @@ FW_INLINE void deform_strong_trees(const int trees, const FwTreeInstance* instan
                                    __global const float* strong_w, __global const float* strong_b,
                                    __global const float* rest_elements, __global const float* state,
                                    __global float* amplitudes, __global float* displacements) {
+  if (sp->mode_count == 0) return; /* element trees: kernels/tree_branches.cl poses them */
 #pragma unroll
   for (int g = 0; g < trees; ++g) strong_amplitudes(&instances[g], sp, strong_b, state, amplitudes);
   const int n = sp->node_count, full = n - n % FW_WALK_BLOCK;

@@ -81,8 +81,8 @@ std::size_t BranchStages::estimate_device_bytes(const trees::Forest& forest,
          ComputeContext::allocation_bytes(table * sizeof(FwBranch)) +
          2 * ComputeContext::allocation_bytes(count * sizeof(FwBranchTree)) +
          ComputeContext::allocation_bytes(entries * sizeof(fw_int)) + 2 * floats(3 * entries) +
-         floats(FW_JOINT_FLOATS * entries) + floats(4 * entries) +
-         floats(items * FW_RIGID_SCRATCH_FLOATS * std::size_t(et.largest));
+         floats(FW_JOINT_FLOATS * entries) +
+         floats(items * (FW_RIGID_SCRATCH_FLOATS + 4) * std::size_t(et.largest));
 }
 
 BranchStages::BranchStages(ComputeContext& cc, const fluid::GridSpec& spec, const trees::Forest& forest,
@@ -136,7 +136,8 @@ BranchStages::BranchStages(ComputeContext& cc, const fluid::GridSpec& spec, cons
   entry_tree_ = cc_.upload(entry_tree, ro);
   sample_world_ = cc_.zero_floats(3 * std::size_t(entry_count_));
   joints_ = cc_.zero_floats(FW_JOINT_FLOATS * std::size_t(entry_count_));
-  orientations_ = cc_.zero_floats(4 * std::size_t(entry_count_));
+  pose_items_ = cc_.flat_items(trees_.size());
+  pose_scratch_ = cc_.zero_floats(pose_items_ * 4 * std::size_t(largest_tree_));
   scratch_items_ = rigid.empty() ? 0 : cc_.flat_items(rigid.size());
   scratch_ = cc_.zero_floats(scratch_items_ * FW_RIGID_SCRATCH_FLOATS * std::size_t(largest_tree_));
 
@@ -187,9 +188,9 @@ void BranchStages::enqueue_spring_angles() {
 void BranchStages::enqueue_deform(cl::Buffer& displacements) {
   if (trees_.empty()) return;
   deform_
-      .set_args(tree_count(), trees_buffer_, instances_, species_, branches_, joints_, orientations_,
-                displacements)
-      .enqueue(cc_, cl::NDRange(cc_.flat_items(trees_.size())));
+      .set_args(tree_count(), trees_buffer_, instances_, species_, branches_, joints_, pose_scratch_,
+                fw_int(4 * largest_tree_), displacements)
+      .enqueue(cc_, cl::NDRange(pose_items_));
 }
 
 void BranchStages::reset_state() {

@@ -94,10 +94,10 @@ class BranchStages {
   int normal_drag_ = 0;
   double time_ = 0.0;
   cl::Buffer instances_, species_, models_, branches_, trees_buffer_, rigid_trees_;
-  cl::Buffer sample_world_, joints_, orientations_, scratch_;
+  cl::Buffer sample_world_, joints_, scratch_, pose_scratch_;
   cl::Buffer entry_tree_;  // per flat entry, its tree (an index into trees_): the springs' per-entry kernel
   std::optional<WindAtPoints> samples_;
-  std::size_t scratch_items_ = 0;
+  std::size_t scratch_items_ = 0, pose_items_ = 0;
   Kernel spring_angles_, rigid_step_, rigid_equilibrium_, deform_;
 };
 

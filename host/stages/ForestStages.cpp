@@ -150,8 +150,8 @@ void ForestStages::enqueue_modal_step(float dt) {
 
 void ForestStages::enqueue_deform() {
   if (total_nodes_ == 0) return;
-  // The element trees' nodes after the modal kernels', which write zeros there (their species' modes never
-  // move); the in-order queue keeps that order.
+  // The modal kernels skip the element trees (their species have no modes), whose nodes the branch
+  // kernels then write.
   enqueue_modal_deform();
   if (branches_) branches_->enqueue_deform(displacements_);
 }
