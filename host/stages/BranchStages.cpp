@@ -51,6 +51,23 @@ ElementTrees element_trees(const trees::Forest& forest, const std::vector<trees:
   return out;
 }
 
+// The pose's groups (kernels/tree_branches.cl branch_deform): FW_LANES element trees of one species each,
+// as indices into `trees`, -1 past a group's last tree. Trees of a species go together in their order.
+std::vector<fw_int> pose_groups(const trees::Forest& forest, const std::vector<FwBranchTree>& trees) {
+  std::vector<std::vector<fw_int>> of_species(forest.species().size());
+  for (std::size_t t = 0; t < trees.size(); ++t)
+    of_species[std::size_t(forest.instances()[std::size_t(trees[t].instance)].species)].push_back(fw_int(t));
+  std::vector<fw_int> groups;
+  for (const std::vector<fw_int>& members : of_species)
+    for (std::size_t first = 0; first < members.size(); first += FW_LANES) {
+      const std::size_t count = std::min<std::size_t>(FW_LANES, members.size() - first);
+      groups.insert(groups.end(), members.begin() + std::ptrdiff_t(first),
+                    members.begin() + std::ptrdiff_t(first + count));
+      groups.resize(groups.size() + (FW_LANES - count), -1);
+    }
+  return groups;
+}
+
 std::size_t floats(std::size_t count) {
   return ComputeContext::allocation_bytes(count * sizeof(float));
 }
@@ -77,12 +94,15 @@ std::size_t BranchStages::estimate_device_bytes(const trees::Forest& forest,
   std::size_t table = 0;
   for (const trees::SpeciesBasis& basis : forest.species()) table += std::size_t(basis.skeleton().size());
   const std::size_t entries = std::size_t(et.entries), count = et.trees.size();
+  const std::size_t groups = pose_groups(forest, et.trees).size() / FW_LANES;
   return ComputeContext::allocation_bytes(forest.species().size() * sizeof(FwBranchSpecies)) +
+         ComputeContext::allocation_bytes(groups * FW_LANES * sizeof(fw_int)) +
          ComputeContext::allocation_bytes(table * sizeof(FwBranch)) +
          2 * ComputeContext::allocation_bytes(count * sizeof(FwBranchTree)) +
          ComputeContext::allocation_bytes(entries * sizeof(fw_int)) + 2 * floats(3 * entries) +
          floats(FW_JOINT_FLOATS * entries) +
-         floats(items * (FW_RIGID_SCRATCH_FLOATS + 4) * std::size_t(et.largest));
+         floats(items * FW_RIGID_SCRATCH_FLOATS * std::size_t(et.largest)) +
+         floats(std::min(items, groups) * FW_POSE_SCRATCH_FLOATS * std::size_t(et.largest));
 }
 
 BranchStages::BranchStages(ComputeContext& cc, const fluid::GridSpec& spec, const trees::Forest& forest,
@@ -136,8 +156,11 @@ BranchStages::BranchStages(ComputeContext& cc, const fluid::GridSpec& spec, cons
   entry_tree_ = cc_.upload(entry_tree, ro);
   sample_world_ = cc_.zero_floats(3 * std::size_t(entry_count_));
   joints_ = cc_.zero_floats(FW_JOINT_FLOATS * std::size_t(entry_count_));
-  pose_items_ = cc_.flat_items(trees_.size());
-  pose_scratch_ = cc_.zero_floats(pose_items_ * 4 * std::size_t(largest_tree_));
+  const std::vector<fw_int> groups = pose_groups(forest, trees_);
+  pose_group_count_ = int(groups.size() / FW_LANES);
+  pose_groups_ = cc_.upload(groups, ro);
+  pose_items_ = cc_.flat_items(std::size_t(pose_group_count_));
+  pose_scratch_ = cc_.zero_floats(pose_items_ * FW_POSE_SCRATCH_FLOATS * std::size_t(largest_tree_));
   scratch_items_ = rigid.empty() ? 0 : cc_.flat_items(rigid.size());
   scratch_ = cc_.zero_floats(scratch_items_ * FW_RIGID_SCRATCH_FLOATS * std::size_t(largest_tree_));
 
@@ -188,8 +211,8 @@ void BranchStages::enqueue_spring_angles() {
 void BranchStages::enqueue_deform(cl::Buffer& displacements) {
   if (trees_.empty()) return;
   deform_
-      .set_args(tree_count(), trees_buffer_, instances_, species_, branches_, joints_, pose_scratch_,
-                fw_int(4 * largest_tree_), displacements)
+      .set_args(fw_int(pose_group_count_), pose_groups_, trees_buffer_, instances_, species_, branches_,
+                joints_, pose_scratch_, fw_int(FW_POSE_SCRATCH_FLOATS * largest_tree_), displacements)
       .enqueue(cc_, cl::NDRange(pose_items_));
 }
 

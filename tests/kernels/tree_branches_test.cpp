@@ -3,10 +3,13 @@
 // forest of three species: one moved by rigid bodies, one by springs, one modal, at various yaws and scales.
 #include <catch2/catch.hpp>
 
+#include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <random>
 
 #include "host/stages/ForestStages.hpp"
+#include "host/stages/SavedStateNames.hpp"
 #include "tests/support/Fields.hpp"
 #include "tests/support/SmallSpecies.hpp"
 #include "tests/support/TestDevice.hpp"
@@ -99,6 +102,28 @@ double angle_error(const std::vector<float>& joints, int offset, const std::vect
       largest = std::max(largest, std::abs(expected[j](c)));
     }
   return diff;
+}
+
+// The largest |device - reference| over the largest |reference| of instance k's pose, from the device's own
+// angles `joints` and its displacements `u` (world frame).
+double pose_error(const trees::Forest& forest, const trees::BranchElements& elements,
+                  const std::vector<float>& joints, int offset, const std::vector<float>& u, int k) {
+  const int first_node = forest.node_offset(k), nodes = elements.size();
+  std::vector<Eigen::Vector3d> angles(static_cast<std::size_t>(nodes));
+  for (int j = 0; j < nodes; ++j)
+    for (int c = 0; c < 3; ++c)
+      angles[std::size_t(j)](c) = joints[FW_JOINT_FLOATS * std::size_t(offset + j) + std::size_t(c)];
+  const double scale = forest.instances()[std::size_t(k)].scale;
+  const Eigen::MatrixX3d expected =
+      (trees::branch_displacements(elements, scale, angles) * forest.rotation(k).transpose()).eval();
+  double diff = 0.0, largest = 0.0;
+  for (int n = 0; n < nodes; ++n)
+    for (int c = 0; c < 3; ++c) {
+      diff = std::max(diff,
+                      std::abs(double(u[3 * std::size_t(first_node + n) + std::size_t(c)]) - expected(n, c)));
+      largest = std::max(largest, std::abs(expected(n, c)));
+    }
+  return diff / largest;
 }
 
 struct BranchFixture {
@@ -201,8 +226,6 @@ TEST_CASE("tree_branches: the spring trees' angles and every element tree's pose
   int spring_trees = 0;
   for (int k = 0; k < f.forest.instance_count(); ++k) {
     const int offset = branches.entry_offset(k);
-    const int first_node = f.forest.node_offset(k);
-    const int nodes = f.forest.species_of(k).skeleton().size();
     if (f.species(k) == kModal) {
       // The modal kernels' (tests/kernels/forest_stages_test.cpp); no element entries.
       REQUIRE(offset == -1);
@@ -221,22 +244,115 @@ TEST_CASE("tree_branches: the spring trees' angles and every element tree's pose
       CHECK(largest > 1e-3);
     }
     // The pose from the device's own angles.
-    std::vector<Eigen::Vector3d> angles(static_cast<std::size_t>(nodes));
-    for (int j = 0; j < nodes; ++j)
-      for (int c = 0; c < 3; ++c)
-        angles[std::size_t(j)](c) = joints[FW_JOINT_FLOATS * std::size_t(offset + j) + std::size_t(c)];
-    const Eigen::MatrixX3d expected =
-        (trees::branch_displacements(tree.elements, f.scale(k), angles) * f.forest.rotation(k).transpose())
-            .eval();
-    double diff = 0.0, largest = 0.0;
-    for (int n = 0; n < nodes; ++n)
-      for (int c = 0; c < 3; ++c) {
-        diff = std::max(
-            diff, std::abs(double(u[3 * std::size_t(first_node + n) + std::size_t(c)]) - expected(n, c)));
-        largest = std::max(largest, std::abs(expected(n, c)));
-      }
-    WARN("tree " << k << ": pose error " << diff / largest << " (largest displacement " << largest << " m)");
-    CHECK(diff / largest < kPoseTolerance);
+    const double error = pose_error(f.forest, tree.elements, joints, offset, u, k);
+    WARN("tree " << k << ": pose error " << error);
+    CHECK(error < kPoseTolerance);
   }
   CHECK(spring_trees == 3);
+}
+
+// Joints turned further than the pose's series reach (kernels/tree_branches.cl FW_SERIES_MAX_ANGLE, a half
+// turn) take the reduced sine and cosine, lane by lane beside lanes that stay on the series.
+TEST_CASE("tree_branches: the pose of joints turned past a half turn matches the reference",
+          "[forest][branches]") {
+  auto* cc = test::device_or_skip();
+  if (!cc) return;
+  BranchFixture f(*cc);
+  host::BranchStages& branches = *f.stages.branches();
+  host::StageState state;
+  branches.save_state(state);
+  std::vector<std::uint8_t>& bytes = state.buffers.at(host::saved::kJointState);
+  std::vector<float> joints(bytes.size() / sizeof(float));
+  std::mt19937 rng(13);
+  // Every third entry past a half turn (up to 5 rad), the others below a quarter turn.
+  std::uniform_real_distribution<double> small(-0.9, 0.9), large(2.0, 2.9);
+  int past_half_turn = 0;
+  for (std::size_t entry = 0; entry < joints.size() / FW_JOINT_FLOATS; ++entry)
+    for (int c = 0; c < 3; ++c)
+      joints[FW_JOINT_FLOATS * entry + std::size_t(c)] = float(entry % 3 == 0 ? large(rng) : small(rng));
+  for (std::size_t entry = 0; entry < joints.size() / FW_JOINT_FLOATS; entry += 3) ++past_half_turn;
+  std::memcpy(bytes.data(), joints.data(), bytes.size());
+  branches.restore_state(state);
+  f.stages.enqueue_deform();
+  const std::vector<float> u = f.stages.download_displacements();
+  for (int k = 0; k < f.forest.instance_count(); ++k) {
+    if (f.species(k) == kModal) continue;
+    const trees::SpeciesBasis& basis = f.forest.species_of(k);
+    const trees::BranchElements elements =
+        trees::BranchElements::of(basis.skeleton(), basis.settings().material, basis.settings().wind);
+    const double error = pose_error(f.forest, elements, joints, branches.entry_offset(k), u, k);
+    INFO("tree " << k << ": pose error " << error);
+    CHECK(error < kPoseTolerance);
+  }
+  CHECK(past_half_turn > 10);
+}
+
+// The pose deforms FW_LANES trees of a species together, padding a group's last lanes: a tree's frame must
+// not depend on which trees stand beside it (over MPI ranks a rank holds only some of them), and nor may its
+// steps. Interleaved species, groups full and partial, and modal trees between them.
+TEST_CASE("tree_branches: a tree's frame is the same to the bit alone and among its neighbours",
+          "[forest][branches]") {
+  auto* cc = test::device_or_skip();
+  if (!cc) return;
+  const fluid::GridSpec spec = forest_grid();
+  std::mt19937 rng(29);
+  std::uniform_real_distribution<double> x(1.0, 22.0), y(5.0, 22.0), yaw(-M_PI, M_PI), scale(0.6, 1.5);
+  // Mostly element trees: each model gets a full group and a partial one.
+  std::discrete_distribution<int> kind({9.0, 9.0, 2.0});
+  std::vector<trees::TreeInstance> placed;
+  std::vector<int> per_species(3, 0);
+  for (int k = 0; k < 3 * FW_LANES; ++k) {
+    placed.push_back({kind(rng), {x(rng), y(rng), 0.0}, yaw(rng), scale(rng)});
+    ++per_species[std::size_t(placed.back().species)];
+  }
+  REQUIRE(per_species[kRigid] > FW_LANES);
+  REQUIRE(per_species[kSprings] > FW_LANES);
+  const trees::Forest forest(test_forest().species(), std::move(placed));
+  const std::vector<trees::SpeciesDynamics> dynamics = test_dynamics();
+  const fluid::MacVelocity wind = test::smooth_velocity(spec, {6.0, -3.0, 0.5}, {2.0, 1.5, 1.0});
+  host::DeviceVelocity dwind;
+  dwind.u = cc->buffer(spec.u_count() * sizeof(float));
+  dwind.v = cc->buffer(spec.v_count() * sizeof(float));
+  dwind.w = cc->buffer(spec.w_count() * sizeof(float));
+  test::upload(*cc, wind, dwind);
+  // A few steps of 0.05 s from rest, then the frame.
+  constexpr int kSteps = 3;
+  const auto frame = [&](const trees::Forest& trees) {
+    host::ForestStages stages(*cc, spec, trees, nullptr, dynamics);
+    for (int n = 0; n < kSteps; ++n) {
+      stages.enqueue_wind_load(dwind);
+      stages.enqueue_modal_step(0.05f);
+    }
+    stages.enqueue_deform();
+    return stages.download_displacements();
+  };
+  const std::vector<float> together = frame(forest);
+  int checked = 0;
+  for (int k = 0; k < forest.instance_count(); ++k) {
+    if (forest.instances()[std::size_t(k)].species == kModal) continue;
+    INFO("instance " << k);
+    const std::vector<float> u = frame(forest.subset({k}));
+    const auto from = together.begin() + 3 * std::ptrdiff_t(forest.node_offset(k));
+    CHECK(std::equal(u.begin(), u.end(), from, from + std::ptrdiff_t(u.size())));
+    CHECK(*std::max_element(u.begin(), u.end()) > 0.0f);
+    ++checked;
+  }
+  CHECK(checked == per_species[kRigid] + per_species[kSprings]);
+}
+
+// The planner reports the estimate (host/app/plan/ForestPlan.cpp) and refuses a run that would not fit: it
+// may count more work-items' scratch than a device uses (one per tree at most), never less.
+TEST_CASE("tree_branches: the device memory estimate bounds what the element stages allocate",
+          "[forest][branches]") {
+  auto* cc = test::device_or_skip();
+  if (!cc) return;
+  const trees::Forest forest = test_forest();
+  const std::vector<trees::SpeciesDynamics> dynamics = test_dynamics();
+  const std::size_t before = cc->allocated_bytes();
+  const host::ForestStages stages(*cc, forest_grid(), forest, nullptr, dynamics);
+  const std::size_t allocated = cc->allocated_bytes() - before;
+  const std::size_t estimate = host::ForestStages::estimate_device_bytes(forest, dynamics);
+  INFO("allocated " << allocated << " bytes, estimated " << estimate);
+  CHECK(allocated <= estimate);
+  CHECK(allocated > host::ForestStages::estimate_device_bytes(forest));
 }
