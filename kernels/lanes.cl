@@ -218,6 +218,31 @@ FW_INLINE lanef sincos_lanes(const lanef x, lanef* cosine) {
   return s;
 }
 
+/* atan x for any x (NaN to NaN): halved twice, by atan x = pi/2 - atan(1/x) above 1 and atan t = pi/4 +
+ * atan((t - 1)/(t + 1)) above tan(pi/8), then its Taylor series to u^17 (|u| <= tan(pi/8): the first term
+ * left out, u^19/19, is 3e-9). Written out for the same reason as the sine: PoCL's arctangent and sine
+ * were 85% of the springs' angle kernel (docs/tree-models.md "Cost"). */
+FW_INLINE lanef atan_lanes(const lanef x) {
+  const lanef a = fabs(x);
+  const lanei above_one = a > 1.0f;
+  const lanef t = select(a, 1.0f / a, above_one);
+  const lanei above_eighth = t > 0.41421356f; /* tan(pi/8) */
+  const lanef u = select(t, (t - 1.0f) / (t + 1.0f), above_eighth);
+  const lanef u2 = u * u;
+  lanef p = 1.0f / 17.0f;
+  p = p * u2 - 1.0f / 15.0f;
+  p = p * u2 + 1.0f / 13.0f;
+  p = p * u2 - 1.0f / 11.0f;
+  p = p * u2 + 1.0f / 9.0f;
+  p = p * u2 - 1.0f / 7.0f;
+  p = p * u2 + 1.0f / 5.0f;
+  p = p * u2 - 1.0f / 3.0f;
+  lanef r = (p * u2 + 1.0f) * u;
+  r = select(r, 0.78539816f + r, above_eighth);
+  r = select(r, 1.57079633f - r, above_one);
+  return copysign(r, x);
+}
+
 /* Face rows: the lane kernels over a velocity component (advection) give each work-item FW_LANES faces of
  * one x-row. */
 

@@ -255,9 +255,9 @@ typedef struct FwBranchTree {
 #define FW_RIGID_IMPLICIT_WEIGHT 0.6f
 /* Floats a rigid tree's recursion keeps per entry between its passes (kernels/tree_branches.cl). */
 #define FW_RIGID_SCRATCH_FLOATS 33
-/* Floats the pose keeps per entry for its FW_LANES trees (kernels/tree_branches.cl branch_deform): their
- * orientations (4 lanes of quaternion components) and displacements (3). */
-#define FW_POSE_SCRATCH_FLOATS (7 * FW_LANES)
+/* Floats the pose keeps per entry while it walks a tree (kernels/tree_branches.cl branch_deform): its
+ * orientation, a quaternion. */
+#define FW_POSE_FLOATS 4
 
 /* b_e of entry `entry` of tree `id` (trees/SpringBranches.hpp spring_phases), as the fraction of a turn
  * fw_phase_bits / 2^24: an integer hash (Wellons' lowbias32), the same bits on the host and the device. */

@@ -5,14 +5,15 @@
  * Work mapping: one tree per loop iteration (FW_FLAT_FOR over the element trees) where a tree is walked in
  * its table's order, parents before children, or back up it: an element needs its children's results (the
  * rigid bodies' recursion up) or its parent's (the pose down), so one work-item keeps a tree's entries in
- * order. The springs' angles are independent: one entry per iteration. A
- * rigid tree's recursion keeps FW_RIGID_SCRATCH_FLOATS per entry in `scratch`, a slice of `scratch_stride`
- * floats per work-item (the host sizes it for its largest tree).
+ * order. The springs' angles are independent: FW_LANES entries of one tree per iteration, in vector
+ * arithmetic (kernels/lanes.cl). A rigid tree's recursion keeps FW_RIGID_SCRATCH_FLOATS per entry, and the
+ * pose FW_POSE_FLOATS, in `scratch`, a slice of `scratch_stride` floats per work-item (the host sizes it for
+ * its largest tree).
  *
  * Flat arrays, per element tree t at trees[t].entry_offset: the wind sampled at each entry's element centre
- * (3 floats, world frame), the joint state (FW_JOINT_FLOATS: angle, rate), the orientation (a quaternion,
- * 4 floats: w, x, y, z). Instance k of scale s: lengths s, masses s^3, inertias s^5, joint stiffness s^3,
- * drag per metre s, spring constants s (trees/BranchElements.hpp). */
+ * (3 floats, world frame), the joint state (FW_JOINT_FLOATS: angle, rate). Instance k of scale s: lengths s,
+ * masses s^3, inertias s^5, joint stiffness s^3, drag per metre s, spring constants s
+ * (trees/BranchElements.hpp). */
 #include "common.cl"
 #include "lanes.cl"
 
@@ -153,43 +154,111 @@ __kernel void branch_sample_positions(const int tree_count, __global const FwBra
   }
 }
 
-/* Springs (trees/SpringBranches.hpp): every entry's joint angle from its own load at time t; no rate. One
- * entry per loop iteration (FW_FLAT_FOR over the flat entries of every element tree): the elements are
- * independent, and their atan and sin vectorise across work-items. entry_tree names each flat entry's tree
- * (an index into `trees`); entries of trees of another model are left alone. */
-__kernel void spring_angles(const int entry_count, __global const int* entry_tree,
+/* Three vectors' components, lane by lane. */
+typedef struct {
+  lanef x, y, z;
+} LaneVec3;
+
+FW_INLINE LaneVec3 lane_cross(const LaneVec3 a, const LaneVec3 b) {
+  LaneVec3 c;
+  c.x = a.y * b.z - a.z * b.y;
+  c.y = a.z * b.x - a.x * b.z;
+  c.z = a.x * b.y - a.y * b.x;
+  return c;
+}
+
+/* Springs (trees/SpringBranches.hpp): every entry's joint angle from its own load at time t; no rate. The
+ * elements are independent: one block of FW_LANES consecutive entries of one spring tree per loop iteration
+ * (`blocks`: its index into `trees` and its first entry), lane by lane, the lanes past the tree's last entry
+ * repeating it and storing nothing. The root's entry has no element and keeps a zero angle. */
+__kernel void spring_angles(const int block_count, __global const int* blocks,
                             __global const FwBranchTree* trees, __global const FwTreeInstance* instances,
                             __global const FwSpecies* species, __global const FwBranchSpecies* models,
                             __global const FwBranch* branches, const FwDragLaw law,
                             __global const float* wind, const float time, __global float* joints) {
   const float turn = 2.0f * M_PI_F / (float)(1u << FW_PHASE_BITS);
-  FW_FLAT_FOR(flat, entry_count) {
-    const FwBranchTree bt = trees[entry_tree[flat]];
+  FW_FLAT_FOR(k, block_count) {
+    const int2 block = vload2(k, blocks);
+    const FwBranchTree bt = trees[block.x];
     const FwTreeInstance tree = instances[bt.instance];
     const FwBranchSpecies model = models[tree.species];
-    if (model.model != FW_DYNAMICS_SPRINGS) continue;
-    const int j = (int)flat - bt.entry_offset;
-    float3 angle = (float3)(0.0f);
-    if (j > 0) {
-      const FwBranch e = branches[species[tree.species].skeleton_offset + j];
-      const float s = tree.scale;
-      const float3 F = element_load(&e, &tree, law, wind + 3 * flat, model.normal_drag);
-      const float3 axis = branch_rest(&e) / e.length;
-      const float3 normal = F - dot(F, axis) * axis;
-      const float load = length(normal);
-      if (load > 0.0f) {
-        const float bend = load / (s * e.spring) / (s * e.length);
-        const float steady = fmin(atan(bend), model.max_angle);
-        const float amplitude = model.sway_amplitude * steady / model.max_angle;
-        const float phase = turn * (float)fw_phase_bits((fw_uint)bt.id, (fw_uint)j);
-        const float swayed = bend * (1.0f + amplitude * sin(model.sway_omega * time + phase));
-        const float theta = clamp(atan(swayed), -model.max_angle, model.max_angle);
-        angle = theta * cross(axis, normal / load);
-      }
+    const int n = species[tree.species].node_count, table = species[tree.species].skeleton_offset;
+    const int first = block.y, valid = min(FW_LANES, n - first);
+
+    /* The lanes' elements and winds. */
+    float rx[FW_LANES], ry[FW_LANES], rz[FW_LANES], length[FW_LANES], wood_drag[FW_LANES],
+        foliage_drag[FW_LANES], spring[FW_LANES], wx[FW_LANES], wy[FW_LANES], wz[FW_LANES], phase[FW_LANES];
+    for (int l = 0; l < FW_LANES; ++l) {
+      const int j = first + min(l, valid - 1);
+      const FwBranch e = branches[table + j];
+      rx[l] = e.rest[0];
+      ry[l] = e.rest[1];
+      rz[l] = e.rest[2];
+      /* The root's entry has no element: a unit length keeps its lane finite. */
+      length[l] = j > 0 ? e.length : 1.0f;
+      wood_drag[l] = e.branch_drag;
+      foliage_drag[l] = e.leaf_drag;
+      spring[l] = e.spring;
+      __global const float* w = wind + 3 * (bt.entry_offset + j);
+      wx[l] = w[0];
+      wy[l] = w[1];
+      wz[l] = w[2];
+      phase[l] = turn * (float)fw_phase_bits((fw_uint)bt.id, (fw_uint)j);
     }
-    __global float* joint = joints + FW_JOINT_FLOATS * flat;
-    vstore3(angle, 0, joint);
-    vstore3((float3)(0.0f), 1, joint);
+    const lanef L = lane_load(0, length);
+    LaneVec3 axis;
+    axis.x = lane_load(0, rx) / L;
+    axis.y = lane_load(0, ry) / L;
+    axis.z = lane_load(0, rz) / L;
+
+    /* The drag (element_load, lane by lane): the wind in the skeleton frame, s^2 L (b P v + l v) |v| f(|v|).
+     */
+    const float cs = tree.cos_yaw, sn = tree.sin_yaw, s = tree.scale;
+    const lanef gx = lane_load(0, wx), gy = lane_load(0, wy);
+    LaneVec3 v;
+    v.x = cs * gx + sn * gy;
+    v.y = -sn * gx + cs * gy;
+    v.z = lane_load(0, wz);
+    const lanef speed = sqrt(v.x * v.x + v.y * v.y + v.z * v.z);
+    const lanef along_v = model.normal_drag ? axis.x * v.x + axis.y * v.y + axis.z * v.z : (lanef)(0.0f);
+    const lanef factor =
+        law.exponent == 0.0f
+            ? (lanef)(1.0f)
+            : powr(fmax(speed, law.lowest_speed) * law.inverse_reference_speed, law.exponent);
+    const lanef magnitude = s * s * L * speed * factor, b = lane_load(0, wood_drag),
+                foliage = lane_load(0, foliage_drag);
+    LaneVec3 F;
+    F.x = magnitude * (b * (v.x - along_v * axis.x) + foliage * v.x);
+    F.y = magnitude * (b * (v.y - along_v * axis.y) + foliage * v.y);
+    F.z = magnitude * (b * (v.z - along_v * axis.z) + foliage * v.z);
+
+    /* The bend: the load across the element over s k, over s L, and its angle with the sine on top. */
+    const lanef along_F = F.x * axis.x + F.y * axis.y + F.z * axis.z;
+    LaneVec3 normal;
+    normal.x = F.x - along_F * axis.x;
+    normal.y = F.y - along_F * axis.y;
+    normal.z = F.z - along_F * axis.z;
+    const lanef load = sqrt(normal.x * normal.x + normal.y * normal.y + normal.z * normal.z);
+    const lanef bend = load / (s * lane_load(0, spring)) / (s * L);
+    const lanef steady = fmin(atan_lanes(bend), model.max_angle);
+    const lanef amplitude = model.sway_amplitude * steady / model.max_angle;
+    lanef unused_cosine;
+    const lanef sine = sincos_lanes(model.sway_omega * time + lane_load(0, phase), &unused_cosine);
+    const lanef swayed = bend * (1.0f + amplitude * sine);
+    const lanef theta = clamp(atan_lanes(swayed), -model.max_angle, model.max_angle);
+    /* theta about axis x the load's direction; zero without a load, and at the root. */
+    const lanei bent = load > 0.0f && first + FW_LANE_OFFSETS > 0;
+    const lanef per_load = select((lanef)(0.0f), theta / load, bent);
+    const LaneVec3 turn_axis = lane_cross(axis, normal);
+    float ax[FW_LANES], ay[FW_LANES], az[FW_LANES];
+    lane_store(per_load * turn_axis.x, 0, ax);
+    lane_store(per_load * turn_axis.y, 0, ay);
+    lane_store(per_load * turn_axis.z, 0, az);
+    for (int l = 0; l < valid; ++l) {
+      __global float* joint = joints + FW_JOINT_FLOATS * (bt.entry_offset + first + l);
+      vstore3((float3)(ax[l], ay[l], az[l]), 0, joint);
+      vstore3((float3)(0.0f), 1, joint);
+    }
   }
 }
 
@@ -346,168 +415,70 @@ __kernel void rigid_branches_equilibrium(const int tree_count, __global const Fw
   }
 }
 
-/* The pose, FW_LANES trees of one species at a time, one per lane: their walks are the same, so every step
- * of it is vector arithmetic across the trees (PoCL does not vectorise a loop inside a work-item). */
-
-/* Three vectors' components, lane by lane. */
-typedef struct {
-  lanef x, y, z;
-} LaneVec3;
-
-/* Unit quaternions (w, v), lane by lane. */
-typedef struct {
-  lanef w;
-  LaneVec3 v;
-} LaneQuat;
-
-FW_INLINE LaneVec3 lane_cross(const LaneVec3 a, const LaneVec3 b) {
-  LaneVec3 c;
-  c.x = a.y * b.z - a.z * b.y;
-  c.y = a.z * b.x - a.x * b.z;
-  c.z = a.x * b.y - a.y * b.x;
-  return c;
+/* q p, quaternions as (w, x, y, z). */
+FW_INLINE float4 quaternion_mul(const float4 q, const float4 p) {
+  const float3 qv = q.yzw, pv = p.yzw;
+  const float3 v = q.x * pv + p.x * qv + cross(qv, pv);
+  return (float4)(q.x * p.x - dot(qv, pv), v.x, v.y, v.z);
 }
 
-/* q p. */
-FW_INLINE LaneQuat lane_quaternion_mul(const LaneQuat q, const LaneQuat p) {
-  const LaneVec3 c = lane_cross(q.v, p.v);
-  LaneQuat r;
-  r.w = q.w * p.w - (q.v.x * p.v.x + q.v.y * p.v.y + q.v.z * p.v.z);
-  r.v.x = q.w * p.v.x + p.w * q.v.x + c.x;
-  r.v.y = q.w * p.v.y + p.w * q.v.y + c.y;
-  r.v.z = q.w * p.v.z + p.w * q.v.z + c.z;
-  return r;
-}
+/* The largest joint angle, rad, whose half-angle cosine and sinc quaternion_exp takes from their series:
+ * at half-angles up to pi/4 the first term left out, x^12 / 12!, is 1e-10, far below a float's digits. */
+#define FW_SERIES_MAX_ANGLE 1.5707963f
 
-/* The largest joint angle, rad, whose half-angle cosine and sine lane_quaternion_exp take from their series
- * (sincos_quarter_lanes, good to 6e-8 up to a half-angle of pi/2). */
-#define FW_SERIES_MAX_ANGLE 3.14159265f
-
-/* Exp(theta): the unit quaternion of the rotation by a = |theta| about theta, (cos(a/2), sin(a/2)/a theta).
- * Joints turn by far less than a half turn, so every lane takes the series, whose sine over a needs no
- * division near 0; a lane beyond it takes sincos_lanes' reduction. */
-FW_INLINE LaneQuat lane_quaternion_exp(const LaneVec3 theta) {
-  const lanef angle = sqrt(theta.x * theta.x + theta.y * theta.y + theta.z * theta.z);
-  lanef c;
-  const lanef s = sincos_quarter_lanes(0.5f * angle, &c);
-  /* sin(a/2)/a, whose limit at a = 0 is 1/2. */
-  lanef sinc = select(s / angle, (lanef)(0.5f), angle == 0.0f);
-  const lanei beyond = angle > FW_SERIES_MAX_ANGLE;
-  if (any(beyond)) {
-    lanef far_c;
-    const lanef far_s = sincos_lanes(0.5f * angle, &far_c);
-    c = select(c, far_c, beyond);
-    sinc = select(sinc, far_s / angle, beyond);
+/* Exp(theta): the unit quaternion of the rotation by |theta| about theta, (cos(a/2), sin(a/2)/a theta).
+ * Joints turn by far less than a right angle, so their half-angle functions come from Taylor series in
+ * (a/2)^2 = theta.theta / 4: a few FMAs and no square root, where a scalar sin and cos cost tens of ns on
+ * a CPU device. Larger angles take the library's functions. */
+FW_INLINE float4 quaternion_exp(const float3 theta) {
+  const float angle_squared = dot(theta, theta);
+  float c, sinc;
+  if (angle_squared < FW_SERIES_MAX_ANGLE * FW_SERIES_MAX_ANGLE) {
+    const float x2 = 0.25f * angle_squared;
+    c = 1.0f + x2 * (-1.0f / 2 +
+                     x2 * (1.0f / 24 + x2 * (-1.0f / 720 + x2 * (1.0f / 40320 + x2 * (-1.0f / 3628800)))));
+    sinc = 0.5f * (1.0f + x2 * (-1.0f / 6 +
+                                x2 * (1.0f / 120 +
+                                      x2 * (-1.0f / 5040 + x2 * (1.0f / 362880 + x2 * (-1.0f / 39916800))))));
+  } else {
+    const float angle = sqrt(angle_squared);
+    c = cos(0.5f * angle);
+    sinc = sin(0.5f * angle) / angle;
   }
-  LaneQuat q;
-  q.w = c;
-  q.v.x = sinc * theta.x;
-  q.v.y = sinc * theta.y;
-  q.v.z = sinc * theta.z;
-  return q;
-}
-
-/* Floats of a pose slot per entry (kernels/shared_types.h FW_POSE_SCRATCH_FLOATS): the lanes' orientation
- * (w, x, y, z) and displacement (x, y, z, world frame), a lanef each. */
-FW_INLINE void pose_store(__global float* slot, const LaneQuat q, const LaneVec3 u) {
-  lane_store(q.w, 0, slot);
-  lane_store(q.v.x, 1, slot);
-  lane_store(q.v.y, 2, slot);
-  lane_store(q.v.z, 3, slot);
-  lane_store(u.x, 4, slot);
-  lane_store(u.y, 5, slot);
-  lane_store(u.z, 6, slot);
-}
-
-FW_INLINE LaneQuat pose_orientation(__global const float* slot) {
-  LaneQuat q;
-  q.w = lane_load(0, slot);
-  q.v.x = lane_load(1, slot);
-  q.v.y = lane_load(2, slot);
-  q.v.z = lane_load(3, slot);
-  return q;
-}
-
-FW_INLINE LaneVec3 pose_displacement(__global const float* slot) {
-  LaneVec3 u;
-  u.x = lane_load(4, slot);
-  u.y = lane_load(5, slot);
-  u.z = lane_load(6, slot);
-  return u;
+  const float3 v = sinc * theta;
+  return (float4)(c, v.x, v.y, v.z);
 }
 
 /* The pose (trees/BranchPose.hpp): every entry's orientation Q = Q_parent Exp(theta) from the root down, and
  * its node's displacement u = u_parent + R (Q - I) s rest (world frame), written into the forest's
  * displacements. (Q - I) r = 2 w (v x r) + 2 v x (v x r) for the unit quaternion (w, v) of Q keeps its
- * digits at small angles.
- *
- * Work mapping: one group of `groups` per loop iteration, FW_LANES element trees of one species (their
- * indices into `trees`, -1 past a group's last tree, whose lanes repeat its first and store nothing). Every
- * lane does the same operations whatever its neighbours, so a tree's frame has the same bits alone or in any
- * group. The lanes' orientations and displacements live only while their group is posed, in this
- * work-item's slice of `scratch` (FW_POSE_SCRATCH_FLOATS an entry, `scratch_stride` floats an item), which
- * its next group reuses while the slice is still in cache. */
-__kernel void branch_deform(const int group_count, __global const int* groups,
-                            __global const FwBranchTree* trees, __global const FwTreeInstance* instances,
-                            __global const FwSpecies* species, __global const FwBranch* branches,
-                            __global const float* joints, __global float* scratch, const int scratch_stride,
+ * digits at small angles. The orientations live only while their tree is posed: in this work-item's slice of
+ * `scratch` (FW_POSE_FLOATS an entry, `scratch_stride` floats an item), which its next tree reuses while the
+ * slice is still in cache. */
+__kernel void branch_deform(const int tree_count, __global const FwBranchTree* trees,
+                            __global const FwTreeInstance* instances, __global const FwSpecies* species,
+                            __global const FwBranch* branches, __global const float* joints,
+                            __global float* scratch, const int scratch_stride,
                             __global float* displacements) {
-  __global float* work = scratch + get_global_id(0) * (size_t)scratch_stride;
-  FW_FLAT_FOR(group, group_count) {
-    __global const int* members = groups + FW_LANES * group;
-    int first_joint[FW_LANES], first_node[FW_LANES];
-    float scale[FW_LANES], cos_yaw[FW_LANES], sin_yaw[FW_LANES];
-    int count = 0;
-    for (int g = 0; g < FW_LANES; ++g) {
-      const int member = members[g];
-      if (member >= 0) count = g + 1;
-      const FwBranchTree bt = trees[member >= 0 ? member : members[0]];
-      const FwTreeInstance tree = instances[bt.instance];
-      first_joint[g] = FW_JOINT_FLOATS * bt.entry_offset;
-      first_node[g] = 3 * tree.node_offset;
-      scale[g] = tree.scale;
-      cos_yaw[g] = tree.cos_yaw;
-      sin_yaw[g] = tree.sin_yaw;
-    }
-    const FwSpecies sp = species[instances[trees[members[0]].instance].species];
-    const lanef s = lane_load(0, scale), cs = lane_load(0, cos_yaw), sn = lane_load(0, sin_yaw);
-    const lanei joint_at = lane_load(0, first_joint);
-
-    LaneQuat q;
-    q.w = (lanef)(1.0f);
-    q.v.x = q.v.y = q.v.z = (lanef)(0.0f);
-    LaneVec3 u = q.v;
-    pose_store(work, q, u);
-    const int root = branches[sp.skeleton_offset].node;
-    for (int g = 0; g < count; ++g) vstore3((float3)(0.0f), 0, displacements + first_node[g] + 3 * root);
-
+  __global float* orientation = scratch + get_global_id(0) * (size_t)scratch_stride;
+  FW_FLAT_FOR(t, tree_count) {
+    const FwBranchTree bt = trees[t];
+    const FwTreeInstance tree = instances[bt.instance];
+    const FwSpecies sp = species[tree.species];
+    const float s = tree.scale, cs = tree.cos_yaw, sn = tree.sin_yaw;
+    __global float* u = displacements + 3 * (size_t)tree.node_offset;
+    vstore4((float4)(1.0f, 0.0f, 0.0f, 0.0f), 0, orientation);
+    vstore3((float3)(0.0f), branches[sp.skeleton_offset].node, u);
     for (int j = 1; j < sp.node_count; ++j) {
       const FwBranch e = branches[sp.skeleton_offset + j];
-      __global const float* parent = work + FW_POSE_SCRATCH_FLOATS * e.parent_entry;
-      LaneVec3 theta;
-      const lanei at = joint_at + FW_JOINT_FLOATS * j;
-      theta.x = gather(joints, at);
-      theta.y = gather(joints, at + 1);
-      theta.z = gather(joints, at + 2);
-      q = lane_quaternion_mul(pose_orientation(parent), lane_quaternion_exp(theta));
-      LaneVec3 r;
-      r.x = s * e.rest[0];
-      r.y = s * e.rest[1];
-      r.z = s * e.rest[2];
-      const LaneVec3 vr = lane_cross(q.v, r), vvr = lane_cross(q.v, vr);
-      const lanef cx = 2.0f * (q.w * vr.x + vvr.x), cy = 2.0f * (q.w * vr.y + vvr.y),
-                  cz = 2.0f * (q.w * vr.z + vvr.z);
-      u = pose_displacement(parent);
-      u.x += cs * cx - sn * cy;
-      u.y += sn * cx + cs * cy;
-      u.z += cz;
-      pose_store(work + FW_POSE_SCRATCH_FLOATS * j, q, u);
-      float ux[FW_LANES], uy[FW_LANES], uz[FW_LANES];
-      lane_store(u.x, 0, ux);
-      lane_store(u.y, 0, uy);
-      lane_store(u.z, 0, uz);
-      for (int g = 0; g < count; ++g)
-        vstore3((float3)(ux[g], uy[g], uz[g]), 0, displacements + first_node[g] + 3 * e.node);
+      const float3 theta = vload3(0, joints + FW_JOINT_FLOATS * (bt.entry_offset + j));
+      const float4 q = quaternion_mul(vload4(e.parent_entry, orientation), quaternion_exp(theta));
+      vstore4(q, j, orientation);
+      const float3 r = s * branch_rest(&e);
+      const float3 vr = cross(q.yzw, r);
+      const float3 change = 2.0f * q.x * vr + 2.0f * cross(q.yzw, vr);
+      const float3 world = (float3)(cs * change.x - sn * change.y, sn * change.x + cs * change.y, change.z);
+      vstore3(vload3(e.parent_node, u) + world, e.node, u);
     }
   }
 }

@@ -51,21 +51,19 @@ ElementTrees element_trees(const trees::Forest& forest, const std::vector<trees:
   return out;
 }
 
-// The pose's groups (kernels/tree_branches.cl branch_deform): FW_LANES element trees of one species each,
-// as indices into `trees`, -1 past a group's last tree. Trees of a species go together in their order.
-std::vector<fw_int> pose_groups(const trees::Forest& forest, const std::vector<FwBranchTree>& trees) {
-  std::vector<std::vector<fw_int>> of_species(forest.species().size());
-  for (std::size_t t = 0; t < trees.size(); ++t)
-    of_species[std::size_t(forest.instances()[std::size_t(trees[t].instance)].species)].push_back(fw_int(t));
-  std::vector<fw_int> groups;
-  for (const std::vector<fw_int>& members : of_species)
-    for (std::size_t first = 0; first < members.size(); first += FW_LANES) {
-      const std::size_t count = std::min<std::size_t>(FW_LANES, members.size() - first);
-      groups.insert(groups.end(), members.begin() + std::ptrdiff_t(first),
-                    members.begin() + std::ptrdiff_t(first + count));
-      groups.resize(groups.size() + (FW_LANES - count), -1);
-    }
-  return groups;
+// The springs' blocks (kernels/tree_branches.cl spring_angles): (tree, first entry) pairs, FW_LANES
+// consecutive entries of one spring tree each, its last block shorter.
+std::vector<fw_int> spring_blocks(const trees::Forest& forest, const std::vector<FwBranchTree>& trees,
+                                  const std::vector<trees::SpeciesDynamics>& dynamics) {
+  std::vector<fw_int> blocks;
+  if (dynamics.empty()) return blocks;  // every species modal
+  for (std::size_t t = 0; t < trees.size(); ++t) {
+    const int species = forest.instances()[std::size_t(trees[t].instance)].species;
+    if (dynamics[std::size_t(species)].model != trees::TreeDynamics::springs) continue;
+    const int n = forest.species()[std::size_t(species)].skeleton().size();
+    for (int first = 0; first < n; first += FW_LANES) blocks.insert(blocks.end(), {fw_int(t), fw_int(first)});
+  }
+  return blocks;
 }
 
 std::size_t floats(std::size_t count) {
@@ -94,15 +92,13 @@ std::size_t BranchStages::estimate_device_bytes(const trees::Forest& forest,
   std::size_t table = 0;
   for (const trees::SpeciesBasis& basis : forest.species()) table += std::size_t(basis.skeleton().size());
   const std::size_t entries = std::size_t(et.entries), count = et.trees.size();
-  const std::size_t groups = pose_groups(forest, et.trees).size() / FW_LANES;
   return ComputeContext::allocation_bytes(forest.species().size() * sizeof(FwBranchSpecies)) +
-         ComputeContext::allocation_bytes(groups * FW_LANES * sizeof(fw_int)) +
          ComputeContext::allocation_bytes(table * sizeof(FwBranch)) +
          2 * ComputeContext::allocation_bytes(count * sizeof(FwBranchTree)) +
-         ComputeContext::allocation_bytes(entries * sizeof(fw_int)) + 2 * floats(3 * entries) +
-         floats(FW_JOINT_FLOATS * entries) +
+         ComputeContext::allocation_bytes(spring_blocks(forest, et.trees, dynamics).size() * sizeof(fw_int)) +
+         2 * floats(3 * entries) + floats(FW_JOINT_FLOATS * entries) +
          floats(items * FW_RIGID_SCRATCH_FLOATS * std::size_t(et.largest)) +
-         floats(std::min(items, groups) * FW_POSE_SCRATCH_FLOATS * std::size_t(et.largest));
+         floats(std::min(items, count) * FW_POSE_FLOATS * std::size_t(et.largest));
 }
 
 BranchStages::BranchStages(ComputeContext& cc, const fluid::GridSpec& spec, const trees::Forest& forest,
@@ -142,25 +138,19 @@ BranchStages::BranchStages(ComputeContext& cc, const fluid::GridSpec& spec, cons
   }
   rigid_count_ = int(rigid.size());
   spring_count_ = int(springs.size());
-  std::vector<fw_int> entry_tree(static_cast<std::size_t>(entry_count_));
-  for (std::size_t t = 0; t < trees_.size(); ++t) {
-    const int end = t + 1 < trees_.size() ? trees_[t + 1].entry_offset : entry_count_;
-    for (int flat = trees_[t].entry_offset; flat < end; ++flat) entry_tree[std::size_t(flat)] = fw_int(t);
-  }
+  const std::vector<fw_int> springs_blocks = spring_blocks(forest, trees_, dynamics);
+  spring_block_count_ = int(springs_blocks.size() / 2);
 
   constexpr cl_mem_flags ro = CL_MEM_READ_ONLY;
   models_ = cc_.upload(models, ro);
   branches_ = cc_.upload(table, ro);
   trees_buffer_ = cc_.upload(trees_, ro);
   rigid_trees_ = cc_.upload(rigid, ro);
-  entry_tree_ = cc_.upload(entry_tree, ro);
+  spring_blocks_ = cc_.upload(springs_blocks, ro);
   sample_world_ = cc_.zero_floats(3 * std::size_t(entry_count_));
   joints_ = cc_.zero_floats(FW_JOINT_FLOATS * std::size_t(entry_count_));
-  const std::vector<fw_int> groups = pose_groups(forest, trees_);
-  pose_group_count_ = int(groups.size() / FW_LANES);
-  pose_groups_ = cc_.upload(groups, ro);
-  pose_items_ = cc_.flat_items(std::size_t(pose_group_count_));
-  pose_scratch_ = cc_.zero_floats(pose_items_ * FW_POSE_SCRATCH_FLOATS * std::size_t(largest_tree_));
+  pose_items_ = cc_.flat_items(trees_.size());
+  pose_scratch_ = cc_.zero_floats(pose_items_ * FW_POSE_FLOATS * std::size_t(largest_tree_));
   scratch_items_ = rigid.empty() ? 0 : cc_.flat_items(rigid.size());
   scratch_ = cc_.zero_floats(scratch_items_ * FW_RIGID_SCRATCH_FLOATS * std::size_t(largest_tree_));
 
@@ -203,16 +193,16 @@ void BranchStages::enqueue_equilibrium() {
 
 void BranchStages::enqueue_spring_angles() {
   spring_angles_
-      .set_args(entry_count_, entry_tree_, trees_buffer_, instances_, species_, models_, branches_,
-                drag_law_.to_device(), samples_->wind(), float(time_), joints_)
-      .enqueue(cc_, cl::NDRange(cc_.flat_items(std::size_t(entry_count_))));
+      .set_args(fw_int(spring_block_count_), spring_blocks_, trees_buffer_, instances_, species_, models_,
+                branches_, drag_law_.to_device(), samples_->wind(), float(time_), joints_)
+      .enqueue(cc_, cl::NDRange(cc_.flat_items(std::size_t(spring_block_count_))));
 }
 
 void BranchStages::enqueue_deform(cl::Buffer& displacements) {
   if (trees_.empty()) return;
   deform_
-      .set_args(fw_int(pose_group_count_), pose_groups_, trees_buffer_, instances_, species_, branches_,
-                joints_, pose_scratch_, fw_int(FW_POSE_SCRATCH_FLOATS * largest_tree_), displacements)
+      .set_args(tree_count(), trees_buffer_, instances_, species_, branches_, joints_, pose_scratch_,
+                fw_int(FW_POSE_FLOATS * largest_tree_), displacements)
       .enqueue(cc_, cl::NDRange(pose_items_));
 }
 

@@ -90,12 +90,12 @@ class BranchStages {
   std::vector<FwBranchTree> trees_;
   std::vector<int> entry_offsets_;          // per instance, -1 for a modal tree
   int rigid_count_ = 0, spring_count_ = 0;  // the trees of each model
-  int entry_count_ = 0, largest_tree_ = 0, pose_group_count_ = 0;
+  int entry_count_ = 0, largest_tree_ = 0, spring_block_count_ = 0;
   int normal_drag_ = 0;
   double time_ = 0.0;
   cl::Buffer instances_, species_, models_, branches_, trees_buffer_, rigid_trees_;
-  cl::Buffer sample_world_, joints_, scratch_, pose_groups_, pose_scratch_;
-  cl::Buffer entry_tree_;  // per flat entry, its tree (an index into trees_): the springs' per-entry kernel
+  cl::Buffer sample_world_, joints_, scratch_, pose_scratch_;
+  cl::Buffer spring_blocks_;  // (tree, first entry) of each block of the springs' kernel
   std::optional<WindAtPoints> samples_;
   std::size_t scratch_items_ = 0, pose_items_ = 0;
   Kernel spring_angles_, rigid_step_, rigid_equilibrium_, deform_;

@@ -251,9 +251,9 @@ TEST_CASE("tree_branches: the spring trees' angles and every element tree's pose
   CHECK(spring_trees == 3);
 }
 
-// Joints turned further than the pose's series reach (kernels/tree_branches.cl FW_SERIES_MAX_ANGLE, a half
-// turn) take the reduced sine and cosine, lane by lane beside lanes that stay on the series.
-TEST_CASE("tree_branches: the pose of joints turned past a half turn matches the reference",
+// Joints turned further than the pose's series reach (kernels/tree_branches.cl FW_SERIES_MAX_ANGLE, a right
+// angle) take the library's sine and cosine, in the same walk as joints that stay on the series.
+TEST_CASE("tree_branches: the pose of joints turned past the series' reach matches the reference",
           "[forest][branches]") {
   auto* cc = test::device_or_skip();
   if (!cc) return;
@@ -264,13 +264,13 @@ TEST_CASE("tree_branches: the pose of joints turned past a half turn matches the
   std::vector<std::uint8_t>& bytes = state.buffers.at(host::saved::kJointState);
   std::vector<float> joints(bytes.size() / sizeof(float));
   std::mt19937 rng(13);
-  // Every third entry past a half turn (up to 5 rad), the others below a quarter turn.
+  // Every third entry turned 3.5 to 5 rad, the others below 1.6 rad.
   std::uniform_real_distribution<double> small(-0.9, 0.9), large(2.0, 2.9);
-  int past_half_turn = 0;
+  int past_reach = 0;
   for (std::size_t entry = 0; entry < joints.size() / FW_JOINT_FLOATS; ++entry)
     for (int c = 0; c < 3; ++c)
       joints[FW_JOINT_FLOATS * entry + std::size_t(c)] = float(entry % 3 == 0 ? large(rng) : small(rng));
-  for (std::size_t entry = 0; entry < joints.size() / FW_JOINT_FLOATS; entry += 3) ++past_half_turn;
+  for (std::size_t entry = 0; entry < joints.size() / FW_JOINT_FLOATS; entry += 3) ++past_reach;
   std::memcpy(bytes.data(), joints.data(), bytes.size());
   branches.restore_state(state);
   f.stages.enqueue_deform();
@@ -284,12 +284,12 @@ TEST_CASE("tree_branches: the pose of joints turned past a half turn matches the
     INFO("tree " << k << ": pose error " << error);
     CHECK(error < kPoseTolerance);
   }
-  CHECK(past_half_turn > 10);
+  CHECK(past_reach > 10);
 }
 
-// The pose deforms FW_LANES trees of a species together, padding a group's last lanes: a tree's frame must
-// not depend on which trees stand beside it (over MPI ranks a rank holds only some of them), and nor may its
-// steps. Interleaved species, groups full and partial, and modal trees between them.
+// The springs take FW_LANES entries of a tree together, and every kernel walks several trees per work-item: a
+// tree's frame must not depend on which trees stand beside it (over MPI ranks a rank holds only some of
+// them), and nor may its steps. Interleaved species, and modal trees between them.
 TEST_CASE("tree_branches: a tree's frame is the same to the bit alone and among its neighbours",
           "[forest][branches]") {
   auto* cc = test::device_or_skip();
@@ -297,7 +297,7 @@ TEST_CASE("tree_branches: a tree's frame is the same to the bit alone and among 
   const fluid::GridSpec spec = forest_grid();
   std::mt19937 rng(29);
   std::uniform_real_distribution<double> x(1.0, 22.0), y(5.0, 22.0), yaw(-M_PI, M_PI), scale(0.6, 1.5);
-  // Mostly element trees: each model gets a full group and a partial one.
+  // Mostly element trees, more of each model than a work-item's lanes.
   std::discrete_distribution<int> kind({9.0, 9.0, 2.0});
   std::vector<trees::TreeInstance> placed;
   std::vector<int> per_species(3, 0);
