@@ -102,6 +102,8 @@ struct TimeSettings {
   double end = 0.0;                             ///< s, > 0: the run covers [0, end]
   std::optional<double> dt;                     ///< s, > 0: fixed step; nullopt for "auto"
   double cfl = schema::key("time.cfl").number;  ///< > 0, used with auto: dt = cfl * h / max|u|
+  /// s, >= 0: the wind steps from -spin_up to 0 before the run (trees held in equilibrium); 0: none
+  double spin_up = schema::key("time.spin_up").number;
 };
 
 struct DomainSettings {

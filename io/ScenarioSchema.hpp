@@ -210,7 +210,7 @@ inline constexpr Key kKeys[] = {
                     "k is laid out with `seed + k`, species k generates its skeleton with `seed + 1 + k` and "
                     "its leaves with `seed + 2^32 + k`."},
     // time
-    {.path = "time", .required = true, .description = "Simulated time span and time step."},
+    {.path = "time", .required = true, .description = "Simulated time span, time step and wind spin-up."},
     {.path = "time.end",
      .type = Type::number,
      .unit = "s",
@@ -236,6 +236,18 @@ inline constexpr Key kKeys[] = {
      .bound = Bound::positive,
      .number = 0.8,
      .description = "CFL number for `dt: auto`. With a fixed `dt` it is still validated, but not used."},
+    {.path = "time.spin_up",
+     .type = Type::number,
+     .unit = "s",
+     .bound = Bound::non_negative,
+     .number = 0.0,
+     .description =
+         "Wind spin-up before t = 0, so that the stand's shelter forms before the trees move: for `spin_up` "
+         "seconds the wind grid steps (`dt` as in the run) from t = -`spin_up` to 0 with the inputs held at "
+         "their t = 0 values (no event fires), and every step holds the trees in equilibrium with the "
+         "current wind; leaves do not move and nothing is written. The run then starts at t = 0, step 0, "
+         "with the trees at rest in equilibrium with the sheltered wind. A resumed run does not spin up "
+         "again. 0: no spin-up, the trees start in equilibrium with the unsheltered inflow profile."},
     // domain
     {.path = "domain", .required = true, .description = "The wind grid."},
     {.path = "domain.origin",

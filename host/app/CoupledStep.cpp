@@ -95,15 +95,39 @@ void CoupledStep::apply_inputs(double t) {
     trees_.set_unresolved_intensity(inputs_.unresolved_intensity(t));
 }
 
-void CoupledStep::start() {
-  apply_inputs(0.0);
-  wind_.initialise_ambient();
+void CoupledStep::hold_trees_in_equilibrium() {
   if (!has_trees()) return;
-  // Every tree starts in equilibrium with the first wind (docs/design.md, "Trees"): at rest in a full
-  // storm, a tree would first swing far beyond its steady bend, further than linear modes describe.
-  trees_.reset_state();
   trees_.enqueue_wind_load(wind_.velocity());
   trees_.enqueue_equilibrium();
+}
+
+SpinUpReport CoupledStep::start(double spin_up) {
+  if (!std::isfinite(spin_up) || spin_up < 0.0)
+    throw std::invalid_argument(
+        fmt::format("CoupledStep: the spin-up must be finite and >= 0 s, got {}", spin_up));
+  apply_inputs(0.0);
+  wind_.initialise_ambient();
+  // Every tree starts in equilibrium with the first wind (docs/design.md, "Trees"): at rest in a full
+  // storm, a tree would first swing far beyond its steady bend, further than linear modes describe.
+  if (has_trees()) trees_.reset_state();
+  hold_trees_in_equilibrium();
+  SpinUpReport report;
+  if (!(spin_up > 0.0)) return report;
+  // The initial wind is the inflow profile everywhere, without the stand's shelter, which the canopy drag
+  // builds within seconds: the wind spins up before t = 0 so that the trees start in equilibrium with the
+  // sheltered wind instead of swinging back from their unsheltered bend. Its clock runs from -spin_up to
+  // 0 so that the inflow turbulence streams in continuously and no event (all start at t >= 0) fires; the
+  // inputs stay at their t = 0 values (apply_inputs in step_wind reads max(t, 0)).
+  wind_.set_clock(-spin_up, 0);
+  while (time() < -kSpinUpTolerance * spin_up) {
+    step_wind(-time());  // never past t = 0
+    // Every step, the trees at rest in the step's wind: the load the run starts from is the last one's.
+    hold_trees_in_equilibrium();
+    ++report.steps;
+  }
+  report.seconds = spin_up;
+  wind_.set_clock(0.0, 0);
+  return report;
 }
 
 std::map<std::string, StageState> CoupledStep::save_state() {
@@ -127,8 +151,33 @@ void CoupledStep::restore_state(const std::map<std::string, StageState>& states)
 }
 
 CoupledStepReport CoupledStep::step(double max_dt) {
+  CoupledStepReport report = step_wind(max_dt);
+  const double dt = report.wind.dt;
+  if (has_trees()) {
+    const auto trees_start = Clock::now();
+    trees_.enqueue_wind_load(wind_.velocity());
+    trees_.enqueue_modal_step(float(dt));
+    if (stage_timing_) {
+      cc_.finish();
+      trees_ms_ += std::chrono::duration<double, std::milli>(Clock::now() - trees_start).count();
+    }
+  }
+  if (leaves_) {
+    const auto leaves_start = Clock::now();
+    // The wind grid's FwStep of this step: dt, and the time at its start.
+    leaves_->enqueue_step(wind_.stages().step(), wind_.pressure().mask(), wind_.velocity());
+    if (stage_timing_) {
+      cc_.finish();
+      leaves_ms_ += std::chrono::duration<double, std::milli>(Clock::now() - leaves_start).count();
+    }
+  }
+  return report;
+}
+
+CoupledStepReport CoupledStep::step_wind(double max_dt) {
   const long next = wind_.steps() + 1;
-  apply_inputs(time());
+  // A spin-up's steps (t < 0) hold the inputs at their t = 0 values.
+  apply_inputs(std::max(time(), 0.0));
   CoupledStepReport report;
   const std::array<double, 3> maxima = wind_.max_speed_components();
   report.max_speed_component = std::max({maxima[0], maxima[1], maxima[2]});
@@ -158,24 +207,6 @@ CoupledStepReport CoupledStep::step(double max_dt) {
   }
 
   report.wind = wind_.step_by(dt, maxima);
-  if (has_trees()) {
-    const auto trees_start = Clock::now();
-    trees_.enqueue_wind_load(wind_.velocity());
-    trees_.enqueue_modal_step(float(dt));
-    if (stage_timing_) {
-      cc_.finish();
-      trees_ms_ += std::chrono::duration<double, std::milli>(Clock::now() - trees_start).count();
-    }
-  }
-  if (leaves_) {
-    const auto leaves_start = Clock::now();
-    // The wind grid's FwStep of this step: dt, and the time at its start.
-    leaves_->enqueue_step(wind_.stages().step(), wind_.pressure().mask(), wind_.velocity());
-    if (stage_timing_) {
-      cc_.finish();
-      leaves_ms_ += std::chrono::duration<double, std::milli>(Clock::now() - leaves_start).count();
-    }
-  }
   return report;
 }
 

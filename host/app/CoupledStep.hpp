@@ -58,11 +58,20 @@ struct CoupledStepReport {
   double cfl = 0.0;                  ///< the step's Courant number (WindGrid::courant_number)
 };
 
+/// What CoupledStep::start's spin-up did: its steps and the simulated seconds they covered.
+struct SpinUpReport {
+  long steps = 0;
+  double seconds = 0.0;
+};
+
 class CoupledStep {
  public:
   /// A fixed dt whose CFL number passes this stops a semi-Lagrangian run (which is stable at any CFL
   /// number, but a wind this far past the expected one is a blow-up in the making).
   static constexpr double kRunawayCfl = 5.0;
+  /// A spin-up ends when the wind's clock is within this fraction of the spin-up of t = 0 (a sum of dt
+  /// may fall short of it by rounding; a last step that short would be a step of nothing).
+  static constexpr double kSpinUpTolerance = 1e-9;
 
   /// Uploads the wind grid, the canopy drag and the forest. Throws std::invalid_argument when the grid does
   /// not fit the device or a setting is invalid (see WindGrid, ForestStages). `forest` must outlive this.
@@ -77,7 +86,11 @@ class CoupledStep {
 
   /// Applies the time inputs at t = 0 and starts from them: every face on the inflow profile, projected;
   /// every tree in equilibrium with that wind (ForestStages::enqueue_equilibrium). Collective over ranks.
-  void start();
+  /// With spin_up > 0 (s, finite) the wind then steps from t = -spin_up to 0 with the inputs held at
+  /// their t = 0 values (gusts start at t >= 0, so none fires) and every tree held in equilibrium with the
+  /// wind of each step; leaves do not move. The steps' dt follows step()'s rule, the last one lands on
+  /// t = 0, and the clock is then set to t = 0, step 0: time() and steps() count the run's steps only.
+  SpinUpReport start(double spin_up = 0.0);
 
   /// Every stage's state by its name ("wind", "trees" with trees, "leaves" with leaves): what a checkpoint
   /// keeps of the step (host/app/RunCheckpoint). Blocking.
@@ -121,6 +134,10 @@ class CoupledStep {
  private:
   /// The time inputs at time t: ambient wind, turbulence sigma_u and unresolved intensity where given.
   void apply_inputs(double t);
+  /// The trees at rest in equilibrium with the wind grid's current velocity.
+  void hold_trees_in_equilibrium();
+  /// step()'s time step and its checks, then the wind grid's step: the report so far.
+  CoupledStepReport step_wind(double max_dt);
 
   ComputeContext& cc_;
   TimeInputs inputs_;

@@ -128,6 +128,11 @@ void print_plan(const SimulationPlan& plan, std::ostream& out) {
             : "",
         dt, peak, plan.end_time);
   }
+  if (plan.spin_up > 0.0)
+    out << fmt::format(
+        "spin-up: {}{} steps before t = 0 ({} s of wind at the t = 0 inputs, trees held in equilibrium, "
+        "nothing written)\n",
+        settings.cfl > 0.0 ? "at most about " : "", planned_spin_up_steps(plan), plan.spin_up);
   out << fmt::format("output: {} every {} s, {} probes\n", plan.output.directory.string(),
                      plan.output.interval, plan.output.probes.size());
   print_output_size(predict_output_size(plan, plan.end_time), out);

@@ -166,7 +166,7 @@ class RunLoop {
         resume(*from);
       } else {
         output_.begin();
-        coupled_.start();
+        start_with_spin_up();
         sample_probes();
         hand_over_frame();
       }
@@ -256,6 +256,22 @@ class RunLoop {
     last_checkpoint_step_ = from.step;
     for (auto* pvd : {&wind_pvd_, &trees_pvd_, &leaves_pvd_})
       if (*pvd) (*pvd)->continue_existing(from.time);
+  }
+
+  // The coupled step's start at t = 0, after the plan's spin-up (nothing is written during it). Its stage
+  // timings are dropped, so that run.json's stages_ms are the recorded steps'; its wall time is reported.
+  void start_with_spin_up() {
+    const auto start = Clock::now();
+    const SpinUpReport spun = coupled_.start(plan_.spin_up);
+    if (spun.steps == 0) return;
+    cc_.finish();
+    summary_.spin_up_steps = spun.steps;
+    summary_.spin_up_seconds = spun.seconds;
+    summary_.spin_up_wall_seconds = ms_since(start) * 1e-3;
+    coupled_.reset_stage_ms();
+    if (options_.log)
+      *options_.log << fmt::format("spin-up: {} steps, {} s of wind before t = 0, in {:.1f} s\n", spun.steps,
+                                   spun.seconds, summary_.spin_up_wall_seconds);
   }
 
   // This run's segment up to now, with how it ended.
@@ -389,6 +405,9 @@ class RunLoop {
     outcome.segments.push_back(segment(outcome.status));
     for (const io::RunSegment& s : outcome.segments) outcome.wall_seconds += s.wall_seconds;
     outcome.stage_ms = summary_.stage_ms;
+    outcome.spin_up_seconds = summary_.spin_up_seconds;
+    outcome.spin_up_steps = summary_.spin_up_steps;
+    outcome.spin_up_wall_seconds = summary_.spin_up_wall_seconds;
     output_.finish(outcome);
     if (write_error) std::rethrow_exception(write_error);
   }

@@ -43,6 +43,7 @@
 #include <filesystem>
 #include <map>
 #include <memory>
+#include <ostream>
 #include <string>
 
 #include "host/app/CoupledStep.hpp"
@@ -62,6 +63,8 @@ struct RunOptions {
   /// Checked before every step: a signal number (> 0) stops the run cleanly, after a checkpoint.
   const std::atomic<int>* stop = nullptr;
   int tip_trees = 4;  ///< trees whose tip displacement goes to probes.csv
+  /// Gets one line when the spin-up (time.spin_up) ends: its steps, simulated and wall seconds. May be null.
+  std::ostream* log = nullptr;
   /// A checkpoint of this plan's run (read_checkpoint) to go on from, instead of t = 0; its scenario's
   /// state keys are the caller's to check (io::require_same_state). Parts of other ranks or blocks are
   /// redistributed over this run's (host/app/CheckpointRedistribution).
@@ -77,6 +80,11 @@ struct RunSummary {
   int stop_signal = 0;               ///< the signal that stopped the run (interrupted), else 0
   std::filesystem::path checkpoint;  ///< the last checkpoint written; empty when none was
   double wall_seconds = 0.0;
+  /// The wind's spin-up before t = 0 (time.spin_up), when this run started at t = 0: its steps (not in
+  /// `steps`), simulated seconds and wall seconds (in wall_seconds, not in stage_ms). 0 when resumed.
+  long spin_up_steps = 0;
+  double spin_up_seconds = 0.0;
+  double spin_up_wall_seconds = 0.0;
   /// Totals over the run, ms: the coupled step's stages, "output" (the loop's own time for output: copies
   /// from the device and waits for room in the queue) and "output_write" (the output thread, overlapped).
   std::map<std::string, double> stage_ms;

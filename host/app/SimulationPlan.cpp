@@ -42,4 +42,9 @@ double planned_dt(const SimulationPlan& plan) {
   return WindGrid::cfl_dt(settings, plan.wind.spec, {peak_wind_speed(plan), 0.0, 0.0});
 }
 
+long planned_spin_up_steps(const SimulationPlan& plan) {
+  if (!(plan.spin_up > 0.0)) return 0;
+  return long(std::ceil(plan.spin_up / planned_dt(plan)));
+}
+
 }  // namespace fw::host

@@ -67,6 +67,7 @@ struct StandPlan {
 struct SimulationPlan {
   ScenarioRecord scenario;
   double end_time = 0.0;  ///< s: the run covers [0, end_time]
+  double spin_up = 0.0;   ///< s: the wind spins up from -spin_up to 0 first (CoupledStep::start); 0: none
   WindGridSetup wind;     ///< ambient set for t = 0
   /// The wind grid's x-y blocks over the run's ranks (one block in one process): domain.decomposition, else
   /// chosen; its halo from the scheme and the largest Courant number the run will take.
@@ -110,5 +111,9 @@ double peak_wind_speed(const SimulationPlan& plan);
 /// ambient wind and gusts allow. ceil(end / dt) is then about the run's steps, or fewer when turbulence
 /// speeds the flow past the peak.
 double planned_dt(const SimulationPlan& plan);
+
+/// The spin-up's steps `check` plans with: ceil(spin_up / planned_dt), 0 without a spin-up; as many or
+/// fewer with dt auto, whose spin-up steps at the t = 0 wind.
+long planned_spin_up_steps(const SimulationPlan& plan);
 
 }  // namespace fw::host

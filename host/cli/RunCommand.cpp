@@ -87,9 +87,11 @@ int run_check(const std::string& scenario_path, const std::string& resume, const
   host::print_plan(plan, std::cout);
   if (from) {
     const double more = plan.end_time - from->any().time;
-    std::cout << fmt::format("resume: {}, to time.end {} s{}\n", resume_summary(*from), plan.end_time,
+    // The checkpoint's wind had its spin-up already: a resumed run goes on without one.
+    std::cout << fmt::format("resume: {}, to time.end {} s{}{}\n", resume_summary(*from), plan.end_time,
                              more > 0.0 ? fmt::format(": {:.6g} s more", more)
-                                        : ": nothing more to run (raise time.end to extend)");
+                                        : ": nothing more to run (raise time.end to extend)",
+                             plan.spin_up > 0.0 ? ", no spin-up" : "");
   }
   for (const std::string& warning : plan.warnings) std::cerr << "warning: " << warning << "\n";
   return 0;
@@ -131,6 +133,7 @@ int run_scenario(const RunCommandOptions& options, const GlobalOptions& global,
   host::Simulation simulation(cc, std::move(plan), directory, &world);
   host::RunOptions run = options.run;
   run.progress = terminal;
+  run.log = log;
   run.stop = &g_stop_signal;
   run.resume = from ? &*from : nullptr;
   g_stop_signal.store(0);
@@ -139,10 +142,12 @@ int run_scenario(const RunCommandOptions& options, const GlobalOptions& global,
 
   if (speaks) {
     const long steps = summary.steps - summary.start_step;  // this run's, a resumed run's from its checkpoint
+    // The spin-up before t = 0 has its own line: its steps and wall time are not this line's.
+    const double steps_wall = summary.wall_seconds - summary.spin_up_wall_seconds;
     std::cout << fmt::format("{} steps{} to t = {:.2f} s in {:.1f} s ({:.1f} ms/step), {} frames{}\n", steps,
                              summary.start_step > 0 ? fmt::format(" from step {}", summary.start_step) : "",
                              summary.simulated_time, summary.wall_seconds,
-                             steps > 0 ? summary.wall_seconds * 1e3 / double(steps) : 0.0, summary.frames,
+                             steps > 0 ? steps_wall * 1e3 / double(steps) : 0.0, summary.frames,
                              summary.interrupted ? " (interrupted)" : "");
     std::cout << fmt::format("outputs in {}\n", directory.string());
     std::cout << fmt::format(

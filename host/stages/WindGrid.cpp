@@ -513,6 +513,14 @@ void WindGrid::check_halo_reach(double dt, const std::optional<std::array<double
         steps_ + 1, largest, courant, dt, halo));
 }
 
+void WindGrid::set_clock(double time, long steps) {
+  if (!std::isfinite(time) || steps < 0)
+    throw std::invalid_argument(
+        fmt::format("WindGrid: a clock needs a finite time and steps >= 0, got {} s and {}", time, steps));
+  time_ = time;
+  steps_ = steps;
+}
+
 WindStepReport WindGrid::step_by(double dt) {
   return step_by(dt, std::nullopt);
 }

@@ -132,6 +132,9 @@ class WindGrid {
 
   double time() const { return time_; }
   long steps() const { return steps_; }
+  /// Sets the clock the next step goes on from: the time (s, finite) and the steps taken. For a spin-up
+  /// (CoupledStep::start), whose steps run before t = 0 and are not the run's.
+  void set_clock(double time, long steps);
   const fluid::GridSpec& spec() const { return setup_.spec; }
   /// The grid this rank's arrays cover: its block with the halo over ranks, else spec().
   const fluid::GridSpec& local_spec() const { return local_; }

@@ -15,6 +15,7 @@ void read_time(const Loader& loader, const Field& field, TimeSettings& time) {
     }
   }
   if (const auto cfl = map.get<"cfl">()) time.cfl = loader.number(*cfl);
+  if (const auto spin_up = map.get<"spin_up">()) time.spin_up = loader.number(*spin_up);
 }
 
 }  // namespace fw::io::reader

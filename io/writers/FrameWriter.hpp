@@ -122,6 +122,11 @@ struct RunOutcome {
   int frames = 0;               ///< frames written
   double wall_seconds = 0.0;
   std::map<std::string, double> stage_ms;  ///< totals over the run, ms
+  /// The wind's spin-up before t = 0 (time.spin_up): its simulated seconds and steps (not in `steps`) and
+  /// its wall seconds (in wall_seconds). This run's: 0 steps for a run resumed from a checkpoint.
+  double spin_up_seconds = 0.0;
+  long spin_up_steps = 0;
+  double spin_up_wall_seconds = 0.0;
   /// The run's segments in order, this one last: one for a run that was never resumed. Empty only for a
   /// caller that does not keep them (run.json then lists none).
   std::vector<RunSegment> segments;

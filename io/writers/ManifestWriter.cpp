@@ -64,7 +64,14 @@ void ManifestWriter::finish(const RunOutcome& outcome) {
   json.key("frames").value(outcome.frames);
   json.key("interrupted").value(outcome.status == "interrupted");
   json.key("wall_seconds").value(outcome.wall_seconds);
-  json.key("ms_per_step").value(outcome.steps > 0 ? outcome.wall_seconds * 1e3 / double(outcome.steps) : 0.0);
+  // The spin-up's steps are not the run's: neither they nor their wall time count per step.
+  const double steps_wall = outcome.wall_seconds - outcome.spin_up_wall_seconds;
+  json.key("ms_per_step").value(outcome.steps > 0 ? steps_wall * 1e3 / double(outcome.steps) : 0.0);
+  json.key("spin_up").begin_object();
+  json.key("seconds").value(outcome.spin_up_seconds);
+  json.key("steps").value(std::int64_t(outcome.spin_up_steps));
+  json.key("wall_seconds").value(outcome.spin_up_wall_seconds);
+  json.end_object();
   json.key("stages_ms").begin_object();
   for (const auto& [stage, ms] : outcome.stage_ms) json.key(stage).value(ms);
   json.end_object();

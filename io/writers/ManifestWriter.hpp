@@ -6,12 +6,14 @@
 // run.json keys: version, scenario, scenario_file, scenario_hash (64-bit FNV-1a of the scenario text), seed,
 // device, platform, status ("completed", "interrupted", "failed"), message (when failed), grid, cell_size_m,
 // trees, species (name, dynamics, nodes, modes, wind_samples, trees, first_hz, cache), two_way_coupling,
-// steps, simulated_time_s, frames, interrupted, wall_seconds, ms_per_step, stages_ms, "segments" (each with
-// start_time_s, end_time_s, start_step, end_step, wall_seconds, status: one for a run never resumed; steps,
-// frames and wall_seconds count every segment, stages_ms the last one), and in runs with leaves
-// (RunManifest::leaves) "leaves": {shed, flying, landed, exited, attached, time_s}, the counts over all
-// leaves (docs/leaves.md, "States and counts") of the last frame written, at its time_s; null when no frame
-// was written. It is written once, when the run ends, through AtomicFile.
+// steps, simulated_time_s, frames, interrupted, wall_seconds, ms_per_step, "spin_up" ({seconds, steps,
+// wall_seconds} of the wind's spin-up before t = 0, time.spin_up: not in steps, in wall_seconds, not in
+// ms_per_step or stages_ms; zeros without one and in a resumed run, which does not spin up), stages_ms,
+// "segments" (each with start_time_s, end_time_s, start_step, end_step, wall_seconds, status: one for a run
+// never resumed; steps, frames and wall_seconds count every segment, stages_ms the last one), and in runs
+// with leaves (RunManifest::leaves) "leaves": {shed, flying, landed, exited, attached, time_s}, the counts
+// over all leaves (docs/leaves.md, "States and counts") of the last frame written, at its time_s; null when
+// no frame was written. It is written once, when the run ends, through AtomicFile.
 #pragma once
 
 #include <array>

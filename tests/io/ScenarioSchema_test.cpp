@@ -94,7 +94,8 @@ TEST_CASE("schema: every key sits below a map or list of the table, once", "[sch
 TEST_CASE("schema: the loader's messages come from the key's type, bound and unit", "[schema]") {
   CHECK(schema::expected(schema::key("time.end")) == "a number > 0 (s)");
   CHECK(schema::expected(schema::key("time.dt")) == "a number > 0 (s) or auto");
-  CHECK(schema::expected(schema::key("time")) == "a map {end, dt, cfl}");
+  CHECK(schema::expected(schema::key("time")) == "a map {end, dt, cfl, spin_up}");
+  CHECK(schema::expected(schema::key("time.spin_up")) == "a number >= 0 (s)");
   CHECK(schema::expected(schema::key("domain.size")) == "a list of 3 numbers [x, y, z], each > 0 (m)");
   CHECK(schema::expected(schema::key("forest.species[].modes.wind_samples")) == "an integer 1..16");
   CHECK(schema::expected(schema::key("forest.species[].modes.count")) == "an integer >= 1");

@@ -328,7 +328,7 @@ TEST_CASE("load_scenario: values other than the defaults are read for every opti
   const fs::path results = fs::path(dir.path()) / "results";
   const std::string text = fmt::format(R"(scenario: all_keys
 seed: 18446744073709551615
-time: {{end: 5.0, dt: 0.01, cfl: 0.5}}
+time: {{end: 5.0, dt: 0.01, cfl: 0.5, spin_up: 2.5}}
 domain: {{origin: [-10, 0, 5], size: [40, 20, 12], cell_size: 0.5}}
 boundaries: {{west: inflow, east: outflow, south: periodic, north: periodic, ground: slip, top: no_slip}}
 wind:
@@ -378,6 +378,7 @@ output:
   REQUIRE(s.time.dt.has_value());
   CHECK(*s.time.dt == 0.01);
   CHECK(s.time.cfl == 0.5);
+  CHECK(s.time.spin_up == 2.5);
   CHECK(s.domain.origin == std::array<double, 3>{-10, 0, 5});
   CHECK(s.domain.cells == std::array<int, 3>{80, 40, 24});
   CHECK(s.domain.max_corner() == std::array<double, 3>{30, 20, 17});
@@ -522,6 +523,7 @@ forest:
   CHECK(s.time.end == 10.0);
   CHECK_FALSE(s.time.dt.has_value());
   CHECK(s.time.cfl == 0.8);
+  CHECK(s.time.spin_up == 0.0);  // no spin-up: the trees start in equilibrium with the inflow profile
   CHECK(s.domain.origin == std::array<double, 3>{0, 0, 0});
   CHECK(s.domain.cells == std::array<int, 3>{20, 10, 5});
   CHECK_FALSE(s.domain.decomposition.has_value());  // chosen from the ranks
@@ -789,6 +791,14 @@ TEST_CASE("load_scenario: wrong type names the key and shows the value", "[scena
                "scenario: errors\ntime: {end: soon}\ndomain: {size: [40, 20, 10], cell_size: 2.0}\n"
                "wind: {speed: 4.0, direction: 270}\n",
                2, "time.end", "a number > 0 (s) expected, got 'soon'");
+  expect_error(dir, "spin_up_word",
+               "scenario: errors\ntime:\n  end: 10.0\n  spin_up: long\n"
+               "domain: {size: [40, 20, 10], cell_size: 2.0}\nwind: {speed: 4.0, direction: 270}\n",
+               4, "time.spin_up", "a number >= 0 (s) expected, got 'long'");
+  expect_error(dir, "spin_up_list",
+               "scenario: errors\ntime: {end: 10.0, spin_up: [5]}\n"
+               "domain: {size: [40, 20, 10], cell_size: 2.0}\nwind: {speed: 4.0, direction: 270}\n",
+               2, "time.spin_up", "a number >= 0 (s) expected, got '[5]'");
   expect_error(dir, "coupling", kBase + "forest:\n  two_way_coupling: maybe\n", 6, "forest.two_way_coupling",
                "true or false expected, got 'maybe'");
   expect_error(dir, "cell_list",
@@ -818,7 +828,7 @@ TEST_CASE("load_scenario: missing required key names the map that lacks it", "[s
   expect_error(dir, "no_time",
                "scenario: errors\ndomain: {size: [40, 20, 10], cell_size: 2.0}\n"
                "wind: {speed: 4.0, direction: 270}\n",
-               1, "time", "a map {end, dt, cfl} expected (required), got nothing");
+               1, "time", "a map {end, dt, cfl, spin_up} expected (required), got nothing");
   expect_error(dir, "no_radius",
                kBase + "events:\n  - gust: {start: 1, duration: 2, peak_speed: 3, center: [1, 1, 1]}\n", 6,
                "events[0].gust.radius", "a number > 0 (m) expected (required)");
@@ -861,6 +871,10 @@ TEST_CASE("load_scenario: out-of-range numbers name the key and the allowed rang
                "scenario: errors\ntime: {end: 10.0, dt: -0.5}\ndomain: {size: [40, 20, 10], cell_size: 2.0}\n"
                "wind: {speed: 4.0, direction: 270}\n",
                2, "time.dt", "a number > 0 (s) or auto expected, got '-0.5'");
+  expect_error(dir, "spin_up_negative",
+               "scenario: errors\ntime: {end: 10.0, spin_up: -1}\ndomain: {size: [40, 20, 10], cell_size: "
+               "2.0}\nwind: {speed: 4.0, direction: 270}\n",
+               2, "time.spin_up", "a number >= 0 (s) expected, got '-1'");
   expect_error(dir, "scale",
                species +
                    "  stands:\n    - {species: oak, region: {min: [5, 5], max: [15, 15]}, "

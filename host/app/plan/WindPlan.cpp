@@ -51,6 +51,7 @@ void plan_wind(const io::Scenario& scenario, int ranks, SimulationPlan& plan) {
   WindGrid::validate(wind);
 
   plan.end_time = scenario.time.end;
+  plan.spin_up = scenario.time.spin_up;
   plan.inputs.ambient_wind = [source = scenario.wind](double t) { return io::wind_vector(source, t); };
   // A fixed dt past the scheme's stability limit at the peak wind would blow up in the first gusty minute.
   const double limit = fluid::courant_limit(wind.settings.advection);
