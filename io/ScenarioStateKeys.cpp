@@ -14,8 +14,9 @@ namespace fw::io {
 
 namespace {
 
-// What a resume may change (docs/design.md "Long runs"): a checkpoint of other blocks is redistributed.
-constexpr std::array<std::string_view, 4> kFreeKeys = {"scenario", "output", "time.end",
+// What a resume may change (docs/design.md "Long runs"): a checkpoint of other blocks is redistributed, and a
+// resume does not spin up (the checkpoint holds the wind its run spun up).
+constexpr std::array<std::string_view, 5> kFreeKeys = {"scenario", "output", "time.end", "time.spin_up",
                                                        "domain.decomposition"};
 
 bool free_key(const std::string& key) {

@@ -87,9 +87,10 @@ class CoupledStep {
   /// Applies the time inputs at t = 0 and starts from them: every face on the inflow profile, projected;
   /// every tree in equilibrium with that wind (ForestStages::enqueue_equilibrium). Collective over ranks.
   /// With spin_up > 0 (s, finite) the wind then steps from t = -spin_up to 0 with the inputs held at
-  /// their t = 0 values (gusts start at t >= 0, so none fires) and every tree held in equilibrium with the
-  /// wind of each step; leaves do not move. The steps' dt follows step()'s rule, the last one lands on
-  /// t = 0, and the clock is then set to t = 0, step 0: time() and steps() count the run's steps only.
+  /// their t = 0 values (gusts start at t >= 0, so none fires), and every tree is then put in equilibrium
+  /// with the wind it ends on; trees and leaves do not move during it. The steps' dt follows step()'s rule,
+  /// the last one lands on t = 0, and the clock is then set to t = 0, step 0: time() and steps() count the
+  /// run's steps only.
   SpinUpReport start(double spin_up = 0.0);
 
   /// Every stage's state by its name ("wind", "trees" with trees, "leaves" with leaves): what a checkpoint

@@ -28,11 +28,12 @@ std::string refusal(const std::string& changed) {
 }  // namespace
 
 TEST_CASE(
-    "ScenarioStateKeys: time.end, output, the decomposition and the name may change, and layout and comments "
-    "do not count",
+    "ScenarioStateKeys: time.end, time.spin_up, output, the decomposition and the name may change, and "
+    "layout "
+    "and comments do not count",
     "[io]") {
   CHECK(refusal(kScenario) == "accepted");
-  CHECK(refusal("# extended\nscenario: b\nseed: 3\ntime:\n  end: 60.0\n  dt: auto\n"
+  CHECK(refusal("# extended\nscenario: b\nseed: 3\ntime:\n  end: 60.0\n  dt: auto\n  spin_up: 5.0\n"
                 "domain: {cell_size: 2.0, size: [64, 32, 16], decomposition: [2, 1]}\n"
                 "wind:\n  speed: 5.0\n  direction: 270\n"
                 "output: {directory: elsewhere, interval: 0.5, vdb: {enabled: true}}\n") == "accepted");
