@@ -6,6 +6,7 @@
 #include <catch2/catch.hpp>
 
 #include <cmath>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <numbers>
@@ -235,4 +236,15 @@ TEST_CASE("validation: the tree models against the FEM on the broadleaf preset a
   broadleaf.preset = "broadleaf";
   compare("broadleaf preset", ModelTree(fw::trees::generate_tree(broadleaf)));
   compare("TreeQSM tree", ModelTree(qsm_tree(std::filesystem::temp_directory_path() / "fw_tree_models")));
+}
+
+// A scanned tree is not in the repository (none with an open licence was found): this runs the same
+// comparison on a TreeQSM cylinder table named by FORESTWIND_QSM_TREE, by hand (docs/tree-models.md, "A
+// scanned tree").
+TEST_CASE(
+    "validation: the tree models against the FEM on a scanned TreeQSM tree named by FORESTWIND_QSM_TREE",
+    "[.][validation][scanned]") {
+  const char* path = std::getenv("FORESTWIND_QSM_TREE");
+  if (path == nullptr || *path == '\0') FAIL("set FORESTWIND_QSM_TREE to a TreeQSM cylinder table");
+  compare("scanned TreeQSM tree", ModelTree(fw::trees::read_qsm_cylinders(path)));
 }
