@@ -244,8 +244,8 @@ inline constexpr Key kKeys[] = {
      .description =
          "Wind spin-up before t = 0, so that the stand's shelter forms before the trees move: for `spin_up` "
          "seconds the wind grid steps (`dt` as in the run) from t = -`spin_up` to 0 with the inputs held at "
-         "their t = 0 values (no event fires), and every step holds the trees in equilibrium with the "
-         "current wind; leaves do not move and nothing is written. The run then starts at t = 0, step 0, "
+         "their t = 0 values (no event fires), trees and leaves still and nothing written; the trees then "
+         "take their equilibrium with the wind it ends on. The run then starts at t = 0, step 0, "
          "with the trees at rest in equilibrium with the sheltered wind. A resumed run does not spin up "
          "again. 0: no spin-up, the trees start in equilibrium with the unsheltered inflow profile."},
     // domain
