@@ -28,7 +28,10 @@ struct Series {
 struct ChartAxes {
   std::string x_title, y_title;  ///< with units, e.g. "time (s)"
   bool log_x = false, log_y = false;
-  std::optional<std::array<double, 2>> x_range, y_range;  ///< default: the data's (log: positive data only)
+  /// Default: the data's (log: positive data only). Initialised so that a designated initializer may leave
+  /// them out without -Wmissing-field-initializers.
+  std::optional<std::array<double, 2>> x_range = std::nullopt;
+  std::optional<std::array<double, 2>> y_range = std::nullopt;
 };
 
 class Chart {

@@ -79,7 +79,9 @@ ProbePlot plot_probes(const ProbeTable& table, const std::vector<double>& frame_
       for (std::size_t n = 0; n < list.size(); ++n)
         series.push_back({list[n].name, table.time, list[n].magnitude(), series_colour(n)});
       const bool wind = panels[p] == "wind";
-      const Chart chart(plot.canvas, panel, {"time (s)", wind ? "wind speed (m/s)" : "tip displacement (m)"},
+      const ChartAxes axes{.x_title = "time (s)",
+                           .y_title = wind ? "wind speed (m/s)" : "tip displacement (m)"};
+      const Chart chart(plot.canvas, panel, axes,
                         wind ? "wind speed at the probes" : "tip displacement of the tracked trees", series,
                         frame_times);
       plot.plot_areas.push_back(chart.plot_area());
@@ -111,7 +113,10 @@ ProbePlot plot_probes(const ProbeTable& table, const std::vector<double>& frame_
                         kReference,
                         1.2,
                         6.0});
-    ChartAxes axes{"frequency (Hz)", "power spectral density ((m/s)^2/Hz)", true, true};
+    const ChartAxes axes{.x_title = "frequency (Hz)",
+                         .y_title = "power spectral density ((m/s)^2/Hz)",
+                         .log_x = true,
+                         .log_y = true};
     const Chart chart(
         plot.canvas, panel, axes,
         fmt::format("spectra of the wind speed (Welch: Hann windows of {} samples, {} samples at "
