@@ -182,7 +182,8 @@ __kernel void spring_angles(const int block_count, __global const int* blocks,
     const FwBranchTree bt = trees[block.x];
     const FwTreeInstance tree = instances[bt.instance];
     const FwBranchSpecies model = models[tree.species];
-    const int n = species[tree.species].node_count, table = species[tree.species].skeleton_offset;
+    const FwSpecies sp = species[tree.species];
+    const int n = sp.node_count, table = sp.skeleton_offset;
     const int first = block.y, valid = min(FW_LANES, n - first);
 
     /* The lanes' elements and winds. */

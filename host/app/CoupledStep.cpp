@@ -95,39 +95,35 @@ void CoupledStep::apply_inputs(double t) {
     trees_.set_unresolved_intensity(inputs_.unresolved_intensity(t));
 }
 
-void CoupledStep::hold_trees_in_equilibrium() {
-  if (!has_trees()) return;
-  trees_.enqueue_wind_load(wind_.velocity());
-  trees_.enqueue_equilibrium();
-}
-
 SpinUpReport CoupledStep::start(double spin_up) {
   if (!std::isfinite(spin_up) || spin_up < 0.0)
     throw std::invalid_argument(
         fmt::format("CoupledStep: the spin-up must be finite and >= 0 s, got {}", spin_up));
   apply_inputs(0.0);
   wind_.initialise_ambient();
-  // Every tree starts in equilibrium with the first wind (docs/design.md, "Trees"): at rest in a full
-  // storm, a tree would first swing far beyond its steady bend, further than linear modes describe.
-  if (has_trees()) trees_.reset_state();
-  hold_trees_in_equilibrium();
   SpinUpReport report;
-  if (!(spin_up > 0.0)) return report;
-  // The initial wind is the inflow profile everywhere, without the stand's shelter, which the canopy drag
-  // builds within seconds: the wind spins up before t = 0 so that the trees start in equilibrium with the
-  // sheltered wind instead of swinging back from their unsheltered bend. Its clock runs from -spin_up to
-  // 0 so that the inflow turbulence streams in continuously and no event (all start at t >= 0) fires; the
-  // inputs stay at their t = 0 values (apply_inputs in step_wind reads max(t, 0)).
-  wind_.set_clock(-spin_up, 0);
-  while (time() < -kSpinUpTolerance * spin_up) {
-    step_wind(-time());  // never past t = 0
-    ++report.steps;
+  if (spin_up > 0.0) {
+    // The initial wind is the inflow profile everywhere, without the stand's shelter, which the canopy
+    // drag builds within seconds: the wind spins up before t = 0 so that the trees start in equilibrium
+    // with the sheltered wind instead of swinging back from their unsheltered bend. Its clock runs from
+    // -spin_up to 0 so that the inflow turbulence streams in continuously and no event (all start at
+    // t >= 0) fires; the inputs stay at their t = 0 values (apply_inputs in step_wind reads max(t, 0)).
+    // The canopy's drag on the air is the stand's leaf and wood density, not the trees' pose, so the
+    // trees need not move meanwhile.
+    wind_.set_clock(-spin_up, 0);
+    while (time() < -kSpinUpTolerance * spin_up) {
+      step_wind(-time());  // never past t = 0
+      ++report.steps;
+    }
+    report.seconds = spin_up;
+    wind_.set_clock(0.0, 0);
   }
-  // The canopy's drag on the air is the stand's leaf and wood density, not the trees' pose, so the trees
-  // need not move during the spin-up: they take their equilibrium with the wind it ends on.
-  hold_trees_in_equilibrium();
-  report.seconds = spin_up;
-  wind_.set_clock(0.0, 0);
+  if (!has_trees()) return report;
+  // Every tree starts in equilibrium with the wind at t = 0 (docs/design.md, "Trees"): at rest in a full
+  // storm, a tree would first swing far beyond its steady bend, further than linear modes describe.
+  trees_.reset_state();
+  trees_.enqueue_wind_load(wind_.velocity());
+  trees_.enqueue_equilibrium();
   return report;
 }
 

@@ -135,8 +135,6 @@ class CoupledStep {
  private:
   /// The time inputs at time t: ambient wind, turbulence sigma_u and unresolved intensity where given.
   void apply_inputs(double t);
-  /// The trees at rest in equilibrium with the wind grid's current velocity.
-  void hold_trees_in_equilibrium();
   /// step()'s time step and its checks, then the wind grid's step: the report so far.
   CoupledStepReport step_wind(double max_dt);
 
