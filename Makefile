@@ -2,10 +2,13 @@
 #   make demo   installs the Debian packages, builds, runs the demo (scenarios/storm.yaml into out/storm) and
 #               draws its last frame and its probes
 #   make test   installs the Debian packages, checks the formatting of the tracked sources (clang-format),
-#               builds, and runs every test through CTest
+#               builds (compiler warnings as errors under CI), and runs every test through CTest
 #   make validate   builds and runs the long validations (tests/validation) that CI runs in short form
 BUILD_DIR ?= build
 BUILD_TYPE ?= Release
+# Compiler warnings as errors: on under CI (the variable CI is set), off otherwise, so that a user's newer
+# compiler only warns. Changing it rebuilds everything.
+WERROR ?= $(if $(CI),ON,OFF)
 SUDO := $(shell [ "$$(id -u)" -eq 0 ] || echo sudo)
 
 .PHONY: deps configure build build-cli test validate demo format format-check clean
@@ -14,7 +17,7 @@ deps:
 	$(SUDO) bash scripts/install-deps.sh
 
 configure:
-	cmake -S . -B $(BUILD_DIR) -G Ninja -DCMAKE_BUILD_TYPE=$(BUILD_TYPE)
+	cmake -S . -B $(BUILD_DIR) -G Ninja -DCMAKE_BUILD_TYPE=$(BUILD_TYPE) -DFORESTWIND_WERROR=$(WERROR)
 
 build: configure
 	cmake --build $(BUILD_DIR)

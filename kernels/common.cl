@@ -10,7 +10,7 @@
 #include "shared_types.h"
 
 /* Helpers must inline: PoCL otherwise keeps large ones as calls, which blocks vectorisation. */
-#define FW_INLINE inline __attribute__((always_inline))
+#define FW_INLINE static inline __attribute__((always_inline))
 
 #ifndef FW_ROW_CHUNK
 #define FW_ROW_CHUNK 1

@@ -265,7 +265,7 @@ FW_INLINE void red_black_update_run(const FwLevel* L, __global const uchar* mask
                                     const FwPlanes* P, __global float* phi, int colour, int parity, int j,
                                     int row, int begin, int end, int run) {
   int i = begin;
-  if (run != FW_RUN_EDGE && FW_ROW_CHUNK >= FW_COLOUR_LANES && end - begin >= FW_COLOUR_LANES) {
+  if (FW_ROW_CHUNK >= FW_COLOUR_LANES && run != FW_RUN_EDGE && end - begin >= FW_COLOUR_LANES) {
     float16 xm = vload16(0, phi + row + i - 1);
     for (; i + FW_COLOUR_LANES <= end; i += FW_COLOUR_LANES) {
       /* The next chunk's start, or this one's on the last (its load is then unused but valid). */

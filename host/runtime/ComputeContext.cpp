@@ -8,6 +8,7 @@
 
 #include "host/runtime/ClError.hpp"
 #include "host/runtime/KernelSources.hpp"
+#include "host/runtime/StderrCapture.hpp"
 
 namespace fw::host {
 
@@ -50,25 +51,36 @@ ComputeContext::ComputeContext(DeviceInfo device, bool profiling, std::optional<
 }
 
 cl::Program ComputeContext::build(const std::string& file, const std::string& extra_options) {
-  const std::string source = kernel_source(file);
+  return build_source(file, kernel_source(file), extra_options);
+}
+
+cl::Program ComputeContext::build_source(const std::string& name, const std::string& source,
+                                         const std::string& extra_options) {
   cl::Program program(context_, source);
   const auto [group_x, group_y] = reduction_group();
   const std::string options =
       fmt::format("-cl-std=CL1.2 -DFW_ROW_CHUNK={} -DFW_CPU_LAYOUT={} -DFW_GROUP_X={} -DFW_GROUP_Y={} {}",
                   row_chunk_, mapping_ == WorkMapping::rows ? 1 : 0, group_x, group_y, extra_options);
+  const auto build_log = [&] {
+    try {
+      return program.getBuildInfo<CL_PROGRAM_BUILD_LOG>(device_.device);
+    } catch (const cl::Error&) {
+      return std::string();
+    }
+  };
+  // The compiler's chatter on stderr is held back and shown only with a failure (see StderrCapture).
+  StderrCapture chatter;
   try {
     program.build({device_.device}, options.c_str());
-  } catch (const cl::BuildError& e) {
-    std::string log;
-    for (const auto& [dev, text] : e.getBuildLog()) log += text;
-    throw KernelBuildError(file, log);
   } catch (const cl::Error& e) {
-    std::string log;
-    try {
-      log = program.getBuildInfo<CL_PROGRAM_BUILD_LOG>(device_.device);
-    } catch (const cl::Error&) {
-    }
-    throw KernelBuildError(file, fmt::format("{} ({})\n{}", cl_status_name(e.err()), e.what(), log));
+    throw KernelBuildError(name, fmt::format("{} ({})\n{}{}", cl_status_name(e.err()), e.what(), build_log(),
+                                             chatter.release()));
+  }
+  chatter.release();
+  if (warnings_as_errors_) {
+    const std::string log = build_log();
+    if (log.find("warning") != std::string::npos)
+      throw KernelBuildError(name, "a warning, and this context treats warnings as errors:\n" + log);
   }
   return program;
 }

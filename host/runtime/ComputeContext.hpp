@@ -60,8 +60,17 @@ class ComputeContext {
   bool profiling() const { return profiler_ != nullptr; }
   Profiler* profiler() { return profiler_.get(); }
 
-  /// Builds kernels/<file> (with its includes). Throws KernelBuildError with the file and the log.
+  /// Builds kernels/<file> (with its includes). Throws KernelBuildError with the file and the log. What the
+  /// compiler prints to stderr meanwhile is shown only if the build fails.
   cl::Program build(const std::string& file, const std::string& extra_options = "");
+  /// The same for source text that is not in kernels/; `name` stands for the file in errors.
+  cl::Program build_source(const std::string& name, const std::string& source,
+                           const std::string& extra_options = "");
+
+  /// When on, a build whose log holds a warning throws KernelBuildError too: the tests' device runs so, so
+  /// that the kernels stay free of warnings. The options, and so the compiler's cache, are unchanged (the
+  /// log is checked, not -Werror passed: PoCL keeps a cached program's log, so a warm cache still fails).
+  void set_warnings_as_errors(bool on) { warnings_as_errors_ = on; }
 
   /// Global range for a row-sweeping kernel over an array of extent_x * ny * nz values.
   cl::NDRange rows(int extent_x, int ny, int nz) const;
@@ -102,6 +111,7 @@ class ComputeContext {
   WorkMapping mapping_;
   int row_chunk_;
   std::size_t allocated_bytes_ = 0;
+  bool warnings_as_errors_ = false;
 };
 
 /// A kernel that knows its name, so failures say which one.

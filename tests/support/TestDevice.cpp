@@ -20,6 +20,8 @@ host::ComputeContext* device_or_skip() {
     try {
       context = std::make_unique<host::ComputeContext>(host::select_device(host::device_filter_from_env("")),
                                                        false);
+      // Every program a test builds must build without a warning (docs/design.md, "Kernels").
+      context->set_warnings_as_errors(true);
     } catch (const std::exception& e) {
       failure = e.what();
     }

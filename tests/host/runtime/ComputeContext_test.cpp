@@ -1,6 +1,8 @@
 #include <catch2/catch.hpp>
 
+#include "host/runtime/ClError.hpp"
 #include "host/runtime/ComputeContext.hpp"
+#include "host/runtime/StderrCapture.hpp"
 #include "tests/support/ScopedEnv.hpp"
 #include "tests/support/TestDevice.hpp"
 
@@ -46,4 +48,34 @@ TEST_CASE("ComputeContext: FORESTWIND_WORK_MAPPING forces the mapping and refuse
   CHECK_THROWS_WITH(
       fw::host::work_mapping_from_env(),
       Catch::Contains("FORESTWIND_WORK_MAPPING: expected rows or cells (or unset), got 'diagonal'"));
+}
+
+TEST_CASE(
+    "ComputeContext: a build's compiler chatter stays off stderr, and a warning fails the build under "
+    "warnings as errors",
+    "[device]") {
+  auto* cc = fw::test::device_or_skip();
+  if (!cc) return;
+  // clang (PoCL's compiler) warns of a constant operand of && (-Wconstant-logical-operand, on by default).
+  const std::string source = "kernel void chatty(global int* a, int b) { a[0] = b && 4; }\n";
+  ComputeContext lenient(cc->device(), false);
+  fw::host::StderrCapture stderr_text;
+  const cl::Program program = lenient.build_source("chatty.cl", source);
+  const std::string printed = stderr_text.release();
+  const std::string log = program.getBuildInfo<CL_PROGRAM_BUILD_LOG>(cc->device().device);
+  INFO("build log: " << log);
+  // PoCL prints "1 warning generated." to stderr on every such build; other compilers may not warn at all.
+  if (cc->is_cpu()) REQUIRE_THAT(log, Catch::Contains("warning"));
+  CHECK(printed.empty());
+
+  ComputeContext strict(cc->device(), false);
+  strict.set_warnings_as_errors(true);
+  if (log.find("warning") == std::string::npos) return;
+  try {
+    strict.build_source("chatty.cl", source);
+    FAIL("a program with a warning built under warnings as errors");
+  } catch (const fw::host::KernelBuildError& e) {
+    CHECK(e.file() == "chatty.cl");
+    CHECK_THAT(e.what(), Catch::Contains("warnings as errors") && Catch::Contains("constant operand"));
+  }
 }
