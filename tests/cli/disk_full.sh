@@ -46,7 +46,7 @@ full_disk() {
 
 size() { stat -c %s "$1"; }
 # Frame 3's files: failing at their first byte, and at their last bytes (the writer's last flush, at close).
-tail_bytes=16
+tail_bytes=16 # under the last write's size: the write that fails is the one at the writer's close
 for spec in wind/wind_000003.vti trees/trees_000003.vtp leaves/leaves_000003.vtp vdb/wind.0003.vdb; do
   name=$(basename "$spec" | tr . _)
   full_disk "${name}_start" "$spec" 0 "$(basename "$spec")" 3

@@ -15,6 +15,7 @@
 #include <unistd.h>
 
 #include <array>
+#include <atomic>
 #include <cerrno>
 #include <cstdio>
 #include <cstdlib>
@@ -23,7 +24,7 @@
 namespace {
 
 constexpr std::size_t kPathBytes = 4096;  // PATH_MAX on Linux
-long long g_written = 0;                  // bytes written to matching files so far
+std::atomic<long long> g_written{0};      // bytes written to matching files so far (by any thread)
 
 // Whether fd is a file whose path contains the pattern.
 bool matches(int fd) {
@@ -42,9 +43,13 @@ std::size_t allowed(int fd, std::size_t count) {
   if (count == 0 || !matches(fd)) return count;
   const char* after = std::getenv("ENOSPC_SHIM_AFTER");
   const long long limit = after != nullptr ? std::atoll(after) : 0;
-  const long long left = limit > g_written ? limit - g_written : 0;
-  const std::size_t granted = (long long)count < left ? count : std::size_t(left);
-  g_written += (long long)granted;
+  // Claimed atomically: the output thread and the run loop's thread both write.
+  long long written = g_written.load();
+  std::size_t granted = 0;
+  do {
+    const long long left = limit > written ? limit - written : 0;
+    granted = (long long)count < left ? count : std::size_t(left);
+  } while (!g_written.compare_exchange_weak(written, written + (long long)granted));
   if (granted == 0) errno = ENOSPC;
   return granted;
 }
