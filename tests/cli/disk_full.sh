@@ -6,8 +6,8 @@
 # fail with ENOSPC through an LD_PRELOAD shim (tests/tools/enospc_shim.cpp; a tmpfs would need mount
 # rights a CI container may lack), on files whose path holds a pattern, after a given number of bytes. Each
 # run exits 1 naming the file and "No space left on device"; every frame the collections list reads back
-# (check_frames), the frames before the failing one are listed, no temporary is left, and run.json says
-# "failed" with the message (but where run.json itself cannot be written).
+# (check_frames), the frames before the failing one are listed, no temporary or partial checkpoint is left,
+# and run.json says "failed" with the message (but where run.json itself cannot be written).
 forestwind=$1
 work=$2
 check_frames=$3
@@ -37,6 +37,7 @@ full_disk() {
   listed=$(grep -c 'DataSet ' "$out/wind.pvd" 2>/dev/null)
   [ "${listed:-0}" -ge "$frames" ] || fail "$name: wind.pvd lists ${listed:-0} frames, expected $frames or more"
   [ -z "$(temporaries "$out")" ] || fail "$name: temporaries left: $(temporaries "$out")"
+  [ -z "$(find "$out" -name '*.partial')" ] || fail "$name: a partial checkpoint left: $(find "$out" -name '*.partial')"
   if [ "$file" != run.json ]; then
     expect_status "$out" failed
     grep -q 'No space left on device' "$out/run.json" || fail "$name: run.json does not give the message"
