@@ -1,12 +1,12 @@
 #include "base/AtomicFile.hpp"
 
+#include <fcntl.h>
 #include <fmt/format.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include <cerrno>
-#include <cstdio>
 #include <cstring>
-#include <memory>
 
 #include <stdexcept>
 #include <system_error>
@@ -16,6 +16,28 @@ namespace fw::base {
 
 namespace {
 constexpr std::string_view kTemporaryTag = ".tmp-";
+constexpr mode_t kFileMode = 0666;  // rw for everyone, less the umask: what fopen(3) creates
+
+// POSIX rather than stdio or iostreams: each failing call's errno reaches the message, and a close(2) that
+// reports a late write error (NFS, a full disk) is not lost.
+// Writes every byte of `content` to fd; false with errno set when a write fails.
+bool write_all(int fd, std::string_view content) {
+  while (!content.empty()) {
+    const ssize_t n = ::write(fd, content.data(), content.size());
+    if (n < 0 && errno == EINTR) continue;
+    if (n <= 0) {
+      if (n == 0) errno = EIO;  // no progress and no error: give up rather than spin
+      return false;
+    }
+    content.remove_prefix(std::size_t(n));
+  }
+  return true;
+}
+
+[[noreturn]] void throw_write_error(const char* function, const std::filesystem::path& path, int error) {
+  throw std::runtime_error(
+      fmt::format("{}: cannot write {}: {}", function, path.string(), std::strerror(error)));
+}
 }  // namespace
 
 int remove_stale_temporaries(const std::filesystem::path& folder) {
@@ -75,26 +97,41 @@ void write_text_atomically(const char* function, const std::filesystem::path& pa
                            std::string_view content) {
   require_output_folder(function, path);
   AtomicFile file(path);
-  {
-    // stdio rather than iostreams, for errno in the message.
-    std::unique_ptr<std::FILE, int (*)(std::FILE*)> out(std::fopen(file.temporary_path().c_str(), "wb"),
-                                                        &std::fclose);
-    if (!out) {
-      throw std::runtime_error(
-          fmt::format("{}: cannot write {}: {}", function, path.string(), std::strerror(errno)));
-    }
-    const bool written = std::fwrite(content.data(), 1, content.size(), out.get()) == content.size();
-    const int saved = errno;
-    if (!written || std::fclose(out.release()) != 0) {
-      throw std::runtime_error(fmt::format("{}: cannot write {}: {}", function, path.string(),
-                                           std::strerror(written ? errno : saved)));
-    }
-  }
+  const int fd = ::open(file.temporary_path().c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, kFileMode);
+  if (fd < 0) throw_write_error(function, path, errno);
+  const bool written = write_all(fd, content);
+  const int saved = errno;
+  if (::close(fd) != 0 && written) throw_write_error(function, path, errno);
+  if (!written) throw_write_error(function, path, saved);
   try {
     file.commit();
   } catch (const std::runtime_error& error) {
     throw std::runtime_error(fmt::format("{}: cannot write {}: {}", function, path.string(), error.what()));
   }
+}
+
+void append_text(const char* function, const std::filesystem::path& path, std::string_view content) {
+  require_output_folder(function, path);
+  const int fd = ::open(path.c_str(), O_WRONLY | O_CREAT | O_APPEND | O_CLOEXEC, kFileMode);
+  if (fd < 0) throw_write_error(function, path, errno);
+  struct stat before {};
+  if (::fstat(fd, &before) != 0) {
+    const int saved = errno;
+    ::close(fd);
+    throw_write_error(function, path, saved);
+  }
+  const bool written = write_all(fd, content);
+  const int saved = errno;
+  if (!written && ::ftruncate(fd, before.st_size) != 0) {
+    // The file keeps a partial line: say so with the write's error, which is the cause.
+    ::close(fd);
+    throw std::runtime_error(
+        fmt::format("{}: cannot write {}: {}; the file could not be cut back to its {} "
+                    "bytes and ends with a partial line",
+                    function, path.string(), std::strerror(saved), before.st_size));
+  }
+  if (::close(fd) != 0 && written) throw_write_error(function, path, errno);
+  if (!written) throw_write_error(function, path, saved);
 }
 
 }  // namespace fw::base

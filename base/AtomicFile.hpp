@@ -49,7 +49,13 @@ int remove_stale_temporaries(const std::filesystem::path& folder);
 void require_output_folder(const char* function, const std::filesystem::path& path);
 
 /// Writes `content` byte for byte to `path` through AtomicFile (temporary + rename). Throws
-/// std::runtime_error("FUNCTION: cannot write PATH: reason") on failure; no temporary is left behind.
+/// std::runtime_error("FUNCTION: cannot write PATH: reason") on failure (a full disk: "No space left on
+/// device", from the failing write(2) or close(2)); no temporary is left behind.
 void write_text_atomically(const char* function, const std::filesystem::path& path, std::string_view content);
+
+/// Appends `content` to `path` (created if missing) with POSIX writes. Throws std::runtime_error("FUNCTION:
+/// cannot write PATH: reason") on failure, after cutting the file back to its size before the call, so that
+/// a full disk never leaves half a line at its end.
+void append_text(const char* function, const std::filesystem::path& path, std::string_view content);
 
 }  // namespace fw::base

@@ -155,19 +155,8 @@ void ProbesCsv::append_rows(const std::vector<Row>& rows) {
     return;
   }
 
-  // Past the limit: one buffered fwrite of the whole batch, flushed by fclose.
-  base::require_output_folder("ProbesCsv", path_);
-  std::FILE* out = std::fopen(path_.c_str(), "ab");
-  if (!out) {
-    throw std::runtime_error(
-        fmt::format("ProbesCsv: cannot write {}: {}", path_.string(), std::strerror(errno)));
-  }
-  const bool written = std::fwrite(lines.data(), 1, lines.size(), out) == lines.size();
-  const int saved = errno;
-  if (std::fclose(out) != 0 || !written) {
-    throw std::runtime_error(fmt::format("ProbesCsv: cannot write {}: {}", path_.string(),
-                                         std::strerror(written ? errno : saved)));
-  }
+  // Past the limit: the whole batch appended at once (cut back on failure: no partial row is left).
+  base::append_text("ProbesCsv", path_, lines);
   appending_ = true;
   content_.clear();
   content_.shrink_to_fit();

@@ -5,15 +5,18 @@
 
 #include <fmt/format.h>
 
-#include <openvdb/io/File.h>
+#include <openvdb/io/Archive.h>
 #include <openvdb/openvdb.h>
 #include <openvdb/points/PointAttribute.h>
 #include <openvdb/points/PointConversion.h>
 #include <openvdb/points/PointDataGrid.h>
 #include <openvdb/tools/PointIndexGrid.h>
 
+#include <cerrno>
 #include <cmath>
 #include <cstdint>
+#include <cstring>
+#include <fstream>
 #include <mutex>
 #include <optional>
 #include <stdexcept>
@@ -22,6 +25,23 @@
 
 namespace fw::io {
 namespace {
+
+// openvdb::io::File::write as it is (a seekable archive on an ofstream), but with the stream's state checked
+// after its close: OpenVDB 10 ignores it, so a full disk would leave a truncated file that reads as a frame.
+class CheckedVdbArchive : public openvdb::io::Archive {
+ public:
+  /// Writes the grids to `path`; returns 0, or the errno of the failure (EIO when the stream gives none).
+  int write_file(const std::filesystem::path& path, const openvdb::GridPtrVec& grids,
+                 const openvdb::MetaMap& meta) const {
+    std::ofstream out(path, std::ios_base::out | std::ios_base::binary | std::ios_base::trunc);
+    if (!out) return errno != 0 ? errno : EIO;
+    errno = 0;
+    Archive::write(out, grids, /*seekable=*/true, meta);
+    out.close();
+    if (out.fail()) return errno != 0 ? errno : EIO;
+    return 0;
+  }
+};
 
 void initialize_openvdb() {
   // openvdb::initialize registers grid and metadata types in global tables; once per process is enough.
@@ -151,8 +171,8 @@ void write_wind_vdb(const std::filesystem::path& path, const WindFrame& frame, b
 
   base::AtomicFile file(path);
   try {
-    openvdb::io::File out(file.temporary_path().string());
-    out.write(grids, file_meta);
+    if (const int error = CheckedVdbArchive().write_file(file.temporary_path(), grids, file_meta))
+      throw std::runtime_error(std::strerror(error));
   } catch (const openvdb::Exception& error) {
     throw std::runtime_error(fmt::format("write_wind_vdb: cannot write {}: {}", path.string(), error.what()));
   } catch (const std::exception& error) {

@@ -9,6 +9,7 @@
 #include <vtkNew.h>
 #include <vtkXMLWriter.h>
 
+#include <cerrno>
 #include <cstring>
 #include <stdexcept>
 #include <string>
@@ -70,13 +71,20 @@ void write_vtk_xml(const char* function, const std::filesystem::path& path, vtkX
   on_pipeline_error->SetClientData(&pipeline_messages);
   writer->GetExecutive()->AddObserver(vtkCommand::ErrorEvent, on_pipeline_error);
 
+  errno = 0;  // VTK's error codes do not say why a stream failed; the failing write(2)'s errno does
   const int written = writer->Write();
+  const int write_errno = errno;
   const unsigned long code = writer->GetErrorCode();
   writer->RemoveObservers(vtkCommand::ErrorEvent);
   writer->GetExecutive()->RemoveObservers(vtkCommand::ErrorEvent);
   if (written == 0 || code != vtkErrorCode::NoError || !messages.empty()) {
     std::string reason = messages;
     if (reason.empty() && code != vtkErrorCode::NoError) reason = error_code_text(code);
+    // A failed stream: the system's reason first ("No space left on device"), then VTK's words.
+    if (write_errno != 0 &&
+        (code == vtkErrorCode::OutOfDiskSpaceError || code == vtkErrorCode::CannotOpenFileError))
+      reason = reason.empty() ? std::strerror(write_errno)
+                              : fmt::format("{} ({})", std::strerror(write_errno), reason);
     if (reason.empty()) reason = pipeline_messages.substr(0, pipeline_messages.find('\n'));
     if (reason.empty()) reason = "the VTK writer failed";
     throw std::runtime_error(fmt::format("{}: cannot write {}: {}", function, path.string(), reason));

@@ -203,10 +203,13 @@ void BasisCache::store(const SpeciesBasis& species) const {
 }
 
 SpeciesBasis BasisCache::load_or_compute(const Skeleton& skeleton, const SpeciesSettings& settings,
-                                         CacheOutcome* outcome, std::string* store_error) const {
+                                         CacheOutcome* outcome, std::string* store_error,
+                                         std::string* corrupt_reason) const {
   if (store_error) store_error->clear();
   std::string why_not;
-  if (auto cached = load(skeleton, settings, &why_not)) {
+  auto cached = load(skeleton, settings, &why_not);
+  if (corrupt_reason) *corrupt_reason = why_not;
+  if (cached) {
     if (outcome) *outcome = CacheOutcome::hit;
     return std::move(*cached);
   }

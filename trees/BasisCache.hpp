@@ -65,10 +65,12 @@ class BasisCache {
   void store(const SpeciesBasis& species) const;
 
   /// load(), else SpeciesBasis::compute() and store(). outcome (optional) says which happened; a corrupt
-  /// entry is overwritten. A failure to store is not fatal for the caller's run: it is reported through
-  /// store_error (optional) and the computed basis is returned.
+  /// entry is overwritten, and corrupt_reason (optional) gets load()'s why_not ("PATH: how", "" for a hit or
+  /// a miss). A failure to store is not fatal for the caller's run: it is reported through store_error
+  /// (optional) and the computed basis is returned.
   SpeciesBasis load_or_compute(const Skeleton& skeleton, const SpeciesSettings& settings,
-                               CacheOutcome* outcome = nullptr, std::string* store_error = nullptr) const;
+                               CacheOutcome* outcome = nullptr, std::string* store_error = nullptr,
+                               std::string* corrupt_reason = nullptr) const;
 
  private:
   std::filesystem::path directory_;

@@ -170,7 +170,17 @@ std::filesystem::path RunCheckpoints::write(const RunSnapshot& snapshot, int kee
     std::filesystem::create_directories(partial);
   }
   world_.barrier();
-  to_checkpoint(snapshot).write(partial / rank_file(world_.rank()));
+  try {
+    to_checkpoint(snapshot).write(partial / rank_file(world_.rank()));
+  } catch (const std::exception&) {
+    // A failed write (a full disk) leaves no partial folder behind in one process; over ranks the others
+    // are stopped with this one, and the next checkpoint or resume removes it.
+    if (world_.size() == 1) {
+      std::error_code ignored;
+      std::filesystem::remove_all(partial, ignored);
+    }
+    throw;
+  }
   world_.barrier();
   if (world_.rank() == 0) {
     // Only now is the checkpoint whole: a crash before the rename leaves the previous ones as they were.

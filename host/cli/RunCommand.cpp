@@ -8,8 +8,12 @@
 #include <filesystem>
 #include <iostream>
 #include <iterator>
+#include <memory>
 #include <optional>
 
+#include "base/FileLock.hpp"
+#include "host/app/DeviceMemory.hpp"
+#include "host/app/OutputFolder.hpp"
 #include "host/app/OutputSpace.hpp"
 #include "host/app/Simulation.hpp"
 #include "host/app/SimulationPlan.hpp"
@@ -115,6 +119,9 @@ int run_scenario(const RunCommandOptions& options, const GlobalOptions& global,
     for (const std::string& warning : plan.warnings) *log << "warning: " << warning << "\n";
   const bool leaves = plan.leaf_count > 0;
   const double end = options.run.end_time > 0.0 ? options.run.end_time : plan.end_time;
+  // The folder's own faults, before the device: it cannot be written, or its disk lacks room (--force runs
+  // anyway on a disk that seems full, not on a read-only one).
+  host::require_writable_output(directory, world);
   if (!options.force)
     host::require_output_space(plan, directory, end, world, options.free_bytes,
                                from ? from->any().time : 0.0);
@@ -122,6 +129,11 @@ int run_scenario(const RunCommandOptions& options, const GlobalOptions& global,
   host::ComputeContext cc(
       host::select_device(host::device_filter_from_env(global.device_filter), world.node_rank()),
       global.profile);
+  // A run the device cannot hold is refused before the folder exists (over ranks, each rank's block is
+  // checked where the grid is allocated, also before the folder exists).
+  if (world.size() == 1) host::require_fits(plan.memory, cc.device(), scenario.file.string());
+  // One run at a time in a folder: held until this function returns, however it returns.
+  const std::unique_ptr<base::FileLock> lock = host::lock_output_folder(directory, world);
   if (log) {
     *log << fmt::format("{}: {} x {} x {} cells, {} trees, device {} ({})\n", scenario.name,
                         plan.wind.spec.nx, plan.wind.spec.ny, plan.wind.spec.nz, plan.forest.instance_count(),

@@ -102,13 +102,23 @@ std::size_t WindGrid::estimate_device_bytes(const fluid::GridSpec& spec, const f
   return bytes;
 }
 
+std::size_t WindGrid::estimate_largest_buffer_bytes(const fluid::GridSpec& spec) {
+  std::size_t largest = 0;
+  for (int c = 0; c < 3; ++c) {  // as FluidStages::allocate_padded_velocity
+    const std::size_t padded = std::size_t(spec.nx + (c == 0) + 2 * FW_PAD) *
+                               (spec.ny + (c == 1) + 2 * FW_PAD) * (spec.nz + (c == 2) + 2 * FW_PAD);
+    largest = std::max(largest, (padded + FW_WINDOW_SLACK) * sizeof(float));
+  }
+  return largest;
+}
+
 void WindGrid::check_fits_device(const fluid::GridSpec& spec, std::size_t bytes, const DeviceInfo& device) {
   const double mib = 1024.0 * 1024.0;
   if (bytes > device.global_memory_bytes)
     throw std::invalid_argument(fmt::format(
         "WindGrid: a {} x {} x {} grid needs about {:.0f} MiB of device memory, but '{}' has {:.0f} MiB",
         spec.nx, spec.ny, spec.nz, bytes / mib, device.device_name, device.global_memory_bytes / mib));
-  const std::size_t largest = spec.u_count() * sizeof(float);
+  const std::size_t largest = estimate_largest_buffer_bytes(spec);
   if (largest > device.max_allocation_bytes)
     throw std::invalid_argument(fmt::format(
         "WindGrid: a {} x {} x {} grid needs {:.0f} MiB buffers, but '{}' allocates at most {:.0f} MiB",

@@ -97,7 +97,11 @@ class WindGrid {
   static std::size_t estimate_turbulence_bytes(const fluid::TurbulenceBox& box);
   /// Bytes set_canopy allocates for a canopy on `spec` (a drag density per cell).
   static std::size_t estimate_canopy_bytes(const fluid::GridSpec& spec);
-  /// Throws std::invalid_argument when `bytes` exceed the device's global memory.
+  /// Bytes of the grid's largest single buffer: a padded copy of the velocity's largest component (the pad
+  /// and the windowed loads' slack make it larger than the component itself).
+  static std::size_t estimate_largest_buffer_bytes(const fluid::GridSpec& spec);
+  /// Throws std::invalid_argument when `bytes` exceed the device's global memory, or the largest buffer its
+  /// largest allocation.
   static void check_fits_device(const fluid::GridSpec& spec, std::size_t bytes, const DeviceInfo& device);
 
   void set_ambient(const std::array<double, 3>& ambient_m_s);

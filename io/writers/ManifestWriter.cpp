@@ -18,6 +18,10 @@ void ManifestWriter::begin() {
   if (!manifest_.scenario_file_name.empty())
     base::write_text_atomically("ManifestWriter", directory_ / manifest_.scenario_file_name,
                                 manifest_.scenario_text);
+  // Until finish() replaces it, run.json says the run has not finished: what a folder killed midway keeps.
+  RunOutcome running;
+  running.status = kRunningStatus;
+  write_run_json(running);
 }
 
 void ManifestWriter::write(const OutputFrame& frame) {
@@ -27,6 +31,10 @@ void ManifestWriter::write(const OutputFrame& frame) {
 }
 
 void ManifestWriter::finish(const RunOutcome& outcome) {
+  write_run_json(outcome);
+}
+
+void ManifestWriter::write_run_json(const RunOutcome& outcome) const {
   const RunManifest& m = manifest_;
   JsonWriter json;
   json.begin_object();

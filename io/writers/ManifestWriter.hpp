@@ -4,16 +4,18 @@
 //   manifest.finish(outcome);                              // run.json: status, steps, timings per stage
 //
 // run.json keys: version, scenario, scenario_file, scenario_hash (64-bit FNV-1a of the scenario text), seed,
-// device, platform, status ("completed", "interrupted", "failed"), message (when failed), grid, cell_size_m,
-// trees, species (name, dynamics, nodes, modes, wind_samples, trees, first_hz, cache), two_way_coupling,
-// steps, simulated_time_s, frames, interrupted, wall_seconds, ms_per_step, "spin_up" ({seconds, steps,
-// wall_seconds} of the wind's spin-up before t = 0, time.spin_up: not in steps, in wall_seconds, not in
-// ms_per_step or stages_ms; zeros without one and in a resumed run, which does not spin up), stages_ms,
-// "segments" (each with start_time_s, end_time_s, start_step, end_step, wall_seconds, status: one for a run
-// never resumed; steps, frames and wall_seconds count every segment, stages_ms the last one), and in runs
-// with leaves (RunManifest::leaves) "leaves": {shed, flying, landed, exited, attached, time_s}, the counts
-// over all leaves (docs/leaves.md, "States and counts") of the last frame written, at its time_s; null when
-// no frame was written. It is written once, when the run ends, through AtomicFile.
+// device, platform, status ("running", "completed", "interrupted", "failed"), message (when failed), grid,
+// cell_size_m, trees, species (name, dynamics, nodes, modes, wind_samples, trees, first_hz, cache),
+// two_way_coupling, steps, simulated_time_s, frames, interrupted, wall_seconds, ms_per_step, "spin_up"
+// ({seconds, steps, wall_seconds} of the wind's spin-up before t = 0, time.spin_up: not in steps, in
+// wall_seconds, not in ms_per_step or stages_ms; zeros without one and in a resumed run, which does not spin
+// up), stages_ms, "segments" (each with start_time_s, end_time_s, start_step, end_step, wall_seconds, status:
+// one for a run never resumed; steps, frames and wall_seconds count every segment, stages_ms the last one),
+// and in runs with leaves (RunManifest::leaves) "leaves": {shed, flying, landed, exited, attached, time_s},
+// the counts over all leaves (docs/leaves.md, "States and counts") of the last frame written, at its time_s;
+// null when no frame was written. It is written through AtomicFile when the run starts (or resumes), with
+// status "running" and no steps, and again when the run ends: a folder whose run was killed (kill -9, a power
+// cut) keeps status "running", which says the run did not finish.
 #pragma once
 
 #include <array>
@@ -58,6 +60,9 @@ struct RunManifest {
   std::string decomposition;  ///< their blocks (fluid::Decomposition::describe), over several ranks
 };
 
+/// run.json's status while the run goes on, and after a kill that gave it no time to say more.
+inline constexpr const char* kRunningStatus = "running";
+
 class ManifestWriter : public FrameWriter {
  public:
   ManifestWriter(std::filesystem::path directory, RunManifest manifest);
@@ -65,7 +70,7 @@ class ManifestWriter : public FrameWriter {
   std::string name() const override { return "run.json"; }
   /// The leaves' counts travel with every frame (LeafFrame::counts), the leaves themselves need not.
   FrameNeeds needs() const override { return {.leaf_counts = manifest_.leaves}; }
-  /// Writes the scenario copy.
+  /// Writes the scenario copy and run.json with status "running".
   void begin() override;
   /// Keeps the frame's leaf counts (runs with leaves).
   void write(const OutputFrame& frame) override;
@@ -73,6 +78,8 @@ class ManifestWriter : public FrameWriter {
   void finish(const RunOutcome& outcome) override;
 
  private:
+  void write_run_json(const RunOutcome& outcome) const;
+
   std::filesystem::path directory_;
   RunManifest manifest_;
   std::optional<trees::LeafCounts> leaf_counts_;  // of the last frame written

@@ -255,3 +255,24 @@ TEST_CASE("write_text_atomically: a disk that fills up mid-write leaves no file,
   CHECK(read_text(old) == "the complete old collection");
   CHECK(names_in(dir.path()) == std::vector<std::string>{"old.pvd"});
 }
+
+TEST_CASE("append_text: appends, and a disk that fills up mid-append cuts the file back to its old end",
+          "[base]") {
+  fw::test::TempDir dir("fw_append");
+  const fs::path csv = fs::path(dir.path()) / "probes.csv";
+  fw::base::append_text("ProbesCsv", csv, "time_s,u\n");
+  fw::base::append_text("ProbesCsv", csv, "0,1\n");
+  CHECK(read_text(csv) == "time_s,u\n0,1\n");
+  const std::string rows(1 << 20, 'x');  // 1 MiB: far past the 4 KiB the "disk" takes
+  std::string message;
+  {
+    const FileSizeLimit full_disk(4096);
+    try {
+      fw::base::append_text("ProbesCsv", csv, rows);
+    } catch (const std::runtime_error& e) {
+      message = e.what();
+    }
+  }
+  CHECK(message == "ProbesCsv: cannot write " + csv.string() + ": " + std::strerror(EFBIG));
+  CHECK(read_text(csv) == "time_s,u\n0,1\n");  // no partial row
+}

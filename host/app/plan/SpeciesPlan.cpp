@@ -69,10 +69,16 @@ std::vector<trees::SpeciesBasis> plan_species(const io::Scenario& scenario, cons
     summary.dynamics = trees::dynamics_name(species.dynamics.model);
     if (cache) {
       trees::CacheOutcome outcome{};
-      std::string store_error;
-      bases.push_back(cache->load_or_compute(skeleton, settings, &outcome, &store_error));
+      std::string store_error, corrupt;
+      bases.push_back(cache->load_or_compute(skeleton, settings, &outcome, &store_error, &corrupt));
       summary.cache = trees::to_string(outcome);
-      if (!store_error.empty() && log) *log << "warning: " << store_error << "\n";
+      // Neither stops the run: the basis is computed here instead (docs/trees.md, "The cache").
+      if (!corrupt.empty())
+        plan.warnings.push_back(
+            fmt::format("basis cache: {}; the basis is computed again and the entry replaced", corrupt));
+      if (!store_error.empty())
+        plan.warnings.push_back(fmt::format("basis cache: {}; the run goes on without caching species '{}'",
+                                            store_error, species.name));
     } else {
       bases.push_back(trees::SpeciesBasis::compute(skeleton, settings));
     }

@@ -78,7 +78,8 @@ void plan_wind(const io::Scenario& scenario, int ranks, SimulationPlan& plan) {
                                             scenario.domain.decomposition_line, e.what()));
   }
   // The planner has no device: the rows mapping's chunk of 1 gives the largest estimate of the two.
-  plan.memory.add("wind grid", WindGrid::estimate_device_bytes(wind.spec, wind.settings, 1));
+  plan.memory.add("wind grid", WindGrid::estimate_device_bytes(wind.spec, wind.settings, 1),
+                  WindGrid::estimate_largest_buffer_bytes(wind.spec));
 }
 
 }  // namespace fw::host
