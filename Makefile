@@ -2,8 +2,11 @@
 #   make demo   installs the Debian packages, builds, runs the demo (scenarios/storm.yaml into out/storm) and
 #               draws its last frame and its probes
 #   make test   installs the Debian packages, checks the formatting of the tracked sources (clang-format),
-#               builds (compiler warnings as errors under CI), and runs every test through CTest
+#               builds (compiler warnings as errors under CI), runs every test through CTest, and then
+#               every fuzz target for 10 s
 #   make validate   builds and runs the long validations (tests/validation) that CI runs in short form
+#   make fuzz       builds the fuzz targets (tests/fuzz) with clang and runs each for FUZZ_SECONDS
+#   make sanitize   builds the host tests with ASan + UBSan (clang, the fuzz build) and runs them
 BUILD_DIR ?= build
 BUILD_TYPE ?= Release
 # Compiler warnings as errors: on under CI (the variable CI is set), off otherwise, so that a user's newer
@@ -11,7 +14,7 @@ BUILD_TYPE ?= Release
 WERROR ?= $(if $(CI),ON,OFF)
 SUDO := $(shell [ "$$(id -u)" -eq 0 ] || echo sudo)
 
-.PHONY: deps configure build build-cli test validate demo format format-check clean
+.PHONY: deps configure build build-cli test validate demo format format-check clean fuzz-configure fuzz sanitize
 
 deps:
 	$(SUDO) bash scripts/install-deps.sh
@@ -26,11 +29,37 @@ build: configure
 build-cli: configure
 	cmake --build $(BUILD_DIR) --target forestwind
 
+# Then every fuzz target briefly (TEST_FUZZ_SECONDS each): a reader change that crashes near the seeds stops CI.
+TEST_FUZZ_SECONDS ?= 10
 test: deps format-check build
 	ctest --test-dir $(BUILD_DIR) --output-on-failure
+	$(MAKE) fuzz FUZZ_SECONDS=$(TEST_FUZZ_SECONDS)
 
 validate: build
 	FORESTWIND_VALIDATION=full $(BUILD_DIR)/validation_tests "[validation]"
+
+# --- fuzzing and sanitizers (docs/fuzzing.md): one clang build with ASan + UBSan + fuzzer coverage -----
+FUZZ_DIR ?= build-fuzz
+FUZZ_SECONDS ?= 60
+# The host tests: plain C++, fast enough under the sanitizers; the kernel tests need PoCL (docs/fuzzing.md).
+SANITIZE_TESTS ?= base_tests fluid_tests trees_tests host_tests io_tests viz_tests
+# Leaks are reported (LeakSanitizer) except the third-party ones tests/fuzz/lsan.supp lists.
+SANITIZE_ENV = ASAN_OPTIONS=detect_leaks=1 LSAN_OPTIONS=suppressions=$(CURDIR)/tests/fuzz/lsan.supp \
+               UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1
+
+# -O1 and line tables: what the sanitizers' reports need, built much faster than -O3 with full debug info.
+fuzz-configure:
+	cmake -S . -B $(FUZZ_DIR) -G Ninja -DCMAKE_CXX_COMPILER=clang++ -DFORESTWIND_FUZZ=ON \
+	  -DCMAKE_BUILD_TYPE=Debug "-DCMAKE_CXX_FLAGS_DEBUG=-O1 -gline-tables-only"
+
+# Exits non-zero when a target finds a crash, a hang or a huge allocation; names the artifacts' folder.
+fuzz: fuzz-configure
+	cmake --build $(FUZZ_DIR) --target fuzz
+	bash tests/fuzz/run.sh $(FUZZ_DIR) $(FUZZ_SECONDS)
+
+sanitize: fuzz-configure
+	cmake --build $(FUZZ_DIR) --target $(SANITIZE_TESTS)
+	set -e; for t in $(SANITIZE_TESTS); do echo "== $$t"; $(SANITIZE_ENV) $(FUZZ_DIR)/$$t; done
 
 DEMO_OUT := out/storm
 

@@ -152,6 +152,22 @@ void check_sample_count(Scanner& scan, int line, std::int64_t columns, std::int6
     scan.fail(line, fmt::format("expected at most {} samples, got {} x {}", kMaxSamples, columns, rows));
 }
 
+// The samples in storage order (row 0 = south) from the file's order (north row first).
+std::vector<double> south_rows_first(const std::vector<double>& file_order, std::int64_t columns) {
+  std::vector<double> heights(file_order.size());
+  const std::int64_t rows = std::int64_t(file_order.size()) / columns;
+  for (std::int64_t row = 0; row < rows; ++row)
+    std::copy_n(file_order.begin() + row * columns, columns, heights.begin() + (rows - 1 - row) * columns);
+  return heights;
+}
+
+// Room for the samples a text file's header promises, but no more than its remaining bytes can hold (one
+// digit and one separator each): a header's size is not believed before the data is there.
+std::size_t text_samples_room(const Scanner& scan, std::int64_t count) {
+  constexpr std::size_t kBytesPerValue = 2;
+  return std::min(std::size_t(count), (scan.data().size() - scan.pos()) / kBytesPerValue + 1);
+}
+
 std::string read_file(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
   if (!in) throw std::runtime_error(fmt::format("{}: cannot open: {}", path, std::strerror(errno)));
@@ -180,22 +196,20 @@ Heightmap read_pgm(const std::string& path, Scanner& scan, const Token& magic, d
   const std::int64_t maxval = parse_integer(scan, maxval_token, "maxval", 1, 65535, kMaxval);
 
   const std::int64_t count = width * height;
-  std::vector<double> heights(static_cast<std::size_t>(count));
+  // Image rows run north to south, as read here; storage rows run south to north (south_rows_first).
+  std::vector<double> image;
   const double scale = max_height_m / double(maxval);
-  // Image rows run north to south; storage rows run south to north.
-  auto store = [&](std::int64_t index, std::int64_t value) {
-    const std::int64_t column = index % width, image_row = index / width;
-    heights[std::size_t(column + width * (height - 1 - image_row))] = double(value) * scale;
-  };
+  auto store = [&](std::int64_t value) { image.push_back(double(value) * scale); };
 
   if (magic.text == "P2") {
+    image.reserve(text_samples_room(scan, count));
     const std::string expected = fmt::format("an integer in 0..{}", maxval);
     for (std::int64_t i = 0; i < count; ++i) {
       const auto token = scan.next();
       if (!token)
         scan.fail(scan.last_line(), fmt::format("truncated data: expected {} pixel values ({} x {}), got {}",
                                                 count, width, height, i));
-      store(i, parse_integer(scan, *token, "pixel value", 0, maxval, expected));
+      store(parse_integer(scan, *token, "pixel value", 0, maxval, expected));
     }
     if (const auto extra = scan.next())
       scan.fail(extra->line,
@@ -221,6 +235,7 @@ Heightmap read_pgm(const std::string& path, Scanner& scan, const Token& magic, d
           "got {} more",
           path, need, width, height, bytes_per_pixel, have - need));
     const auto* bytes = reinterpret_cast<const unsigned char*>(data.data() + start);
+    image.reserve(std::size_t(count));  // the bytes are there: checked above
     for (std::int64_t i = 0; i < count; ++i) {
       const std::int64_t value = bytes_per_pixel == 2 ? (std::int64_t(bytes[2 * i]) << 8) | bytes[2 * i + 1]
                                                       : std::int64_t(bytes[i]);
@@ -228,11 +243,11 @@ Heightmap read_pgm(const std::string& path, Scanner& scan, const Token& magic, d
         throw std::runtime_error(
             fmt::format("{}: binary data: pixel (row {}, column {}): expected a value in 0..{}, got {}", path,
                         i / width + 1, i % width + 1, maxval, value));
-      store(i, value);
+      store(value);
     }
   }
   return Heightmap(int(width), int(height), cell_size_m, {0.5 * cell_size_m, 0.5 * cell_size_m},
-                   std::move(heights));
+                   south_rows_first(image, width));
 }
 
 Heightmap read_esri(Scanner& scan) {
@@ -315,7 +330,8 @@ Heightmap read_esri(Scanner& scan) {
   const double nodata = has_nodata ? number(nodata_entry, "NODATA_value", "a finite number", false) : 0.0;
 
   const std::int64_t count = ncols * nrows;
-  std::vector<double> heights(static_cast<std::size_t>(count));
+  std::vector<double> file_order;  // north row first
+  file_order.reserve(text_samples_room(scan, count));
   for (std::int64_t i = 0; i < count; ++i) {
     const auto token = scan.next();
     if (!token)
@@ -326,16 +342,13 @@ Heightmap read_esri(Scanner& scan) {
     if (!value)
       scan.fail(token->line, fmt::format("row {}, column {}: expected a height in metres, got '{}'",
                                          i / ncols + 1, i % ncols + 1, printable(token->text)));
-    // File rows run north to south; storage rows run south to north.
-    const std::int64_t column = i % ncols, file_row = i / ncols;
-    heights[std::size_t(column + ncols * (nrows - 1 - file_row))] =
-        (has_nodata && *value == nodata) ? 0.0 : *value;
+    file_order.push_back((has_nodata && *value == nodata) ? 0.0 : *value);
   }
   if (const auto extra = scan.next())
     scan.fail(extra->line,
               fmt::format("wrong number of values: expected {} ({} columns x {} rows), got more: '{}'", count,
                           ncols, nrows, printable(extra->text)));
-  return Heightmap(int(ncols), int(nrows), cell_size, {x0, y0}, std::move(heights));
+  return Heightmap(int(ncols), int(nrows), cell_size, {x0, y0}, south_rows_first(file_order, ncols));
 }
 
 }  // namespace

@@ -221,6 +221,7 @@ struct CanopySettings {
   double leaf_area_index = schema::key("forest.species[].canopy.leaf_area_index").number;
   /// C_D of the leaves per one-sided leaf area (the branches' convention), >= 0.
   double drag_coefficient = schema::key("forest.species[].canopy.drag_coefficient").number;
+  int leaf_area_index_line = 0;  ///< the line of leaf_area_index (of canopy, or the species, when not given)
 };
 
 /// A species' leaves seed when the file gives none: the global seed + kLeafSeedOffset + the species' index

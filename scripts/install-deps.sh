@@ -38,6 +38,9 @@ esac
 packages=(
   # toolchain
   build-essential cmake ninja-build pkg-config clang-format
+  # fuzzing and sanitizers (make fuzz, make sanitize): clang 14 and its runtimes (libFuzzer, ASan, UBSan),
+  # which clang only recommends, so --no-install-recommends would leave them out
+  clang libclang-rt-14-dev
   # OpenCL: headers, C++ bindings, ICD loader, PoCL (the CPU implementation CI runs on), clinfo
   opencl-headers opencl-clhpp-headers ocl-icd-opencl-dev pocl-opencl-icd clinfo
   # MPI: OpenMPI's library and its launcher (mpirun), one rank per device (docs/parallel.md)

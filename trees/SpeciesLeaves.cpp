@@ -128,12 +128,21 @@ SpeciesLeaves SpeciesLeaves::generate(const Skeleton& skeleton, const Foliage& f
   const BearingElements bearing(skeleton, foliage);
   if (!settings.has_leaves() || foliage.leaf_area <= 0.0 || bearing.total() <= 0.0) return out;
 
+  const double planned = planned_count(foliage, settings);
+  if (!(planned <= kMaxCount))  // NaN too: llround of a count past long long would be undefined
+    throw std::invalid_argument(fmt::format(
+        "SpeciesLeaves: {:.3g} leaves, more than the {:.0f} a species holds", planned, kMaxCount));
   out.foliage_leaf_count_ = foliage.leaf_area / settings.area;
-  const auto n = std::size_t(std::llround(settings.fraction * out.foliage_leaf_count_));
+  const auto n = std::size_t(std::llround(planned));
   Draws draws(settings.seed);
   out.leaves_.reserve(n);
   for (std::size_t k = 0; k < n; ++k) out.leaves_.push_back(draw_leaf(skeleton, bearing, settings, draws));
   return out;
+}
+
+double SpeciesLeaves::planned_count(const Foliage& foliage, const LeafSettings& settings) {
+  if (!settings.has_leaves() || !(foliage.leaf_area > 0.0)) return 0.0;
+  return settings.fraction * (foliage.leaf_area / settings.area);
 }
 
 double SpeciesLeaves::side() const {

@@ -12,6 +12,7 @@
 
 #include <Eigen/Core>
 #include <array>
+#include <limits>
 #include <vector>
 
 #include "trees/Foliage.hpp"
@@ -37,10 +38,17 @@ class SpeciesLeaves {
  public:
   SpeciesLeaves() = default;  ///< no leaves
 
+  /// The most leaves a species may have: count() is an int.
+  static constexpr double kMaxCount = std::numeric_limits<int>::max();
+
   /// Throws std::invalid_argument("SpeciesLeaves: ...") when the settings are invalid
-  /// (LeafSettings::validate) or the foliage does not belong to the skeleton (element count).
+  /// (LeafSettings::validate), the foliage does not belong to the skeleton (element count), or
+  /// planned_count is above kMaxCount (or not a number): a caller that can name the key checks first.
   static SpeciesLeaves generate(const Skeleton& skeleton, const Foliage& foliage,
                                 const LeafSettings& settings);
+  /// The count generate() makes, before rounding: fraction x foliage.leaf_area / area; 0 without leaves.
+  /// May be huge or infinite for a foliage no tree has: what generate() refuses.
+  static double planned_count(const Foliage& foliage, const LeafSettings& settings);
 
   const LeafSettings& settings() const { return settings_; }
   int count() const { return int(leaves_.size()); }

@@ -170,6 +170,7 @@ Species read_species(const Loader& loader, const Field& item, const std::vector<
     if (const auto drag = canopy.get<"drag_coefficient">())
       species.canopy.drag_coefficient = loader.number(*drag);
   }
+  species.canopy.leaf_area_index_line = (lai ? *lai : lai_missing).line;
 
   species.leaves.seed = global_seed + kLeafSeedOffset + earlier.size();
   if (const auto leaves = map.get<"leaves">()) {

@@ -100,6 +100,13 @@ expect_bad(leaves_without_foliage "${WORK}/leaves_without_foliage.yaml:7"
 expect_bad(leaves_attached "${WORK}/leaves_attached.yaml:12" "output.leaves.attached"
            "interval: 1.0}" "interval: 1.0, leaves: {attached: 0}}")
 
+# A leaf area index whose leaves overflow what one tree may carry (the leaf stage's 32-bit count): refused by
+# the plan at the key, not a crash of the leaf count (it was "forestwind: vector::reserve", exit 1). A small
+# generated broadleaf: the shrub above is a stick, whose crown has no area to carry leaves.
+expect_bad(leaf_count_overflow "${WORK}/leaf_count_overflow.yaml:10" "forest.species[0].canopy.leaf_area_index"
+           "{file: tree.tree}\n      modes: {count: 4}"
+           "{generate: {preset: broadleaf, height: 3.0, seed: 3}}\n      modes: {count: 4}\n      canopy: {leaf_area_index: 1e30}\n      leaves: {}")
+
 # Tree models: an unknown dynamics word; the modal model's `modes` on a springs species; the springs model's
 # keys on a modal one (the default).
 expect_bad(dynamics_word "${WORK}/dynamics_word.yaml:10" "forest.species[0].dynamics"

@@ -8,6 +8,7 @@
 #include <cmath>
 #include <functional>
 #include <numbers>
+#include <stdexcept>
 
 #include "tests/support/SmallSpecies.hpp"
 #include "trees/Foliage.hpp"
@@ -167,6 +168,18 @@ TEST_CASE("leaves: a fraction thins the leaves", "[leaves]") {
   const trees::SpeciesLeaves half = leaves_of(tree, settings);
   CHECK(half.count() == std::llround(0.5 * half.foliage_leaf_count()));
   CHECK(std::abs(half.count() - 0.5 * all) <= 1.0);  // two roundings of the same count
+}
+
+TEST_CASE("leaves: a leaf area past the int count is refused before a leaf is made", "[leaves]") {
+  const trees::Skeleton tree = test::small_broadleaf();
+  const trees::LeafSettings defaults;
+  // 1e30 m^2/m^2 of leaves: a count past long long, which rounded to a size once asked for 2^63 leaves.
+  const trees::Foliage foliage = trees::Foliage::of(tree, 1e30);
+  CHECK(trees::SpeciesLeaves::planned_count(foliage, defaults) > trees::SpeciesLeaves::kMaxCount);
+  CHECK_THROWS_AS(trees::SpeciesLeaves::generate(tree, foliage, defaults), std::invalid_argument);
+  const trees::Foliage usual = trees::Foliage::of(tree, 3.0);
+  CHECK(trees::SpeciesLeaves::generate(tree, usual, defaults).count() ==
+        std::llround(trees::SpeciesLeaves::planned_count(usual, defaults)));
 }
 
 TEST_CASE("leaves: validate names the key", "[leaves]") {

@@ -49,7 +49,10 @@ int stand_basis(const io::Scenario& scenario, std::size_t index, const std::vect
   }
   bases.push_back(species.with_leaf_area_index(stand.crown_leaf_area_index));
   const io::Species& given_species = scenario.forest.species[std::size_t(stand.species_index)];
-  plan.coupling.leaves.push_back(species_leaves(bases.back(), given_species.leaves));
+  const LeafAreaKey leaf_area{
+      io::schema::item_path(io::schema::key("forest.stands[].leaf_area_index").path, index),
+      given.leaf_area_index_line, *stand.leaf_area_index};
+  plan.coupling.leaves.push_back(species_leaves(scenario, bases.back(), given_species.leaves, leaf_area));
   plan.coupling.dynamics.push_back(given_species.dynamics);
   io::SpeciesSummary summary = plan.species[std::size_t(stand.species_index)];
   summary.name = fmt::format("{} (stand {})", stand.species, index);

@@ -14,6 +14,7 @@
 #pragma once
 
 #include <ostream>
+#include <string>
 #include <vector>
 
 #include "host/app/SimulationPlan.hpp"
@@ -32,9 +33,18 @@ void plan_turbulence(const io::Scenario& scenario, SimulationPlan& plan);
 /// leaves (plan.coupling.leaves) and its summary (plan.species). `cache` and `log` may be null.
 std::vector<trees::SpeciesBasis> plan_species(const io::Scenario& scenario, const trees::BasisCache* cache,
                                               std::ostream* log, SimulationPlan& plan);
+/// The key of the file that sets a basis' leaf area (the species' canopy.leaf_area_index, or a stand's own
+/// leaf_area_index), its line and its value, for the error of a leaf count past the leaf stage.
+struct LeafAreaKey {
+  std::string key;  ///< dotted, with the item's index
+  int line = 0;
+  double value = 0.0;
+};
 /// host/app/plan/SpeciesPlan.cpp: the leaves `settings` ask for on a basis' own skeleton and foliage (its
-/// settings().wind.leaf_area_index), so that their elements are the forest's; none without leaves.
-trees::SpeciesLeaves species_leaves(const trees::SpeciesBasis& basis, const trees::LeafSettings& settings);
+/// settings().wind.leaf_area_index), so that their elements are the forest's; none without leaves. Throws
+/// io::ScenarioError at `source` when one tree would carry more leaves than the leaf stage holds.
+trees::SpeciesLeaves species_leaves(const io::Scenario& scenario, const trees::SpeciesBasis& basis,
+                                    const trees::LeafSettings& settings, const LeafAreaKey& source);
 /// host/app/plan/ForestPlan.cpp (after plan_species): the placed instances, and a basis of its own for every
 /// stand that gives its leaf area index (plan.stands, plan.species, plan.coupling.leaves)
 void plan_forest(const io::Scenario& scenario, std::vector<trees::SpeciesBasis> bases, SimulationPlan& plan);

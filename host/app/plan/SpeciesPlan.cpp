@@ -7,6 +7,7 @@
 #include <chrono>
 
 #include "host/app/plan/PlanBuilders.hpp"
+#include "host/stages/LeafStages.hpp"
 #include "trees/Foliage.hpp"
 #include "trees/QsmImport.hpp"
 #include "trees/TreeFile.hpp"
@@ -47,11 +48,24 @@ trees::SpeciesSettings species_settings(const io::Species& species) {
 
 }  // namespace
 
-trees::SpeciesLeaves species_leaves(const trees::SpeciesBasis& basis, const trees::LeafSettings& settings) {
+trees::SpeciesLeaves species_leaves(const io::Scenario& scenario, const trees::SpeciesBasis& basis,
+                                    const trees::LeafSettings& settings, const LeafAreaKey& source) {
   if (!settings.has_leaves()) return {};
-  return trees::SpeciesLeaves::generate(
-      basis.skeleton(), trees::Foliage::of(basis.skeleton(), basis.settings().wind.leaf_area_index),
-      settings);
+  const trees::Foliage foliage = trees::Foliage::of(basis.skeleton(), basis.settings().wind.leaf_area_index);
+  // Every tree of the species carries all its leaves, and the leaf stage indexes leaves with 32-bit
+  // integers: one tree's must fit before the forest's total is checked (plan_forest), and before a count
+  // past any integer is rounded. The count grows in proportion to the leaf area index.
+  const double count = trees::SpeciesLeaves::planned_count(foliage, settings);
+  const double limit = double(LeafStages::kMaxLeaves);
+  if (!(count <= limit)) {
+    throw io::ScenarioError(
+        scenario.file.string(), source.line, source.key,
+        fmt::format("at most {:.6g} expected (leaves of {:.6g} m^2 at leaves.fraction {:.6g} on these crowns "
+                    "make {:.3g} leaves a tree here, more than the {} the leaf stage holds), got '{}'",
+                    source.value * limit / count, settings.area, settings.fraction, count,
+                    LeafStages::kMaxLeaves, source.value));
+  }
+  return trees::SpeciesLeaves::generate(basis.skeleton(), foliage, settings);
 }
 
 std::vector<trees::SpeciesBasis> plan_species(const io::Scenario& scenario, const trees::BasisCache* cache,
@@ -88,7 +102,10 @@ std::vector<trees::SpeciesBasis> plan_species(const io::Scenario& scenario, cons
     summary.modes = basis.modes().mode_count();
     summary.samples = basis.wind().sample_count();
     summary.first_hz = basis.modes().frequencies_hz()(0);
-    plan.coupling.leaves.push_back(species_leaves(basis, species.leaves));
+    const LeafAreaKey leaf_area{
+        io::schema::item_path(io::schema::key("forest.species[].canopy.leaf_area_index").path, index),
+        species.canopy.leaf_area_index_line, species.canopy.leaf_area_index};
+    plan.coupling.leaves.push_back(species_leaves(scenario, basis, species.leaves, leaf_area));
     species.dynamics.validate();  // the loader's ranges are its own: a failure here is a bug, not the file's
     plan.coupling.dynamics.push_back(species.dynamics);
     if (log) {

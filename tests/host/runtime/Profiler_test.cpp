@@ -81,7 +81,10 @@ TEST_CASE("Profiler: calls, totals and means add up from the events' times, each
   CHECK(profiler.timings().size() == 3);
   CHECK(find(profiler.timings(), "advect")->calls == 3);
   profiler.record("advect", b);
-  const KernelTiming* more = find(profiler.timings(), "advect");
+  // timings() returns a copy: `more` points into `after`, which must outlive it (ASan found a pointer into
+  // a destroyed temporary here, make sanitize).
+  const std::vector<KernelTiming> after = profiler.timings();
+  const KernelTiming* more = find(after, "advect");
   CHECK(more->calls == 4);
   CHECK(more->total_ms == Approx(3 * da + db).epsilon(1e-12));
 

@@ -1,0 +1,76 @@
+#!/usr/bin/env bash
+# Runs every fuzz target of tests/fuzz for a set time (docs/fuzzing.md); `make fuzz` calls it.
+#
+#   bash tests/fuzz/run.sh BUILD_DIR SECONDS [TARGET...]   # default: every target
+#
+# Each target fuzzes a working corpus in BUILD_DIR/fuzz/corpus/TARGET, seeded from the tracked seeds
+# (tests/fuzz/corpus/TARGET) and regressions (tests/fuzz/regressions/TARGET), with a time limit per input
+# and limits on memory; crashes, hangs and huge allocations land in BUILD_DIR/fuzz/artifacts/TARGET. It prints
+# a line per target (seconds, executions, outcome) and exits 1 when any target found something.
+set -uo pipefail
+
+if [ $# -lt 2 ]; then
+  echo "usage: bash tests/fuzz/run.sh BUILD_DIR SECONDS [TARGET...]" >&2
+  exit 2
+fi
+build=$1
+seconds=$2
+shift 2
+source_dir=$(cd "$(dirname "$0")/../.." && pwd)
+targets=("$@")
+if [ ${#targets[@]} -eq 0 ]; then
+  targets=(scenario_fuzz expression_fuzz tree_file_fuzz qsm_fuzz heightmap_fuzz basis_cache_fuzz
+           run_folder_fuzz probe_table_fuzz)
+fi
+
+# An input that takes longer than this many seconds is a hang. The planner computes species bases (an
+# eigen solve of a whole tree), which takes seconds for the example scenarios' trees: it gets longer.
+timeout_of() {
+  case "$1" in
+    scenario_fuzz) echo 10 ;;
+    *) echo 1 ;;
+  esac
+}
+# No reader of a user file needs more than this for one input: a bigger allocation is a size field believed.
+rss_limit_mb=2048
+malloc_limit_mb=1024
+
+failed=0
+summary=()
+for target in "${targets[@]}"; do
+  corpus="$build/fuzz/corpus/$target"
+  artifacts="$build/fuzz/artifacts/$target"
+  mkdir -p "$corpus" "$artifacts"
+  for seeds in "$source_dir/tests/fuzz/corpus/$target" "$source_dir/tests/fuzz/regressions/$target"; do
+    [ -d "$seeds" ] && cp -n "$seeds"/* "$corpus"/ 2>/dev/null
+  done
+  # The basis cache's seed is written by the code itself, so that it follows the format of this build.
+  if [ "$target" = basis_cache_fuzz ]; then
+    "$build/basis_cache_seed" "$build/fuzz" && cp "$build/fuzz/entry.body" "$corpus/entry.body"
+  fi
+  log="$build/fuzz/$target.log"
+  start=$(date +%s)
+  "$build/fuzz_$target" "$corpus" -max_total_time="$seconds" -timeout="$(timeout_of "$target")" \
+    -rss_limit_mb=$rss_limit_mb -malloc_limit_mb=$malloc_limit_mb -print_final_stats=1 \
+    -artifact_prefix="$artifacts/" >"$log" 2>&1
+  code=$?
+  took=$(($(date +%s) - start))
+  runs=$(grep -o 'stat::number_of_executed_units: [0-9]*' "$log" | grep -o '[0-9]*$' | tail -1)
+  if [ $code -eq 0 ]; then
+    outcome=ok
+  else
+    outcome="FOUND (exit $code): $(ls "$artifacts" | tr '\n' ' ')"
+    failed=1
+  fi
+  summary+=("$(printf '%-18s %5s s %10s runs  %s' "$target" "$took" "${runs:-?}" "$outcome")")
+  echo "${summary[-1]}   (log: $log)"
+done
+
+echo
+echo "fuzz: ${seconds} s per target; crashes, hangs and huge allocations: $build/fuzz/artifacts/<target>/"
+printf '%s\n' "${summary[@]}"
+if [ $failed -ne 0 ]; then
+  echo "fuzz: a target found an input it does not refuse cleanly; replay it with $build/fuzz_<target> FILE," \
+    "fix it, and add it to tests/fuzz/regressions/<target>/ (docs/fuzzing.md)" >&2
+fi
+exit $failed
