@@ -9,6 +9,7 @@
 
 #include "base/Fnv1a.hpp"
 #include "base/SourceError.hpp"
+#include "io/YamlDocuments.hpp"
 
 namespace fw::io {
 
@@ -60,7 +61,7 @@ int line_of(const YAML::Node& key) {
 
 std::vector<StateKey> state_keys(const std::string& scenario_text) {
   std::vector<StateKey> keys;
-  const YAML::Node root = YAML::Load(scenario_text);
+  const YAML::Node root = load_yaml(scenario_text);
   if (!root.IsMap()) return keys;
   for (const auto& top : root) {
     const std::string name = top.first.Scalar();

@@ -28,6 +28,7 @@
 #include <stdexcept>
 
 #include "io/PvdCollection.hpp"
+#include "io/YamlDocuments.hpp"
 
 namespace fw::viz {
 
@@ -246,7 +247,10 @@ std::string scenario_name_of(const fs::path& folder) {
   for (const auto& entry : fs::directory_iterator(folder)) {
     if (entry.path().extension() != ".yaml") continue;
     try {
-      const YAML::Node root = YAML::LoadFile(entry.path().string());
+      std::ifstream file(entry.path(), std::ios::binary);
+      std::ostringstream text;
+      text << file.rdbuf();
+      const YAML::Node root = io::load_yaml(text.str());
       if (root["scenario"] && root["scenario"].IsScalar()) return root["scenario"].as<std::string>();
     } catch (const YAML::Exception&) {
     }

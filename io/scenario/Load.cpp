@@ -9,6 +9,7 @@
 #include <fstream>
 #include <sstream>
 
+#include "io/YamlDocuments.hpp"
 #include "io/scenario/Sections.hpp"
 
 namespace fw::io {
@@ -45,7 +46,7 @@ Scenario load_scenario(const std::filesystem::path& file) {
 
   std::vector<YAML::Node> documents;
   try {
-    documents = YAML::LoadAll(scenario.text);
+    documents = load_yaml_documents(scenario.text);
   } catch (const YAML::Exception& error) {
     throw ScenarioError(name, error.mark.is_null() ? 1 : error.mark.line + 1, "(yaml)",
                         "valid YAML expected, got a syntax error: " + error.msg);

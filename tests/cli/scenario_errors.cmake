@@ -107,6 +107,11 @@ expect_bad(leaf_count_overflow "${WORK}/leaf_count_overflow.yaml:10" "forest.spe
            "{file: tree.tree}\n      modes: {count: 4}"
            "{generate: {preset: broadleaf, height: 3.0, seed: 3}}\n      modes: {count: 4}\n      canopy: {leaf_area_index: 1e30}\n      leaves: {}")
 
+# A ',' that begins a YAML document outside any [ ] or { }: yaml-cpp 0.7 never finishes parsing it and filled
+# the memory (found by tests/fuzz/scenario_fuzz); io/YamlDocuments stops it at the comma's line.
+expect_bad(comma_document "${WORK}/comma_document.yaml:13" "(yaml): valid YAML expected"
+           "interval: 1.0}" "interval: 1.0}\n,")
+
 # Tree models: an unknown dynamics word; the modal model's `modes` on a springs species; the springs model's
 # keys on a modal one (the default).
 expect_bad(dynamics_word "${WORK}/dynamics_word.yaml:10" "forest.species[0].dynamics"

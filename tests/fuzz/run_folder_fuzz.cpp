@@ -1,7 +1,8 @@
 // Fuzz target: a run folder read back for `forestwind render` (viz/RunFolder: the .pvd lists through
 // io::read_pvd, run.json's scenario name, the frames' .vti/.vtp through VTK's XML readers).
 // Feeds: the bytes cut at each line "=====" into, in this order, wind.pvd, trees.pvd, leaves.pvd, run.json,
-// wind/0.vti, trees/0.vtp and leaves/0.vtp of a fresh folder (a part left out is a file left out); then the
+// wind/0.vti, trees/0.vtp, leaves/0.vtp and scenario.yaml (the scenario's copy, whose name
+// render reads when run.json gives none) of a fresh folder (a part left out is a file left out); then the
 // folder is opened, its last and first frames selected, and the last frame that reads is loaded, as render
 // does.
 // Clean refusals: std::invalid_argument or std::runtime_error whose message names the folder or a file in
@@ -19,8 +20,8 @@
 
 namespace {
 
-constexpr const char* kParts[] = {"wind.pvd",   "trees.pvd",   "leaves.pvd",  "run.json",
-                                  "wind/0.vti", "trees/0.vtp", "leaves/0.vtp"};
+constexpr const char* kParts[] = {"wind.pvd",   "trees.pvd",   "leaves.pvd",   "run.json",
+                                  "wind/0.vti", "trees/0.vtp", "leaves/0.vtp", "scenario.yaml"};
 constexpr std::string_view kCut = "\n=====\n";
 
 void expect_names_folder(const std::exception& e, const std::filesystem::path& folder) {
