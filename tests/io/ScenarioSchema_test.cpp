@@ -261,7 +261,8 @@ TEST_CASE("schema: the leaf keys take trees::LeafSettings' defaults, words and l
   for (const auto& [name, member] : numbers) {
     INFO("leaves." << name);
     const schema::Key& key = leaf_key(name);
-    const auto with = [&](double value) { return valid([&](Leaves& s) { s.*member = value; }); };
+    const auto field = member;  // clang 14 (the fuzz build) cannot capture a structured binding
+    const auto with = [&](double value) { return valid([&](Leaves& s) { s.*field = value; }); };
     CHECK(with(key.bound == schema::Bound::any ? -1e6 : step) == true);
     CHECK(with(0.0) == (key.bound != schema::Bound::positive));
     CHECK(with(-step) == (key.bound == schema::Bound::any));
@@ -330,7 +331,8 @@ TEST_CASE("schema: the tree model keys take trees::SpeciesDynamics' defaults, wo
   for (const auto& [name, member] : numbers) {
     INFO(name);
     const schema::Key& key = model_key(name);
-    const auto with = [&](double value) { return valid([&](SpeciesDynamics& d) { *member(d) = value; }); };
+    const auto field = member;  // clang 14 (the fuzz build) cannot capture a structured binding
+    const auto with = [&](double value) { return valid([&](SpeciesDynamics& d) { *field(d) = value; }); };
     CHECK(with(key.bound == schema::Bound::any ? -1e6 : step) == true);
     CHECK(with(0.0) == (key.bound != schema::Bound::positive));
     CHECK(with(-step) == (key.bound == schema::Bound::any));
