@@ -75,6 +75,7 @@ class RecordReader {
   void values(T* data, std::size_t count) {
     static_assert(std::is_trivially_copyable_v<T>);
     if (count > (bytes_.size() - offset_) / sizeof(T)) throw RecordError("the record is truncated");
+    if (count == 0) return;  // an empty vector's data() may be null, which memcpy must not be given
     std::memcpy(data, bytes_.data() + offset_, count * sizeof(T));
     offset_ += count * sizeof(T);
   }
