@@ -41,8 +41,8 @@ validate: build
 # --- fuzzing and sanitizers (docs/fuzzing.md): one clang build with ASan + UBSan + fuzzer coverage -----
 FUZZ_DIR ?= build-fuzz
 FUZZ_SECONDS ?= 60
-# The host tests: plain C++, fast enough under the sanitizers; the kernel tests need PoCL (docs/fuzzing.md).
-SANITIZE_TESTS ?= base_tests fluid_tests trees_tests host_tests io_tests viz_tests
+# The host tests, and the kernel tests, whose PoCL runs under ASan too (docs/fuzzing.md).
+SANITIZE_TESTS ?= base_tests fluid_tests trees_tests host_tests io_tests viz_tests kernel_tests
 # Leaks are reported (LeakSanitizer) except the third-party ones tests/fuzz/lsan.supp lists.
 SANITIZE_ENV = ASAN_OPTIONS=detect_leaks=1 LSAN_OPTIONS=suppressions=$(CURDIR)/tests/fuzz/lsan.supp \
                UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1
@@ -59,7 +59,7 @@ fuzz: fuzz-configure
 
 sanitize: fuzz-configure
 	cmake --build $(FUZZ_DIR) --target $(SANITIZE_TESTS)
-	set -e; for t in $(SANITIZE_TESTS); do echo "== $$t"; $(SANITIZE_ENV) $(FUZZ_DIR)/$$t; done
+	set -e; for t in $(SANITIZE_TESTS); do echo "== $$t"; CI=true $(SANITIZE_ENV) $(FUZZ_DIR)/$$t; done
 
 DEMO_OUT := out/storm
 
