@@ -19,7 +19,6 @@ namespace {
 
 using Bytes = std::vector<std::uint8_t>;
 using namespace saved;
-constexpr std::size_t kFloat4 = 4 * sizeof(float);
 
 const StageState& stage_of(const RunSnapshot& part, const char* stage) {
   const auto at = part.stages.find(stage);
