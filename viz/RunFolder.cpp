@@ -23,8 +23,12 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
+#include <cstdlib>
 #include <fstream>
+#include <functional>
 #include <limits>
+#include <optional>
 #include <regex>
 #include <sstream>
 #include <stdexcept>
@@ -107,6 +111,68 @@ bool holds_ascii_array(vtkXMLDataElement* element) {
   return false;
 }
 
+// VTK's appended blocks, raw, little-endian, UInt64 headers (as io/VtkXml writes them): with a compressor a
+// header is [blocks, block size, last block size, each block's compressed size], else [bytes]. VTK allocates
+// what a header claims before it reads a byte, so a corrupt one asked for terabytes
+// (tests/fuzz/run_folder_fuzz). LZ4 and zlib expand no block by more than kMaxExpansion.
+constexpr std::uint64_t kMaxExpansion = 256;
+// A header's block size is nominal (VTK's writers use 32 KiB) and may exceed a short array's bytes.
+constexpr std::uint64_t kNominalBlockBytes = std::uint64_t(1) << 20;
+
+std::optional<std::uint64_t> read_u64(std::ifstream& file, std::uint64_t at) {
+  std::uint64_t value = 0;
+  file.seekg(std::streamoff(at));
+  if (!file.read(reinterpret_cast<char*>(&value), sizeof value)) return std::nullopt;
+  return value;
+}
+
+// Whether every appended array's header fits the file: its blocks within the bytes left, and what they expand
+// to within what compression can give. Files of another header type, byte order or encoding are left to VTK.
+bool appended_headers_fit(const fs::path& path, vtkXMLDataParser* parser) {
+  vtkXMLDataElement* root = parser->GetRootElement();
+  const char* header = root ? root->GetAttribute("header_type") : nullptr;
+  const char* order = root ? root->GetAttribute("byte_order") : nullptr;
+  if (!header || std::string_view(header) != "UInt64" || !order || std::string_view(order) != "LittleEndian")
+    return true;
+  vtkXMLDataElement* appended = root->FindNestedElementWithName("AppendedData");
+  const char* encoding = appended ? appended->GetAttribute("encoding") : nullptr;
+  if (!encoding || std::string_view(encoding) != "raw") return true;
+  const bool compressed = root->GetAttribute("compressor") != nullptr;
+  std::error_code error;
+  const std::uint64_t size = fs::file_size(path, error),
+                      start = std::uint64_t(parser->GetAppendedDataPosition());
+  if (error || start > size) return false;
+  std::ifstream file(path, std::ios::binary);
+  const std::function<bool(vtkXMLDataElement*)> fits = [&](vtkXMLDataElement* element) -> bool {
+    const char* format = element->GetAttribute("format");
+    const char* offset = element->GetAttribute("offset");
+    if (format && std::string_view(format) == "appended" && offset) {
+      const std::uint64_t at = start + std::strtoull(offset, nullptr, 10);
+      const auto first = read_u64(file, at);
+      if (!first) return false;
+      const std::uint64_t left = size - std::min(size, at + sizeof(std::uint64_t));
+      if (!compressed) return *first <= left;
+      const auto block = read_u64(file, at + 8), last = read_u64(file, at + 16);
+      if (!block || !last || *first > left / sizeof(std::uint64_t)) return false;
+      std::uint64_t stored = 0;
+      for (std::uint64_t b = 0; b < *first; ++b) {
+        const auto bytes = read_u64(file, at + 24 + 8 * b);
+        if (!bytes || *bytes > left) return false;
+        stored += *bytes;
+      }
+      // What the blocks expand to: all full but the last, whose size 0 means full too.
+      const std::uint64_t expanded = *first == 0 ? 0 : (*first - 1) * *block + (*last ? *last : *block);
+      if (stored > left || expanded > kMaxExpansion * (stored + 1) ||
+          *block > std::max(expanded, kNominalBlockBytes) || *last > *block)
+        return false;
+    }
+    for (int n = 0; n < element->GetNumberOfNestedElements(); ++n)
+      if (!fits(element->GetNestedElement(n))) return false;
+    return true;
+  };
+  return fits(root);
+}
+
 template <class Reader>
 vtkSmartPointer<Reader> read_xml(const fs::path& path) {
   if (!fs::is_regular_file(path))
@@ -123,6 +189,9 @@ vtkSmartPointer<Reader> read_xml(const fs::path& path) {
     throw std::runtime_error(fmt::format(
         "render: {}: a data array in ascii format: appended binary expected, as forestwind writes",
         path.string()));
+  if (vtkXMLDataParser* parser = reader->GetXMLParser(); parser && !appended_headers_fit(path, parser))
+    throw std::runtime_error(fmt::format(
+        "render: {}: an appended data block's header claims more than the file holds", path.string()));
   reader->Update();
   if (!capture.errors().empty() || reader->GetErrorCode() != 0)
     throw std::runtime_error(
