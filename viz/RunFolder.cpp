@@ -182,16 +182,22 @@ vtkSmartPointer<Reader> read_xml(const fs::path& path) {
   if (!reader->CanReadFile(path.string().c_str()))
     throw std::runtime_error(
         fmt::format("render: {}: not a VTK XML file of the expected type", path.string()));
-  reader->SetFileName(path.string().c_str());
-  reader->UpdateInformation();  // parses the XML, reads no array yet
-  if (vtkXMLDataParser* parser = reader->GetXMLParser();
-      parser && holds_ascii_array(parser->GetRootElement()))
+  // The XML is parsed here first, and its arrays checked, because VTK reads some arrays (the field data)
+  // while it gathers the file's information, before any array could be checked through the reader.
+  vtkNew<vtkXMLDataParser> parser;
+  std::ifstream stream(path, std::ios::binary);
+  parser->SetStream(&stream);
+  if (!parser->Parse() || !parser->GetRootElement())
+    throw std::runtime_error(
+        fmt::format("render: {}: the file does not read: {}", path.string(), first_line(capture.errors())));
+  if (holds_ascii_array(parser->GetRootElement()))
     throw std::runtime_error(fmt::format(
         "render: {}: a data array in ascii format: appended binary expected, as forestwind writes",
         path.string()));
-  if (vtkXMLDataParser* parser = reader->GetXMLParser(); parser && !appended_headers_fit(path, parser))
+  if (!appended_headers_fit(path, parser))
     throw std::runtime_error(fmt::format(
         "render: {}: an appended data block's header claims more than the file holds", path.string()));
+  reader->SetFileName(path.string().c_str());
   reader->Update();
   if (!capture.errors().empty() || reader->GetErrorCode() != 0)
     throw std::runtime_error(
