@@ -51,6 +51,8 @@ packages=(
   libvtk9-dev libopenvdb-dev libboost-iostreams-dev
   # pictures (viz/): cairo draws without an X server or GL; DejaVu is the face of their text
   libcairo2-dev fonts-dejavu-core
+  # render decodes a frame's cell offsets (LZ4 or zlib, as VTK stores them) before VTK reads the file
+  liblz4-dev zlib1g-dev
   # command line, config, logging, tests
   libcli11-dev libyaml-cpp-dev libfmt-dev libspdlog-dev catch2
 )

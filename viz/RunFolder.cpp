@@ -7,15 +7,11 @@
 #include <vtkCellData.h>
 #include <vtkDataArray.h>
 #include <vtkImageData.h>
-#include <vtkLogger.h>
 #include <vtkNew.h>
-#include <vtkOutputWindow.h>
 #include <vtkPointData.h>
 #include <vtkPoints.h>
 #include <vtkPolyData.h>
 #include <vtkSmartPointer.h>
-#include <vtkXMLDataElement.h>
-#include <vtkXMLDataParser.h>
 #include <vtkXMLImageDataReader.h>
 #include <vtkXMLPImageDataReader.h>
 #include <vtkXMLPPolyDataReader.h>
@@ -24,10 +20,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
-#include <cstdlib>
 #include <fstream>
-#include <functional>
-#include <limits>
 #include <optional>
 #include <regex>
 #include <sstream>
@@ -36,6 +29,8 @@
 
 #include "io/PvdCollection.hpp"
 #include "io/YamlDocuments.hpp"
+#include "viz/FrameFileCheck.hpp"
+#include "viz/VtkErrorCapture.hpp"
 
 namespace fw::viz {
 
@@ -61,147 +56,22 @@ const ArrayMeaning* meaning_of(const std::string& name) {
   return nullptr;
 }
 
-// VTK's XML readers report a damaged file through error messages (theirs and their XML parser's), not
-// through their return values. While a file is read, this output window collects them instead of printing
-// them, so that load() can say which file failed and why, once.
-class CapturedOutput : public vtkOutputWindow {
- public:
-  static CapturedOutput* New() { return new CapturedOutput; }
-  void DisplayText(const char* text) override {
-    if (text && errors.empty()) errors = text;
-  }
-  std::string errors;
-};
-
-class ScopedOutputCapture {
- public:
-  // VTK logs every error to stderr through vtkLogger as well as to the output window: silence both.
-  ScopedOutputCapture()
-      : previous_(vtkOutputWindow::GetInstance()), verbosity_(vtkLogger::GetCurrentVerbosityCutoff()) {
-    vtkOutputWindow::SetInstance(captured_);
-    vtkLogger::SetStderrVerbosity(vtkLogger::VERBOSITY_OFF);
-  }
-  ~ScopedOutputCapture() {
-    vtkLogger::SetStderrVerbosity(verbosity_);
-    vtkOutputWindow::SetInstance(previous_);
-  }
-  const std::string& errors() const { return captured_->errors; }
-
- private:
-  vtkSmartPointer<vtkOutputWindow> previous_;
-  vtkLogger::Verbosity verbosity_;
-  vtkNew<CapturedOutput> captured_;
-};
-
-std::string first_line(const std::string& text) {
-  std::string line = text.substr(0, text.find('\n'));
-  return line.empty() ? "read error" : line;
-}
-
-// Whether `element` or one nested in it is a DataArray in VTK's ascii format. forestwind writes appended
-// binary (io/VtkXml) and render reads no other: VTK 9.1 reads past an ascii array that holds fewer values
-// than its piece has cells or points, a null dereference in vtkXMLDataReader::ReadPieceData seen under ASan
-// (tests/fuzz/run_folder_fuzz; docs/fuzzing.md).
-bool holds_ascii_array(vtkXMLDataElement* element) {
-  if (!element) return false;
-  const char* format = element->GetAttribute("format");
-  if (format && std::string_view(format) == "ascii") return true;
-  for (int n = 0; n < element->GetNumberOfNestedElements(); ++n)
-    if (holds_ascii_array(element->GetNestedElement(n))) return true;
-  return false;
-}
-
-// VTK's appended blocks, raw, little-endian, UInt64 headers (as io/VtkXml writes them): with a compressor a
-// header is [blocks, block size, last block size, each block's compressed size], else [bytes]. VTK allocates
-// what a header claims before it reads a byte, so a corrupt one asked for terabytes
-// (tests/fuzz/run_folder_fuzz). LZ4 and zlib expand no block by more than kMaxExpansion.
-constexpr std::uint64_t kMaxExpansion = 256;
-// A header's block size is nominal (VTK's writers use 32 KiB) and may exceed a short array's bytes.
-constexpr std::uint64_t kNominalBlockBytes = std::uint64_t(1) << 20;
-
-std::optional<std::uint64_t> read_u64(std::ifstream& file, std::uint64_t at) {
-  std::uint64_t value = 0;
-  file.seekg(std::streamoff(at));
-  if (!file.read(reinterpret_cast<char*>(&value), sizeof value)) return std::nullopt;
-  return value;
-}
-
-// Whether every appended array's header fits the file: its blocks within the bytes left, and what they expand
-// to within what compression can give. Files of another header type, byte order or encoding are left to VTK.
-bool appended_headers_fit(const fs::path& path, vtkXMLDataParser* parser) {
-  vtkXMLDataElement* root = parser->GetRootElement();
-  const char* header = root ? root->GetAttribute("header_type") : nullptr;
-  const char* order = root ? root->GetAttribute("byte_order") : nullptr;
-  if (!header || std::string_view(header) != "UInt64" || !order || std::string_view(order) != "LittleEndian")
-    return true;
-  vtkXMLDataElement* appended = root->FindNestedElementWithName("AppendedData");
-  const char* encoding = appended ? appended->GetAttribute("encoding") : nullptr;
-  if (!encoding || std::string_view(encoding) != "raw") return true;
-  const bool compressed = root->GetAttribute("compressor") != nullptr;
-  std::error_code error;
-  const std::uint64_t size = fs::file_size(path, error),
-                      start = std::uint64_t(parser->GetAppendedDataPosition());
-  if (error || start > size) return false;
-  std::ifstream file(path, std::ios::binary);
-  const std::function<bool(vtkXMLDataElement*)> fits = [&](vtkXMLDataElement* element) -> bool {
-    const char* format = element->GetAttribute("format");
-    const char* offset = element->GetAttribute("offset");
-    if (format && std::string_view(format) == "appended" && offset) {
-      const std::uint64_t at = start + std::strtoull(offset, nullptr, 10);
-      const auto first = read_u64(file, at);
-      if (!first) return false;
-      const std::uint64_t left = size - std::min(size, at + sizeof(std::uint64_t));
-      if (!compressed) return *first <= left;
-      const auto block = read_u64(file, at + 8), last = read_u64(file, at + 16);
-      if (!block || !last || *first > left / sizeof(std::uint64_t)) return false;
-      std::uint64_t stored = 0;
-      for (std::uint64_t b = 0; b < *first; ++b) {
-        const auto bytes = read_u64(file, at + 24 + 8 * b);
-        if (!bytes || *bytes > left) return false;
-        stored += *bytes;
-      }
-      // What the blocks expand to: all full but the last, whose size 0 means full too.
-      const std::uint64_t expanded = *first == 0 ? 0 : (*first - 1) * *block + (*last ? *last : *block);
-      if (stored > left || expanded > kMaxExpansion * (stored + 1) ||
-          *block > std::max(expanded, kNominalBlockBytes) || *last > *block)
-        return false;
-    }
-    for (int n = 0; n < element->GetNumberOfNestedElements(); ++n)
-      if (!fits(element->GetNestedElement(n))) return false;
-    return true;
-  };
-  return fits(root);
-}
-
 template <class Reader>
 vtkSmartPointer<Reader> read_xml(const fs::path& path) {
   if (!fs::is_regular_file(path))
     throw std::runtime_error(fmt::format("render: {}: the file is missing", path.string()));
-  ScopedOutputCapture capture;
+  VtkErrorCapture capture;
   auto reader = vtkSmartPointer<Reader>::New();
   if (!reader->CanReadFile(path.string().c_str()))
     throw std::runtime_error(
         fmt::format("render: {}: not a VTK XML file of the expected type", path.string()));
-  // The XML is parsed here first, and its arrays checked, because VTK reads some arrays (the field data)
-  // while it gathers the file's information, before any array could be checked through the reader.
-  vtkNew<vtkXMLDataParser> parser;
-  std::ifstream stream(path, std::ios::binary);
-  parser->SetStream(&stream);
-  if (!parser->Parse() || !parser->GetRootElement())
-    throw std::runtime_error(
-        fmt::format("render: {}: the file does not read: {}", path.string(), first_line(capture.errors())));
-  if (holds_ascii_array(parser->GetRootElement()))
-    throw std::runtime_error(fmt::format(
-        "render: {}: a data array in ascii format: appended binary expected, as forestwind writes",
-        path.string()));
-  if (!appended_headers_fit(path, parser))
-    throw std::runtime_error(fmt::format(
-        "render: {}: an appended data block's header claims more than the file holds", path.string()));
+  // Before VTK reads a value: its readers trust the sizes a file claims (viz/FrameFileCheck.hpp).
+  check_frame_file(path);
   reader->SetFileName(path.string().c_str());
   reader->Update();
   if (!capture.errors().empty() || reader->GetErrorCode() != 0)
     throw std::runtime_error(
-        fmt::format("render: {}: the file does not read: {}", path.string(), first_line(capture.errors())));
+        fmt::format("render: {}: the file does not read: {}", path.string(), capture.first_error()));
   return reader;
 }
 
@@ -256,6 +126,10 @@ WindGrid read_wind(const fs::path& path) {
     if (array->GetNumberOfComponents() != 1 && array->GetNumberOfComponents() != 3) continue;
     grid.arrays.push_back({name, array->GetNumberOfComponents(), as_floats(array)});
   }
+  // A picture's size follows the grid's: a grid with no array of its cells is not a frame of one.
+  if (grid.arrays.empty() && grid.solid.empty())
+    throw std::runtime_error(fmt::format("render: {}: no cell array of the grid's {} x {} x {} cells",
+                                         path.string(), grid.cells[0], grid.cells[1], grid.cells[2]));
   return grid;
 }
 
@@ -275,10 +149,19 @@ TreeLines read_trees(const fs::path& path) {
       for (int c = 0; c < 3; ++c) d += displacement->GetComponent(n, c) * displacement->GetComponent(n, c);
     trees.displacement.push_back(std::sqrt(d));
   }
+  // The file's sizes were checked before VTK read it (viz/FrameFileCheck.hpp), its values here: offsets that
+  // never decrease and ids of points the piece has, which the picture indexes.
   vtkCellArray* lines = poly->GetLines();
+  if (lines && !lines->IsValid())
+    throw std::runtime_error(
+        fmt::format("render: {}: the lines' offsets decrease or overrun their connectivity", path.string()));
   vtkNew<vtkIdList> ids;
   for (vtkIdType cell = 0; lines && cell < lines->GetNumberOfCells(); ++cell) {
     lines->GetCellAtId(cell, ids);
+    for (vtkIdType k = 0; k < ids->GetNumberOfIds(); ++k)
+      if (ids->GetId(k) < 0 || ids->GetId(k) >= points)
+        throw std::runtime_error(fmt::format("render: {}: line {} names point {} of {}", path.string(), cell,
+                                             ids->GetId(k), points));
     for (vtkIdType k = 0; k + 1 < ids->GetNumberOfIds(); ++k)
       trees.segments.push_back({int(ids->GetId(k)), int(ids->GetId(k + 1))});
   }

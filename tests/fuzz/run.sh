@@ -7,6 +7,11 @@
 # (tests/fuzz/corpus/TARGET) and regressions (tests/fuzz/regressions/TARGET), with a time limit per input
 # and limits on memory; crashes, hangs and huge allocations land in BUILD_DIR/fuzz/artifacts/TARGET. It prints
 # a line per target (seconds, executions, outcome) and exits 1 when any target found something.
+#
+# With FUZZ_SEED=N set, a run is repeatable: each target starts from a fresh working corpus (the tracked seeds
+# and regressions only) and libFuzzer draws its mutations from seed N, so a run of S seconds tries the same
+# inputs first as any shorter run with that seed. CI's brief run (make test) uses a fixed seed, so that what
+# it finds, a longer local run with the same seed finds too, and a change is not red at random.
 set -uo pipefail
 
 if [ $# -lt 2 ]; then
@@ -41,6 +46,9 @@ summary=()
 for target in "${targets[@]}"; do
   corpus="$build/fuzz/corpus/$target"
   artifacts="$build/fuzz/artifacts/$target"
+  if [ -n "${FUZZ_SEED-}" ]; then
+    rm -rf "$corpus"
+  fi
   mkdir -p "$corpus" "$artifacts"
   for seeds in "$source_dir/tests/fuzz/corpus/$target" "$source_dir/tests/fuzz/regressions/$target"; do
     [ -d "$seeds" ] && cp -n "$seeds"/* "$corpus"/ 2>/dev/null
@@ -54,7 +62,7 @@ for target in "${targets[@]}"; do
   start=$(date +%s)
   "$build/fuzz_$target" "$corpus" -max_total_time="$seconds" -timeout="$(timeout_of "$target")" \
     -rss_limit_mb=$rss_limit_mb -malloc_limit_mb=$malloc_limit_mb -print_final_stats=1 \
-    -artifact_prefix="$artifacts/" >"$log" 2>&1
+    -artifact_prefix="$artifacts/" ${FUZZ_SEED:+-seed="$FUZZ_SEED"} >"$log" 2>&1
   code=$?
   took=$(($(date +%s) - start))
   runs=$(grep -o 'stat::number_of_executed_units: [0-9]*' "$log" | grep -o '[0-9]*$' | tail -1)
@@ -70,7 +78,7 @@ for target in "${targets[@]}"; do
 done
 
 echo
-echo "fuzz: ${seconds} s per target; crashes, hangs and huge allocations: $build/fuzz/artifacts/<target>/"
+echo "fuzz: ${seconds} s per target${FUZZ_SEED:+, seed $FUZZ_SEED}; crashes, hangs and huge allocations: $build/fuzz/artifacts/<target>/"
 printf '%s\n' "${summary[@]}"
 if [ $failed -ne 0 ]; then
   echo "fuzz: a target found an input it does not refuse cleanly; replay it with $build/fuzz_<target> FILE," \
