@@ -60,7 +60,7 @@ constexpr ValueType kValueTypes[] = {
 enum class Compressor { none, lz4, zlib };
 
 [[noreturn]] void refuse(const fs::path& path, const std::string& what) {
-  throw std::runtime_error(fmt::format("render: {}: {}", path.string(), what));
+  throw FrameReadError(fmt::format("render: {}: {}", path.string(), what));
 }
 
 bool is(const char* value, std::string_view expected) {

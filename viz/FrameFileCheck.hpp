@@ -1,7 +1,7 @@
 // Checks a frame file of a run folder before VTK's XML readers see it, so that a damaged or hostile file is
 // refused with its name instead of crashing `render` or making it allocate what a corrupt number claims.
 //
-//   fw::viz::check_frame_file("out/storm/wind/wind_000012.vti");   // throws std::runtime_error naming it
+//   fw::viz::check_frame_file("out/storm/wind/wind_000012.vti");   // throws FrameReadError naming it
 //
 // VTK 9.1's XML readers trust their input. They allocate what the XML's counts (points, cells, extents,
 // components) and the appended blocks' headers claim, and they read a block that a header does not list
@@ -24,10 +24,18 @@
 #pragma once
 
 #include <filesystem>
+#include <stdexcept>
 
 namespace fw::viz {
 
-/// Throws std::runtime_error "render: PATH: what is wrong" when `path` is not a VTK XML image or poly data
+/// A frame file that is missing, damaged or not in forestwind's encoding: bad input, so `render` exits 2 with
+/// its message, "render: FILE: what is wrong".
+class FrameReadError : public std::invalid_argument {
+ public:
+  using std::invalid_argument::invalid_argument;
+};
+
+/// Throws FrameReadError "render: PATH: what is wrong" when `path` is not a VTK XML image or poly data
 /// file (or a parallel summary of them) in forestwind's encoding whose sizes all agree; returns otherwise.
 void check_frame_file(const std::filesystem::path& path);
 

@@ -59,18 +59,17 @@ const ArrayMeaning* meaning_of(const std::string& name) {
 template <class Reader>
 vtkSmartPointer<Reader> read_xml(const fs::path& path) {
   if (!fs::is_regular_file(path))
-    throw std::runtime_error(fmt::format("render: {}: the file is missing", path.string()));
+    throw FrameReadError(fmt::format("render: {}: the file is missing", path.string()));
   VtkErrorCapture capture;
   auto reader = vtkSmartPointer<Reader>::New();
   if (!reader->CanReadFile(path.string().c_str()))
-    throw std::runtime_error(
-        fmt::format("render: {}: not a VTK XML file of the expected type", path.string()));
+    throw FrameReadError(fmt::format("render: {}: not a VTK XML file of the expected type", path.string()));
   // Before VTK reads a value: its readers trust the sizes a file claims (viz/FrameFileCheck.hpp).
   check_frame_file(path);
   reader->SetFileName(path.string().c_str());
   reader->Update();
   if (!capture.errors().empty() || reader->GetErrorCode() != 0)
-    throw std::runtime_error(
+    throw FrameReadError(
         fmt::format("render: {}: the file does not read: {}", path.string(), capture.first_error()));
   return reader;
 }
@@ -110,8 +109,8 @@ WindGrid read_wind(const fs::path& path) {
   for (int a = 0; a < 3; ++a) grid.cells[a] = dims[a] - 1, grid.origin[a] = origin[a];
   grid.cell_size = spacing[0];
   if (grid.cells[0] < 1 || grid.cells[1] < 1 || grid.cells[2] < 1 || !(grid.cell_size > 0.0))
-    throw std::runtime_error(fmt::format("render: {}: expected a grid of cells, got {} x {} x {} points",
-                                         path.string(), dims[0], dims[1], dims[2]));
+    throw FrameReadError(fmt::format("render: {}: expected a grid of cells, got {} x {} x {} points",
+                                     path.string(), dims[0], dims[1], dims[2]));
   const std::size_t cells = std::size_t(grid.cells[0]) * grid.cells[1] * grid.cells[2];
   vtkCellData* data = image->GetCellData();
   for (int n = 0; n < data->GetNumberOfArrays(); ++n) {
@@ -128,8 +127,8 @@ WindGrid read_wind(const fs::path& path) {
   }
   // A picture's size follows the grid's: a grid with no array of its cells is not a frame of one.
   if (grid.arrays.empty() && grid.solid.empty())
-    throw std::runtime_error(fmt::format("render: {}: no cell array of the grid's {} x {} x {} cells",
-                                         path.string(), grid.cells[0], grid.cells[1], grid.cells[2]));
+    throw FrameReadError(fmt::format("render: {}: no cell array of the grid's {} x {} x {} cells",
+                                     path.string(), grid.cells[0], grid.cells[1], grid.cells[2]));
   return grid;
 }
 
@@ -153,15 +152,15 @@ TreeLines read_trees(const fs::path& path) {
   // never decrease and ids of points the piece has, which the picture indexes.
   vtkCellArray* lines = poly->GetLines();
   if (lines && !lines->IsValid())
-    throw std::runtime_error(
+    throw FrameReadError(
         fmt::format("render: {}: the lines' offsets decrease or overrun their connectivity", path.string()));
   vtkNew<vtkIdList> ids;
   for (vtkIdType cell = 0; lines && cell < lines->GetNumberOfCells(); ++cell) {
     lines->GetCellAtId(cell, ids);
     for (vtkIdType k = 0; k < ids->GetNumberOfIds(); ++k)
       if (ids->GetId(k) < 0 || ids->GetId(k) >= points)
-        throw std::runtime_error(fmt::format("render: {}: line {} names point {} of {}", path.string(), cell,
-                                             ids->GetId(k), points));
+        throw FrameReadError(fmt::format("render: {}: line {} names point {} of {}", path.string(), cell,
+                                         ids->GetId(k), points));
     for (vtkIdType k = 0; k + 1 < ids->GetNumberOfIds(); ++k)
       trees.segments.push_back({int(ids->GetId(k)), int(ids->GetId(k + 1))});
   }
@@ -349,11 +348,11 @@ FrameData RunFolder::load_last_complete(const Frame& frame, std::string* note) c
             fmt::format("frame {} does not read ({}); rendering frame {} (t = {:g} s), the last complete one",
                         frame.index, first_error, n, frames_[std::size_t(n)].time);
       return data;
-    } catch (const std::runtime_error& e) {
+    } catch (const FrameReadError& e) {
       if (first_error.empty()) first_error = e.what();
     }
   }
-  throw std::runtime_error(
+  throw FrameReadError(
       fmt::format("render: {}: no frame up to {} reads: {}", folder_.string(), frame.index, first_error));
 }
 

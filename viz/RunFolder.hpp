@@ -21,6 +21,8 @@
 #include <string>
 #include <vector>
 
+#include "viz/FrameFileCheck.hpp"
+
 namespace fw::viz {
 
 /// One scalar per cell of the wind grid, x fastest (VTK's order): a cell array or one derived from a vector
@@ -101,11 +103,12 @@ class RunFolder {
   /// number outside them or a time outside the run by more than half a frame interval.
   const Frame& select(std::optional<int> index, std::optional<double> time) const;
 
-  /// Reads a frame's files. Throws std::runtime_error("render: FILE: ...") when one does not read.
+  /// Reads a frame's files. Throws FrameReadError("render: FILE: ...") when one is missing or does not read
+  /// (viz/FrameFileCheck.hpp).
   FrameData load(const Frame& frame) const;
   /// load(), going back from `frame` to the latest frame whose files all read; when that is not `frame`,
   /// `note` (if given) gets a sentence saying which frame failed and which was used. Throws
-  /// std::runtime_error when none reads.
+  /// FrameReadError when none reads.
   FrameData load_last_complete(const Frame& frame, std::string* note = nullptr) const;
 
  private:

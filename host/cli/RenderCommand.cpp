@@ -107,7 +107,7 @@ int render_all(const viz::RunFolder& run, const RenderOptions& options, viz::Ren
     viz::FrameData data;
     try {
       data = run.load(frame);
-    } catch (const std::runtime_error& e) {
+    } catch (const viz::FrameReadError& e) {
       std::cerr << "forestwind: skipping frame " << frame.index << ": " << e.what() << "\n";
       continue;
     }

@@ -41,6 +41,14 @@ expect 2 "choose one of velocity, velocity_x" render "$work/out" --field tempera
 expect 2 "choose one of top, side, perspective" render "$work/out" --view diagonal -o "$work/bad.png"
 expect 2 "expected a run's output folder" render "$work/nowhere" -o "$work/bad.png"
 expect 2 "a spectrum needs at least 256" plot "$work/out" --spectrum -o "$work/bad.png"
+# A damaged frame file is bad input too: the frame asked for exits 2 naming the file; without --frame the
+# last complete one is drawn, and a folder where no frame reads exits 2.
+last=$(ls "$work/out/wind/"*.vti | sort | tail -1)
+printf 'XXXX' | dd of="$last" bs=1 seek=200 conv=notrunc status=none
+expect 2 "$(basename "$last")" render "$work/out" --frame 4 -o "$work/bad.png"
+expect 0 "rendering frame 3" render "$work/out" -o "$work/fallback.png"
+for frame in "$work/out/wind/"*.vti; do printf 'XXXX' | dd of="$frame" bs=1 seek=200 conv=notrunc status=none; done
+expect 2 "no frame up to 4 reads" render "$work/out" -o "$work/bad.png"
 [ ! -e "$work/bad.png" ] || fail "a refused command wrote a picture"
 echo "render and plot: pictures written, bad input refused"
 rm -rf "$work"
