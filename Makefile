@@ -3,9 +3,10 @@
 #               draws its last frame and its probes
 #   make test   installs the Debian packages, checks the formatting of the tracked sources (clang-format),
 #               builds (compiler warnings as errors under CI), runs every test through CTest, and then
-#               every fuzz target for 10 s
+#               every fuzz target for 10 s (repeatably: seed 1, from the tracked seeds)
 #   make validate   builds and runs the long validations (tests/validation) that CI runs in short form
-#   make fuzz       builds the fuzz targets (tests/fuzz) with clang and runs each for FUZZ_SECONDS
+#   make fuzz       builds the fuzz targets (tests/fuzz) with clang and runs each for FUZZ_SECONDS (FUZZ_SEED=N:
+#                   repeatably, from the tracked seeds)
 #   make sanitize   builds the host tests with ASan + UBSan (clang, the fuzz build) and runs them
 BUILD_DIR ?= build
 BUILD_TYPE ?= Release
@@ -56,7 +57,7 @@ SANITIZE_ENV = ASAN_OPTIONS=detect_leaks=1 LSAN_OPTIONS=suppressions=$(CURDIR)/t
 # -O1 and line tables: what the sanitizers' reports need, built much faster than -O3 with full debug info.
 fuzz-configure:
 	cmake -S . -B $(FUZZ_DIR) -G Ninja -DCMAKE_CXX_COMPILER=clang++ -DFORESTWIND_FUZZ=ON \
-	  -DCMAKE_BUILD_TYPE=Debug "-DCMAKE_CXX_FLAGS_DEBUG=-O1 -gline-tables-only"
+	  -DCMAKE_BUILD_TYPE=Debug "-DCMAKE_CXX_FLAGS_DEBUG=-O1 -gline-tables-only" -DFORESTWIND_WERROR=$(WERROR)
 
 # Exits non-zero when a target finds a crash, a hang or a huge allocation; names the artifacts' folder.
 fuzz: fuzz-configure

@@ -91,7 +91,6 @@ class BranchStages {
   std::vector<int> entry_offsets_;          // per instance, -1 for a modal tree
   int rigid_count_ = 0, spring_count_ = 0;  // the trees of each model
   int entry_count_ = 0, largest_tree_ = 0, spring_block_count_ = 0;
-  int normal_drag_ = 0;
   double time_ = 0.0;
   cl::Buffer instances_, species_, models_, branches_, trees_buffer_, rigid_trees_;
   cl::Buffer sample_world_, joints_, scratch_, pose_scratch_;

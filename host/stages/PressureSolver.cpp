@@ -504,6 +504,7 @@ PressureSolveStatus PressureSolver::solve_cg() {
       if (!(dq > 0.0)) break;  // breakdown: direction has no energy left (or NaN)
       const float alpha = static_cast<float>(rho / dq);
       cg_update_.set_args(L.dims, alpha, d_, q_, L.phi, r_, columns_).enqueue(cc_, columns);
+      count_traffic(0, traffic::kCgUpdate);
       const double recursive = sum_columns(0);
       ++st.iterations;
       if (std::sqrt(recursive) <= target || !std::isfinite(recursive)) break;
