@@ -132,7 +132,10 @@ class AppendedBlocks {
     } else {
       std::uint64_t at = header.data_at;
       for (std::size_t b = 0; b + 1 < header.stored.size(); ++b) at += header.stored[b];
-      block = expand(read(at, header.stored.back()), header.last ? header.last : header.block);
+      const std::uint64_t expanded = header.last ? header.last : header.block;
+      if (expanded > kMaxExpansion * (header.stored.back() + 1))
+        refuse(path_, "an array's last block claims more than compression can give");
+      block = expand(read(at, header.stored.back()), expanded);
     }
     if (block.size() < std::size_t(bytes)) refuse(path_, "an array's last block holds part of a value");
     std::uint64_t value = 0;
@@ -419,65 +422,109 @@ void check_children(const FrameFile& file, vtkXMLDataElement* element,
   }
 }
 
-// A serial .vti; `piece_of` is the extent a parallel summary gives it, which it must hold exactly.
-void check_image(const fs::path& path, const std::optional<Extent>& piece_of) {
+// The one piece of a serial file, its field data checked. forestwind writes one piece a file (a rank's block
+// in a file of its own); VTK sizes the arrays of a file of several by the first piece's, over all of them.
+vtkXMLDataElement* single_piece(FrameFile& file, vtkXMLDataElement* dataset) {
+  check_children(file, dataset, {"FieldData", "Piece"});
+  vtkXMLDataElement* piece = nullptr;
+  for (int n = 0; n < dataset->GetNumberOfNestedElements(); ++n) {
+    vtkXMLDataElement* element = dataset->GetNestedElement(n);
+    if (is(element->GetName(), "FieldData")) {
+      file.check_field_data(element);
+    } else if (piece) {
+      refuse(file.path(), "more than one <Piece>: one expected, as forestwind writes");
+    } else {
+      piece = element;
+    }
+  }
+  if (!piece) refuse(file.path(), "no <Piece>");
+  return piece;
+}
+
+// An array a parallel summary declares (<PDataArray>), which VTK allocates over the whole dataset with the
+// summary's type and components: each piece must hold it so.
+struct DeclaredArray {
+  std::string group;  // PointData, CellData or Points
+  std::string name, type;
+  long long components = 1;
+};
+
+std::vector<DeclaredArray> declared_arrays(const FrameFile& file, vtkXMLDataElement* summary) {
+  std::vector<DeclaredArray> arrays;
+  for (int n = 0; n < summary->GetNumberOfNestedElements(); ++n) {
+    vtkXMLDataElement* group = summary->GetNestedElement(n);
+    const std::string_view name = group->GetName();
+    if (name != "PPointData" && name != "PCellData" && name != "PPoints") continue;
+    for (int k = 0; k < group->GetNumberOfNestedElements(); ++k) {
+      vtkXMLDataElement* array = group->GetNestedElement(k);
+      const char* array_name = array->GetAttribute("Name");
+      const char* type = array->GetAttribute("type");
+      arrays.push_back({std::string(name.substr(1)), array_name ? array_name : "", type ? type : "",
+                        file.count(array, "NumberOfComponents", 1, kMaxComponents)});
+    }
+  }
+  return arrays;
+}
+
+void check_holds_declared(const FrameFile& file, vtkXMLDataElement* piece,
+                          const std::vector<DeclaredArray>& declared) {
+  for (const DeclaredArray& d : declared) {
+    vtkXMLDataElement* group = piece->FindNestedElementWithName(d.group.c_str());
+    bool held = false;
+    for (int n = 0; group && n < group->GetNumberOfNestedElements() && !held; ++n) {
+      vtkXMLDataElement* array = group->GetNestedElement(n);
+      held = (d.group == "Points" || is(array->GetAttribute("Name"), d.name)) &&
+             is(array->GetAttribute("type"), d.type) &&
+             file.count(array, "NumberOfComponents", 1, kMaxComponents) == d.components;
+    }
+    if (!held)
+      refuse(file.path(),
+             fmt::format("its summary declares {} array '{}' ({} x {}), which it does not hold so", d.group,
+                         d.name, d.components, d.type));
+  }
+}
+
+// A serial .vti. As a piece of a .pvti: `extent` is what the summary gives it, and `declared` its arrays.
+void check_image(const fs::path& path, const std::optional<Extent>& extent,
+                 const std::vector<DeclaredArray>& declared) {
   FrameFile file(path);
   vtkXMLDataElement* image = file.serial_dataset("ImageData");
   const Extent whole = file.extent(image, "WholeExtent");
-  if (piece_of && whole.bounds != piece_of->bounds)
+  if (extent && whole.bounds != extent->bounds)
     refuse(path, fmt::format("its whole extent {} is not the extent {} its summary gives it", whole.text(),
-                             piece_of->text()));
-  check_children(file, image, {"FieldData", "Piece"});
-  std::uint64_t covered = 0;
-  for (int n = 0; n < image->GetNumberOfNestedElements(); ++n) {
-    vtkXMLDataElement* element = image->GetNestedElement(n);
-    if (is(element->GetName(), "FieldData")) {
-      file.check_field_data(element);
-      continue;
-    }
-    const Extent extent = file.extent(element, "Extent");
-    if (!extent.within(whole))
-      refuse(path,
-             fmt::format("a piece's extent {} is outside the whole extent {}", extent.text(), whole.text()));
-    check_children(file, element, {"PointData", "CellData"});
-    file.check_arrays(element->FindNestedElementWithName("PointData"), extent.points());
-    file.check_arrays(element->FindNestedElementWithName("CellData"), extent.cells());
-    covered += extent.points();
-  }
-  // VTK allocates the whole extent's arrays: the pieces must hold at least as many points.
-  if (covered < whole.points())
-    refuse(path, fmt::format("its pieces do not cover its whole extent {}", whole.text()));
+                             extent->text()));
+  vtkXMLDataElement* piece = single_piece(file, image);
+  // VTK allocates the whole extent's arrays: the piece must hold all of it.
+  if (file.extent(piece, "Extent").bounds != whole.bounds)
+    refuse(path, fmt::format("its piece's extent is not its whole extent {}", whole.text()));
+  check_children(file, piece, {"PointData", "CellData"});
+  file.check_arrays(piece->FindNestedElementWithName("PointData"), whole.points());
+  file.check_arrays(piece->FindNestedElementWithName("CellData"), whole.cells());
+  check_holds_declared(file, piece, declared);
 }
 
-// A serial .vtp.
-void check_poly(const fs::path& path) {
+// A serial .vtp. As a piece of a .pvtp: `declared` is its summary's arrays.
+void check_poly(const fs::path& path, const std::vector<DeclaredArray>& declared) {
   FrameFile file(path);
-  vtkXMLDataElement* poly = file.serial_dataset("PolyData");
-  check_children(file, poly, {"FieldData", "Piece"});
-  for (int n = 0; n < poly->GetNumberOfNestedElements(); ++n) {
-    vtkXMLDataElement* element = poly->GetNestedElement(n);
-    if (is(element->GetName(), "FieldData")) {
-      file.check_field_data(element);
-      continue;
-    }
-    check_children(file, element, {"PointData", "CellData", "Points", "Verts", "Lines", "Strips", "Polys"});
-    const auto points = std::uint64_t(file.count(element, "NumberOfPoints", 0));
-    std::uint64_t cells = 0;
-    for (const auto& [group, attribute] : kPolyCells) {
-      const auto count = std::uint64_t(file.count(element, attribute, 0));
-      file.check_cells(element->FindNestedElementWithName(group), count);
-      cells += count;
-    }
-    vtkXMLDataElement* coordinates = element->FindNestedElementWithName("Points");
-    if (points > 0 && (!coordinates || coordinates->GetNumberOfNestedElements() != 1))
-      refuse(path, "a piece with points needs <Points> with one data array");
-    if (coordinates && coordinates->GetNumberOfNestedElements() > 0 &&
-        file.count(coordinates->GetNestedElement(0), "NumberOfComponents", 1) != 3)
-      refuse(path, "<Points>: three components expected");
-    file.check_arrays(coordinates, points);
-    file.check_arrays(element->FindNestedElementWithName("PointData"), points);
-    file.check_arrays(element->FindNestedElementWithName("CellData"), cells);
+  vtkXMLDataElement* piece = single_piece(file, file.serial_dataset("PolyData"));
+  check_children(file, piece, {"PointData", "CellData", "Points", "Verts", "Lines", "Strips", "Polys"});
+  const auto points = std::uint64_t(file.count(piece, "NumberOfPoints", 0));
+  std::uint64_t cells = 0;
+  for (const auto& [group, attribute] : kPolyCells) {
+    const auto count = std::uint64_t(file.count(piece, attribute, 0));
+    file.check_cells(piece->FindNestedElementWithName(group), count);
+    cells += count;
   }
+  vtkXMLDataElement* coordinates = piece->FindNestedElementWithName("Points");
+  if (points > 0 && (!coordinates || coordinates->GetNumberOfNestedElements() != 1))
+    refuse(path, "a piece with points needs <Points> with one data array");
+  if (coordinates && coordinates->GetNumberOfNestedElements() > 0 &&
+      file.count(coordinates->GetNestedElement(0), "NumberOfComponents", 1) != 3)
+    refuse(path, "<Points>: three components expected");
+  file.check_arrays(coordinates, points);
+  file.check_arrays(piece->FindNestedElementWithName("PointData"), points);
+  file.check_arrays(piece->FindNestedElementWithName("CellData"), cells);
+  check_holds_declared(file, piece, declared);
 }
 
 // A .pvti or .pvtp summary and each piece it names.
@@ -489,6 +536,7 @@ void check_summary(const fs::path& path, std::string_view type) {
     refuse(path, fmt::format("a VTKFile of type {} expected", parallel));
   vtkXMLDataElement* summary = root->FindNestedElementWithName(parallel.c_str());
   if (!summary) refuse(path, fmt::format("no <{}> element", parallel));
+  const std::vector<DeclaredArray> declared = declared_arrays(file, summary);
   const bool image = type == "ImageData";
   std::optional<Extent> whole;
   if (image) whole = file.extent(summary, "WholeExtent");
@@ -504,17 +552,18 @@ void check_summary(const fs::path& path, std::string_view type) {
       refuse(path, fmt::format("piece {} is missing", piece_path.string()));
     ++pieces;
     if (!image) {
-      check_poly(piece_path);
+      check_poly(piece_path, declared);
       continue;
     }
     const Extent extent = file.extent(piece, "Extent");
     if (!extent.within(*whole))
       refuse(path, fmt::format("piece {}'s extent {} is outside the whole extent {}", source, extent.text(),
                                whole->text()));
-    check_image(piece_path, extent);
+    check_image(piece_path, extent, declared);
     covered += extent.points();
   }
   if (pieces == 0) refuse(path, "a summary that names no piece");
+  // VTK allocates the declared arrays over the whole extent: the pieces must hold at least as many points.
   if (image && covered < whole->points())
     refuse(path, fmt::format("its pieces do not cover its whole extent {}", whole->text()));
 }
@@ -524,9 +573,9 @@ void check_summary(const fs::path& path, std::string_view type) {
 void check_frame_file(const fs::path& path) {
   const std::string extension = path.extension().string();
   if (extension == ".vti")
-    check_image(path, std::nullopt);
+    check_image(path, std::nullopt, {});
   else if (extension == ".vtp")
-    check_poly(path);
+    check_poly(path, {});
   else if (extension == ".pvti")
     check_summary(path, "ImageData");
   else if (extension == ".pvtp")

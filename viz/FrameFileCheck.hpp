@@ -15,9 +15,11 @@
 //   its block header expands to;
 // - requires every block header to fit the bytes left in the file, and what it expands to to be within what
 //   LZ4 or zlib can give from the bytes stored (256 times);
-// - requires an image's whole extent to be covered by its pieces' extents, so that VTK allocates no more
-//   than the pieces hold;
-// - checks a .pvti or .pvtp summary's pieces the same way, each against the extent the summary gives it.
+// - requires one piece a file (as forestwind writes), and an image's piece to hold its whole extent, since
+//   VTK sizes its arrays by the first piece's over the whole extent;
+// - checks a .pvti or .pvtp summary's pieces the same way, each against the extent the summary gives it and
+//   holding every array the summary declares with its type and components (VTK allocates those over the
+//   whole dataset), the pieces covering the whole extent.
 //
 // What VTK then reads is bounded by the file's size. Values themselves (a cell's point ids) are not checked
 // here: the readers of viz/RunFolder check what they use.

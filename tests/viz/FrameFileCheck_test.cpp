@@ -125,11 +125,15 @@ TEST_CASE("FrameFileCheck: counts that claim more than an array's block holds ar
   }
   SECTION("extent: a whole extent larger than the pieces, which VTK allocates") {
     replace_in(wind, "WholeExtent=\"0 40 0 20 0 10\"", "WholeExtent=\"0 40000 0 20000 0 10\"");
-    CHECK_THROWS_WITH(check_frame_file(wind), Catch::Contains("do not cover its whole extent"));
+    CHECK_THROWS_WITH(check_frame_file(wind), Catch::Contains("its piece's extent is not its whole extent"));
   }
-  SECTION("extent: a piece outside the whole extent") {
+  SECTION("extent: a piece other than the whole extent") {
     replace_in(wind, "<Piece Extent=\"0 40 0 20 0 10\"", "<Piece Extent=\"0 40 0 20 0 11\"");
-    CHECK_THROWS_WITH(check_frame_file(wind), Catch::Contains("outside the whole extent"));
+    CHECK_THROWS_WITH(check_frame_file(wind), Catch::Contains("its piece's extent is not its whole extent"));
+  }
+  SECTION("pieces: a second piece, whose arrays VTK would size by the first's") {
+    replace_in(trees, "</Piece>", "</Piece><Piece NumberOfPoints=\"0\"></Piece>");
+    CHECK_THROWS_WITH(check_frame_file(trees), Catch::Contains("more than one <Piece>"));
   }
   SECTION("encoding: an ascii array, which VTK 9.1 reads past when short") {
     replace_in(wind, "format=\"appended\"", "format=\"ascii\"");
@@ -177,4 +181,36 @@ TEST_CASE("RunFolder: a trees frame whose lines name points it lacks is refused"
   const fw::viz::RunFolder run(dir.path());
   CHECK_THROWS_WITH(run.load(run.select(std::nullopt, std::nullopt)),
                     Catch::Contains("line 0 names point 7 of 3"));
+}
+
+TEST_CASE("FrameFileCheck: a .pvti's pieces hold its whole extent and every array it declares", "[viz]") {
+  // VTK's parallel reader allocates each declared array over the whole extent, with the summary's type and
+  // components, and fills it from the pieces.
+  fw::test::TempDir dir("fw_frame_check");
+  fw::test::write_run(dir.path(), fw::test::UniformWind{}, {}, 1, 0.5);
+  const fs::path summary = fs::path(dir.path()) / "wind" / "wind_000000.pvti";
+  const auto write_summary = [&](const std::string& whole, const std::string& declared,
+                                 const std::string& piece) {
+    write_all(summary,
+              "<VTKFile type=\"PImageData\" version=\"1.0\" byte_order=\"LittleEndian\" "
+              "header_type=\"UInt64\">\n  <PImageData WholeExtent=\"" +
+                  whole + "\" GhostLevel=\"0\" Origin=\"0 0 0\" Spacing=\"1 1 1\">\n    <PCellData>" +
+                  declared + "</PCellData>\n    <Piece Extent=\"" + piece +
+                  "\" Source=\"wind_000000.vti\"/>\n  </PImageData>\n</VTKFile>\n");
+  };
+  const std::string velocity = R"(<PDataArray type="Float32" Name="velocity" NumberOfComponents="3"/>)";
+  write_summary("0 40 0 20 0 10", velocity, "0 40 0 20 0 10");
+  CHECK_NOTHROW(check_frame_file(summary));
+  write_summary("0 40 0 20 0 10", R"(<PDataArray type="Float32" Name="velocity" NumberOfComponents="1000"/>)",
+                "0 40 0 20 0 10");
+  CHECK_THROWS_WITH(check_frame_file(summary), Catch::Contains("wind_000000.vti") &&
+                                                   Catch::Contains("declares CellData array 'velocity'"));
+  write_summary("0 40 0 20 0 10", velocity + R"(<PDataArray type="Float32" Name="temperature"/>)",
+                "0 40 0 20 0 10");
+  CHECK_THROWS_WITH(check_frame_file(summary), Catch::Contains("'temperature'"));
+  write_summary("0 80 0 20 0 10", velocity, "0 40 0 20 0 10");
+  CHECK_THROWS_WITH(check_frame_file(summary),
+                    Catch::Contains("do not cover its whole extent 0 80 0 20 0 10"));
+  write_summary("0 40 0 20 0 10", velocity, "0 40 0 20 0 9");
+  CHECK_THROWS_WITH(check_frame_file(summary), Catch::Contains("is not the extent 0 40 0 20 0 9"));
 }
