@@ -5,15 +5,17 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <cctype>
 #include <cerrno>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
 #include <fstream>
 #include <memory>
-#include <regex>
+#include <optional>
 #include <sstream>
 #include <stdexcept>
+#include <string_view>
 #include <system_error>
 #include <utility>
 
@@ -65,6 +67,47 @@ std::string xml_unescape(std::string_view text) {
 
 }  // namespace detail
 
+namespace {
+
+bool is_space(char c) {
+  return std::isspace(static_cast<unsigned char>(c)) != 0;
+}
+bool is_word(char c) {
+  return std::isalnum(static_cast<unsigned char>(c)) != 0 || c == '_';
+}
+
+// The attribute texts of each <DataSet ... /> element of `content`, in order. Scanned by hand, not with
+// std::regex: libstdc++'s regex recurses once a character, and a .pvd with a long attribute text (21 KB
+// under ASan, 2 MB in a release build) overflowed the stack (tests/fuzz/run_folder_fuzz).
+std::vector<std::string_view> data_set_attributes(std::string_view content) {
+  constexpr std::string_view kOpen = "<DataSet";
+  std::vector<std::string_view> elements;
+  for (std::size_t at = content.find(kOpen); at != std::string_view::npos; at = content.find(kOpen, at + 1)) {
+    const std::size_t first = at + kOpen.size();
+    if (first >= content.size() || !is_space(content[first])) continue;
+    const std::size_t close = content.find('>', first + 1);
+    if (close == std::string_view::npos) break;
+    if (content[close - 1] != '/' || close - 1 < first + 1) continue;
+    elements.push_back(content.substr(first + 1, close - 1 - (first + 1)));
+  }
+  return elements;
+}
+
+// The value of attribute `name` (name="value", the name not part of a longer word), or nullopt.
+std::optional<std::string_view> attribute(std::string_view attributes, std::string_view name) {
+  const std::string key = fmt::format("{}=\"", name);
+  for (std::size_t at = attributes.find(key); at != std::string_view::npos;
+       at = attributes.find(key, at + 1)) {
+    if (at > 0 && is_word(attributes[at - 1])) continue;
+    const std::size_t first = at + key.size();
+    const std::size_t end = attributes.find('"', first);
+    if (end != std::string_view::npos) return attributes.substr(first, end - first);
+  }
+  return std::nullopt;
+}
+
+}  // namespace
+
 std::vector<PvdCollection::Entry> read_pvd(const std::filesystem::path& path) {
   std::ifstream in(path, std::ios::binary);
   if (!in) throw std::runtime_error(fmt::format("read_pvd: {}: cannot open the file", path.string()));
@@ -73,25 +116,21 @@ std::vector<PvdCollection::Entry> read_pvd(const std::filesystem::path& path) {
   const std::string content = text.str();
   // One DataSet element per frame, attributes in any order (PvdCollection writes timestep, group, part,
   // file).
-  const std::regex element(R"re(<DataSet\s([^>]*)/>)re");
-  const std::regex timestep(R"re(\btimestep="([^"]*)")re"), file(R"re(\bfile="([^"]*)")re");
   std::vector<PvdCollection::Entry> entries;
-  for (auto it = std::sregex_iterator(content.begin(), content.end(), element); it != std::sregex_iterator();
-       ++it) {
-    const std::string attributes = (*it)[1].str();
-    std::smatch t, f;
-    if (!std::regex_search(attributes, t, timestep) || !std::regex_search(attributes, f, file) ||
-        f[1].str().empty())
+  for (const std::string_view attributes : data_set_attributes(content)) {
+    const auto timestep = attribute(attributes, "timestep");
+    const auto file = attribute(attributes, "file");
+    if (!timestep || !file || file->empty())
       throw std::runtime_error(fmt::format("read_pvd: {}: DataSet {}: expected timestep and file attributes",
                                            path.string(), entries.size()));
     char* end = nullptr;
-    const std::string time_text = t[1].str();
+    const std::string time_text(*timestep);
     const double time = std::strtod(time_text.c_str(), &end);
     if (end == time_text.c_str() || *end != '\0' || !std::isfinite(time))
       throw std::runtime_error(
           fmt::format("read_pvd: {}: DataSet {}: timestep: expected a finite number, got '{}'", path.string(),
                       entries.size(), time_text));
-    entries.push_back({time, detail::xml_unescape(f[1].str())});
+    entries.push_back({time, detail::xml_unescape(*file)});
   }
   return entries;
 }

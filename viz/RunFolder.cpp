@@ -18,11 +18,11 @@
 #include <vtkXMLPolyDataReader.h>
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <cstdint>
 #include <fstream>
 #include <optional>
-#include <regex>
 #include <sstream>
 #include <stdexcept>
 #include <string_view>
@@ -203,15 +203,28 @@ fs::path file_at_or_before(const fs::path& folder, const std::vector<io::PvdColl
   return latest ? folder / latest->file : fs::path();
 }
 
-std::string json_string_value(const std::string& json, const std::string& key) {
-  const std::regex pattern("\"" + key + R"re("\s*:\s*"((?:[^"\\]|\\.)*)")re");
-  std::smatch match;
-  if (!std::regex_search(json, match, pattern)) return {};
-  std::string out;
-  const std::string raw = match[1].str();
-  for (std::size_t n = 0; n < raw.size(); ++n)
-    out += (raw[n] == '\\' && n + 1 < raw.size()) ? raw[++n] : raw[n];
-  return out;
+// The string value of `key` in the JSON text (its first "key": "value" pair, escapes taken as the character
+// they escape); empty when there is none. Scanned by hand, not with std::regex, which recurses once a
+// character: a long value would overflow the stack (as a long .pvd attribute did, io/PvdCollection.cpp).
+std::string json_string_value(std::string_view json, const std::string& key) {
+  const std::string quoted = fmt::format("\"{}\"", key);
+  const auto skip_space = [&](std::size_t at) {
+    while (at < json.size() && std::isspace(static_cast<unsigned char>(json[at]))) ++at;
+    return at;
+  };
+  for (std::size_t at = json.find(quoted); at != std::string_view::npos; at = json.find(quoted, at + 1)) {
+    std::size_t n = skip_space(at + quoted.size());
+    if (n >= json.size() || json[n] != ':') continue;
+    n = skip_space(n + 1);
+    if (n >= json.size() || json[n] != '"') continue;
+    std::string value;
+    for (++n; n < json.size() && json[n] != '"'; ++n) {
+      if (json[n] == '\\' && ++n == json.size()) break;
+      value += json[n];
+    }
+    if (n < json.size()) return value;  // closed by its quote
+  }
+  return {};
 }
 
 }  // namespace

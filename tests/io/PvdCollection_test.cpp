@@ -163,3 +163,25 @@ TEST_CASE(
   fresh.continue_existing(0.2);
   CHECK(datasets(fresh.path()).empty());
 }
+
+TEST_CASE("PvdCollection: read_pvd reads a DataSet with megabytes of attributes without deep recursion",
+          "[output]") {
+  // A std::regex over the attributes recursed once a character: 21 KB overflowed the stack under ASan
+  // (run_folder_fuzz), 2 MB in a release build. 8 MB here is past any stack a regex could take it in.
+  fw::test::TempDir dir("fw_out");
+  const fs::path path = fs::path(dir.path()) / "wind.pvd";
+  const std::string padding(std::size_t(8) << 20, 'x');
+  std::ofstream(path) << "<VTKFile><Collection>\n<DataSet timestep=\"0.5\" part=\"" << padding
+                      << "\" file=\"wind/wind_000000.vti\"/>\n<DataSet " << padding
+                      << "/>\n</Collection></VTKFile>";
+  CHECK_THROWS_WITH(fw::io::read_pvd(path),
+                    Catch::Contains("DataSet 1: expected timestep and file attributes"));
+  std::ofstream(path) << "<VTKFile><Collection>\n<DataSet timestep=\"0.5\" part=\"" << padding
+                      << "\" file=\"wind/wind_000000.vti\"/>\n<DataSet notimestep=\"1\" timestep=\"2\" "
+                         "file=\"b.vti\"/></Collection></VTKFile>";
+  const auto entries = fw::io::read_pvd(path);
+  REQUIRE(entries.size() == 2);
+  CHECK(entries[0].time == 0.5);
+  CHECK(entries[0].file == "wind/wind_000000.vti");
+  CHECK(entries[1].time == 2.0);  // the attribute named timestep, not the one ending in it
+}

@@ -22,6 +22,13 @@ TEST_CASE("YamlDocuments: a ',' that begins a document is refused at its line in
   }
 }
 
+TEST_CASE("YamlDocuments: nesting past yaml-cpp's depth limit is refused by what it is, not 'bad file'") {
+  // yaml-cpp 0.7 refuses it (its recursion would overflow the stack) with the message of a missing file.
+  const std::string text = "a: " + std::string(3000, '[') + std::string(3000, ']');
+  CHECK_THROWS_WITH(load_yaml_documents(text), Catch::Contains("nests deeper than the parser's limit of"));
+  CHECK_THROWS_AS(load_yaml(text), YAML::ParserException);
+}
+
 TEST_CASE("YamlDocuments: texts dense in events load as yaml-cpp loads them") {
   // The guard's bound (two events a byte) holds for the densest texts: empty collections, nulls, aliases,
   // document markers, one-letter scalars.

@@ -187,3 +187,14 @@ TEST_CASE("RunFolder: trees written every N-th frame hold still between their fr
   CHECK(run.frames()[3].trees.filename() == "trees_000002.vtp");
   CHECK(run.load(run.frames()[3]).trees.has_value());
 }
+
+TEST_CASE("RunFolder: the scenario's name is read from run.json however long, escapes undone", "[viz]") {
+  // A std::regex over the value recursed once a character and overflowed the stack on a long one.
+  fw::test::TempDir dir("fw_viz");
+  const std::string name(std::size_t(8) << 20, 'n');
+  std::ofstream(fs::path(dir.path()) / "run.json")
+      << "{\"scenario_file\": \"x.yaml\", \"scenario\" :\n \"" << name << "\\\"q\\\\\"}";
+  CHECK(fw::viz::scenario_name_of(dir.path()) == name + "\"q\\");
+  std::ofstream(fs::path(dir.path()) / "run.json") << "{\"scenario\": \"unclosed\\\"}";
+  CHECK(fw::viz::scenario_name_of(dir.path()) == fs::path(dir.path()).filename().string());
+}
