@@ -16,6 +16,7 @@
 #include <cstring>
 #include <fstream>
 #include <optional>
+#include <set>
 #include <stdexcept>
 #include <string>
 #include <string_view>
@@ -320,6 +321,7 @@ class FrameFile {
     const std::string label = fmt::format("data array '{}'", name ? name : "(unnamed)");
     if (!is(array->GetName(), "DataArray"))
       refuse(path_, fmt::format("<{}>: only <DataArray> elements expected there", array->GetName()));
+    if (!name || !*name) refuse(path_, "a data array without a Name");
     if (!is(array->GetAttribute("format"), "appended"))
       refuse(path_,
              fmt::format("{}: format appended expected (raw binary, as forestwind writes), got {}", label,
@@ -344,6 +346,7 @@ class FrameFile {
   void check_arrays(vtkXMLDataElement* group, std::uint64_t tuples) {
     for (int n = 0; group && n < group->GetNumberOfNestedElements(); ++n)
       check_array(group->GetNestedElement(n), tuples);
+    check_names_unique(group);
   }
 
   /// Checks the arrays of <FieldData>, each of the tuples it declares.
@@ -351,6 +354,19 @@ class FrameFile {
     for (int n = 0; n < field->GetNumberOfNestedElements(); ++n) {
       vtkXMLDataElement* array = field->GetNestedElement(n);
       check_array(array, std::uint64_t(count(array, "NumberOfTuples", std::nullopt)));
+    }
+    check_names_unique(field);
+  }
+
+  /// Refuses two arrays of one name in `group`: VTK's dataset keeps one array a name, while its reader
+  /// counts the file's, and reads the second into an array that is not there (a null dereference in
+  /// vtkXMLStructuredDataReader::ReadSubExtent; tests/fuzz/run_folder_fuzz).
+  void check_names_unique(vtkXMLDataElement* group) const {
+    std::set<std::string_view> names;
+    for (int n = 0; group && n < group->GetNumberOfNestedElements(); ++n) {
+      const char* name = group->GetNestedElement(n)->GetAttribute("Name");
+      if (name && !names.insert(name).second)
+        refuse(path_, fmt::format("<{}>: two data arrays named '{}'", group->GetName(), name));
     }
   }
 
@@ -537,6 +553,11 @@ void check_summary(const fs::path& path, std::string_view type) {
   vtkXMLDataElement* summary = root->FindNestedElementWithName(parallel.c_str());
   if (!summary) refuse(path, fmt::format("no <{}> element", parallel));
   const std::vector<DeclaredArray> declared = declared_arrays(file, summary);
+  for (std::size_t a = 0; a < declared.size(); ++a)
+    for (std::size_t b = 0; b < a; ++b)
+      if (declared[a].group == declared[b].group && declared[a].name == declared[b].name)
+        refuse(path,
+               fmt::format("it declares two {} arrays named '{}'", declared[a].group, declared[a].name));
   const bool image = type == "ImageData";
   std::optional<Extent> whole;
   if (image) whole = file.extent(summary, "WholeExtent");

@@ -139,6 +139,11 @@ TEST_CASE("FrameFileCheck: counts that claim more than an array's block holds ar
     replace_in(wind, "format=\"appended\"", "format=\"ascii\"");
     CHECK_THROWS_WITH(check_frame_file(wind), Catch::Contains("format appended expected"));
   }
+  SECTION("names: two arrays of one name, the second of which VTK reads into an array it does not have") {
+    replace_in(wind, "Name=\"speed\"", "Name=\"velocity\"");
+    CHECK_THROWS_WITH(check_frame_file(wind),
+                      Catch::Contains("<CellData>: two data arrays named 'velocity'"));
+  }
   SECTION("encoding: UInt32 headers, another layout of the blocks") {
     replace_in(wind, "header_type=\"UInt64\"", "header_type=\"UInt32\"");
     CHECK_THROWS_WITH(check_frame_file(wind), Catch::Contains("header_type UInt64 expected"));
