@@ -25,7 +25,7 @@ __kernel void corner_loads(const int nx, const int ny, const int nz, const int w
                            __global const float* q, __global float* out) {
   const int j = get_global_id(1), k = get_global_id(2);
   const int i0 = (int)get_global_id(0) * FW_LANES;
-  if (i0 >= nx) return;
+  if (i0 >= nx || j >= ny || k >= nz) return; /* past the range: whole work-groups */
   const int valid = min(FW_LANES, nx - i0);
   const lanei i = min((lanei)(i0) + FW_LANE_OFFSETS, (lanei)(nx - 1));
   const int sy = nx + 2 * FW_GATHER_MARGIN, sz = sy * (ny + 2 * FW_GATHER_MARGIN);

@@ -20,6 +20,15 @@
 #define FW_ROW_BEGIN ((int)get_global_id(0) * FW_ROW_CHUNK)
 #define FW_ROW_END(extent_x) min(FW_ROW_BEGIN + FW_ROW_CHUNK, (extent_x))
 
+/* The host rounds every range up to whole work-groups (host/runtime/ComputeContext.hpp), so a kernel over
+ * an array of extent_x * extent_y * extent_z values first sends the items past it home: past the rows (y)
+ * or planes (z), or with a run that starts past the row's end (x). Not in a reduction, whose items must all
+ * reach the group's barriers (FW_REDUCTION_ROW_END). */
+#define FW_ROWS_GUARD(extent_x, extent_y, extent_z)                        \
+  if (FW_ROW_BEGIN >= (extent_x) || (int)get_global_id(1) >= (extent_y) || \
+      (int)get_global_id(2) >= (extent_z))                                 \
+  return
+
 /* Maxima leave one partial per work-group (host/runtime/ComputeContext.hpp): the host launches them on a
  * range padded to whole groups of FW_GROUP_X x FW_GROUP_Y x 1 items, a power of two in all. Items past the
  * array do no work but must reach the group's reduction: a reduction kernel never returns early. (Sums

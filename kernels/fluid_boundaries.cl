@@ -27,6 +27,7 @@ FW_INLINE float boundary_face(const FwGrid* g, const FwStep* s, int c, __global 
 
 __kernel void enforce_boundaries(const FwGrid g, const FwStep s, __global const float* inflow, const int c,
                                  __global const uchar* mask, __global float* q) {
+  FW_ROWS_GUARD(face_extent(&g, c, 0), face_extent(&g, c, 1), face_extent(&g, c, 2));
   const int j = get_global_id(1), k = get_global_id(2);
   const int begin = FW_ROW_BEGIN, end = FW_ROW_END(face_extent(&g, c, 0));
   const int sc = cell_stride(&g, c), bit = 2 * c + 1;

@@ -6,6 +6,7 @@
 /* q (component c) += dt * (body acceleration + sum of gust accelerations at t + dt/2). */
 __kernel void apply_forces(const FwGrid g, const FwStep s, const int c, const float body_acceleration,
                            __global const FwGust* gusts, const int gust_count, __global float* q) {
+  FW_ROWS_GUARD(face_extent(&g, c, 0), face_extent(&g, c, 1), face_extent(&g, c, 2));
   const int j = get_global_id(1), k = get_global_id(2);
   const int ex = face_extent(&g, c, 0);
   const float tm = s.time + 0.5f * s.dt;
@@ -64,6 +65,7 @@ FW_INLINE float centre_derivative(const FwGrid* g, __global const float* q, int 
 /* vorticity: 4 floats a cell (wx, wy, wz, |w|), 1/s. */
 __kernel void vorticity(const FwGrid g, __global const float* u, __global const float* v,
                         __global const float* w, __global float* vorticity) {
+  FW_ROWS_GUARD(g.nx, g.ny, g.nz);
   const int j = get_global_id(1), k = get_global_id(2);
   for (int i = FW_ROW_BEGIN; i < FW_ROW_END(g.nx); ++i) {
     const float wx = centre_derivative(&g, w, 2, 1, i, j, k) - centre_derivative(&g, v, 1, 2, i, j, k);
@@ -105,6 +107,7 @@ FW_INLINE float confinement_force(const FwGrid* g, __global const float* vortici
 /* q (component c) += dt * confinement force averaged from the two cells beside the face. */
 __kernel void vorticity_confinement(const FwGrid g, const FwStep s, const int c, const float epsilon,
                                     __global const float* vorticity, __global float* q) {
+  FW_ROWS_GUARD(face_extent(&g, c, 0), face_extent(&g, c, 1), face_extent(&g, c, 2));
   const int j = get_global_id(1), k = get_global_id(2);
   const int ex = face_extent(&g, c, 0);
   const int first = domain_first(&g, c), last = domain_last(&g, c);
@@ -121,6 +124,7 @@ __kernel void vorticity_confinement(const FwGrid g, const FwStep s, const int c,
 /* out = q + nu dt / h^2 * (sum of the six neighbours - 6 q), neighbours through fetch_face's ghost rules. */
 __kernel void diffuse(const FwGrid g, const FwStep s, __global const float* profile, const int c,
                       const float nu_dt_over_h2, __global const float* q, __global float* out) {
+  FW_ROWS_GUARD(face_extent(&g, c, 0), face_extent(&g, c, 1), face_extent(&g, c, 2));
   const int j = get_global_id(1), k = get_global_id(2);
   const int ex = face_extent(&g, c, 0);
   for (int i = FW_ROW_BEGIN; i < FW_ROW_END(ex); ++i) {
@@ -147,6 +151,7 @@ FW_INLINE void canopy_drag_box(const FwGrid* g, const float dt, const int c, con
                                const int4 count, const FwDragLaw law, __global const float* drag,
                                __global const float* u, __global const float* v, __global const float* w,
                                __global float* out) {
+  FW_ROWS_GUARD(count.x, count.y, count.z);
   const int j = first.y + (int)get_global_id(1), k = first.z + (int)get_global_id(2);
   const int n = axis_cells(g, c);
   /* The face's own component q and the other two, a (axis d1) and b (axis d2). */
@@ -205,6 +210,7 @@ __kernel void canopy_drag_w(const FwGrid g, const FwStep s, const int4 first, co
 /* to = from on the faces first .. first + count - 1 of component c; the range as for canopy_drag_*. */
 __kernel void copy_face_box(const FwGrid g, const int c, const int4 first, const int4 count,
                             __global const float* from, __global float* to) {
+  FW_ROWS_GUARD(count.x, count.y, count.z);
   const int j = first.y + (int)get_global_id(1), k = first.z + (int)get_global_id(2);
   const int row = face_index(&g, c, first.x, j, k);
   for (int r = FW_ROW_BEGIN; r < FW_ROW_END(count.x); ++r) to[row + r] = from[row + r];

@@ -19,6 +19,7 @@ FW_INLINE float x_ghost_value(const FwGrid* g, const FwStep* s, __global const f
 
 __kernel void pad_component(const FwGrid g, const FwStep s, __global const float* profile, const int c,
                             __global const float* q, __global float* padded) {
+  FW_ROWS_GUARD(padded_extent(&g, c, 0), padded_extent(&g, c, 1), padded_extent(&g, c, 2));
   const int j = (int)get_global_id(1) - FW_PAD, k = (int)get_global_id(2) - FW_PAD;
   const int begin = FW_ROW_BEGIN, end = FW_ROW_END(padded_extent(&g, c, 0));
   __global float* row = padded + padded_index(&g, c, -FW_PAD, j, k);

@@ -168,6 +168,7 @@ FW_INLINE float jacobi_value(const FwLevel* L, __global const uchar* mask, __glo
 __kernel void jacobi_sweep(const FwLevel L, __global const uchar* mask, __global const float* b,
                            __global const float* phi, __global float* phi_out,
                            const float relaxation_weight) {
+  FW_ROWS_GUARD(L.nx, L.ny, L.nz);
   const int j = get_global_id(1), k = get_global_id(2), plane = k * plane_cells(&L), row = j * L.nx;
   const FwPlanes P = level_planes(&L, phi, k);
   mask += plane, b += plane, phi_out += plane;
@@ -203,6 +204,7 @@ FW_INLINE void red_black_row(const FwLevel* L, __global const uchar* mask, __glo
 
 __kernel void red_black_pass(const FwLevel L, __global const uchar* mask, __global const float* b,
                              __global const float* phi, __global float* phi_out, const int colour) {
+  FW_ROWS_GUARD(L.nx, L.ny, L.nz);
   const int j = get_global_id(1), k = get_global_id(2), plane = k * plane_cells(&L);
   const FwPlanes P = level_planes(&L, phi, k);
   red_black_row(&L, mask + plane, b + plane, &P, phi_out + plane, colour, j, k, FW_ROW_BEGIN,
@@ -280,6 +282,7 @@ FW_INLINE void red_black_update_run(const FwLevel* L, __global const uchar* mask
 
 __kernel void red_black_update(const FwLevel L, __global const uchar* mask, __global const float* b,
                                __global float* phi, const int colour) {
+  FW_ROWS_GUARD(L.nx, L.ny, L.nz);
   const int j = get_global_id(1), k = get_global_id(2), plane = k * plane_cells(&L), row = j * L.nx;
   const int parity = row_parity(&L, j, k);
   const FwPlanes P = level_planes(&L, phi, k);
@@ -334,6 +337,7 @@ FW_INLINE float residual_value(const FwLevel* L, __global const uchar* mask, __g
 /* r = b - A phi (rows). */
 __kernel void residual(const FwLevel L, __global const uchar* mask, __global const float* b,
                        __global const float* phi, __global float* r) {
+  FW_ROWS_GUARD(L.nx, L.ny, L.nz);
   const int j = get_global_id(1), k = get_global_id(2), plane = k * plane_cells(&L), row = j * L.nx;
   const FwPlanes P = level_planes(&L, phi, k);
   mask += plane, b += plane, r += plane;
@@ -354,6 +358,7 @@ FW_INLINE __global float* zeroed_columns(const FwLevel* L, __global float* colum
  * speed, where one kernel over whole columns ran at half. */
 __kernel void apply_operator(const FwLevel L, __global const uchar* mask, __global const float* d,
                              __global float* q) {
+  FW_ROWS_GUARD(L.nx, L.ny, L.nz);
   const int j = get_global_id(1), k = get_global_id(2), plane = k * plane_cells(&L), row = j * L.nx;
   const FwPlanes D = level_planes(&L, d, k);
   mask += plane, q += plane;
@@ -377,6 +382,7 @@ FW_INLINE float smoothing_start_value(uchar m, float b, float relaxation_weight,
  * neighbours). */
 __kernel void smoothing_start(const FwLevel L, __global const uchar* mask, __global const float* b,
                               __global float* out, const float relaxation_weight, const int colour) {
+  FW_ROWS_GUARD(L.nx, L.ny, L.nz);
   const int j = get_global_id(1), k = get_global_id(2), row = level_index(&L, 0, j, k);
   const int parity = row_parity(&L, j, k);
   mask += row, b += row, out += row;
@@ -409,6 +415,7 @@ __kernel void restrict_residual(const FwLevel F, const FwLevel C, __global const
                                 __global const float* r, __global float* coarse_b,
                                 __global float* coarse_start, const float scale,
                                 const float relaxation_weight, const int colour) {
+  FW_ROWS_GUARD(C.nx, C.ny, C.nz); /* rows over the coarse level */
   const int sx = 2 * C.ox - F.ox, sy = 2 * C.oy - F.oy;
   const int J = get_global_id(1), K = get_global_id(2), j = 2 * J + sy, k = 2 * K, plane = plane_cells(&F);
   if (j < 0 || j >= F.ny) return; /* a halo row */
@@ -512,6 +519,7 @@ FW_INLINE void prolong_edge_cell(const FwLevel* C, const FwCoarseRows* R, __glob
 __kernel void prolong_add(const FwLevel F, const FwLevel C, __global const uchar* fine_mask,
                           __global const uchar* coarse_mask, __global const float* coarse_e,
                           __global float* phi, const float slope) {
+  FW_ROWS_GUARD(F.nx, F.ny, F.nz); /* rows over the fine level */
   const int sx = 2 * C.ox - F.ox, sy = 2 * C.oy - F.oy;
   const int j = get_global_id(1), k = get_global_id(2), row = level_index(&F, 0, j, k);
   const int J = (j - sy) >> 1;
@@ -540,6 +548,7 @@ __kernel void prolong_add(const FwLevel F, const FwLevel C, __global const uchar
 __kernel void cg_update_columns(const FwLevel L, const float alpha, __global const float* restrict d,
                                 __global const float* restrict q, __global float* restrict x,
                                 __global float* restrict r, __global float* restrict columns) {
+  FW_ROWS_GUARD(L.nx, L.ny, 1); /* one item a column of the level: (nx, ny, 1) */
   const int j = get_global_id(1), begin = FW_ROW_BEGIN, end = FW_ROW_END(L.nx);
   __global float* column = zeroed_columns(&L, columns, j, begin, end);
   for (int k = 0; k < L.nz; ++k) {
@@ -555,6 +564,7 @@ __kernel void cg_update_columns(const FwLevel L, const float alpha, __global con
 
 /* d = z + beta d. */
 __kernel void cg_direction(const FwLevel L, const float beta, __global const float* z, __global float* d) {
+  FW_ROWS_GUARD(L.nx, L.ny, L.nz);
   const int j = get_global_id(1), k = get_global_id(2);
   for (int i = FW_ROW_BEGIN; i < FW_ROW_END(L.nx); ++i) {
     const int id = level_index(&L, i, j, k);
@@ -565,6 +575,7 @@ __kernel void cg_direction(const FwLevel L, const float beta, __global const flo
 /* columns = the column sums of a b. */
 __kernel void dot_product_columns(const FwLevel L, __global const float* a, __global const float* b,
                                   __global float* restrict columns) {
+  FW_ROWS_GUARD(L.nx, L.ny, 1); /* one item a column of the level: (nx, ny, 1) */
   const int j = get_global_id(1), begin = FW_ROW_BEGIN, end = FW_ROW_END(L.nx);
   __global float* column = zeroed_columns(&L, columns, j, begin, end);
   for (int k = 0; k < L.nz; ++k) {
@@ -576,6 +587,7 @@ __kernel void dot_product_columns(const FwLevel L, __global const float* a, __gl
 /* x += value on fluid cells (removes the mean of b when A is singular). */
 __kernel void add_on_fluid(const FwLevel L, __global const uchar* mask, const float value,
                            __global float* x) {
+  FW_ROWS_GUARD(L.nx, L.ny, L.nz);
   const int j = get_global_id(1), k = get_global_id(2);
   for (int i = FW_ROW_BEGIN; i < FW_ROW_END(L.nx); ++i) {
     const int id = level_index(&L, i, j, k);
@@ -586,6 +598,7 @@ __kernel void add_on_fluid(const FwLevel L, __global const uchar* mask, const fl
 /* columns = the column sums of x over fluid cells. */
 __kernel void sum_on_fluid_columns(const FwLevel L, __global const uchar* restrict mask,
                                    __global const float* restrict x, __global float* restrict columns) {
+  FW_ROWS_GUARD(L.nx, L.ny, 1); /* one item a column of the level: (nx, ny, 1) */
   const int j = get_global_id(1), begin = FW_ROW_BEGIN, end = FW_ROW_END(L.nx);
   __global float* column = zeroed_columns(&L, columns, j, begin, end);
   for (int k = 0; k < L.nz; ++k) {

@@ -13,6 +13,7 @@ FW_INLINE float net_outflow(const FwGrid* g, __global const float* u, __global c
 /* b = -h * net outflow (= -h^2 div u), m^2/s, in fluid cells; 0 elsewhere. */
 __kernel void divergence_rhs(const FwGrid g, __global const uchar* mask, __global const float* u,
                              __global const float* v, __global const float* w, __global float* b) {
+  FW_ROWS_GUARD(g.nx, g.ny, g.nz);
   const int j = get_global_id(1), k = get_global_id(2);
   for (int i = FW_ROW_BEGIN; i < FW_ROW_END(g.nx); ++i) {
     const int id = cell_index(&g, i, j, k);
@@ -60,6 +61,7 @@ FW_INLINE float gradient_face(const FwGrid* g, int c, __global const uchar* mask
 
 __kernel void subtract_gradient(const FwGrid g, const int c, __global const uchar* mask,
                                 __global const float* phi, __global float* q) {
+  FW_ROWS_GUARD(face_extent(&g, c, 0), face_extent(&g, c, 1), face_extent(&g, c, 2));
   const int j = get_global_id(1), k = get_global_id(2);
   const int begin = FW_ROW_BEGIN, end = FW_ROW_END(face_extent(&g, c, 0));
   const int sc = cell_stride(&g, c), bit = 2 * c + 1;

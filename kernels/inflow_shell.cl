@@ -46,7 +46,7 @@ __kernel void fill_inflow_shell(const FwGrid g, const FwStep s, const int f, __g
   const int a = f / 2, b1 = a == 0 ? 1 : 0, b2 = a == 2 ? 1 : 2;
   const int span1 = fw_shell_span(axis_cells(&g, b1)), span2 = fw_shell_span(axis_cells(&g, b2));
   const int line = get_global_id(0), c = get_global_id(1);
-  if (line >= span1 * FW_SHELL_LAYERS) return;
+  if (line >= span1 * FW_SHELL_LAYERS || c >= 3) return; /* past the range: whole work-groups */
   const int t1 = line % span1, layer = line / span1;
   __global float* out = inflow + inflow_shell_start(&g, &s) + fw_shell_face_offset(g.nx, g.ny, g.nz, f) +
                         c * fw_shell_block(g.nx, g.ny, g.nz, a) + t1 + span1 * span2 * layer;

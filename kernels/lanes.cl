@@ -261,15 +261,16 @@ FW_INLINE lanei lane_padded_index(const FwGrid* g, int a, lanei i, int j, int k)
 /* This work-item's faces: FW_LANES consecutive faces of row (j, k) from i0, of which it stores the lanes
  * `skip` .. `valid` - 1. The last item of a row that does not fill its lanes moves back to end at the row's
  * end, redoing faces of the item before it without storing them: its lanes then stay contiguous, for vector
- * and windowed loads. Rows shorter than FW_LANES clamp the lanes past the row to its last face. */
-#define FW_LANE_SETUP(c)                                  \
-  const int j = get_global_id(1), k = get_global_id(2);   \
-  const int ex = face_extent(&g, c, 0);                   \
-  const int own_first = (int)get_global_id(0) * FW_LANES; \
-  if (own_first >= ex) return;                            \
-  const int i0 = max(0, min(own_first, ex - FW_LANES));   \
-  const int skip = own_first - i0;                        \
-  const int valid = min(FW_LANES, ex - i0);               \
+ * and windowed loads. Rows shorter than FW_LANES clamp the lanes past the row to its last face. Items past
+ * the rows or planes (the range is rounded up to whole work-groups) return at once. */
+#define FW_LANE_SETUP(c)                                                                   \
+  const int j = get_global_id(1), k = get_global_id(2);                                    \
+  const int ex = face_extent(&g, c, 0);                                                    \
+  const int own_first = (int)get_global_id(0) * FW_LANES;                                  \
+  if (own_first >= ex || j >= face_extent(&g, c, 1) || k >= face_extent(&g, c, 2)) return; \
+  const int i0 = max(0, min(own_first, ex - FW_LANES));                                    \
+  const int skip = own_first - i0;                                                         \
+  const int valid = min(FW_LANES, ex - i0);                                                \
   const lanei i = min((lanei)(i0) + FW_LANE_OFFSETS, (lanei)(ex - 1));
 
 #endif

@@ -31,6 +31,7 @@ __kernel void eddy_viscosity(const FwGrid g, const float cs_h_squared, const flo
                              __global const uchar* restrict mask, __global const float* restrict u,
                              __global const float* restrict v, __global const float* restrict w,
                              __global float* restrict nu) {
+  FW_ROWS_GUARD(g.nx, g.ny, g.nz);
   const int j = get_global_id(1), k = get_global_id(2);
   int py, my, pz, mz;
   float iy, iz;
@@ -228,6 +229,7 @@ FW_INLINE void diffuse_eddy_row(const FwGrid* g, const FwStep* s, __global const
   __kernel void name(const FwGrid g, const FwStep s, __global const float* profile, const int wall_slip,   \
                      __global const uchar* restrict mask, __global const float* restrict nu,               \
                      __global const float* restrict q, __global float* restrict out) {                     \
+    FW_ROWS_GUARD(face_extent(&g, c, 0), face_extent(&g, c, 1), face_extent(&g, c, 2));                    \
     diffuse_eddy_row(&g, &s, profile, c, wall_slip, mask, nu, q, out, get_global_id(1), get_global_id(2)); \
   }
 FW_DIFFUSE_EDDY_KERNEL(diffuse_eddy_u, 0)

@@ -66,6 +66,7 @@ FW_INLINE float row_strain_at(const FwGrid* g, const RowStrain* r, __global cons
 __kernel void tke_equilibrium(const FwGrid g, const FwTke t, __global const uchar* restrict mask,
                               __global const float* restrict u, __global const float* restrict v,
                               __global const float* restrict w, __global float* restrict energy) {
+  FW_ROWS_GUARD(g.nx, g.ny, g.nz);
   const int j = get_global_id(1), k = get_global_id(2);
   const RowStrain r = row_strain(&g, j, k);
   const int row = cell_index(&g, 0, j, k), end = FW_ROW_END(g.nx);
@@ -86,6 +87,7 @@ __kernel void tke_equilibrium(const FwGrid g, const FwTke t, __global const ucha
 __kernel void tke_viscosity(const FwGrid g, const FwTke t, const float cap,
                             __global const uchar* restrict mask, __global const float* restrict energy,
                             __global float* restrict nu) {
+  FW_ROWS_GUARD(g.nx, g.ny, g.nz);
   const int j = get_global_id(1), k = get_global_id(2);
   const int row = cell_index(&g, 0, j, k), end = FW_ROW_END(g.nx);
   for (int i = FW_ROW_BEGIN; i < end; ++i) {
@@ -114,6 +116,7 @@ __kernel void tke_advect(const FwGrid g, const FwStep s, const FwTke t, __global
                          __global const float* restrict u, __global const float* restrict v,
                          __global const float* restrict w, __global const float* restrict energy,
                          __global float* restrict out) {
+  FW_ROWS_GUARD(g.nx, g.ny, g.nz);
   const int j = get_global_id(1), k = get_global_id(2);
   const int row = cell_index(&g, 0, j, k), end = FW_ROW_END(g.nx);
   const float steps = s.dt / g.h;  // cells travelled per m/s
@@ -182,6 +185,7 @@ __kernel void tke_update(const FwGrid g, const FwStep s, const FwTke t, const fl
                          __global const float* restrict v, __global const float* restrict w,
                          __global const float* restrict nu, __global const float* restrict drag_density,
                          __global const float* restrict advected, __global float* restrict energy) {
+  FW_ROWS_GUARD(g.nx, g.ny, g.nz);
   const int j = get_global_id(1), k = get_global_id(2);
   const RowStrain r = row_strain(&g, j, k);
   const NeighbourCells sides[4] = {neighbour_cells(&g, 1, j - 1, k), neighbour_cells(&g, 1, j + 1, k),

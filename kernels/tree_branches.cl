@@ -7,8 +7,9 @@
  * rigid bodies' recursion up) or its parent's (the pose down), so one work-item keeps a tree's entries in
  * order. The springs' angles are independent: FW_LANES entries of one tree per iteration, in vector
  * arithmetic (kernels/lanes.cl). A rigid tree's recursion keeps FW_RIGID_SCRATCH_FLOATS per entry, and the
- * pose FW_POSE_FLOATS, in `scratch`, a slice of `scratch_stride` floats per work-item (the host sizes it for
- * its largest tree).
+ * pose FW_POSE_FLOATS, in `scratch`, a slice of `scratch_stride` floats per work-item that gets a tree (the
+ * host sizes it for its largest tree; the items past the trees, in a range rounded up to whole work-groups,
+ * have none and touch none).
  *
  * Flat arrays, per element tree t at trees[t].entry_offset: the wind sampled at each entry's element centre
  * (3 floats, world frame), the joint state (FW_JOINT_FLOATS: angle, rate). Instance k of scale s: lengths s,

@@ -14,16 +14,42 @@ namespace fw::host {
 
 namespace {
 
-// Work-group shape of the reductions (header): 8 rows on the rows mapping (few groups, so PoCL's per-group
-// cost stays small), 64 cells on the cells mapping (two warps, a common GPU reduction width). Powers of two:
-// the group is summed as a tree.
-constexpr int kRowsPerGroup = 8, kCellsPerGroup = 64;
+// Work-group shape of the reductions (header): the launches' kRowsGroupItems rows on the rows mapping, 64
+// cells on the cells mapping (two warps, a common GPU reduction width). Powers of two: the group is summed
+// as a tree.
+constexpr std::size_t kReductionCells = 64;
 
 std::size_t round_up(std::size_t n, std::size_t to) {
   return (n + to - 1) / to * to;
 }
 
+// The guard bands' byte: neither 0 nor a float a kernel is likely to write there by chance.
+constexpr cl_uchar kGuardBandPattern = 0xA5;
+
+bool is_power_of_two(std::size_t n) {
+  return n > 0 && (n & (n - 1)) == 0;
+}
+
 }  // namespace
+
+cl::NDRange work_group_shape(WorkMapping mapping, cl_uint dims, std::size_t preferred_multiple,
+                             std::size_t max_items) {
+  if (dims < 1 || dims > 3) throw std::invalid_argument(fmt::format("work_group_shape: {} dimensions", dims));
+  std::array<std::size_t, 3> shape{1, 1, 1};
+  if (mapping == WorkMapping::rows) {
+    shape[dims == 3 ? 1 : 0] = kRowsGroupItems;
+  } else if (dims == 1) {
+    shape[0] = kCellsGroupItems;
+  } else {
+    shape[0] = is_power_of_two(preferred_multiple) ? std::min(preferred_multiple, kCellsGroupItems) : 1;
+    shape[1] = kCellsGroupItems / shape[0];
+  }
+  // A kernel of many registers may run smaller groups: halve y, then x (powers of two stay powers of two).
+  while (shape[0] * shape[1] > std::max<std::size_t>(max_items, 1)) (shape[1] > 1 ? shape[1] : shape[0]) /= 2;
+  if (dims == 1) return cl::NDRange(shape[0]);
+  if (dims == 2) return cl::NDRange(shape[0], shape[1]);
+  return cl::NDRange(shape[0], shape[1], shape[2]);
+}
 
 std::optional<WorkMapping> work_mapping_from_env() {
   const char* value = std::getenv("FORESTWIND_WORK_MAPPING");
@@ -98,8 +124,8 @@ cl::NDRange ComputeContext::rows(int extent_x, int ny, int nz) const {
 }
 
 std::array<std::size_t, 2> ComputeContext::reduction_group() const {
-  return mapping_ == WorkMapping::rows ? std::array<std::size_t, 2>{1, kRowsPerGroup}
-                                       : std::array<std::size_t, 2>{kCellsPerGroup, 1};
+  return mapping_ == WorkMapping::rows ? std::array<std::size_t, 2>{1, kRowsGroupItems}
+                                       : std::array<std::size_t, 2>{kReductionCells, 1};
 }
 
 ReductionRange ComputeContext::reduction_rows(int extent_x, int ny, int nz) const {
@@ -114,17 +140,48 @@ std::size_t ComputeContext::flat_items(std::size_t n) const {
   // Rows mapping: a few contiguous blocks per core; cells: enough items to fill the device, each striding.
   const std::size_t items = mapping_ == WorkMapping::rows ? std::size_t(device_.compute_units) * 64
                                                           : std::size_t(device_.compute_units) * 2048;
-  return std::max<std::size_t>(1, std::min(n, items));
+  return round_up(std::max<std::size_t>(1, std::min(n, items)), flat_group());
+}
+
+std::size_t ComputeContext::flat_group() const {
+  // Any kernel's one-dimensional group divides this one (work_group_shape: powers of two, only halved).
+  return work_group_shape(mapping_, 1, 1, kCellsGroupItems)[0];
 }
 
 cl::Buffer ComputeContext::buffer(std::size_t bytes, cl_mem_flags flags) {
   try {
-    cl::Buffer buffer(context_, flags, allocation_bytes(bytes));
     allocated_bytes_ += allocation_bytes(bytes);
-    return buffer;
+    if (!guard_bands_) return cl::Buffer(context_, flags, allocation_bytes(bytes));
+    // The band follows the array in one allocation, and the caller gets the array alone as a sub-buffer, so
+    // that its size (CL_MEM_SIZE, which saved states read) is the one asked for.
+    const std::size_t array_bytes = allocation_bytes(bytes);
+    cl::Buffer whole(context_, flags, array_bytes + kGuardBandBytes);
+    queue_.enqueueFillBuffer(whole, kGuardBandPattern, array_bytes, kGuardBandBytes);
+    guarded_.push_back({whole, array_bytes, ++guarded_count_});
+    const cl_buffer_region array{0, array_bytes};
+    return whole.createSubBuffer(0, CL_BUFFER_CREATE_TYPE_REGION, &array);
   } catch (const cl::Error& e) {
     throw ClError(fmt::format("allocating {} bytes on '{}'", bytes, device_.device_name), e.err());
   }
+}
+
+std::vector<std::string> ComputeContext::guard_band_breaches() {
+  std::vector<std::string> breaches;
+  std::vector<cl_uchar> band(kGuardBandBytes);
+  for (const GuardedBuffer& g : guarded_) {
+    try {
+      queue_.enqueueReadBuffer(g.buffer, CL_TRUE, g.bytes, band.size(), band.data());
+    } catch (const cl::Error& e) {
+      throw ClError(fmt::format("reading the guard band of buffer {}", g.ordinal), e.err());
+    }
+    const auto written =
+        std::find_if(band.begin(), band.end(), [](cl_uchar b) { return b != kGuardBandPattern; });
+    if (written != band.end())
+      breaches.push_back(fmt::format("buffer {} of {} bytes: written at byte {} past its end", g.ordinal,
+                                     g.bytes, written - band.begin()));
+  }
+  guarded_.clear();
+  return breaches;
 }
 
 Kernel::Kernel(const cl::Program& program, const std::string& name) : name_(name) {
@@ -137,6 +194,31 @@ Kernel::Kernel(const cl::Program& program, const std::string& name) : name_(name
 
 void Kernel::throw_arg_error(cl_uint index, int status) const {
   throw ClError(fmt::format("kernel {}: setting argument {}", name_, index), status);
+}
+
+cl::NDRange Kernel::group_shape(const ComputeContext& cc, cl_uint dims) {
+  if (dims < 1 || dims > 3)
+    throw std::invalid_argument(fmt::format("kernel {}: a range of {} dimensions", name_, dims));
+  cl::NDRange& shape = group_shapes_[dims - 1];
+  if (shape.dimensions() == 0) {
+    std::size_t multiple = 1;
+    try {
+      multiple = kernel_.getWorkGroupInfo<CL_KERNEL_PREFERRED_WORK_GROUP_SIZE_MULTIPLE>(cc.device().device);
+    } catch (const cl::Error& e) {
+      throw ClError(fmt::format("kernel {}: querying its preferred work-group multiple", name_), e.err());
+    }
+    shape = work_group_shape(cc.mapping(), dims, multiple, max_group_size(cc));
+  }
+  return shape;
+}
+
+void Kernel::enqueue(ComputeContext& cc, const cl::NDRange& items) {
+  const cl::NDRange local = group_shape(cc, items.dimensions());
+  std::array<std::size_t, 3> global{};
+  for (cl_uint a = 0; a < items.dimensions(); ++a) global[a] = round_up(items[a], local[a]);
+  if (items.dimensions() == 1) return enqueue(cc, cl::NDRange(global[0]), local);
+  if (items.dimensions() == 2) return enqueue(cc, cl::NDRange(global[0], global[1]), local);
+  enqueue(cc, cl::NDRange(global[0], global[1], global[2]), local);
 }
 
 void Kernel::enqueue(ComputeContext& cc, const cl::NDRange& global, const cl::NDRange& local) {

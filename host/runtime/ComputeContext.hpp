@@ -13,6 +13,14 @@
 // the kernels as the macros FW_ROW_CHUNK and FW_CPU_LAYOUT. (Advection sets its own range, see
 // host/stages/FluidStages.)
 //
+// Work-groups. Every launch has an explicit work-group, chosen once per kernel and device
+// (work_group_shape): 8 rows or items on the rows mapping, where an item already holds a whole row or block,
+// and kCellsGroupItems items on the cells mapping, x a multiple of the kernel's preferred multiple (a warp).
+// Kernel::enqueue rounds the range up to whole groups, and every kernel leaves the items past its array idle
+// (FW_ROWS_GUARD in kernels/common.cl). So a kernel compiles once per program build whatever the grid or the
+// rank's block: PoCL specialises a kernel for each work-group size it is launched with, and left to choose
+// (a null local range) it picked a divisor of each global range, a compile for every grid.
+//
 // Maxima leave one partial per work-group, reduced in local memory: reduction_rows() gives their range,
 // padded to whole groups of FW_GROUP_X x FW_GROUP_Y items (1 x 8 rows, or 64 x 1 cells), and the number of
 // partials the host then takes the maximum of. (Sums do not: they leave column sums that the host adds
@@ -38,6 +46,29 @@ enum class WorkMapping { rows, cells };
 /// FORESTWIND_WORK_MAPPING: "rows", "cells", or unset/empty (none). Throws std::invalid_argument naming the
 /// variable for another value.
 std::optional<WorkMapping> work_mapping_from_env();
+
+/// Items of a work-group under the rows mapping, whose items already walk a whole row or a block of values:
+/// enough rows that PoCL's cost per group (a call and its bookkeeping, about 10-20% of a small level's
+/// pass with groups of one row) stays small, few enough that a coarse level of the pressure solver still
+/// gives every core groups. The reductions' groups are as many rows (FW_GROUP_Y).
+inline constexpr std::size_t kRowsGroupItems = 8;
+
+/// Items of a work-group under the cells mapping: two warps of 32 or one wavefront of 64 and more, enough
+/// for a GPU to hide memory latency, small enough for every kernel's register budget. A power of two, as
+/// work_group_shape's halving needs.
+inline constexpr std::size_t kCellsGroupItems = 128;
+
+/// The work-group of a launch over `dims` (1 to 3) dimensions under `mapping`, for a kernel whose device
+/// prefers groups in multiples of `preferred_multiple` items and runs at most `max_items` a group
+/// (CL_KERNEL_PREFERRED_WORK_GROUP_SIZE_MULTIPLE, CL_KERNEL_WORK_GROUP_SIZE):
+/// - rows: kRowsGroupItems rows of a sweep (1, 8, 1), or items of a flat or two-dimensional range (8, 1);
+/// - cells, one dimension: kCellsGroupItems;
+/// - cells, two or three: x the preferred multiple (at most kCellsGroupItems; 1 if it is not a power of two),
+///   y the rest of kCellsGroupItems, z 1;
+/// halved (y first) until it fits max_items. Every size is a power of two, so a smaller group of a kernel
+/// divides a larger one (flat_items' ranges are whole groups of any kernel).
+cl::NDRange work_group_shape(WorkMapping mapping, cl_uint dims, std::size_t preferred_multiple,
+                             std::size_t max_items);
 
 /// The range of a reduction kernel: global padded to whole work-groups, the group, and how many groups
 /// (= partials) there are.
@@ -78,8 +109,11 @@ class ComputeContext {
   /// their group's reduction.
   ReductionRange reduction_rows(int extent_x, int ny, int nz) const;
 
-  /// Number of work-items a flat (1D) kernel over n values uses, and the values each handles.
+  /// Number of work-items a flat (1D) kernel over n values uses (a whole number of flat_group()s; the items
+  /// past n, or past what each needs, stay idle: FW_FLAT_FOR).
   std::size_t flat_items(std::size_t n) const;
+  /// The largest work-group a flat kernel gets (work_group_shape's one-dimensional group).
+  std::size_t flat_group() const;
 
   /// The reductions' work-group, x by y items (FW_GROUP_X, FW_GROUP_Y in the kernels).
   std::array<std::size_t, 2> reduction_group() const;
@@ -103,6 +137,15 @@ class ComputeContext {
   cl::Buffer zero_floats(std::size_t count);
   void finish() { queue_.finish(); }
 
+  /// Guard bands, for tests: while on, every buffer() gets kGuardBandBytes of a known pattern past the bytes
+  /// asked for (allocated_bytes() does not count them), so that a kernel writing past its array, as an item
+  /// past its range would without its bounds guard, is caught. guard_band_breaches() reads every band since
+  /// the last call, names the buffers whose band changed (their size and the order they were allocated in)
+  /// and forgets them all (tests/support/TestDevice.cpp checks after each test case).
+  void set_guard_bands(bool on) { guard_bands_ = on; }
+  std::vector<std::string> guard_band_breaches();
+  static constexpr std::size_t kGuardBandBytes = 256;
+
  private:
   DeviceInfo device_;
   cl::Context context_;
@@ -112,6 +155,14 @@ class ComputeContext {
   int row_chunk_;
   std::size_t allocated_bytes_ = 0;
   bool warnings_as_errors_ = false;
+  struct GuardedBuffer {
+    cl::Buffer buffer;
+    std::size_t bytes = 0;    // the array's (allocation_bytes); the band follows them
+    std::size_t ordinal = 0;  // the how-manieth buffer since the bands went on
+  };
+  bool guard_bands_ = false;
+  std::vector<GuardedBuffer> guarded_;
+  std::size_t guarded_count_ = 0;
 };
 
 /// A kernel that knows its name, so failures say which one.
@@ -138,7 +189,16 @@ class Kernel {
     }
   }
 
-  void enqueue(ComputeContext& cc, const cl::NDRange& global, const cl::NDRange& local = cl::NullRange);
+  /// Launches the kernel over `items`, rounded up to whole work-groups of its group_shape(); the kernel
+  /// leaves the items past `items` idle.
+  void enqueue(ComputeContext& cc, const cl::NDRange& items);
+  /// Launches it with the work-group `local` (a reduction's, a one-group kernel's); `global` must be a whole
+  /// number of them.
+  void enqueue(ComputeContext& cc, const cl::NDRange& global, const cl::NDRange& local);
+
+  /// This kernel's work-group for a range of `dims` dimensions on cc's device: work_group_shape of its
+  /// preferred multiple and its largest group, queried on the first call and kept.
+  cl::NDRange group_shape(const ComputeContext& cc, cl_uint dims);
 
   /// The largest work-group this kernel can run with on cc's device (CL_KERNEL_WORK_GROUP_SIZE).
   std::size_t max_group_size(const ComputeContext& cc) const;
@@ -147,6 +207,7 @@ class Kernel {
   [[noreturn]] void throw_arg_error(cl_uint index, int status) const;
   cl::Kernel kernel_;
   std::string name_;
+  std::array<cl::NDRange, 3> group_shapes_{};  // per dimension count; NullRange (0 dimensions) until chosen
 };
 
 }  // namespace fw::host

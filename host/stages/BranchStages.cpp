@@ -149,10 +149,14 @@ BranchStages::BranchStages(ComputeContext& cc, const fluid::GridSpec& spec, cons
   spring_blocks_ = cc_.upload(springs_blocks, ro);
   sample_world_ = cc_.zero_floats(3 * std::size_t(entry_count_));
   joints_ = cc_.zero_floats(FW_JOINT_FLOATS * std::size_t(entry_count_));
+  // A scratch slot for each item that gets a tree: at most one a tree, however far flat_items rounds the
+  // range up to whole work-groups (the items past the trees never touch their slot).
   pose_items_ = cc_.flat_items(trees_.size());
-  pose_scratch_ = cc_.zero_floats(pose_items_ * FW_POSE_FLOATS * std::size_t(largest_tree_));
+  pose_scratch_ =
+      cc_.zero_floats(std::min(pose_items_, trees_.size()) * FW_POSE_FLOATS * std::size_t(largest_tree_));
   scratch_items_ = rigid.empty() ? 0 : cc_.flat_items(rigid.size());
-  scratch_ = cc_.zero_floats(scratch_items_ * FW_RIGID_SCRATCH_FLOATS * std::size_t(largest_tree_));
+  scratch_ = cc_.zero_floats(std::min(scratch_items_, rigid.size()) * FW_RIGID_SCRATCH_FLOATS *
+                             std::size_t(largest_tree_));
 
   const cl::Program program = cc_.build("tree_branches.cl");
   if (!trees_.empty())

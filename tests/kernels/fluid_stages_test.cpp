@@ -1,5 +1,6 @@
 // Each wind-grid kernel against the CPU reference (fluid/ReferenceStages), on random fields over a grid with
-// every boundary type and a yawed solid box.
+// every boundary type and a yawed solid box, and again over a ragged grid (test::ragged_spec) whose ranges
+// leave items past the arrays in their last work-groups.
 #include <catch2/catch.hpp>
 
 #include <algorithm>
@@ -123,7 +124,8 @@ struct StageFixture {
 TEST_CASE("ghosts: the padded copy holds the reference's ghost value at every index") {
   auto* cc = test::device_or_skip();
   if (!cc) return;
-  StageFixture f(*cc);
+  StageFixture f(*cc, GENERATE(test::mixed_boundary_spec(), test::ragged_spec()));
+  CAPTURE(f.spec.nx, f.spec.ny, f.spec.nz);
   const auto vel = test::random_velocity(f.spec, 3.0, 1);
   auto dvel = f.stages.allocate_velocity();
   auto padded = f.stages.allocate_padded_velocity();
@@ -138,7 +140,8 @@ TEST_CASE("ghosts: the padded copy holds the reference's ghost value at every in
 TEST_CASE("ghosts: inflow turbulence in the ghost layers matches the reference") {
   auto* cc = test::device_or_skip();
   if (!cc) return;
-  StageFixture f(*cc);
+  StageFixture f(*cc, GENERATE(test::mixed_boundary_spec(), test::ragged_spec()));
+  CAPTURE(f.spec.nx, f.spec.ny, f.spec.nz);
   f.make_turbulent();
   const auto vel = test::random_velocity(f.spec, 3.0, 1);
   auto dvel = f.stages.allocate_velocity();
@@ -200,7 +203,8 @@ TEST_CASE(
 TEST_CASE("ghosts: an inflow buffer without room for the shell is refused with the class name") {
   auto* cc = test::device_or_skip();
   if (!cc) return;
-  StageFixture f(*cc);
+  StageFixture f(*cc, GENERATE(test::mixed_boundary_spec(), test::ragged_spec()));
+  CAPTURE(f.spec.nx, f.spec.ny, f.spec.nz);
   auto turbulent = f.inflow;
   test::add_small_turbulence(turbulent);
   FwStep s = f.stages.step();
@@ -212,7 +216,8 @@ TEST_CASE("ghosts: an inflow buffer without room for the shell is refused with t
 TEST_CASE("advect: semi-Lagrangian RK2 kernel matches the CPU reference on random fields") {
   auto* cc = test::device_or_skip();
   if (!cc) return;
-  StageFixture f(*cc);
+  StageFixture f(*cc, GENERATE(test::mixed_boundary_spec(), test::ragged_spec()));
+  CAPTURE(f.spec.nx, f.spec.ny, f.spec.nz);
   // |u| up to 8 m/s, dt 0.4 s, h 2 m: back-traces travel up to ~1.6 cells and cross every boundary.
   auto vel = test::random_velocity(f.spec, 8.0, 11);
   test::match_periodic_faces(f.spec, vel);
@@ -232,7 +237,8 @@ TEST_CASE("advect: semi-Lagrangian RK2 kernel matches the CPU reference on rando
 TEST_CASE("advect: clamped MacCormack kernels match the CPU reference on random fields") {
   auto* cc = test::device_or_skip();
   if (!cc) return;
-  StageFixture f(*cc);
+  StageFixture f(*cc, GENERATE(test::mixed_boundary_spec(), test::ragged_spec()));
+  CAPTURE(f.spec.nx, f.spec.ny, f.spec.nz);
   auto vel = test::random_velocity(f.spec, 8.0, 21);
   test::match_periodic_faces(f.spec, vel);
   const auto device = f.maccormack(vel, 0.4f).corrected;
@@ -252,7 +258,8 @@ TEST_CASE("advect: semi-Lagrangian and MacCormack kernels match the CPU referenc
   // straddle two shifts; the 0.2 m/s ripples in v and w keep each item's lanes on one row.
   auto* cc = test::device_or_skip();
   if (!cc) return;
-  StageFixture f(*cc);
+  StageFixture f(*cc, GENERATE(test::mixed_boundary_spec(), test::ragged_spec()));
+  CAPTURE(f.spec.nx, f.spec.ny, f.spec.nz);
   auto vel = test::smooth_velocity(f.spec, {3.75, 1.25, -1.25}, {1.5, 0.2, 0.2});
   test::match_periodic_faces(f.spec, vel);
   const auto [forward, corrected] = f.maccormack(vel, 0.4f);
@@ -274,7 +281,7 @@ TEST_CASE("advect: an upwind5 stage matches the CPU reference on random fields, 
   if (!cc) return;
   auto short_rows = test::mixed_boundary_spec();
   short_rows.nx = 10;
-  for (const auto& grid : {test::mixed_boundary_spec(), short_rows}) {
+  for (const auto& grid : {test::mixed_boundary_spec(), short_rows, test::ragged_spec()}) {
     StageFixture f(*cc, grid);
     auto vel = test::random_velocity(f.spec, 8.0, 31);
     test::match_periodic_faces(f.spec, vel);
@@ -291,7 +298,8 @@ TEST_CASE("advect: an upwind5 stage matches the CPU reference on random fields, 
 TEST_CASE("advect: upwind5's three Runge-Kutta stages match the CPU reference in a smooth wind") {
   auto* cc = test::device_or_skip();
   if (!cc) return;
-  StageFixture f(*cc);
+  StageFixture f(*cc, GENERATE(test::mixed_boundary_spec(), test::ragged_spec()));
+  CAPTURE(f.spec.nx, f.spec.ny, f.spec.nz);
   f.make_turbulent();  // the inflow ghosts carry turbulence through every stage
   auto vel = test::smooth_velocity(f.spec, {3.75, 1.25, -1.25}, {1.5, 0.2, 0.2});
   test::match_periodic_faces(f.spec, vel);
@@ -308,7 +316,8 @@ TEST_CASE("advect: upwind5's three Runge-Kutta stages match the CPU reference in
 TEST_CASE("forces: body force and travelling gusts match the CPU reference") {
   auto* cc = test::device_or_skip();
   if (!cc) return;
-  StageFixture f(*cc);
+  StageFixture f(*cc, GENERATE(test::mixed_boundary_spec(), test::ragged_spec()));
+  CAPTURE(f.spec.nx, f.spec.ny, f.spec.nz);
   f.set_step(0.25f, 4.0f);
   std::vector<FwGust> gusts(2);
   gusts[0] = FwGust{2.0f, 6.0f, 12.0f, 9.0f, {0.0f, 20.0f, 8.0f}, {5.0f, 1.0f, 0.0f}, {0.8f, 0.6f, 0.0f}};
@@ -333,7 +342,8 @@ TEST_CASE("forces: body force and travelling gusts match the CPU reference") {
 TEST_CASE("forces: vorticity and vorticity confinement match the CPU reference") {
   auto* cc = test::device_or_skip();
   if (!cc) return;
-  StageFixture f(*cc);
+  StageFixture f(*cc, GENERATE(test::mixed_boundary_spec(), test::ragged_spec()));
+  CAPTURE(f.spec.nx, f.spec.ny, f.spec.nz);
   auto vel = test::random_velocity(f.spec, 3.0, 41);
   auto dvel = f.stages.allocate_velocity();
   test::upload(*cc, vel, dvel);
@@ -351,7 +361,8 @@ TEST_CASE("forces: vorticity and vorticity confinement match the CPU reference")
 TEST_CASE("forces: explicit viscous diffusion matches the CPU reference, ghosts included") {
   auto* cc = test::device_or_skip();
   if (!cc) return;
-  StageFixture f(*cc);
+  StageFixture f(*cc, GENERATE(test::mixed_boundary_spec(), test::ragged_spec()));
+  CAPTURE(f.spec.nx, f.spec.ny, f.spec.nz);
   const auto vel = test::random_velocity(f.spec, 2.0, 51);
   auto dvel = f.stages.allocate_velocity(), out = f.stages.allocate_velocity();
   test::upload(*cc, vel, dvel);
@@ -365,7 +376,8 @@ TEST_CASE("forces: explicit viscous diffusion matches the CPU reference, ghosts 
 TEST_CASE("boundaries: prescribed faces match the CPU reference") {
   auto* cc = test::device_or_skip();
   if (!cc) return;
-  StageFixture f(*cc);
+  StageFixture f(*cc, GENERATE(test::mixed_boundary_spec(), test::ragged_spec()));
+  CAPTURE(f.spec.nx, f.spec.ny, f.spec.nz);
   auto vel = test::random_velocity(f.spec, 2.0, 61);
   auto dvel = f.stages.allocate_velocity();
   test::upload(*cc, vel, dvel);
@@ -381,7 +393,8 @@ TEST_CASE("boundaries: prescribed faces match the CPU reference") {
 TEST_CASE("boundaries: inflow faces with turbulence match the CPU reference") {
   auto* cc = test::device_or_skip();
   if (!cc) return;
-  StageFixture f(*cc);
+  StageFixture f(*cc, GENERATE(test::mixed_boundary_spec(), test::ragged_spec()));
+  CAPTURE(f.spec.nx, f.spec.ny, f.spec.nz);
   f.make_turbulent();
   auto vel = test::random_velocity(f.spec, 2.0, 61);
   auto dvel = f.stages.allocate_velocity();
@@ -403,7 +416,8 @@ TEST_CASE("boundaries: inflow faces with turbulence match the CPU reference") {
 TEST_CASE("project: divergence right-hand side and gradient subtraction match the CPU reference") {
   auto* cc = test::device_or_skip();
   if (!cc) return;
-  StageFixture f(*cc);
+  StageFixture f(*cc, GENERATE(test::mixed_boundary_spec(), test::ragged_spec()));
+  CAPTURE(f.spec.nx, f.spec.ny, f.spec.nz);
   auto vel = test::random_velocity(f.spec, 2.0, 71);
   ref::enforce_boundaries(f.spec, f.fine, f.inflow, vel);
   auto dvel = f.stages.allocate_velocity();
@@ -426,7 +440,8 @@ TEST_CASE("project: divergence right-hand side and gradient subtraction match th
 TEST_CASE("project: max speed reduction finds the largest component and reports NaN") {
   auto* cc = test::device_or_skip();
   if (!cc) return;
-  StageFixture f(*cc);
+  StageFixture f(*cc, GENERATE(test::mixed_boundary_spec(), test::ragged_spec()));
+  CAPTURE(f.spec.nx, f.spec.ny, f.spec.nz);
   auto vel = test::random_velocity(f.spec, 2.0, 81);
   vel.w[123] = -9.5f;
   auto dvel = f.stages.allocate_velocity();

@@ -14,10 +14,13 @@ using namespace fw;
 
 namespace {
 
-// A test kernel: sine and cosine of FW_LANES arguments per work-item, by either function.
+// A test kernel: sine and cosine of FW_LANES arguments per work-item, by either function, over n arguments
+// (the range is rounded up to whole work-groups).
 const char* kLaneSincos = R"(
-__kernel void lane_sincos(const int quarter, __global const float* x, __global float* s, __global float* c) {
+__kernel void lane_sincos(const int n, const int quarter, __global const float* x, __global float* s,
+                          __global float* c) {
   const int first = get_global_id(0) * FW_LANES;
+  if (first >= n) return;
   lanef cosine;
   const lanef sine = quarter ? sincos_quarter_lanes(lane_load(0, x + first), &cosine)
                              : sincos_lanes(lane_load(0, x + first), &cosine);
@@ -26,25 +29,22 @@ __kernel void lane_sincos(const int quarter, __global const float* x, __global f
 }
 )";
 
-// A test kernel: the arctangent of FW_LANES arguments per work-item.
+// A test kernel: the arctangent of FW_LANES arguments per work-item, over n arguments.
 const char* kLaneAtan = R"(
-__kernel void lane_atan(__global const float* x, __global float* out) {
+__kernel void lane_atan(const int n, __global const float* x, __global float* out) {
   const int first = get_global_id(0) * FW_LANES;
+  if (first >= n) return;
   lane_store(atan_lanes(lane_load(0, x + first)), 0, out + first);
 }
 )";
 
 // The largest error of atan_lanes on the device over the float arguments `x` (a multiple of FW_LANES).
 double largest_atan_error(host::ComputeContext& cc, const std::vector<float>& x) {
-  const std::string source = host::kernel_source("lanes.cl") + kLaneAtan;
-  cl::Program program(cc.context(), source);
-  program.build({cc.device().device}, "-cl-std=CL1.2");
-  cl::Kernel kernel(program, "lane_atan");
+  host::Kernel kernel(cc.build_source("lane_atan.cl", host::kernel_source("lanes.cl") + kLaneAtan),
+                      "lane_atan");
   cl::Buffer in = cc.upload(x, CL_MEM_READ_ONLY);
   cl::Buffer out = cc.zero_floats(x.size());
-  kernel.setArg(0, in);
-  kernel.setArg(1, out);
-  cc.queue().enqueueNDRangeKernel(kernel, cl::NullRange, cl::NDRange(x.size() / FW_LANES));
+  kernel.set_args(cl_int(x.size()), in, out).enqueue(cc, cl::NDRange(x.size() / FW_LANES));
   std::vector<float> angle(x.size());
   cc.queue().enqueueReadBuffer(out, CL_TRUE, 0, x.size() * sizeof(float), angle.data());
   double error = 0.0;
@@ -55,17 +55,11 @@ double largest_atan_error(host::ComputeContext& cc, const std::vector<float>& x)
 
 // The largest error of sine and cosine on the device over the float arguments `x` (a multiple of FW_LANES).
 double largest_error(host::ComputeContext& cc, const std::vector<float>& x, bool quarter) {
-  const std::string source = host::kernel_source("lanes.cl") + kLaneSincos;
-  cl::Program program(cc.context(), source);
-  program.build({cc.device().device}, "-cl-std=CL1.2");
-  cl::Kernel kernel(program, "lane_sincos");
+  host::Kernel kernel(cc.build_source("lane_sincos.cl", host::kernel_source("lanes.cl") + kLaneSincos),
+                      "lane_sincos");
   cl::Buffer in = cc.upload(x, CL_MEM_READ_ONLY);
   cl::Buffer s = cc.zero_floats(x.size()), c = cc.zero_floats(x.size());
-  kernel.setArg(0, cl_int(quarter));
-  kernel.setArg(1, in);
-  kernel.setArg(2, s);
-  kernel.setArg(3, c);
-  cc.queue().enqueueNDRangeKernel(kernel, cl::NullRange, cl::NDRange(x.size() / FW_LANES));
+  kernel.set_args(cl_int(x.size()), cl_int(quarter), in, s, c).enqueue(cc, cl::NDRange(x.size() / FW_LANES));
   std::vector<float> sine(x.size()), cosine(x.size());
   cc.queue().enqueueReadBuffer(s, CL_FALSE, 0, x.size() * sizeof(float), sine.data());
   cc.queue().enqueueReadBuffer(c, CL_TRUE, 0, x.size() * sizeof(float), cosine.data());

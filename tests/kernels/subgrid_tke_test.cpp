@@ -33,6 +33,7 @@ constexpr double kTkeTolerance = 1e-5;
 // outflow east, periodic south and north, then the given ground, slip top), and one periodic along x with
 // slip walls south and north, an inflow ground and an outflow top.
 fluid::GridSpec tke_spec(int variant) {
+  if (variant == 3) return test::ragged_spec();  // ranges that end in part-filled work-groups
   auto spec = test::mixed_boundary_spec();
   if (variant == 0) return spec;  // no-slip ground
   if (variant == 1) {
@@ -110,7 +111,7 @@ TEST_CASE(
     "[subgrid]") {
   auto* cc = test::device_or_skip();
   if (!cc) return;
-  for (int variant = 0; variant < 3; ++variant)
+  for (int variant = 0; variant < 4; ++variant)
     for (bool canopy : {false, true})
       for (double dt : {0.4, 8.0}) {  // 8 s: the cap (0.075 m^2/s) binds in most cells
         INFO("grid " << variant << ", canopy " << canopy << ", dt " << dt << " s");

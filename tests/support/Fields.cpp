@@ -22,6 +22,16 @@ fluid::GridSpec mixed_boundary_spec() {
   return spec;
 }
 
+fluid::GridSpec ragged_spec() {
+  fluid::GridSpec spec = mixed_boundary_spec();
+  spec.nx = 37;
+  spec.ny = 23;
+  spec.nz = 11;
+  spec.boundary[FW_FACE_SOUTH] = fluid::BoundaryType::slip;
+  spec.boundary[FW_FACE_NORTH] = fluid::BoundaryType::no_slip;
+  return spec;
+}
+
 std::vector<std::uint8_t> box_solid(const fluid::GridSpec& spec) {
   fluid::SolidMap solids(spec);
   const double L[3] = {spec.nx * spec.h, spec.ny * spec.h, spec.nz * spec.h};

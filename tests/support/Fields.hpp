@@ -18,6 +18,11 @@ namespace fw::test {
 /// no-slip ground, slip top; 24 x 16 x 12 cells of 2 m.
 fluid::GridSpec mixed_boundary_spec();
 
+/// A grid of 37 x 23 x 11 cells of 2 m, no side a multiple of a work-group's (8 rows; 8 x 16 cells under
+/// PoCL's GPU mapping): the items past the arrays in a range rounded up to whole groups must leave them
+/// alone. mixed_boundary_spec's boundaries, but slip south and no-slip north (a periodic axis must be even).
+fluid::GridSpec ragged_spec();
+
 /// Solid box in the middle of `spec` (about a fifth of each dimension).
 std::vector<std::uint8_t> box_solid(const fluid::GridSpec& spec);
 
