@@ -1,13 +1,17 @@
 # The two set-up commands of the README:
 #   make demo   installs the Debian packages, builds, runs the demo (scenarios/storm.yaml into out/storm) and
 #               draws its last frame and its probes
-#   make test   installs the Debian packages, checks the formatting of the tracked sources (clang-format),
-#               builds (compiler warnings as errors under CI), runs every test through CTest, and then
-#               every fuzz target for 10 s (repeatably: seed 1, from the tracked seeds)
-#   make validate   builds and runs the long validations (tests/validation) that CI runs in short form
+#   make test   the fast tier, CI's: installs the Debian packages, checks the formatting of the tracked sources
+#               (clang-format), builds (compiler warnings as errors under CI), runs every CTest test (unit,
+#               kernel under both work mappings, CLI, MPI at 1, 2 and 4 ranks, the replay of every fuzz seed
+#               and regression) and prints the 15 slowest; about 17 minutes from a fresh clone on 2 cores
+# The long tier, each on demand (README, "Tests"):
 #   make fuzz       builds the fuzz targets (tests/fuzz) with clang and runs each for FUZZ_SECONDS (FUZZ_SEED=N:
 #                   repeatably, from the tracked seeds)
-#   make sanitize   builds the host tests with ASan + UBSan (clang, the fuzz build) and runs them
+#   make sanitize   builds the host and kernel tests with ASan + UBSan (clang, the fuzz build) and runs them
+#   make validate   builds and runs the long validations (tests/validation) that CTest runs in short form
+#   make scaling    bench wind and bench coupled over 1, 2 and 4 MPI ranks
+#   make test-long  all four
 BUILD_DIR ?= build
 BUILD_TYPE ?= Release
 # Compiler warnings as errors: on under CI (the variable CI is set), off otherwise, so that a user's newer
@@ -15,7 +19,8 @@ BUILD_TYPE ?= Release
 WERROR ?= $(if $(CI),ON,OFF)
 SUDO := $(shell [ "$$(id -u)" -eq 0 ] || echo sudo)
 
-.PHONY: deps configure build build-cli test validate demo format format-check clean fuzz-configure fuzz sanitize
+.PHONY: deps configure build build-cli test test-long validate scaling demo format format-check clean \
+        fuzz-configure fuzz sanitize
 
 deps:
 	$(SUDO) bash scripts/install-deps.sh
@@ -30,14 +35,14 @@ build: configure
 build-cli: configure
 	cmake --build $(BUILD_DIR) --target forestwind
 
-# Then every fuzz target briefly (TEST_FUZZ_SECONDS each): a reader change that crashes near the seeds stops CI.
-# The run is repeatable (seed TEST_FUZZ_SEED, from the tracked seeds only): what it finds, `make fuzz
-# FUZZ_SEED=1` finds too, and it is not red at random (docs/fuzzing.md).
-TEST_FUZZ_SECONDS ?= 10
-TEST_FUZZ_SEED ?= 1
+# CTest's results go to $(BUILD_DIR)/ctest-junit.xml, from which the 15 slowest tests are printed, pass or
+# fail; the fast tier keeps every test under a minute (README, "Tests"). CTEST_FLAGS adds options (-j2, -R ...).
+CTEST_FLAGS ?=
 test: deps format-check build
-	ctest --test-dir $(BUILD_DIR) --output-on-failure
-	$(MAKE) fuzz FUZZ_SECONDS=$(TEST_FUZZ_SECONDS) FUZZ_SEED=$(TEST_FUZZ_SEED)
+	@status=0; ctest --test-dir $(BUILD_DIR) --output-on-failure --output-junit ctest-junit.xml $(CTEST_FLAGS) \
+	  || status=$$?; python3 scripts/slowest-tests.py $(BUILD_DIR)/ctest-junit.xml 15; exit $$status
+
+test-long: fuzz sanitize validate scaling
 
 validate: build
 	FORESTWIND_VALIDATION=full $(BUILD_DIR)/validation_tests "[validation]"
@@ -69,6 +74,18 @@ sanitize: fuzz-configure
 	set -e; for t in $(SANITIZE_TESTS); do echo "== $$t"; CI=true $(SANITIZE_ENV) $(FUZZ_DIR)/$$t; done
 
 DEMO_OUT := out/storm
+
+# The scaling runs (docs/parallel.md, "Benchmarks over ranks"): each rank's step and halo and the weak-scaling
+# estimate, printed and kept in $(SCALING_DIR) (bench-wind-N.txt, bench-coupled-N.txt).
+SCALING_DIR ?= out/scaling
+SCALING_RANKS ?= 1 2 4
+MPIRUN = OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 mpirun --oversubscribe
+scaling: build-cli
+	mkdir -p $(SCALING_DIR)
+	set -e; for n in $(SCALING_RANKS); do for what in wind coupled; do \
+	  echo "== forestwind bench $$what over $$n ranks"; \
+	  $(MPIRUN) -np $$n $(BUILD_DIR)/forestwind bench $$what | tee $(SCALING_DIR)/bench-$$what-$$n.txt; \
+	done; done
 
 demo: deps build-cli
 	$(BUILD_DIR)/forestwind run scenarios/storm.yaml
