@@ -3,6 +3,7 @@
 // divergence-free, and a run is deterministic and unchanged when the turbulence is off.
 #include <catch2/catch.hpp>
 
+#include <array>
 #include <cmath>
 #include <map>
 #include <memory>
@@ -269,51 +270,64 @@ TEST_CASE("WindGrid turbulence: over rough open ground the profile and intensity
   }
 }
 
+namespace {
+
+// The inflow's intensity at the inflow plane and 10 cells downstream under `scheme`: eddies of L_u = 9 cells
+// at 13% (the issue's case, on 1 m cells) with Smagorinsky C_s 0.16. dt 0.04 s keeps the summed Courant
+// number near 1 with the fluctuations (upwind5's limit: 1.2). The box is 64 L_u long, as in the inflow test
+// above, so that one sweep (57.6 s) holds enough eddies for sigma to converge to a few per cent.
+constexpr double kIntensity = 0.13;
+std::array<double, 2> downstream_intensity(host::ComputeContext& cc, fluid::AdvectionScheme scheme) {
+  constexpr double kLength = 9.0, kStep = 0.04;
+  host::WindGridSetup setup = tunnel(7);
+  auto box = setup.turbulence->spec();
+  box.spectrum = {1.0, kLength};
+  box.cells[0] = int(64 * kLength / box.spacing);
+  setup.turbulence = std::make_shared<const fluid::TurbulenceBox>(box);
+  setup.settings.advection = scheme;
+  setup.settings.smagorinsky_constant = 0.16;
+  setup.settings.dt = kStep;
+  host::WindGrid wind(cc, setup);
+  wind.set_turbulence_sigma(kIntensity * kMeanSpeed);
+  wind.initialise_ambient();
+  const auto& spec = wind.spec();
+  const int planes[] = {0, 10};
+  std::vector<std::vector<double>> lines[2];
+  for (auto& l : lines) l.resize(std::size_t(spec.ny) * spec.nz);
+  const int steps = int(std::lround(box.cells[0] * box.spacing / kMeanSpeed / kStep));
+  for (int n = 0; n < steps; ++n) {
+    wind.step();
+    const auto vel = wind.download_velocity();
+    for (int p = 0; p < 2; ++p)
+      for (int k = 0; k < spec.nz; ++k)
+        for (int j = 0; j < spec.ny; ++j)
+          lines[p][std::size_t(j) + spec.ny * k].push_back(vel.u[ref::face_index(spec, 0, planes[p], j, k)]);
+  }
+  std::array<double, 2> intensity{0.0, 0.0};
+  for (int p = 0; p < 2; ++p)
+    for (const auto& u : lines[p])
+      intensity[p] += fluid::standard_deviation(u) / kMeanSpeed / double(lines[p].size());
+  WARN(fluid::to_string(scheme) << ": intensity " << intensity[0] << " at the inflow, " << intensity[1]
+                                << " 10 cells downstream (asked " << kIntensity << ")");
+  return intensity;
+}
+
+}  // namespace
+
 TEST_CASE("WindGrid turbulence: with upwind5 the inflow's intensity holds within 10% 10 cells downstream") {
   auto* cc = test::device_or_skip();
   if (!cc) return;
-  // Eddies of L_u = 9 cells at 13% (the issue's case, on 1 m cells) with Smagorinsky C_s 0.16. dt 0.04 s
-  // keeps the summed Courant number near 1 with the fluctuations (upwind5's limit: 1.2). The box is 64 L_u
-  // long, as in the inflow test above, so that one sweep (57.6 s) holds enough eddies for sigma to converge
-  // to a few per cent.
-  constexpr double kIntensity = 0.13, kLength = 9.0, kStep = 0.04;
-  // The semi-Lagrangian schemes run beside it for the report (their losses are the issue's finding).
-  for (auto scheme : {fluid::AdvectionScheme::semi_lagrangian, fluid::AdvectionScheme::maccormack,
-                      fluid::AdvectionScheme::upwind5}) {
-    host::WindGridSetup setup = tunnel(7);
-    auto box = setup.turbulence->spec();
-    box.spectrum = {1.0, kLength};
-    box.cells[0] = int(64 * kLength / box.spacing);
-    setup.turbulence = std::make_shared<const fluid::TurbulenceBox>(box);
-    setup.settings.advection = scheme;
-    setup.settings.smagorinsky_constant = 0.16;
-    setup.settings.dt = kStep;
-    host::WindGrid wind(*cc, setup);
-    wind.set_turbulence_sigma(kIntensity * kMeanSpeed);
-    wind.initialise_ambient();
-    const auto& spec = wind.spec();
-    const int planes[] = {0, 10};
-    std::vector<std::vector<double>> lines[2];
-    for (auto& l : lines) l.resize(std::size_t(spec.ny) * spec.nz);
-    const int steps = int(std::lround(box.cells[0] * box.spacing / kMeanSpeed / kStep));
-    for (int n = 0; n < steps; ++n) {
-      wind.step();
-      const auto vel = wind.download_velocity();
-      for (int p = 0; p < 2; ++p)
-        for (int k = 0; k < spec.nz; ++k)
-          for (int j = 0; j < spec.ny; ++j)
-            lines[p][std::size_t(j) + spec.ny * k].push_back(
-                vel.u[ref::face_index(spec, 0, planes[p], j, k)]);
-    }
-    double intensity[2] = {0.0, 0.0};
-    for (int p = 0; p < 2; ++p)
-      for (const auto& u : lines[p])
-        intensity[p] += fluid::standard_deviation(u) / kMeanSpeed / double(lines[p].size());
-    WARN(fluid::to_string(scheme) << ": intensity " << intensity[0] << " at the inflow, " << intensity[1]
-                                  << " 10 cells downstream (asked " << kIntensity << ")");
-    if (scheme == fluid::AdvectionScheme::upwind5) {
-      CHECK(std::abs(intensity[0] / kIntensity - 1.0) < 0.10);
-      CHECK(std::abs(intensity[1] / kIntensity - 1.0) < 0.10);  // the issue's 10%
-    }
-  }
+  const std::array<double, 2> intensity = downstream_intensity(*cc, fluid::AdvectionScheme::upwind5);
+  CHECK(std::abs(intensity[0] / kIntensity - 1.0) < 0.10);
+  CHECK(std::abs(intensity[1] / kIntensity - 1.0) < 0.10);  // the issue's 10%
+}
+
+// The semi-Lagrangian schemes' losses on the same case, a report with nothing to hold them to: hidden, so
+// that CI does not spend on them twice upwind5's time; `wind_tests "[report]"` prints them.
+TEST_CASE("WindGrid turbulence: what the semi-Lagrangian schemes keep of the inflow's intensity",
+          "[.][report]") {
+  auto* cc = test::device_or_skip();
+  if (!cc) return;
+  for (auto scheme : {fluid::AdvectionScheme::semi_lagrangian, fluid::AdvectionScheme::maccormack})
+    downstream_intensity(*cc, scheme);
 }
