@@ -19,7 +19,8 @@ CornerLoadRates measure_corner_load_rates(host::ComputeContext& cc, const std::a
   cl::Buffer q = cc.buffer((padded + FW_WINDOW_SLACK) * sizeof(float)),
              out = cc.buffer(cells * sizeof(float));
   cc.queue().enqueueFillBuffer(q, 1.0f, 0, (padded + FW_WINDOW_SLACK) * sizeof(float));
-  host::Kernel corners(cc.build("bench_gather.cl"), "corner_loads");
+  // Advection's own work-group, so that the limit is taken as advection loads.
+  host::Kernel corners(cc.build("bench_gather.cl"), "corner_loads", host::RowItems::lanes);
   const cl::NDRange range(std::size_t((nx + FW_LANES - 1) / FW_LANES), std::size_t(ny), std::size_t(nz));
   auto rate = [&](int windowed) {
     corners.set_args(nx, ny, nz, windowed, q, out);

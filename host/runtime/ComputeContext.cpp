@@ -14,10 +14,10 @@ namespace fw::host {
 
 namespace {
 
-// Work-group shape of the reductions (header): the launches' kRowsGroupItems rows on the rows mapping, 64
+// Work-group shape of the reductions (header): 8 rows on the rows mapping (a partial for every 8 rows), 64
 // cells on the cells mapping (two warps, a common GPU reduction width). Powers of two: the group is summed
 // as a tree.
-constexpr std::size_t kReductionCells = 64;
+constexpr std::size_t kReductionRows = 8, kReductionCells = 64;
 
 std::size_t round_up(std::size_t n, std::size_t to) {
   return (n + to - 1) / to * to;
@@ -33,11 +33,11 @@ bool is_power_of_two(std::size_t n) {
 }  // namespace
 
 cl::NDRange work_group_shape(WorkMapping mapping, cl_uint dims, std::size_t preferred_multiple,
-                             std::size_t max_items) {
+                             std::size_t max_items, RowItems items) {
   if (dims < 1 || dims > 3) throw std::invalid_argument(fmt::format("work_group_shape: {} dimensions", dims));
   std::array<std::size_t, 3> shape{1, 1, 1};
   if (mapping == WorkMapping::rows) {
-    shape[dims == 3 ? 1 : 0] = kRowsGroupItems;
+    shape[dims == 3 && items == RowItems::runs ? 1 : 0] = kRowsGroupItems;
   } else if (dims == 1) {
     shape[0] = kCellsGroupItems;
   } else {
@@ -124,7 +124,7 @@ cl::NDRange ComputeContext::rows(int extent_x, int ny, int nz) const {
 }
 
 std::array<std::size_t, 2> ComputeContext::reduction_group() const {
-  return mapping_ == WorkMapping::rows ? std::array<std::size_t, 2>{1, kRowsGroupItems}
+  return mapping_ == WorkMapping::rows ? std::array<std::size_t, 2>{1, kReductionRows}
                                        : std::array<std::size_t, 2>{kReductionCells, 1};
 }
 
@@ -184,7 +184,8 @@ std::vector<std::string> ComputeContext::guard_band_breaches() {
   return breaches;
 }
 
-Kernel::Kernel(const cl::Program& program, const std::string& name) : name_(name) {
+Kernel::Kernel(const cl::Program& program, const std::string& name, RowItems items)
+    : name_(name), items_(items) {
   try {
     kernel_ = cl::Kernel(program, name.c_str());
   } catch (const cl::Error& e) {
@@ -207,7 +208,7 @@ cl::NDRange Kernel::group_shape(const ComputeContext& cc, cl_uint dims) {
     } catch (const cl::Error& e) {
       throw ClError(fmt::format("kernel {}: querying its preferred work-group multiple", name_), e.err());
     }
-    shape = work_group_shape(cc.mapping(), dims, multiple, max_group_size(cc));
+    shape = work_group_shape(cc.mapping(), dims, multiple, max_group_size(cc), items_);
   }
   return shape;
 }

@@ -14,7 +14,7 @@
 // host/stages/FluidStages.)
 //
 // Work-groups. Every launch has an explicit work-group, chosen once per kernel and device
-// (work_group_shape): 8 rows or items on the rows mapping, where an item already holds a whole row or block,
+// (work_group_shape): 32 rows or items on the rows mapping, where an item already holds a whole row or block,
 // and kCellsGroupItems items on the cells mapping, x a multiple of the kernel's preferred multiple (a warp).
 // Kernel::enqueue rounds the range up to whole groups, and every kernel leaves the items past its array idle
 // (FW_ROWS_GUARD in kernels/common.cl). So a kernel compiles once per program build whatever the grid or the
@@ -47,28 +47,37 @@ enum class WorkMapping { rows, cells };
 /// variable for another value.
 std::optional<WorkMapping> work_mapping_from_env();
 
-/// Items of a work-group under the rows mapping, whose items already walk a whole row or a block of values:
-/// enough rows that PoCL's cost per group (a call and its bookkeeping, about 10-20% of a small level's
-/// pass with groups of one row) stays small, few enough that a coarse level of the pressure solver still
-/// gives every core groups. The reductions' groups are as many rows (FW_GROUP_Y).
-inline constexpr std::size_t kRowsGroupItems = 8;
+/// What a work-item of a grid sweep holds along x (the stage says, when it makes the Kernel): a run of
+/// row_chunk() values (a whole row under the rows mapping, one cell under the cells mapping), or FW_LANES
+/// consecutive values of a row in vector arithmetic (the lane kernels: advection, kernels/lanes.cl).
+enum class RowItems { runs, lanes };
+
+/// Items of a work-group under the rows mapping: 32 rows of a sweep (or 32 lane items of a row, or 32 items
+/// of a flat range), each already a whole row's or block's work. A group runs on one core, so fewer, larger
+/// groups cost PoCL less per launch: 32 rows ran the pressure solver's small levels 20% faster than 8
+/// (docs/performance.md, 2026-12-06). A lane kernel's group runs along the row, so that the lanes of one row
+/// stay on one core: across groups of rows, two cores wrote neighbouring lanes of a row into the same cache
+/// lines, and the upwind stages took 50% longer.
+inline constexpr std::size_t kRowsGroupItems = 32;
 
 /// Items of a work-group under the cells mapping: two warps of 32 or one wavefront of 64 and more, enough
 /// for a GPU to hide memory latency, small enough for every kernel's register budget. A power of two, as
 /// work_group_shape's halving needs.
 inline constexpr std::size_t kCellsGroupItems = 128;
 
-/// The work-group of a launch over `dims` (1 to 3) dimensions under `mapping`, for a kernel whose device
-/// prefers groups in multiples of `preferred_multiple` items and runs at most `max_items` a group
-/// (CL_KERNEL_PREFERRED_WORK_GROUP_SIZE_MULTIPLE, CL_KERNEL_WORK_GROUP_SIZE):
-/// - rows: kRowsGroupItems rows of a sweep (1, 8, 1), or items of a flat or two-dimensional range (8, 1);
+/// The work-group of a launch over `dims` (1 to 3) dimensions under `mapping`, for a kernel whose items hold
+/// `items` (3 dimensions only) and whose device prefers groups in multiples of `preferred_multiple` items
+/// and runs at most `max_items` a group (CL_KERNEL_PREFERRED_WORK_GROUP_SIZE_MULTIPLE,
+/// CL_KERNEL_WORK_GROUP_SIZE):
+/// - rows, a sweep of runs: kRowsGroupItems rows (1, 32, 1); of lanes: kRowsGroupItems along the row (32, 1,
+///   1); a flat or two-dimensional range: (32) or (32, 1);
 /// - cells, one dimension: kCellsGroupItems;
 /// - cells, two or three: x the preferred multiple (at most kCellsGroupItems; 1 if it is not a power of two),
 ///   y the rest of kCellsGroupItems, z 1;
 /// halved (y first) until it fits max_items. Every size is a power of two, so a smaller group of a kernel
 /// divides a larger one (flat_items' ranges are whole groups of any kernel).
 cl::NDRange work_group_shape(WorkMapping mapping, cl_uint dims, std::size_t preferred_multiple,
-                             std::size_t max_items);
+                             std::size_t max_items, RowItems items = RowItems::runs);
 
 /// The range of a reduction kernel: global padded to whole work-groups, the group, and how many groups
 /// (= partials) there are.
@@ -169,7 +178,8 @@ class ComputeContext {
 class Kernel {
  public:
   Kernel() = default;
-  Kernel(const cl::Program& program, const std::string& name);
+  /// `items`: what an item of a grid sweep holds along x (RowItems), for its work-group.
+  Kernel(const cl::Program& program, const std::string& name, RowItems items = RowItems::runs);
 
   const std::string& name() const { return name_; }
 
@@ -196,8 +206,8 @@ class Kernel {
   /// number of them.
   void enqueue(ComputeContext& cc, const cl::NDRange& global, const cl::NDRange& local);
 
-  /// This kernel's work-group for a range of `dims` dimensions on cc's device: work_group_shape of its
-  /// preferred multiple and its largest group, queried on the first call and kept.
+  /// This kernel's work-group for a range of `dims` dimensions on cc's device: work_group_shape of its items,
+  /// its preferred multiple and its largest group, queried on the first call and kept.
   cl::NDRange group_shape(const ComputeContext& cc, cl_uint dims);
 
   /// The largest work-group this kernel can run with on cc's device (CL_KERNEL_WORK_GROUP_SIZE).
@@ -207,6 +217,7 @@ class Kernel {
   [[noreturn]] void throw_arg_error(cl_uint index, int status) const;
   cl::Kernel kernel_;
   std::string name_;
+  RowItems items_ = RowItems::runs;
   std::array<cl::NDRange, 3> group_shapes_{};  // per dimension count; NullRange (0 dimensions) until chosen
 };
 

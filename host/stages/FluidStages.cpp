@@ -70,8 +70,8 @@ FluidStages::FluidStages(ComputeContext& cc, const fluid::GridSpec& spec)
   cl::Program advect = cc_.build("fluid_advect.cl");
   for (int c = 0; c < 3; ++c) {
     const char* axis[] = {"u", "v", "w"};
-    advect_[c] = Kernel(advect, std::string("advect_") + axis[c]);
-    maccormack_[c] = Kernel(advect, std::string("maccormack_correct_") + axis[c]);
+    advect_[c] = Kernel(advect, std::string("advect_") + axis[c], RowItems::lanes);
+    maccormack_[c] = Kernel(advect, std::string("maccormack_correct_") + axis[c], RowItems::lanes);
   }
   cl::Program forces = cc_.build("fluid_forces.cl");
   forces_ = Kernel(forces, "apply_forces");
@@ -183,7 +183,8 @@ void FluidStages::enqueue_maccormack_correct(int c, DeviceVelocity& pv, cl::Buff
 void FluidStages::build_upwind_kernels() {
   if (upwind_built_) return;
   cl::Program program = cc_.build("fluid_upwind.cl");
-  for (int c = 0; c < 3; ++c) upwind_stage_[c] = Kernel(program, std::string("upwind_stage_") + "uvw"[c]);
+  for (int c = 0; c < 3; ++c)
+    upwind_stage_[c] = Kernel(program, std::string("upwind_stage_") + "uvw"[c], RowItems::lanes);
   upwind_built_ = true;
 }
 

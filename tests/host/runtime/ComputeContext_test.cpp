@@ -80,21 +80,26 @@ TEST_CASE(
   }
 }
 
-TEST_CASE("work_group_shape: 8 rows or items on the rows mapping, warps of 128 items on the cells mapping") {
+TEST_CASE("work_group_shape: 32 rows or items on the rows mapping, warps of 128 items on the cells mapping") {
   using fw::host::work_group_shape;
   auto items = [](const cl::NDRange& r) {
     std::size_t n = 1;
     for (cl_uint a = 0; a < r.dimensions(); ++a) n *= r[a];
     return n;
   };
-  // The rows mapping: an item already walks a whole row or a block of values; 8 rows of a sweep, 8 items of
-  // a flat range.
+  // The rows mapping: an item already walks a whole row or a block of values; 32 rows of a sweep, 32 items
+  // of a flat range, and a lane kernel's 32 items along one row.
   for (cl_uint dims : {1u, 2u, 3u}) {
     const cl::NDRange rows = work_group_shape(WorkMapping::rows, dims, 8, 4096);
     CHECK(rows.dimensions() == dims);
     CHECK(items(rows) == fw::host::kRowsGroupItems);
     CHECK(rows[dims == 3 ? 1 : 0] == fw::host::kRowsGroupItems);
   }
+  const cl::NDRange lanes = work_group_shape(WorkMapping::rows, 3, 8, 4096, fw::host::RowItems::lanes);
+  CHECK((lanes[0] == fw::host::kRowsGroupItems && lanes[1] == 1 && lanes[2] == 1));
+  // Under the cells mapping the lane kernels take the same groups as the rest.
+  const cl::NDRange gpu_lanes = work_group_shape(WorkMapping::cells, 3, 32, 1024, fw::host::RowItems::lanes);
+  CHECK((gpu_lanes[0] == 32 && gpu_lanes[1] == 4));
   // The cells mapping: x a warp (NVIDIA's 32) or PoCL's 8, y the rest of the 128 items, z 1.
   const cl::NDRange warp = work_group_shape(WorkMapping::cells, 3, 32, 1024);
   CHECK((warp[0] == 32 && warp[1] == 4 && warp[2] == 1));
@@ -116,7 +121,7 @@ TEST_CASE("work_group_shape: 8 rows or items on the rows mapping, warps of 128 i
 TEST_CASE("Kernel: a launch rounds its range up to whole groups, one group shape a kernel", "[device]") {
   auto* cc = fw::test::device_or_skip();
   if (!cc) return;
-  // Each item past n writes nothing; each item within writes its index: a range of 37 on groups of 8 or
+  // Each item past n writes nothing; each item within writes its index: a range of 37 on groups of 32 or
   // 128 leaves every value written exactly once, and the guard band after the buffer untouched.
   const std::string source =
       "kernel void mark(int n, global int* out) { const int i = get_global_id(0); if (i < n) out[i] = i; }\n";
