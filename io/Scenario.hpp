@@ -1,6 +1,7 @@
 // A scenario file (docs/design.md, "File formats"), read and validated in full before anything is computed.
-// Every key's type, unit, default and allowed values are defined once, in io/ScenarioSchema.hpp: the defaults
-// below are read from there, and docs/scenario.md's key tables are generated from there.
+// Every key's type, unit, default and allowed values are defined once, in the schema (io/schema/, one table
+// per section; io/ScenarioSchema.hpp over all of them): the defaults below are read from the tables, and
+// docs/scenario.md's key tables are generated from the schema.
 //
 //   fw::io::Scenario scenario = fw::io::load_scenario("scenarios/storm.yaml");   // throws ScenarioError
 //   scenario.domain.cells;                       // {160, 80, 24}: 480 x 240 x 72 m in cells of 3 m
@@ -43,6 +44,18 @@
 #include "fluid/WindSettings.hpp"
 #include "io/Expression.hpp"
 #include "io/ScenarioSchema.hpp"
+#include "io/schema/BoundaryKeys.hpp"
+#include "io/schema/DomainKeys.hpp"
+#include "io/schema/EventKeys.hpp"
+#include "io/schema/ForestKeys.hpp"
+#include "io/schema/ObstacleKeys.hpp"
+#include "io/schema/OutputKeys.hpp"
+#include "io/schema/SolverKeys.hpp"
+#include "io/schema/SpeciesKeys.hpp"
+#include "io/schema/TerrainKeys.hpp"
+#include "io/schema/TimeKeys.hpp"
+#include "io/schema/TopLevelKeys.hpp"
+#include "io/schema/WindKeys.hpp"
 #include "trees/ForestLayout.hpp"
 #include "trees/LeafSettings.hpp"
 #include "trees/Material.hpp"
@@ -93,23 +106,28 @@ constexpr std::array<BoundaryChoice, 6> default_boundaries() {
   const auto choice = [](std::string_view word) {
     return schema::value_of(schema::kBoundaryWords, kBoundaryChoices, word);
   };
-  return {choice(schema::key("boundaries.west").word),   choice(schema::key("boundaries.east").word),
-          choice(schema::key("boundaries.south").word),  choice(schema::key("boundaries.north").word),
-          choice(schema::key("boundaries.ground").word), choice(schema::key("boundaries.top").word)};
+  return {choice(schema::key(schema::kBoundaryKeys, "boundaries.west").word),
+          choice(schema::key(schema::kBoundaryKeys, "boundaries.east").word),
+          choice(schema::key(schema::kBoundaryKeys, "boundaries.south").word),
+          choice(schema::key(schema::kBoundaryKeys, "boundaries.north").word),
+          choice(schema::key(schema::kBoundaryKeys, "boundaries.ground").word),
+          choice(schema::key(schema::kBoundaryKeys, "boundaries.top").word)};
 }
 
 struct TimeSettings {
-  double end = 0.0;                             ///< s, > 0: the run covers [0, end]
-  std::optional<double> dt;                     ///< s, > 0: fixed step; nullopt for "auto"
-  double cfl = schema::key("time.cfl").number;  ///< > 0, used with auto: dt = cfl * h / max|u|
+  double end = 0.0;          ///< s, > 0: the run covers [0, end]
+  std::optional<double> dt;  ///< s, > 0: fixed step; nullopt for "auto"
+  double cfl =
+      schema::key(schema::kTimeKeys, "time.cfl").number;  ///< > 0, used with auto: dt = cfl * h / max|u|
   /// s, >= 0: the wind steps from -spin_up to 0 before the run (trees held in equilibrium); 0: none
-  double spin_up = schema::key("time.spin_up").number;
+  double spin_up = schema::key(schema::kTimeKeys, "time.spin_up").number;
 };
 
 struct DomainSettings {
   /// minimum corner, m
-  std::array<double, 3> origin{schema::key("domain.origin").number, schema::key("domain.origin").number,
-                               schema::key("domain.origin").number};
+  std::array<double, 3> origin{schema::key(schema::kDomainKeys, "domain.origin").number,
+                               schema::key(schema::kDomainKeys, "domain.origin").number,
+                               schema::key(schema::kDomainKeys, "domain.origin").number};
   std::array<double, 3> size{0, 0, 0};  ///< extent along x, y, z, m (> 0)
   double cell_size = 0.0;               ///< h, m (> 0); cells are cubic
   std::array<int, 3> cells{0, 0, 0};    ///< round(size / h); size is a whole multiple of h
@@ -133,7 +151,7 @@ inline constexpr TurbulenceModel kTurbulenceModels[] = {TurbulenceModel::von_kar
 /// wind (Taylor) and added to the initial field; plus, optionally, Stam's unresolved modal forcing per tree.
 struct TurbulenceSettings {
   TurbulenceModel model = schema::value_of(schema::kTurbulenceModelWords, kTurbulenceModels,
-                                           schema::key("wind.turbulence.model").word);
+                                           schema::key(schema::kWindKeys, "wind.turbulence.model").word);
   /// sigma_u / wind.speed at reference_height, dimensionless, >= 0; sigma_v = sigma_w = sigma_u. Exactly one
   /// of intensity and sigma is set.
   std::optional<double> intensity;
@@ -148,9 +166,10 @@ struct TurbulenceSettings {
   std::array<double, 3> box_size{0, 0, 0};
   bool box_size_given = false;  ///< whether the file gave box_size
   std::uint64_t seed = 0;       ///< the file's, else the scenario's top-level seed
-  bool unresolved = schema::key("wind.turbulence.unresolved").flag;  ///< Stam's modal forcing per tree
+  bool unresolved =
+      schema::key(schema::kWindKeys, "wind.turbulence.unresolved").flag;  ///< Stam's modal forcing per tree
   /// The smallest resolved eddy in cells (> 0): wavenumbers above 2 pi / (cutoff_cells h) are unresolved.
-  double cutoff_cells = schema::key("wind.turbulence.cutoff_cells").number;
+  double cutoff_cells = schema::key(schema::kWindKeys, "wind.turbulence.cutoff_cells").number;
 
   /// [sigma_u, sigma_v, sigma_w], m/s, for the wind speed `speed` (m/s) at the reference height: intensity
   /// times speed on all three, or sigma as given.
@@ -160,13 +179,15 @@ struct TurbulenceSettings {
 /// wind.forcing: the mean body force of a domain whose four sides are all periodic (no inflow), a PI
 /// controller that holds the horizontal mean wind at reference_height at the ambient wind.
 struct ForcingSettings {
-  double relaxation_time = schema::key("wind.forcing.relaxation_time").number;  ///< tau, s, > 0
+  double relaxation_time =
+      schema::key(schema::kWindKeys, "wind.forcing.relaxation_time").number;  ///< tau, s, > 0
 };
 
 struct WindSource {
   Expression speed;      ///< m/s at reference_height, a function of t (s)
   Expression direction;  ///< degrees the wind blows FROM, clockwise from north, a function of t
-  double reference_height = schema::key("wind.reference_height").number;  ///< m above the domain floor
+  double reference_height =
+      schema::key(schema::kWindKeys, "wind.reference_height").number;  ///< m above the domain floor
   /// Vertical shape; profile.reference_height == reference_height. Defaults: the schema's wind.profile.*
   /// (roughness_length has none).
   fluid::InflowProfile profile;
@@ -209,18 +230,22 @@ struct SkeletonSource {
 };
 
 struct ModeSettings {
-  int count = int(schema::key("forest.species[].modes.count").number);  ///< lowest modes kept, >= 1
-  double damping_ratio = schema::key("forest.species[].modes.damping_ratio").number;  ///< zeta per mode, >= 0
+  int count = int(
+      schema::key(schema::kSpeciesKeys, "forest.species[].modes.count").number);  ///< lowest modes kept, >= 1
+  double damping_ratio = schema::key(schema::kSpeciesKeys, "forest.species[].modes.damping_ratio")
+                             .number;  ///< zeta per mode, >= 0
   /// Height bands with their own projection, 1..FW_MAX_TREE_SAMPLES.
-  int wind_samples = int(schema::key("forest.species[].modes.wind_samples").number);
+  int wind_samples = int(schema::key(schema::kSpeciesKeys, "forest.species[].modes.wind_samples").number);
   int count_line = 0;  ///< line of `count` in the file (of the species entry when not given)
 };
 
 struct CanopySettings {
   /// One-sided m^2 leaf per m^2 ground, >= 0 (0: no leaves).
-  double leaf_area_index = schema::key("forest.species[].canopy.leaf_area_index").number;
+  double leaf_area_index =
+      schema::key(schema::kSpeciesKeys, "forest.species[].canopy.leaf_area_index").number;
   /// C_D of the leaves per one-sided leaf area (the branches' convention), >= 0.
-  double drag_coefficient = schema::key("forest.species[].canopy.drag_coefficient").number;
+  double drag_coefficient =
+      schema::key(schema::kSpeciesKeys, "forest.species[].canopy.drag_coefficient").number;
   int leaf_area_index_line = 0;  ///< the line of leaf_area_index (of canopy, or the species, when not given)
 };
 
@@ -232,16 +257,17 @@ struct Species {
   std::string name;  ///< unique among the species
   SkeletonSource skeleton;
   trees::Material material{
-      schema::key("forest.species[].material.youngs_modulus").number,
-      schema::key("forest.species[].material.shear_modulus").number,
-      schema::key("forest.species[].material.density").number};  ///< E, G (Pa), rho (kg/m^3)
+      schema::key(schema::kSpeciesKeys, "forest.species[].material.youngs_modulus").number,
+      schema::key(schema::kSpeciesKeys, "forest.species[].material.shear_modulus").number,
+      schema::key(schema::kSpeciesKeys, "forest.species[].material.density")
+          .number};  ///< E, G (Pa), rho (kg/m^3)
   /// forest.species[].dynamics and the keys of its model (rigid_bodies, springs) over trees::SpeciesDynamics'
   /// defaults (the schema's); validated. The keys of another model are errors, `modes` included: every
   /// species' modes are still computed from `modes` (its defaults, for the other models).
   trees::SpeciesDynamics dynamics;
   ModeSettings modes;
   /// C_D of the branches (cylinders in cross flow) per frontal area, >= 0.
-  double drag_coefficient = schema::key("forest.species[].drag_coefficient").number;
+  double drag_coefficient = schema::key(schema::kSpeciesKeys, "forest.species[].drag_coefficient").number;
   CanopySettings canopy;
   /// forest.species[].leaves: the file's keys over trees::LeafSettings' defaults (the schema's), seed
   /// resolved (kLeafSeedOffset). Model none (no leaves) when the file has no `leaves`; with leaves,
@@ -267,17 +293,19 @@ struct PlacedTreeSettings {
   std::array<double, 3> position{};  ///< m; z from the file, else the ground (terrain) under (x, y)
   bool height_given = false;         ///< whether the file gave z
   /// Counter-clockwise about +z seen from above (the file's degrees, converted).
-  double yaw_rad = radians(schema::key("forest.trees[].yaw").number);
-  double scale = schema::key("forest.trees[].scale").number;  ///< > 0
+  double yaw_rad = radians(schema::key(schema::kForestKeys, "forest.trees[].yaw").number);
+  double scale = schema::key(schema::kForestKeys, "forest.trees[].scale").number;  ///< > 0
 };
 
 struct ForestSettings {
-  bool two_way_coupling = schema::key("forest.two_way_coupling").flag;  ///< trees' drag returned to the wind
+  bool two_way_coupling =
+      schema::key(schema::kForestKeys, "forest.two_way_coupling").flag;  ///< trees' drag returned to the wind
   /// The modal time step: exact for the force held over a step, or Diener's semi-implicit Euler.
   trees::ModalIntegrator integrator =
-      schema::value_of(schema::kIntegratorWords, schema::kIntegrators, schema::key("forest.integrator").word);
+      schema::value_of(schema::kIntegratorWords, schema::kIntegrators,
+                       schema::key(schema::kForestKeys, "forest.integrator").word);
   /// Diener's (2008, section 5.2) quadratic correction of the linear modal displacement on output frames.
-  bool strong_wind_correction = schema::key("forest.strong_wind_correction").flag;
+  bool strong_wind_correction = schema::key(schema::kForestKeys, "forest.strong_wind_correction").flag;
   fluid::DragLaw drag_law;  ///< forest.drag_law (validated by the reader's bounds)
   std::vector<Species> species;
   std::vector<Stand> stands;
@@ -286,21 +314,27 @@ struct ForestSettings {
 
 struct SolverSettings {
   fluid::PressureSolverType pressure =
-      schema::value_of(schema::kPressureWords, schema::kPressureSolvers, schema::key("solver.pressure").word);
-  double tolerance = schema::key("solver.tolerance").number;  ///< relative residual (multigrid, cg), > 0
-  int max_iterations = int(schema::key("solver.max_iterations").number);        ///< >= 1 (multigrid, cg)
-  int jacobi_iterations = int(schema::key("solver.jacobi_iterations").number);  ///< >= 1 (jacobi)
-  fluid::AdvectionScheme advection = schema::value_of(schema::kAdvectionWords, schema::kAdvectionSchemes,
-                                                      schema::key("solver.advection").word);
-  fluid::StageProjection stage_projection = schema::value_of(
-      schema::kStageProjectionWords, schema::kStageProjections, schema::key("solver.stage_projection").word);
+      schema::value_of(schema::kPressureWords, schema::kPressureSolvers,
+                       schema::key(schema::kSolverKeys, "solver.pressure").word);
+  double tolerance = schema::key(schema::kSolverKeys, "solver.tolerance")
+                         .number;  ///< relative residual (multigrid, cg), > 0
+  int max_iterations =
+      int(schema::key(schema::kSolverKeys, "solver.max_iterations").number);  ///< >= 1 (multigrid, cg)
+  int jacobi_iterations =
+      int(schema::key(schema::kSolverKeys, "solver.jacobi_iterations").number);  ///< >= 1 (jacobi)
+  fluid::AdvectionScheme advection =
+      schema::value_of(schema::kAdvectionWords, schema::kAdvectionSchemes,
+                       schema::key(schema::kSolverKeys, "solver.advection").word);
+  fluid::StageProjection stage_projection =
+      schema::value_of(schema::kStageProjectionWords, schema::kStageProjections,
+                       schema::key(schema::kSolverKeys, "solver.stage_projection").word);
   /// epsilon, dimensionless, >= 0 (0: off)
-  double vorticity_confinement = schema::key("solver.vorticity_confinement").number;
+  double vorticity_confinement = schema::key(schema::kSolverKeys, "solver.vorticity_confinement").number;
   /// The subgrid stress's model (smagorinsky: on while smagorinsky_constant > 0)
-  fluid::SubgridModel subgrid =
-      schema::value_of(schema::kSubgridWords, schema::kSubgridModels, schema::key("solver.subgrid").word);
+  fluid::SubgridModel subgrid = schema::value_of(schema::kSubgridWords, schema::kSubgridModels,
+                                                 schema::key(schema::kSolverKeys, "solver.subgrid").word);
   /// C_s of the eddy viscosity (C_s h)^2 |S|, dimensionless, in [0, 1) (0: off); not given with tke
-  double smagorinsky_constant = schema::key("solver.smagorinsky_constant").number;
+  double smagorinsky_constant = schema::key(schema::kSolverKeys, "solver.smagorinsky_constant").number;
 };
 
 struct Probe {
@@ -310,32 +344,38 @@ struct Probe {
 
 struct OutputSettings {
   std::filesystem::path directory;  ///< absolute: the file's value (default out/<scenario>) against the cwd
-  double interval = schema::key("output.interval").number;  ///< s of simulated time between frames, > 0
+  double interval = schema::key(schema::kOutputKeys, "output.interval")
+                        .number;  ///< s of simulated time between frames, > 0
   /// s of simulated time between probe samples, > 0, as the file gives it; nullopt for "auto" (see
   /// Scenario::resolved_probe_interval).
   std::optional<double> probe_interval;
-  bool vtk_wind = schema::key("output.vtk.wind").flag;
-  bool vtk_trees = schema::key("output.vtk.trees").flag;
+  bool vtk_wind = schema::key(schema::kOutputKeys, "output.vtk.wind").flag;
+  bool vtk_trees = schema::key(schema::kOutputKeys, "output.vtk.trees").flag;
   /// Each output's every-N: it writes the frames K with K % N == 0, keeping K as the file's number, so that
   /// the outputs' collections line up in time (>= 1; 1 every frame).
-  int vtk_wind_every = int(schema::key("output.vtk.wind_every").number);
-  int vtk_trees_every = int(schema::key("output.vtk.trees_every").number);
-  int vdb_every = int(schema::key("output.vdb.every").number);
-  int leaves_every = int(schema::key("output.leaves.every").number);
+  int vtk_wind_every = int(schema::key(schema::kOutputKeys, "output.vtk.wind_every").number);
+  int vtk_trees_every = int(schema::key(schema::kOutputKeys, "output.vtk.trees_every").number);
+  int vdb_every = int(schema::key(schema::kOutputKeys, "output.vdb.every").number);
+  int leaves_every = int(schema::key(schema::kOutputKeys, "output.leaves.every").number);
   /// Subset of schema::kVtkFieldWords, in the file's order.
-  std::vector<std::string> vtk_fields = schema::strings(schema::key("output.vtk.fields").chosen);
-  bool vdb_enabled = schema::key("output.vdb.enabled").flag;
+  std::vector<std::string> vtk_fields =
+      schema::strings(schema::key(schema::kOutputKeys, "output.vtk.fields").chosen);
+  bool vdb_enabled = schema::key(schema::kOutputKeys, "output.vdb.enabled").flag;
   /// Subset of schema::kVdbGridWords, in the file's order ("leaves": a points grid, in runs with leaves).
-  std::vector<std::string> vdb_grids = schema::strings(schema::key("output.vdb.grids").chosen);
-  bool vtk_leaves = schema::key("output.leaves.vtk").flag;  ///< leaves.pvd, in runs with leaves
+  std::vector<std::string> vdb_grids =
+      schema::strings(schema::key(schema::kOutputKeys, "output.vdb.grids").chosen);
+  bool vtk_leaves =
+      schema::key(schema::kOutputKeys, "output.leaves.vtk").flag;  ///< leaves.pvd, in runs with leaves
   /// output.leaves.attached: the frames hold the attached leaves whose index on their tree is a multiple of
   /// N; 1 all, 0 none. Flying and landed leaves are always written.
-  int leaves_attached_stride = schema::value_of(schema::kLeafStrideWords, schema::kLeafStrides,
-                                                schema::key("output.leaves.attached").word);
+  int leaves_attached_stride =
+      schema::value_of(schema::kLeafStrideWords, schema::kLeafStrides,
+                       schema::key(schema::kOutputKeys, "output.leaves.attached").word);
   std::vector<Probe> probes;
   /// output.checkpoint.interval, s; 0 without the key (checkpoints only when a signal stops the run).
   double checkpoint_interval = 0.0;
-  int checkpoints_kept = int(schema::key("output.checkpoint.keep").number);  ///< the newest ones kept
+  int checkpoints_kept =
+      int(schema::key(schema::kOutputKeys, "output.checkpoint.keep").number);  ///< the newest ones kept
 };
 
 /// The ambient wind of `wind` at the reference height at time t (s), m/s: Scenario::wind_vector without the

@@ -14,7 +14,7 @@
 namespace fw::io::reader {
 
 void read_domain(const Loader& loader, const Field& field, DomainSettings& domain) {
-  const Section<"domain"> map(loader, field);
+  const Section<schema::kDomainKeys, "domain"> map(loader, field);
   if (const auto origin = map.get<"origin">()) domain.origin = loader.vector<3>(*origin);
   const Field size = map.require<"size">();
   domain.size = loader.vector<3>(size);
@@ -58,12 +58,13 @@ void read_domain(const Loader& loader, const Field& field, DomainSettings& domai
 }
 
 void read_boundaries(const Loader& loader, const Field& field, Scenario& scenario) {
-  const Section<"boundaries"> map(loader, field);
+  const Section<schema::kBoundaryKeys, "boundaries"> map(loader, field);
   // Indexed by FW_FACE_*, as the schema lists the faces (tests/io/ScenarioSchema_test.cpp checks it).
   const std::array<std::optional<Field>, 6> given = {map.get<"west">(),   map.get<"east">(),
                                                      map.get<"south">(),  map.get<"north">(),
                                                      map.get<"ground">(), map.get<"top">()};
-  const std::vector<std::string> faces = schema::child_names(schema::key("boundaries").path);
+  const std::vector<std::string> faces =
+      schema::child_names(schema::key(schema::kTopLevelKeys, "boundaries").path);
   const std::string rough = to_string(BoundaryChoice::rough);
   for (int face = 0; face < 6; ++face) {
     if (!given[face]) continue;
@@ -112,10 +113,11 @@ void resolve_ground_roughness(const Loader& loader, const Field& boundaries, Sce
     return;
   const bool from_profile = scenario.wind.profile.type == fluid::InflowProfile::Type::log;
   const double z0 = from_profile ? scenario.wind.profile.roughness_length
-                                 : schema::key("boundaries.roughness_length").number;
+                                 : schema::key(schema::kBoundaryKeys, "boundaries.roughness_length").number;
   const double first_centre = fluid::wall_centre_height(scenario.domain.cell_size);
   if (!(z0 < first_centre)) {
-    const Field missing = Section<"boundaries">(loader, boundaries).missing<"roughness_length">();
+    const Field missing =
+        Section<schema::kBoundaryKeys, "boundaries">(loader, boundaries).missing<"roughness_length">();
     const std::string default_text =
         from_profile ? fmt::format("the default, wind.profile.roughness_length, is {} m", z0)
                      : fmt::format("the default without a log profile is {} m", z0);

@@ -5,8 +5,8 @@ namespace fw::io::reader {
 
 void read_events(const Loader& loader, const Field& field, Scenario& scenario) {
   for (const Field& item : loader.items(field)) {
-    const Section<"events[]"> kind(loader, item);  // gust is required
-    const Section<"events[].gust"> map(loader, kind.require<"gust">());
+    const Section<schema::kEventKeys, "events[]"> kind(loader, item);  // gust is required
+    const Section<schema::kEventKeys, "events[].gust"> map(loader, kind.require<"gust">());
     GustEvent gust;
     gust.start = loader.number(map.require<"start">());
     gust.duration = loader.number(map.require<"duration">());

@@ -35,14 +35,14 @@ Vec2 region_corner(const Loader& loader, const Field& field, const DomainSetting
 }
 
 Stand read_stand(const Loader& loader, const Field& item, const Scenario& scenario) {
-  const Section<"forest.stands[]"> map(loader, item);
+  const Section<schema::kForestKeys, "forest.stands[]"> map(loader, item);
   Stand stand;
   stand.line = stand.leaf_area_index_line = item.line;
   const Field species = map.require<"species">();
   stand.layout.species = species_index(loader, species, scenario.forest.species);
   stand.species = scenario.forest.species[stand.layout.species].name;
 
-  const Section<"forest.stands[].region"> region(loader, map.require<"region">());
+  const Section<schema::kForestKeys, "forest.stands[].region"> region(loader, map.require<"region">());
   const Vec2 min = region_corner(loader, region.require<"min">(), scenario.domain);
   const Field max_field = region.require<"max">();
   const Vec2 max = region_corner(loader, max_field, scenario.domain);
@@ -52,16 +52,16 @@ Stand read_stand(const Loader& loader, const Field& item, const Scenario& scenar
   stand.layout.min = {min[0], min[1]};
   stand.layout.max = {max[0], max[1]};
 
-  stand.layout.layout =
-      value(schema::kLayoutWords, schema::kLayouts, std::string(schema::key("forest.stands[].layout").word));
+  stand.layout.layout = value(schema::kLayoutWords, schema::kLayouts,
+                              std::string(schema::key(schema::kForestKeys, "forest.stands[].layout").word));
   if (const auto layout = map.get<"layout">())
     stand.layout.layout = value(schema::kLayoutWords, schema::kLayouts, loader.word(*layout));
   const Field spacing = map.require<"spacing">();
   stand.layout.spacing = loader.number(spacing);
-  stand.layout.scale_min = schema::key("forest.stands[].scale.min").number;
-  stand.layout.scale_max = schema::key("forest.stands[].scale.max").number;
+  stand.layout.scale_min = schema::key(schema::kForestKeys, "forest.stands[].scale.min").number;
+  stand.layout.scale_max = schema::key(schema::kForestKeys, "forest.stands[].scale.max").number;
   if (const auto scale_field = map.get<"scale">()) {
-    const Section<"forest.stands[].scale"> scale(loader, *scale_field);
+    const Section<schema::kForestKeys, "forest.stands[].scale"> scale(loader, *scale_field);
     if (const auto low = scale.get<"min">()) stand.layout.scale_min = loader.number(*low);
     if (const auto high = scale.get<"max">()) {
       stand.layout.scale_max = loader.number(*high);
@@ -88,7 +88,7 @@ Stand read_stand(const Loader& loader, const Field& item, const Scenario& scenar
 }
 
 PlacedTreeSettings read_tree(const Loader& loader, const Field& item, const Scenario& scenario) {
-  const Section<"forest.trees[]"> map(loader, item);
+  const Section<schema::kForestKeys, "forest.trees[]"> map(loader, item);
   PlacedTreeSettings tree;
   tree.species_index = species_index(loader, map.require<"species">(), scenario.forest.species);
   tree.species = scenario.forest.species[tree.species_index].name;
@@ -123,7 +123,7 @@ PlacedTreeSettings read_tree(const Loader& loader, const Field& item, const Scen
 }  // namespace
 
 void read_forest(const Loader& loader, const Field& field, Scenario& scenario) {
-  const Section<"forest"> map(loader, field);
+  const Section<schema::kForestKeys, "forest"> map(loader, field);
   ForestSettings& forest = scenario.forest;
   if (const auto coupling = map.get<"two_way_coupling">())
     forest.two_way_coupling = loader.boolean(*coupling);
@@ -132,7 +132,7 @@ void read_forest(const Loader& loader, const Field& field, Scenario& scenario) {
   if (const auto correction = map.get<"strong_wind_correction">())
     forest.strong_wind_correction = loader.boolean(*correction);
   if (const auto law = map.get<"drag_law">()) {
-    const Section<"forest.drag_law"> drag(loader, *law);
+    const Section<schema::kForestKeys, "forest.drag_law"> drag(loader, *law);
     if (const auto exponent = drag.get<"exponent">()) forest.drag_law.exponent = loader.number(*exponent);
     if (const auto speed = drag.get<"reference_speed">())
       forest.drag_law.reference_speed = loader.number(*speed);

@@ -63,7 +63,7 @@ Scenario load_scenario(const std::filesystem::path& file) {
       if (key->required) required.emplace_back(key->path);
     loader.expected(root, "a map of scenario keys (" + join(required, ", ") + ", ...)");
   }
-  const Section<""> top(loader, root);
+  const Section<schema::kTopLevelKeys, ""> top(loader, root);
 
   const Field scenario_name = top.require<"scenario">();
   scenario.name = loader.text(scenario_name);

@@ -6,7 +6,7 @@
 namespace fw::io::reader {
 
 void read_solver(const Loader& loader, const Field& field, SolverSettings& solver) {
-  const Section<"solver"> map(loader, field);
+  const Section<schema::kSolverKeys, "solver"> map(loader, field);
   if (const auto pressure = map.get<"pressure">())
     solver.pressure = value(schema::kPressureWords, schema::kPressureSolvers, loader.word(*pressure));
   if (const auto tolerance = map.get<"tolerance">()) solver.tolerance = loader.number(*tolerance);

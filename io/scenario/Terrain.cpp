@@ -11,7 +11,7 @@
 namespace fw::io::reader {
 
 void read_terrain(const Loader& loader, const Field& field, Scenario& scenario) {
-  const Section<"terrain"> map(loader, field);
+  const Section<schema::kTerrainKeys, "terrain"> map(loader, field);
   TerrainSettings terrain;
   const Field heightmap = map.require<"heightmap">();
   terrain.heightmap = loader.readable_file(heightmap);

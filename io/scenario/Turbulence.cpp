@@ -19,7 +19,7 @@ constexpr double kDefaultBoxLengthScales = 8.0;
 }  // namespace
 
 TurbulenceSettings read_turbulence(const Loader& loader, const Field& field, const Scenario& scenario) {
-  const Section<"wind.turbulence"> map(loader, field);  // length_scale is required
+  const Section<schema::kWindKeys, "wind.turbulence"> map(loader, field);  // length_scale is required
   TurbulenceSettings turbulence;
   if (const auto model = map.get<"model">())
     turbulence.model = value(schema::kTurbulenceModelWords, kTurbulenceModels, loader.word(*model));

@@ -38,7 +38,7 @@ bool sides_periodic(const Scenario& scenario) {
 
 void read_wind(const Loader& loader, const Field& field, Scenario& scenario) {
   WindSource& wind = scenario.wind;
-  const Section<"wind"> map(loader, field);
+  const Section<schema::kWindKeys, "wind"> map(loader, field);
   const Field speed = map.require<"speed">();
   wind.speed = loader.expression(speed);
   check_time_series(loader, speed, wind.speed, scenario.time.end);
@@ -48,16 +48,17 @@ void read_wind(const Loader& loader, const Field& field, Scenario& scenario) {
   if (const auto height = map.get<"reference_height">()) wind.reference_height = loader.number(*height);
 
   wind.profile = fluid::InflowProfile{};
-  wind.profile.type =
-      value(schema::kProfileWords, schema::kProfileTypes, std::string(schema::key("wind.profile.type").word));
-  wind.profile.alpha = schema::key("wind.profile.alpha").number;
-  wind.profile.displacement_height = schema::key("wind.profile.displacement_height").number;
+  wind.profile.type = value(schema::kProfileWords, schema::kProfileTypes,
+                            std::string(schema::key(schema::kWindKeys, "wind.profile.type").word));
+  wind.profile.alpha = schema::key(schema::kWindKeys, "wind.profile.alpha").number;
+  wind.profile.displacement_height =
+      schema::key(schema::kWindKeys, "wind.profile.displacement_height").number;
   wind.profile.reference_height = wind.reference_height;
   if (const auto profile_field = map.get<"profile">()) {
     // The allowed keys depend on the type, so read the type first.
-    const Section<"wind.profile"> any(loader, *profile_field);
+    const Section<schema::kWindKeys, "wind.profile"> any(loader, *profile_field);
     const std::string type = loader.word(any.require<"type">());
-    const Section<"wind.profile"> profile(loader, *profile_field, &type);
+    const Section<schema::kWindKeys, "wind.profile"> profile(loader, *profile_field, &type);
     wind.profile.type = value(schema::kProfileWords, schema::kProfileTypes, type);
     if (const auto alpha = profile.get<"alpha">()) wind.profile.alpha = loader.number(*alpha);
     if (const auto roughness = profile.get<"roughness_length">())
@@ -86,14 +87,15 @@ void read_wind(const Loader& loader, const Field& field, Scenario& scenario) {
     if (!periodic) {
       int open = FW_FACE_WEST;
       while (scenario.boundaries[open] == BoundaryChoice::periodic) ++open;
-      const std::vector<std::string> faces = schema::child_names(schema::key("boundaries").path);
+      const std::vector<std::string> faces =
+          schema::child_names(schema::key(schema::kTopLevelKeys, "boundaries").path);
       loader.expected(
           *forcing_field,
           fmt::format("forcing only in a domain whose west, east, south and north are all periodic "
                       "(boundaries.{} is '{}')",
                       faces[open], to_string(scenario.boundaries[open])));
     }
-    const Section<"wind.forcing"> forcing(loader, *forcing_field);
+    const Section<schema::kWindKeys, "wind.forcing"> forcing(loader, *forcing_field);
     wind.forcing = ForcingSettings{};
     if (const auto tau = forcing.get<"relaxation_time">())
       wind.forcing->relaxation_time = loader.number(*tau);
