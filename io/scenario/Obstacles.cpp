@@ -1,5 +1,8 @@
 // obstacles: boxes, cylinders and spheres.
-#include "io/scenario/Sections.hpp"
+#include "io/scenario/Obstacles.hpp"
+
+#include "io/schema/ObstacleKeys.hpp"
+#include "io/settings/Radians.hpp"
 
 namespace fw::io::reader {
 
@@ -36,16 +39,17 @@ fluid::SolidSphere read_sphere(const Loader& loader, const Field& field) {
 
 }  // namespace
 
-void read_obstacles(const Loader& loader, const Field& field, Scenario& scenario) {
+std::vector<Obstacle> read_obstacles(const Loader& loader, const Field& field) {
+  std::vector<Obstacle> obstacles;
   for (const Field& item : loader.items(field)) {
     const Section<schema::kObstacleKeys, "obstacles[]"> kind(loader, item);
     kind.exactly_one();
-    if (const auto box = kind.get<"box">()) scenario.obstacles.emplace_back(read_box(loader, *box));
+    if (const auto box = kind.get<"box">()) obstacles.emplace_back(read_box(loader, *box));
     if (const auto cylinder = kind.get<"cylinder">())
-      scenario.obstacles.emplace_back(read_cylinder(loader, *cylinder));
-    if (const auto sphere = kind.get<"sphere">())
-      scenario.obstacles.emplace_back(read_sphere(loader, *sphere));
+      obstacles.emplace_back(read_cylinder(loader, *cylinder));
+    if (const auto sphere = kind.get<"sphere">()) obstacles.emplace_back(read_sphere(loader, *sphere));
   }
+  return obstacles;
 }
 
 }  // namespace fw::io::reader

@@ -1,5 +1,5 @@
 // output: the folder, the frames' interval and contents, the leaves in them, and the probes.
-#include "io/scenario/Sections.hpp"
+#include "io/scenario/Output.hpp"
 
 #include <fmt/format.h>
 
@@ -83,12 +83,13 @@ Probe read_probe(const Loader& loader, const Field& item, const std::vector<Prob
 
 }  // namespace
 
-void read_output(const Loader& loader, const Field& field, Scenario& scenario) {
-  OutputSettings& output = scenario.output;
+OutputSettings read_output(const Loader& loader, const Field& field, const std::string& scenario_name,
+                           const DomainSettings& domain) {
+  OutputSettings output;
   const Section<schema::kOutputKeys, "output"> map(loader, field);
   std::string directory(schema::key(schema::kOutputKeys, "output.directory").word);
   if (const std::size_t at = directory.find(kScenarioNamePlaceholder); at != std::string::npos)
-    directory.replace(at, kScenarioNamePlaceholder.size(), scenario.name);
+    directory.replace(at, kScenarioNamePlaceholder.size(), scenario_name);
   if (const auto given = map.get<"directory">()) directory = loader.text(*given);
   // Against the working directory, not the scenario folder: a run writes where it is started.
   output.directory = std::filesystem::absolute(std::filesystem::path(directory)).lexically_normal();
@@ -107,12 +108,13 @@ void read_output(const Loader& loader, const Field& field, Scenario& scenario) {
   if (const auto leaves = map.get<"leaves">()) read_leaves(loader, *leaves, output);
   if (const auto probes = map.get<"probes">())
     for (const Field& item : loader.items(*probes))
-      output.probes.push_back(read_probe(loader, item, output.probes, scenario.domain));
+      output.probes.push_back(read_probe(loader, item, output.probes, domain));
   if (const auto checkpoint = map.get<"checkpoint">()) {
     const Section<schema::kOutputKeys, "output.checkpoint"> settings(loader, *checkpoint);
     output.checkpoint_interval = loader.number(settings.require<"interval">());
     if (const auto keep = settings.get<"keep">()) output.checkpoints_kept = loader.integer(*keep);
   }
+  return output;
 }
 
 }  // namespace fw::io::reader

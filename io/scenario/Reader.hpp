@@ -1,7 +1,8 @@
 // What the scenario loader's section readers (io/scenario/*.cpp) share: a value of the file with the key and
 // line to blame (Field), one map of the file read against its keys in the schema (Section), and the Loader
 // that reads each scalar as its key in the schema says and throws ScenarioError ("FILE:LINE: KEY: what was
-// expected, got VALUE"). Internal to forestwind_io; io/Scenario.hpp is the public header.
+// expected, got VALUE"). Internal to forestwind_io; io/Scenario.hpp and the section structs of io/settings/
+// are the public headers.
 //
 // A reader names its map by its section's table and its schema path, and each key by its name in that map,
 // all checked against that table at compile time: a key the schema lacks (a typo, a key not added to the
@@ -34,7 +35,6 @@
 #include <vector>
 
 #include "io/Expression.hpp"
-#include "io/Scenario.hpp"
 #include "io/ScenarioSchema.hpp"
 #include "io/schema/Key.hpp"
 

@@ -1,5 +1,5 @@
 // solver: the pressure solver, advection and the subgrid models.
-#include "io/scenario/Sections.hpp"
+#include "io/scenario/Solver.hpp"
 
 #include <fmt/format.h>
 

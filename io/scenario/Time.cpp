@@ -1,5 +1,5 @@
 // time: the run's span and time step.
-#include "io/scenario/Sections.hpp"
+#include "io/scenario/Time.hpp"
 
 namespace fw::io::reader {
 

@@ -10,6 +10,8 @@
 #include "fluid/CanopyField.hpp"
 #include "host/app/plan/PlanBuilders.hpp"
 #include "host/stages/ForestStages.hpp"
+#include "io/Scenario.hpp"
+#include "io/ScenarioSchema.hpp"
 #include "trees/CanopyDrag.hpp"
 
 namespace fw::host {

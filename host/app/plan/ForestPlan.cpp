@@ -16,6 +16,8 @@
 #include "host/app/plan/PlanBuilders.hpp"
 #include "host/stages/ForestStages.hpp"
 #include "host/stages/LeafStages.hpp"
+#include "io/Scenario.hpp"
+#include "io/ScenarioSchema.hpp"
 #include "trees/Foliage.hpp"
 #include "trees/ForestLayout.hpp"
 #include "trees/StandDensity.hpp"

@@ -8,6 +8,8 @@
 
 #include "host/app/plan/PlanBuilders.hpp"
 #include "host/stages/LeafStages.hpp"
+#include "io/Scenario.hpp"
+#include "io/ScenarioSchema.hpp"
 #include "trees/Foliage.hpp"
 #include "trees/QsmImport.hpp"
 #include "trees/TreeFile.hpp"
