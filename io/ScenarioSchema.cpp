@@ -4,20 +4,61 @@
 
 #include <algorithm>
 #include <cmath>
+#include <span>
 #include <stdexcept>
 
-#include "trees/TreeGenerator.hpp"
+#include "io/schema/BoundaryKeys.hpp"
+#include "io/schema/DomainKeys.hpp"
+#include "io/schema/EventKeys.hpp"
+#include "io/schema/ForestKeys.hpp"
+#include "io/schema/ObstacleKeys.hpp"
+#include "io/schema/OutputKeys.hpp"
+#include "io/schema/SolverKeys.hpp"
+#include "io/schema/SpeciesKeys.hpp"
+#include "io/schema/TerrainKeys.hpp"
+#include "io/schema/TimeKeys.hpp"
+#include "io/schema/TopLevelKeys.hpp"
+#include "io/schema/WindKeys.hpp"
 
 namespace fw::io::schema {
 
-std::vector<std::string> preset_words() {
-  return trees::preset_names();
+namespace {
+
+/// A section's table and its prose.
+struct SectionTable {
+  std::span<const Key> keys;
+  std::span<const KeyDocs> (*docs)();
+};
+
+/// Every section, in the order of the file's sections: the order of the docs' tables, and of the keys a
+/// map's messages list (a map's keys all stand in one table).
+constexpr SectionTable kSections[] = {
+    {kTopLevelKeys, top_level_docs}, {kTimeKeys, time_docs},       {kDomainKeys, domain_docs},
+    {kBoundaryKeys, boundary_docs},  {kWindKeys, wind_docs},       {kEventKeys, event_docs},
+    {kObstacleKeys, obstacle_docs},  {kTerrainKeys, terrain_docs}, {kForestKeys, forest_docs},
+    {kSpeciesKeys, species_docs},    {kSolverKeys, solver_docs},   {kOutputKeys, output_docs}};
+
+}  // namespace
+
+std::vector<const Key*> all_keys() {
+  std::vector<const Key*> out;
+  for (const SectionTable& section : kSections)
+    for (const Key& entry : section.keys) out.push_back(&entry);
+  return out;
 }
 
 const Key* find(std::string_view path) {
-  for (const Key& entry : kKeys)
-    if (entry.path == path) return &entry;
+  for (const SectionTable& section : kSections)
+    for (const Key& entry : section.keys)
+      if (entry.path == path) return &entry;
   return nullptr;
+}
+
+const KeyDocs& docs(const Key& key) {
+  for (const SectionTable& section : kSections)
+    for (const KeyDocs& entry : section.docs())
+      if (entry.path == key.path) return entry;
+  throw std::logic_error(fmt::format("scenario schema: key {} has no prose", key.path));
 }
 
 std::string generic_path(std::string_view key) {
@@ -98,16 +139,16 @@ std::string range_text(const Key& key) {
   return join(parts, " and ");
 }
 
-/// key.constraint with its {0}, {1}, {2} replaced by key.limits: whole numbers in full (2147483647), others
-/// as number_text writes them (1e-6).
-std::string constraint_text(const Key& key) {
+/// The docs' constraint with its {0}, {1}, {2} replaced by their limits: whole numbers in full (2147483647),
+/// others as number_text writes them (1e-6).
+std::string constraint_text(const KeyDocs& prose) {
   std::array<std::string, 3> limits;
   for (std::size_t i = 0; i < limits.size(); ++i) {
-    const double value = key.limits[i];
+    const double value = prose.limits[i];
     limits[i] = value == std::round(value) && std::abs(value) < 1e15 ? fmt::format("{:.0f}", value)
                                                                      : number_text(value);
   }
-  return fmt::format(fmt::runtime(key.constraint), limits[0], limits[1], limits[2]);
+  return fmt::format(fmt::runtime(prose.constraint), limits[0], limits[1], limits[2]);
 }
 
 /// "[x, y]", "[x, y, z]".
@@ -132,8 +173,9 @@ std::string_view parent_of(std::string_view path) {
 
 std::vector<const Key*> children(std::string_view parent) {
   std::vector<const Key*> out;
-  for (const Key& entry : kKeys)
-    if (below(entry.path, parent)) out.push_back(&entry);
+  for (const SectionTable& section : kSections)
+    for (const Key& entry : section.keys)
+      if (below(entry.path, parent)) out.push_back(&entry);
   return out;
 }
 
@@ -252,7 +294,7 @@ std::string doc_type(const Key& key) {
 }
 
 std::string doc_default(const Key& key) {
-  if (!key.default_note.empty()) return std::string(key.default_note);
+  if (const std::string_view note = docs(key).default_note; !note.empty()) return std::string(note);
   if (key.required)
     return key.only_with.empty() ? "required" : fmt::format("required for `{}`", key.only_with);
   const Key* parent = find(parent_of(key.path));
@@ -294,7 +336,8 @@ std::string doc_default(const Key& key) {
 }
 
 std::string doc_allowed(const Key& key) {
-  if (!key.allowed.empty()) return std::string(key.allowed);
+  const KeyDocs& prose = docs(key);
+  if (!prose.allowed.empty()) return std::string(prose.allowed);
   std::string allowed;
   switch (key.type) {
     case Type::map:
@@ -360,7 +403,7 @@ std::string doc_allowed(const Key& key) {
       allowed = "the word `with_wind` or any 3 numbers";
       break;
   }
-  if (!key.constraint.empty()) allowed += "; " + constraint_text(key);
+  if (!prose.constraint.empty()) allowed += "; " + constraint_text(prose);
   if (!key.only_with.empty()) allowed += fmt::format("; `{}` only", key.only_with);
   return allowed;
 }
@@ -372,7 +415,7 @@ std::string table(const std::vector<const Key*>& keys) {
   for (const Key* key : keys) {
     out += fmt::format("| `{}` | {} | {} | {} | {} | {} |\n", key->path, doc_type(*key),
                        key->unit.empty() ? "—" : key->unit, doc_default(*key), doc_allowed(*key),
-                       key->description);
+                       docs(*key).description);
   }
   return out;
 }
@@ -405,17 +448,17 @@ std::string render_scenario_docs(std::string_view page) {
     sections.emplace_back(page.substr(name, end - name));
   }
   std::vector<std::vector<const Key*>> taken(sections.size());
-  for (const Key& key : kKeys) {
+  for (const Key* key : all_keys()) {
     long best = -1;
     std::size_t best_section = 0;
     for (std::size_t s = 0; s < sections.size(); ++s) {
-      const long score = claim(sections[s], key.path);
+      const long score = claim(sections[s], key->path);
       if (score > best) best = score, best_section = s;
     }
     if (best < 0)
       throw std::invalid_argument(
-          fmt::format("scenario docs: key {} is in no table (add a <!-- schema: ... --> block)", key.path));
-    taken[best_section].push_back(&key);
+          fmt::format("scenario docs: key {} is in no table (add a <!-- schema: ... --> block)", key->path));
+    taken[best_section].push_back(key);
   }
 
   std::string out;

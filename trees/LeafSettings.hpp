@@ -37,7 +37,7 @@ struct LeafSettings {
   std::uint64_t seed = 1;                            ///< the species' leaves (positions, angles, strengths)
 
   // The upper limits of the ranges above, written once: validate() checks them, and the scenario schema
-  // (io/ScenarioSchema.hpp) takes them for its keys, its messages and docs/scenario.md.
+  // (io/schema/SpeciesKeys.hpp) takes them for its keys, its messages and docs/scenario.md.
   static constexpr double kMaxFraction = 1.0;  ///< fraction <= this: every leaf of the foliage
   /// damping_ratio < this: at critical damping the pseudo-branch no longer oscillates.
   static constexpr double kDampingRatioBelow = 1.0;

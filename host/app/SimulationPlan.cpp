@@ -8,6 +8,7 @@
 #include <fmt/format.h>
 
 #include "host/app/plan/PlanBuilders.hpp"
+#include "io/Scenario.hpp"
 
 namespace fw::host {
 
@@ -15,7 +16,7 @@ SimulationPlan plan_simulation(const io::Scenario& scenario, const trees::BasisC
                                std::ostream* log, int ranks) {
   SimulationPlan plan;
   plan_wind(scenario, ranks, plan);
-  plan_turbulence(scenario, plan);
+  plan_turbulence(scenario.wind, plan);
   plan_forest(scenario, plan_species(scenario, cache, log, plan), plan);
   plan_coupling(scenario, plan);
   plan_outputs(scenario, plan);

@@ -34,11 +34,15 @@
 #include "host/app/DeviceMemory.hpp"
 #include "host/app/TimeInputs.hpp"
 #include "host/stages/WindGrid.hpp"
-#include "io/Scenario.hpp"
+#include "io/settings/OutputSettings.hpp"
 #include "io/writers/ManifestWriter.hpp"
 #include "trees/BasisCache.hpp"
 #include "trees/Forest.hpp"
 #include "trees/StandDensity.hpp"
+
+namespace fw::io {
+struct Scenario;  // io/Scenario.hpp
+}  // namespace fw::io
 
 namespace fw::host {
 

@@ -1,5 +1,5 @@
 // domain and boundaries: the wind grid and the condition on each face.
-#include "io/scenario/Sections.hpp"
+#include "io/scenario/Domain.hpp"
 
 #include <fmt/format.h>
 
@@ -8,13 +8,15 @@
 #include <limits>
 #include <optional>
 
+#include "fluid/GridSpec.hpp"
 #include "fluid/SubgridStress.hpp"
+#include "io/schema/TopLevelKeys.hpp"
 #include "kernels/shared_types.h"
 
 namespace fw::io::reader {
 
 void read_domain(const Loader& loader, const Field& field, DomainSettings& domain) {
-  const Section<"domain"> map(loader, field);
+  const Section<schema::kDomainKeys, "domain"> map(loader, field);
   if (const auto origin = map.get<"origin">()) domain.origin = loader.vector<3>(*origin);
   const Field size = map.require<"size">();
   domain.size = loader.vector<3>(size);
@@ -57,48 +59,50 @@ void read_domain(const Loader& loader, const Field& field, DomainSettings& domai
   }
 }
 
-void read_boundaries(const Loader& loader, const Field& field, Scenario& scenario) {
-  const Section<"boundaries"> map(loader, field);
+void read_boundaries(const Loader& loader, const Field& field, const DomainSettings& domain,
+                     std::array<BoundaryChoice, 6>& boundaries, double& ground_roughness_length) {
+  const Section<schema::kBoundaryKeys, "boundaries"> map(loader, field);
   // Indexed by FW_FACE_*, as the schema lists the faces (tests/io/ScenarioSchema_test.cpp checks it).
   const std::array<std::optional<Field>, 6> given = {map.get<"west">(),   map.get<"east">(),
                                                      map.get<"south">(),  map.get<"north">(),
                                                      map.get<"ground">(), map.get<"top">()};
-  const std::vector<std::string> faces = schema::child_names(schema::key("boundaries").path);
+  const std::vector<std::string> faces =
+      schema::child_names(schema::key(schema::kTopLevelKeys, "boundaries").path);
   const std::string rough = to_string(BoundaryChoice::rough);
   for (int face = 0; face < 6; ++face) {
     if (!given[face]) continue;
     const Field& choice = *given[face];
     if (face != FW_FACE_GROUND && choice.node.IsScalar() && choice.node.Scalar() == rough)
       loader.expected(choice, schema::expected(key_of(choice)) + " (rough is for the ground only)");
-    scenario.boundaries[face] = value(schema::kBoundaryWords, kBoundaryChoices, loader.word(choice));
+    boundaries[face] = value(schema::kBoundaryWords, kBoundaryChoices, loader.word(choice));
   }
   if (const auto roughness = map.get<"roughness_length">()) {
     const double z0 = loader.number(*roughness);
-    if (scenario.boundaries[FW_FACE_GROUND] != BoundaryChoice::rough) {
+    if (boundaries[FW_FACE_GROUND] != BoundaryChoice::rough) {
       loader.expected(*roughness, fmt::format("nothing unless boundaries.ground is rough (it is '{}')",
-                                              to_string(scenario.boundaries[FW_FACE_GROUND])));
+                                              to_string(boundaries[FW_FACE_GROUND])));
     }
-    const double first_centre = fluid::wall_centre_height(scenario.domain.cell_size);
+    const double first_centre = fluid::wall_centre_height(domain.cell_size);
     if (!(z0 < first_centre)) {
       loader.expected(*roughness,
                       fmt::format("{} below cell_size / 2 = {} m (the log law is evaluated at the "
                                   "first cell centre)",
                                   schema::expected(key_of(*roughness)), first_centre));
     }
-    scenario.ground_roughness_length = z0;
+    ground_roughness_length = z0;
   }
   for (int axis = 0; axis < 3; ++axis) {
     const int low = 2 * axis, high = 2 * axis + 1;
-    const bool low_periodic = scenario.boundaries[low] == BoundaryChoice::periodic;
-    const bool high_periodic = scenario.boundaries[high] == BoundaryChoice::periodic;
+    const bool low_periodic = boundaries[low] == BoundaryChoice::periodic;
+    const bool high_periodic = boundaries[high] == BoundaryChoice::periodic;
     if (low_periodic != high_periodic) {
       const int face = low_periodic ? low : high, other = low_periodic ? high : low;
       loader.expected(
           *given[face],
           fmt::format("periodic on both {} and {} (a pair), or neither; {} is '{}', so not periodic",
-                      faces[low], faces[high], faces[other], to_string(scenario.boundaries[other])));
+                      faces[low], faces[high], faces[other], to_string(boundaries[other])));
     }
-    const int cells = scenario.domain.cells[axis];
+    const int cells = domain.cells[axis];
     if (low_periodic && cells > 1 && cells % 2 != 0) {
       loader.expected(*given[low], fmt::format("periodic only along an axis with an even cell count; {} has "
                                                "{} cells",
@@ -107,15 +111,17 @@ void read_boundaries(const Loader& loader, const Field& field, Scenario& scenari
   }
 }
 
-void resolve_ground_roughness(const Loader& loader, const Field& boundaries, Scenario& scenario) {
-  if (scenario.boundaries[FW_FACE_GROUND] != BoundaryChoice::rough || scenario.ground_roughness_length > 0.0)
-    return;
-  const bool from_profile = scenario.wind.profile.type == fluid::InflowProfile::Type::log;
-  const double z0 = from_profile ? scenario.wind.profile.roughness_length
-                                 : schema::key("boundaries.roughness_length").number;
-  const double first_centre = fluid::wall_centre_height(scenario.domain.cell_size);
+void resolve_ground_roughness(const Loader& loader, const Field& boundaries_field,
+                              const DomainSettings& domain, const std::array<BoundaryChoice, 6>& boundaries,
+                              const fluid::InflowProfile& profile, double& ground_roughness_length) {
+  if (boundaries[FW_FACE_GROUND] != BoundaryChoice::rough || ground_roughness_length > 0.0) return;
+  const bool from_profile = profile.type == fluid::InflowProfile::Type::log;
+  const double z0 = from_profile ? profile.roughness_length
+                                 : schema::key(schema::kBoundaryKeys, "boundaries.roughness_length").number;
+  const double first_centre = fluid::wall_centre_height(domain.cell_size);
   if (!(z0 < first_centre)) {
-    const Field missing = Section<"boundaries">(loader, boundaries).missing<"roughness_length">();
+    const Field missing =
+        Section<schema::kBoundaryKeys, "boundaries">(loader, boundaries_field).missing<"roughness_length">();
     const std::string default_text =
         from_profile ? fmt::format("the default, wind.profile.roughness_length, is {} m", z0)
                      : fmt::format("the default without a log profile is {} m", z0);
@@ -123,7 +129,7 @@ void resolve_ground_roughness(const Loader& loader, const Field& boundaries, Sce
                 fmt::format("{} below cell_size / 2 = {} m expected (required here: {}), got nothing",
                             schema::expected(key_of(missing)), first_centre, default_text));
   }
-  scenario.ground_roughness_length = z0;
+  ground_roughness_length = z0;
 }
 
 }  // namespace fw::io::reader

@@ -1,12 +1,15 @@
 // events: gusts.
-#include "io/scenario/Sections.hpp"
+#include "io/scenario/Events.hpp"
+
+#include "io/schema/EventKeys.hpp"
 
 namespace fw::io::reader {
 
-void read_events(const Loader& loader, const Field& field, Scenario& scenario) {
+std::vector<GustEvent> read_events(const Loader& loader, const Field& field, const WindSource& wind) {
+  std::vector<GustEvent> events;
   for (const Field& item : loader.items(field)) {
-    const Section<"events[]"> kind(loader, item);  // gust is required
-    const Section<"events[].gust"> map(loader, kind.require<"gust">());
+    const Section<schema::kEventKeys, "events[]"> kind(loader, item);  // gust is required
+    const Section<schema::kEventKeys, "events[].gust"> map(loader, kind.require<"gust">());
     GustEvent gust;
     gust.start = loader.number(map.require<"start">());
     gust.duration = loader.number(map.require<"duration">());
@@ -23,9 +26,10 @@ void read_events(const Loader& loader, const Field& field, Scenario& scenario) {
         loader.expected(*travel);
       }
     }
-    if (gust.travel_with_wind) gust.travel = scenario.wind_vector(gust.start);
-    scenario.events.push_back(gust);
+    if (gust.travel_with_wind) gust.travel = wind_vector(wind, gust.start);
+    events.push_back(gust);
   }
+  return events;
 }
 
 }  // namespace fw::io::reader

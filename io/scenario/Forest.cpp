@@ -1,9 +1,11 @@
 // forest: its switches, then the species (io/scenario/Species.cpp), the stands and the single trees.
-#include "io/scenario/Sections.hpp"
+#include "io/scenario/Forest.hpp"
 
 #include <fmt/format.h>
 
 #include <stdexcept>
+
+#include "io/scenario/Species.hpp"
 
 namespace fw::io::reader {
 
@@ -34,34 +36,35 @@ Vec2 region_corner(const Loader& loader, const Field& field, const DomainSetting
   return corner;
 }
 
-Stand read_stand(const Loader& loader, const Field& item, const Scenario& scenario) {
-  const Section<"forest.stands[]"> map(loader, item);
+Stand read_stand(const Loader& loader, const Field& item, const ForestSettings& forest,
+                 const DomainSettings& domain, std::uint64_t seed) {
+  const Section<schema::kForestKeys, "forest.stands[]"> map(loader, item);
   Stand stand;
   stand.line = stand.leaf_area_index_line = item.line;
   const Field species = map.require<"species">();
-  stand.layout.species = species_index(loader, species, scenario.forest.species);
-  stand.species = scenario.forest.species[stand.layout.species].name;
+  stand.layout.species = species_index(loader, species, forest.species);
+  stand.species = forest.species[stand.layout.species].name;
 
-  const Section<"forest.stands[].region"> region(loader, map.require<"region">());
-  const Vec2 min = region_corner(loader, region.require<"min">(), scenario.domain);
+  const Section<schema::kForestKeys, "forest.stands[].region"> region(loader, map.require<"region">());
+  const Vec2 min = region_corner(loader, region.require<"min">(), domain);
   const Field max_field = region.require<"max">();
-  const Vec2 max = region_corner(loader, max_field, scenario.domain);
+  const Vec2 max = region_corner(loader, max_field, domain);
   if (!(max[0] > min[0]) || !(max[1] > min[1]))
     loader.expected(max_field,
                     fmt::format("a point north-east of min [{}, {}] (x and y both larger)", min[0], min[1]));
   stand.layout.min = {min[0], min[1]};
   stand.layout.max = {max[0], max[1]};
 
-  stand.layout.layout =
-      value(schema::kLayoutWords, schema::kLayouts, std::string(schema::key("forest.stands[].layout").word));
+  stand.layout.layout = value(schema::kLayoutWords, schema::kLayouts,
+                              std::string(schema::key(schema::kForestKeys, "forest.stands[].layout").word));
   if (const auto layout = map.get<"layout">())
     stand.layout.layout = value(schema::kLayoutWords, schema::kLayouts, loader.word(*layout));
   const Field spacing = map.require<"spacing">();
   stand.layout.spacing = loader.number(spacing);
-  stand.layout.scale_min = schema::key("forest.stands[].scale.min").number;
-  stand.layout.scale_max = schema::key("forest.stands[].scale.max").number;
+  stand.layout.scale_min = schema::key(schema::kForestKeys, "forest.stands[].scale.min").number;
+  stand.layout.scale_max = schema::key(schema::kForestKeys, "forest.stands[].scale.max").number;
   if (const auto scale_field = map.get<"scale">()) {
-    const Section<"forest.stands[].scale"> scale(loader, *scale_field);
+    const Section<schema::kForestKeys, "forest.stands[].scale"> scale(loader, *scale_field);
     if (const auto low = scale.get<"min">()) stand.layout.scale_min = loader.number(*low);
     if (const auto high = scale.get<"max">()) {
       stand.layout.scale_max = loader.number(*high);
@@ -77,7 +80,7 @@ Stand read_stand(const Loader& loader, const Field& item, const Scenario& scenar
     stand.leaf_area_index_line = lai->line;
   }
   // Unless the file gives one: the global seed plus the stand's index.
-  stand.layout.seed = scenario.seed + scenario.forest.stands.size();
+  stand.layout.seed = seed + forest.stands.size();
   if (const auto seed = map.get<"seed">()) stand.layout.seed = loader.seed(*seed);
   try {
     stand.layout.validate();  // what is left to fail: too many trees for the region and spacing
@@ -87,18 +90,18 @@ Stand read_stand(const Loader& loader, const Field& item, const Scenario& scenar
   return stand;
 }
 
-PlacedTreeSettings read_tree(const Loader& loader, const Field& item, const Scenario& scenario) {
-  const Section<"forest.trees[]"> map(loader, item);
+PlacedTreeSettings read_tree(const Loader& loader, const Field& item, const ForestSettings& forest,
+                             const DomainSettings& domain, const std::optional<TerrainSettings>& terrain) {
+  const Section<schema::kForestKeys, "forest.trees[]"> map(loader, item);
   PlacedTreeSettings tree;
-  tree.species_index = species_index(loader, map.require<"species">(), scenario.forest.species);
-  tree.species = scenario.forest.species[tree.species_index].name;
+  tree.species_index = species_index(loader, map.require<"species">(), forest.species);
+  tree.species = forest.species[tree.species_index].name;
 
   const Field position = map.require<"position">();
   if (!position.node.IsSequence() || (position.node.size() != 2 && position.node.size() != 3))
     loader.expected(position);
   for (std::size_t i = 0; i < position.node.size(); ++i)
     tree.position[i] = loader.component(position, i, key_of(position));
-  const DomainSettings& domain = scenario.domain;
   const Vec3 top = domain.max_corner();
   if (!inside(tree.position[0], domain.origin[0], top[0]) ||
       !inside(tree.position[1], domain.origin[1], top[1]))
@@ -112,8 +115,7 @@ PlacedTreeSettings read_tree(const Loader& loader, const Field& item, const Scen
   if (!tree.height_given) {
     // On the ground: the terrain surface, whose heights count from the domain floor.
     tree.position[2] = domain.origin[2];
-    if (scenario.terrain)
-      tree.position[2] += scenario.terrain->map->height_at(tree.position[0], tree.position[1]);
+    if (terrain) tree.position[2] += terrain->map->height_at(tree.position[0], tree.position[1]);
   }
   if (const auto yaw = map.get<"yaw">()) tree.yaw_rad = radians(loader.number(*yaw));
   if (const auto scale = map.get<"scale">()) tree.scale = loader.number(*scale);
@@ -122,9 +124,10 @@ PlacedTreeSettings read_tree(const Loader& loader, const Field& item, const Scen
 
 }  // namespace
 
-void read_forest(const Loader& loader, const Field& field, Scenario& scenario) {
-  const Section<"forest"> map(loader, field);
-  ForestSettings& forest = scenario.forest;
+ForestSettings read_forest(const Loader& loader, const Field& field, const DomainSettings& domain,
+                           const std::optional<TerrainSettings>& terrain, std::uint64_t seed) {
+  const Section<schema::kForestKeys, "forest"> map(loader, field);
+  ForestSettings forest;
   if (const auto coupling = map.get<"two_way_coupling">())
     forest.two_way_coupling = loader.boolean(*coupling);
   if (const auto integrator = map.get<"integrator">())
@@ -132,19 +135,21 @@ void read_forest(const Loader& loader, const Field& field, Scenario& scenario) {
   if (const auto correction = map.get<"strong_wind_correction">())
     forest.strong_wind_correction = loader.boolean(*correction);
   if (const auto law = map.get<"drag_law">()) {
-    const Section<"forest.drag_law"> drag(loader, *law);
+    const Section<schema::kForestKeys, "forest.drag_law"> drag(loader, *law);
     if (const auto exponent = drag.get<"exponent">()) forest.drag_law.exponent = loader.number(*exponent);
     if (const auto speed = drag.get<"reference_speed">())
       forest.drag_law.reference_speed = loader.number(*speed);
   }
   if (const auto species = map.get<"species">())
     for (const Field& item : loader.items(*species))
-      forest.species.push_back(read_species(loader, item, forest.species, scenario.seed));
+      forest.species.push_back(read_species(loader, item, forest.species, seed));
   if (const auto stands = map.get<"stands">())
     for (const Field& item : loader.items(*stands))
-      forest.stands.push_back(read_stand(loader, item, scenario));
+      forest.stands.push_back(read_stand(loader, item, forest, domain, seed));
   if (const auto trees = map.get<"trees">())
-    for (const Field& item : loader.items(*trees)) forest.trees.push_back(read_tree(loader, item, scenario));
+    for (const Field& item : loader.items(*trees))
+      forest.trees.push_back(read_tree(loader, item, forest, domain, terrain));
+  return forest;
 }
 
 }  // namespace fw::io::reader

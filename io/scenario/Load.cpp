@@ -9,8 +9,19 @@
 #include <fstream>
 #include <sstream>
 
+#include "io/Scenario.hpp"
 #include "io/YamlDocuments.hpp"
-#include "io/scenario/Sections.hpp"
+#include "io/scenario/Domain.hpp"
+#include "io/scenario/Events.hpp"
+#include "io/scenario/Forest.hpp"
+#include "io/scenario/Obstacles.hpp"
+#include "io/scenario/Output.hpp"
+#include "io/scenario/Reader.hpp"
+#include "io/scenario/Solver.hpp"
+#include "io/scenario/Terrain.hpp"
+#include "io/scenario/Time.hpp"
+#include "io/scenario/Wind.hpp"
+#include "io/schema/TopLevelKeys.hpp"
 
 namespace fw::io {
 
@@ -63,7 +74,7 @@ Scenario load_scenario(const std::filesystem::path& file) {
       if (key->required) required.emplace_back(key->path);
     loader.expected(root, "a map of scenario keys (" + join(required, ", ") + ", ...)");
   }
-  const Section<""> top(loader, root);
+  const Section<schema::kTopLevelKeys, ""> top(loader, root);
 
   const Field scenario_name = top.require<"scenario">();
   scenario.name = loader.text(scenario_name);
@@ -78,15 +89,23 @@ Scenario load_scenario(const std::filesystem::path& file) {
   read_time(loader, top.require<"time">(), scenario.time);
   read_domain(loader, top.require<"domain">(), scenario.domain);
   const auto boundaries = top.get<"boundaries">();
-  if (boundaries) read_boundaries(loader, *boundaries, scenario);
-  read_wind(loader, top.require<"wind">(), scenario);
-  if (boundaries) resolve_ground_roughness(loader, *boundaries, scenario);
-  if (const auto events = top.get<"events">()) read_events(loader, *events, scenario);
-  if (const auto obstacles = top.get<"obstacles">()) read_obstacles(loader, *obstacles, scenario);
-  if (const auto terrain = top.get<"terrain">()) read_terrain(loader, *terrain, scenario);
-  if (const auto forest = top.get<"forest">()) read_forest(loader, *forest, scenario);
+  if (boundaries)
+    read_boundaries(loader, *boundaries, scenario.domain, scenario.boundaries,
+                    scenario.ground_roughness_length);
+  scenario.wind = read_wind(loader, top.require<"wind">(), scenario.time.end, scenario.domain,
+                            scenario.boundaries, scenario.seed);
+  if (boundaries)
+    resolve_ground_roughness(loader, *boundaries, scenario.domain, scenario.boundaries, scenario.wind.profile,
+                             scenario.ground_roughness_length);
+  if (const auto events = top.get<"events">()) scenario.events = read_events(loader, *events, scenario.wind);
+  if (const auto obstacles = top.get<"obstacles">()) scenario.obstacles = read_obstacles(loader, *obstacles);
+  if (const auto terrain = top.get<"terrain">())
+    scenario.terrain = read_terrain(loader, *terrain, scenario.domain);
+  if (const auto forest = top.get<"forest">())
+    scenario.forest = read_forest(loader, *forest, scenario.domain, scenario.terrain, scenario.seed);
   if (const auto solver = top.get<"solver">()) read_solver(loader, *solver, scenario.solver);
-  read_output(loader, top.get<"output">().value_or(top.missing<"output">()), scenario);  // defaults
+  const Field output = top.get<"output">().value_or(top.missing<"output">());  // defaults
+  scenario.output = read_output(loader, output, scenario.name, scenario.domain);
   return scenario;
 }
 

@@ -1,12 +1,15 @@
 // obstacles: boxes, cylinders and spheres.
-#include "io/scenario/Sections.hpp"
+#include "io/scenario/Obstacles.hpp"
+
+#include "io/schema/ObstacleKeys.hpp"
+#include "io/settings/Radians.hpp"
 
 namespace fw::io::reader {
 
 namespace {
 
 fluid::SolidBox read_box(const Loader& loader, const Field& field) {
-  const Section<"obstacles[].box"> map(loader, field);
+  const Section<schema::kObstacleKeys, "obstacles[].box"> map(loader, field);
   fluid::SolidBox box;
   box.name = loader.text(map.require<"name">());
   box.center = loader.vector<3>(map.require<"center">());
@@ -16,7 +19,7 @@ fluid::SolidBox read_box(const Loader& loader, const Field& field) {
 }
 
 fluid::SolidCylinder read_cylinder(const Loader& loader, const Field& field) {
-  const Section<"obstacles[].cylinder"> map(loader, field);
+  const Section<schema::kObstacleKeys, "obstacles[].cylinder"> map(loader, field);
   fluid::SolidCylinder cylinder;
   cylinder.name = loader.text(map.require<"name">());
   cylinder.base = loader.vector<3>(map.require<"base">());
@@ -26,7 +29,7 @@ fluid::SolidCylinder read_cylinder(const Loader& loader, const Field& field) {
 }
 
 fluid::SolidSphere read_sphere(const Loader& loader, const Field& field) {
-  const Section<"obstacles[].sphere"> map(loader, field);
+  const Section<schema::kObstacleKeys, "obstacles[].sphere"> map(loader, field);
   fluid::SolidSphere sphere;
   sphere.name = loader.text(map.require<"name">());
   sphere.center = loader.vector<3>(map.require<"center">());
@@ -36,16 +39,17 @@ fluid::SolidSphere read_sphere(const Loader& loader, const Field& field) {
 
 }  // namespace
 
-void read_obstacles(const Loader& loader, const Field& field, Scenario& scenario) {
+std::vector<Obstacle> read_obstacles(const Loader& loader, const Field& field) {
+  std::vector<Obstacle> obstacles;
   for (const Field& item : loader.items(field)) {
-    const Section<"obstacles[]"> kind(loader, item);
+    const Section<schema::kObstacleKeys, "obstacles[]"> kind(loader, item);
     kind.exactly_one();
-    if (const auto box = kind.get<"box">()) scenario.obstacles.emplace_back(read_box(loader, *box));
+    if (const auto box = kind.get<"box">()) obstacles.emplace_back(read_box(loader, *box));
     if (const auto cylinder = kind.get<"cylinder">())
-      scenario.obstacles.emplace_back(read_cylinder(loader, *cylinder));
-    if (const auto sphere = kind.get<"sphere">())
-      scenario.obstacles.emplace_back(read_sphere(loader, *sphere));
+      obstacles.emplace_back(read_cylinder(loader, *cylinder));
+    if (const auto sphere = kind.get<"sphere">()) obstacles.emplace_back(read_sphere(loader, *sphere));
   }
+  return obstacles;
 }
 
 }  // namespace fw::io::reader

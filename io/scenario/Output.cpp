@@ -1,5 +1,5 @@
 // output: the folder, the frames' interval and contents, the leaves in them, and the probes.
-#include "io/scenario/Sections.hpp"
+#include "io/scenario/Output.hpp"
 
 #include <fmt/format.h>
 
@@ -20,7 +20,7 @@ bool probe_name(const std::string& name) {
 constexpr std::string_view kScenarioNamePlaceholder = "<scenario>";
 
 void read_vtk(const Loader& loader, const Field& field, OutputSettings& output) {
-  const Section<"output.vtk"> map(loader, field);
+  const Section<schema::kOutputKeys, "output.vtk"> map(loader, field);
   if (const auto wind = map.get<"wind">()) output.vtk_wind = loader.boolean(*wind);
   if (const auto trees = map.get<"trees">()) output.vtk_trees = loader.boolean(*trees);
   if (const auto every = map.get<"wind_every">()) output.vtk_wind_every = loader.integer(*every);
@@ -29,14 +29,14 @@ void read_vtk(const Loader& loader, const Field& field, OutputSettings& output) 
 }
 
 void read_vdb(const Loader& loader, const Field& field, OutputSettings& output) {
-  const Section<"output.vdb"> map(loader, field);
+  const Section<schema::kOutputKeys, "output.vdb"> map(loader, field);
   if (const auto enabled = map.get<"enabled">()) output.vdb_enabled = loader.boolean(*enabled);
   if (const auto grids = map.get<"grids">()) output.vdb_grids = loader.word_set(*grids);
   if (const auto every = map.get<"every">()) output.vdb_every = loader.integer(*every);
 }
 
 void read_leaves(const Loader& loader, const Field& field, OutputSettings& output) {
-  const Section<"output.leaves"> map(loader, field);
+  const Section<schema::kOutputKeys, "output.leaves"> map(loader, field);
   if (const auto attached = map.get<"attached">()) {
     // A word (all, none) or a stride N >= 1.
     const Key& key = key_of(*attached);
@@ -60,7 +60,7 @@ void read_leaves(const Loader& loader, const Field& field, OutputSettings& outpu
 /// One item of output.probes, after the probes `earlier`.
 Probe read_probe(const Loader& loader, const Field& item, const std::vector<Probe>& earlier,
                  const DomainSettings& domain) {
-  const Section<"output.probes[]"> map(loader, item);
+  const Section<schema::kOutputKeys, "output.probes[]"> map(loader, item);
   Probe probe;
   const Field name = map.require<"name">();
   probe.name = loader.text(name);
@@ -83,12 +83,13 @@ Probe read_probe(const Loader& loader, const Field& item, const std::vector<Prob
 
 }  // namespace
 
-void read_output(const Loader& loader, const Field& field, Scenario& scenario) {
-  OutputSettings& output = scenario.output;
-  const Section<"output"> map(loader, field);
-  std::string directory(schema::key("output.directory").word);
+OutputSettings read_output(const Loader& loader, const Field& field, const std::string& scenario_name,
+                           const DomainSettings& domain) {
+  OutputSettings output;
+  const Section<schema::kOutputKeys, "output"> map(loader, field);
+  std::string directory(schema::key(schema::kOutputKeys, "output.directory").word);
   if (const std::size_t at = directory.find(kScenarioNamePlaceholder); at != std::string::npos)
-    directory.replace(at, kScenarioNamePlaceholder.size(), scenario.name);
+    directory.replace(at, kScenarioNamePlaceholder.size(), scenario_name);
   if (const auto given = map.get<"directory">()) directory = loader.text(*given);
   // Against the working directory, not the scenario folder: a run writes where it is started.
   output.directory = std::filesystem::absolute(std::filesystem::path(directory)).lexically_normal();
@@ -107,12 +108,13 @@ void read_output(const Loader& loader, const Field& field, Scenario& scenario) {
   if (const auto leaves = map.get<"leaves">()) read_leaves(loader, *leaves, output);
   if (const auto probes = map.get<"probes">())
     for (const Field& item : loader.items(*probes))
-      output.probes.push_back(read_probe(loader, item, output.probes, scenario.domain));
+      output.probes.push_back(read_probe(loader, item, output.probes, domain));
   if (const auto checkpoint = map.get<"checkpoint">()) {
-    const Section<"output.checkpoint"> settings(loader, *checkpoint);
+    const Section<schema::kOutputKeys, "output.checkpoint"> settings(loader, *checkpoint);
     output.checkpoint_interval = loader.number(settings.require<"interval">());
     if (const auto keep = settings.get<"keep">()) output.checkpoints_kept = loader.integer(*keep);
   }
+  return output;
 }
 
 }  // namespace fw::io::reader

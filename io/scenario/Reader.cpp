@@ -9,6 +9,8 @@
 #include <fstream>
 #include <stdexcept>
 
+#include "io/ScenarioError.hpp"
+
 namespace fw::io::reader {
 
 namespace {

@@ -1,18 +1,21 @@
 // What the scenario loader's section readers (io/scenario/*.cpp) share: a value of the file with the key and
 // line to blame (Field), one map of the file read against its keys in the schema (Section), and the Loader
 // that reads each scalar as its key in the schema says and throws ScenarioError ("FILE:LINE: KEY: what was
-// expected, got VALUE"). Internal to forestwind_io; io/Scenario.hpp is the public header.
+// expected, got VALUE"). Internal to forestwind_io; io/Scenario.hpp and the section structs of io/settings/
+// are the public headers.
 //
-// A reader names its map by its schema path and each key by its name in that map, both checked against the
-// schema at compile time: a key the schema lacks (a typo, a key not added to the table) does not compile.
+// A reader names its map by its section's table and its schema path, and each key by its name in that map,
+// all checked against that table at compile time: a key the schema lacks (a typo, a key not added to the
+// table) does not compile, and a reader compiles only the tables it names (io/schema/Key.hpp).
 //
 //   void read_time(const Loader& loader, const Field& field, TimeSettings& time) {
-//     const Section<"time"> map(loader, field);               // unknown, duplicate, missing keys: errors
-//     time.end = loader.number(map.require<"end">());         // "a number > 0 (s) expected, got '-1'"
+//     const Section<schema::kTimeKeys, "time"> map(loader, field);   // unknown, duplicate, missing keys
+//     time.end = loader.number(map.require<"end">());                // "a number > 0 (s) expected, got '-1'"
 //     if (const auto cfl = map.get<"cfl">()) time.cfl = loader.number(*cfl);
 //   }
 //
-// Lists: an item of forest.species is a Section<"forest.species[]">, whose keys are "name", "skeleton", ....
+// Lists: an item of forest.species is a Section<schema::kSpeciesKeys, "forest.species[]">, whose keys are
+// "name", "skeleton", ....
 #pragma once
 
 #include <yaml-cpp/yaml.h>
@@ -32,8 +35,8 @@
 #include <vector>
 
 #include "io/Expression.hpp"
-#include "io/Scenario.hpp"
 #include "io/ScenarioSchema.hpp"
+#include "io/schema/Key.hpp"
 
 namespace fw::io::reader {
 
@@ -86,7 +89,8 @@ std::string number_expected(const Key& owner);
 /// Whether `a` stands before `b` in the file.
 bool comes_before(const Field& a, const Field& b);
 
-/// A generic path of the schema as a template argument: Section<"forest.species[]">, get<"name">().
+/// A generic path of the schema as a template argument: Section<kSpeciesKeys, "forest.species[]">,
+/// get<"name">().
 template <std::size_t N>
 struct SchemaPath {
   char text[N]{};
@@ -95,7 +99,7 @@ struct SchemaPath {
 };
 
 class Loader;
-template <SchemaPath Path>
+template <const auto& Keys, SchemaPath Path>
 class Section;
 
 /// The keys of one map, checked against its keys in the schema (unknown and duplicate keys are errors, and
@@ -111,7 +115,7 @@ class MapFields {
   void exactly_one() const;  // see Section::exactly_one
 
  private:
-  template <SchemaPath Path>
+  template <const auto& Keys, SchemaPath Path>
   friend class Section;
 
   std::optional<Field> get(const std::string& name) const;
@@ -130,11 +134,12 @@ class MapFields {
   std::vector<std::string> order_;  // names given, in file order
 };
 
-/// One map of the file at the schema path Path, read as MapFields reads it. Its keys are named by their name
-/// in the map; get<"cfl">() in a Section<"time"> compiles only while the schema has time.cfl.
-template <SchemaPath Path>
+/// One map of the file at the schema path Path, whose keys are in the section table Keys, read as MapFields
+/// reads it. Its keys are named by their name in the map; get<"cfl">() in a Section<kTimeKeys, "time">
+/// compiles only while kTimeKeys has time.cfl.
+template <const auto& Keys, SchemaPath Path>
 class Section {
-  static_assert(schema::holds_keys(Path.view()), "Section: not a map of the scenario schema");
+  static_assert(schema::holds_keys(Keys, Path.view()), "Section: not a map of this section of the schema");
 
  public:
   /// `map`: a field whose key stands for Path (std::logic_error otherwise: the reader is wrong, not the
@@ -156,7 +161,7 @@ class Section {
   /// line: for a message that it is required here.
   template <SchemaPath Name>
   Field missing() const {
-    constexpr std::string_view path = schema::key(Path.view(), Name.view()).path;
+    constexpr std::string_view path = schema::key(Keys, Path.view(), Name.view()).path;
     return fields_.missing(std::string(path.substr(path.size() - Name.view().size())));
   }
 
@@ -168,7 +173,7 @@ class Section {
   template <SchemaPath Name>
   static std::string name() {
     static_assert(Name.view().find('.') == std::string_view::npos, "get and require take a key of this map");
-    constexpr std::string_view path = schema::key(Path.view(), Name.view()).path;
+    constexpr std::string_view path = schema::key(Keys, Path.view(), Name.view()).path;
     return std::string(path.substr(path.size() - Name.view().size()));
   }
 

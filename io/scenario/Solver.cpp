@@ -1,12 +1,12 @@
 // solver: the pressure solver, advection and the subgrid models.
-#include "io/scenario/Sections.hpp"
+#include "io/scenario/Solver.hpp"
 
 #include <fmt/format.h>
 
 namespace fw::io::reader {
 
 void read_solver(const Loader& loader, const Field& field, SolverSettings& solver) {
-  const Section<"solver"> map(loader, field);
+  const Section<schema::kSolverKeys, "solver"> map(loader, field);
   if (const auto pressure = map.get<"pressure">())
     solver.pressure = value(schema::kPressureWords, schema::kPressureSolvers, loader.word(*pressure));
   if (const auto tolerance = map.get<"tolerance">()) solver.tolerance = loader.number(*tolerance);

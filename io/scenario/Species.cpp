@@ -1,6 +1,6 @@
 // forest.species: skeletons, wood, tree model (dynamics and its keys), modes, drag, canopy and leaves of
-// each species; and the checks that need the skeleton (check_species_skeleton).
-#include "io/scenario/Sections.hpp"
+// each species. The checks that need the skeleton (check_species_skeleton) are io/Scenario.cpp's.
+#include "io/scenario/Species.hpp"
 
 #include <fmt/format.h>
 
@@ -15,11 +15,12 @@ namespace {
 /// forest.species[].skeleton: exactly one of generate, file and qsm. `seed`: the generator's, unless the file
 /// gives one.
 SkeletonSource read_skeleton(const Loader& loader, const Field& field, std::uint64_t seed) {
-  const Section<"forest.species[].skeleton"> map(loader, field);
+  const Section<schema::kSpeciesKeys, "forest.species[].skeleton"> map(loader, field);
   map.exactly_one();
   SkeletonSource skeleton;
   if (const auto generate_field = map.get<"generate">()) {
-    const Section<"forest.species[].skeleton.generate"> generate(loader, *generate_field);
+    const Section<schema::kSpeciesKeys, "forest.species[].skeleton.generate"> generate(loader,
+                                                                                       *generate_field);
     skeleton.kind = SkeletonSource::Kind::generate;
     skeleton.generate.preset = loader.word(generate.require<"preset">());
     if (const auto height = generate.get<"height">()) skeleton.generate.height = loader.number(*height);
@@ -38,14 +39,14 @@ SkeletonSource read_skeleton(const Loader& loader, const Field& field, std::uint
 }
 
 void read_material(const Loader& loader, const Field& field, trees::Material& material) {
-  const Section<"forest.species[].material"> map(loader, field);
+  const Section<schema::kSpeciesKeys, "forest.species[].material"> map(loader, field);
   if (const auto e = map.get<"youngs_modulus">()) material.youngs_modulus = loader.number(*e);
   if (const auto g = map.get<"shear_modulus">()) material.shear_modulus = loader.number(*g);
   if (const auto rho = map.get<"density">()) material.density = loader.number(*rho);
 }
 
 void read_modes(const Loader& loader, const Field& field, ModeSettings& modes) {
-  const Section<"forest.species[].modes"> map(loader, field);
+  const Section<schema::kSpeciesKeys, "forest.species[].modes"> map(loader, field);
   if (const auto count = map.get<"count">()) {
     modes.count = loader.integer(*count);
     modes.count_line = count->line;
@@ -56,13 +57,13 @@ void read_modes(const Loader& loader, const Field& field, ModeSettings& modes) {
 
 /// forest.species[].rigid_bodies over trees::RigidBodySettings' defaults (the schema's).
 void read_rigid_bodies(const Loader& loader, const Field& field, trees::RigidBodySettings& rigid_bodies) {
-  const Section<"forest.species[].rigid_bodies"> map(loader, field);
+  const Section<schema::kSpeciesKeys, "forest.species[].rigid_bodies"> map(loader, field);
   if (const auto zeta = map.get<"damping_ratio">()) rigid_bodies.damping_ratio = loader.number(*zeta);
 }
 
 /// forest.species[].springs over trees::SpringSettings' defaults (the schema's).
 void read_springs(const Loader& loader, const Field& field, trees::SpringSettings& springs) {
-  const Section<"forest.species[].springs"> map(loader, field);
+  const Section<schema::kSpeciesKeys, "forest.species[].springs"> map(loader, field);
   if (const auto angle = map.get<"max_angle_deg">()) springs.max_angle_deg = loader.number(*angle);
   if (const auto amplitude = map.get<"sway_amplitude">()) springs.sway_amplitude = loader.number(*amplitude);
   if (const auto frequency = map.get<"sway_frequency">())
@@ -88,7 +89,7 @@ void refuse_other_model(const Loader& loader, const std::optional<Field>& model_
 /// forest.species[].dynamics and its model's keys over trees::SpeciesDynamics' defaults (the schema's); `map`
 /// is the species `item`.
 trees::SpeciesDynamics read_dynamics(const Loader& loader, const Field& item,
-                                     const Section<"forest.species[]">& map) {
+                                     const Section<schema::kSpeciesKeys, "forest.species[]">& map) {
   trees::SpeciesDynamics dynamics;
   const auto word = map.get<"dynamics">();
   if (word) dynamics.model = value(schema::kDynamicsWords, schema::kDynamicsModels, loader.word(*word));
@@ -113,7 +114,7 @@ trees::SpeciesDynamics read_dynamics(const Loader& loader, const Field& item,
 /// forest.species[].leaves over trees::LeafSettings' defaults (the schema's); `seed` unless the file gives
 /// one.
 trees::LeafSettings read_leaves(const Loader& loader, const Field& field, std::uint64_t seed) {
-  const Section<"forest.species[].leaves"> map(loader, field);
+  const Section<schema::kSpeciesKeys, "forest.species[].leaves"> map(loader, field);
   trees::LeafSettings leaves;
   if (const auto model = map.get<"model">())
     leaves.model = value(schema::kLeafModelWords, schema::kLeafModels, loader.word(*model));
@@ -145,7 +146,7 @@ trees::LeafSettings read_leaves(const Loader& loader, const Field& field, std::u
 // leaves, unless the file gives a seed.
 Species read_species(const Loader& loader, const Field& item, const std::vector<Species>& earlier,
                      std::uint64_t global_seed) {
-  const Section<"forest.species[]"> map(loader, item);
+  const Section<schema::kSpeciesKeys, "forest.species[]"> map(loader, item);
   Species species;
   species.modes.count_line = item.line;
   const Field name = map.require<"name">();
@@ -163,7 +164,7 @@ Species read_species(const Loader& loader, const Field& item, const std::vector<
   std::optional<Field> lai;
   Field lai_missing = map.missing<"canopy.leaf_area_index">();  // on the species' line, or canopy's
   if (const auto canopy_field = map.get<"canopy">()) {
-    const Section<"forest.species[].canopy"> canopy(loader, *canopy_field);
+    const Section<schema::kSpeciesKeys, "forest.species[].canopy"> canopy(loader, *canopy_field);
     lai = canopy.get<"leaf_area_index">();
     lai_missing = canopy.missing<"leaf_area_index">();
     if (lai) species.canopy.leaf_area_index = loader.number(*lai);
@@ -192,37 +193,3 @@ Species read_species(const Loader& loader, const Field& item, const std::vector<
 }
 
 }  // namespace fw::io::reader
-
-namespace fw::io {
-
-namespace {
-
-// A skeleton of n nodes, root clamped, has 6 (n - 1) DOFs; the modal analysis keeps fewer modes than that.
-constexpr long kDofsPerNode = 6;
-
-long skeleton_dofs(int skeleton_nodes) {
-  return kDofsPerNode * (skeleton_nodes - 1);
-}
-
-}  // namespace
-
-void check_species_skeleton(const Scenario& scenario, int species_index, int skeleton_nodes) {
-  const Species& species = scenario.forest.species.at(std::size_t(species_index));
-  if (species.dynamics.model != trees::TreeDynamics::modal) return;  // its count is not the file's
-  const long dofs = skeleton_dofs(skeleton_nodes);
-  if (species.modes.count >= dofs) {
-    throw ScenarioError(
-        scenario.file.string(), species.modes.count_line,
-        schema::item_path(schema::key("forest.species[].modes.count").path, std::size_t(species_index)),
-        fmt::format("at most {} modes for this skeleton of {} nodes ({} DOFs) expected, got '{}'",
-                    std::max(0L, dofs - 1), skeleton_nodes, dofs, species.modes.count));
-  }
-}
-
-int species_mode_count(const Scenario& scenario, int species_index, int skeleton_nodes) {
-  const Species& species = scenario.forest.species.at(std::size_t(species_index));
-  if (species.dynamics.model == trees::TreeDynamics::modal) return species.modes.count;
-  return int(std::clamp(skeleton_dofs(skeleton_nodes) - 1, 1L, long(species.modes.count)));
-}
-
-}  // namespace fw::io

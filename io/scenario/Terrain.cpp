@@ -1,5 +1,5 @@
 // terrain: the heightmap under the wind grid.
-#include "io/scenario/Sections.hpp"
+#include "io/scenario/Terrain.hpp"
 
 #include <fmt/format.h>
 
@@ -8,10 +8,12 @@
 #include <utility>
 #include <vector>
 
+#include "io/schema/TerrainKeys.hpp"
+
 namespace fw::io::reader {
 
-void read_terrain(const Loader& loader, const Field& field, Scenario& scenario) {
-  const Section<"terrain"> map(loader, field);
+TerrainSettings read_terrain(const Loader& loader, const Field& field, const DomainSettings& domain) {
+  const Section<schema::kTerrainKeys, "terrain"> map(loader, field);
   TerrainSettings terrain;
   const Field heightmap = map.require<"heightmap">();
   terrain.heightmap = loader.readable_file(heightmap);
@@ -41,10 +43,9 @@ void read_terrain(const Loader& loader, const Field& field, Scenario& scenario) 
       for (int column = 0; column < image.columns(); ++column) heights.push_back(image.sample(column, row));
     const double half = 0.5 * image.cell_size();
     terrain.map = fluid::Heightmap(image.columns(), image.rows(), image.cell_size(),
-                                   {scenario.domain.origin[0] + half, scenario.domain.origin[1] + half},
-                                   std::move(heights));
+                                   {domain.origin[0] + half, domain.origin[1] + half}, std::move(heights));
   }
-  scenario.terrain = std::move(terrain);
+  return terrain;
 }
 
 }  // namespace fw::io::reader

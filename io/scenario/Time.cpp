@@ -1,10 +1,10 @@
 // time: the run's span and time step.
-#include "io/scenario/Sections.hpp"
+#include "io/scenario/Time.hpp"
 
 namespace fw::io::reader {
 
 void read_time(const Loader& loader, const Field& field, TimeSettings& time) {
-  const Section<"time"> map(loader, field);
+  const Section<schema::kTimeKeys, "time"> map(loader, field);
   time.end = loader.number(map.require<"end">());
   if (const auto dt = map.get<"dt">()) {
     const Key& key = key_of(*dt);

@@ -1,5 +1,5 @@
 // wind.turbulence: the synthetic turbulence box, sized in cells of the grid.
-#include "io/scenario/Sections.hpp"
+#include "io/scenario/Turbulence.hpp"
 
 #include <fmt/format.h>
 
@@ -18,8 +18,9 @@ constexpr double kDefaultBoxLengthScales = 8.0;
 
 }  // namespace
 
-TurbulenceSettings read_turbulence(const Loader& loader, const Field& field, const Scenario& scenario) {
-  const Section<"wind.turbulence"> map(loader, field);  // length_scale is required
+TurbulenceSettings read_turbulence(const Loader& loader, const Field& field, const DomainSettings& domain,
+                                   std::uint64_t seed) {
+  const Section<schema::kWindKeys, "wind.turbulence"> map(loader, field);  // length_scale is required
   TurbulenceSettings turbulence;
   if (const auto model = map.get<"model">())
     turbulence.model = value(schema::kTurbulenceModelWords, kTurbulenceModels, loader.word(*model));
@@ -39,7 +40,7 @@ TurbulenceSettings read_turbulence(const Loader& loader, const Field& field, con
   if (sigma) turbulence.sigma = loader.vector<3>(*sigma);
 
   turbulence.length_scale = loader.number(map.require<"length_scale">());
-  turbulence.seed = scenario.seed;
+  turbulence.seed = seed;
   if (const auto seed = map.get<"seed">()) turbulence.seed = loader.seed(*seed);
   if (const auto unresolved = map.get<"unresolved">()) turbulence.unresolved = loader.boolean(*unresolved);
   if (const auto cutoff = map.get<"cutoff_cells">()) turbulence.cutoff_cells = loader.number(*cutoff);
@@ -49,7 +50,7 @@ TurbulenceSettings read_turbulence(const Loader& loader, const Field& field, con
   // and y, kDefaultBoxLengthScales length scales. The fluid::TurbulenceBox that a run builds from it has
   // kTurbulencePointsPerCell points per cell along each axis, and at most TurbulenceBoxSpec::kMaxPoints in
   // all: the limit counts those points, so that a box this accepts is one the run can build.
-  const double h = scenario.domain.cell_size;
+  const double h = domain.cell_size;
   const double per_cell = fluid::kTurbulencePointsPerCell;
   const double most_points = double(fluid::TurbulenceBoxSpec::kMaxPoints);
   const double fewest_cells = schema::kMinTurbulenceBoxCells;
@@ -61,7 +62,7 @@ TurbulenceSettings read_turbulence(const Loader& loader, const Field& field, con
       cells[axis] = std::max(fewest_cells, 2.0 * std::round(size[axis] / (2.0 * h)));
   } else {
     for (std::size_t axis = 0; axis < 3; ++axis) {
-      double target = scenario.domain.cells[axis];
+      double target = domain.cells[axis];
       if (axis < 2) target = std::max(target, kDefaultBoxLengthScales * turbulence.length_scale / h);
       double count = fewest_cells;
       while (count < target && count * per_cell <= most_points) count *= 2.0;

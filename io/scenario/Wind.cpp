@@ -1,11 +1,13 @@
 // wind: speed and direction over time, the vertical profile, and the mean forcing of a periodic domain
 // (wind.turbulence has io/scenario/Turbulence.cpp).
-#include "io/scenario/Sections.hpp"
+#include "io/scenario/Wind.hpp"
 
 #include <fmt/format.h>
 
 #include <cmath>
 
+#include "io/scenario/Turbulence.hpp"
+#include "io/schema/TopLevelKeys.hpp"
 #include "kernels/shared_types.h"
 
 namespace fw::io::reader {
@@ -28,36 +30,38 @@ void check_time_series(const Loader& loader, const Field& field, const Expressio
   }
 }
 
-bool sides_periodic(const Scenario& scenario) {
+bool sides_periodic(const std::array<BoundaryChoice, 6>& boundaries) {
   for (const int face : {FW_FACE_WEST, FW_FACE_EAST, FW_FACE_SOUTH, FW_FACE_NORTH})
-    if (scenario.boundaries[face] != BoundaryChoice::periodic) return false;
+    if (boundaries[face] != BoundaryChoice::periodic) return false;
   return true;
 }
 
 }  // namespace
 
-void read_wind(const Loader& loader, const Field& field, Scenario& scenario) {
-  WindSource& wind = scenario.wind;
-  const Section<"wind"> map(loader, field);
+WindSource read_wind(const Loader& loader, const Field& field, double end, const DomainSettings& domain,
+                     const std::array<BoundaryChoice, 6>& boundaries, std::uint64_t seed) {
+  WindSource wind;
+  const Section<schema::kWindKeys, "wind"> map(loader, field);
   const Field speed = map.require<"speed">();
   wind.speed = loader.expression(speed);
-  check_time_series(loader, speed, wind.speed, scenario.time.end);
+  check_time_series(loader, speed, wind.speed, end);
   const Field direction = map.require<"direction">();
   wind.direction = loader.expression(direction);
-  check_time_series(loader, direction, wind.direction, scenario.time.end);
+  check_time_series(loader, direction, wind.direction, end);
   if (const auto height = map.get<"reference_height">()) wind.reference_height = loader.number(*height);
 
   wind.profile = fluid::InflowProfile{};
-  wind.profile.type =
-      value(schema::kProfileWords, schema::kProfileTypes, std::string(schema::key("wind.profile.type").word));
-  wind.profile.alpha = schema::key("wind.profile.alpha").number;
-  wind.profile.displacement_height = schema::key("wind.profile.displacement_height").number;
+  wind.profile.type = value(schema::kProfileWords, schema::kProfileTypes,
+                            std::string(schema::key(schema::kWindKeys, "wind.profile.type").word));
+  wind.profile.alpha = schema::key(schema::kWindKeys, "wind.profile.alpha").number;
+  wind.profile.displacement_height =
+      schema::key(schema::kWindKeys, "wind.profile.displacement_height").number;
   wind.profile.reference_height = wind.reference_height;
   if (const auto profile_field = map.get<"profile">()) {
     // The allowed keys depend on the type, so read the type first.
-    const Section<"wind.profile"> any(loader, *profile_field);
+    const Section<schema::kWindKeys, "wind.profile"> any(loader, *profile_field);
     const std::string type = loader.word(any.require<"type">());
-    const Section<"wind.profile"> profile(loader, *profile_field, &type);
+    const Section<schema::kWindKeys, "wind.profile"> profile(loader, *profile_field, &type);
     wind.profile.type = value(schema::kProfileWords, schema::kProfileTypes, type);
     if (const auto alpha = profile.get<"alpha">()) wind.profile.alpha = loader.number(*alpha);
     if (const auto roughness = profile.get<"roughness_length">())
@@ -78,28 +82,30 @@ void read_wind(const Loader& loader, const Field& field, Scenario& scenario) {
   }
 
   if (const auto turbulence = map.get<"turbulence">())
-    wind.turbulence = read_turbulence(loader, *turbulence, scenario);
+    wind.turbulence = read_turbulence(loader, *turbulence, domain, seed);
 
   // A domain without inflow (all four sides periodic) is driven by the mean forcing, given or not.
-  const bool periodic = sides_periodic(scenario);
+  const bool periodic = sides_periodic(boundaries);
   if (const auto forcing_field = map.get<"forcing">()) {
     if (!periodic) {
       int open = FW_FACE_WEST;
-      while (scenario.boundaries[open] == BoundaryChoice::periodic) ++open;
-      const std::vector<std::string> faces = schema::child_names(schema::key("boundaries").path);
+      while (boundaries[open] == BoundaryChoice::periodic) ++open;
+      const std::vector<std::string> faces =
+          schema::child_names(schema::key(schema::kTopLevelKeys, "boundaries").path);
       loader.expected(
           *forcing_field,
           fmt::format("forcing only in a domain whose west, east, south and north are all periodic "
                       "(boundaries.{} is '{}')",
-                      faces[open], to_string(scenario.boundaries[open])));
+                      faces[open], to_string(boundaries[open])));
     }
-    const Section<"wind.forcing"> forcing(loader, *forcing_field);
+    const Section<schema::kWindKeys, "wind.forcing"> forcing(loader, *forcing_field);
     wind.forcing = ForcingSettings{};
     if (const auto tau = forcing.get<"relaxation_time">())
       wind.forcing->relaxation_time = loader.number(*tau);
   } else if (periodic) {
     wind.forcing = ForcingSettings{};
   }
+  return wind;
 }
 
 }  // namespace fw::io::reader

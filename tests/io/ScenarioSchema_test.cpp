@@ -8,13 +8,27 @@
 #include <fstream>
 #include <limits>
 #include <set>
+#include <span>
 #include <sstream>
 #include <string>
 #include <utility>
 
 #include "fluid/GridSpec.hpp"
+#include "fluid/TurbulenceBox.hpp"
 #include "fluid/WindSettings.hpp"
 #include "io/Scenario.hpp"
+#include "io/schema/BoundaryKeys.hpp"
+#include "io/schema/DomainKeys.hpp"
+#include "io/schema/EventKeys.hpp"
+#include "io/schema/ForestKeys.hpp"
+#include "io/schema/ObstacleKeys.hpp"
+#include "io/schema/OutputKeys.hpp"
+#include "io/schema/SolverKeys.hpp"
+#include "io/schema/SpeciesKeys.hpp"
+#include "io/schema/TerrainKeys.hpp"
+#include "io/schema/TimeKeys.hpp"
+#include "io/schema/TopLevelKeys.hpp"
+#include "io/schema/WindKeys.hpp"
 #include "trees/LeafSettings.hpp"
 #include "trees/TreeDynamics.hpp"
 
@@ -48,6 +62,21 @@ std::string first_difference(const std::string& committed, const std::string& ge
   }
 }
 
+/// The key at a generic path, looked up at run time over every section.
+const schema::Key& key_at(std::string_view path) {
+  const schema::Key* found = schema::find(path);
+  INFO("key " << path);
+  REQUIRE(found != nullptr);
+  return *found;
+}
+
+/// Every section's table, each from its own header: what the loader's readers and the structs' defaults
+/// compile.
+const std::span<const schema::Key> kSectionTables[] = {
+    schema::kTopLevelKeys, schema::kTimeKeys,    schema::kDomainKeys,   schema::kBoundaryKeys,
+    schema::kWindKeys,     schema::kEventKeys,   schema::kObstacleKeys, schema::kTerrainKeys,
+    schema::kForestKeys,   schema::kSpeciesKeys, schema::kSolverKeys,   schema::kOutputKeys};
+
 }  // namespace
 
 TEST_CASE("schema: docs/scenario.md's key tables are the ones the schema generates", "[schema]") {
@@ -61,17 +90,18 @@ TEST_CASE("schema: docs/scenario.md's key tables are the ones the schema generat
     return;
   }
   INFO(
-      "docs/scenario.md differs from io/ScenarioSchema.hpp; regenerate its tables with "
+      "docs/scenario.md differs from the schema (io/schema/); regenerate its tables with "
       "FORESTWIND_UPDATE_DOCS=1 io_tests \"[schema]\" and commit the page");
   CHECK(first_difference(committed, generated) == "");
 }
 
 TEST_CASE("schema: every key sits below a map or list of the table, once", "[schema]") {
   std::set<std::string_view> paths;
-  for (const schema::Key& key : schema::kKeys) {
+  for (const schema::Key* entry : schema::all_keys()) {
+    const schema::Key& key = *entry;
     INFO("key " << key.path);
-    CHECK(paths.insert(key.path).second);
-    CHECK_FALSE(key.description.empty());
+    CHECK(paths.insert(key.path).second);  // in one section only
+    CHECK_FALSE(schema::docs(key).description.empty());
     const std::size_t dot = key.path.rfind('.');
     if (dot == std::string_view::npos) continue;
     std::string_view parent = key.path.substr(0, dot);
@@ -84,84 +114,108 @@ TEST_CASE("schema: every key sits below a map or list of the table, once", "[sch
     else
       CHECK((owner->type == schema::Type::map || owner->type == schema::Type::choice));
   }
-  for (const schema::Key& key : schema::kKeys) {
-    INFO("key " << key.path);
-    if (key.type == schema::Type::map || key.type == schema::Type::choice)
-      CHECK_FALSE(schema::children(key.path).empty());
+  // Every map and every list's items have keys: a section table the run-time look-up left out would leave
+  // its map empty.
+  for (const schema::Key* key : schema::all_keys()) {
+    INFO("key " << key->path);
+    if (key->type == schema::Type::map || key->type == schema::Type::choice)
+      CHECK_FALSE(schema::children(key->path).empty());
+    if (key->type == schema::Type::list || key->type == schema::Type::choice_list)
+      CHECK_FALSE(schema::children(std::string(key->path) + "[]").empty());
   }
 }
 
+TEST_CASE("schema: every section's keys are the run-time look-up's, each with its prose", "[schema]") {
+  std::size_t count = 0;
+  for (const std::span<const schema::Key> keys : kSectionTables) {
+    for (const schema::Key& key : keys) {
+      INFO("key " << key.path);
+      CHECK(schema::find(key.path) == &key);  // the very key the section's readers and defaults read
+      CHECK(schema::docs(key).path == key.path);
+      ++count;
+    }
+  }
+  CHECK(schema::all_keys().size() == count);  // and no other
+}
+
 TEST_CASE("schema: the loader's messages come from the key's type, bound and unit", "[schema]") {
-  CHECK(schema::expected(schema::key("time.end")) == "a number > 0 (s)");
-  CHECK(schema::expected(schema::key("time.dt")) == "a number > 0 (s) or auto");
-  CHECK(schema::expected(schema::key("time")) == "a map {end, dt, cfl, spin_up}");
-  CHECK(schema::expected(schema::key("time.spin_up")) == "a number >= 0 (s)");
-  CHECK(schema::expected(schema::key("domain.size")) == "a list of 3 numbers [x, y, z], each > 0 (m)");
-  CHECK(schema::expected(schema::key("forest.species[].modes.wind_samples")) == "an integer 1..16");
-  CHECK(schema::expected(schema::key("forest.species[].modes.count")) == "an integer >= 1");
-  CHECK(schema::expected(schema::key("solver.pressure")) == "one of multigrid | cg | jacobi");
-  CHECK(schema::expected(schema::key("boundaries.ground")) ==
+  CHECK(schema::expected(key_at("time.end")) == "a number > 0 (s)");
+  CHECK(schema::expected(key_at("time.dt")) == "a number > 0 (s) or auto");
+  CHECK(schema::expected(key_at("time")) == "a map {end, dt, cfl, spin_up}");
+  CHECK(schema::expected(key_at("time.spin_up")) == "a number >= 0 (s)");
+  CHECK(schema::expected(key_at("domain.size")) == "a list of 3 numbers [x, y, z], each > 0 (m)");
+  CHECK(schema::expected(key_at("forest.species[].modes.wind_samples")) == "an integer 1..16");
+  CHECK(schema::expected(key_at("forest.species[].modes.count")) == "an integer >= 1");
+  CHECK(schema::expected(key_at("solver.pressure")) == "one of multigrid | cg | jacobi");
+  CHECK(schema::expected(key_at("boundaries.ground")) ==
         "one of inflow | outflow | slip | no_slip | periodic | rough");
-  CHECK(schema::expected(schema::key("boundaries.top")) ==
-        "one of inflow | outflow | slip | no_slip | periodic");
-  CHECK(schema::expected(schema::key("boundaries.west")) ==
+  CHECK(schema::expected(key_at("boundaries.top")) == "one of inflow | outflow | slip | no_slip | periodic");
+  CHECK(schema::expected(key_at("boundaries.west")) ==
         "one of auto | inflow | outflow | slip | no_slip | periodic");
-  CHECK(schema::expected(schema::key("wind.turbulence.sigma")) ==
+  CHECK(schema::expected(key_at("wind.turbulence.sigma")) ==
         "a list of 3 numbers [sigma_u, sigma_v, sigma_w], each > 0 (m/s)");
-  CHECK(schema::expected(schema::key("output.probe_interval")) == "a number > 0 (s) or auto");
+  CHECK(schema::expected(key_at("output.probe_interval")) == "a number > 0 (s) or auto");
   CHECK(schema::child_names("wind.turbulence") == std::vector<std::string>{"model", "intensity", "sigma",
                                                                            "length_scale", "box_size", "seed",
                                                                            "unresolved", "cutoff_cells"});
   // boundaries' first six keys are the faces, in the order of FW_FACE_* (the loader indexes them so).
   CHECK(schema::child_names("boundaries") ==
         std::vector<std::string>{"west", "east", "south", "north", "ground", "top", "roughness_length"});
-  CHECK(schema::expected(schema::key("forest.species[].skeleton")) ==
+  CHECK(schema::expected(key_at("forest.species[].skeleton")) ==
         "a map with exactly one of the keys generate, file, qsm");
   CHECK(schema::child_names("forest.species[].modes") ==
         std::vector<std::string>{"count", "damping_ratio", "wind_samples"});
   CHECK(schema::generic_path("forest.species[12].modes.count") == "forest.species[].modes.count");
   CHECK(schema::generic_path("output.vtk.fields[1]") == "output.vtk.fields[]");
-  CHECK(schema::expected(schema::key("forest.species[].leaves.amplitudes")) ==
+  CHECK(schema::expected(key_at("forest.species[].leaves.amplitudes")) ==
         "a list of 3 numbers [W_H, W_V, W_R], each >= 0 and <= 90 (degrees)");
-  CHECK(schema::expected(schema::key("forest.species[].leaves.fraction")) == "a number > 0 and <= 1");
-  CHECK(schema::expected(schema::key("forest.species[].leaves.damping_ratio")) == "a number >= 0 and < 1");
-  CHECK(schema::expected(schema::key("solver.smagorinsky_constant")) == "a number >= 0 and < 1");
-  CHECK(schema::expected(schema::key("forest.species[].leaves.model")) ==
+  CHECK(schema::expected(key_at("forest.species[].leaves.fraction")) == "a number > 0 and <= 1");
+  CHECK(schema::expected(key_at("forest.species[].leaves.damping_ratio")) == "a number >= 0 and < 1");
+  CHECK(schema::expected(key_at("solver.smagorinsky_constant")) == "a number >= 0 and < 1");
+  CHECK(schema::expected(key_at("forest.species[].leaves.model")) ==
         "one of none | pseudo_branch | stochastic");
-  CHECK(schema::expected(schema::key("output.leaves.attached")) == "one of all | none or an integer >= 1");
+  CHECK(schema::expected(key_at("output.leaves.attached")) == "one of all | none or an integer >= 1");
   CHECK(schema::child_names("output.leaves") == std::vector<std::string>{"attached", "vtk", "every"});
 }
 
 TEST_CASE("schema: a reader's key is looked up below its map, so that a key the map lacks cannot be read",
           "[schema]") {
-  // The loader's Section<PATH>::get<NAME>() compiles only where schema::key(PATH, NAME) finds the key; the
-  // same look-up, here at compile time too.
-  static_assert(&schema::key("time", "cfl") == &schema::key("time.cfl"));
-  static_assert(&schema::key("forest.species[]", "modes") == &schema::key("forest.species[].modes"));
-  static_assert(&schema::key("", "scenario") == &schema::key("scenario"));
-  static_assert(&schema::key("forest.species[]", "canopy.leaf_area_index") ==
-                &schema::key("forest.species[].canopy.leaf_area_index"));
-  static_assert(schema::find("time", "cfll") == nullptr);            // a typo
-  static_assert(schema::find("time", "fl") == nullptr);              // a tail of a name is not the name
-  static_assert(schema::find("forest.species", "name") == nullptr);  // the list, not its items
-  static_assert(schema::find("", "cfl") == nullptr);                 // not at the top level
-  static_assert(schema::holds_keys("") && schema::holds_keys("forest.species[]") &&
-                schema::holds_keys("wind.profile") && schema::holds_keys("events[]"));
-  static_assert(!schema::holds_keys("forest.species") && !schema::holds_keys("time.cfl") &&
-                !schema::holds_keys("tme"));
-  // Each key of the table is found from its parent's path and its own name.
-  for (const schema::Key& key : schema::kKeys) {
-    INFO("key " << key.path);
-    const std::size_t dot = key.path.rfind('.');
-    const std::string_view parent = dot == std::string_view::npos ? "" : key.path.substr(0, dot);
-    const std::string_view name = dot == std::string_view::npos ? key.path : key.path.substr(dot + 1);
-    CHECK(schema::find(parent, name) == &key);
+  // The loader's Section<KEYS, PATH>::get<NAME>() compiles only where schema::key(KEYS, PATH, NAME) finds
+  // the key; the same look-up, here at compile time too.
+  using schema::holds_keys, schema::kTimeKeys, schema::kSpeciesKeys, schema::kTopLevelKeys;
+  static_assert(&schema::key(kTimeKeys, "time", "cfl") == &schema::key(kTimeKeys, "time.cfl"));
+  static_assert(&schema::key(kSpeciesKeys, "forest.species[]", "modes") ==
+                &schema::key(kSpeciesKeys, "forest.species[].modes"));
+  static_assert(&schema::key(kTopLevelKeys, "", "scenario") == &schema::key(kTopLevelKeys, "scenario"));
+  static_assert(&schema::key(kSpeciesKeys, "forest.species[]", "canopy.leaf_area_index") ==
+                &schema::key(kSpeciesKeys, "forest.species[].canopy.leaf_area_index"));
+  static_assert(schema::find(kTimeKeys, "time", "cfll") == nullptr);  // a typo
+  static_assert(schema::find(kTimeKeys, "time", "fl") == nullptr);    // a tail of a name is not the name
+  static_assert(schema::find(schema::kForestKeys, "forest.species", "name") == nullptr);  // the list, not its
+  static_assert(schema::find(kSpeciesKeys, "forest.species", "name") == nullptr);         // items
+  static_assert(schema::find(kTopLevelKeys, "", "cfl") == nullptr);  // not at the top level
+  static_assert(holds_keys(kTopLevelKeys, "") && holds_keys(kSpeciesKeys, "forest.species[]") &&
+                holds_keys(schema::kWindKeys, "wind.profile") && holds_keys(schema::kEventKeys, "events[]"));
+  static_assert(!holds_keys(schema::kForestKeys, "forest.species") && !holds_keys(kTimeKeys, "time.cfl") &&
+                !holds_keys(kTimeKeys, "tme"));
+  // A section's table holds the keys of its own maps only: not the top level's, nor another section's.
+  static_assert(!holds_keys(kTimeKeys, "") && !holds_keys(schema::kWindKeys, "time") &&
+                !holds_keys(schema::kForestKeys, "forest.species[]"));
+  // Each key is found from its parent's path and its own name, in the table that holds it.
+  for (const std::span<const schema::Key> keys : kSectionTables) {
+    for (const schema::Key& key : keys) {
+      INFO("key " << key.path);
+      const std::size_t dot = key.path.rfind('.');
+      const std::string_view parent = dot == std::string_view::npos ? "" : key.path.substr(0, dot);
+      const std::string_view name = dot == std::string_view::npos ? key.path : key.path.substr(dot + 1);
+      CHECK(schema::find(keys, parent, name) == &key);
+    }
   }
 }
 
 TEST_CASE("schema: defaults owned elsewhere are read from their owner, once", "[schema]") {
   // One pressure tolerance for the wind grid and the scenario.
-  CHECK(schema::key("solver.tolerance").number == fw::fluid::kDefaultPressureTolerance);
+  CHECK(key_at("solver.tolerance").number == fw::fluid::kDefaultPressureTolerance);
   CHECK(fw::fluid::PressureSettings{}.tolerance == fw::fluid::kDefaultPressureTolerance);
   CHECK(fw::io::SolverSettings{}.tolerance == fw::fluid::kDefaultPressureTolerance);
   // One default wood.
@@ -171,8 +225,8 @@ TEST_CASE("schema: defaults owned elsewhere are read from their owner, once", "[
   CHECK(wood.density == fw::trees::kDefaultWood.density);
   // The solver's words name fluid's own defaults, so a scenario without `solver` runs as WindSettings does.
   const fw::fluid::WindSettings wind;
-  CHECK(fw::fluid::to_string(wind.pressure.solver) == schema::key("solver.pressure").word);
-  CHECK(fw::fluid::to_string(wind.advection) == schema::key("solver.advection").word);
+  CHECK(fw::fluid::to_string(wind.pressure.solver) == key_at("solver.pressure").word);
+  CHECK(fw::fluid::to_string(wind.advection) == key_at("solver.advection").word);
   const fw::io::Scenario scenario;
   CHECK(scenario.wind_settings().pressure.max_iterations == wind.pressure.max_iterations);
   CHECK(scenario.wind_settings().pressure.jacobi_iterations == wind.pressure.jacobi_iterations);
@@ -182,18 +236,17 @@ TEST_CASE("schema: defaults owned elsewhere are read from their owner, once", "[
 }
 
 TEST_CASE("schema: limits checked elsewhere too are read from their owner, once", "[schema]") {
-  CHECK(schema::key("solver.smagorinsky_constant").below ==
-        fw::fluid::WindSettings::kSmagorinskyConstantBelow);
-  CHECK(schema::key("domain.cell_size").limits[0] == double(fw::fluid::GridSpec::kMaxFaces));
-  CHECK(schema::key("forest.stands[].spacing").limits[0] == double(fw::trees::kMaxTreesPerStand));
-  CHECK(schema::key("forest.species[].modes.wind_samples").highest == FW_MAX_TREE_SAMPLES);
+  CHECK(key_at("solver.smagorinsky_constant").below == fw::fluid::WindSettings::kSmagorinskyConstantBelow);
+  CHECK(schema::docs(key_at("domain.cell_size")).limits[0] == double(fw::fluid::GridSpec::kMaxFaces));
+  CHECK(schema::docs(key_at("forest.stands[].spacing")).limits[0] == double(fw::trees::kMaxTreesPerStand));
+  CHECK(key_at("forest.species[].modes.wind_samples").highest == FW_MAX_TREE_SAMPLES);
   // The turbulence box: its points per cell and its most points are the box's own.
-  CHECK(schema::key("wind.turbulence.box_size").limits[1] == fw::fluid::kTurbulencePointsPerCell);
-  CHECK(schema::key("wind.turbulence.box_size").limits[2] ==
+  CHECK(schema::docs(key_at("wind.turbulence.box_size")).limits[1] == fw::fluid::kTurbulencePointsPerCell);
+  CHECK(schema::docs(key_at("wind.turbulence.box_size")).limits[2] ==
         double(fw::fluid::TurbulenceBoxSpec::kMaxPoints));
   // The smallest Smagorinsky constant the schema refuses is the smallest WindSettings refuses.
   fw::fluid::WindSettings settings;
-  settings.smagorinsky_constant = schema::key("solver.smagorinsky_constant").below;
+  settings.smagorinsky_constant = key_at("solver.smagorinsky_constant").below;
   CHECK_THROWS(settings.validate());
   settings.smagorinsky_constant = std::nextafter(settings.smagorinsky_constant, 0.0);
   CHECK_NOTHROW(settings.validate());
@@ -205,7 +258,7 @@ TEST_CASE("schema: the leaf keys take trees::LeafSettings' defaults, words and l
     return schema::find(std::string("forest.species[].leaves.") + name)->number;
   };
   CHECK(schema::value_of(schema::kLeafModelWords, schema::kLeafModels,
-                         schema::key("forest.species[].leaves.model").word) == leaves.model);
+                         key_at("forest.species[].leaves.model").word) == leaves.model);
   CHECK(number("area") == leaves.area);
   CHECK(number("fraction") == leaves.fraction);
   CHECK(number("mass_per_area") == leaves.mass_per_area);
@@ -216,7 +269,7 @@ TEST_CASE("schema: the leaf keys take trees::LeafSettings' defaults, words and l
   CHECK(number("flight_drag_coefficient") == leaves.flight_drag_coefficient);
   CHECK(number("roll_coupling") == leaves.roll_coupling);
   CHECK(number("reference_speed") == leaves.reference_speed);
-  const auto amplitudes = schema::key("forest.species[].leaves.amplitudes").components;
+  const auto amplitudes = key_at("forest.species[].leaves.amplitudes").components;
   CHECK(std::vector<double>(amplitudes.begin(), amplitudes.end()) ==
         std::vector<double>(leaves.amplitudes_deg.begin(), leaves.amplitudes_deg.end()));
   // The model words are trees' own, in the order of the enum.

@@ -10,6 +10,8 @@
 #include "fluid/CanopyField.hpp"
 #include "host/app/plan/PlanBuilders.hpp"
 #include "host/stages/ForestStages.hpp"
+#include "io/Scenario.hpp"
+#include "io/ScenarioSchema.hpp"
 #include "trees/CanopyDrag.hpp"
 
 namespace fw::host {
@@ -26,18 +28,22 @@ std::string stand_warning(const io::Scenario& scenario, std::size_t k, const Sta
   const bool dense = lai > StandDensity::kForestLeafAreaIndexHigh;
   std::string keys;
   if (stand.leaf_area_index) {
-    keys = fmt::format("{} {} sets it: {} it",
-                       schema::item_path(schema::key("forest.stands[].leaf_area_index").path, k),
-                       *stand.leaf_area_index, dense ? "lower" : "raise");
+    keys = fmt::format(
+        "{} {} sets it: {} it",
+        schema::item_path(schema::key(schema::kForestKeys, "forest.stands[].leaf_area_index").path, k),
+        *stand.leaf_area_index, dense ? "lower" : "raise");
   } else {
-    const std::string spacing = schema::item_path(schema::key("forest.stands[].spacing").path, k);
-    const std::string crown = schema::item_path(schema::key("forest.species[].canopy.leaf_area_index").path,
-                                                std::size_t(stand.species_index));
+    const std::string spacing =
+        schema::item_path(schema::key(schema::kForestKeys, "forest.stands[].spacing").path, k);
+    const std::string crown =
+        schema::item_path(schema::key(schema::kSpeciesKeys, "forest.species[].canopy.leaf_area_index").path,
+                          std::size_t(stand.species_index));
     keys = fmt::format(
         "{} {} m and {} {} (per crown) set it: {} the spacing or {} the crowns' leaf area index, or give the "
         "stand's own {}",
         spacing, given.layout.spacing, crown, stand.crown_leaf_area_index, dense ? "widen" : "narrow",
-        dense ? "lower" : "raise", schema::item_path(schema::key("forest.stands[].leaf_area_index").path, k));
+        dense ? "lower" : "raise",
+        schema::item_path(schema::key(schema::kForestKeys, "forest.stands[].leaf_area_index").path, k));
   }
   return fmt::format(
       "{}:{}: {}: the {} stand's leaf area index is {:.3g} m^2 of leaf per m^2 of ground, {} the {} to {} of "

@@ -16,6 +16,8 @@
 #include "host/app/plan/PlanBuilders.hpp"
 #include "host/stages/ForestStages.hpp"
 #include "host/stages/LeafStages.hpp"
+#include "io/Scenario.hpp"
+#include "io/ScenarioSchema.hpp"
 #include "trees/Foliage.hpp"
 #include "trees/ForestLayout.hpp"
 #include "trees/StandDensity.hpp"
@@ -43,14 +45,16 @@ int stand_basis(const io::Scenario& scenario, std::size_t index, const std::vect
   } catch (const std::invalid_argument& error) {  // a species whose crown cannot carry leaves
     throw io::ScenarioError(
         scenario.file.string(), given.leaf_area_index_line,
-        io::schema::item_path(io::schema::key("forest.stands[].leaf_area_index").path, index),
+        io::schema::item_path(
+            io::schema::key(io::schema::kForestKeys, "forest.stands[].leaf_area_index").path, index),
         fmt::format("a stand of a species with a crown to carry the leaves expected ({}), got '{}'",
                     error.what(), *stand.leaf_area_index));
   }
   bases.push_back(species.with_leaf_area_index(stand.crown_leaf_area_index));
   const io::Species& given_species = scenario.forest.species[std::size_t(stand.species_index)];
   const LeafAreaKey leaf_area{
-      io::schema::item_path(io::schema::key("forest.stands[].leaf_area_index").path, index),
+      io::schema::item_path(io::schema::key(io::schema::kForestKeys, "forest.stands[].leaf_area_index").path,
+                            index),
       given.leaf_area_index_line, *stand.leaf_area_index};
   plan.coupling.leaves.push_back(species_leaves(scenario, bases.back(), given_species.leaves, leaf_area));
   plan.coupling.dynamics.push_back(given_species.dynamics);

@@ -2,6 +2,7 @@
 // their interval, and the record of where the run came from (run.json and the scenario's copy).
 #include "host/app/plan/PlanBuilders.hpp"
 #include "host/stages/PointSampler.hpp"
+#include "io/Scenario.hpp"
 
 namespace fw::host {
 

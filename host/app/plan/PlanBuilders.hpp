@@ -4,9 +4,8 @@
 //
 //   SimulationPlan plan;
 //   plan_wind(scenario, ranks, plan);   // grid, solids, profile, gusts, mean forcing, ambient wind over
-//   time,
-//                                       // the blocks over the ranks
-//   plan_turbulence(scenario, plan);    // the inflow box and its sigma_u(t); Stam's unresolved forcing
+//                                       // time, the blocks over the ranks
+//   plan_turbulence(scenario.wind, plan);   // the inflow box and its sigma_u(t); Stam's unresolved forcing
 //   auto bases = plan_species(scenario, cache, log, plan);   // bases (cache), leaves, summaries
 //   plan_forest(scenario, std::move(bases), plan);          // the placed instances, the stands
 //   plan_coupling(scenario, plan);      // the canopy and its drag, the stands' density, integrator, ...
@@ -18,17 +17,23 @@
 #include <vector>
 
 #include "host/app/SimulationPlan.hpp"
-#include "io/Scenario.hpp"
 #include "trees/BasisCache.hpp"
 #include "trees/SpeciesBasis.hpp"
 #include "trees/SpeciesLeaves.hpp"
 
+namespace fw::io {
+// Each builder takes the part of the scenario it reads, and its file includes only that part's header.
+struct Scenario;      // io/Scenario.hpp
+struct WindScenario;  // io/WindScenario.hpp
+struct WindSource;    // io/settings/WindSource.hpp
+}  // namespace fw::io
+
 namespace fw::host {
 
 /// host/app/plan/WindPlan.cpp
-void plan_wind(const io::Scenario& scenario, int ranks, SimulationPlan& plan);
-/// host/app/plan/TurbulencePlan.cpp (after plan_wind)
-void plan_turbulence(const io::Scenario& scenario, SimulationPlan& plan);
+void plan_wind(const io::WindScenario& scenario, int ranks, SimulationPlan& plan);
+/// host/app/plan/TurbulencePlan.cpp (after plan_wind): the turbulence of the scenario's wind
+void plan_turbulence(const io::WindSource& wind, SimulationPlan& plan);
 /// host/app/plan/SpeciesPlan.cpp: every species' basis, in file order (to be handed to plan_forest), its
 /// leaves (plan.coupling.leaves) and its summary (plan.species). `cache` and `log` may be null.
 std::vector<trees::SpeciesBasis> plan_species(const io::Scenario& scenario, const trees::BasisCache* cache,

@@ -8,6 +8,8 @@
 
 #include "host/app/plan/PlanBuilders.hpp"
 #include "host/stages/LeafStages.hpp"
+#include "io/Scenario.hpp"
+#include "io/ScenarioSchema.hpp"
 #include "trees/Foliage.hpp"
 #include "trees/QsmImport.hpp"
 #include "trees/TreeFile.hpp"
@@ -103,7 +105,8 @@ std::vector<trees::SpeciesBasis> plan_species(const io::Scenario& scenario, cons
     summary.samples = basis.wind().sample_count();
     summary.first_hz = basis.modes().frequencies_hz()(0);
     const LeafAreaKey leaf_area{
-        io::schema::item_path(io::schema::key("forest.species[].canopy.leaf_area_index").path, index),
+        io::schema::item_path(
+            io::schema::key(io::schema::kSpeciesKeys, "forest.species[].canopy.leaf_area_index").path, index),
         species.canopy.leaf_area_index_line, species.canopy.leaf_area_index};
     plan.coupling.leaves.push_back(species_leaves(scenario, basis, species.leaves, leaf_area));
     species.dynamics.validate();  // the loader's ranges are its own: a failure here is a bug, not the file's

@@ -6,6 +6,7 @@
 #include "fluid/TurbulenceBox.hpp"
 #include "host/app/plan/PlanBuilders.hpp"
 #include "host/stages/ForestStages.hpp"
+#include "io/settings/WindSource.hpp"
 
 namespace fw::host {
 
@@ -34,13 +35,13 @@ fluid::TurbulenceBoxSpec inflow_box_spec(const io::TurbulenceSettings& turbulenc
 
 }  // namespace
 
-void plan_turbulence(const io::Scenario& scenario, SimulationPlan& plan) {
-  if (!scenario.wind.turbulence) return;
-  const io::TurbulenceSettings& turbulence = *scenario.wind.turbulence;
+void plan_turbulence(const io::WindSource& wind_source, SimulationPlan& plan) {
+  if (!wind_source.turbulence) return;
+  const io::TurbulenceSettings& turbulence = *wind_source.turbulence;
   WindGridSetup& wind = plan.wind;
   wind.turbulence =
       std::make_shared<const fluid::TurbulenceBox>(inflow_box_spec(turbulence, wind.spec.h, wind.ambient));
-  plan.inputs.turbulence_sigma = [turbulence, source = scenario.wind](double t) {
+  plan.inputs.turbulence_sigma = [turbulence, source = wind_source](double t) {
     const auto v = io::wind_vector(source, t);
     return turbulence.standard_deviations(std::hypot(v[0], v[1], v[2]))[0];
   };
@@ -54,7 +55,7 @@ void plan_turbulence(const io::Scenario& scenario, SimulationPlan& plan) {
   unresolved.integral_length = turbulence.length_scale;
   unresolved.seed = turbulence.seed;
   // sigma_u / U: the intensity as given, or sigma_u over the wind speed of the moment.
-  plan.inputs.unresolved_intensity = [turbulence, source = scenario.wind](double t) {
+  plan.inputs.unresolved_intensity = [turbulence, source = wind_source](double t) {
     if (turbulence.intensity) return *turbulence.intensity;
     const auto v = io::wind_vector(source, t);
     const double speed = std::hypot(v[0], v[1], v[2]);

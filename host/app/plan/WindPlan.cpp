@@ -9,6 +9,7 @@
 
 #include "fluid/SolidMap.hpp"
 #include "host/app/plan/PlanBuilders.hpp"
+#include "io/WindScenario.hpp"
 
 namespace fw::host {
 
@@ -33,7 +34,7 @@ FwGust device_gust(const io::GustEvent& event, const std::array<double, 3>& wind
 
 }  // namespace
 
-void plan_wind(const io::Scenario& scenario, int ranks, SimulationPlan& plan) {
+void plan_wind(const io::WindScenario& scenario, int ranks, SimulationPlan& plan) {
   WindGridSetup& wind = plan.wind;
   wind.spec = scenario.grid_spec(0.0);
   wind.settings = scenario.wind_settings();

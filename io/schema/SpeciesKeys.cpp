@@ -1,0 +1,169 @@
+// The prose docs/scenario.md prints for each key of kSpeciesKeys (render_scenario_docs,
+// io/ScenarioSchema.cpp): its meaning, and its default, allowed values and limits in words where its type
+// does not say them. Here, not in the header, so that no reader of the keys compiles their prose. And the
+// presets' words, which only the generator knows.
+#include "io/schema/SpeciesKeys.hpp"
+
+#include "trees/TreeGenerator.hpp"
+
+namespace fw::io::schema {
+
+namespace {
+
+constexpr KeyDocs kDocs[] = {
+    {.path = "forest.species[].name",
+     .constraint = "unique among the species",
+     .description = "Name that stands and trees refer to."},
+    {.path = "forest.species[].skeleton", .description = "Where the species' skeleton comes from."},
+    {.path = "forest.species[].skeleton.generate",
+     .description = "Grow a skeleton with the built-in L-system generator, as `forestwind tree generate` "
+                    "does."},
+    {.path = "forest.species[].skeleton.generate.preset", .description = "Tree shape."},
+    {.path = "forest.species[].skeleton.generate.height",
+     .default_note = "`0` (the preset's height: broadleaf 15, conifer 20, palm 12, weeping 10)",
+     .description = "Height of the generated tree."},
+    {.path = "forest.species[].skeleton.generate.seed",
+     .default_note = "global `seed` + 1 + species index",
+     .description = "Generator seed. The same seed gives the same tree."},
+    {.path = "forest.species[].skeleton.file",
+     .allowed = "a readable `.tree` file; relative to the scenario's folder",
+     .description = "A skeleton in the `.tree` format (`id parent x y z radius` per line, metres)."},
+    {.path = "forest.species[].skeleton.qsm",
+     .allowed = "a readable TreeQSM cylinder table; relative to the scenario's folder",
+     .description = "A scanned tree, as a TreeQSM text export."},
+    {.path = "forest.species[].material", .description = "Wood, isotropic."},
+    {.path = "forest.species[].material.youngs_modulus",
+     .description = "Young's modulus E (stretching and bending)."},
+    {.path = "forest.species[].material.shear_modulus", .description = "Shear modulus G (torsion)."},
+    {.path = "forest.species[].material.density", .description = "Wood density rho."},
+    {.path = "forest.species[].dynamics",
+     .description =
+         "The model that moves the species' trees; all three read the same wind samples, give the air the "
+         "same drag and write the same outputs. `modal`: the FEM's lowest vibration modes, driven through "
+         "the "
+         "wind basis (Diener 2008). `rigid_bodies`: Oliapuram & Kumar (2010, §3.1): each element a rigid "
+         "body "
+         "rotating about its parent's end against a joint spring of stiffness of the form E I / L, "
+         "integrated "
+         "implicitly. `springs`: Ota et al. (2004) as Yildiz implements it: each element a quasi-static "
+         "cantilever flat spring, k = E b t³ / (4 l³), bent by its own wind load to the angle "
+         "atan(deflection / l), capped at `springs.max_angle_deg`, with a stochastic sine on top; no "
+         "inertia. "
+         "Every species' modes are computed (with the default `modes` for the other two models), because "
+         "those models build on the same skeleton, beam model and first frequency."},
+    {.path = "forest.species[].modes",
+     .constraint = "only for a species whose `dynamics` is `modal`",
+     .description = "Modal model."},
+    {.path = "forest.species[].modes.count",
+     .constraint = "fewer than the skeleton's 6 × (nodes − 1) DOFs",
+     .description = "Number of lowest vibration modes kept."},
+    {.path = "forest.species[].modes.damping_ratio",
+     .description = "Damping ratio zeta, the same for every mode."},
+    {.path = "forest.species[].modes.wind_samples",
+     .description = "Number of height bands per tree. Each band samples the wind separately, which captures "
+                    "shear and gust fronts within one crown."},
+    {.path = "forest.species[].rigid_bodies",
+     .constraint = "only for a species whose `dynamics` is `rigid_bodies`",
+     .description = "Articulated rigid branches (`dynamics: rigid_bodies`)."},
+    {.path = "forest.species[].rigid_bodies.damping_ratio",
+     .description =
+         "Damping ratio zeta of the tree's first mode. The joints' damping is proportional to their "
+         "stiffness, C = 2 zeta / omega_1 K with omega_1 the species' first FEM frequency, so that "
+         "the slowest sway decays as a modal tree's with the same ratio."},
+    {.path = "forest.species[].springs",
+     .constraint = "only for a species whose `dynamics` is `springs`",
+     .description = "Quasi-static cantilever springs (`dynamics: springs`)."},
+    {.path = "forest.species[].springs.max_angle_deg",
+     .description = "The largest bend of one element from its parent, theta_max (Yildiz's cap)."},
+    {.path = "forest.species[].springs.sway_amplitude",
+     .description = "The stochastic sine's amplitude at the largest bend: an element's load is F (1 + a "
+                    "sin(2 pi f t + b)), with a = `sway_amplitude` theta / theta_max (a bent element sways "
+                    "more) and a random phase b per element."},
+    {.path = "forest.species[].springs.sway_frequency", .description = "f, the stochastic sine's frequency."},
+    {.path = "forest.species[].drag_coefficient",
+     .description =
+         "Drag coefficient C_D of the branches, as cylinders in cross flow: the drag is 1/2 rho_air "
+         "C_D D L \\|u\\| u per element of diameter D and length L, with air density 1.225 kg/m^3. "
+         "Used for the wind load on the tree and for its drag on the wind."},
+    {.path = "forest.species[].canopy",
+     .description = "Foliage: its leaf area and drag. The single leaves of `leaves` sit on it."},
+    {.path = "forest.species[].canopy.leaf_area_index",
+     .default_note = "`0` (no leaves)",
+     .description = "One-sided leaf area per ground area under the crown. The crown's ground area is the "
+                    "horizontal convex hull of the tree's branches (the trunk excluded)."},
+    {.path = "forest.species[].canopy.drag_coefficient",
+     .description = "Drag coefficient C_D of the leaves, in the convention of the branches' "
+                    "`drag_coefficient`: the drag is 1/2 rho_air C_D A \\|u\\| u per one-sided leaf area A. "
+                    "The default 0.4 makes 1/2 C_D = 0.2, the canopy drag coefficient C_d of canopy LES in "
+                    "the form C_d a \\|u\\| u (Shaw & Schumann 1992)."},
+    {.path = "forest.species[].leaves",
+     .default_note = "none (no leaves)",
+     .description =
+         "Single leaves that flutter in the wind, shed when it pulls harder than their petioles hold, "
+         "and fly until they land or leave the domain (docs/leaves.md has the model). They sit on the "
+         "canopy's foliage, so the species needs `canopy.leaf_area_index` > 0. Without `leaves` the "
+         "species has no single leaves; the canopy's drag is the same either way."},
+    {.path = "forest.species[].leaves.model",
+     .description =
+         "How attached leaves flutter. `pseudo_branch`: each leaf turns about its branch, a damped "
+         "oscillator driven by the wind normal to the blade (Oliapuram 2010). `stochastic`: three "
+         "sine angles per leaf whose amplitudes grow with the wind speed (Ota et al. 2004). `none`: "
+         "no leaves (a winter tree)."},
+    {.path = "forest.species[].leaves.area",
+     .description =
+         "One-sided area a of one leaf (a square blade of side sqrt(a) on a petiole half as long). "
+         "The species holds N = round(`fraction` × A_leaf / a) leaves, where A_leaf = "
+         "`canopy.leaf_area_index` × the crown's ground area is its one-sided leaf area; every tree "
+         "of the species carries the same leaves, scaled and turned with it."},
+    {.path = "forest.species[].leaves.fraction",
+     .description = "Share of the foliage's leaves that are simulated. Below 1, a thinned sample of the same "
+                    "leaves, each of the real size, for big forests."},
+    {.path = "forest.species[].leaves.mass_per_area",
+     .description = "Leaf mass per area sigma: a leaf's mass is sigma a."},
+    {.path = "forest.species[].leaves.frequency",
+     .description = "Flutter frequency f_leaf: the natural frequency of the `pseudo_branch` oscillator; for "
+                    "`stochastic`, the angles' frequency, with a jitter of ±20% per leaf and angle."},
+    {.path = "forest.species[].leaves.damping_ratio",
+     .description = "Damping ratio zeta of the `pseudo_branch` oscillator. Low, so that leaves flutter; the "
+                    "air damps their motion too."},
+    {.path = "forest.species[].leaves.petiole_strength",
+     .description =
+         "Median petiole strength S. Each leaf draws its own S from a log-normal distribution and "
+         "sheds when the wind's normal force on its blade, 1/2 rho C_n a \\|u . n\\| \\|u\\| (C_n = "
+         "1.2), exceeds it."},
+    {.path = "forest.species[].leaves.strength_spread",
+     .description =
+         "Log-standard deviation of the petiole strengths: the wider, the more gradually the leaves "
+         "shed as the wind rises (0: all at once)."},
+    {.path = "forest.species[].leaves.flight_drag_coefficient",
+     .description =
+         "Drag coefficient C_D of a tumbling leaf in flight, per one-sided area. In still air a leaf "
+         "falls at sqrt(2 sigma g / (rho C_D)), 1.28 m/s at the defaults."},
+    {.path = "forest.species[].leaves.amplitudes",
+     .description = "`stochastic` only: the amplitudes of the three angles at and above `reference_speed`, "
+                    "about the vertical (W_H), about the branch (W_V) and about the petiole (W_R)."},
+    {.path = "forest.species[].leaves.roll_coupling",
+     .description = "`stochastic` only: a, the roll angle's share of the horizontal angle (theta_R gains a "
+                    "theta_H)."},
+    {.path = "forest.species[].leaves.reference_speed",
+     .description =
+         "`stochastic` only: U_ref. The angles' amplitudes scale with min(1, \\|u\\| / U_ref), u the "
+         "wind at the leaf."},
+    {.path = "forest.species[].leaves.seed",
+     .default_note = "global `seed` + 2^32 + species index",
+     .description =
+         "Seed of the leaves' positions, angles and petiole strengths. The same seed gives the same "
+         "leaves on every machine."},
+};
+
+}  // namespace
+
+std::vector<std::string> preset_words() {
+  return trees::preset_names();
+}
+
+std::span<const KeyDocs> species_docs() {
+  return kDocs;
+}
+
+}  // namespace fw::io::schema

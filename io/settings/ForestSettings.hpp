@@ -1,0 +1,60 @@
+// The forest section of a scenario (docs/scenario.md, "forest"): the coupling of trees and wind, the
+// integrator, the drag law, the species (io/settings/Species.hpp), the stands and the trees placed by hand.
+// Defaults are the schema's (io/schema/ForestKeys.hpp).
+//
+//   for (const fw::io::Stand& stand : forest.stands) trees::place_stand(stand.layout, ...);
+//   forest.species[forest.trees[0].species_index].name;
+#pragma once
+
+#include <array>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "fluid/DragLaw.hpp"
+#include "io/schema/ForestKeys.hpp"
+#include "io/settings/Radians.hpp"
+#include "io/settings/Species.hpp"
+#include "trees/ForestLayout.hpp"
+#include "trees/ModalIntegrator.hpp"
+
+namespace fw::io {
+
+/// A stand: trees placed by trees::place_stand (yaws uniform at random, scales uniform in [min, max]).
+struct Stand {
+  std::string species;      ///< a Species::name
+  trees::StandSpec layout;  ///< layout.species is the index into ForestSettings::species; region in m
+  /// The stand's own leaf area index, m^2/m^2, in (0, trees::StandDensity::kMaxLeafAreaIndex]; nullopt:
+  /// the species' canopy.leaf_area_index on every crown.
+  std::optional<double> leaf_area_index;
+  int line = 0;                  ///< the stand entry's line in the file
+  int leaf_area_index_line = 0;  ///< the line of leaf_area_index (the entry's when not given)
+};
+
+/// One tree placed by hand.
+struct PlacedTreeSettings {
+  std::string species;               ///< a Species::name
+  int species_index = 0;             ///< into ForestSettings::species
+  std::array<double, 3> position{};  ///< m; z from the file, else the ground (terrain) under (x, y)
+  bool height_given = false;         ///< whether the file gave z
+  /// Counter-clockwise about +z seen from above (the file's degrees, converted).
+  double yaw_rad = radians(schema::key(schema::kForestKeys, "forest.trees[].yaw").number);
+  double scale = schema::key(schema::kForestKeys, "forest.trees[].scale").number;  ///< > 0
+};
+
+struct ForestSettings {
+  /// trees' drag returned to the wind
+  bool two_way_coupling = schema::key(schema::kForestKeys, "forest.two_way_coupling").flag;
+  /// The modal time step: exact for the force held over a step, or Diener's semi-implicit Euler.
+  trees::ModalIntegrator integrator =
+      schema::value_of(schema::kIntegratorWords, schema::kIntegrators,
+                       schema::key(schema::kForestKeys, "forest.integrator").word);
+  /// Diener's (2008, section 5.2) quadratic correction of the linear modal displacement on output frames.
+  bool strong_wind_correction = schema::key(schema::kForestKeys, "forest.strong_wind_correction").flag;
+  fluid::DragLaw drag_law;  ///< forest.drag_law (validated by the reader's bounds)
+  std::vector<Species> species;
+  std::vector<Stand> stands;
+  std::vector<PlacedTreeSettings> trees;
+};
+
+}  // namespace fw::io
