@@ -35,12 +35,16 @@ build: configure
 build-cli: configure
 	cmake --build $(BUILD_DIR) --target forestwind
 
-# CTest's results go to $(BUILD_DIR)/ctest-junit.xml, from which the 15 slowest tests are printed, pass or
-# fail; the fast tier keeps every test under a minute (README, "Tests"). CTEST_FLAGS adds options (-j2, -R ...).
+# CTest runs CTEST_JOBS tests at once (one a core: much of a test is one thread, a program's compile or the
+# host's work; the MPI tests and the validations take the cores they use, CMakeLists.txt). Its results go
+# to $(BUILD_DIR)/ctest-junit.xml, from which the 15 slowest tests are printed, pass or fail; the fast tier
+# keeps every test under a minute (docs/testing.md). CTEST_FLAGS adds options (-R ..., --repeat ...).
+CTEST_JOBS ?= $(shell nproc)
 CTEST_FLAGS ?=
 test: deps format-check build
-	@status=0; ctest --test-dir $(BUILD_DIR) --output-on-failure --output-junit ctest-junit.xml $(CTEST_FLAGS) \
-	  || status=$$?; python3 scripts/slowest-tests.py $(BUILD_DIR)/ctest-junit.xml 15; exit $$status
+	@status=0; ctest --test-dir $(BUILD_DIR) --output-on-failure --output-junit ctest-junit.xml \
+	  -j $(CTEST_JOBS) $(CTEST_FLAGS) || status=$$?; \
+	python3 scripts/slowest-tests.py $(BUILD_DIR)/ctest-junit.xml 15; exit $$status
 
 test-long: fuzz sanitize validate scaling
 
