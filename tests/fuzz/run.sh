@@ -10,8 +10,8 @@
 #
 # With FUZZ_SEED=N set, a run is repeatable: each target starts from a fresh working corpus (the tracked seeds
 # and regressions only) and libFuzzer draws its mutations from seed N, so a run of S seconds tries the same
-# inputs first as any shorter run with that seed. CI's brief run (make test) uses a fixed seed, so that what
-# it finds, a longer local run with the same seed finds too, and a change is not red at random.
+# inputs first as any shorter run with that seed: what a run finds, a longer run with the same seed on
+# another machine finds too.
 set -uo pipefail
 
 if [ $# -lt 2 ]; then
