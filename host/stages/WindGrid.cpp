@@ -416,11 +416,16 @@ void WindGrid::set_canopy(std::vector<float> drag_density, const fluid::DragLaw&
       any = any || k > 0.0f;
     }
   }
-  canopy_on_ = any;
-  if (!any) {
+  // Over ranks the drag is on wherever any block has some: a block with none still takes part in the drag
+  // step's halo exchange, as its neighbours do, or the ranks' messages pair up with the wrong exchanges. Its
+  // density stays zero, as the same cells' are in one process.
+  canopy_on_ = world_->max(any ? 1.0 : 0.0) > 0.0;
+  if (!canopy_on_) {
     canopy_ = cl::Buffer();
+    canopy_box_ = CellBox{};
     return;
   }
+  if (drag_density.empty()) drag_density.assign(local_.cell_count(), 0.0f);
   canopy_box_ = nonzero_cell_box(local_, drag_density);
   canopy_ = cc_.buffer(drag_density.size() * sizeof(float));
   cc_.queue().enqueueWriteBuffer(canopy_, CL_TRUE, 0, drag_density.size() * sizeof(float),

@@ -170,7 +170,9 @@ class WindGrid {
   /// Canopy drag F = -k |u| u from the drag density k = sum Cd a (1/m, one float a cell, x-fastest; see
   /// fluid/CanopyField), applied implicitly right after the body forces (stage "canopy"). Uploaded once; an
   /// empty or all-zero field turns the drag off, and the step is then exactly the one without a canopy.
-  /// Throws std::invalid_argument for a wrong size or a negative or non-finite value.
+  /// Over ranks, collective: every rank passes the whole grid's field (or all an empty one), and the drag is
+  /// on for all when any block has some. Throws std::invalid_argument for a wrong size or a negative or
+  /// non-finite value.
   /// `law`: how the drag coefficients behind k vary with |u| (fluid/DragLaw.hpp; default constant).
   void set_canopy(std::vector<float> drag_density, const fluid::DragLaw& law = {});
   bool canopy_enabled() const { return canopy_on_; }
@@ -259,7 +261,7 @@ class WindGrid {
   std::array<double, 2> forcing_acceleration_{0, 0};  // m/s^2
   long steps_ = 0;
   cl::Buffer canopy_;   // drag density, one float a cell; valid while canopy_on_
-  CellBox canopy_box_;  // the cells of non-zero drag density
+  CellBox canopy_box_;  // the cells of non-zero drag density; empty on a block with none
   fluid::DragLaw drag_law_;
   bool canopy_on_ = false;
   cl::Buffer eddy_viscosity_;                // nu_t, one float a cell, m^2/s; valid while subgrid_enabled()

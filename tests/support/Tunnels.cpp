@@ -42,12 +42,18 @@ host::WindGridSetup turbulent_tunnel() {
   return setup;
 }
 
-std::vector<float> tunnel_canopy(const fluid::GridSpec& spec) {
+std::vector<float> canopy_in_cells(const fluid::GridSpec& spec, std::array<int, 3> first,
+                                   std::array<int, 3> end, float density) {
   std::vector<float> k(spec.cell_count(), 0.0f);
-  for (int z = 0; z < 5; ++z)
-    for (int y = 3; y < 13; ++y)
-      for (int x = 6; x < 26; ++x) k[x + std::size_t(spec.nx) * (y + std::size_t(spec.ny) * z)] = 0.3f;
+  for (int z = first[2]; z < end[2]; ++z)
+    for (int y = first[1]; y < end[1]; ++y)
+      for (int x = first[0]; x < end[0]; ++x)
+        k[x + std::size_t(spec.nx) * (y + std::size_t(spec.ny) * z)] = density;
   return k;
+}
+
+std::vector<float> tunnel_canopy(const fluid::GridSpec& spec) {
+  return canopy_in_cells(spec, {6, 3, 0}, {26, 13, 5}, 0.3f);
 }
 
 }  // namespace fw::test

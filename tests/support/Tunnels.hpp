@@ -2,6 +2,7 @@
 // of every split of up to 4 ranks.
 #pragma once
 
+#include <array>
 #include <vector>
 
 #include "fluid/GridSpec.hpp"
@@ -18,6 +19,10 @@ host::WindGridSetup tunnel(fluid::AdvectionScheme scheme);
 /// The tunnel with everything a forest's wind has: upwind5, inflow turbulence (a 64 x 32 x 16 box of 0.5 m,
 /// seed 5), the tke model, a rough floor (z0 0.1 m, wall stress on a slip floor) and vorticity confinement.
 host::WindGridSetup turbulent_tunnel();
+
+/// A canopy's drag density (1/m, one float a cell): `density` in the cells first .. end - 1, zero elsewhere.
+std::vector<float> canopy_in_cells(const fluid::GridSpec& spec, std::array<int, 3> first,
+                                   std::array<int, 3> end, float density);
 
 /// A canopy's drag density for a tunnel: 0.3 / m in cells 6-25 x 3-12 x 0-4.
 std::vector<float> tunnel_canopy(const fluid::GridSpec& spec);
