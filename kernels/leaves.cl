@@ -57,8 +57,10 @@ FW_INLINE float3 wind_at(const FwGrid* g, __global const float* u, __global cons
 }
 
 /* Below the ground or in a solid cell (world position x). Outside the domain's sides nothing is solid (exits
- * come first). A cell in the domain beyond a rank's block and its halo counts a FW_LEAF_COUNT_PAST_HALO and
- * reads as free. Reference: LeafReference.cpp Terrain::blocked. */
+ * come first). On a rank's block cut across a periodic axis, the halo beyond the domain's face holds the
+ * cells of the axis' other end: a leaf that wrapped there mid-step finds them one period away. A cell in the
+ * domain beyond a rank's block and its halo counts a FW_LEAF_COUNT_PAST_HALO and reads as free. Reference:
+ * LeafReference.cpp Terrain::blocked. */
 FW_INLINE int blocked(const FwGrid* g, __global const uchar* mask, const float3 x, __global int* counters) {
   if (x.z < g->origin[2]) return 1;
   const int n[3] = {g->domain[0], g->domain[1], g->nz}, offset[3] = {g->ox, g->oy, 0};
@@ -71,6 +73,9 @@ FW_INLINE int blocked(const FwGrid* g, __global const uchar* mask, const float3 
   }
   for (int a = 0; a < 3; ++a) {
     cell[a] -= offset[a];
+    const int period = a < 2 ? g->wrap[a] : 0;
+    if (period > 0 && cell[a] < 0) cell[a] += period;
+    if (period > 0 && cell[a] >= extent[a]) cell[a] -= period;
     if (cell[a] < 0 || cell[a] >= extent[a]) {
       atomic_inc(&counters[FW_LEAF_COUNT_PAST_HALO]);
       return 0;
@@ -86,14 +91,16 @@ FW_INLINE float top_face(const FwGrid* g, const float3 x) {
 }
 
 /* Wraps q (and p with it) through the domain's periodic x and y sides; 0 when q left through any other side
- * or the top (the ground is no side: below it is blocked). */
+ * or the top (the ground is no side: below it is blocked). A rank's block cut across a periodic axis has slip
+ * sides, and its `wrap` says the domain's axis is periodic: it wraps the leaf as one process does, and the
+ * host then sends it to the rank that holds it. */
 FW_INLINE int inside_or_wrapped(const FwGrid* g, float3* p, float3* q) {
   const int n[2] = {g->domain[0], g->domain[1]};
   for (int a = 0; a < 2; ++a) {
     const float lo = g->origin[a], span = (float)n[a] * g->h;
     float qa = a == 0 ? q->x : q->y;
     if (qa >= lo && qa < lo + span) continue;
-    if (g->bc[2 * a] != FW_BC_PERIODIC) return 0;
+    if (g->bc[2 * a] != FW_BC_PERIODIC && g->wrap[a] == 0) return 0;
     float shift = -span * floor((qa - lo) / span);
     if (qa + shift >= lo + span) shift -= span; /* rounding just below lo */
     if (a == 0) {
