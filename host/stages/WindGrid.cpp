@@ -425,7 +425,6 @@ void WindGrid::set_canopy(std::vector<float> drag_density, const fluid::DragLaw&
     canopy_box_ = CellBox{};
     return;
   }
-  if (drag_density.empty()) drag_density.assign(local_.cell_count(), 0.0f);
   canopy_box_ = nonzero_cell_box(local_, drag_density);
   canopy_ = cc_.buffer(drag_density.size() * sizeof(float));
   cc_.queue().enqueueWriteBuffer(canopy_, CL_TRUE, 0, drag_density.size() * sizeof(float),
