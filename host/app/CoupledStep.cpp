@@ -112,7 +112,7 @@ SpinUpReport CoupledStep::start(double spin_up) {
     // trees need not move meanwhile.
     wind_.set_clock(-spin_up, 0);
     while (time() < -kSpinUpTolerance * spin_up) {
-      step_wind(-time());  // never past t = 0
+      step_wind(next_step(-time()));  // never past t = 0
       ++report.steps;
     }
     report.seconds = spin_up;
@@ -147,8 +147,8 @@ void CoupledStep::restore_state(const std::map<std::string, StageState>& states)
   if (leaves_) leaves_->restore_state(of(saved::kLeavesStage));
 }
 
-CoupledStepReport CoupledStep::step(double max_dt) {
-  CoupledStepReport report = step_wind(max_dt);
+CoupledStepReport CoupledStep::step(const NextStep& next) {
+  CoupledStepReport report = step_wind(next);
   const double dt = report.wind.dt;
   if (has_trees()) {
     const auto trees_start = Clock::now();
@@ -171,26 +171,28 @@ CoupledStepReport CoupledStep::step(double max_dt) {
   return report;
 }
 
-CoupledStepReport CoupledStep::step_wind(double max_dt) {
+NextStep CoupledStep::next_step(double max_dt) {
   const long next = wind_.steps() + 1;
   // A spin-up's steps (t < 0) hold the inputs at their t = 0 values.
   apply_inputs(std::max(time(), 0.0));
-  CoupledStepReport report;
+  NextStep chosen;
   const std::array<double, 3> maxima = wind_.max_speed_components();
-  report.max_speed_component = std::max({maxima[0], maxima[1], maxima[2]});
+  chosen.max_speed_components = maxima;
   if (!(std::isfinite(maxima[0]) && std::isfinite(maxima[1]) && std::isfinite(maxima[2])))
     throw SimulationError(fmt::format("{}: field velocity is not finite", where(next, time())));
-  double dt = wind_.cfl_dt(maxima);
-  if (max_dt < dt) dt = max_dt;
-  report.cfl = wind_.courant_number(maxima, dt);
+  chosen.cfl_dt = wind_.cfl_dt(maxima);
+  chosen.dt = max_dt < chosen.cfl_dt * (1.0 - kLandingTolerance) ? max_dt : chosen.cfl_dt;
+  const double dt = chosen.dt;
+  chosen.cfl = wind_.courant_number(maxima, dt);
+  const double cfl = chosen.cfl;
   // A scheme with a stability limit blows up past it; the semi-Lagrangian ones only lose accuracy.
   const double scheme_limit = fluid::courant_limit(wind_.setup().settings.advection);
   const double runaway = std::isfinite(scheme_limit) ? scheme_limit : kRunawayCfl;
-  if (wind_.fixed_dt() && report.cfl > runaway) {
+  if (wind_.fixed_dt() && cfl > runaway) {
     throw SimulationError(fmt::format(
         "{}: field velocity reaches {:.1f} m/s, Courant number {:.2f} > {} ({}) with the fixed dt {} s; "
         "lower time.dt or use dt: auto",
-        where(next, time()), report.max_speed_component, report.cfl, runaway,
+        where(next, time()), std::max({maxima[0], maxima[1], maxima[2]}), cfl, runaway,
         std::isfinite(scheme_limit)
             ? fluid::to_string(wind_.setup().settings.advection) + "'s stability limit"
             : "the runaway limit",
@@ -202,8 +204,15 @@ CoupledStepReport CoupledStep::step_wind(double max_dt) {
         "(stable below {:.4g} s); lower time.dt or set forest.integrator: exact",
         where(next, time()), dt, integrator_dt_limit_));
   }
+  return chosen;
+}
 
-  report.wind = wind_.step_by(dt, maxima);
+CoupledStepReport CoupledStep::step_wind(const NextStep& next) {
+  CoupledStepReport report;
+  const std::array<double, 3>& maxima = next.max_speed_components;
+  report.max_speed_component = std::max({maxima[0], maxima[1], maxima[2]});
+  report.cfl = next.cfl;
+  report.wind = wind_.step_by(next.dt, maxima);
   return report;
 }
 

@@ -58,6 +58,17 @@ struct CoupledStepReport {
   double cfl = 0.0;                  ///< the step's Courant number (WindGrid::courant_number)
 };
 
+/// The next step as chosen before anything moves (CoupledStep::next_step): its dt, and the maxima and
+/// checks that chose it.
+struct NextStep {
+  double dt = 0.0;                               ///< s
+  double cfl_dt = 0.0;                           ///< s: the fixed dt, or the CFL dt before any cap
+  double cfl = 0.0;                              ///< the step's Courant number at dt
+  std::array<double, 3> max_speed_components{};  ///< m/s, before the step
+  /// Whether the caller's max_dt cut the step short of cfl_dt (the run's last step, landing on its end).
+  bool cut() const { return dt < cfl_dt; }
+};
+
 /// What CoupledStep::start's spin-up did: its steps and the simulated seconds they covered.
 struct SpinUpReport {
   long steps = 0;
@@ -72,6 +83,9 @@ class CoupledStep {
   /// A spin-up ends when the wind's clock is within this fraction of the spin-up of t = 0 (a sum of dt
   /// may fall short of it by rounding; a last step that short would be a step of nothing).
   static constexpr double kSpinUpTolerance = 1e-9;
+  /// A max_dt short of the step's dt by less than this fraction of it is the rounding in a sum of dts (a
+  /// fixed dt that divides the end time), not a cut: the step takes its whole dt, as a longer run does.
+  static constexpr double kLandingTolerance = 1e-9;
 
   /// Uploads the wind grid, the canopy drag and the forest. Throws std::invalid_argument when the grid does
   /// not fit the device or a setting is invalid (see WindGrid, ForestStages). `forest` must outlive this.
@@ -100,9 +114,18 @@ class CoupledStep {
   /// followed. Throws std::invalid_argument naming the stage and value that do not fit this set-up.
   void restore_state(const std::map<std::string, StageState>& states);
 
-  /// One coupled step of at most max_dt seconds (the settings' dt otherwise), with the time inputs at the
-  /// step's start. Throws SimulationError (see the header comment) before the step when a check fails.
-  CoupledStepReport step(double max_dt = std::numeric_limits<double>::infinity());
+  /// One coupled step of at most max_dt seconds (the settings' dt otherwise; max_dt within
+  /// kLandingTolerance of it does not cut it), with the time inputs at the step's start. Throws
+  /// SimulationError (see the header comment) before the step when a check fails.
+  CoupledStepReport step(double max_dt = std::numeric_limits<double>::infinity()) {
+    return step(next_step(max_dt));
+  }
+  /// The next step, chosen and checked but not taken: the time inputs at its start applied, max|u| read
+  /// back, dt chosen; throws SimulationError as step() does. For a caller that acts on dt before the step
+  /// moves anything (the run loop checkpoints before a last step that its end cuts short). Collective.
+  NextStep next_step(double max_dt = std::numeric_limits<double>::infinity());
+  /// Takes the step next_step() chose, with nothing stepped in between.
+  CoupledStepReport step(const NextStep& next);
 
   double time() const { return wind_.time(); }
   long steps() const { return wind_.steps(); }
@@ -135,8 +158,8 @@ class CoupledStep {
  private:
   /// The time inputs at time t: ambient wind, turbulence sigma_u and unresolved intensity where given.
   void apply_inputs(double t);
-  /// step()'s time step and its checks, then the wind grid's step: the report so far.
-  CoupledStepReport step_wind(double max_dt);
+  /// The wind grid's part of step(next): the report so far.
+  CoupledStepReport step_wind(const NextStep& next);
 
   ComputeContext& cc_;
   TimeInputs inputs_;

@@ -24,6 +24,8 @@ constexpr std::string_view kNumber = ".number.";
 constexpr std::size_t kSegmentValues = 5;
 // A part's block in "run.block": extent (3), halo low and high (2 each), origin (2).
 constexpr std::size_t kBlockValues = 9;
+// Only in the checkpoint a run writes at its end (RunProgress::reached_end).
+constexpr const char* kReachedEnd = "run.reached_end";
 
 std::string rank_file(int rank) {
   return fmt::format("rank_{:04d}.fwcheck", rank);
@@ -55,6 +57,7 @@ io::Checkpoint to_checkpoint(const RunSnapshot& snapshot) {
     segments.insert(segments.end(),
                     {s.start_time, s.end_time, double(s.start_step), double(s.end_step), s.wall_seconds});
   c.put("run.segments", segments);
+  if (p.reached_end) c.put(kReachedEnd, std::vector<double>{*p.reached_end});
   c.put("run.ranks", std::vector<std::int64_t>{snapshot.ranks});
   c.put("run.decomposition", text_bytes(snapshot.decomposition));
   std::string keys;
@@ -104,6 +107,12 @@ RunSnapshot from_checkpoint(const io::Checkpoint& c) {
   for (std::size_t s = 0; s < segments.size(); s += kSegmentValues)
     snapshot.progress.segments.push_back({segments[s], segments[s + 1], long(segments[s + 2]),
                                           long(segments[s + 3]), segments[s + 4], kStoppedSegment});
+  if (c.has(kReachedEnd)) {
+    const std::vector<double>& end = c.get<double>(kReachedEnd);
+    if (end.size() != 1)
+      throw io::CheckpointError(fmt::format("the section \"{}\" has the wrong size", kReachedEnd));
+    snapshot.progress.reached_end = end[0];
+  }
   const std::vector<std::int64_t>& ranks = c.get<std::int64_t>("run.ranks");
   if (ranks.size() != 1) throw io::CheckpointError("the section \"run.ranks\" has the wrong size");
   snapshot.ranks = int(ranks[0]);

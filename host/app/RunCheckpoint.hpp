@@ -20,6 +20,7 @@
 #include <cstdint>
 #include <filesystem>
 #include <map>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -44,6 +45,10 @@ struct RunProgress {
   double next_checkpoint = 0.0;  ///< s: when the next checkpoint is due
   /// The run's segments up to this checkpoint, the current one last (ending here).
   std::vector<io::RunSegment> segments;
+  /// s: set on the checkpoint a run writes at its end. It holds the state before the run's last step,
+  /// which was cut short to land on the end time: an extension goes on from the last whole step and takes
+  /// the step the longer run took, bit for bit; a resume to the same end takes the cut step again.
+  std::optional<double> reached_end;
 };
 
 /// One rank's part of a checkpoint.

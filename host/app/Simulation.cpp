@@ -173,7 +173,7 @@ class RunLoop {
       start_time_ = coupled_.time();
       start_step_ = coupled_.steps();
       step_until(end);
-      if (checkpoints_on() && !summary_.interrupted) write_checkpoint();
+      if (checkpoints_on() && !summary_.interrupted && !end_checkpointed_) write_checkpoint();
     } catch (const std::exception& e) {
       if (options_.progress) std::cerr << "\n";
       // The frames captured before the failure are still written; a second error while finishing is
@@ -281,9 +281,10 @@ class RunLoop {
   }
 
   // Everything handed out so far is written first, so that the checkpoint never describes output a crash
-  // could still lose; then every rank writes its part. Collective.
-  void write_checkpoint() {
-    if (coupled_.steps() == last_checkpoint_step_) return;
+  // could still lose; then every rank writes its part. reached_end: see RunProgress (the one at this step
+  // without it is written again with it). Collective.
+  void write_checkpoint(std::optional<double> reached_end = std::nullopt) {
+    if (coupled_.steps() == last_checkpoint_step_ && !reached_end) return;
     const auto start = Clock::now();
     push_pending_samples();
     output_.drain();
@@ -293,8 +294,8 @@ class RunLoop {
     snapshot.step = coupled_.steps();
     snapshot.stages = coupled_.save_state();
     snapshot.progress = {
-        frames_,          samples_taken_, frames_due_.next(), samples_due_.next(), checkpoints_due_.next(),
-        earlier_segments_};
+        frames_,           samples_taken_, frames_due_.next(), samples_due_.next(), checkpoints_due_.next(),
+        earlier_segments_, reached_end};
     snapshot.progress.segments.push_back(segment(kStoppedSegment));
     snapshot.state_keys = state_keys_;
     snapshot.ranks = world_.size();
@@ -334,10 +335,19 @@ class RunLoop {
         return;
       }
       output_.check();
-      const CoupledStepReport report = coupled_.step(end - coupled_.time());
+      const NextStep next = coupled_.next_step(end - coupled_.time());
+      // The end cuts the last step short, which a longer run would not: the end's checkpoint keeps the
+      // state before it, so that an extension goes on from a step the longer run took too.
+      if (checkpoints_on() && next.cut()) {
+        write_checkpoint(end);
+        end_checkpointed_ = true;
+      }
+      const CoupledStepReport report = coupled_.step(next);
       if (samples_due_.due(report.wind.time)) sample_probes();
       if (frames_due_.due(report.wind.time)) hand_over_frame();
-      if (checkpoints_on() && checkpoints_due_.due(report.wind.time)) write_checkpoint();
+      // After the cut step none: the end's is the one before it.
+      if (checkpoints_on() && !end_checkpointed_ && checkpoints_due_.due(report.wind.time))
+        write_checkpoint();
       if (options_.progress && ms_since(last_progress) > kProgressMs) {
         last_progress = Clock::now();
         print_progress(report.wind, end, ms_since(wall_start_) * 1e-3);
@@ -441,6 +451,7 @@ class RunLoop {
   double start_time_ = 0.0;
   long start_step_ = 0;
   long last_checkpoint_step_ = -1;
+  bool end_checkpointed_ = false;  // the end's checkpoint, before a last step cut short, is written
   double checkpoint_ms_ = 0.0;
   std::vector<io::RunSegment> earlier_segments_;
   std::optional<RunSnapshot> redistributed_;  // a checkpoint of other ranks or blocks, made this rank's

@@ -76,6 +76,24 @@ std::string resume_summary(const host::CheckpointParts& from) {
       from.own ? "" : fmt::format("; written by {} ranks ({}), redistributed", any.ranks, any.decomposition));
 }
 
+// What a resume from `at` to `end` runs. The checkpoint a run writes at its end holds its last whole step
+// (host::RunProgress::reached_end), so the end's cut step is taken again, or a longer one in its place.
+std::string what_is_left(const host::RunSnapshot& at, double end) {
+  const std::optional<double> reached = at.progress.reached_end;
+  if (reached && end <= *reached)
+    return fmt::format(
+        "nothing new to run: the run reached its end, {} s, and goes on from its last whole "
+        "step to take the step cut to land on it again (raise time.end to extend)",
+        *reached);
+  if (reached)
+    return fmt::format(
+        "{:.6g} s more than the run reached, from its last whole step before {} s, bit for "
+        "bit as a run to the new end",
+        end - *reached, *reached);
+  const double more = end - at.time;
+  return more > 0.0 ? fmt::format("{:.6g} s more", more) : "nothing more to run (raise time.end to extend)";
+}
+
 }  // namespace
 
 int run_check(const std::string& scenario_path, const std::string& resume, const host::Communicator& world) {
@@ -90,12 +108,9 @@ int run_check(const std::string& scenario_path, const std::string& resume, const
   std::cout << fmt::format("{}: scenario '{}' is valid\n", scenario_path, scenario.name);
   host::print_plan(plan, std::cout);
   if (from) {
-    const double more = plan.end_time - from->any().time;
-    // The checkpoint's wind had its spin-up already: a resumed run goes on without one.
-    std::cout << fmt::format("resume: {}, to time.end {} s{}{}\n", resume_summary(*from), plan.end_time,
-                             more > 0.0 ? fmt::format(": {:.6g} s more", more)
-                                        : ": nothing more to run (raise time.end to extend)",
-                             plan.spin_up > 0.0 ? ", no spin-up" : "");
+    const host::RunSnapshot& at = from->any();
+    std::cout << fmt::format("resume: {}, to time.end {} s: {}{}\n", resume_summary(*from), plan.end_time,
+                             what_is_left(at, plan.end_time), plan.spin_up > 0.0 ? ", no spin-up" : "");
   }
   for (const std::string& warning : plan.warnings) std::cerr << "warning: " << warning << "\n";
   return 0;

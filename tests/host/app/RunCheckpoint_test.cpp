@@ -58,6 +58,18 @@ std::string stand(const std::string& extra = "") {
          " seed: 2}\n";
 }
 
+// A turbulent inflow under `advection` with Smagorinsky, over the stand under Stam's forcing, shedding
+// leaves: every kind of state a run carries.
+std::string turbulent_stand_with_leaves(const std::string& advection) {
+  return "wind: {speed: 14.0, direction: 270.0, reference_height: 10.0, profile: {type: power, alpha: 0.2},\n"
+         "       turbulence: {intensity: 0.2, length_scale: 12.0, unresolved: true}}\n"
+         "solver: {advection: " +
+         advection + ", smagorinsky_constant: 0.17}\n" +
+         stand(
+             "      leaves: {model: stochastic, area: 0.004, fraction: 0.05, petiole_strength: 0.1,"
+             " strength_spread: 0.6}\n");
+}
+
 struct Run {
   fw::io::Scenario scenario;
   fw::host::SimulationPlan plan;
@@ -97,6 +109,35 @@ std::string json_value(const fs::path& run_json, const std::string& key, bool ob
   std::smatch m;
   REQUIRE(std::regex_search(text, m, std::regex("\"" + key + (object ? "\":(\\{[^}]*\\})" : "\":([^,}]*)"))));
   return m[1].str();
+}
+
+// An output file's bytes, but for a VDB file's header (its random UUID).
+std::string output_bytes(const fs::path& folder, const std::string& file) {
+  std::string bytes = fw::test::file_text(folder / file);
+  if (file.ends_with(".vdb")) {
+    REQUIRE(bytes.size() > kVdbHeaderBytes);
+    bytes.erase(0, kVdbHeaderBytes);
+  }
+  return bytes;
+}
+
+// Folder `b` holds the output files of `a`, each byte for byte, and run.json the same counts (steps,
+// simulated time, frames, leaves): returns the files.
+std::vector<std::string> check_same_output(const fs::path& a, const fs::path& b) {
+  const std::vector<std::string> files = output_files(a);
+  CHECK(output_files(b) == files);
+  for (const std::string& file : files) {
+    INFO(file);
+    const bool same = output_bytes(a, file) == output_bytes(b, file);
+    CHECK(same);
+  }
+  for (const std::string key : {"steps", "simulated_time_s", "frames"}) {
+    INFO(key);
+    CHECK(json_value(a / "run.json", key) == json_value(b / "run.json", key));
+  }
+  if (fw::test::file_text(a / "run.json").find("\"leaves\":{") != std::string::npos)
+    CHECK(json_value(a / "run.json", "leaves", true) == json_value(b / "run.json", "leaves", true));
+  return files;
 }
 
 // What a resume test saw: the checkpoint it resumed from, and the uninterrupted run's probes.csv.
@@ -145,23 +186,11 @@ Resumed check_resumes_bit_for_bit(const std::string& yaml) {
   read.own = false;
   run_to_end(*cc, run, c, &read);
 
-  const std::vector<std::string> files = output_files(a);
-  CHECK(output_files(b) == files);
+  const std::vector<std::string> files = check_same_output(a, b);
   for (const std::string& file : files) {
     INFO(file);
-    const bool after = fs::exists(c / file);
-    std::string was = fw::test::file_text(a / file), is = fw::test::file_text(b / file);
-    if (file.ends_with(".vdb")) {
-      REQUIRE(std::min(was.size(), is.size()) > kVdbHeaderBytes);
-      was.erase(0, kVdbHeaderBytes);
-      is.erase(0, kVdbHeaderBytes);
-    }
-    const bool same = was == is;
-    CHECK(same);
-    if (after && !file.ends_with(".pvd") && file != "probes.csv") {
-      std::string redistributed = fw::test::file_text(c / file);
-      if (file.ends_with(".vdb")) redistributed.erase(0, std::min(redistributed.size(), kVdbHeaderBytes));
-      const bool same_redistributed = redistributed == is;
+    if (fs::exists(c / file) && !file.ends_with(".pvd") && file != "probes.csv") {
+      const bool same_redistributed = output_bytes(c, file) == output_bytes(b, file);
       CHECK(same_redistributed);
     }
   }
@@ -171,12 +200,6 @@ Resumed check_resumes_bit_for_bit(const std::string& yaml) {
   const std::size_t header = redistributed_probes.find('\n') + 1;
   REQUIRE(redistributed_probes.size() > header);
   CHECK(whole_probes.ends_with(redistributed_probes.substr(header)));
-  for (const std::string key : {"steps", "simulated_time_s", "frames"}) {
-    INFO(key);
-    CHECK(json_value(a / "run.json", key) == json_value(b / "run.json", key));
-  }
-  if (fw::test::file_text(a / "run.json").find("\"leaves\":{") != std::string::npos)
-    CHECK(json_value(a / "run.json", "leaves", true) == json_value(b / "run.json", "leaves", true));
   // run.json lists the two segments: up to the checkpoint, and from it to the end.
   const std::string segments = fw::test::file_text(b / "run.json");
   CHECK(segments.find("\"status\":\"stopped\"") != std::string::npos);
@@ -228,13 +251,7 @@ TEST_CASE(
     "[simulation][checkpoint]") {
   const std::string advection = GENERATE(as<std::string>{}, "maccormack", "upwind5");
   INFO(advection);
-  const Resumed resumed = check_resumes_bit_for_bit(scenario(
-      "wind: {speed: 14.0, direction: 270.0, reference_height: 10.0, profile: {type: power, alpha: 0.2},\n"
-      "       turbulence: {intensity: 0.2, length_scale: 12.0, unresolved: true}}\n"
-      "solver: {advection: " +
-      advection + ", smagorinsky_constant: 0.17}\n" +
-      stand("      leaves: {model: stochastic, area: 0.004, fraction: 0.05, petiole_strength: 0.1,"
-            " strength_spread: 0.6}\n")));
+  const Resumed resumed = check_resumes_bit_for_bit(scenario(turbulent_stand_with_leaves(advection)));
   // Leaves are in the air when the checkpoint is taken: their flight state goes through it.
   if (resumed.time > 0.0) CHECK(flying_at(resumed.probes, resumed.time) > 0);
 }
@@ -252,4 +269,33 @@ TEST_CASE(
                "       turbulence: {intensity: 0.15, length_scale: 12.0}, forcing: {relaxation_time: 5.0}}\n"
                "solver: {pressure: cg, tolerance: 1.0e-3, advection: upwind5, subgrid: tke}\n" +
                stand()));
+}
+
+TEST_CASE("RunCheckpoint: a finished run extended to twice its end is bit for bit the run to that end",
+          "[simulation][checkpoint]") {
+  auto* cc = fw::test::device_or_skip();
+  if (!cc) return;
+  // 3 s: a multiple of the checkpoint interval, so that the interval's checkpoint falls due on the cut
+  // step too, which must not be the one kept.
+  constexpr double kEnd = 3.0;
+  TempDir dir("fw_extend");
+  fw::trees::BasisCache cache(fs::path(dir.path()) / "cache");
+  const std::string body = turbulent_stand_with_leaves("upwind5");
+  const Run shorter = plan_run(dir, scenario(body, kEnd), cache);
+  const Run longer = plan_run(dir, scenario(body, 2 * kEnd), cache);
+  const fs::path extended = fs::path(dir.path()) / "extended", whole = fs::path(dir.path()) / "whole";
+  run_to_end(*cc, shorter, extended);
+  // dt: auto does not land on the end: the last step was cut, and the end's checkpoint holds the state
+  // before it.
+  const auto checkpoints = fw::host::RunCheckpoints::list(extended / "checkpoints");
+  REQUIRE(!checkpoints.empty());
+  fw::host::CheckpointParts read = fw::host::read_checkpoint(
+      checkpoints.rbegin()->second, fw::host::Communicator::alone(), longer.plan.decomposition.describe());
+  const fw::host::RunSnapshot& end = read.any();
+  REQUIRE(end.progress.reached_end.has_value());
+  CHECK(*end.progress.reached_end == kEnd);
+  CHECK(end.time < kEnd);
+  run_to_end(*cc, longer, extended, &read);
+  run_to_end(*cc, longer, whole);
+  check_same_output(whole, extended);
 }
