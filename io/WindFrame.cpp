@@ -78,6 +78,7 @@ WindFrame make_wind_frame(const fluid::GridSpec& spec, const fluid::MacVelocity&
   frame.dims = {spec.nx, spec.ny, spec.nz};
   frame.h = spec.h;
   frame.origin = spec.origin;
+  for (int a = 0; a < 3; ++a) frame.periodic[std::size_t(a)] = spec.periodic(a);
   frame.time = time;
   frame.step = step;
   frame.velocity = cell_centred_velocity(spec, vel);
@@ -110,14 +111,17 @@ std::vector<float> wind_vorticity(const WindFrame& frame) {
       for (int i = 0; i < n[0]; ++i) {
         const int index[3] = {i, j, k};
         const std::size_t cell = frame.cell_index(i, j, k);
-        // d[a][c] = d(velocity_c)/d(x_a): central inside, one-sided in the edge cells.
+        // d[a][c] = d(velocity_c)/d(x_a): central inside and across a periodic axis' seam, one-sided in
+        // the edge cells of another axis.
         double d[3][3] = {};
         for (int a = 0; a < 3; ++a) {
           if (n[a] == 1) continue;
-          const int lo = std::max(index[a] - 1, 0), hi = std::min(index[a] + 1, n[a] - 1);
-          const std::size_t cell_lo = cell - std::size_t(index[a] - lo) * stride[a];
-          const std::size_t cell_hi = cell + std::size_t(hi - index[a]) * stride[a];
-          const double span = (hi - lo) * frame.h;
+          const bool wraps = frame.periodic[std::size_t(a)];
+          const int lo = wraps ? (index[a] + n[a] - 1) % n[a] : std::max(index[a] - 1, 0);
+          const int hi = wraps ? (index[a] + 1) % n[a] : std::min(index[a] + 1, n[a] - 1);
+          const std::size_t cell_lo = cell - std::size_t(index[a]) * stride[a] + std::size_t(lo) * stride[a];
+          const std::size_t cell_hi = cell - std::size_t(index[a]) * stride[a] + std::size_t(hi) * stride[a];
+          const double span = (wraps ? 2 : hi - lo) * frame.h;
           for (int c = 0; c < 3; ++c) {
             d[a][c] = (double(frame.velocity[3 * cell_hi + c]) - frame.velocity[3 * cell_lo + c]) / span;
           }

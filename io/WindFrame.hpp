@@ -27,6 +27,10 @@ struct WindFrame {
   std::array<double, 3> origin{0, 0, 0};  ///< minimum corner of the domain, m
   double time = 0.0;                      ///< simulated time, s
   long step = 0;                          ///< solver step that produced the frame
+  /// Whether the frame wraps along each axis, its last cell the neighbour of its first: a periodic axis
+  /// that the frame spans whole (an MPI rank's block, cut along a periodic axis, has the neighbours there
+  /// in its halo instead).
+  std::array<bool, 3> periodic{false, false, false};
 
   std::vector<float> velocity;        ///< 3 per cell, m/s: mean of the cell's two faces per axis
   std::vector<float> pressure;        ///< 1 per cell, kinematic p/rho, m^2/s^2; may be empty
@@ -50,7 +54,8 @@ struct WindFrame {
 std::vector<float> cell_centred_velocity(const fluid::GridSpec& spec, const fluid::MacVelocity& vel);
 
 /// Builds a frame: cell-centred velocity from `vel`, the optional per-cell arrays moved in (each empty or
-/// spec.cell_count() long, else std::invalid_argument), and the grid's size and placement from `spec`.
+/// spec.cell_count() long, else std::invalid_argument), and the grid's size, placement and periodic axes
+/// from `spec`.
 WindFrame make_wind_frame(const fluid::GridSpec& spec, const fluid::MacVelocity& vel,
                           std::vector<float> pressure, std::vector<std::uint8_t> solid,
                           std::vector<float> canopy_density, double time, long step);
@@ -59,8 +64,9 @@ WindFrame make_wind_frame(const fluid::GridSpec& spec, const fluid::MacVelocity&
 std::vector<float> wind_speed(const WindFrame& frame);
 
 /// Vorticity curl(velocity) per cell, 3 floats (wx, wy, wz), 1/s. Derivatives are central differences of
-/// the cell-centred velocity over 2h, one-sided over h in the first and last cell of an axis (0 along an
-/// axis one cell thick). Solid cells are not treated specially: they hold whatever velocity the frame has.
+/// the cell-centred velocity over 2h, wrapped along a periodic axis (frame.periodic) and one-sided over h
+/// in the first and last cell of any other axis (0 along an axis one cell thick). Solid cells are not treated
+/// specially: they hold whatever velocity the frame has.
 std::vector<float> wind_vorticity(const WindFrame& frame);
 
 /// Velocity at a world position (m) by trilinear interpolation of each component on its own staggered

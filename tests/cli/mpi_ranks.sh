@@ -37,14 +37,15 @@ YAML
 sed 's/  cell_size: 2.0/  cell_size: 2.0\n  decomposition: [3, 1]/' "$work/blocks.yaml" >"$work/bad_blocks.yaml"
 
 cd "$work"
-# 25 trees across the cuts of 2 x 1 and 2 x 2 blocks, turbulent inflow, a gust, two-way drag, probes inside
+# 25 trees across the cuts of 2 x 1 and 2 x 2 blocks, turbulent inflow across periodic sides (cut by 2 x 2:
+# the frames' vorticity wraps there as in one process), a gust, two-way drag, probes inside
 # and outside the stand; 64 x 32 x 16 cells of 2 m for 2 s.
 cat >forest.yaml <<'YAML'
 scenario: ranks
 seed: 2
 time: {end: 2.0, dt: auto, cfl: 0.8}
 domain: {origin: [0, 0, 0], size: [128, 64, 32], cell_size: 2.0}
-boundaries: {west: auto, east: auto, south: slip, north: slip, ground: rough, top: slip, roughness_length: 0.1}
+boundaries: {west: auto, east: auto, south: periodic, north: periodic, ground: rough, top: slip, roughness_length: 0.1}
 wind:
   speed: 6.0
   direction: 260.0

@@ -158,6 +158,29 @@ TEST_CASE("wind_vorticity: the curl of a linear field is exact everywhere, one-s
   }
 }
 
+TEST_CASE("wind_vorticity: across a periodic axis' seam the difference is central, wrapped", "[output]") {
+  // u = sin(2 pi y / L) over a domain periodic in y of length L: the wrapped central difference gives
+  // wz = -du/dy = -cos(k y) sin(k h) / h in every cell, the seam's first and last included. A one-sided
+  // difference there would be off by about k^2 h / 2 times the amplitude (0.15 1/s here).
+  GridSpec spec = small_spec();
+  spec.ny = 8;
+  spec.boundary[2] = spec.boundary[3] = fw::fluid::BoundaryType::periodic;
+  const double length = spec.ny * spec.h, k = 2.0 * std::acos(-1.0) / length;
+  const auto wave = [&](double, double y, double) {
+    return std::array<double, 3>{std::sin(k * (y - spec.origin[1])), 0.0, 0.0};
+  };
+  const auto frame = fw::io::make_wind_frame(spec, mac_from(spec, wave), {}, {}, {}, 0.0, 0);
+  REQUIRE(frame.periodic == std::array<bool, 3>{false, true, false});
+  const std::vector<float> w = fw::io::wind_vorticity(frame);
+  for (int j = 0; j < spec.ny; ++j) {
+    INFO("j = " << j);
+    const double y = spec.h * (j + 0.5);
+    const double expected = -std::cos(k * y) * std::sin(k * spec.h) / spec.h;
+    // Tolerance: float32 velocities of order 1 m/s differenced over 2 h = 1 m.
+    CHECK(w[3 * frame.cell_index(2, j, 3) + 2] == Approx(expected).margin(1e-6));
+  }
+}
+
 TEST_CASE("wind_speed: the magnitude of the cell-centred velocity", "[output]") {
   fw::io::WindFrame frame;
   frame.dims = {2, 1, 1};

@@ -122,6 +122,17 @@ TEST_CASE(
 }
 
 TEST_CASE(
+    "WindGrid over ranks: a periodic channel over a rough floor, whose wall stress reaches across the "
+    "periodic seams, bit for bit",
+    "[mpi]") {
+  host::WindGridSetup setup = test::tunnel(fluid::AdvectionScheme::semi_lagrangian);
+  setup.solid.clear();
+  setup.spec.boundary = {B::inflow, B::outflow, B::periodic, B::periodic, B::slip, B::slip};
+  setup.settings.wall_roughness_length = 0.1;
+  check_equal_to_one_process(setup);
+}
+
+TEST_CASE(
     "WindGrid over ranks: inflow turbulence, a canopy, the tke model, a rough floor and vorticity "
     "confinement, bit for bit",
     "[mpi]") {
