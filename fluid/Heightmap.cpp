@@ -5,7 +5,6 @@
 #include <algorithm>
 #include <cctype>
 #include <cerrno>
-#include <charconv>
 #include <cmath>
 #include <cstdint>
 #include <cstring>
@@ -15,6 +14,8 @@
 #include <optional>
 #include <stdexcept>
 #include <string_view>
+
+#include "base/TextNumber.hpp"
 
 namespace fw::fluid {
 namespace {
@@ -122,26 +123,9 @@ class Scanner {
   int last_line_ = 1;
 };
 
-std::optional<std::int64_t> to_integer(std::string_view text) {
-  if (!text.empty() && text.front() == '+') text.remove_prefix(1);
-  std::int64_t value = 0;
-  const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), value);
-  if (ec != std::errc() || end != text.data() + text.size() || text.empty()) return std::nullopt;
-  return value;
-}
-
-std::optional<double> to_number(std::string_view text) {
-  if (!text.empty() && text.front() == '+') text.remove_prefix(1);
-  double value = 0.0;
-  const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), value);
-  if (ec != std::errc() || end != text.data() + text.size() || text.empty() || !std::isfinite(value))
-    return std::nullopt;
-  return value;
-}
-
 std::int64_t parse_integer(Scanner& scan, const Token& token, std::string_view what, std::int64_t min,
                            std::int64_t max, std::string_view expected) {
-  const auto value = to_integer(token.text);
+  const auto value = base::parse_number<std::int64_t>(token.text);
   if (!value || *value < min || *value > max)
     scan.fail(token.line, fmt::format("{}: expected {}, got '{}'", what, expected, printable(token.text)));
   return *value;
@@ -301,7 +285,7 @@ Heightmap read_esri(Scanner& scan) {
     return entry;
   };
   auto number = [&](const Entry& entry, std::string_view what, std::string_view expected, bool positive) {
-    const auto value = to_number(entry.value.text);
+    const auto value = base::parse_finite(entry.value.text);
     if (!value || (positive && !(*value > 0.0)))
       scan.fail(entry.value.line,
                 fmt::format("{}: expected {}, got '{}'", what, expected, printable(entry.value.text)));
@@ -338,7 +322,7 @@ Heightmap read_esri(Scanner& scan) {
       scan.fail(scan.last_line(),
                 fmt::format("truncated data: expected {} values ({} columns x {} rows), got {}", count, ncols,
                             nrows, i));
-    const auto value = to_number(token->text);
+    const auto value = base::parse_finite(token->text);
     if (!value)
       scan.fail(token->line, fmt::format("row {}, column {}: expected a height in metres, got '{}'",
                                          i / ncols + 1, i % ncols + 1, printable(token->text)));

@@ -1,6 +1,7 @@
 #include "io/PvdCollection.hpp"
 
 #include "base/AtomicFile.hpp"
+#include "base/TextNumber.hpp"
 
 #include <fmt/format.h>
 
@@ -16,7 +17,6 @@
 #include <sstream>
 #include <stdexcept>
 #include <string_view>
-#include <system_error>
 #include <utility>
 
 namespace fw::io {
@@ -123,14 +123,12 @@ std::vector<PvdCollection::Entry> read_pvd(const std::filesystem::path& path) {
     if (!timestep || !file || file->empty())
       throw std::runtime_error(fmt::format("read_pvd: {}: DataSet {}: expected timestep and file attributes",
                                            path.string(), entries.size()));
-    char* end = nullptr;
-    const std::string time_text(*timestep);
-    const double time = std::strtod(time_text.c_str(), &end);
-    if (end == time_text.c_str() || *end != '\0' || !std::isfinite(time))
+    const std::optional<double> time = base::parse_finite(*timestep);
+    if (!time)
       throw std::runtime_error(
           fmt::format("read_pvd: {}: DataSet {}: timestep: expected a finite number, got '{}'", path.string(),
-                      entries.size(), time_text));
-    entries.push_back({time, detail::xml_unescape(*file)});
+                      entries.size(), *timestep));
+    entries.push_back({*time, detail::xml_unescape(*file)});
   }
   return entries;
 }

@@ -7,6 +7,7 @@
 #include <span>
 #include <stdexcept>
 
+#include "base/TextNumber.hpp"
 #include "io/schema/BoundaryKeys.hpp"
 #include "io/schema/DomainKeys.hpp"
 #include "io/schema/EventKeys.hpp"
@@ -119,7 +120,7 @@ std::string number_text(double value) {
   std::string text;
   for (int digits = 0; digits <= std::numeric_limits<double>::max_digits10; ++digits) {
     text = fmt::format("{:.{}e}", value, digits);
-    if (std::stod(text) == value) break;
+    if (base::parse_number<double>(text) == value) break;
   }
   const std::size_t e = text.find('e');
   std::string exponent = text.substr(e + 1);

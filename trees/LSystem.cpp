@@ -5,11 +5,12 @@
 #include <Eigen/Geometry>
 
 #include <algorithm>
-#include <charconv>
 #include <cmath>
 #include <numbers>
 #include <random>
 #include <stdexcept>
+
+#include "base/TextNumber.hpp"
 
 namespace fw::trees {
 
@@ -23,12 +24,9 @@ using ParameterTemplate = LSystem::ParameterTemplate;
 }
 
 double parse_number(std::string_view text, std::string_view number) {
-  double value = 0.0;
-  // from_chars is locale independent, unlike strtod.
-  const auto [end, error] = std::from_chars(number.data(), number.data() + number.size(), value);
-  if (error != std::errc() || end != number.data() + number.size() || !std::isfinite(value))
-    fail(text, fmt::format("expected a number, got \"{}\"", number));
-  return value;
+  const std::optional<double> value = base::parse_finite(number);
+  if (!value) fail(text, fmt::format("expected a number, got \"{}\"", number));
+  return *value;
 }
 
 // EXPR of a successor module: VALUE | p | p*VALUE | VALUE*p, optionally followed by ~S.

@@ -1,6 +1,7 @@
 #include "trees/QsmImport.hpp"
 
 #include "base/SourceError.hpp"
+#include "base/TextNumber.hpp"
 #include "trees/TreeFile.hpp"
 
 #include <fmt/format.h>
@@ -92,7 +93,7 @@ Skeleton read_qsm_cylinders(const std::string& path, QsmImportInfo* info) {
     const auto fields = split(text);
     if (header_allowed) {
       header_allowed = false;
-      if (!detail::parse_number(fields.front())) continue;  // a header line of column names
+      if (!base::parse_finite(fields.front())) continue;  // a header line of column names
     }
     Cylinder cylinder;
     cylinder.line = line_number;
@@ -104,7 +105,7 @@ Skeleton read_qsm_cylinders(const std::string& path, QsmImportInfo* info) {
     }
     double values[kRequired];
     for (std::size_t c = 0; c < kRequired; ++c) {
-      const auto value = detail::parse_number(cylinder.tokens[c]);
+      const auto value = base::parse_finite(cylinder.tokens[c]);
       if (!value)
         throw base::SourceError(path, line_number, kColumns[c], "expected a finite number",
                                 quoted(cylinder.tokens[c]));

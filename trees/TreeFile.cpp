@@ -2,12 +2,12 @@
 
 #include "base/AtomicFile.hpp"
 #include "base/SourceError.hpp"
+#include "base/TextNumber.hpp"
 
 #include <fmt/format.h>
 
 #include <array>
 #include <cerrno>
-#include <charconv>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
@@ -28,24 +28,6 @@ std::string read_text_file(const std::string& path) {
   std::string data((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
   if (in.bad()) throw base::SourceError::unreadable(path, "read error");
   return data;
-}
-
-std::optional<double> parse_number(std::string_view text) {
-  if (!text.empty() && text.front() == '+') text.remove_prefix(1);
-  if (text.empty() || text.front() == '+') return std::nullopt;
-  double value = 0.0;
-  const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), value);
-  if (ec != std::errc() || end != text.data() + text.size() || !std::isfinite(value)) return std::nullopt;
-  return value;
-}
-
-std::optional<long long> parse_integer(std::string_view text) {
-  if (!text.empty() && text.front() == '+') text.remove_prefix(1);
-  if (text.empty() || text.front() == '+') return std::nullopt;
-  long long value = 0;
-  const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), value);
-  if (ec != std::errc() || end != text.data() + text.size()) return std::nullopt;
-  return value;
 }
 
 std::string printable(std::string_view text) {
@@ -136,7 +118,7 @@ Skeleton read_tree_file(const std::string& path) {
   std::vector<long long> ids(lines.size());
   for (std::size_t k = 0; k < lines.size(); ++k) {
     const NodeLine& node = lines[k];
-    const auto id = detail::parse_integer(node.tokens[0]);
+    const auto id = base::parse_number<long long>(node.tokens[0]);
     if (!id)
       throw base::SourceError(path, node.line, "id", "expected an integer node id", quoted(node.tokens[0]));
     if (const auto [it, inserted] = seen.emplace(*id, node.line); !inserted)
@@ -144,13 +126,13 @@ Skeleton read_tree_file(const std::string& path) {
           path, node.line, "id",
           fmt::format("expected a unique id (id {} is already on line {})", *id, it->second),
           quoted(node.tokens[0]));
-    const auto parent = detail::parse_integer(node.tokens[1]);
+    const auto parent = base::parse_number<long long>(node.tokens[1]);
     if (!parent)
       throw base::SourceError(path, node.line, "parent", "expected an integer: -1 (root) or a node id",
                               quoted(node.tokens[1]));
     double values[4];
     for (int c = 0; c < 4; ++c) {
-      const auto value = detail::parse_number(node.tokens[std::size_t(c) + 2]);
+      const auto value = base::parse_finite(node.tokens[std::size_t(c) + 2]);
       if (!value)
         throw base::SourceError(
             path, node.line, kColumns[std::size_t(c) + 2],

@@ -45,10 +45,6 @@ namespace detail {
 
 /// The whole file, or base::SourceError("PATH: cannot open: REASON").
 std::string read_text_file(const std::string& path);
-/// A finite decimal number filling all of text (leading '+' allowed), else nullopt.
-std::optional<double> parse_number(std::string_view text);
-/// A decimal integer filling all of text (leading '+' allowed) that fits in long long, else nullopt.
-std::optional<long long> parse_integer(std::string_view text);
 /// text for an error message: non-printable bytes as \xNN, cut to about 40 characters.
 std::string printable(std::string_view text);
 }  // namespace detail

@@ -10,18 +10,19 @@
 
 #include <array>
 #include <cctype>
-#include <charconv>
 #include <climits>
 #include <cstdint>
 #include <cstring>
 #include <fstream>
 #include <optional>
 #include <set>
+#include <sstream>
 #include <stdexcept>
 #include <string>
 #include <string_view>
 #include <vector>
 
+#include "base/TextNumber.hpp"
 #include "viz/VtkErrorCapture.hpp"
 
 namespace fw::viz {
@@ -72,18 +73,13 @@ bool is(const char* value, std::string_view expected) {
 std::optional<std::vector<long long>> integers_of(const char* text) {
   if (!text) return std::nullopt;
   std::vector<long long> values;
-  const char* at = text;
-  const char* end = text + std::strlen(text);
-  while (true) {
-    while (at != end && std::isspace(static_cast<unsigned char>(*at))) ++at;
-    if (at == end) return values;
-    long long value = 0;
-    const auto [next, error] = std::from_chars(at, end, value);
-    if (error != std::errc() || (next != end && !std::isspace(static_cast<unsigned char>(*next))))
-      return std::nullopt;
-    values.push_back(value);
-    at = next;
+  std::istringstream words(text);
+  for (std::string word; words >> word;) {
+    const std::optional<long long> value = base::parse_number<long long>(word);
+    if (!value) return std::nullopt;
+    values.push_back(*value);
   }
+  return values;
 }
 
 // Points and cells of an image extent [x0 x1 y0 y1 z0 z1], counted as vtkStructuredData does.

@@ -8,6 +8,8 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "base/TextNumber.hpp"
+
 namespace fw::viz {
 
 namespace {
@@ -94,12 +96,11 @@ ProbeTable read_probe_table(const std::filesystem::path& path) {
       throw std::invalid_argument(
           fmt::format("{}:{}: row: expected {} values, got {}", file, n + 1, header.size(), fields.size()));
     auto number = [&](std::size_t c) {
-      char* end = nullptr;
-      const double value = std::strtod(fields[c].c_str(), &end);
-      if (fields[c].empty() || *end != '\0')
+      const std::optional<double> value = base::parse_number<double>(fields[c]);
+      if (!value)
         throw std::invalid_argument(
             fmt::format("{}:{}: {}: expected a number, got '{}'", file, n + 1, header[c], fields[c]));
-      return value;
+      return *value;
     };
     table.time.push_back(number(0));
     std::size_t probe = 0, tip = 0;

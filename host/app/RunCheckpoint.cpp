@@ -4,11 +4,10 @@
 
 #include <algorithm>
 #include <bit>
-#include <charconv>
 #include <stdexcept>
 #include <string_view>
-#include <system_error>
 
+#include "base/TextNumber.hpp"
 #include "io/Checkpoint.hpp"
 
 namespace fw::host {
@@ -140,11 +139,10 @@ RunSnapshot from_checkpoint(const io::Checkpoint& c) {
 // The step of a whole checkpoint's folder name ("step_0000000120"), or -1 for anything else.
 long step_of(const std::string& name) {
   if (!name.starts_with(kStepPrefix)) return -1;
-  long step = -1;
-  const char* first = name.data() + kStepPrefix.size();
-  const char* last = name.data() + name.size();
-  const auto [end, error] = std::from_chars(first, last, step);
-  return error == std::errc() && end == last ? step : -1;
+  const std::string_view digits = std::string_view(name).substr(kStepPrefix.size());
+  // Digits only, as folder_of writes them: no sign.
+  if (digits.empty() || digits.front() < '0' || digits.front() > '9') return -1;
+  return base::parse_number<long>(digits).value_or(-1);
 }
 
 bool cut_short(const std::filesystem::path& entry) {

@@ -2,7 +2,6 @@
 #include <fmt/format.h>
 #include <CLI/CLI.hpp>
 
-#include <charconv>
 #include <cstdint>
 #include <cstdlib>
 #include <cstring>
@@ -11,6 +10,7 @@
 #include <stdexcept>
 #include <tuple>
 
+#include "base/TextNumber.hpp"
 #include "host/cli/Commands.hpp"
 #include "host/runtime/ClError.hpp"
 #include "host/runtime/Communicator.hpp"
@@ -34,10 +34,8 @@ int failed(const fw::host::Communicator& world, const std::exception& error, int
 std::optional<std::uint64_t> fake_free_bytes() {
   const char* text = std::getenv("FORESTWIND_FAKE_FREE_BYTES");
   if (text == nullptr) return std::nullopt;
-  std::uint64_t bytes = 0;
-  const char* end = text + std::strlen(text);
-  const auto [at, error] = std::from_chars(text, end, bytes);
-  if (error != std::errc() || at != end || at == text)
+  const std::optional<std::uint64_t> bytes = fw::base::parse_number<std::uint64_t>(text);
+  if (!bytes)
     throw std::invalid_argument(
         fmt::format("FORESTWIND_FAKE_FREE_BYTES: \"{}\": expected a whole number of bytes", text));
   return bytes;

@@ -7,6 +7,7 @@
 #include <cstdlib>
 #include <thread>
 
+#include "base/TextNumber.hpp"
 #include "host/runtime/ClError.hpp"
 
 namespace fw::host {
@@ -108,7 +109,8 @@ DeviceInfo select_device(const std::string& filter, int node_rank) {
 int share_cpu_cores(int node_ranks) {
   constexpr const char* kVariable = "POCL_MAX_PTHREAD_COUNT";
   if (node_ranks <= 1) return 0;
-  if (const char* set = std::getenv(kVariable)) return std::max(1, std::atoi(set));
+  // A value that is no whole number gives PoCL's own default, one thread.
+  if (const char* set = std::getenv(kVariable)) return std::max(1, base::parse_number<int>(set).value_or(1));
   const int share = std::max(1, int(std::thread::hardware_concurrency()) / node_ranks);
   ::setenv(kVariable, std::to_string(share).c_str(), 0);
   return share;

@@ -1,5 +1,6 @@
 // output: the folder, the frames' interval and contents, the leaves in them, and the probes.
 #include "io/scenario/Output.hpp"
+#include "base/TextNumber.hpp"
 
 #include <fmt/format.h>
 
@@ -48,7 +49,7 @@ void read_leaves(const Loader& loader, const Field& field, OutputSettings& outpu
           value(schema::kLeafStrideWords, schema::kLeafStrides, loader.word(*attached));
     } else {
       const auto stride =
-          attached->node.IsScalar() ? parse_integer<long long>(attached->node.Scalar()) : std::nullopt;
+          attached->node.IsScalar() ? base::parse_number<long long>(attached->node.Scalar()) : std::nullopt;
       if (!stride || *stride < key.lowest || *stride > key.highest) loader.expected(*attached);
       output.leaves_attached_stride = int(*stride);
     }
@@ -98,7 +99,7 @@ OutputSettings read_output(const Loader& loader, const Field& field, const std::
     const Key& key = key_of(*probe_interval);
     if (!(probe_interval->node.IsScalar() && probe_interval->node.Scalar() == key.word)) {  // the word: auto
       const std::optional<double> every =
-          probe_interval->node.IsScalar() ? parse_double(probe_interval->node.Scalar()) : std::nullopt;
+          probe_interval->node.IsScalar() ? base::parse_finite(probe_interval->node.Scalar()) : std::nullopt;
       if (!every || !(*every > 0.0)) loader.expected(*probe_interval);
       output.probe_interval = *every;
     }

@@ -9,6 +9,7 @@
 #include <fstream>
 #include <stdexcept>
 
+#include "base/TextNumber.hpp"
 #include "io/ScenarioError.hpp"
 
 namespace fw::io::reader {
@@ -65,18 +66,6 @@ std::string join(const std::vector<std::string>& words, const char* separator) {
   std::string out;
   for (std::size_t i = 0; i < words.size(); ++i) out += (i ? separator : "") + words[i];
   return out;
-}
-
-std::optional<double> parse_double(const std::string& text) {
-  std::string_view view = text;
-  // from_chars takes a leading '-' but not '+', which YAML numbers may have.
-  if (!view.empty() && view.front() == '+') view.remove_prefix(1);
-  if (view.empty() || view.front() == '+' || (view.front() == '-' && text.front() == '+'))
-    return std::nullopt;
-  double value = 0.0;
-  const auto [end, error] = std::from_chars(view.data(), view.data() + view.size(), value);
-  if (error != std::errc() || end != view.data() + view.size() || !std::isfinite(value)) return std::nullopt;
-  return value;
 }
 
 const Key& key_of(const Field& field) {
@@ -169,14 +158,14 @@ void Loader::expected(const Field& field, const std::string& what) const {
 int Loader::integer(const Field& field) const {
   const Key& key = key_of(field);
   if (!field.node.IsScalar()) expected(field);
-  const auto value = parse_integer<long long>(field.node.Scalar());
+  const auto value = base::parse_number<long long>(field.node.Scalar());
   if (!value || *value < key.lowest || *value > key.highest) expected(field);
   return int(*value);
 }
 
 std::uint64_t Loader::seed(const Field& field) const {
   if (!field.node.IsScalar()) expected(field);
-  const auto value = parse_integer<std::uint64_t>(field.node.Scalar());
+  const auto value = base::parse_number<std::uint64_t>(field.node.Scalar());
   if (!value) expected(field);
   return *value;
 }
@@ -254,7 +243,7 @@ std::vector<std::string> Loader::word_set(const Field& field) const {
 
 double Loader::number(const Field& field, const Key& key, const std::string& what) const {
   if (!field.node.IsScalar()) expected(field, what);
-  const std::optional<double> value = parse_double(field.node.Scalar());
+  const std::optional<double> value = base::parse_finite(field.node.Scalar());
   if (!value || (key.bound == Bound::positive && !(*value > 0.0)) ||
       (key.bound == Bound::non_negative && !(*value >= 0.0)) || !(*value >= key.at_least) ||
       !(*value <= key.at_most) || !(*value < key.below))

@@ -22,7 +22,6 @@
 
 #include <algorithm>
 #include <array>
-#include <charconv>
 #include <cstddef>
 #include <cstdint>
 #include <filesystem>
@@ -30,7 +29,6 @@
 #include <optional>
 #include <string>
 #include <string_view>
-#include <system_error>
 #include <utility>
 #include <vector>
 
@@ -63,22 +61,6 @@ int line_of(const YAML::Node& node, int fallback);
 std::string shown(const YAML::Node& node);
 
 std::string join(const std::vector<std::string>& words, const char* separator);
-
-/// A finite decimal number as YAML writes it (a leading + allowed), or nullopt.
-std::optional<double> parse_double(const std::string& text);
-/// A whole number (a leading + allowed) that fits Integer, or nullopt.
-template <typename Integer>
-std::optional<Integer> parse_integer(const std::string& text) {
-  std::string_view view = text;
-  // from_chars takes a leading '-' but not '+', which YAML numbers may have.
-  if (!view.empty() && view.front() == '+') view.remove_prefix(1);
-  if (view.empty() || view.front() == '+' || (view.front() == '-' && text.front() == '+'))
-    return std::nullopt;
-  Integer value{};
-  const auto [end, error] = std::from_chars(view.data(), view.data() + view.size(), value);
-  if (error != std::errc() || end != view.data() + view.size()) return std::nullopt;
-  return value;
-}
 
 /// The key of the table a field of the file stands for ("forest.species[0].modes" -> forest.species[].modes).
 const Key& key_of(const Field& field);

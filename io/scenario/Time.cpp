@@ -1,5 +1,6 @@
 // time: the run's span and time step.
 #include "io/scenario/Time.hpp"
+#include "base/TextNumber.hpp"
 
 namespace fw::io::reader {
 
@@ -9,7 +10,8 @@ void read_time(const Loader& loader, const Field& field, TimeSettings& time) {
   if (const auto dt = map.get<"dt">()) {
     const Key& key = key_of(*dt);
     if (!(dt->node.IsScalar() && dt->node.Scalar() == key.word)) {  // the word: auto
-      const std::optional<double> step = dt->node.IsScalar() ? parse_double(dt->node.Scalar()) : std::nullopt;
+      const std::optional<double> step =
+          dt->node.IsScalar() ? base::parse_finite(dt->node.Scalar()) : std::nullopt;
       if (!step || !(*step > 0.0)) loader.expected(*dt);
       time.dt = *step;
     }
