@@ -391,11 +391,9 @@ std::string coupled_bench_json(const CoupledBenchResult& r) {
   json.key("modes").value(r.modes);
   json.key("samples").value(r.samples);
   const CoupledBenchCase& head = r.cases.front();
-  json.key("grid").begin_array().value(head.grid[0]).value(head.grid[1]).value(head.grid[2]).end_array();
+  json.key("grid").values(head.grid);
   json.key("ms_per_step").value(head.ms_per_step);
-  json.key("stages_ms").begin_object();
-  for (const auto& [stage, ms] : head.stages_ms) json.key(stage).value(ms);
-  json.end_object();
+  json.key("stages_ms").object(head.stages_ms);
   json.key("deform_ms").value(r.deform_ms);
   json.key("deform_linear_ms").value(r.deform_linear_ms);
   json.key("deform_frames_per_s").value(r.deform_frames_per_s);
@@ -410,7 +408,7 @@ std::string coupled_bench_json(const CoupledBenchResult& r) {
   json.key("cases").begin_array();
   for (const auto& c : r.cases) {
     json.begin_object();
-    json.key("grid").begin_array().value(c.grid[0]).value(c.grid[1]).value(c.grid[2]).end_array();
+    json.key("grid").values(c.grid);
     json.key("pressure").value(c.pressure);
     json.key("turbulent").value(c.turbulent);
     json.key("leaves").value(c.leaves);
@@ -418,9 +416,7 @@ std::string coupled_bench_json(const CoupledBenchResult& r) {
     json.key("fluid_ms").value(c.fluid_ms);
     json.key("trees_ms").value(c.trees_ms);
     json.key("pressure_iterations").value(c.pressure_iterations);
-    json.key("stages_ms").begin_object();
-    for (const auto& [stage, ms] : c.stages_ms) json.key(stage).value(ms);
-    json.end_object();
+    json.key("stages_ms").object(c.stages_ms);
     json.end_object();
   }
   json.end_array();

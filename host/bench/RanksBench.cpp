@@ -167,7 +167,7 @@ std::string ranks_bench_json(const RanksBenchResult& r) {
   json.key("cases").begin_array();
   for (const RanksCase& c : r.cases) {
     json.begin_object();
-    json.key("grid").begin_array().value(c.grid[0]).value(c.grid[1]).value(c.grid[2]).end_array();
+    json.key("grid").values(c.grid);
     json.key("blocks").begin_array().value(c.blocks[0]).value(c.blocks[1]).end_array();
     json.key("decomposition").value(c.decomposition);
     json.key("halo_cells").value(c.halo);

@@ -399,12 +399,10 @@ void print_wind_bench_table(const WindBenchResult& r, std::ostream& out) {
 namespace {
 void write_case(io::JsonWriter& json, const WindBenchCase& c, const WindBenchResult& r) {
   const SolverRun& head = c.runs.front();
-  json.key("grid").begin_array().value(c.grid[0]).value(c.grid[1]).value(c.grid[2]).end_array();
+  json.key("grid").values(c.grid);
   json.key("solver").value(head.solver);
   json.key("ms_per_step").value(head.ms_per_step);
-  json.key("stages_ms").begin_object();
-  for (const auto& [stage, ms] : head.stages_ms) json.key(stage).value(ms);
-  json.end_object();
+  json.key("stages_ms").object(head.stages_ms);
   json.key("pressure_iterations").value(head.pressure_iterations);
   json.key("relative_residual").value(head.relative_residual);
   json.key("max_divergence").value(head.max_divergence);
@@ -436,9 +434,7 @@ void write_case(io::JsonWriter& json, const WindBenchCase& c, const WindBenchRes
     json.key("pressure_iterations").value(run.pressure_iterations);
     json.key("relative_residual").value(run.relative_residual);
     json.key("max_divergence").value(run.max_divergence);
-    json.key("stages_ms").begin_object();
-    for (const auto& [stage, ms] : run.stages_ms) json.key(stage).value(ms);
-    json.end_object();
+    json.key("stages_ms").object(run.stages_ms);
     json.end_object();
   }
   json.end_array();

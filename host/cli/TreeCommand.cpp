@@ -112,12 +112,8 @@ int run_tree_modes(const TreeModesOptions& options) {
     json.key("dofs").value(model.dof_count());
     json.key("modes").value(modes.mode_count());
     json.key("seconds").value(seconds);
-    json.key("frequencies_hz").begin_array();
-    for (int i = 0; i < hz.size(); ++i) json.value(hz(i));
-    json.end_array();
-    json.key("damping_ratios").begin_array();
-    for (int i = 0; i < zeta.size(); ++i) json.value(zeta(i));
-    json.end_array();
+    json.key("frequencies_hz").values(hz);
+    json.key("damping_ratios").values(zeta);
     json.key("dominant_directions").begin_array();
     for (const auto& d : directions) json.value(std::string(1, d.axis));
     json.end_array();

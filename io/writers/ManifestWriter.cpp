@@ -47,7 +47,7 @@ void ManifestWriter::write_run_json(const RunOutcome& outcome) const {
   json.key("platform").value(m.platform);
   json.key("status").value(outcome.status);
   if (!outcome.message.empty()) json.key("message").value(outcome.message);
-  json.key("grid").begin_array().value(m.grid[0]).value(m.grid[1]).value(m.grid[2]).end_array();
+  json.key("grid").values(m.grid);
   json.key("cell_size_m").value(m.cell_size);
   json.key("trees").value(m.trees);
   json.key("species").begin_array();
@@ -80,9 +80,7 @@ void ManifestWriter::write_run_json(const RunOutcome& outcome) const {
   json.key("steps").value(std::int64_t(outcome.spin_up_steps));
   json.key("wall_seconds").value(outcome.spin_up_wall_seconds);
   json.end_object();
-  json.key("stages_ms").begin_object();
-  for (const auto& [stage, ms] : outcome.stage_ms) json.key(stage).value(ms);
-  json.end_object();
+  json.key("stages_ms").object(outcome.stage_ms);
   if (!outcome.segments.empty()) {
     json.key("segments").begin_array();
     for (const RunSegment& segment : outcome.segments) {

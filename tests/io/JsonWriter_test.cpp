@@ -2,10 +2,13 @@
 
 #include <catch2/catch.hpp>
 
+#include <array>
 #include <cstdint>
 #include <limits>
+#include <map>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 using fw::io::JsonWriter;
 
@@ -28,6 +31,18 @@ TEST_CASE("JsonWriter: nested objects and arrays get commas between elements onl
   CHECK(json.str() ==
         R"({"grid":[128,64,32],"stages_ms":{"advect":1.5,"project":2.25},)"
         R"("cases":[{"nodes":10,"ok":true},{"nodes":20,"ok":false},[]],"empty":{},"nothing":null})");
+}
+
+TEST_CASE("JsonWriter: a range is an array and a map an object, each element as value() writes it") {
+  JsonWriter json;
+  json.begin_object();
+  json.key("grid").values(std::array<int, 3>{128, 64, 32});
+  json.key("hz").values(std::vector<double>{0.5, 1.25});
+  json.key("none").values(std::vector<int>{});
+  json.key("stages_ms").object(std::map<std::string, double>{{"project", 2.25}, {"advect", 1.5}});
+  json.end_object();
+  CHECK(json.str() ==
+        R"({"grid":[128,64,32],"hz":[0.5,1.25],"none":[],"stages_ms":{"advect":1.5,"project":2.25}})");
 }
 
 TEST_CASE("JsonWriter: strings escape quotes, backslashes, newlines and control characters") {

@@ -155,8 +155,9 @@ class WorkingDirectory {
 
 }  // namespace
 
-TEST_CASE("load_scenario: the example of DESIGN.md parses and every field lands where expected",
-          "[scenario]") {
+TEST_CASE(
+    "load_scenario: the reference example of docs/design.md parses and every field lands where expected",
+    "[scenario]") {
   fw::test::TempDir dir("fw_scenario");
   dir.write("hills.pgm", ramp_pgm(121, 2));
   const std::string path = dir.write("storm.yaml", kDesignExample);
