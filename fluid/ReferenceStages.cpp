@@ -447,63 +447,65 @@ double max_divergence(const GridSpec& spec, const PressureLevel& fine, const Mac
   return m / (spec.h * spec.h);
 }
 
-std::vector<float> apply_operator(const GridSpec& spec, const PressureLevel& L,
-                                  const std::vector<float>& phi) {
-  std::vector<float> out(L.cell_count(), 0.f);
+namespace {
+
+// Calls visit(i, j, k, id, mask) for each fluid cell of level L, in index order.
+template <typename Visit>
+void for_each_fluid_cell(const PressureLevel& L, Visit visit) {
   for (int k = 0; k < L.nz; ++k)
     for (int j = 0; j < L.ny; ++j)
       for (int i = 0; i < L.nx; ++i) {
         const std::size_t id = cell_index(L.nx, L.ny, i, j, k);
         const std::uint8_t m = L.mask[id];
-        if (!(m & FW_MASK_FLUID)) continue;
-        out[id] = float(open_count(m) * double(phi[id]) - open_neighbour_sum(spec, L, phi, i, j, k, m));
+        if (m & FW_MASK_FLUID) visit(i, j, k, id, m);
       }
+}
+
+// (A phi) at a fluid cell: its open faces' count times phi, less its open neighbours' phi.
+double operator_at(const GridSpec& spec, const PressureLevel& L, const std::vector<float>& phi, int i, int j,
+                   int k, std::size_t id, std::uint8_t m) {
+  return open_count(m) * double(phi[id]) - open_neighbour_sum(spec, L, phi, i, j, k, m);
+}
+
+}  // namespace
+
+std::vector<float> apply_operator(const GridSpec& spec, const PressureLevel& L,
+                                  const std::vector<float>& phi) {
+  std::vector<float> out(L.cell_count(), 0.f);
+  for_each_fluid_cell(L, [&](int i, int j, int k, std::size_t id, std::uint8_t m) {
+    out[id] = float(operator_at(spec, L, phi, i, j, k, id, m));
+  });
   return out;
 }
 
 std::vector<float> residual(const GridSpec& spec, const PressureLevel& L, const std::vector<float>& b,
                             const std::vector<float>& phi) {
   std::vector<float> r(L.cell_count(), 0.f);
-  for (int k = 0; k < L.nz; ++k)
-    for (int j = 0; j < L.ny; ++j)
-      for (int i = 0; i < L.nx; ++i) {
-        const std::size_t id = cell_index(L.nx, L.ny, i, j, k);
-        const std::uint8_t m = L.mask[id];
-        if (!(m & FW_MASK_FLUID)) continue;
-        r[id] = float(double(b[id]) -
-                      (open_count(m) * double(phi[id]) - open_neighbour_sum(spec, L, phi, i, j, k, m)));
-      }
+  for_each_fluid_cell(L, [&](int i, int j, int k, std::size_t id, std::uint8_t m) {
+    r[id] = float(double(b[id]) - operator_at(spec, L, phi, i, j, k, id, m));
+  });
   return r;
 }
 
 std::vector<float> jacobi_sweep(const GridSpec& spec, const PressureLevel& L, const std::vector<float>& b,
                                 const std::vector<float>& phi, double relaxation_weight) {
   std::vector<float> out(L.cell_count(), 0.f);
-  for (int k = 0; k < L.nz; ++k)
-    for (int j = 0; j < L.ny; ++j)
-      for (int i = 0; i < L.nx; ++i) {
-        const std::size_t id = cell_index(L.nx, L.ny, i, j, k);
-        const std::uint8_t m = L.mask[id];
-        const int diag = open_count(m);
-        if (!(m & FW_MASK_FLUID) || diag == 0) continue;
-        const double target = (double(b[id]) + open_neighbour_sum(spec, L, phi, i, j, k, m)) / diag;
-        out[id] = float((1.0 - relaxation_weight) * phi[id] + relaxation_weight * target);
-      }
+  for_each_fluid_cell(L, [&](int i, int j, int k, std::size_t id, std::uint8_t m) {
+    const int diag = open_count(m);
+    if (diag == 0) return;
+    const double target = (double(b[id]) + open_neighbour_sum(spec, L, phi, i, j, k, m)) / diag;
+    out[id] = float((1.0 - relaxation_weight) * phi[id] + relaxation_weight * target);
+  });
   return out;
 }
 
 void red_black_sweep(const GridSpec& spec, const PressureLevel& L, const std::vector<float>& b,
                      std::vector<float>& phi, int colour) {
-  for (int k = 0; k < L.nz; ++k)
-    for (int j = 0; j < L.ny; ++j)
-      for (int i = 0; i < L.nx; ++i) {
-        if (((i + j + k) & 1) != colour) continue;
-        const std::size_t id = cell_index(L.nx, L.ny, i, j, k);
-        const std::uint8_t m = L.mask[id];
-        const int diag = open_count(m);
-        if (!(m & FW_MASK_FLUID) || diag == 0) continue;
-        phi[id] = float((double(b[id]) + open_neighbour_sum(spec, L, phi, i, j, k, m)) / diag);
-      }
+  for_each_fluid_cell(L, [&](int i, int j, int k, std::size_t id, std::uint8_t m) {
+    const int diag = open_count(m);
+    if (((i + j + k) & 1) != colour || diag == 0) return;
+    phi[id] = float((double(b[id]) + open_neighbour_sum(spec, L, phi, i, j, k, m)) / diag);
+  });
 }
 
 std::vector<float> restrict_residual(const GridSpec& spec, const PressureLevel& fine,

@@ -97,6 +97,18 @@ bool is_solid(const std::vector<std::uint8_t>& solid, std::size_t id) {
   return !solid.empty() && solid[id] != 0;
 }
 
+// Calls visit(idx, id) for each cell of the grid that is not solid, in index order.
+template <typename Visit>
+void for_each_air_cell(const GridSpec& spec, const std::vector<std::uint8_t>& solid, Visit visit) {
+  for (int k = 0; k < spec.nz; ++k)
+    for (int j = 0; j < spec.ny; ++j)
+      for (int i = 0; i < spec.nx; ++i) {
+        const int idx[3] = {i, j, k};
+        const std::size_t id = cell_at(spec, idx);
+        if (!is_solid(solid, id)) visit(idx, id);
+      }
+}
+
 // The cell-centred resolved velocity of cell idx: the mean of its two faces per component, m/s.
 std::array<double, 3> centre_velocity(const GridSpec& spec, const MacVelocity& vel, const int idx[3]) {
   std::array<double, 3> u{};
@@ -129,16 +141,11 @@ std::vector<float> tke_equilibrium(const GridSpec& spec, const std::vector<std::
   check_solid(spec, solid, "tke_equilibrium");
   const std::vector<float> walls = wall_cells(spec, solid);
   std::vector<float> e(spec.cell_count(), 0.0f);
-  for (int k = 0; k < spec.nz; ++k)
-    for (int j = 0; j < spec.ny; ++j)
-      for (int i = 0; i < spec.nx; ++i) {
-        const int idx[3] = {i, j, k};
-        const std::size_t id = cell_at(spec, idx);
-        if (is_solid(solid, id)) continue;
-        const double l = tke_mixing_length(spec.h, walls[id] != 0.0f);
-        e[id] = float(
-            std::max(kTkeFloor, tke_shear_equilibrium(l, spec.h, strain_rate_squared(spec, vel, i, j, k))));
-      }
+  for_each_air_cell(spec, solid, [&](const int idx[3], std::size_t id) {
+    const double l = tke_mixing_length(spec.h, walls[id] != 0.0f);
+    e[id] = float(std::max(
+        kTkeFloor, tke_shear_equilibrium(l, spec.h, strain_rate_squared(spec, vel, idx[0], idx[1], idx[2]))));
+  });
   return e;
 }
 
@@ -161,42 +168,37 @@ std::vector<float> tke_advect(const GridSpec& spec, const std::vector<std::uint8
   check_solid(spec, solid, "tke_advect");
   check_cells(spec, energy.size(), "tke_advect", "the subgrid energy");
   std::vector<float> out(spec.cell_count(), 0.0f);
-  for (int k = 0; k < spec.nz; ++k)
-    for (int j = 0; j < spec.ny; ++j)
-      for (int i = 0; i < spec.nx; ++i) {
-        const int idx[3] = {i, j, k};
-        const std::size_t id = cell_at(spec, idx);
-        if (is_solid(solid, id)) continue;
-        const double own = energy[id];
-        const auto u = centre_velocity(spec, vel, idx);
-        int base[3];
-        double t[3];
-        for (int a = 0; a < 3; ++a) {
-          const double s = idx[a] - dt * u[a] / spec.h;  // the departure point, in cell-centre units
-          base[a] = int(std::floor(s));
-          t[a] = s - base[a];
-        }
-        // One corner: the ghost rules of fluid/SubgridTke.hpp, step 2.
-        auto corner = [&](int di, int dj, int dk) {
-          int at[3] = {base[0] + di, base[1] + dj, base[2] + dk};
-          bool inflow = false;
-          for (int a = 0; a < 3; ++a) {
-            const Across across = resolve_axis(spec, a, at[a]);
-            inflow = inflow || across == Across::inflow;
-            if (across == Across::closed) at[a] = std::clamp(at[a], 0, cells_along(spec, a) - 1);
-          }
-          if (inflow) return kTkeInflow;
-          const std::size_t c = cell_at(spec, at);
-          return is_solid(solid, c) ? own : double(energy[c]);
-        };
-        double value = 0.0;
-        for (int dk = 0; dk < 2; ++dk)
-          for (int dj = 0; dj < 2; ++dj)
-            for (int di = 0; di < 2; ++di)
-              value += (di ? t[0] : 1.0 - t[0]) * (dj ? t[1] : 1.0 - t[1]) * (dk ? t[2] : 1.0 - t[2]) *
-                       corner(di, dj, dk);
-        out[id] = float(value);
+  for_each_air_cell(spec, solid, [&](const int idx[3], std::size_t id) {
+    const double own = energy[id];
+    const auto u = centre_velocity(spec, vel, idx);
+    int base[3];
+    double t[3];
+    for (int a = 0; a < 3; ++a) {
+      const double s = idx[a] - dt * u[a] / spec.h;  // the departure point, in cell-centre units
+      base[a] = int(std::floor(s));
+      t[a] = s - base[a];
+    }
+    // One corner: the ghost rules of fluid/SubgridTke.hpp, step 2.
+    auto corner = [&](int di, int dj, int dk) {
+      int at[3] = {base[0] + di, base[1] + dj, base[2] + dk};
+      bool inflow = false;
+      for (int a = 0; a < 3; ++a) {
+        const Across across = resolve_axis(spec, a, at[a]);
+        inflow = inflow || across == Across::inflow;
+        if (across == Across::closed) at[a] = std::clamp(at[a], 0, cells_along(spec, a) - 1);
       }
+      if (inflow) return kTkeInflow;
+      const std::size_t c = cell_at(spec, at);
+      return is_solid(solid, c) ? own : double(energy[c]);
+    };
+    double value = 0.0;
+    for (int dk = 0; dk < 2; ++dk)
+      for (int dj = 0; dj < 2; ++dj)
+        for (int di = 0; di < 2; ++di)
+          value += (di ? t[0] : 1.0 - t[0]) * (dj ? t[1] : 1.0 - t[1]) * (dk ? t[2] : 1.0 - t[2]) *
+                   corner(di, dj, dk);
+    out[id] = float(value);
+  });
   return out;
 }
 
@@ -211,35 +213,30 @@ std::vector<float> tke_update(const GridSpec& spec, const std::vector<std::uint8
   const std::vector<float> walls = wall_cells(spec, solid);
   const TkeCoefficients tc = tke_coefficients(spec.h);
   std::vector<float> out(spec.cell_count(), 0.0f);
-  for (int k = 0; k < spec.nz; ++k)
-    for (int j = 0; j < spec.ny; ++j)
-      for (int i = 0; i < spec.nx; ++i) {
-        const int idx[3] = {i, j, k};
-        const std::size_t id = cell_at(spec, idx);
-        if (is_solid(solid, id)) continue;
-        const double e = advected[id], nu = nu_t[id];
-        double flux = 0.0;  // sum of K_f (e_nb - e), m^4/s^3
-        for (int a = 0; a < 3; ++a)
-          for (int side = -1; side <= 1; side += 2) {
-            int nb[3] = {i, j, k};
-            nb[a] += side;
-            const Across across = resolve_axis(spec, a, nb[a]);
-            if (across == Across::inflow) flux += std::min(2.0 * nu, cap) * (kTkeInflow - e);
-            if (across != Across::inside) continue;
-            const std::size_t n = cell_at(spec, nb);
-            if (is_solid(solid, n)) continue;
-            flux += std::min(nu + double(nu_t[n]), cap) * (double(advected[n]) - e);
-          }
-        const auto u = centre_velocity(spec, vel, idx);
-        const double speed = std::sqrt(u[0] * u[0] + u[1] * u[1] + u[2] * u[2]);
-        const double drag = drag_density.empty() ? 0.0 : double(drag_density[id]);
-        const double production = nu * strain_rate_squared(spec, vel, i, j, k) +
-                                  kWakeProductionFraction * drag * speed * speed * speed;
-        const double sink_rate =
-            tc.dissipation_rate[walls[id] != 0.0f] * std::sqrt(e) + kCanopySinkFactor * drag * speed;
-        const double next = (e + dt * (flux / (spec.h * spec.h) + production)) / (1.0 + dt * sink_rate);
-        out[id] = float(std::max(kTkeFloor, next));
+  for_each_air_cell(spec, solid, [&](const int idx[3], std::size_t id) {
+    const double e = advected[id], nu = nu_t[id];
+    double flux = 0.0;  // sum of K_f (e_nb - e), m^4/s^3
+    for (int a = 0; a < 3; ++a)
+      for (int side = -1; side <= 1; side += 2) {
+        int nb[3] = {idx[0], idx[1], idx[2]};
+        nb[a] += side;
+        const Across across = resolve_axis(spec, a, nb[a]);
+        if (across == Across::inflow) flux += std::min(2.0 * nu, cap) * (kTkeInflow - e);
+        if (across != Across::inside) continue;
+        const std::size_t n = cell_at(spec, nb);
+        if (is_solid(solid, n)) continue;
+        flux += std::min(nu + double(nu_t[n]), cap) * (double(advected[n]) - e);
       }
+    const auto u = centre_velocity(spec, vel, idx);
+    const double speed = std::sqrt(u[0] * u[0] + u[1] * u[1] + u[2] * u[2]);
+    const double drag = drag_density.empty() ? 0.0 : double(drag_density[id]);
+    const double production = nu * strain_rate_squared(spec, vel, idx[0], idx[1], idx[2]) +
+                              kWakeProductionFraction * drag * speed * speed * speed;
+    const double sink_rate =
+        tc.dissipation_rate[walls[id] != 0.0f] * std::sqrt(e) + kCanopySinkFactor * drag * speed;
+    const double next = (e + dt * (flux / (spec.h * spec.h) + production)) / (1.0 + dt * sink_rate);
+    out[id] = float(std::max(kTkeFloor, next));
+  });
   return out;
 }
 
