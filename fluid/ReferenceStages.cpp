@@ -345,6 +345,24 @@ void add_vorticity_confinement(const GridSpec& spec, MacVelocity& vel, double ep
     });
 }
 
+namespace {
+
+// The sum of component d's four faces around a face of another component whose two cells are lo and hi:
+// the faces below and above each cell along d (four times d's value at the face).
+double other_faces_sum(const GridSpec& spec, const MacVelocity& vel, int d, const int lo[3],
+                       const int hi[3]) {
+  double m = 0.0;
+  for (const int* cell : {lo, hi})
+    for (int side = 0; side < 2; ++side) {
+      int f[3] = {cell[0], cell[1], cell[2]};
+      f[d] += side;
+      m += vel.component(d)[face_index(spec, d, f[0], f[1], f[2])];
+    }
+  return m;
+}
+
+}  // namespace
+
 MacVelocity canopy_drag(const GridSpec& spec, const MacVelocity& vel, const std::vector<float>& drag_density,
                         double dt, const DragLaw& law) {
   if (drag_density.size() != spec.cell_count())
@@ -362,13 +380,7 @@ MacVelocity canopy_drag(const GridSpec& spec, const MacVelocity& vel, const std:
       for (int d = 0; d < 3; ++d) {
         if (d == c) continue;
         // Component d at the face: the mean of the d-faces below and above both neighbouring cells.
-        double m = 0.0;
-        for (const int* cell : {lo, hi})
-          for (int side = 0; side < 2; ++side) {
-            int f[3] = {cell[0], cell[1], cell[2]};
-            f[d] += side;
-            m += vel.component(d)[face_index(spec, d, f[0], f[1], f[2])];
-          }
+        const double m = other_faces_sum(spec, vel, d, lo, hi);
         speed2 += 0.0625 * m * m;
       }
       const double speed = std::sqrt(speed2);
@@ -779,14 +791,7 @@ MacVelocity wall_stress(const GridSpec& spec, const std::vector<std::uint8_t>& s
       const double weight = 0.5 * (wall(lo) + wall(hi));
       if (weight == 0.0) return;
       // Component d at the face: the mean of the d-faces below and above both cells along d.
-      double m = 0.0;
-      for (const int* cell : {lo, hi})
-        for (int side = 0; side < 2; ++side) {
-          int f[3] = {cell[0], cell[1], cell[2]};
-          f[d] += side;
-          m += vel.component(d)[face_index(spec, d, f[0], f[1], f[2])];
-        }
-      m *= 0.25;
+      const double m = 0.25 * other_faces_sum(spec, vel, d, lo, hi);
       const double q = vel.component(c)[id];
       const double speed = std::sqrt(q * q + m * m);
       out.component(c)[id] = float(q / (1.0 + dt * drag_coefficient * weight * speed / spec.h));

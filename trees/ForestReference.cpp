@@ -41,6 +41,20 @@ double sample_component(const fluid::GridSpec& spec, const std::vector<float>& q
 
 }  // namespace
 
+void ForestReference::check_sampled_wind(const Eigen::MatrixX3d& sampled_wind) const {
+  if (sampled_wind.rows() != total_samples())
+    fail(fmt::format("sampled wind has {} rows, expected {}", sampled_wind.rows(), total_samples()));
+}
+
+void ForestReference::check_wind_and_travel(const Eigen::MatrixX3d& sampled_wind,
+                                            const TreeTravel& travel) const {
+  check_sampled_wind(sampled_wind);
+  if (travel.distance.size() != forest_.instance_count() ||
+      travel.last_step.size() != forest_.instance_count())
+    fail(fmt::format("travel has {} distances and {} last steps, expected {}", travel.distance.size(),
+                     travel.last_step.size(), forest_.instance_count()));
+}
+
 Eigen::Vector3d sample_mac_velocity(const fluid::GridSpec& spec, const fluid::MacVelocity& velocity,
                                     const Eigen::Vector3d& world) {
   Eigen::Vector3d v;
@@ -128,8 +142,7 @@ Eigen::MatrixX3d ForestReference::sample_wind(const fluid::GridSpec& spec,
 
 Eigen::VectorXd ForestReference::modal_forces(const Eigen::MatrixX3d& sampled_wind,
                                               const fluid::DragLaw& law) const {
-  if (sampled_wind.rows() != total_samples())
-    fail(fmt::format("sampled wind has {} rows, expected {}", sampled_wind.rows(), total_samples()));
+  check_sampled_wind(sampled_wind);
   Eigen::VectorXd f(total_modes());
   for (int k = 0; k < forest_.instance_count(); ++k) {
     const TreeInstance& t = forest_.instances()[std::size_t(k)];
@@ -217,12 +230,7 @@ Eigen::VectorXd ForestReference::unresolved_modal_forces(const Eigen::MatrixX3d&
                                                          const UnresolvedTurbulence& series,
                                                          const std::vector<int>& offsets,
                                                          double intensity) const {
-  if (sampled_wind.rows() != total_samples())
-    fail(fmt::format("sampled wind has {} rows, expected {}", sampled_wind.rows(), total_samples()));
-  if (travel.distance.size() != forest_.instance_count() ||
-      travel.last_step.size() != forest_.instance_count())
-    fail(fmt::format("travel has {} distances and {} last steps, expected {}", travel.distance.size(),
-                     travel.last_step.size(), forest_.instance_count()));
+  check_wind_and_travel(sampled_wind, travel);
   if (offsets.size() != std::size_t(total_samples()))
     fail(fmt::format("offsets have {} entries, expected {}", offsets.size(), total_samples()));
   if (!std::isfinite(intensity) || intensity < 0.0)
@@ -247,12 +255,7 @@ Eigen::VectorXd ForestReference::unresolved_modal_forces(const Eigen::MatrixX3d&
 
 void ForestReference::advance_travelled(TreeTravel& travel, const Eigen::MatrixX3d& sampled_wind,
                                         double dt) const {
-  if (sampled_wind.rows() != total_samples())
-    fail(fmt::format("sampled wind has {} rows, expected {}", sampled_wind.rows(), total_samples()));
-  if (travel.distance.size() != forest_.instance_count() ||
-      travel.last_step.size() != forest_.instance_count())
-    fail(fmt::format("travel has {} distances and {} last steps, expected {}", travel.distance.size(),
-                     travel.last_step.size(), forest_.instance_count()));
+  check_wind_and_travel(sampled_wind, travel);
   if (!std::isfinite(dt) || dt < 0.0) fail(fmt::format("dt must be finite and >= 0, got {}", dt));
   for (int k = 0; k < forest_.instance_count(); ++k) {
     travel.last_step(k) = sampled_wind.row(forest_.sample_offset(k)).norm() * dt;

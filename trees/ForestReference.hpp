@@ -107,6 +107,9 @@ class ForestReference {
   void advance_travelled(TreeTravel& travel, const Eigen::MatrixX3d& sampled_wind, double dt) const;
 
  private:
+  /// Throws std::invalid_argument unless the sampled wind has a row a sample (and the travel a value a tree).
+  void check_sampled_wind(const Eigen::MatrixX3d& sampled_wind) const;
+  void check_wind_and_travel(const Eigen::MatrixX3d& sampled_wind, const TreeTravel& travel) const;
   const Forest& forest_;
 };
 
