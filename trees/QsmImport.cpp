@@ -17,6 +17,7 @@ namespace fw::trees {
 namespace {
 
 using detail::printable;
+using detail::quoted;
 
 constexpr std::size_t kRequired = 9;
 constexpr std::array<const char*, kRequired> kColumns = {"radius", "length", "start x", "start y", "start z",
@@ -35,10 +36,6 @@ struct Cylinder {
   int parent = 0;                                  // 1-based, 0 for none
   Eigen::Vector3d end() const { return start + length * axis; }
 };
-
-std::string quoted(std::string_view token) {
-  return fmt::format("'{}'", printable(token));
-}
 
 std::string_view trim(std::string_view text) {
   const auto blank = [](char c) { return c == ' ' || c == '\t' || c == '\r' || c == '\v' || c == '\f'; };
@@ -188,15 +185,7 @@ Skeleton read_qsm_cylinders(const std::string& path, QsmImportInfo* info) {
     // Node k > 0 is cylinder k; node 0 comes from the base cylinder.
     const int row = error.node() > 0 ? error.node() - 1 : base;
     const Cylinder& cylinder = cylinders[std::size_t(row)];
-    switch (error.field()) {
-      case SkeletonError::Field::parent:
-        throw base::SourceError(path, cylinder.line, "parent", error.expected(), quoted(cylinder.tokens[8]));
-      case SkeletonError::Field::radius:
-        throw base::SourceError(path, cylinder.line, "radius", error.expected(), quoted(cylinder.tokens[0]));
-      case SkeletonError::Field::position:
-      case SkeletonError::Field::nodes:
-        break;
-    }
+    detail::throw_if_parent_or_radius(error, path, cylinder.line, cylinder.tokens[8], cylinder.tokens[0]);
     throw base::SourceError(
         path, cylinder.line, "length",
         fmt::format(

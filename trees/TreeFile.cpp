@@ -44,11 +44,29 @@ std::string printable(std::string_view text) {
   return out;
 }
 
+std::string quoted(std::string_view token) {
+  return fmt::format("'{}'", printable(token));
+}
+
+void throw_if_parent_or_radius(const SkeletonError& error, const std::string& path, int line,
+                               std::string_view parent, std::string_view radius) {
+  switch (error.field()) {
+    case SkeletonError::Field::parent:
+      throw base::SourceError(path, line, "parent", error.expected(), quoted(parent));
+    case SkeletonError::Field::radius:
+      throw base::SourceError(path, line, "radius", error.expected(), quoted(radius));
+    case SkeletonError::Field::position:
+    case SkeletonError::Field::nodes:
+      return;
+  }
+}
+
 }  // namespace detail
 
 namespace {
 
 using detail::printable;
+using detail::quoted;
 
 constexpr std::array<const char*, 6> kColumns = {"id", "parent", "x", "y", "z", "radius"};
 constexpr const char* kLayout = "6 fields: id parent x y z radius";
@@ -61,10 +79,6 @@ struct NodeLine {
 
 bool is_blank(char c) {
   return c == ' ' || c == '\t' || c == '\r' || c == '\v' || c == '\f';
-}
-
-std::string quoted(std::string_view token) {
-  return fmt::format("'{}'", printable(token));
 }
 
 }  // namespace
@@ -165,15 +179,7 @@ Skeleton read_tree_file(const std::string& path) {
     if (error.node() < 0 || error.node() >= int(n))
       throw base::SourceError::unreadable(path, fmt::format("{}, got {}", error.expected(), error.got()));
     const NodeLine& node = *source[std::size_t(error.node())];
-    switch (error.field()) {
-      case SkeletonError::Field::parent:
-        throw base::SourceError(path, node.line, "parent", error.expected(), quoted(node.tokens[1]));
-      case SkeletonError::Field::radius:
-        throw base::SourceError(path, node.line, "radius", error.expected(), quoted(node.tokens[5]));
-      case SkeletonError::Field::position:
-      case SkeletonError::Field::nodes:
-        break;
-    }
+    detail::throw_if_parent_or_radius(error, path, node.line, node.tokens[1], node.tokens[5]);
     throw base::SourceError(path, node.line, "x y z", error.expected(),
                             fmt::format("'{} {} {}'", printable(node.tokens[2]), printable(node.tokens[3]),
                                         printable(node.tokens[4])));

@@ -47,6 +47,13 @@ namespace detail {
 std::string read_text_file(const std::string& path);
 /// text for an error message: non-printable bytes as \xNN, cut to about 40 characters.
 std::string printable(std::string_view text);
+/// printable(token) in single quotes: a token as an error message shows it.
+std::string quoted(std::string_view token);
+/// Throws the file's base::SourceError for a Skeleton::from_nodes error about the parent or the radius of
+/// the node read from `line`, whose columns hold the tokens `parent` and `radius`; returns for another
+/// field (a position, the node count), which each reader words in its own terms.
+void throw_if_parent_or_radius(const SkeletonError& error, const std::string& path, int line,
+                               std::string_view parent, std::string_view radius);
 }  // namespace detail
 
 }  // namespace fw::trees
