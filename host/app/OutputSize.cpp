@@ -121,7 +121,7 @@ struct WindFrames {
 bool uniform_start(const SimulationPlan& plan) {
   const bool solids =
       std::any_of(plan.wind.solid.begin(), plan.wind.solid.end(), [](auto s) { return s != 0; });
-  return !solids && !plan.wind.turbulence;
+  return !solids && !plan.turbulence_box;
 }
 
 Bytes solid_cells(const SimulationPlan& plan) {

@@ -85,13 +85,12 @@ void print_plan(const SimulationPlan& plan, std::ostream& out) {
   out << fmt::format("solid cells: {}, gusts: {}, advection: {}, subgrid: {}, pressure: {}\n", solid_cells,
                      plan.wind.gusts.size(), fluid::to_string(plan.wind.settings.advection),
                      subgrid_words(plan.wind.settings), fluid::to_string(plan.wind.settings.pressure.solver));
-  if (const auto& box = plan.wind.turbulence) {
-    const auto& n = box->cells();
+  if (const auto& box = plan.turbulence_box) {
+    const auto& n = box->cells;
     const auto period = box->period();
     out << fmt::format(
         "turbulence: von Karman, L_u {} m, box {} x {} x {} points {} m apart ({} x {} x {} m), {}\n",
-        box->spec().spectrum.integral_length, n[0], n[1], n[2], box->spacing(), period[0], period[1],
-        period[2],
+        box->spectrum.integral_length, n[0], n[1], n[2], box->spacing, period[0], period[1], period[2],
         plan.coupling.unresolved.enabled ? "unresolved eddies force the trees" : "no unresolved forcing");
   }
   for (std::size_t i = 0; i < plan.species.size(); ++i) {
@@ -115,7 +114,7 @@ void print_plan(const SimulationPlan& plan, std::ostream& out) {
     out << fmt::format("steps: {} (dt {} s to t = {} s)\n", long(std::ceil(plan.end_time / settings.dt)),
                        settings.dt, plan.end_time);
   } else {
-    const double peak = peak_wind_speed(plan);
+    const double peak = plan.peak_wind;
     const double dt = planned_dt(plan);
     out << fmt::format(
         "steps: about {} or more (dt auto, CFL {}{}: {:.3f} s at the peak wind plus gusts, {:.1f} m/s, to t "
