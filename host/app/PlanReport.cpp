@@ -80,10 +80,8 @@ void print_plan(const SimulationPlan& plan, std::ostream& out) {
                      spec.nx, spec.ny, spec.nz, spec.cell_count(), spec.h, spec.nx * spec.h, spec.ny * spec.h,
                      spec.nz * spec.h);
   out << "boundaries at t = 0: " << boundaries_line(plan.wind) << "\n";
-  const long solid_cells =
-      std::count_if(plan.wind.solid.begin(), plan.wind.solid.end(), [](std::uint8_t s) { return s != 0; });
-  out << fmt::format("solid cells: {}, gusts: {}, advection: {}, subgrid: {}, pressure: {}\n", solid_cells,
-                     plan.wind.gusts.size(), fluid::to_string(plan.wind.settings.advection),
+  out << fmt::format("solid cells: {}, gusts: {}, advection: {}, subgrid: {}, pressure: {}\n",
+                     plan.solid_cells, plan.wind.gusts.size(), fluid::to_string(plan.wind.settings.advection),
                      subgrid_words(plan.wind.settings), fluid::to_string(plan.wind.settings.pressure.solver));
   if (const auto& box = plan.turbulence_box) {
     const auto& n = box->cells;
@@ -102,7 +100,7 @@ void print_plan(const SimulationPlan& plan, std::ostream& out) {
         leaves > 0 ? fmt::format(", {} leaves a tree", leaves) : "", s.cache);
   }
   out << fmt::format("trees: {}, leaves: {}, two-way coupling: {}\n", plan.forest.instance_count(),
-                     plan.leaf_count, plan.coupling.drag_density.empty() ? "off" : "on");
+                     plan.leaf_count, plan.two_way_coupling ? "on" : "off");
   for (std::size_t k = 0; k < plan.stands.size(); ++k) out << stand_line(k, plan.stands[k]) << "\n";
   std::string parts;
   for (const auto& part : plan.memory.parts())

@@ -72,7 +72,8 @@ struct StandPlan {
 /// What a plan is for. A run's plan holds everything the run needs; `check`'s holds what `check` reports and
 /// validates, and estimates from formulas what only the run builds: the inflow turbulence box is sized,
 /// validated and priced from its spec, not synthesised (a 1024 x 512 x 512-point box took 67 s and 3.2 GB),
-/// and each species' leaves are counted, not generated (trees::SpeciesLeaves::counted). Everything else is
+/// each species' leaves are counted, not generated (trees::SpeciesLeaves::counted), and the canopy is
+/// rasterised on the cells the trees reach, not the whole grid (canopy_density). Everything else is
 /// the same, so that a scenario `check` accepts does not fail `run` on anything `check` could have known.
 enum class PlanFor { run, check };
 
@@ -85,7 +86,8 @@ struct SimulationPlan {
   /// The inflow turbulence box's spec, with or without the box itself (wind.turbulence); none without
   /// wind.turbulence.
   std::optional<fluid::TurbulenceBoxSpec> turbulence_box;
-  double peak_wind = 0.0;  ///< m/s: peak_wind_speed of the plan's inputs, what its steps are planned at
+  double peak_wind = 0.0;       ///< m/s: peak_wind_speed of the plan's inputs, what its steps are planned at
+  std::size_t solid_cells = 0;  ///< cells wind.solid marks solid, counted once (a grid may have 2^31)
   /// The wind grid's x-y blocks over the run's ranks (one block in one process): domain.decomposition, else
   /// chosen; its halo from the scheme and the largest Courant number the run will take.
   fluid::Decomposition decomposition;
@@ -95,13 +97,19 @@ struct SimulationPlan {
   /// Per forest species (forest.species()): its basis, its trees, the cache; the scenario's species first,
   /// in file order, then one for each stand that gives its own leaf area index.
   std::vector<io::SpeciesSummary> species;
-  std::vector<StandPlan> stands;      ///< per forest.stands[] entry, in file order
-  long leaf_count = 0;                ///< leaves of all instances: the sum over trees of their species' count
-  std::vector<float> canopy_density;  ///< per cell, frontal area density a (1/m); empty without trees
-  double canopy_dropped_area = 0.0;   ///< m^2 of frontal area outside the domain
-  io::OutputSettings output;          ///< folder, frame interval, which writers and fields, probes
-  double probe_interval = 0.0;        ///< s between probe samples; 0: every step
-  DeviceMemory memory;                ///< what each stage will allocate, by part
+  std::vector<StandPlan> stands;  ///< per forest.stands[] entry, in file order
+  long leaf_count = 0;            ///< leaves of all instances: the sum over trees of their species' count
+  /// per cell, frontal area density a (1/m); empty without trees, and in a plan for check (which
+  /// rasterises the trees on the cells they reach only, host/app/plan/CouplingPlan.cpp)
+  std::vector<float> canopy_density;
+  std::size_t canopy_cells = 0;  ///< cells with a > 0 (in float), whatever the plan is for
+  /// The trees' drag slows the wind (forest.two_way_coupling, with trees): coupling.drag_density holds it in
+  /// a plan for a run.
+  bool two_way_coupling = false;
+  double canopy_dropped_area = 0.0;  ///< m^2 of frontal area outside the domain
+  io::OutputSettings output;         ///< folder, frame interval, which writers and fields, probes
+  double probe_interval = 0.0;       ///< s between probe samples; 0: every step
+  DeviceMemory memory;               ///< what each stage will allocate, by part
   /// What the plan accepts but the user should hear of (a stand denser than forests are), one line each,
   /// "FILE:LINE: KEY: ...", without a "warning: " prefix: `check` prints them on stderr, `run` in its log.
   std::vector<std::string> warnings;
