@@ -13,7 +13,8 @@ inline constexpr std::string_view kRunSteps =
 inline constexpr std::string_view kRunTime =
     "no run lasts longer than 10^9 steps of the longest step, 1 s (31.7 years of simulated time)";
 inline constexpr std::string_view kStep =
-    "`dt: auto` caps its step at 1 s too: the trees sway at 0.1 to 5 Hz and a longer step resolves none of it";
+    "`dt: auto` caps its step at 1 s too: the trees sway at 0.1 to 5 Hz and a longer step resolves none of "
+    "it";
 inline constexpr std::string_view kCfl =
     "past 5 a run with a fixed `dt` stops at the step as a blow-up in the making";
 inline constexpr std::string_view kEarth =
@@ -26,8 +27,9 @@ inline constexpr std::string_view kStructure =
 inline constexpr std::string_view kTreeHeight =
     "the tallest tree, the redwood Hyperion, is 116 m tall; the smallest, the dwarf willow, 1 to 6 cm";
 inline constexpr std::string_view kTreeScale =
-    "a tree scaled from the smallest height (0.01 m) to the tallest (150 m) or back; the scaled tree itself "
-    "must lie between the two (checked with its skeleton's height)";
+    "the tallest tree is 15,000 times the smallest, so no scale past these makes a tree; the scaled tree "
+    "itself "
+    "must lie between 0.01 m and 150 m (checked with its skeleton's height)";
 inline constexpr std::string_view kWindSpeed =
     "the fastest wind measured near the ground is 135 +- 20 m/s (a tornado, 1999), and the solver's "
     "incompressible flow fails from about 100 m/s (Mach 0.3)";
@@ -51,7 +53,8 @@ inline constexpr std::string_view kDensity =
 inline constexpr std::string_view kDamping =
     "ten times critical damping (1), past which a motion no longer oscillates";
 inline constexpr std::string_view kModes =
-    "a 15 m broadleaf's 200th mode is at 13.6 Hz, near the highest frequency a fine grid's wind carries (U / 2h: "
+    "a 15 m broadleaf's 200th mode is at 13.6 Hz, near the highest frequency a fine grid's wind carries (U / "
+    "2h: "
     "20 Hz at 20 m/s and 0.5 m cells); its thousandth lies far above";
 inline constexpr std::string_view kDrag =
     "five times a flat plate broadside (2), the highest drag coefficient of a bluff body";
@@ -71,14 +74,17 @@ inline constexpr std::string_view kConfinement =
     "the force adds about epsilon dt of the local velocity difference each step: at 10 and a step of 0.1 s, "
     "all of it";
 inline constexpr std::string_view kBlocks = "a block holds at least one cell of the grid's fewer than 2^31";
-inline constexpr std::string_view kEvery = "a run writes at most one frame a step, and takes at most 10^9 steps";
-inline constexpr std::string_view kKeep = "a run writes at most one checkpoint a step, and takes at most 10^9";
+inline constexpr std::string_view kEvery =
+    "a run writes at most one frame a step, and takes at most 10^9 steps";
+inline constexpr std::string_view kKeep =
+    "a run writes at most one checkpoint a step, and takes at most 10^9";
 inline constexpr std::string_view kLeafStride = "no tree carries more leaves than the leaf stage holds";
 inline constexpr std::string_view kIntervals =
     "no run lasts longer than 31.7 years; and `time.end` / this interval, the frames, rows or checkpoints "
     "the run writes, at most 10^9, one a step";
 
-inline constexpr std::string_view kCells = "no axis of the grid has more cells than its fewer than 2^31 faces";
+inline constexpr std::string_view kCells =
+    "no axis of the grid has more cells than its fewer than 2^31 faces";
 inline constexpr std::string_view kVogel = "plants measure Vogel exponents from 0 to -4/3 (Vogel 1984)";
 inline constexpr std::string_view kLeafAreaIndex =
     "the largest leaf area index that field measurements give is 18 (Asner, Scurlock & Hicke 2003)";

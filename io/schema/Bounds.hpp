@@ -45,9 +45,13 @@ inline constexpr double kMaxStructureHeight = 1000.0;
 inline constexpr double kMaxTreeHeight = 150.0;
 /// The smallest tree, m: the dwarf willow Salix herbacea grows 1 to 6 cm tall.
 inline constexpr double kMinTreeHeight = 0.01;
-/// The widest tree scale: a tree of the smallest height scaled to the tallest (and the reverse).
-inline constexpr double kMaxTreeScale = kMaxTreeHeight / kMinTreeHeight;
-inline constexpr double kMinTreeScale = kMinTreeHeight / kMaxTreeHeight;
+/// The widest tree scale: the tallest tree is 15,000 times the smallest, so no scale past 1e5 (or below 1e-5)
+/// makes a tree of any skeleton. The scaled tree itself must lie between kMinTreeHeight and kMaxTreeHeight,
+/// which the planner checks with the skeleton's height.
+inline constexpr double kMaxTreeScale = 1e5;
+inline constexpr double kMinTreeScale = 1e-5;
+static_assert(kMaxTreeScale >= kMaxTreeHeight / kMinTreeHeight &&
+              kMinTreeScale <= kMinTreeHeight / kMaxTreeHeight);
 
 /// The fastest wind, m/s: 135 +- 20 m/s measured by Doppler radar in the Bridge Creek-Moore tornado of 1999,
 /// the fastest near the ground; the solver's incompressible flow fails from about Mach 0.3 (100 m/s) anyway.
@@ -80,8 +84,8 @@ inline constexpr double kMaxModulus = 1.2e12;
 /// (22,590).
 inline constexpr double kMinDensity = 1.2;
 inline constexpr double kMaxDensity = 22590.0;
-/// Stiffness over density, m^2/s^2 (the square of a wave's speed along the wood): wood's E / density is 5e6 to
-/// 3e7 (green oak 1e10 / 1000, balsa 3.4e9 / 160), its G / density 5e5 to 3e6. Five times below the
+/// Stiffness over density, m^2/s^2 (the square of a wave's speed along the wood): wood's E / density is 5e6
+/// to 3e7 (green oak 1e10 / 1000, balsa 3.4e9 / 160), its G / density 5e5 to 3e6. Five times below the
 /// floppiest, a 150 m tree's first mode falls to 0.001 Hz and the modal solve takes seconds, then fails.
 inline constexpr double kMinSpecificModulus = 1e6;
 inline constexpr double kMinSpecificShearModulus = 1e5;

@@ -28,8 +28,8 @@ fw::host::SimulationPlan plan_with(const TempDir& dir, const std::string& forest
       "      skeleton: {file: tree.tree}\n"
       "      modes: {count: 4}\n" +  // 9
       forest;
-  return fw::host::plan_simulation(fw::io::load_scenario(dir.write("forest.yaml", text)), nullptr, nullptr,
-                                   1, fw::host::PlanFor::check);
+  return fw::host::plan_simulation(fw::io::load_scenario(dir.write("forest.yaml", text)), nullptr, nullptr, 1,
+                                   fw::host::PlanFor::check);
 }
 
 }  // namespace
@@ -38,17 +38,19 @@ TEST_CASE("ForestPlan: a scale that makes a tree taller than any tree names the 
           "[simulation][plan]") {
   TempDir dir("fw_forest_plan");
   // 10 m x 16 = 160 m > 150 m; 10 m x 15 = 150 m is the tallest allowed.
-  CHECK_THROWS_WITH(plan_with(dir, "  trees:\n    - {species: stick, position: [32, 32], scale: 16}\n"),
-                    StartsWith(dir.path() + "/forest.yaml:11: forest.trees[0].scale: a scale that makes a tree "
-                                            "of this species (10 m tall) 0.01 to 150 m tall expected") &&
-                        Contains("got '16' (160 m)"));
+  CHECK_THROWS_WITH(
+      plan_with(dir, "  trees:\n    - {species: stick, position: [32, 32], scale: 16}\n"),
+      StartsWith(dir.path() + "/forest.yaml:11: forest.trees[0].scale: a scale that makes a tree "
+                              "of this species (10 m tall) 0.01 to 150 m tall expected") &&
+          Contains("got '16' (160 m)"));
   CHECK(plan_with(dir, "  trees:\n    - {species: stick, position: [32, 32], scale: 15}\n")
             .forest.instance_count() == 1);
   // 10 m x 1e-4 = 1 mm, below the dwarf willow's 1 cm.
   CHECK_THROWS_WITH(plan_with(dir, "  trees:\n    - {species: stick, position: [32, 32], scale: 1e-4}\n"),
                     Contains("forest.trees[0].scale") && Contains("got '0.0001' (0.001 m)"));
   // A stand's scale.max on its own line.
-  CHECK_THROWS_WITH(plan_with(dir, "  stands:\n    - species: stick\n      region: {min: [8, 8], max: [56, 56]}\n"
-                                   "      spacing: 8\n      scale:\n        min: 1\n        max: 20\n"),
+  CHECK_THROWS_WITH(plan_with(dir,
+                              "  stands:\n    - species: stick\n      region: {min: [8, 8], max: [56, 56]}\n"
+                              "      spacing: 8\n      scale:\n        min: 1\n        max: 20\n"),
                     StartsWith(dir.path() + "/forest.yaml:16: forest.stands[0].scale.max: a scale"));
 }

@@ -25,7 +25,7 @@ fw::host::SimulationPlan plan_with_tree(const TempDir& dir, const std::string& t
       "wind: {speed: 5.0, direction: 270}\n"
       "forest:\n"
       "  species:\n"
-      "    - name: stick\n"             // 7
+      "    - name: stick\n"                  // 7
       "      skeleton: {file: tree.tree}\n"  // 8
       "      modes: {count: 4}\n"
       "  trees:\n"
