@@ -28,8 +28,29 @@ double length(const CanopyElement& e) {
 
 }  // namespace
 
-CanopyField::CanopyField(const GridSpec& spec)
-    : spec_(validated(spec)), area_(spec_.cell_count(), 0.0), drag_(spec_.cell_count(), 0.0) {}
+CanopyField::CanopyField(const GridSpec& spec, const CellBox& box) : spec_(validated(spec)), box_(box) {
+  const int n[3] = {spec_.nx, spec_.ny, spec_.nz};
+  for (int a = 0; a < 3; ++a)
+    if (box.first[a] < 0 || box.count[a] < 0 || box.first[a] + box.count[a] > n[a])
+      throw std::invalid_argument(
+          fmt::format("CanopyField: a box of cells {}..{} along axis {}, outside the "
+                      "grid's 0..{}",
+                      box.first[a], box.first[a] + box.count[a] - 1, a, n[a] - 1));
+  area_.assign(box_.cell_count(), 0.0);
+  drag_.assign(box_.cell_count(), 0.0);
+}
+
+std::size_t CanopyField::box_index(int i, int j, int k) const {
+  const int local[3] = {i - box_.first[0], j - box_.first[1], k - box_.first[2]};
+  for (int a = 0; a < 3; ++a)
+    if (local[a] < 0 || local[a] >= box_.count[a])
+      throw std::logic_error(
+          fmt::format("CanopyField: an element reaches cell ({}, {}, {}), outside the box "
+                      "of cells the field stores",
+                      i, j, k));
+  return std::size_t(local[0]) +
+         std::size_t(box_.count[0]) * (local[1] + std::size_t(box_.count[1]) * local[2]);
+}
 
 CanopyTreeReport CanopyField::add_elements(std::span<const CanopyElement> elements) {
   if (elements.empty()) throw std::invalid_argument("CanopyField: a tree needs at least one element");
@@ -101,7 +122,7 @@ CanopyField::Split CanopyField::rasterise(const CanopyElement& e) {
       split.drag_outside += piece * e.drag_area_per_metre;
       continue;
     }
-    const std::size_t id = std::size_t(cell[0]) + std::size_t(n[0]) * (cell[1] + std::size_t(n[1]) * cell[2]);
+    const std::size_t id = box_index(cell[0], cell[1], cell[2]);
     area_[id] += piece * e.frontal_area_per_metre * inv_h3;
     drag_[id] += kDynamicPressureFactor * piece * e.drag_area_per_metre * inv_h3;
     split.frontal_inside += piece * e.frontal_area_per_metre;
@@ -129,13 +150,17 @@ CanopyColumns CanopyField::columns_in(const std::array<double, 2>& min,
     const double centre = spec_.origin[std::size_t(axis)] + (index + 0.5) * spec_.h;
     return centre >= min[std::size_t(axis)] && centre <= max[std::size_t(axis)];
   };
-  for (int j = 0; j < spec_.ny; ++j) {
+  // The grid's columns in the rectangle; the area only the box's cells can hold, summed in the grid's order.
+  int along[2] = {0, 0};
+  for (int axis = 0; axis < 2; ++axis)
+    for (int index = 0; index < (axis == 0 ? spec_.nx : spec_.ny); ++index)
+      along[axis] += centre_inside(index, axis);
+  out.columns = along[0] * along[1];
+  for (int j = box_.first[1]; j < box_.first[1] + box_.count[1]; ++j) {
     if (!centre_inside(j, 1)) continue;
-    for (int i = 0; i < spec_.nx; ++i) {
+    for (int i = box_.first[0]; i < box_.first[0] + box_.count[0]; ++i) {
       if (!centre_inside(i, 0)) continue;
-      ++out.columns;
-      for (int k = 0; k < spec_.nz; ++k)
-        sum += area_[std::size_t(i) + std::size_t(spec_.nx) * (std::size_t(j) + std::size_t(spec_.ny) * k)];
+      for (int k = box_.first[2]; k < box_.first[2] + box_.count[2]; ++k) sum += area_[box_index(i, j, k)];
     }
   }
   out.ground_area = out.columns * spec_.h * spec_.h;
@@ -143,8 +168,24 @@ CanopyColumns CanopyField::columns_in(const std::array<double, 2>& min,
   return out;
 }
 
-std::vector<float> CanopyField::to_float(const std::vector<double>& v) {
-  return std::vector<float>(v.begin(), v.end());
+std::size_t CanopyField::occupied_cells() const {
+  return std::size_t(std::count_if(area_.begin(), area_.end(), [](double a) { return float(a) > 0.0f; }));
+}
+
+std::vector<float> CanopyField::to_float(const std::vector<double>& v) const {
+  if (box_.cell_count() == spec_.cell_count()) return std::vector<float>(v.begin(), v.end());
+  std::vector<float> out(spec_.cell_count(), 0.0f);
+  for (int k = 0; k < box_.count[2]; ++k)
+    for (int j = 0; j < box_.count[1]; ++j)
+      for (int i = 0; i < box_.count[0]; ++i) {
+        const std::size_t cell =
+            std::size_t(box_.first[0] + i) +
+            std::size_t(spec_.nx) *
+                (std::size_t(box_.first[1] + j) + std::size_t(spec_.ny) * std::size_t(box_.first[2] + k));
+        out[cell] =
+            float(v[std::size_t(i) + std::size_t(box_.count[0]) * (j + std::size_t(box_.count[1]) * k)]);
+      }
+  return out;
 }
 
 }  // namespace fw::fluid

@@ -57,10 +57,25 @@ struct CanopyColumns {
   double frontal_area = 0.0;  ///< sum over their cells of a h^3 (whatever element put it there), m^2
 };
 
+/// The cells of a grid a CanopyField stores: [first, first + count) along x, y and z.
+struct CellBox {
+  std::array<int, 3> first{0, 0, 0}, count{0, 0, 0};
+  /// Every cell of `spec`.
+  static CellBox whole(const GridSpec& spec) { return {{0, 0, 0}, {spec.nx, spec.ny, spec.nz}}; }
+  std::size_t cell_count() const {
+    return std::size_t(count[0]) * std::size_t(count[1]) * std::size_t(count[2]);
+  }
+};
+
 class CanopyField {
  public:
   /// All cells empty. Throws std::invalid_argument("CanopyField: ...") for an invalid spec.
-  explicit CanopyField(const GridSpec& spec);
+  explicit CanopyField(const GridSpec& spec) : CanopyField(spec, CellBox::whole(spec)) {}
+  /// Stores the cells of `box` only (memory that follows the trees, not the grid: what `forestwind check`
+  /// rasterises on), which must hold every cell inside the domain that an added element crosses
+  /// (std::logic_error otherwise); the other cells are empty. Every figure below is the whole-grid field's,
+  /// bit for bit. Throws std::invalid_argument for an invalid spec or a box that is not inside it.
+  CanopyField(const GridSpec& spec, const CellBox& box);
 
   /// Adds one tree (or any set of elements). Throws std::invalid_argument("CanopyField: ...") for no
   /// elements, or an element with a non-finite position or an area per metre that is negative or not
@@ -68,11 +83,13 @@ class CanopyField {
   CanopyTreeReport add_elements(std::span<const CanopyElement> elements);
 
   const GridSpec& spec() const { return spec_; }
-  /// k = 1/2 sum beta l / h^3 per cell (header comment), 1/m, x-fastest like GridSpec: what
-  /// host::WindGrid::set_canopy takes.
+  /// k = 1/2 sum beta l / h^3 per cell of the whole grid (header comment), 1/m, x-fastest like GridSpec:
+  /// what host::WindGrid::set_canopy takes.
   std::vector<float> drag_density() const { return to_float(drag_); }
-  /// a per cell, 1/m (the ParaView field `canopy_density`).
+  /// a per cell of the whole grid, 1/m (the ParaView field `canopy_density`).
   std::vector<float> frontal_area_density() const { return to_float(area_); }
+  /// The cells whose frontal area density is above 0 in float (those frontal_area_density() holds).
+  std::size_t occupied_cells() const;
 
   /// Frontal area of every tree added, inside the domain or not, m^2.
   double total_frontal_area() const { return total_area_; }
@@ -96,10 +113,14 @@ class CanopyField {
   };
   // Adds the element's areas to the cells it crosses; says how much landed outside the domain.
   Split rasterise(const CanopyElement& e);
-  static std::vector<float> to_float(const std::vector<double>& v);
+  // The whole grid's field from the box's values v (zero outside the box).
+  std::vector<float> to_float(const std::vector<double>& v) const;
+  // The index in the box's arrays of the grid's cell (i, j, k), which lies in the box.
+  std::size_t box_index(int i, int j, int k) const;
 
   GridSpec spec_;
-  std::vector<double> area_, drag_;  // per cell: m^2 / h^3 = 1/m
+  CellBox box_;
+  std::vector<double> area_, drag_;  // per cell of the box: m^2 / h^3 = 1/m
   double total_area_ = 0.0, dropped_area_ = 0.0;
   int trees_ = 0, trees_outside_ = 0;
 };

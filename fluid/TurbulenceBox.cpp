@@ -176,10 +176,6 @@ TurbulenceBox::TurbulenceBox(const TurbulenceBoxSpec& spec) : spec_(spec) {
   }
 }
 
-std::array<double, 3> TurbulenceBox::period() const {
-  return {spec_.cells[0] * spec_.spacing, spec_.cells[1] * spec_.spacing, spec_.cells[2] * spec_.spacing};
-}
-
 std::array<double, 3> TurbulenceBox::at(int i, int j, int k) const {
   const auto& n = spec_.cells;
   if (i < 0 || i >= n[0] || j < 0 || j >= n[1] || k < 0 || k >= n[2])

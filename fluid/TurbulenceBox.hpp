@@ -87,6 +87,10 @@ struct TurbulenceBoxSpec {
   /// invalid spectrum, or a component scale that is not finite and >= 0.
   void validate() const;
   std::size_t point_count() const { return std::size_t(cells[0]) * cells[1] * cells[2]; }
+  /// The period along each axis, n_a h, m.
+  std::array<double, 3> period() const {
+    return {cells[0] * spacing, cells[1] * spacing, cells[2] * spacing};
+  }
 };
 
 class TurbulenceBox {
@@ -98,8 +102,7 @@ class TurbulenceBox {
   const TurbulenceBoxSpec& spec() const { return spec_; }
   const std::array<int, 3>& cells() const { return spec_.cells; }
   double spacing() const { return spec_.spacing; }
-  /// The period along each axis, n_a h, m.
-  std::array<double, 3> period() const;
+  std::array<double, 3> period() const { return spec_.period(); }
   /// 3 floats per point (u, v, w, m/s), x fastest (header comment).
   const std::vector<float>& values() const { return values_; }
 

@@ -111,10 +111,11 @@ std::string sign_text(Bound bound) {
   return bound == Bound::positive ? "> 0" : bound == Bound::non_negative ? ">= 0" : "";
 }
 
-/// A number as the docs write it: plain in the range people read at a glance, else the shortest scientific
-/// form with a plain exponent (1e10, 3.85e9, 1e-3).
+}  // namespace
+
 std::string number_text(double value) {
   constexpr double kPlainBelow = 1e5, kPlainFrom = 1e-2;  // 12000, 0.05; but 1e10 and 1e-3
+  constexpr double kWholeBelow = 1e15;                    // printed exactly by {:.0f}
   const double size = std::abs(value);
   if (value == 0.0 || (size < kPlainBelow && size >= kPlainFrom)) return fmt::format("{}", value);
   std::string text;
@@ -126,8 +127,12 @@ std::string number_text(double value) {
   std::string exponent = text.substr(e + 1);
   const bool negative = exponent.front() == '-';
   exponent.erase(0, exponent.find_first_not_of("+-0"));
-  return text.substr(0, e + 1) + (negative ? "-" : "") + exponent;
+  text = text.substr(0, e + 1) + (negative ? "-" : "") + exponent;
+  const std::string whole = fmt::format("{:.0f}", value);
+  return value == std::round(value) && size < kWholeBelow && whole.size() < text.size() ? whole : text;
 }
+
+namespace {
 
 /// The range a number (or each number of a point) must lie in: "> 0", ">= 0 and < 1", "<= 90", or "" for
 /// any number.
@@ -140,15 +145,11 @@ std::string range_text(const Key& key) {
   return join(parts, " and ");
 }
 
-/// The docs' constraint with its {0}, {1}, {2} replaced by their limits: whole numbers in full (2147483647),
-/// others as number_text writes them (1e-6).
+/// The docs' constraint with its {0}, {1}, {2} replaced by their limits as number_text writes them
+/// (2147483647, 1e9, 1e-6).
 std::string constraint_text(const KeyDocs& prose) {
   std::array<std::string, 3> limits;
-  for (std::size_t i = 0; i < limits.size(); ++i) {
-    const double value = prose.limits[i];
-    limits[i] = value == std::round(value) && std::abs(value) < 1e15 ? fmt::format("{:.0f}", value)
-                                                                     : number_text(value);
-  }
+  for (std::size_t i = 0; i < limits.size(); ++i) limits[i] = number_text(prose.limits[i]);
   return fmt::format(fmt::runtime(prose.constraint), limits[0], limits[1], limits[2]);
 }
 
@@ -214,8 +215,7 @@ std::string expected(const Key& key) {
       return "a number" + (range.empty() ? "" : " " + range) + unit_suffix(key) + " or auto";
     }
     case Type::integer:
-      return key.highest == kNoUpperLimit ? fmt::format("an integer >= {}", key.lowest)
-                                          : fmt::format("an integer {}..{}", key.lowest, key.highest);
+      return fmt::format("an integer {}..{}", key.lowest, key.highest);
     case Type::integer_or_word:
       return fmt::format(
           "one of {} or {}", join(words(key), " | "),
@@ -371,13 +371,11 @@ std::string doc_allowed(const Key& key) {
       allowed = range_text(key) + ", or the word `auto`";
       break;
     case Type::integer:
-      allowed = key.highest == kNoUpperLimit ? fmt::format(">= {}", key.lowest)
-                                             : fmt::format("{}..{}", key.lowest, key.highest);
+      allowed = fmt::format("{}..{}", key.lowest, key.highest);
       break;
     case Type::integer_or_word:
-      allowed = fmt::format("{}, or an integer {}", join(words(key), " \\| ", "`"),
-                            key.highest == kNoUpperLimit ? fmt::format(">= {}", key.lowest)
-                                                         : fmt::format("{}..{}", key.lowest, key.highest));
+      allowed =
+          fmt::format("{}, or an integer {}..{}", join(words(key), " \\| ", "`"), key.lowest, key.highest);
       break;
     case Type::seed:
       allowed = fmt::format("0..{}", std::numeric_limits<std::uint64_t>::max());
@@ -398,13 +396,14 @@ std::string doc_allowed(const Key& key) {
       break;
     case Type::expression:
       allowed = fmt::format("finite{} for 0 <= t <= `time.end`",
-                            key.bound == Bound::any ? "" : " and " + sign_text(key.bound));
+                            range_text(key).empty() ? "" : ", " + range_text(key));
       break;
     case Type::velocity_or_with_wind:
-      allowed = "the word `with_wind` or any 3 numbers";
+      allowed = "the word `with_wind` or 3 numbers, each " + range_text(key);
       break;
   }
   if (!prose.constraint.empty()) allowed += "; " + constraint_text(prose);
+  if (!prose.bounds_why.empty()) allowed += fmt::format("; why: {}", prose.bounds_why);
   if (!key.only_with.empty()) allowed += fmt::format("; `{}` only", key.only_with);
   return allowed;
 }

@@ -60,6 +60,11 @@ std::vector<std::string> words(const Key& key);
 /// The "... expected" part of the loader's messages for a value of this key, e.g. "a number > 0 (s)".
 std::string expected(const Key& key);
 
+/// A number as the docs and the messages write it: plain in the range people read at a glance (0.05,
+/// 12000), else the shorter of the shortest scientific form with a plain exponent (1e9, 3.85e9, 1e-3) and
+/// the whole number in full (2147483647).
+std::string number_text(double value);
+
 /// docs/scenario.md with each block between a line "<!-- schema: SECTION -->" and the next line
 /// "<!-- end schema -->" replaced by the key table of SECTION: a generic path ("time", "forest.species[]") or
 /// "(top level)". A key goes to the longest SECTION it equals or lies below ("forest.species[].name" to

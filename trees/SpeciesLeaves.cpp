@@ -114,6 +114,17 @@ RestLeaf draw_leaf(const Skeleton& skeleton, const BearingElements& bearing, con
 
 SpeciesLeaves SpeciesLeaves::generate(const Skeleton& skeleton, const Foliage& foliage,
                                       const LeafSettings& settings) {
+  SpeciesLeaves out = counted(skeleton, foliage, settings);
+  if (out.count_ == 0) return out;
+  const BearingElements bearing(skeleton, foliage);
+  Draws draws(settings.seed);
+  out.leaves_.reserve(std::size_t(out.count_));
+  for (int k = 0; k < out.count_; ++k) out.leaves_.push_back(draw_leaf(skeleton, bearing, settings, draws));
+  return out;
+}
+
+SpeciesLeaves SpeciesLeaves::counted(const Skeleton& skeleton, const Foliage& foliage,
+                                     const LeafSettings& settings) {
   try {
     settings.validate();
   } catch (const std::invalid_argument& e) {
@@ -133,10 +144,7 @@ SpeciesLeaves SpeciesLeaves::generate(const Skeleton& skeleton, const Foliage& f
     throw std::invalid_argument(fmt::format(
         "SpeciesLeaves: {:.3g} leaves, more than the {:.0f} a species holds", planned, kMaxCount));
   out.foliage_leaf_count_ = foliage.leaf_area / settings.area;
-  const auto n = std::size_t(std::llround(planned));
-  Draws draws(settings.seed);
-  out.leaves_.reserve(n);
-  for (std::size_t k = 0; k < n; ++k) out.leaves_.push_back(draw_leaf(skeleton, bearing, settings, draws));
+  out.count_ = int(std::llround(planned));
   return out;
 }
 

@@ -46,12 +46,18 @@ class SpeciesLeaves {
   /// planned_count is above kMaxCount (or not a number): a caller that can name the key checks first.
   static SpeciesLeaves generate(const Skeleton& skeleton, const Foliage& foliage,
                                 const LeafSettings& settings);
+  /// The leaves generate() makes, counted but not drawn: count(), the settings and foliage_leaf_count() as
+  /// generate()'s, leaves() empty. What a plan for `check` holds (host::PlanFor): a tree may carry up to
+  /// 2^31 leaves, which would take minutes and hundreds of gigabytes to draw. Throws as generate().
+  static SpeciesLeaves counted(const Skeleton& skeleton, const Foliage& foliage,
+                               const LeafSettings& settings);
   /// The count generate() makes, before rounding: fraction x foliage.leaf_area / area; 0 without leaves.
   /// May be huge or infinite for a foliage no tree has: what generate() refuses.
   static double planned_count(const Foliage& foliage, const LeafSettings& settings);
 
   const LeafSettings& settings() const { return settings_; }
-  int count() const { return int(leaves_.size()); }
+  /// The leaves generate() makes (of a counted() species too, whose leaves() are empty).
+  int count() const { return count_; }
   const RestLeaf& leaf(int k) const { return leaves_.at(std::size_t(k)); }
   const std::vector<RestLeaf>& leaves() const { return leaves_; }
 
@@ -64,6 +70,7 @@ class SpeciesLeaves {
  private:
   LeafSettings settings_;
   std::vector<RestLeaf> leaves_;
+  int count_ = 0;
   double foliage_leaf_count_ = 0.0;
 };
 

@@ -119,18 +119,12 @@ struct WindFrames {
 // A frame at t = 0 of a laminar start without solids is the inflow profile everywhere: every horizontal
 // row of cells alike (the start's projection changes nothing), so that LZ4 and Blosc find runs.
 bool uniform_start(const SimulationPlan& plan) {
-  const bool solids =
-      std::any_of(plan.wind.solid.begin(), plan.wind.solid.end(), [](auto s) { return s != 0; });
-  return !solids && !plan.wind.turbulence;
-}
-
-Bytes solid_cells(const SimulationPlan& plan) {
-  return Bytes(std::count_if(plan.wind.solid.begin(), plan.wind.solid.end(), [](auto s) { return s != 0; }));
+  return plan.solid_cells == 0 && !plan.turbulence_box;
 }
 
 WindFrames wind_vti(const SimulationPlan& plan) {
   const Bytes cells = Bytes(plan.wind.spec.cell_count());
-  const Bytes solid = solid_cells(plan), fluid = cells - solid;
+  const Bytes solid = Bytes(plan.solid_cells), fluid = cells - solid;
   // A field of changing values over the fluid cells, zeros in the solid ones.
   const auto field = [&](Bytes per_cell) {
     return incompressible(fluid * per_cell) + runs(solid * per_cell);
@@ -147,9 +141,8 @@ WindFrames wind_vti(const SimulationPlan& plan) {
       first = uniform_start(plan) ? runs(cells * kFloat) : later;
     } else if (name == "solid") {
       later = first = plan.wind.solid.empty() ? 0 : runs(cells * kByte);
-    } else if (name == "canopy_density" && !plan.canopy_density.empty()) {
-      const Bytes crowns = Bytes(std::count_if(plan.canopy_density.begin(), plan.canopy_density.end(),
-                                               [](float a) { return a > 0; }));
+    } else if (name == "canopy_density" && plan.forest.instance_count() > 0) {
+      const Bytes crowns = Bytes(plan.canopy_cells);
       later = first = incompressible(crowns * kFloat) + runs((cells - crowns) * kFloat);
     }
     out.later += later;
@@ -197,7 +190,7 @@ WindFrames vdb_file(const SimulationPlan& plan, Bytes leaves) {
   const auto has = [&](const char* grid) {
     return std::find(grids.begin(), grids.end(), grid) != grids.end();
   };
-  const Bytes fluid = Bytes(plan.wind.spec.cell_count()) - solid_cells(plan);
+  const Bytes fluid = Bytes(plan.wind.spec.cell_count()) - Bytes(plan.solid_cells);
   const Bytes raw = fluid * ((has("vel") ? kVec3 : 0) + (has("speed") ? kFloat : 0));
   const Bytes points = vdb_holds_leaves(plan) ? leaves * kVdbLeafBytes : 0;
   WindFrames out;

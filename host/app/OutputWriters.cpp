@@ -33,7 +33,7 @@ io::RunManifest manifest_of(const SimulationPlan& plan, const DeviceInfo& device
   m.cell_size = plan.wind.spec.h;
   m.trees = plan.forest.instance_count();
   m.species = plan.species;
-  m.two_way_coupling = !plan.coupling.drag_density.empty();
+  m.two_way_coupling = plan.two_way_coupling;
   m.leaves = plan.leaf_count > 0;
   m.ranks = plan.decomposition.ranks();
   m.decomposition = plan.decomposition.describe();

@@ -80,18 +80,15 @@ void print_plan(const SimulationPlan& plan, std::ostream& out) {
                      spec.nx, spec.ny, spec.nz, spec.cell_count(), spec.h, spec.nx * spec.h, spec.ny * spec.h,
                      spec.nz * spec.h);
   out << "boundaries at t = 0: " << boundaries_line(plan.wind) << "\n";
-  const long solid_cells =
-      std::count_if(plan.wind.solid.begin(), plan.wind.solid.end(), [](std::uint8_t s) { return s != 0; });
-  out << fmt::format("solid cells: {}, gusts: {}, advection: {}, subgrid: {}, pressure: {}\n", solid_cells,
-                     plan.wind.gusts.size(), fluid::to_string(plan.wind.settings.advection),
+  out << fmt::format("solid cells: {}, gusts: {}, advection: {}, subgrid: {}, pressure: {}\n",
+                     plan.solid_cells, plan.wind.gusts.size(), fluid::to_string(plan.wind.settings.advection),
                      subgrid_words(plan.wind.settings), fluid::to_string(plan.wind.settings.pressure.solver));
-  if (const auto& box = plan.wind.turbulence) {
-    const auto& n = box->cells();
+  if (const auto& box = plan.turbulence_box) {
+    const auto& n = box->cells;
     const auto period = box->period();
     out << fmt::format(
         "turbulence: von Karman, L_u {} m, box {} x {} x {} points {} m apart ({} x {} x {} m), {}\n",
-        box->spec().spectrum.integral_length, n[0], n[1], n[2], box->spacing(), period[0], period[1],
-        period[2],
+        box->spectrum.integral_length, n[0], n[1], n[2], box->spacing, period[0], period[1], period[2],
         plan.coupling.unresolved.enabled ? "unresolved eddies force the trees" : "no unresolved forcing");
   }
   for (std::size_t i = 0; i < plan.species.size(); ++i) {
@@ -103,7 +100,7 @@ void print_plan(const SimulationPlan& plan, std::ostream& out) {
         leaves > 0 ? fmt::format(", {} leaves a tree", leaves) : "", s.cache);
   }
   out << fmt::format("trees: {}, leaves: {}, two-way coupling: {}\n", plan.forest.instance_count(),
-                     plan.leaf_count, plan.coupling.drag_density.empty() ? "off" : "on");
+                     plan.leaf_count, plan.two_way_coupling ? "on" : "off");
   for (std::size_t k = 0; k < plan.stands.size(); ++k) out << stand_line(k, plan.stands[k]) << "\n";
   std::string parts;
   for (const auto& part : plan.memory.parts())
@@ -115,7 +112,7 @@ void print_plan(const SimulationPlan& plan, std::ostream& out) {
     out << fmt::format("steps: {} (dt {} s to t = {} s)\n", long(std::ceil(plan.end_time / settings.dt)),
                        settings.dt, plan.end_time);
   } else {
-    const double peak = peak_wind_speed(plan);
+    const double peak = plan.peak_wind;
     const double dt = planned_dt(plan);
     out << fmt::format(
         "steps: about {} or more (dt auto, CFL {}{}: {:.3f} s at the peak wind plus gusts, {:.1f} m/s, to t "

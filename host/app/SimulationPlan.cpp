@@ -13,8 +13,9 @@
 namespace fw::host {
 
 SimulationPlan plan_simulation(const io::Scenario& scenario, const trees::BasisCache* cache,
-                               std::ostream* log, int ranks) {
+                               std::ostream* log, int ranks, PlanFor purpose) {
   SimulationPlan plan;
+  plan.purpose = purpose;
   plan_wind(scenario, ranks, plan);
   plan_turbulence(scenario.wind, plan);
   plan_forest(scenario, plan_species(scenario, cache, log, plan), plan);
@@ -25,7 +26,8 @@ SimulationPlan plan_simulation(const io::Scenario& scenario, const trees::BasisC
 
 double peak_wind_speed(const SimulationPlan& plan) {
   double peak = 0.0;
-  for (double t = 0.0;; t = std::min(t + 1.0, plan.end_time)) {
+  const double every = std::max(1.0, plan.end_time / kPeakWindSamples);  // s
+  for (double t = 0.0;; t = std::min(t + every, plan.end_time)) {
     const auto v = plan.inputs.ambient_wind(t);
     peak = std::max(peak, std::hypot(v[0], v[1], v[2]));
     if (t >= plan.end_time) break;
@@ -40,7 +42,7 @@ double peak_wind_speed(const SimulationPlan& plan) {
 double planned_dt(const SimulationPlan& plan) {
   const fluid::WindSettings& settings = plan.wind.settings;
   if (!(settings.cfl > 0.0)) return settings.dt;
-  return WindGrid::cfl_dt(settings, plan.wind.spec, {peak_wind_speed(plan), 0.0, 0.0});
+  return WindGrid::cfl_dt(settings, plan.wind.spec, {plan.peak_wind, 0.0, 0.0});
 }
 
 long planned_spin_up_steps(const SimulationPlan& plan) {

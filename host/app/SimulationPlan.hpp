@@ -30,6 +30,7 @@
 #include <vector>
 
 #include "fluid/Decomposition.hpp"
+#include "fluid/TurbulenceBox.hpp"
 #include "host/app/CouplingSettings.hpp"
 #include "host/app/DeviceMemory.hpp"
 #include "host/app/TimeInputs.hpp"
@@ -68,11 +69,25 @@ struct StandPlan {
   trees::StandDensity density;         ///< LAI and FAI (trees/StandDensity.hpp), from plan_coupling
 };
 
+/// What a plan is for. A run's plan holds everything the run needs; `check`'s holds what `check` reports and
+/// validates, and estimates from formulas what only the run builds: the inflow turbulence box is sized,
+/// validated and priced from its spec, not synthesised (a 1024 x 512 x 512-point box took 67 s and 3.2 GB),
+/// each species' leaves are counted, not generated (trees::SpeciesLeaves::counted), and the canopy is
+/// rasterised on the cells the trees reach, not the whole grid (canopy_density). Everything else is
+/// the same, so that a scenario `check` accepts does not fail `run` on anything `check` could have known.
+enum class PlanFor { run, check };
+
 struct SimulationPlan {
   ScenarioRecord scenario;
+  PlanFor purpose = PlanFor::run;
   double end_time = 0.0;  ///< s: the run covers [0, end_time]
   double spin_up = 0.0;   ///< s: the wind spins up from -spin_up to 0 first (CoupledStep::start); 0: none
-  WindGridSetup wind;     ///< ambient set for t = 0
+  WindGridSetup wind;     ///< ambient set for t = 0; wind.turbulence built for PlanFor::run only
+  /// The inflow turbulence box's spec, with or without the box itself (wind.turbulence); none without
+  /// wind.turbulence.
+  std::optional<fluid::TurbulenceBoxSpec> turbulence_box;
+  double peak_wind = 0.0;       ///< m/s: peak_wind_speed of the plan's inputs, what its steps are planned at
+  std::size_t solid_cells = 0;  ///< cells wind.solid marks solid, counted once (a grid may have 2^31)
   /// The wind grid's x-y blocks over the run's ranks (one block in one process): domain.decomposition, else
   /// chosen; its halo from the scheme and the largest Courant number the run will take.
   fluid::Decomposition decomposition;
@@ -82,22 +97,28 @@ struct SimulationPlan {
   /// Per forest species (forest.species()): its basis, its trees, the cache; the scenario's species first,
   /// in file order, then one for each stand that gives its own leaf area index.
   std::vector<io::SpeciesSummary> species;
-  std::vector<StandPlan> stands;      ///< per forest.stands[] entry, in file order
-  long leaf_count = 0;                ///< leaves of all instances: the sum over trees of their species' count
-  std::vector<float> canopy_density;  ///< per cell, frontal area density a (1/m); empty without trees
-  double canopy_dropped_area = 0.0;   ///< m^2 of frontal area outside the domain
-  io::OutputSettings output;          ///< folder, frame interval, which writers and fields, probes
-  double probe_interval = 0.0;        ///< s between probe samples; 0: every step
-  DeviceMemory memory;                ///< what each stage will allocate, by part
+  std::vector<StandPlan> stands;  ///< per forest.stands[] entry, in file order
+  long leaf_count = 0;            ///< leaves of all instances: the sum over trees of their species' count
+  /// per cell, frontal area density a (1/m); empty without trees, and in a plan for check (which
+  /// rasterises the trees on the cells they reach only, host/app/plan/CouplingPlan.cpp)
+  std::vector<float> canopy_density;
+  std::size_t canopy_cells = 0;  ///< cells with a > 0 (in float), whatever the plan is for
+  /// The trees' drag slows the wind (forest.two_way_coupling, with trees): coupling.drag_density holds it in
+  /// a plan for a run.
+  bool two_way_coupling = false;
+  double canopy_dropped_area = 0.0;  ///< m^2 of frontal area outside the domain
+  io::OutputSettings output;         ///< folder, frame interval, which writers and fields, probes
+  double probe_interval = 0.0;       ///< s between probe samples; 0: every step
+  DeviceMemory memory;               ///< what each stage will allocate, by part
   /// What the plan accepts but the user should hear of (a stand denser than forests are), one line each,
   /// "FILE:LINE: KEY: ...", without a "warning: " prefix: `check` prints them on stderr, `run` in its log.
   std::vector<std::string> warnings;
 };
 
-/// Builds the plan for a run over `ranks` MPI ranks. `cache` may be null (no disk cache); `log` (may be null)
-/// gets one line per species.
+/// Builds the plan for a run over `ranks` MPI ranks, or for `check` (PlanFor). `cache` may be null (no disk
+/// cache); `log` (may be null) gets one line per species.
 SimulationPlan plan_simulation(const io::Scenario& scenario, const trees::BasisCache* cache,
-                               std::ostream* log, int ranks = 1);
+                               std::ostream* log, int ranks = 1, PlanFor purpose = PlanFor::run);
 
 /// What `forestwind check` prints: the grid and its boundaries, the turbulence, each species and its trees,
 /// the forest, each stand's leaf and frontal area index, the device memory by part, the time steps and the
@@ -105,12 +126,16 @@ SimulationPlan plan_simulation(const io::Scenario& scenario, const trees::BasisC
 void print_plan(const SimulationPlan& plan, std::ostream& out);
 
 /// The largest wind speed the plan's inputs give, m/s: the ambient wind's largest speed over the run
-/// (sampled every second and at the end) times the inflow profile's largest factor over the cell centres,
-/// plus the strongest gust's peak. What an automatic time step will be limited by; a turbulent flow's
-/// largest face speed exceeds it.
+/// (sampled every second, or at kPeakWindSamples times evenly over a longer run, and at the end) times the
+/// inflow profile's largest factor over the cell centres, plus the strongest gust's peak. What an automatic
+/// time step will be limited by; a turbulent flow's largest face speed exceeds it. plan_simulation keeps it
+/// in plan.peak_wind.
 double peak_wind_speed(const SimulationPlan& plan);
+/// The most times peak_wind_speed samples the ambient wind: every second of a run up to 27.8 hours long, in
+/// a fraction of a second of `check` (a muparser expression evaluates in well under a microsecond).
+inline constexpr double kPeakWindSamples = 1e5;
 
-/// The time step `check` plans with, s: time.dt when fixed; with dt auto the CFL step at peak_wind_speed
+/// The time step `check` plans with, s: time.dt when fixed; with dt auto the CFL step at plan.peak_wind
 /// along one axis (the largest component and the sum of the components agree), the shortest step the
 /// ambient wind and gusts allow. ceil(end / dt) is then about the run's steps, or fewer when turbulence
 /// speeds the flow past the peak.

@@ -98,10 +98,13 @@ std::string what_is_left(const host::RunSnapshot& at, double end) {
 
 int run_check(const std::string& scenario_path, const std::string& resume, const host::Communicator& world) {
   const io::Scenario scenario = io::load_scenario(scenario_path);
-  // The plan `run` builds, with the same cache (species bases are computed or loaded here once): valid means
-  // that nothing short of the device itself can fail. Under mpirun every rank plans; rank 0 reports.
+  // The plan `run` builds, with the same cache (species bases are computed or loaded here once), but for
+  // check: what only the run needs of the turbulence box and the leaves is estimated, not built
+  // (host::PlanFor). Valid means that nothing short of the device itself can fail. Under mpirun every rank
+  // plans; rank 0 reports.
   trees::BasisCache cache(trees::BasisCache::default_directory());
-  const host::SimulationPlan plan = host::plan_simulation(scenario, &cache, nullptr, world.size());
+  const host::SimulationPlan plan =
+      host::plan_simulation(scenario, &cache, nullptr, world.size(), host::PlanFor::check);
   std::optional<host::CheckpointParts> from;
   if (!resume.empty()) from = checkpoint_to_resume(resume, scenario, plan, world);
   if (world.rank() != 0) return 0;

@@ -20,7 +20,8 @@ namespace {
 // device holds the rank's block with its halo.
 WindGridSetup validated(ComputeContext& cc, WindGridSetup setup, const WindBlocks* blocks) {
   WindGrid::validate(setup);
-  const std::size_t box_bytes = setup.turbulence ? WindGrid::estimate_turbulence_bytes(*setup.turbulence) : 0;
+  const std::size_t box_bytes =
+      setup.turbulence ? WindGrid::estimate_turbulence_bytes(setup.turbulence->spec()) : 0;
   fluid::GridSpec held = setup.spec;
   if (blocks && blocks->world && blocks->world->size() > 1) {
     const fluid::Decomposition& d = blocks->decomposition;
@@ -70,8 +71,10 @@ void WindGrid::validate(const WindGridSetup& setup) {
       throw std::invalid_argument("WindGrid: a gust needs a positive duration and radius");
 }
 
-std::size_t WindGrid::estimate_turbulence_bytes(const fluid::TurbulenceBox& box) {
-  return ComputeContext::allocation_bytes(box.values().size() * sizeof(float));
+std::size_t WindGrid::estimate_turbulence_bytes(const fluid::TurbulenceBoxSpec& spec) {
+  // TurbulenceBox::values(): u, v, w a point.
+  constexpr std::size_t kComponents = 3;
+  return ComputeContext::allocation_bytes(spec.point_count() * kComponents * sizeof(float));
 }
 
 std::size_t WindGrid::estimate_canopy_bytes(const fluid::GridSpec& spec) {

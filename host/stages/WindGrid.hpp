@@ -93,8 +93,9 @@ class WindGrid {
   /// the small buffers (wall faces, gusts, the profile) are left out and the hierarchy is taken as 8/7.
   static std::size_t estimate_device_bytes(const fluid::GridSpec& spec, const fluid::WindSettings& settings,
                                            int row_chunk);
-  /// Bytes the inflow turbulence box takes on the device (its values, uploaded once).
-  static std::size_t estimate_turbulence_bytes(const fluid::TurbulenceBox& box);
+  /// Bytes the inflow turbulence box of `spec` takes on the device (its values, uploaded once): from the
+  /// spec, so that a plan prices a box without synthesising it.
+  static std::size_t estimate_turbulence_bytes(const fluid::TurbulenceBoxSpec& spec);
   /// Bytes set_canopy allocates for a canopy on `spec` (a drag density per cell).
   static std::size_t estimate_canopy_bytes(const fluid::GridSpec& spec);
   /// Bytes of the grid's largest single buffer: a padded copy of the velocity's largest component (the pad

@@ -10,6 +10,7 @@
 
 #include "fluid/GridSpec.hpp"
 #include "fluid/SubgridStress.hpp"
+#include "io/schema/Bounds.hpp"
 #include "io/schema/TopLevelKeys.hpp"
 #include "kernels/shared_types.h"
 
@@ -20,6 +21,12 @@ void read_domain(const Loader& loader, const Field& field, DomainSettings& domai
   if (const auto origin = map.get<"origin">()) domain.origin = loader.vector<3>(*origin);
   const Field size = map.require<"size">();
   domain.size = loader.vector<3>(size);
+  constexpr std::size_t kVertical = 2;
+  if (!(domain.size[kVertical] <= schema::bounds::kMaxAirHeight)) {  // the air's extent, not the Earth's
+    loader.expected(loader.child(size, size.node[kVertical], fmt::format("{}[{}]", size.key, kVertical)),
+                    fmt::format("{}, the height at most {} m", number_expected(key_of(size)),
+                                schema::bounds::kMaxAirHeight));
+  }
   const Field cell_size = map.require<"cell_size">();
   domain.cell_size = loader.number(cell_size);
   double total = 1.0;

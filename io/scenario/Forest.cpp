@@ -63,11 +63,17 @@ Stand read_stand(const Loader& loader, const Field& item, const ForestSettings& 
   stand.layout.spacing = loader.number(spacing);
   stand.layout.scale_min = schema::key(schema::kForestKeys, "forest.stands[].scale.min").number;
   stand.layout.scale_max = schema::key(schema::kForestKeys, "forest.stands[].scale.max").number;
+  stand.scale_min_line = stand.scale_max_line = item.line;
   if (const auto scale_field = map.get<"scale">()) {
     const Section<schema::kForestKeys, "forest.stands[].scale"> scale(loader, *scale_field);
-    if (const auto low = scale.get<"min">()) stand.layout.scale_min = loader.number(*low);
+    stand.scale_min_line = stand.scale_max_line = scale_field->line;
+    if (const auto low = scale.get<"min">()) {
+      stand.layout.scale_min = loader.number(*low);
+      stand.scale_min_line = low->line;
+    }
     if (const auto high = scale.get<"max">()) {
       stand.layout.scale_max = loader.number(*high);
+      stand.scale_max_line = high->line;
       if (stand.layout.scale_max < stand.layout.scale_min)
         loader.expected(*high, fmt::format("a number >= scale.min ({})", stand.layout.scale_min));
     } else if (stand.layout.scale_max < stand.layout.scale_min) {
@@ -118,7 +124,11 @@ PlacedTreeSettings read_tree(const Loader& loader, const Field& item, const Fore
     if (terrain) tree.position[2] += terrain->map->height_at(tree.position[0], tree.position[1]);
   }
   if (const auto yaw = map.get<"yaw">()) tree.yaw_rad = radians(loader.number(*yaw));
-  if (const auto scale = map.get<"scale">()) tree.scale = loader.number(*scale);
+  tree.scale_line = item.line;
+  if (const auto scale = map.get<"scale">()) {
+    tree.scale = loader.number(*scale);
+    tree.scale_line = scale->line;
+  }
   return tree;
 }
 

@@ -105,7 +105,7 @@ Scenario load_scenario(const std::filesystem::path& file) {
     scenario.forest = read_forest(loader, *forest, scenario.domain, scenario.terrain, scenario.seed);
   if (const auto solver = top.get<"solver">()) read_solver(loader, *solver, scenario.solver);
   const Field output = top.get<"output">().value_or(top.missing<"output">());  // defaults
-  scenario.output = read_output(loader, output, scenario.name, scenario.domain);
+  scenario.output = read_output(loader, output, scenario.name, scenario.domain, scenario.time.end);
   return scenario;
 }
 

@@ -82,10 +82,24 @@ Probe read_probe(const Loader& loader, const Field& item, const std::vector<Prob
   return probe;
 }
 
+/// The interval of a key that a run writes something at (frames, probe rows, checkpoints), in its range, and
+/// short enough that the run writes at most bounds::kMaxRunSteps of them up to `end`: one a step at most.
+double run_interval(const Loader& loader, const Field& field, double end) {
+  const double interval = loader.number(field);
+  if (!(end / interval <= schema::bounds::kMaxRunSteps)) {
+    const std::string most = schema::number_text(schema::bounds::kMaxRunSteps);
+    loader.expected(
+        field, fmt::format("{} and at least time.end / {} = {:.3g} s (a run writes at most one a "
+                           "step, and takes at most {} steps)",
+                           schema::expected(key_of(field)), most, end / schema::bounds::kMaxRunSteps, most));
+  }
+  return interval;
+}
+
 }  // namespace
 
 OutputSettings read_output(const Loader& loader, const Field& field, const std::string& scenario_name,
-                           const DomainSettings& domain) {
+                           const DomainSettings& domain, double end) {
   OutputSettings output;
   const Section<schema::kOutputKeys, "output"> map(loader, field);
   std::string directory(schema::key(schema::kOutputKeys, "output.directory").word);
@@ -94,15 +108,10 @@ OutputSettings read_output(const Loader& loader, const Field& field, const std::
   if (const auto given = map.get<"directory">()) directory = loader.text(*given);
   // Against the working directory, not the scenario folder: a run writes where it is started.
   output.directory = std::filesystem::absolute(std::filesystem::path(directory)).lexically_normal();
-  if (const auto interval = map.get<"interval">()) output.interval = loader.number(*interval);
+  if (const auto interval = map.get<"interval">()) output.interval = run_interval(loader, *interval, end);
   if (const auto probe_interval = map.get<"probe_interval">()) {
-    const Key& key = key_of(*probe_interval);
-    if (!(probe_interval->node.IsScalar() && probe_interval->node.Scalar() == key.word)) {  // the word: auto
-      const std::optional<double> every =
-          probe_interval->node.IsScalar() ? base::parse_finite(probe_interval->node.Scalar()) : std::nullopt;
-      if (!every || !(*every > 0.0)) loader.expected(*probe_interval);
-      output.probe_interval = *every;
-    }
+    output.probe_interval = loader.number_or_word(*probe_interval);
+    if (output.probe_interval) run_interval(loader, *probe_interval, end);
   }
   if (const auto vtk = map.get<"vtk">()) read_vtk(loader, *vtk, output);
   if (const auto vdb = map.get<"vdb">()) read_vdb(loader, *vdb, output);
@@ -112,7 +121,7 @@ OutputSettings read_output(const Loader& loader, const Field& field, const std::
       output.probes.push_back(read_probe(loader, item, output.probes, domain));
   if (const auto checkpoint = map.get<"checkpoint">()) {
     const Section<schema::kOutputKeys, "output.checkpoint"> settings(loader, *checkpoint);
-    output.checkpoint_interval = loader.number(settings.require<"interval">());
+    output.checkpoint_interval = run_interval(loader, settings.require<"interval">(), end);
     if (const auto keep = settings.get<"keep">()) output.checkpoints_kept = loader.integer(*keep);
   }
   return output;

@@ -155,6 +155,12 @@ void Loader::expected(const Field& field, const std::string& what) const {
   fail(field, what + " expected, got " + shown(field.node));
 }
 
+std::optional<double> Loader::number_or_word(const Field& field) const {
+  const Key& key = key_of(field);
+  if (field.node.IsScalar() && field.node.Scalar() == key.word) return std::nullopt;
+  return number(field, key, schema::expected(key));
+}
+
 int Loader::integer(const Field& field) const {
   const Key& key = key_of(field);
   if (!field.node.IsScalar()) expected(field);

@@ -184,6 +184,8 @@ class Loader {
     const Key& key = key_of(field);
     return number(field, key, schema::expected(key));
   }
+  /// A number in the key's range, or nullopt for the key's word (auto).
+  std::optional<double> number_or_word(const Field& field) const;
   int integer(const Field& field) const;
   std::uint64_t seed(const Field& field) const;
   bool boolean(const Field& field) const;

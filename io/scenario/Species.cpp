@@ -23,17 +23,32 @@ SkeletonSource read_skeleton(const Loader& loader, const Field& field, std::uint
                                                                                        *generate_field);
     skeleton.kind = SkeletonSource::Kind::generate;
     skeleton.generate.preset = loader.word(generate.require<"preset">());
-    if (const auto height = generate.get<"height">()) skeleton.generate.height = loader.number(*height);
+    skeleton.key = generate_field->key;
+    skeleton.line = generate_field->line;
+    if (const auto height = generate.get<"height">()) {
+      skeleton.key = height->key;
+      skeleton.line = height->line;
+      skeleton.generate.height = loader.number(*height);
+      // 0 stands for the preset's own height; any other height is a tree's.
+      if (skeleton.generate.height > 0.0 && skeleton.generate.height < schema::bounds::kMinTreeHeight)
+        loader.expected(*height,
+                        fmt::format("{}: 0 (the preset's height) or at least {} m",
+                                    schema::expected(key_of(*height)), schema::bounds::kMinTreeHeight));
+    }
     skeleton.generate.seed = seed;
     if (const auto given = generate.get<"seed">()) skeleton.generate.seed = loader.seed(*given);
   }
   if (const auto file = map.get<"file">()) {
     skeleton.kind = SkeletonSource::Kind::file;
     skeleton.path = loader.readable_file(*file);
+    skeleton.key = file->key;
+    skeleton.line = file->line;
   }
   if (const auto qsm = map.get<"qsm">()) {
     skeleton.kind = SkeletonSource::Kind::qsm;
     skeleton.path = loader.readable_file(*qsm);
+    skeleton.key = qsm->key;
+    skeleton.line = qsm->line;
   }
   return skeleton;
 }
@@ -43,6 +58,17 @@ void read_material(const Loader& loader, const Field& field, trees::Material& ma
   if (const auto e = map.get<"youngs_modulus">()) material.youngs_modulus = loader.number(*e);
   if (const auto g = map.get<"shear_modulus">()) material.shear_modulus = loader.number(*g);
   if (const auto rho = map.get<"density">()) material.density = loader.number(*rho);
+  // Each within its bounds, the three can still make no wood (io/schema/Bounds.hpp): the map is to blame.
+  const double stretch = material.youngs_modulus / material.density;
+  const double shear = material.shear_modulus / material.density;
+  if (!(stretch >= schema::bounds::kMinSpecificModulus &&
+        shear >= schema::bounds::kMinSpecificShearModulus)) {
+    loader.fail(field,
+                fmt::format("a wood with youngs_modulus / density >= {} and shear_modulus / density >= {} "
+                            "m^2/s^2 expected (wood: 5e6 to 3e7 and 5e5 to 3e6), got {:.3g} and {:.3g}",
+                            schema::number_text(schema::bounds::kMinSpecificModulus),
+                            schema::number_text(schema::bounds::kMinSpecificShearModulus), stretch, shear));
+  }
 }
 
 void read_modes(const Loader& loader, const Field& field, ModeSettings& modes) {
@@ -148,7 +174,7 @@ Species read_species(const Loader& loader, const Field& item, const std::vector<
                      std::uint64_t global_seed) {
   const Section<schema::kSpeciesKeys, "forest.species[]"> map(loader, item);
   Species species;
-  species.modes.count_line = item.line;
+  species.line = species.modes.count_line = item.line;
   const Field name = map.require<"name">();
   species.name = loader.text(name);
   for (const Species& other : earlier)

@@ -14,18 +14,21 @@ namespace fw::io::reader {
 
 namespace {
 
-/// Every value of the expression over the run is finite, and >= 0 where its key's bound says so.
+/// Every value of the expression over the run is finite and in its key's range (its sign, at_least,
+/// at_most).
 void check_time_series(const Loader& loader, const Field& field, const Expression& expression, double end) {
-  const bool non_negative = key_of(field).bound == Bound::non_negative;
+  const Key& key = key_of(field);
+  const bool non_negative = key.bound == Bound::non_negative;
   // Sampled densely over the run so that a formula that goes bad mid-run fails at load, not at step 10^5.
   const int samples = expression.is_constant() ? 1 : 1001;
   for (int i = 0; i < samples; ++i) {
     const double t = samples == 1 ? 0.0 : end * i / (samples - 1);
     const double value = expression(t);
-    if (!std::isfinite(value) || (non_negative && value < 0.0)) {
-      loader.expected(field,
-                      fmt::format("a value that is finite{} for 0 <= t <= {} s (it gives {} at t = {} s)",
-                                  non_negative ? " and >= 0" : "", end, value, t));
+    if (!std::isfinite(value) || (non_negative && value < 0.0) || !(value >= key.at_least) ||
+        !(value <= key.at_most)) {
+      const std::string range = number_expected(key).substr(std::string_view("a number").size());
+      loader.expected(field, fmt::format("a finite value{} for 0 <= t <= {} s (it gives {} at t = {} s)",
+                                         range, end, value, t));
     }
   }
 }

@@ -3,6 +3,8 @@
 // does not say them. Here, not in the header, so that no reader of the keys compiles their prose.
 #include "io/schema/BoundaryKeys.hpp"
 
+#include "io/schema/BoundReasons.hpp"
+
 namespace fw::io::schema {
 
 namespace {
@@ -21,6 +23,7 @@ constexpr KeyDocs kDocs[] = {
     {.path = "boundaries.roughness_length",
      .default_note = "`wind.profile.roughness_length` with a `log` profile, else `0.1`",
      .constraint = "below `domain.cell_size` / 2; only with `ground: rough`",
+     .bounds_why = why::kRoughness,
      .description =
          "Aerodynamic roughness length z0 of a `rough` ground. The first fluid cell above the ground, and "
          "above terrain and other solid cells, feels the log law's wall shear stress `tau / rho = u*^2`, "

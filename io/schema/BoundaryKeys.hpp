@@ -10,6 +10,7 @@
 #include <span>
 #include <string_view>
 
+#include "io/schema/Bounds.hpp"
 #include "io/schema/Key.hpp"
 
 namespace fw::io::schema {
@@ -33,6 +34,7 @@ inline constexpr Key kBoundaryKeys[] = {
      .type = Type::number,
      .unit = "m",
      .bound = Bound::positive,
+     .at_most = bounds::kMaxRoughnessLength,
      .number = 0.1},
 };
 

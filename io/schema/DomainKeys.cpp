@@ -3,6 +3,8 @@
 // does not say them. Here, not in the header, so that no reader of the keys compiles their prose.
 #include "io/schema/DomainKeys.hpp"
 
+#include "io/schema/BoundReasons.hpp"
+
 #include "fluid/GridSpec.hpp"
 
 namespace fw::io::schema {
@@ -11,18 +13,23 @@ namespace {
 
 constexpr KeyDocs kDocs[] = {
     {.path = "domain.origin",
+     .bounds_why = why::kEarth,
      .description = "The minimum (south-west, bottom) corner. Its z is the domain floor."},
     {.path = "domain.size",
-     .constraint = "each a whole multiple of `cell_size` (to {0} relative), at least one cell",
-     .limits = {kCellMultipleTolerance},
+     .constraint = "each a whole multiple of `cell_size` (to {0} relative), at least one cell; z at most {1} "
+                   "(the troposphere, where weather happens, ends below 20 km)",
+     .limits = {kCellMultipleTolerance, bounds::kMaxAirHeight},
+     .bounds_why = why::kEarth,
      .description = "Extent along x, y and z."},
     {.path = "domain.cell_size",
      .constraint = "(nx + 1)(ny + 1)(nz + 1) <= {0}",
      .limits = {double(fluid::GridSpec::kMaxFaces)},
+     .bounds_why = why::kEarth,
      .description = "Cell edge h. The grid has `size / cell_size` cells along each axis."},
     {.path = "domain.decomposition",
      .default_note = "chosen: the split of the ranks that exchanges the fewest halo cells",
      .constraint = "whole numbers whose product is the number of ranks (`mpirun -np`)",
+     .bounds_why = why::kBlocks,
      .description = "Blocks along x and y of a run over MPI ranks, one block a rank (docs/parallel.md). "
                     "Ignored by a run in one process."},
 };

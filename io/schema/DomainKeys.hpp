@@ -9,6 +9,8 @@
 
 #include <span>
 
+#include "fluid/GridSpec.hpp"
+#include "io/schema/Bounds.hpp"
 #include "io/schema/Key.hpp"
 
 namespace fw::io::schema {
@@ -17,14 +19,29 @@ namespace fw::io::schema {
 inline constexpr double kCellMultipleTolerance = 1e-6;
 
 inline constexpr Key kDomainKeys[] = {
-    {.path = "domain.origin", .type = Type::point3, .unit = "m", .number = 0.0},
-    {.path = "domain.size", .type = Type::point3, .unit = "m", .required = true, .bound = Bound::positive},
+    {.path = "domain.origin",
+     .type = Type::point3,
+     .unit = "m",
+     .at_least = -bounds::kEarthCircumference,
+     .at_most = bounds::kEarthCircumference,
+     .number = 0.0},
+    {.path = "domain.size",
+     .type = Type::point3,
+     .unit = "m",
+     .required = true,
+     .bound = Bound::positive,
+     .at_most = bounds::kEarthCircumference},
     {.path = "domain.cell_size",
      .type = Type::number,
      .unit = "m",
      .required = true,
-     .bound = Bound::positive},
-    {.path = "domain.decomposition", .type = Type::point2, .at_least = 1, .noun = "[px, py]"},
+     .bound = Bound::positive,
+     .at_most = bounds::kEarthCircumference},
+    {.path = "domain.decomposition",
+     .type = Type::point2,
+     .at_least = 1,
+     .at_most = double(fluid::GridSpec::kMaxFaces),
+     .noun = "[px, py]"},
 };
 
 /// The prose of each key of kDomainKeys (DomainKeys.cpp), which schema::docs (io/ScenarioSchema.hpp) finds by

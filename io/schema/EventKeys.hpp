@@ -8,6 +8,7 @@
 
 #include <span>
 
+#include "io/schema/Bounds.hpp"
 #include "io/schema/Key.hpp"
 
 namespace fw::io::schema {
@@ -18,24 +19,38 @@ inline constexpr Key kEventKeys[] = {
      .type = Type::number,
      .unit = "s",
      .required = true,
-     .bound = Bound::non_negative},
+     .bound = Bound::non_negative,
+     .at_most = bounds::kMaxRunTime},
     {.path = "events[].gust.duration",
      .type = Type::number,
      .unit = "s",
      .required = true,
-     .bound = Bound::positive},
+     .bound = Bound::positive,
+     .at_most = bounds::kMaxRunTime},
     {.path = "events[].gust.peak_speed",
      .type = Type::number,
      .unit = "m/s",
      .required = true,
-     .bound = Bound::non_negative},
-    {.path = "events[].gust.center", .type = Type::point3, .unit = "m", .required = true},
+     .bound = Bound::non_negative,
+     .at_most = bounds::kMaxWindSpeed},
+    {.path = "events[].gust.center",
+     .type = Type::point3,
+     .unit = "m",
+     .required = true,
+     .at_least = -bounds::kEarthCircumference,
+     .at_most = bounds::kEarthCircumference},
     {.path = "events[].gust.radius",
      .type = Type::number,
      .unit = "m",
      .required = true,
-     .bound = Bound::positive},
-    {.path = "events[].gust.travel", .type = Type::velocity_or_with_wind, .unit = "m/s", .word = "with_wind"},
+     .bound = Bound::positive,
+     .at_most = bounds::kEarthCircumference},
+    {.path = "events[].gust.travel",
+     .type = Type::velocity_or_with_wind,
+     .unit = "m/s",
+     .at_least = -bounds::kMaxWindSpeed,
+     .at_most = bounds::kMaxWindSpeed,
+     .word = "with_wind"},
 };
 
 /// The prose of each key of kEventKeys (EventKeys.cpp), which schema::docs (io/ScenarioSchema.hpp) finds by

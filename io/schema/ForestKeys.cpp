@@ -3,6 +3,8 @@
 // does not say them. Here, not in the header, so that no reader of the keys compiles their prose.
 #include "io/schema/ForestKeys.hpp"
 
+#include "io/schema/BoundReasons.hpp"
+
 namespace fw::io::schema {
 
 namespace {
@@ -31,9 +33,11 @@ constexpr KeyDocs kDocs[] = {
                     "coefficients holding at U_ref. Leaves and twigs streamline in strong wind (Vogel 1984); "
                     "the air's canopy drag and the trees' modal forces follow the same law."},
     {.path = "forest.drag_law.exponent",
+     .bounds_why = why::kVogel,
      .description = "The Vogel exponent: 0 keeps the coefficient constant; plants measure 0 to -4/3 "
                     "(strongly reconfiguring ones)."},
     {.path = "forest.drag_law.reference_speed",
+     .bounds_why = why::kWindSpeed,
      .description = "U_ref, where the species' drag coefficients hold."},
     {.path = "forest.species", .description = "Tree species."},
     {.path = "forest.stands", .description = "Stands: trees scattered over a region."},
@@ -44,9 +48,11 @@ constexpr KeyDocs kDocs[] = {
     {.path = "forest.stands[].region", .description = "Horizontal rectangle the trees stand in."},
     {.path = "forest.stands[].region.min",
      .allowed = "inside the domain's horizontal extent, edges included",
+     .bounds_why = why::kEarth,
      .description = "South-west corner."},
     {.path = "forest.stands[].region.max",
      .allowed = "inside the domain's horizontal extent; x and y both larger than `min`",
+     .bounds_why = why::kEarth,
      .description = "North-east corner."},
     {.path = "forest.stands[].layout",
      .description = "`poisson`: a natural stand, with no two trees closer than `spacing` and no gaps much "
@@ -56,19 +62,27 @@ constexpr KeyDocs kDocs[] = {
      .constraint = "`2 (width / spacing + 1) (depth / spacing + 1)`, a bound on the trees the region holds, "
                    "at most {0}, where width and depth are the region's extents",
      .limits = {double(trees::kMaxTreesPerStand)},
+     .bounds_why = why::kEarth,
      .description = "Minimum distance between trees (`poisson`) or exact distance (`grid`)."},
     {.path = "forest.stands[].scale",
      .default_note = "`{min: 1, max: 1}`",
      .description =
          "Range of uniform tree scales. A tree scaled by s is s times as tall, and its frequencies "
          "are divided by s."},
-    {.path = "forest.stands[].scale.min", .constraint = "<= `scale.max`", .description = "Smallest scale."},
-    {.path = "forest.stands[].scale.max", .constraint = ">= `scale.min`", .description = "Largest scale."},
+    {.path = "forest.stands[].scale.min",
+     .constraint = "<= `scale.max`",
+     .bounds_why = why::kTreeScale,
+     .description = "Smallest scale."},
+    {.path = "forest.stands[].scale.max",
+     .constraint = ">= `scale.min`",
+     .bounds_why = why::kTreeScale,
+     .description = "Largest scale."},
     {.path = "forest.stands[].seed",
      .default_note = "global `seed` + stand index",
      .description = "Seed for positions, yaws and scales. The same seed gives the same stand."},
     {.path = "forest.stands[].leaf_area_index",
      .default_note = "none: the species' `canopy.leaf_area_index` on every crown",
+     .bounds_why = why::kLeafAreaIndex,
      .description =
          "The stand's leaf area index as measured in the field: one-sided leaf area of the stand's trees "
          "per m^2 of its region. The stand's trees then carry the species' foliage scaled so that their "
@@ -81,10 +95,15 @@ constexpr KeyDocs kDocs[] = {
      .description = "Species of the tree."},
     {.path = "forest.trees[].position",
      .allowed = "inside the domain, edges included",
+     .bounds_why = why::kEarth,
      .description = "Position of the root. Without z, the tree stands on the ground: the terrain surface, "
                     "else the domain floor."},
-    {.path = "forest.trees[].yaw", .description = "Rotation about +z, counter-clockwise seen from above."},
-    {.path = "forest.trees[].scale", .description = "Uniform scale of the species' skeleton."},
+    {.path = "forest.trees[].yaw",
+     .bounds_why = why::kYaw,
+     .description = "Rotation about +z, counter-clockwise seen from above."},
+    {.path = "forest.trees[].scale",
+     .bounds_why = why::kTreeScale,
+     .description = "Uniform scale of the species' skeleton."},
 };
 
 }  // namespace

@@ -54,7 +54,6 @@ enum class Bound { any, positive, non_negative };
 using Words = std::span<const std::string_view>;
 
 inline constexpr double kNoNumberLimit = std::numeric_limits<double>::infinity();
-inline constexpr int kNoUpperLimit = std::numeric_limits<int>::max();
 
 /// What the loader and the defaults of the io::Scenario structs read of a key. What only the docs print is
 /// its KeyDocs.
@@ -68,7 +67,7 @@ struct Key {
   double at_most = kNoNumberLimit;    ///< number, point: each value must be <= this
   double below = kNoNumberLimit;      ///< number, point: each value must be < this
   long long lowest = 0;               ///< integer: the smallest value allowed
-  long long highest = 0;              ///< integer: the largest value allowed (kNoUpperLimit: no limit)
+  long long highest = 0;              ///< integer: the largest value allowed
   Words words{};                      ///< word, word_set: the vocabulary
   /// word: a vocabulary known only at run time (replaces words).
   std::vector<std::string> (*run_time_words)() = nullptr;
@@ -93,6 +92,9 @@ struct KeyDocs {
   /// what is allowed beyond the type's own rule; {0}, {1}, {2} stand for the numbers in `limits`
   std::string_view constraint{};
   std::array<double, 3> limits{};  ///< the numbers `constraint` names, taken from the type that checks them
+  /// Why a value past the key's bounds cannot be meant (io/schema/BoundReasons.hpp): every number's key has
+  /// bounds (io/schema/Bounds.hpp), and the docs print them with this.
+  std::string_view bounds_why{};
   std::string_view description{};  ///< the meaning
 };
 

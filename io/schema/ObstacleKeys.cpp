@@ -3,6 +3,8 @@
 // does not say them. Here, not in the header, so that no reader of the keys compiles their prose.
 #include "io/schema/ObstacleKeys.hpp"
 
+#include "io/schema/BoundReasons.hpp"
+
 namespace fw::io::schema {
 
 namespace {
@@ -11,19 +13,26 @@ constexpr KeyDocs kDocs[] = {
     {.path = "obstacles[].box",
      .description = "A box, possibly turned about the vertical axis through its centre."},
     {.path = "obstacles[].box.name", .description = "Name, used in messages. Names need not be unique."},
-    {.path = "obstacles[].box.center", .description = "Centre of the box."},
+    {.path = "obstacles[].box.center", .bounds_why = why::kEarth, .description = "Centre of the box."},
     {.path = "obstacles[].box.size",
+     .bounds_why = why::kEarth,
      .description = "Full edge lengths along the box's own axes (before yaw)."},
-    {.path = "obstacles[].box.yaw", .description = "Rotation about +z, counter-clockwise seen from above."},
+    {.path = "obstacles[].box.yaw",
+     .bounds_why = why::kYaw,
+     .description = "Rotation about +z, counter-clockwise seen from above."},
     {.path = "obstacles[].cylinder", .description = "A vertical cylinder standing on its base."},
     {.path = "obstacles[].cylinder.name", .description = "Name, used in messages."},
-    {.path = "obstacles[].cylinder.base", .description = "Centre of the bottom disc."},
-    {.path = "obstacles[].cylinder.radius", .description = "Radius."},
-    {.path = "obstacles[].cylinder.height", .description = "Extent upward from the base."},
+    {.path = "obstacles[].cylinder.base",
+     .bounds_why = why::kEarth,
+     .description = "Centre of the bottom disc."},
+    {.path = "obstacles[].cylinder.radius", .bounds_why = why::kEarth, .description = "Radius."},
+    {.path = "obstacles[].cylinder.height",
+     .bounds_why = why::kEarth,
+     .description = "Extent upward from the base."},
     {.path = "obstacles[].sphere", .description = "A sphere."},
     {.path = "obstacles[].sphere.name", .description = "Name, used in messages."},
-    {.path = "obstacles[].sphere.center", .description = "Centre."},
-    {.path = "obstacles[].sphere.radius", .description = "Radius."},
+    {.path = "obstacles[].sphere.center", .bounds_why = why::kEarth, .description = "Centre."},
+    {.path = "obstacles[].sphere.radius", .bounds_why = why::kEarth, .description = "Radius."},
 };
 
 }  // namespace

@@ -3,6 +3,8 @@
 // does not say them. Here, not in the header, so that no reader of the keys compiles their prose.
 #include "io/schema/OutputKeys.hpp"
 
+#include "io/schema/BoundReasons.hpp"
+
 namespace fw::io::schema {
 
 namespace {
@@ -11,9 +13,16 @@ constexpr KeyDocs kDocs[] = {
     {.path = "output.directory",
      .allowed = "non-empty; relative to the **current working directory**",
      .description = "Output folder, created when the run starts. `forestwind run -o DIR` overrides it."},
-    {.path = "output.interval", .description = "Simulated time between output frames."},
+    {.path = "output.interval",
+     .constraint = "`time.end` / `interval` at most {0}",
+     .limits = {bounds::kMaxRunSteps},
+     .bounds_why = why::kIntervals,
+     .description = "Simulated time between output frames."},
     {.path = "output.probe_interval",
      .default_note = "`auto`: every solver step with `wind.turbulence`, else `output.interval`",
+     .constraint = "`time.end` / `probe_interval` at most {0}",
+     .limits = {bounds::kMaxRunSteps},
+     .bounds_why = why::kIntervals,
      .description = "Simulated time between the rows of `probes.csv`, independent of the frames, so that a "
                     "probe's record is fine enough for spectra (its Nyquist frequency is 1 / (2 "
                     "`probe_interval`))."},
@@ -22,11 +31,14 @@ constexpr KeyDocs kDocs[] = {
     {.path = "output.vtk.trees",
      .description = "Write `trees.pvd` with `trees/trees_NNNNNN.vtp` (when there are trees)."},
     {.path = "output.vtk.wind_every",
+     .bounds_why = why::kEvery,
      .description =
          "Write `wind.pvd` on every N-th frame only: the frames K (0, 1, 2, ... every `output.interval`) "
          "with K mod N = 0. A file keeps its frame's number, so that the collections of different "
          "outputs line up in time. To keep the folder small (`forestwind check` predicts its size)."},
-    {.path = "output.vtk.trees_every", .description = "As `output.vtk.wind_every`, for `trees.pvd`."},
+    {.path = "output.vtk.trees_every",
+     .bounds_why = why::kEvery,
+     .description = "As `output.vtk.wind_every`, for `trees.pvd`."},
     {.path = "output.vtk.fields",
      .description = "Arrays in the wind `.vti` files. `pressure` is the kinematic pressure p/rho (m^2/s^2). "
                     "`canopy_density` is the trees' frontal area density (1/m)."},
@@ -37,9 +49,12 @@ constexpr KeyDocs kDocs[] = {
          "Grids in each VDB file: `vel` (Vec3s, m/s), `speed` (float, m/s), `leaves` (a points grid "
          "of the written leaves with `P`, `N`, `state`, `tree_id` and `pscale`; in runs with "
          "leaves, ignored in runs without)."},
-    {.path = "output.vdb.every", .description = "As `output.vtk.wind_every`, for the VDB files."},
+    {.path = "output.vdb.every",
+     .bounds_why = why::kEvery,
+     .description = "As `output.vtk.wind_every`, for the VDB files."},
     {.path = "output.leaves", .description = "Leaves in the frames (runs whose species have `leaves`)."},
     {.path = "output.leaves.attached",
+     .bounds_why = why::kLeafStride,
      .description =
          "Which attached leaves the frames hold (`leaves.pvd` and the VDB `leaves` grid): `all`, "
          "`none`, or the attached leaves whose index among their tree's leaves is a multiple of N "
@@ -49,6 +64,7 @@ constexpr KeyDocs kDocs[] = {
     {.path = "output.leaves.vtk",
      .description = "Write `leaves.pvd` with `leaves/leaves_NNNNNN.vtp` (when the run has leaves)."},
     {.path = "output.leaves.every",
+     .bounds_why = why::kEvery,
      .description =
          "As `output.vtk.wind_every`, for `leaves.pvd` (the VDB `leaves` grid comes with the VDB files)."},
     {.path = "output.probes",
@@ -58,15 +74,20 @@ constexpr KeyDocs kDocs[] = {
      .description = "Probe name, used in the column names `<name>_u`, `<name>_v`, `<name>_w`."},
     {.path = "output.probes[].position",
      .allowed = "inside the domain, faces included",
+     .bounds_why = why::kEarth,
      .description = "Probe location. The velocity there is interpolated trilinearly."},
     {.path = "output.checkpoint",
      .description = "Checkpoints of the whole state in `checkpoints/`, from which `forestwind run --resume` "
                     "continues bit for bit. Without this key a run still writes one when a signal stops it "
                     "(SIGTERM, SIGUSR1, SIGINT)."},
     {.path = "output.checkpoint.interval",
+     .constraint = "`time.end` / `interval` at most {0}",
+     .limits = {bounds::kMaxRunSteps},
+     .bounds_why = why::kIntervals,
      .description = "Simulated time between checkpoints; the run also writes one when it reaches its end, "
                     "so that it can be extended."},
     {.path = "output.checkpoint.keep",
+     .bounds_why = why::kKeep,
      .description = "How many of the newest checkpoints are kept; older ones are removed."},
 };
 

@@ -3,6 +3,8 @@
 // does not say them. Here, not in the header, so that no reader of the keys compiles their prose.
 #include "io/schema/SolverKeys.hpp"
 
+#include "io/schema/BoundReasons.hpp"
+
 namespace fw::io::schema {
 
 namespace {
@@ -12,11 +14,15 @@ constexpr KeyDocs kDocs[] = {
      .description = "Pressure solver. `cg`: conjugate gradients preconditioned by a multigrid V-cycle. "
                     "`multigrid`: V-cycles alone. `jacobi`: a fixed number of Jacobi sweeps (the baseline)."},
     {.path = "solver.tolerance",
+     .bounds_why = why::kTolerance,
      .description = "Relative residual `\\|\\|b - A p\\|\\| / \\|\\|b\\|\\|` at which `cg` and `multigrid` "
                     "stop. In float32, values below about 1e-5 cannot be reached."},
     {.path = "solver.max_iterations",
+     .bounds_why = why::kIterations,
      .description = "Most CG iterations or V-cycles per solve (`cg`, `multigrid`)."},
-    {.path = "solver.jacobi_iterations", .description = "Sweeps per solve (`jacobi`)."},
+    {.path = "solver.jacobi_iterations",
+     .bounds_why = why::kIterations,
+     .description = "Sweeps per solve (`jacobi`)."},
     {.path = "solver.advection",
      .description = "Advection scheme of the momentum. `semi_lagrangian`: back-traced, stable at any "
                     "Courant number, damps eddies under about 15 cells. `maccormack` (clamped) keeps "
@@ -29,6 +35,7 @@ constexpr KeyDocs kDocs[] = {
                     "`every_stage` also projects the first two stages (three pressure solves a step)."},
     {.path = "solver.vorticity_confinement",
      .default_note = "`0` (off)",
+     .bounds_why = why::kConfinement,
      .description = "Vorticity confinement strength epsilon."},
     {.path = "solver.subgrid",
      .description =
@@ -40,6 +47,7 @@ constexpr KeyDocs kDocs[] = {
          "`smagorinsky_constant` out. docs/numerics.md, \"Subgrid energy\"."},
     {.path = "solver.smagorinsky_constant",
      .default_note = "`0` (off); `0.16` with `advection: upwind5`",
+     .bounds_why = why::kSmagorinsky,
      .description =
          "With `subgrid: smagorinsky`: the constant C_s of the subgrid eddy viscosity `nu_t = (C_s h)^2 "
          "\\|S\\|`, h = `domain.cell_size` and `\\|S\\| = sqrt(2 S_ij S_ij)` the resolved strain rate: "

@@ -12,6 +12,7 @@
 #include <string_view>
 
 #include "fluid/WindSettings.hpp"
+#include "io/schema/Bounds.hpp"
 #include "io/schema/Key.hpp"
 
 namespace fw::io::schema {
@@ -40,16 +41,17 @@ inline constexpr Key kSolverKeys[] = {
     {.path = "solver.tolerance",
      .type = Type::number,
      .bound = Bound::positive,
+     .at_most = bounds::kMaxTolerance,
      .number = fluid::kDefaultPressureTolerance},
     {.path = "solver.max_iterations",
      .type = Type::integer,
      .lowest = 1,
-     .highest = kNoUpperLimit,
+     .highest = bounds::kMaxSolverIterations,
      .number = kPressureDefaults.max_iterations},
     {.path = "solver.jacobi_iterations",
      .type = Type::integer,
      .lowest = 1,
-     .highest = kNoUpperLimit,
+     .highest = bounds::kMaxSolverIterations,
      .number = kPressureDefaults.jacobi_iterations},
     {.path = "solver.advection", .type = Type::word, .words = kAdvectionWords, .word = "semi_lagrangian"},
     {.path = "solver.stage_projection",
@@ -59,6 +61,7 @@ inline constexpr Key kSolverKeys[] = {
     {.path = "solver.vorticity_confinement",
      .type = Type::number,
      .bound = Bound::non_negative,
+     .at_most = bounds::kMaxVorticityConfinement,
      .number = fluid::WindSettings{}.vorticity_confinement},
     {.path = "solver.subgrid", .type = Type::word, .words = kSubgridWords, .word = "smagorinsky"},
     {.path = "solver.smagorinsky_constant",

@@ -4,6 +4,8 @@
 // presets' words, which only the generator knows.
 #include "io/schema/SpeciesKeys.hpp"
 
+#include "io/schema/BoundReasons.hpp"
+
 #include "trees/TreeGenerator.hpp"
 
 namespace fw::io::schema {
@@ -21,6 +23,9 @@ constexpr KeyDocs kDocs[] = {
     {.path = "forest.species[].skeleton.generate.preset", .description = "Tree shape."},
     {.path = "forest.species[].skeleton.generate.height",
      .default_note = "`0` (the preset's height: broadleaf 15, conifer 20, palm 12, weeping 10)",
+     .constraint = "`0` (the preset's height) or at least {0}",
+     .limits = {bounds::kMinTreeHeight},
+     .bounds_why = why::kTreeHeight,
      .description = "Height of the generated tree."},
     {.path = "forest.species[].skeleton.generate.seed",
      .default_note = "global `seed` + 1 + species index",
@@ -31,11 +36,21 @@ constexpr KeyDocs kDocs[] = {
     {.path = "forest.species[].skeleton.qsm",
      .allowed = "a readable TreeQSM cylinder table; relative to the scenario's folder",
      .description = "A scanned tree, as a TreeQSM text export."},
-    {.path = "forest.species[].material", .description = "Wood, isotropic."},
+    {.path = "forest.species[].material",
+     .constraint =
+         "`youngs_modulus` / `density` >= {0} and `shear_modulus` / `density` >= {1} m^2/s^2 (wood: 5e6 "
+         "to 3e7 and 5e5 to 3e6; below, a tall tree's modes do not separate)",
+     .limits = {bounds::kMinSpecificModulus, bounds::kMinSpecificShearModulus},
+     .description = "Wood, isotropic."},
     {.path = "forest.species[].material.youngs_modulus",
+     .bounds_why = why::kModulus,
      .description = "Young's modulus E (stretching and bending)."},
-    {.path = "forest.species[].material.shear_modulus", .description = "Shear modulus G (torsion)."},
-    {.path = "forest.species[].material.density", .description = "Wood density rho."},
+    {.path = "forest.species[].material.shear_modulus",
+     .bounds_why = why::kModulus,
+     .description = "Shear modulus G (torsion)."},
+    {.path = "forest.species[].material.density",
+     .bounds_why = why::kDensity,
+     .description = "Wood density rho."},
     {.path = "forest.species[].dynamics",
      .description =
          "The model that moves the species' trees; all three read the same wind samples, give the air the "
@@ -56,16 +71,20 @@ constexpr KeyDocs kDocs[] = {
      .description = "Modal model."},
     {.path = "forest.species[].modes.count",
      .constraint = "fewer than the skeleton's 6 × (nodes − 1) DOFs",
+     .bounds_why = why::kModes,
      .description = "Number of lowest vibration modes kept."},
     {.path = "forest.species[].modes.damping_ratio",
+     .bounds_why = why::kDamping,
      .description = "Damping ratio zeta, the same for every mode."},
     {.path = "forest.species[].modes.wind_samples",
+     .bounds_why = why::kSamples,
      .description = "Number of height bands per tree. Each band samples the wind separately, which captures "
                     "shear and gust fronts within one crown."},
     {.path = "forest.species[].rigid_bodies",
      .constraint = "only for a species whose `dynamics` is `rigid_bodies`",
      .description = "Articulated rigid branches (`dynamics: rigid_bodies`)."},
     {.path = "forest.species[].rigid_bodies.damping_ratio",
+     .bounds_why = why::kDamping,
      .description =
          "Damping ratio zeta of the tree's first mode. The joints' damping is proportional to their "
          "stiffness, C = 2 zeta / omega_1 K with omega_1 the species' first FEM frequency, so that "
@@ -74,13 +93,18 @@ constexpr KeyDocs kDocs[] = {
      .constraint = "only for a species whose `dynamics` is `springs`",
      .description = "Quasi-static cantilever springs (`dynamics: springs`)."},
     {.path = "forest.species[].springs.max_angle_deg",
+     .bounds_why = why::kRightAngle,
      .description = "The largest bend of one element from its parent, theta_max (Yildiz's cap)."},
     {.path = "forest.species[].springs.sway_amplitude",
+     .bounds_why = why::kGain,
      .description = "The stochastic sine's amplitude at the largest bend: an element's load is F (1 + a "
                     "sin(2 pi f t + b)), with a = `sway_amplitude` theta / theta_max (a bent element sways "
                     "more) and a random phase b per element."},
-    {.path = "forest.species[].springs.sway_frequency", .description = "f, the stochastic sine's frequency."},
+    {.path = "forest.species[].springs.sway_frequency",
+     .bounds_why = why::kFrequency,
+     .description = "f, the stochastic sine's frequency."},
     {.path = "forest.species[].drag_coefficient",
+     .bounds_why = why::kDrag,
      .description =
          "Drag coefficient C_D of the branches, as cylinders in cross flow: the drag is 1/2 rho_air "
          "C_D D L \\|u\\| u per element of diameter D and length L, with air density 1.225 kg/m^3. "
@@ -89,9 +113,11 @@ constexpr KeyDocs kDocs[] = {
      .description = "Foliage: its leaf area and drag. The single leaves of `leaves` sit on it."},
     {.path = "forest.species[].canopy.leaf_area_index",
      .default_note = "`0` (no leaves)",
+     .bounds_why = why::kLeafAreaIndex,
      .description = "One-sided leaf area per ground area under the crown. The crown's ground area is the "
                     "horizontal convex hull of the tree's branches (the trunk excluded)."},
     {.path = "forest.species[].canopy.drag_coefficient",
+     .bounds_why = why::kDrag,
      .description = "Drag coefficient C_D of the leaves, in the convention of the branches' "
                     "`drag_coefficient`: the drag is 1/2 rho_air C_D A \\|u\\| u per one-sided leaf area A. "
                     "The default 0.4 makes 1/2 C_D = 0.2, the canopy drag coefficient C_d of canopy LES in "
@@ -110,42 +136,53 @@ constexpr KeyDocs kDocs[] = {
          "sine angles per leaf whose amplitudes grow with the wind speed (Ota et al. 2004). `none`: "
          "no leaves (a winter tree)."},
     {.path = "forest.species[].leaves.area",
+     .bounds_why = why::kLeafArea,
      .description =
          "One-sided area a of one leaf (a square blade of side sqrt(a) on a petiole half as long). "
          "The species holds N = round(`fraction` × A_leaf / a) leaves, where A_leaf = "
          "`canopy.leaf_area_index` × the crown's ground area is its one-sided leaf area; every tree "
          "of the species carries the same leaves, scaled and turned with it."},
     {.path = "forest.species[].leaves.fraction",
+     .bounds_why = why::kFraction,
      .description = "Share of the foliage's leaves that are simulated. Below 1, a thinned sample of the same "
                     "leaves, each of the real size, for big forests."},
     {.path = "forest.species[].leaves.mass_per_area",
+     .bounds_why = why::kLeafMass,
      .description = "Leaf mass per area sigma: a leaf's mass is sigma a."},
     {.path = "forest.species[].leaves.frequency",
+     .bounds_why = why::kFrequency,
      .description = "Flutter frequency f_leaf: the natural frequency of the `pseudo_branch` oscillator; for "
                     "`stochastic`, the angles' frequency, with a jitter of ±20% per leaf and angle."},
     {.path = "forest.species[].leaves.damping_ratio",
+     .bounds_why = why::kLeafDamping,
      .description = "Damping ratio zeta of the `pseudo_branch` oscillator. Low, so that leaves flutter; the "
                     "air damps their motion too."},
     {.path = "forest.species[].leaves.petiole_strength",
+     .bounds_why = why::kPetiole,
      .description =
          "Median petiole strength S. Each leaf draws its own S from a log-normal distribution and "
          "sheds when the wind's normal force on its blade, 1/2 rho C_n a \\|u . n\\| \\|u\\| (C_n = "
          "1.2), exceeds it."},
     {.path = "forest.species[].leaves.strength_spread",
+     .bounds_why = why::kSpread,
      .description =
          "Log-standard deviation of the petiole strengths: the wider, the more gradually the leaves "
          "shed as the wind rises (0: all at once)."},
     {.path = "forest.species[].leaves.flight_drag_coefficient",
+     .bounds_why = why::kDrag,
      .description =
          "Drag coefficient C_D of a tumbling leaf in flight, per one-sided area. In still air a leaf "
          "falls at sqrt(2 sigma g / (rho C_D)), 1.28 m/s at the defaults."},
     {.path = "forest.species[].leaves.amplitudes",
+     .bounds_why = why::kAmplitude,
      .description = "`stochastic` only: the amplitudes of the three angles at and above `reference_speed`, "
                     "about the vertical (W_H), about the branch (W_V) and about the petiole (W_R)."},
     {.path = "forest.species[].leaves.roll_coupling",
+     .bounds_why = why::kGain,
      .description = "`stochastic` only: a, the roll angle's share of the horizontal angle (theta_R gains a "
                     "theta_H)."},
     {.path = "forest.species[].leaves.reference_speed",
+     .bounds_why = why::kWindSpeed,
      .description =
          "`stochastic` only: U_ref. The angles' amplitudes scale with min(1, \\|u\\| / U_ref), u the "
          "wind at the leaf."},

@@ -3,6 +3,8 @@
 // does not say them. Here, not in the header, so that no reader of the keys compiles their prose.
 #include "io/schema/TerrainKeys.hpp"
 
+#include "io/schema/BoundReasons.hpp"
+
 namespace fw::io::schema {
 
 namespace {
@@ -14,10 +16,12 @@ constexpr KeyDocs kDocs[] = {
     {.path = "terrain.cell_size",
      .default_note = "required for a PGM; ignored for an ESRI grid",
      .constraint = "checked for an ESRI grid too",
+     .bounds_why = why::kEarth,
      .description = "Distance between PGM pixels."},
     {.path = "terrain.max_height",
      .default_note = "required for a PGM; ignored for an ESRI grid",
      .constraint = "checked for an ESRI grid too",
+     .bounds_why = why::kRelief,
      .description = "Height that the PGM's maxval stands for."},
 };
 

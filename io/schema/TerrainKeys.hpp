@@ -8,6 +8,7 @@
 
 #include <span>
 
+#include "io/schema/Bounds.hpp"
 #include "io/schema/Key.hpp"
 
 namespace fw::io::schema {
@@ -17,8 +18,16 @@ inline constexpr Key kTerrainKeys[] = {
      .type = Type::file,
      .required = true,
      .noun = "a file path (PGM or ESRI ASCII grid)"},
-    {.path = "terrain.cell_size", .type = Type::number, .unit = "m", .bound = Bound::positive},
-    {.path = "terrain.max_height", .type = Type::number, .unit = "m", .bound = Bound::non_negative},
+    {.path = "terrain.cell_size",
+     .type = Type::number,
+     .unit = "m",
+     .bound = Bound::positive,
+     .at_most = bounds::kEarthCircumference},
+    {.path = "terrain.max_height",
+     .type = Type::number,
+     .unit = "m",
+     .bound = Bound::non_negative,
+     .at_most = bounds::kMaxRelief},
 };
 
 /// The prose of each key of kTerrainKeys (TerrainKeys.cpp), which schema::docs (io/ScenarioSchema.hpp) finds

@@ -9,15 +9,35 @@
 
 #include <span>
 
+#include "io/schema/Bounds.hpp"
 #include "io/schema/Key.hpp"
 
 namespace fw::io::schema {
 
 inline constexpr Key kTimeKeys[] = {
-    {.path = "time.end", .type = Type::number, .unit = "s", .required = true, .bound = Bound::positive},
-    {.path = "time.dt", .type = Type::number_or_auto, .unit = "s", .bound = Bound::positive, .word = "auto"},
-    {.path = "time.cfl", .type = Type::number, .bound = Bound::positive, .number = 0.8},
-    {.path = "time.spin_up", .type = Type::number, .unit = "s", .bound = Bound::non_negative, .number = 0.0},
+    {.path = "time.end",
+     .type = Type::number,
+     .unit = "s",
+     .required = true,
+     .bound = Bound::positive,
+     .at_most = bounds::kMaxRunTime},
+    {.path = "time.dt",
+     .type = Type::number_or_auto,
+     .unit = "s",
+     .bound = Bound::positive,
+     .at_most = bounds::kMaxStep,
+     .word = "auto"},
+    {.path = "time.cfl",
+     .type = Type::number,
+     .bound = Bound::positive,
+     .at_most = bounds::kMaxCfl,
+     .number = 0.8},
+    {.path = "time.spin_up",
+     .type = Type::number,
+     .unit = "s",
+     .bound = Bound::non_negative,
+     .at_most = bounds::kMaxRunTime,
+     .number = 0.0},
 };
 
 /// The prose of each key of kTimeKeys (TimeKeys.cpp), which schema::docs (io/ScenarioSchema.hpp) finds by its

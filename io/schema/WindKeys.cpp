@@ -3,6 +3,8 @@
 // not in the header, so that no reader of the keys compiles their prose.
 #include "io/schema/WindKeys.hpp"
 
+#include "io/schema/BoundReasons.hpp"
+
 #include "fluid/TurbulenceBox.hpp"
 
 namespace fw::io::schema {
@@ -10,11 +12,13 @@ namespace fw::io::schema {
 namespace {
 
 constexpr KeyDocs kDocs[] = {
-    {.path = "wind.speed", .description = "Wind speed at `reference_height`."},
+    {.path = "wind.speed", .bounds_why = why::kWindSpeed, .description = "Wind speed at `reference_height`."},
     {.path = "wind.direction",
      .constraint = "any value (370 is the same as 10)",
+     .bounds_why = why::kDirection,
      .description = "Direction the wind blows FROM, clockwise from north."},
     {.path = "wind.reference_height",
+     .bounds_why = why::kAirHeight,
      .description = "Height above the domain floor where the wind has speed `wind.speed`."},
     {.path = "wind.profile",
      .default_note = "`{type: uniform}`",
@@ -25,12 +29,14 @@ constexpr KeyDocs kDocs[] = {
      .default_note = "required when `profile` is given",
      .description = "`uniform`: shape 1 at every height. `power`: `(z / reference_height)^alpha`. `log`: "
                     "`ln((z - d) / z0) / ln((reference_height - d) / z0)`, and 0 where `z - d <= z0`."},
-    {.path = "wind.profile.alpha", .description = "Power-law exponent."},
+    {.path = "wind.profile.alpha", .bounds_why = why::kPowerLaw, .description = "Power-law exponent."},
     {.path = "wind.profile.roughness_length",
+     .bounds_why = why::kRoughness,
      .description = "Roughness length z0. `reference_height` must exceed `displacement_height + "
                     "roughness_length` (the log law gives no wind below it); the error names "
                     "`displacement_height` when given, else `roughness_length`."},
     {.path = "wind.profile.displacement_height",
+     .bounds_why = why::kStructure,
      .description = "Displacement height d (of a canopy, for example)."},
     {.path = "wind.turbulence",
      .default_note = "none (a laminar wind)",
@@ -49,6 +55,7 @@ constexpr KeyDocs kDocs[] = {
     {.path = "wind.turbulence.intensity",
      .default_note = "required unless `sigma` is given",
      .constraint = "exactly one of `intensity` and `sigma`",
+     .bounds_why = why::kIntensity,
      .description = "Turbulence intensity I = sigma_u / U, with U the wind speed `wind.speed` at "
                     "`reference_height`. sigma_u = I U follows `wind.speed` over time, and sigma_v = sigma_w "
                     "= sigma_u (isotropic). For neutral wind over uniform ground, EN 1991-1-4 gives I = 1 / "
@@ -57,6 +64,7 @@ constexpr KeyDocs kDocs[] = {
     {.path = "wind.turbulence.sigma",
      .default_note = "required unless `intensity` is given",
      .allowed = "each > 0; exactly one of `intensity` and `sigma`",
+     .bounds_why = why::kWindSpeed,
      .description =
          "Standard deviations [sigma_u, sigma_v, sigma_w] of the along-wind, across-wind and "
          "vertical fluctuations, fixed over time whatever `wind.speed` does. Unequal values scale "
@@ -64,6 +72,7 @@ constexpr KeyDocs kDocs[] = {
          "projection removes; in the atmospheric surface layer sigma_v / sigma_u is about 0.75 and "
          "sigma_w / sigma_u about 0.5."},
     {.path = "wind.turbulence.length_scale",
+     .bounds_why = why::kTurbulenceLength,
      .description = "L_u, the longitudinal integral length scale: the integral of the along-wind "
                     "fluctuation's autocorrelation along the wind. The premultiplied spectrum f S_u(f) peaks "
                     "at f = 0.146 U / L_u. EN 1991-1-4 gives L_u = 300 m (z / 200 m)^(0.67 + 0.05 ln z0): "
@@ -78,6 +87,7 @@ constexpr KeyDocs kDocs[] = {
          "per cell along each axis (h / {1} apart, h = `domain.cell_size`), at most {2} points in all",
      .limits = {kMinTurbulenceBoxCells, fluid::kTurbulencePointsPerCell,
                 double(fluid::TurbulenceBoxSpec::kMaxPoints)},
+     .bounds_why = why::kEarth,
      .description =
          "Extent of the periodic turbulence box along x, y and z, in cells of the grid. Its points are "
          "finer than the cells (see the allowed values), so that every face of an inflow plane sits on a "
@@ -96,6 +106,7 @@ constexpr KeyDocs kDocs[] = {
          "with the spectrum's unresolved part, synthesised in the frequency domain, deterministic "
          "per tree from `seed`. With `false`, trees feel only the resolved wind."},
     {.path = "wind.turbulence.cutoff_cells",
+     .bounds_why = why::kCells,
      .description =
          "The smallest eddy the grid resolves, in cells: wavelengths below `cutoff_cells` × "
          "`cell_size` (wavenumbers above 2 pi / (`cutoff_cells` h)) belong to the unresolved "
@@ -110,6 +121,7 @@ constexpr KeyDocs kDocs[] = {
          "`wind.direction`, as a pressure gradient drives the atmosphere, so that the flow neither "
          "decays under the trees' and the ground's drag nor runs away."},
     {.path = "wind.forcing.relaxation_time",
+     .bounds_why = why::kRunTime,
      .description = "Time constant tau of the PI controller that sets the force from the difference between "
                     "the target wind and the horizontal mean at `reference_height`. Shorter follows a "
                     "changing `wind.speed` more closely; longer disturbs the turbulence less."},

@@ -29,6 +29,8 @@ struct Stand {
   std::optional<double> leaf_area_index;
   int line = 0;                  ///< the stand entry's line in the file
   int leaf_area_index_line = 0;  ///< the line of leaf_area_index (the entry's when not given)
+  /// The lines of scale.min and scale.max (of scale, or the entry, when not given).
+  int scale_min_line = 0, scale_max_line = 0;
 };
 
 /// One tree placed by hand.
@@ -40,6 +42,7 @@ struct PlacedTreeSettings {
   /// Counter-clockwise about +z seen from above (the file's degrees, converted).
   double yaw_rad = radians(schema::key(schema::kForestKeys, "forest.trees[].yaw").number);
   double scale = schema::key(schema::kForestKeys, "forest.trees[].scale").number;  ///< > 0
+  int scale_line = 0;  ///< the line of scale (of the entry when not given)
 };
 
 struct ForestSettings {

@@ -24,6 +24,11 @@ struct SkeletonSource {
   Kind kind = Kind::generate;
   trees::GeneratorSettings generate;  ///< Kind::generate: preset, height (m, 0 = preset default), seed
   std::filesystem::path path;         ///< Kind::file (.tree) or Kind::qsm (TreeQSM text); resolved, exists
+  /// The file's dotted key that sets the skeleton (skeleton.file, skeleton.qsm, skeleton.generate.height, or
+  /// skeleton.generate when it gives no height) and its line: what the planner's checks of the skeleton
+  /// name.
+  std::string key;
+  int line = 0;
 };
 
 struct ModeSettings {
@@ -52,6 +57,7 @@ inline constexpr std::uint64_t kLeafSeedOffset = std::uint64_t(1) << 32;
 
 struct Species {
   std::string name;  ///< unique among the species
+  int line = 0;      ///< the species entry's line in the file
   SkeletonSource skeleton;
   trees::Material material{
       schema::key(schema::kSpeciesKeys, "forest.species[].material.youngs_modulus").number,

@@ -17,6 +17,9 @@ struct TimeSettings {
   double cfl = schema::key(schema::kTimeKeys, "time.cfl").number;
   /// s, >= 0: the wind steps from -spin_up to 0 before the run (trees held in equilibrium); 0: none
   double spin_up = schema::key(schema::kTimeKeys, "time.spin_up").number;
+  /// The lines of end, dt and spin_up in the file (of the time map where not given), for the planner's
+  /// messages about them (their steps, dt's stability).
+  int end_line = 0, dt_line = 0, spin_up_line = 0;
 };
 
 }  // namespace fw::io

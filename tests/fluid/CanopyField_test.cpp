@@ -210,6 +210,41 @@ TEST_CASE(
   CHECK(none.frontal_area == 0.0);
 }
 
+TEST_CASE(
+    "CanopyField: a field that stores only the cells its trees reach gives the whole grid's figures, "
+    "bit for bit",
+    "[canopy]") {
+  auto spec = grid(40, 30, 24, 0.5);
+  spec.origin = {100.0, 200.0, 0.0};
+  // A bush at (108, 207) inside; one straddling the east edge at (119, 212), whose part outside is dropped.
+  const std::array<std::array<double, 3>, 2> at = {{{108, 207, 0}, {119, 212, 0}}};
+  // Cells 6..39 along x (103 .. 120 m), 6..29 along y, 0..23: the bushes reach at most 7 m from their base.
+  const fluid::CellBox box{{6, 6, 0}, {34, 24, 24}};
+  CanopyField whole(spec), boxed(spec, box);
+  for (int t = 0; t < 2; ++t) {
+    const auto elements = random_elements(17 + t, 150, at[std::size_t(t)]);
+    const auto a = whole.add_elements(elements), b = boxed.add_elements(elements);
+    CHECK(b.dropped_area == a.dropped_area);
+  }
+  CHECK(boxed.frontal_area_in_domain() == whole.frontal_area_in_domain());
+  CHECK(boxed.drag_in_domain() == whole.drag_in_domain());
+  CHECK(boxed.frontal_area_density() == whole.frontal_area_density());
+  CHECK(boxed.drag_density() == whole.drag_density());
+  CHECK(boxed.occupied_cells() == whole.occupied_cells());
+  CHECK(boxed.occupied_cells() > 500);
+  for (const auto& [min, max] :
+       {std::pair<std::array<double, 2>, std::array<double, 2>>{{104, 203}, {112, 211}},
+        {{100, 200}, {120, 215}},
+        {{101.2, 214}, {102, 215}}}) {
+    const fluid::CanopyColumns a = whole.columns_in(min, max), b = boxed.columns_in(min, max);
+    CHECK(b.columns == a.columns);
+    CHECK(b.frontal_area == a.frontal_area);
+  }
+  // An element beyond the box is the caller's error, not a lost area.
+  CHECK_THROWS_AS(boxed.add_elements(random_elements(3, 20, {101.0, 201.0, 0.0})), std::logic_error);
+  CHECK_THROWS_AS(CanopyField(spec, fluid::CellBox{{30, 0, 0}, {11, 30, 24}}), std::invalid_argument);
+}
+
 TEST_CASE("CanopyField: bad arguments throw std::invalid_argument naming the class", "[canopy]") {
   using Catch::Matchers::Contains;
   CHECK_THROWS_WITH(CanopyField(grid(0, 4, 4, 1.0)), Contains("CanopyField"));

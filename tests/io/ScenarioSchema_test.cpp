@@ -139,13 +139,14 @@ TEST_CASE("schema: every section's keys are the run-time look-up's, each with it
 }
 
 TEST_CASE("schema: the loader's messages come from the key's type, bound and unit", "[schema]") {
-  CHECK(schema::expected(key_at("time.end")) == "a number > 0 (s)");
-  CHECK(schema::expected(key_at("time.dt")) == "a number > 0 (s) or auto");
+  CHECK(schema::expected(key_at("time.end")) == "a number > 0 and <= 1e9 (s)");
+  CHECK(schema::expected(key_at("time.dt")) == "a number > 0 and <= 1 (s) or auto");
   CHECK(schema::expected(key_at("time")) == "a map {end, dt, cfl, spin_up}");
-  CHECK(schema::expected(key_at("time.spin_up")) == "a number >= 0 (s)");
-  CHECK(schema::expected(key_at("domain.size")) == "a list of 3 numbers [x, y, z], each > 0 (m)");
+  CHECK(schema::expected(key_at("time.spin_up")) == "a number >= 0 and <= 1e9 (s)");
+  CHECK(schema::expected(key_at("domain.size")) ==
+        "a list of 3 numbers [x, y, z], each > 0 and <= 40075017 (m)");
   CHECK(schema::expected(key_at("forest.species[].modes.wind_samples")) == "an integer 1..16");
-  CHECK(schema::expected(key_at("forest.species[].modes.count")) == "an integer >= 1");
+  CHECK(schema::expected(key_at("forest.species[].modes.count")) == "an integer 1..1000");
   CHECK(schema::expected(key_at("solver.pressure")) == "one of multigrid | cg | jacobi");
   CHECK(schema::expected(key_at("boundaries.ground")) ==
         "one of inflow | outflow | slip | no_slip | periodic | rough");
@@ -153,8 +154,8 @@ TEST_CASE("schema: the loader's messages come from the key's type, bound and uni
   CHECK(schema::expected(key_at("boundaries.west")) ==
         "one of auto | inflow | outflow | slip | no_slip | periodic");
   CHECK(schema::expected(key_at("wind.turbulence.sigma")) ==
-        "a list of 3 numbers [sigma_u, sigma_v, sigma_w], each > 0 (m/s)");
-  CHECK(schema::expected(key_at("output.probe_interval")) == "a number > 0 (s) or auto");
+        "a list of 3 numbers [sigma_u, sigma_v, sigma_w], each > 0 and <= 150 (m/s)");
+  CHECK(schema::expected(key_at("output.probe_interval")) == "a number > 0 and <= 1e9 (s) or auto");
   CHECK(schema::child_names("wind.turbulence") == std::vector<std::string>{"model", "intensity", "sigma",
                                                                            "length_scale", "box_size", "seed",
                                                                            "unresolved", "cutoff_cells"});
@@ -174,7 +175,8 @@ TEST_CASE("schema: the loader's messages come from the key's type, bound and uni
   CHECK(schema::expected(key_at("solver.smagorinsky_constant")) == "a number >= 0 and < 1");
   CHECK(schema::expected(key_at("forest.species[].leaves.model")) ==
         "one of none | pseudo_branch | stochastic");
-  CHECK(schema::expected(key_at("output.leaves.attached")) == "one of all | none or an integer >= 1");
+  CHECK(schema::expected(key_at("output.leaves.attached")) ==
+        "one of all | none or an integer 1..2147483647");
   CHECK(schema::child_names("output.leaves") == std::vector<std::string>{"attached", "vtk", "every"});
 }
 
@@ -319,10 +321,13 @@ TEST_CASE("schema: the leaf keys take trees::LeafSettings' defaults, words and l
     CHECK(with(key.bound == schema::Bound::any ? -1e6 : step) == true);
     CHECK(with(0.0) == (key.bound != schema::Bound::positive));
     CHECK(with(-step) == (key.bound == schema::Bound::any));
+    // Every value the schema takes, validate takes; past the limits LeafSettings owns validate refuses too.
+    // The other upper bounds are what a scenario can mean (io/schema/Bounds.hpp), within what the type takes.
     if (key.at_most < schema::kNoNumberLimit) {
       CHECK(with(key.at_most));
-      CHECK_FALSE(with(key.at_most * (1.0 + step)));
+      if (std::string_view(name) == "fraction") CHECK_FALSE(with(key.at_most * (1.0 + step)));
     }
+    if (key.at_least > -schema::kNoNumberLimit) CHECK(with(key.at_least));
     if (key.below < schema::kNoNumberLimit) {
       CHECK(with(key.below * (1.0 - step)));
       CHECK_FALSE(with(key.below));
@@ -405,4 +410,39 @@ TEST_CASE("schema: a page whose tables leave a key out, or leave a table open, i
   const std::string close = "<!-- end schema -->";
   open_table.erase(open_table.rfind(close), close.size());
   CHECK_THROWS_WITH(schema::render_scenario_docs(open_table), Catch::Matchers::Contains("has no " + close));
+}
+
+TEST_CASE(
+    "schema: every number a scenario gives has bounds past which it cannot be meant, and the docs say why",
+    "[schema]") {
+  using schema::Type;
+  for (const schema::Key* entry : schema::all_keys()) {
+    const schema::Key& key = *entry;
+    INFO("key " << key.path);
+    switch (key.type) {
+      case Type::number:
+      case Type::number_or_auto:
+      case Type::point2:
+      case Type::point3:
+      case Type::point2_or_3:
+      case Type::expression:
+      case Type::velocity_or_with_wind:
+        CHECK((key.bound != schema::Bound::any || key.at_least > -schema::kNoNumberLimit));
+        CHECK((key.at_most < schema::kNoNumberLimit || key.below < schema::kNoNumberLimit));
+        CHECK_FALSE(schema::docs(key).bounds_why.empty());
+        break;
+      case Type::integer:
+      case Type::integer_or_word:
+        CHECK(key.lowest <= key.highest);
+        CHECK_FALSE(schema::docs(key).bounds_why.empty());
+        break;
+      default:  // words, texts, maps; and seeds, every one of which is meant
+        CHECK(schema::docs(key).bounds_why.empty());
+    }
+  }
+  // The docs print each range with its reason.
+  const std::string page = schema::render_scenario_docs(read_text(docs_page()));
+  CHECK_THAT(page,
+             Catch::Matchers::Contains(
+                 "| `time.cfl` | number | — | `0.8` | > 0 and <= 5; why: past 5 a run with a fixed `dt`"));
 }

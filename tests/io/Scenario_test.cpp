@@ -791,15 +791,15 @@ TEST_CASE("load_scenario: wrong type names the key and shows the value", "[scena
   expect_error(dir, "end_word",
                "scenario: errors\ntime: {end: soon}\ndomain: {size: [40, 20, 10], cell_size: 2.0}\n"
                "wind: {speed: 4.0, direction: 270}\n",
-               2, "time.end", "a number > 0 (s) expected, got 'soon'");
+               2, "time.end", "a number > 0 and <= 1e9 (s) expected, got 'soon'");
   expect_error(dir, "spin_up_word",
                "scenario: errors\ntime:\n  end: 10.0\n  spin_up: long\n"
                "domain: {size: [40, 20, 10], cell_size: 2.0}\nwind: {speed: 4.0, direction: 270}\n",
-               4, "time.spin_up", "a number >= 0 (s) expected, got 'long'");
+               4, "time.spin_up", "a number >= 0 and <= 1e9 (s) expected, got 'long'");
   expect_error(dir, "spin_up_list",
                "scenario: errors\ntime: {end: 10.0, spin_up: [5]}\n"
                "domain: {size: [40, 20, 10], cell_size: 2.0}\nwind: {speed: 4.0, direction: 270}\n",
-               2, "time.spin_up", "a number >= 0 (s) expected, got '[5]'");
+               2, "time.spin_up", "a number >= 0 and <= 1e9 (s) expected, got '[5]'");
   expect_error(dir, "coupling", kBase + "forest:\n  two_way_coupling: maybe\n", 6, "forest.two_way_coupling",
                "true or false expected, got 'maybe'");
   expect_error(dir, "cell_list",
@@ -811,7 +811,8 @@ TEST_CASE("load_scenario: wrong type names the key and shows the value", "[scena
   expect_error(dir, "size_two",
                "scenario: errors\ntime: {end: 10.0}\ndomain: {size: [40, 20], cell_size: 2}\n"
                "wind: {speed: 4.0, direction: 270}\n",
-               3, "domain.size", "a list of 3 numbers [x, y, z], each > 0 (m) expected, got '[40, 20]'");
+               3, "domain.size",
+               "a list of 3 numbers [x, y, z], each > 0 and <= 40075017 (m) expected, got '[40, 20]'");
   expect_error(dir, "root_list", "- scenario: errors\n", 1, "(top level)", "a map of scenario keys");
   expect_error(dir, "empty", "", 1, "(top level)",
                "a map of scenario keys (scenario, time, domain, wind, ...) "
@@ -832,7 +833,7 @@ TEST_CASE("load_scenario: missing required key names the map that lacks it", "[s
                1, "time", "a map {end, dt, cfl, spin_up} expected (required), got nothing");
   expect_error(dir, "no_radius",
                kBase + "events:\n  - gust: {start: 1, duration: 2, peak_speed: 3, center: [1, 1, 1]}\n", 6,
-               "events[0].gust.radius", "a number > 0 (m) expected (required)");
+               "events[0].gust.radius", "a number > 0 and <= 40075017 (m) expected (required)");
   expect_error(dir, "no_roughness",
                "scenario: errors\ntime: {end: 10.0}\ndomain: {size: [40, 20, 10], cell_size: 2.0}\n"
                "wind:\n  speed: 4\n  direction: 270\n  profile: {type: log}\n",
@@ -851,15 +852,16 @@ TEST_CASE("load_scenario: out-of-range numbers name the key and the allowed rang
   expect_error(dir, "samples", species + "      modes: {wind_samples: 17}\n", 9,
                "forest.species[0].modes.wind_samples", "an integer 1..16 expected, got '17'");
   expect_error(dir, "count", species + "      modes: {count: 0}\n", 9, "forest.species[0].modes.count",
-               "an integer >= 1 expected, got '0'");
+               "an integer 1..1000 expected, got '0'");
   expect_error(dir, "damping", species + "      modes: {damping_ratio: -0.1}\n", 9,
-               "forest.species[0].modes.damping_ratio", "a number >= 0 expected, got '-0.1'");
+               "forest.species[0].modes.damping_ratio", "a number >= 0 and <= 10 expected, got '-0.1'");
   expect_error(dir, "density", species + "      material: {density: 0}\n", 9,
-               "forest.species[0].material.density", "a number > 0 (kg/m^3) expected, got '0'");
+               "forest.species[0].material.density",
+               "a number >= 1.2 and <= 22590 (kg/m^3) expected, got '0'");
   expect_error(
       dir, "gust_zero",
       kBase + "events:\n  - gust: {start: 1, duration: 0, peak_speed: 3, center: [1, 1, 1], radius: 2}\n", 6,
-      "events[0].gust.duration", "a number > 0 (s) expected, got '0'");
+      "events[0].gust.duration", "a number > 0 and <= 1e9 (s) expected, got '0'");
   expect_error(dir, "drag_law", kBase + "forest: {drag_law: {exponent: -2}}\n", 5, "forest.drag_law.exponent",
                "a number >= -1.3333333333333333 and <= 0 expected, got '-2'");
   expect_error(dir, "seed", kBase + "seed: -1\n", 5, "seed",
@@ -867,20 +869,69 @@ TEST_CASE("load_scenario: out-of-range numbers name the key and the allowed rang
   expect_error(dir, "cfl",
                "scenario: errors\ntime: {end: 10.0, cfl: 0}\ndomain: {size: [40, 20, 10], cell_size: 2.0}\n"
                "wind: {speed: 4.0, direction: 270}\n",
-               2, "time.cfl", "a number > 0 expected, got '0'");
+               2, "time.cfl", "a number > 0 and <= 5 expected, got '0'");
   expect_error(dir, "dt",
                "scenario: errors\ntime: {end: 10.0, dt: -0.5}\ndomain: {size: [40, 20, 10], cell_size: 2.0}\n"
                "wind: {speed: 4.0, direction: 270}\n",
-               2, "time.dt", "a number > 0 (s) or auto expected, got '-0.5'");
+               2, "time.dt", "a number > 0 and <= 1 (s) or auto expected, got '-0.5'");
   expect_error(dir, "spin_up_negative",
                "scenario: errors\ntime: {end: 10.0, spin_up: -1}\ndomain: {size: [40, 20, 10], cell_size: "
                "2.0}\nwind: {speed: 4.0, direction: 270}\n",
-               2, "time.spin_up", "a number >= 0 (s) expected, got '-1'");
+               2, "time.spin_up", "a number >= 0 and <= 1e9 (s) expected, got '-1'");
   expect_error(dir, "scale",
                species +
                    "  stands:\n    - {species: oak, region: {min: [5, 5], max: [15, 15]}, "
                    "spacing: 4, scale: {min: 1.2, max: 1.1}}\n",
                10, "forest.stands[0].scale.max", "a number >= scale.min (1.2)");
+}
+
+TEST_CASE("load_scenario: a number past what a scenario can mean is refused, naming the key (issue 44)",
+          "[scenario]") {
+  fw::test::TempDir dir("fw_scenario");
+  const std::string species = kBase +
+                              "forest:\n"
+                              "  species:\n"
+                              "    - name: oak\n";  // 7
+  // The mutants of the issue: a tree taller than any tree, an end time past any run.
+  expect_error(
+      dir, "tree_height", species + "      skeleton: {generate: {preset: broadleaf, height: 1e30}}\n", 8,
+      "forest.species[0].skeleton.generate.height", "a number >= 0 and <= 150 (m) expected, got '1e30'");
+  expect_error(dir, "tree_too_small",
+               species + "      skeleton: {generate: {preset: broadleaf, height: 1e-3}}\n", 8,
+               "forest.species[0].skeleton.generate.height",
+               "0 (the preset's height) or at least 0.01 m expected, got '1e-3'");
+  expect_error(dir, "end",
+               "scenario: errors\ntime: {end: 1e30, cfl: 3.5}\ndomain: {size: [40, 20, 10], cell_size: 2.0}\n"
+               "wind: {speed: 4.0, direction: 270}\n",
+               2, "time.end", "a number > 0 and <= 1e9 (s) expected, got '1e30'");
+  // An expression is held to its key's range at every time it is sampled.
+  expect_error(dir, "speed_past_any_wind",
+               "scenario: errors\ntime: {end: 10.0}\ndomain: {size: [40, 20, 10], cell_size: 2.0}\n"
+               "wind: {speed: '100 + 10*t', direction: 270}\n",
+               4, "wind.speed", "a finite value >= 0 and <= 150 (m/s) for 0 <= t <= 10 s (it gives 150.1");
+  // A domain as tall as the troposphere, however wide.
+  expect_error(dir, "domain_height",
+               "scenario: errors\ntime: {end: 10.0}\ndomain: {size: [40, 20, 32000], cell_size: 2.0}\n"
+               "wind: {speed: 4.0, direction: 270}\n",
+               3, "domain.size[2]", "the height at most 20000 m expected, got '32000'");
+  // A yaw past a turn, whose radians would overflow at 1e308.
+  expect_error(dir, "yaw",
+               species +
+                   "      skeleton: {generate: {preset: broadleaf}}\n  trees:\n"
+                   "    - {species: oak, position: [10, 10], yaw: 1e308}\n",
+               10, "forest.trees[0].yaw", "a number >= -360 and <= 360 (degrees) expected, got '1e308'");
+  // Frames, probe rows and checkpoints: at most one a step, and at most 10^9 steps.
+  const std::string long_run =
+      "scenario: errors\ntime: {end: 1e9}\ndomain: {size: [40, 20, 10], cell_size: 2.0}\n"
+      "wind: {speed: 4.0, direction: 270}\n";
+  expect_error(dir, "frames", long_run + "output: {interval: 0.5}\n", 5, "output.interval",
+               "and at least time.end / 1e9 = 1 s (a run writes at most one a step, and takes at most 1e9 "
+               "steps) expected, got '0.5'");
+  expect_error(dir, "probe_rows", long_run + "output: {probe_interval: 0.5}\n", 5, "output.probe_interval",
+               "at least time.end / 1e9 = 1 s");
+  expect_error(dir, "checkpoints", long_run + "output: {checkpoint: {interval: 0.5}}\n", 5,
+               "output.checkpoint.interval", "at least time.end / 1e9 = 1 s");
+  CHECK_NOTHROW(fw::io::load_scenario(dir.write("every_second.yaml", long_run + "output: {interval: 1}\n")));
 }
 
 TEST_CASE("load_scenario: unknown enum word lists the allowed words", "[scenario]") {
@@ -975,7 +1026,7 @@ TEST_CASE("load_scenario: a bad expression, or one that goes negative or infinit
   expect_error(dir, "negative_speed",
                "scenario: errors\ntime: {end: 10.0}\ndomain: {size: [40, 20, 10], cell_size: 2.0}\n"
                "wind:\n  speed: \"5 - t\"\n  direction: 270\n",
-               5, "wind.speed", "a value that is finite and >= 0 for 0 <= t <= 10 s");
+               5, "wind.speed", "a finite value >= 0 and <= 150 (m/s) for 0 <= t <= 10 s");
   // Beyond the end of the run the formula is never used.
   CHECK_NOTHROW(fw::io::load_scenario(
       dir.write("late.yaml",
@@ -984,7 +1035,7 @@ TEST_CASE("load_scenario: a bad expression, or one that goes negative or infinit
   expect_error(dir, "infinite_direction",
                "scenario: errors\ntime: {end: 10.0}\ndomain: {size: [40, 20, 10], cell_size: 2.0}\n"
                "wind:\n  speed: 4\n  direction: \"270 + 1/(t-5)\"\n",
-               6, "wind.direction", "a value that is finite for 0 <= t <= 10 s");
+               6, "wind.direction", "a finite value >= -3.6e8 and <= 3.6e8 (degrees) for 0 <= t <= 10 s");
 }
 
 TEST_CASE("load_scenario: a missing heightmap names the heightmap key's line", "[scenario]") {
@@ -1362,7 +1413,7 @@ TEST_CASE("load_scenario: four periodic sides switch the mean forcing on, with o
 TEST_CASE("load_scenario: bad turbulence keys name the key and say what is expected", "[scenario]") {
   fw::test::TempDir dir("fw_scenario");
   expect_error(dir, "negative_intensity", kWindBase + "  turbulence: {intensity: -0.1, length_scale: 10}\n",
-               7, "wind.turbulence.intensity", "a number >= 0 expected, got '-0.1'");
+               7, "wind.turbulence.intensity", "a number >= 0 and <= 2 expected, got '-0.1'");
   expect_error(dir, "both",
                kWindBase +
                    "  turbulence:\n"          // 7
@@ -1371,16 +1422,19 @@ TEST_CASE("load_scenario: bad turbulence keys name the key and say what is expec
                    "    length_scale: 10\n",  // 10
                9, "wind.turbulence.sigma",
                "exactly one of intensity and sigma expected, got both (intensity on line 8)");
-  expect_error(
-      dir, "neither", kWindBase + "  turbulence: {length_scale: 10}\n", 7, "wind.turbulence.intensity",
-      "a number >= 0, or sigma (exactly one of intensity and sigma) expected (required), got nothing");
+  expect_error(dir, "neither", kWindBase + "  turbulence: {length_scale: 10}\n", 7,
+               "wind.turbulence.intensity",
+               "a number >= 0 and <= 2, or sigma (exactly one of intensity and sigma) expected (required), "
+               "got nothing");
   expect_error(dir, "no_length_scale", kWindBase + "  turbulence: {intensity: 0.1}\n", 7,
-               "wind.turbulence.length_scale", "a number > 0 (m) expected (required), got nothing");
+               "wind.turbulence.length_scale",
+               "a number >= 1e-3 and <= 10000 (m) expected (required), got nothing");
   expect_error(dir, "zero_sigma", kWindBase + "  turbulence: {sigma: [1, 0, 1], length_scale: 10}\n", 7,
-               "wind.turbulence.sigma[1]", "a number > 0 (m/s) expected, got '0'");
-  expect_error(dir, "sigma_pair", kWindBase + "  turbulence: {sigma: [1, 1], length_scale: 10}\n", 7,
-               "wind.turbulence.sigma",
-               "a list of 3 numbers [sigma_u, sigma_v, sigma_w], each > 0 (m/s) expected, got '[1, 1]'");
+               "wind.turbulence.sigma[1]", "a number > 0 and <= 150 (m/s) expected, got '0'");
+  expect_error(
+      dir, "sigma_pair", kWindBase + "  turbulence: {sigma: [1, 1], length_scale: 10}\n", 7,
+      "wind.turbulence.sigma",
+      "a list of 3 numbers [sigma_u, sigma_v, sigma_w], each > 0 and <= 150 (m/s) expected, got '[1, 1]'");
   expect_error(
       dir, "unknown_key", kWindBase + "  turbulence: {intensity: 0.1, length_scale: 10, spectrum: kaimal}\n",
       7, "wind.turbulence.spectrum",
@@ -1390,19 +1444,19 @@ TEST_CASE("load_scenario: bad turbulence keys name the key and say what is expec
                "wind.turbulence.model", "one of von_karman expected, got 'mann'");
   expect_error(dir, "cutoff",
                kWindBase + "  turbulence: {intensity: 0.1, length_scale: 10, cutoff_cells: 0}\n", 7,
-               "wind.turbulence.cutoff_cells", "a number > 0 expected, got '0'");
+               "wind.turbulence.cutoff_cells", "a number > 0 and <= 2147483647 expected, got '0'");
   expect_error(dir, "unresolved",
                kWindBase + "  turbulence: {intensity: 0.1, length_scale: 10, unresolved: 1}\n", 7,
                "wind.turbulence.unresolved", "true or false expected, got '1'");
   expect_error(dir, "box_negative",
                kWindBase + "  turbulence: {intensity: 0.1, length_scale: 10, box_size: [64, -2, 8]}\n", 7,
-               "wind.turbulence.box_size[1]", "a number > 0 (m) expected, got '-2'");
+               "wind.turbulence.box_size[1]", "a number > 0 and <= 40075017 (m) expected, got '-2'");
   // 8 length scales of a million metres in cells of 2 m: 2^22 cells along x and y is far too many.
   expect_error(dir, "default_box_too_big",
-               kWindBase + "  turbulence: {intensity: 0.1, length_scale: 1.0e6}\n", 7,
+               kWindBase + "  turbulence: {intensity: 0.1, length_scale: 1.0e4}\n", 7,
                "wind.turbulence.box_size",
                "of at most 715827882 points in all, 2 per cell along each axis expected (required here: the "
-               "default box, 8 length_scale along x and y, is 4194304 x 4194304 x 8 cells of 2 m");
+               "default box, 8 length_scale along x and y, is 65536 x 65536 x 8 cells of 2 m");
   expect_error(
       dir, "box_too_big",
       kWindBase + "  turbulence: {intensity: 0.1, length_scale: 10, box_size: [1.0e5, 1.0e5, 1000]}\n", 7,
@@ -1437,9 +1491,9 @@ TEST_CASE("load_scenario: the turbulence box's limit counts the points fluid::Tu
 
   CHECK_THROWS_WITH(spec_of({5592406, 4, 4}).validate(), Contains("exceed the limit of 715827882"));
   expect_error(dir, "one_cell_more", box(5592406), 7, "wind.turbulence.box_size",
-               "a list of 3 numbers [x, y, z], each > 0 (m) of at most 715827882 points in all, 2 per cell "
-               "along each axis (this box is 5592406 x 4 x 4 cells of 2 m, 7.16e+08 points) expected, got "
-               "'[11184812, 8, 8]'");
+               "a list of 3 numbers [x, y, z], each > 0 and <= 40075017 (m) of at most 715827882 points in "
+               "all, 2 per cell along each axis (this box is 5592406 x 4 x 4 cells of 2 m, 7.16e+08 points) "
+               "expected, got '[11184812, 8, 8]'");
 }
 
 TEST_CASE("load_scenario: bad rough-ground, forcing, Smagorinsky and probe keys name the key", "[scenario]") {
@@ -1454,18 +1508,17 @@ TEST_CASE("load_scenario: bad rough-ground, forcing, Smagorinsky and probe keys 
   expect_error(dir, "roughness_smooth", kBase + "boundaries: {roughness_length: 0.1}\n", 5,
                "boundaries.roughness_length",
                "nothing unless boundaries.ground is rough (it is 'no_slip') expected, got '0.1'");
-  expect_error(
-      dir, "roughness_high", kBase + "boundaries: {ground: rough, roughness_length: 1.0}\n", 5,
-      "boundaries.roughness_length",
-      "a number > 0 (m) below cell_size / 2 = 1 m (the log law is evaluated at the first cell centre) "
-      "expected, got '1.0'");
+  expect_error(dir, "roughness_high", kBase + "boundaries: {ground: rough, roughness_length: 1.0}\n", 5,
+               "boundaries.roughness_length",
+               "a number > 0 and <= 10 (m) below cell_size / 2 = 1 m (the log law is evaluated at the first "
+               "cell centre) expected, got '1.0'");
   expect_error(dir, "roughness_zero", kBase + "boundaries: {ground: rough, roughness_length: 0}\n", 5,
-               "boundaries.roughness_length", "a number > 0 (m) expected, got '0'");
+               "boundaries.roughness_length", "a number > 0 and <= 10 (m) expected, got '0'");
   // The default from the log profile is checked too, and blamed on the missing key at the boundaries' line.
   expect_error(dir, "roughness_default",
                kWindBase + "  profile: {type: log, roughness_length: 1.5}\nboundaries: {ground: rough}\n", 8,
                "boundaries.roughness_length",
-               "a number > 0 (m) below cell_size / 2 = 1 m expected (required here: the default, "
+               "a number > 0 and <= 10 (m) below cell_size / 2 = 1 m expected (required here: the default, "
                "wind.profile.roughness_length, is 1.5 m), got nothing");
   expect_error(
       dir, "forcing_open", kWindBase + "  forcing: {relaxation_time: 5}\n", 7, "wind.forcing",
@@ -1478,7 +1531,7 @@ TEST_CASE("load_scenario: bad rough-ground, forcing, Smagorinsky and probe keys 
   expect_error(dir, "forcing_zero",
                kWindBase + "  forcing: {relaxation_time: 0}\n" +
                    "boundaries: {west: periodic, east: periodic, south: periodic, north: periodic}\n",
-               7, "wind.forcing.relaxation_time", "a number > 0 (s) expected, got '0'");
+               7, "wind.forcing.relaxation_time", "a number > 0 and <= 1e9 (s) expected, got '0'");
   expect_error(dir, "smagorinsky_one", kBase + "solver: {smagorinsky_constant: 1}\n", 5,
                "solver.smagorinsky_constant", "a number >= 0 and < 1 expected, got '1'");
   expect_error(dir, "smagorinsky_negative", kBase + "solver: {smagorinsky_constant: -0.1}\n", 5,
@@ -1491,9 +1544,9 @@ TEST_CASE("load_scenario: bad rough-ground, forcing, Smagorinsky and probe keys 
                "nothing unless solver.subgrid is smagorinsky (it is 'tke': its eddy viscosity comes from the "
                "subgrid energy) expected, got '0.17'");
   expect_error(dir, "probe_zero", kBase + "output: {probe_interval: 0}\n", 5, "output.probe_interval",
-               "a number > 0 (s) or auto expected, got '0'");
+               "a number > 0 and <= 1e9 (s) or auto expected, got '0'");
   expect_error(dir, "probe_negative", kBase + "output: {probe_interval: -0.5}\n", 5, "output.probe_interval",
-               "a number > 0 (s) or auto expected, got '-0.5'");
+               "a number > 0 and <= 1e9 (s) or auto expected, got '-0.5'");
   expect_error(dir, "probe_word", kBase + "output: {probe_interval: often}\n", 5, "output.probe_interval",
                "got 'often'");
   expect_error(dir, "correction", kBase + "forest: {strong_wind_correction: yes}\n", 5,
@@ -1518,7 +1571,7 @@ TEST_CASE("load_scenario: each output's every-N is a whole number >= 1, else FIL
   CHECK(defaults.leaves_every == 1);
 
   expect_error(dir, "trees_zero", kBase + "output:\n  vtk: {trees_every: 0}\n", 6, "output.vtk.trees_every",
-               "an integer >= 1 expected, got '0'");
+               "an integer 1..1000000000 expected, got '0'");
   expect_error(dir, "wind_fraction", kBase + "output:\n  vtk: {wind_every: 1.5}\n", 6,
                "output.vtk.wind_every", "got '1.5'");
   expect_error(dir, "vdb_word", kBase + "output:\n  vdb: {every: often}\n", 6, "output.vdb.every",
@@ -1625,29 +1678,29 @@ TEST_CASE("load_scenario: bad leaf keys name the key and say what is expected", 
   fw::test::TempDir dir("fw_scenario");
   const std::string key = "forest.species[0].leaves.";
   expect_error(dir, "leaf_area_type", leafy_species("      leaves: {area: big}\n"), 10, key + "area",
-               "a number > 0 (m^2) expected, got 'big'");
+               "a number > 0 and <= 100 (m^2) expected, got 'big'");
   expect_error(dir, "leaf_area_zero", leafy_species("      leaves: {area: 0}\n"), 10, key + "area",
-               "a number > 0 (m^2) expected, got '0'");
+               "a number > 0 and <= 100 (m^2) expected, got '0'");
   expect_error(dir, "leaf_fraction", leafy_species("      leaves: {fraction: 1.5}\n"), 10, key + "fraction",
                "a number > 0 and <= 1 expected, got '1.5'");
   expect_error(dir, "leaf_fraction_zero", leafy_species("      leaves: {fraction: 0}\n"), 10,
                key + "fraction", "a number > 0 and <= 1 expected, got '0'");
   expect_error(dir, "leaf_mass", leafy_species("      leaves: {mass_per_area: -0.1}\n"), 10,
-               key + "mass_per_area", "a number > 0 (kg/m^2) expected, got '-0.1'");
+               key + "mass_per_area", "a number > 0 and <= 5 (kg/m^2) expected, got '-0.1'");
   expect_error(dir, "leaf_frequency", leafy_species("      leaves: {frequency: [3]}\n"), 10,
-               key + "frequency", "a number > 0 (Hz) expected, got '[3]'");
+               key + "frequency", "a number > 0 and <= 500 (Hz) expected, got '[3]'");
   expect_error(dir, "leaf_damping", leafy_species("      leaves: {damping_ratio: 1}\n"), 10,
                key + "damping_ratio", "a number >= 0 and < 1 expected, got '1'");
   expect_error(dir, "leaf_strength", leafy_species("      leaves: {petiole_strength: 0}\n"), 10,
-               key + "petiole_strength", "a number > 0 (N) expected, got '0'");
+               key + "petiole_strength", "a number > 0 and <= 10000 (N) expected, got '0'");
   expect_error(dir, "leaf_spread", leafy_species("      leaves: {strength_spread: -1}\n"), 10,
-               key + "strength_spread", "a number >= 0 expected, got '-1'");
+               key + "strength_spread", "a number >= 0 and <= 10 expected, got '-1'");
   expect_error(dir, "leaf_drag", leafy_species("      leaves: {flight_drag_coefficient: 0}\n"), 10,
-               key + "flight_drag_coefficient", "a number > 0 expected, got '0'");
+               key + "flight_drag_coefficient", "a number > 0 and <= 10 expected, got '0'");
   expect_error(dir, "leaf_roll", leafy_species("      leaves: {roll_coupling: .inf}\n"), 10,
-               key + "roll_coupling", "a number expected, got '.inf'");
+               key + "roll_coupling", "a number >= -10 and <= 10 expected, got '.inf'");
   expect_error(dir, "leaf_reference_speed", leafy_species("      leaves: {reference_speed: 0}\n"), 10,
-               key + "reference_speed", "a number > 0 (m/s) expected, got '0'");
+               key + "reference_speed", "a number > 0 and <= 150 (m/s) expected, got '0'");
   expect_error(dir, "leaf_seed", leafy_species("      leaves: {seed: -1}\n"), 10, key + "seed",
                "an integer 0..18446744073709551615 expected, got '-1'");
   expect_error(dir, "leaf_model", leafy_species("      leaves: {model: flutter}\n"), 10, key + "model",
@@ -1836,14 +1889,14 @@ TEST_CASE("load_scenario: a bad dynamics word, a bad model value and a key of an
   expect_error(dir, "angle_zero", spring("      springs: {max_angle_deg: 0}\n"), 10,
                springs + "max_angle_deg", "a number > 0 and < 90 (degrees) expected, got '0'");
   expect_error(dir, "sway_amplitude", spring("      springs: {sway_amplitude: -0.1}\n"), 10,
-               springs + "sway_amplitude", "a number >= 0 expected, got '-0.1'");
+               springs + "sway_amplitude", "a number >= 0 and <= 10 expected, got '-0.1'");
   expect_error(dir, "sway_frequency", spring("      springs: {sway_frequency: 0}\n"), 10,
-               springs + "sway_frequency", "a number > 0 (Hz) expected, got '0'");
+               springs + "sway_frequency", "a number > 0 and <= 500 (Hz) expected, got '0'");
   expect_error(dir, "springs_unknown", spring("      springs: {stiffness: 3}\n"), 10, springs + "stiffness",
                "one of the keys max_angle_deg, sway_amplitude, sway_frequency expected, got 'stiffness'");
   expect_error(dir, "rigid_damping",
                model_species("      dynamics: rigid_bodies\n      rigid_bodies: {damping_ratio: -0.05}\n"),
-               10, species + "rigid_bodies.damping_ratio", "a number >= 0 expected, got '-0.05'");
+               10, species + "rigid_bodies.damping_ratio", "a number >= 0 and <= 10 expected, got '-0.05'");
   expect_error(dir, "rigid_not_a_map",
                model_species("      dynamics: rigid_bodies\n      rigid_bodies: 0.1\n"), 10,
                species + "rigid_bodies", "a map with the keys damping_ratio expected, got '0.1'");
@@ -1866,7 +1919,7 @@ TEST_CASE("load_scenario: output.leaves takes all, none or a stride, and vtk", "
   CHECK(off.output.leaves_attached_stride == 1);  // the default, all
   CHECK(off.output.vdb_grids == std::vector<std::string>{"leaves"});
 
-  const std::string what = "one of all | none or an integer >= 1 expected";
+  const std::string what = "one of all | none or an integer 1..2147483647 expected";
   expect_error(dir, "attached_zero", kBase + "output: {leaves: {attached: 0}}\n", 5, "output.leaves.attached",
                what + ", got '0'");
   expect_error(dir, "attached_negative", kBase + "output: {leaves: {attached: -3}}\n", 5,
@@ -1908,5 +1961,5 @@ wind: {speed: 4.0, direction: 270}
       dir, "blocks_zero",
       "scenario: errors\ntime: {end: 10.0}\ndomain: {size: [40, 20, 10], cell_size: 2.0, decomposition: "
       "[0, 1]}\nwind: {speed: 4.0, direction: 270}\n",
-      3, "domain.decomposition[0]", "a number >= 1 expected, got '0'");
+      3, "domain.decomposition[0]", "a number >= 1 and <= 2147483647 expected, got '0'");
 }

@@ -18,6 +18,7 @@
 #include "host/stages/LeafStages.hpp"
 #include "io/Scenario.hpp"
 #include "io/ScenarioSchema.hpp"
+#include "io/schema/Bounds.hpp"
 #include "trees/Foliage.hpp"
 #include "trees/ForestLayout.hpp"
 #include "trees/StandDensity.hpp"
@@ -56,7 +57,8 @@ int stand_basis(const io::Scenario& scenario, std::size_t index, const std::vect
       io::schema::item_path(io::schema::key(io::schema::kForestKeys, "forest.stands[].leaf_area_index").path,
                             index),
       given.leaf_area_index_line, *stand.leaf_area_index};
-  plan.coupling.leaves.push_back(species_leaves(scenario, bases.back(), given_species.leaves, leaf_area));
+  plan.coupling.leaves.push_back(
+      species_leaves(scenario, bases.back(), given_species.leaves, leaf_area, plan.purpose));
   plan.coupling.dynamics.push_back(given_species.dynamics);
   io::SpeciesSummary summary = plan.species[std::size_t(stand.species_index)];
   summary.name = fmt::format("{} (stand {})", stand.species, index);
@@ -66,13 +68,37 @@ int stand_basis(const io::Scenario& scenario, std::size_t index, const std::vect
   return int(bases.size()) - 1;
 }
 
+// A tree of the species' skeleton (height h) scaled by `scale` stands between the smallest and the tallest
+// tree's height; else the scale's key is to blame. A skeleton without height (a horizontal test beam) has
+// only its upper bound, which holds at any scale.
+void check_scaled_height(const io::Scenario& scenario, double h, double scale, int line,
+                         const std::string& key) {
+  namespace bounds = io::schema::bounds;
+  const double height = h * scale;
+  if (h <= 0.0 || (height >= bounds::kMinTreeHeight && height <= bounds::kMaxTreeHeight)) return;
+  throw io::ScenarioError(
+      scenario.file.string(), line, key,
+      fmt::format("a scale that makes a tree of this species ({:.6g} m tall) {} to {} m tall "
+                  "expected: {:.6g} to {:.6g}, got '{}' ({:.6g} m)",
+                  h, bounds::kMinTreeHeight, bounds::kMaxTreeHeight, bounds::kMinTreeHeight / h,
+                  bounds::kMaxTreeHeight / h, scale, height));
+}
+
 // Places every tree, the stands' first; fills plan.stands and adds the stands' own bases to `bases`.
 std::vector<trees::TreeInstance> place_instances(const io::Scenario& scenario,
                                                  std::vector<trees::SpeciesBasis>& bases,
                                                  SimulationPlan& plan) {
   std::vector<trees::TreeInstance> instances;
+  namespace schema = io::schema;
   for (std::size_t k = 0; k < scenario.forest.stands.size(); ++k) {
     const io::Stand& given = scenario.forest.stands[k];
+    const double h = bases[std::size_t(given.layout.species)].skeleton().height();
+    check_scaled_height(
+        scenario, h, given.layout.scale_min, given.scale_min_line,
+        schema::item_path(schema::key(schema::kForestKeys, "forest.stands[].scale.min").path, k));
+    check_scaled_height(
+        scenario, h, given.layout.scale_max, given.scale_max_line,
+        schema::item_path(schema::key(schema::kForestKeys, "forest.stands[].scale.max").path, k));
     const std::vector<trees::PlacedTree> placed = trees::place_stand(given.layout);
     StandPlan stand;
     stand.species = given.species;
@@ -91,7 +117,11 @@ std::vector<trees::TreeInstance> place_instances(const io::Scenario& scenario,
     }
     plan.stands.push_back(std::move(stand));
   }
-  for (const io::PlacedTreeSettings& placed : scenario.forest.trees) {
+  for (std::size_t k = 0; k < scenario.forest.trees.size(); ++k) {
+    const io::PlacedTreeSettings& placed = scenario.forest.trees[k];
+    check_scaled_height(scenario, bases[std::size_t(placed.species_index)].skeleton().height(), placed.scale,
+                        placed.scale_line,
+                        schema::item_path(schema::key(schema::kForestKeys, "forest.trees[].scale").path, k));
     const auto& p = placed.position;
     const double z = placed.height_given ? p[2] : ground_z(scenario, p[0], p[1]);
     instances.push_back({placed.species_index, {p[0], p[1], z}, placed.yaw_rad, placed.scale});

@@ -46,10 +46,12 @@ struct LeafAreaKey {
   double value = 0.0;
 };
 /// host/app/plan/SpeciesPlan.cpp: the leaves `settings` ask for on a basis' own skeleton and foliage (its
-/// settings().wind.leaf_area_index), so that their elements are the forest's; none without leaves. Throws
-/// io::ScenarioError at `source` when one tree would carry more leaves than the leaf stage holds.
+/// settings().wind.leaf_area_index), so that their elements are the forest's; none without leaves; generated
+/// for a run's plan, counted for `check`'s (PlanFor). Throws io::ScenarioError at `source` when one tree
+/// would carry more leaves than the leaf stage holds.
 trees::SpeciesLeaves species_leaves(const io::Scenario& scenario, const trees::SpeciesBasis& basis,
-                                    const trees::LeafSettings& settings, const LeafAreaKey& source);
+                                    const trees::LeafSettings& settings, const LeafAreaKey& source,
+                                    PlanFor purpose);
 /// host/app/plan/ForestPlan.cpp (after plan_species): the placed instances, and a basis of its own for every
 /// stand that gives its leaf area index (plan.stands, plan.species, plan.coupling.leaves)
 void plan_forest(const io::Scenario& scenario, std::vector<trees::SpeciesBasis> bases, SimulationPlan& plan);

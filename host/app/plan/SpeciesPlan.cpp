@@ -6,10 +6,12 @@
 
 #include <chrono>
 
+#include "base/SourceError.hpp"
 #include "host/app/plan/PlanBuilders.hpp"
 #include "host/stages/LeafStages.hpp"
 #include "io/Scenario.hpp"
 #include "io/ScenarioSchema.hpp"
+#include "io/schema/Bounds.hpp"
 #include "trees/Foliage.hpp"
 #include "trees/QsmImport.hpp"
 #include "trees/TreeFile.hpp"
@@ -22,17 +24,69 @@ namespace {
 using Clock = std::chrono::steady_clock;
 
 // A file that does not parse throws base::SourceError naming its line (an input error).
-trees::Skeleton species_skeleton(const io::Species& species) {
+trees::Skeleton read_skeleton(const io::SkeletonSource& source) {
   using Kind = io::SkeletonSource::Kind;
-  switch (species.skeleton.kind) {
+  switch (source.kind) {
     case Kind::generate:
-      return trees::generate_tree(species.skeleton.generate);
+      return trees::generate_tree(source.generate);
     case Kind::file:
-      return trees::read_tree_file(species.skeleton.path.string());
+      return trees::read_tree_file(source.path.string());
     case Kind::qsm:
-      return trees::read_qsm_cylinders(species.skeleton.path.string());
+      return trees::read_qsm_cylinders(source.path.string());
   }
   throw std::logic_error("species_skeleton: unknown skeleton source");
+}
+
+// The species' skeleton, no taller than a tree: what the skeleton's key gives is to blame for one that
+// cannot be built or is taller (a .tree file's own errors name their line in it).
+trees::Skeleton species_skeleton(const io::Scenario& scenario, const io::Species& species) {
+  const io::SkeletonSource& source = species.skeleton;
+  trees::Skeleton skeleton;
+  try {
+    skeleton = read_skeleton(source);
+  } catch (const base::SourceError&) {
+    throw;
+  } catch (const std::invalid_argument& error) {
+    throw io::ScenarioError(scenario.file.string(), source.line, source.key,
+                            fmt::format("a skeleton that can be built expected ({})", error.what()));
+  }
+  if (!(skeleton.height() <= io::schema::bounds::kMaxTreeHeight))
+    throw io::ScenarioError(
+        scenario.file.string(), source.line, source.key,
+        fmt::format("a skeleton at most {} m tall expected (the tallest tree is 116 m), got "
+                    "one {:.6g} m tall",
+                    io::schema::bounds::kMaxTreeHeight, skeleton.height()));
+  return skeleton;
+}
+
+// The species' basis, through the cache when there is one. A modal problem that cannot be solved (its
+// stiffness and mass far out of scale, say) is the species' to blame.
+trees::SpeciesBasis species_basis(const io::Scenario& scenario, std::size_t index,
+                                  const trees::Skeleton& skeleton, const trees::SpeciesSettings& settings,
+                                  const trees::BasisCache* cache, io::SpeciesSummary& summary,
+                                  SimulationPlan& plan) {
+  const io::Species& species = scenario.forest.species[index];
+  try {
+    if (!cache) return trees::SpeciesBasis::compute(skeleton, settings);
+    trees::CacheOutcome outcome{};
+    std::string store_error, corrupt;
+    trees::SpeciesBasis basis = cache->load_or_compute(skeleton, settings, &outcome, &store_error, &corrupt);
+    summary.cache = trees::to_string(outcome);
+    // Neither stops the run: the basis is computed here instead (docs/trees.md, "The cache").
+    if (!corrupt.empty())
+      plan.warnings.push_back(
+          fmt::format("basis cache: {}; the basis is computed again and the entry replaced", corrupt));
+    if (!store_error.empty())
+      plan.warnings.push_back(fmt::format("basis cache: {}; the run goes on without caching species '{}'",
+                                          store_error, species.name));
+    return basis;
+  } catch (const trees::ModalError& error) {
+    throw io::ScenarioError(
+        scenario.file.string(), species.line, io::schema::item_path("forest.species[]", index),
+        fmt::format("a species whose vibration modes can be solved expected (its skeleton, material and "
+                    "modes give: {})",
+                    error.what()));
+  }
 }
 
 trees::SpeciesSettings species_settings(const io::Species& species) {
@@ -51,7 +105,8 @@ trees::SpeciesSettings species_settings(const io::Species& species) {
 }  // namespace
 
 trees::SpeciesLeaves species_leaves(const io::Scenario& scenario, const trees::SpeciesBasis& basis,
-                                    const trees::LeafSettings& settings, const LeafAreaKey& source) {
+                                    const trees::LeafSettings& settings, const LeafAreaKey& source,
+                                    PlanFor purpose) {
   if (!settings.has_leaves()) return {};
   const trees::Foliage foliage = trees::Foliage::of(basis.skeleton(), basis.settings().wind.leaf_area_index);
   // Every tree of the species carries all its leaves, and the leaf stage indexes leaves with 32-bit
@@ -67,7 +122,8 @@ trees::SpeciesLeaves species_leaves(const io::Scenario& scenario, const trees::S
                     source.value * limit / count, settings.area, settings.fraction, count,
                     LeafStages::kMaxLeaves, source.value));
   }
-  return trees::SpeciesLeaves::generate(basis.skeleton(), foliage, settings);
+  return purpose == PlanFor::run ? trees::SpeciesLeaves::generate(basis.skeleton(), foliage, settings)
+                                 : trees::SpeciesLeaves::counted(basis.skeleton(), foliage, settings);
 }
 
 std::vector<trees::SpeciesBasis> plan_species(const io::Scenario& scenario, const trees::BasisCache* cache,
@@ -76,28 +132,14 @@ std::vector<trees::SpeciesBasis> plan_species(const io::Scenario& scenario, cons
   for (std::size_t index = 0; index < scenario.forest.species.size(); ++index) {
     const io::Species& species = scenario.forest.species[index];
     const auto start = Clock::now();
-    const trees::Skeleton skeleton = species_skeleton(species);
+    const trees::Skeleton skeleton = species_skeleton(scenario, species);
     io::check_species_skeleton(scenario, int(index), skeleton.size());
     trees::SpeciesSettings settings = species_settings(species);
     settings.modal.mode_count = io::species_mode_count(scenario, int(index), skeleton.size());
     io::SpeciesSummary summary;
     summary.name = species.name;
     summary.dynamics = trees::dynamics_name(species.dynamics.model);
-    if (cache) {
-      trees::CacheOutcome outcome{};
-      std::string store_error, corrupt;
-      bases.push_back(cache->load_or_compute(skeleton, settings, &outcome, &store_error, &corrupt));
-      summary.cache = trees::to_string(outcome);
-      // Neither stops the run: the basis is computed here instead (docs/trees.md, "The cache").
-      if (!corrupt.empty())
-        plan.warnings.push_back(
-            fmt::format("basis cache: {}; the basis is computed again and the entry replaced", corrupt));
-      if (!store_error.empty())
-        plan.warnings.push_back(fmt::format("basis cache: {}; the run goes on without caching species '{}'",
-                                            store_error, species.name));
-    } else {
-      bases.push_back(trees::SpeciesBasis::compute(skeleton, settings));
-    }
+    bases.push_back(species_basis(scenario, index, skeleton, settings, cache, summary, plan));
     const trees::SpeciesBasis& basis = bases.back();
     summary.seconds = std::chrono::duration<double>(Clock::now() - start).count();
     summary.nodes = basis.skeleton().size();
@@ -108,7 +150,7 @@ std::vector<trees::SpeciesBasis> plan_species(const io::Scenario& scenario, cons
         io::schema::item_path(
             io::schema::key(io::schema::kSpeciesKeys, "forest.species[].canopy.leaf_area_index").path, index),
         species.canopy.leaf_area_index_line, species.canopy.leaf_area_index};
-    plan.coupling.leaves.push_back(species_leaves(scenario, basis, species.leaves, leaf_area));
+    plan.coupling.leaves.push_back(species_leaves(scenario, basis, species.leaves, leaf_area, plan.purpose));
     species.dynamics.validate();  // the loader's ranges are its own: a failure here is a bug, not the file's
     plan.coupling.dynamics.push_back(species.dynamics);
     if (log) {

@@ -39,13 +39,17 @@ void plan_turbulence(const io::WindSource& wind_source, SimulationPlan& plan) {
   if (!wind_source.turbulence) return;
   const io::TurbulenceSettings& turbulence = *wind_source.turbulence;
   WindGridSetup& wind = plan.wind;
-  wind.turbulence =
-      std::make_shared<const fluid::TurbulenceBox>(inflow_box_spec(turbulence, wind.spec.h, wind.ambient));
+  const fluid::TurbulenceBoxSpec& box =
+      plan.turbulence_box.emplace(inflow_box_spec(turbulence, wind.spec.h, wind.ambient));
+  box.validate();
+  // Synthesising the box takes a minute and gigabytes at the largest sizes (fluid/TurbulenceBox.hpp): only
+  // the run that sweeps it needs it.
+  if (plan.purpose == PlanFor::run) wind.turbulence = std::make_shared<const fluid::TurbulenceBox>(box);
   plan.inputs.turbulence_sigma = [turbulence, source = wind_source](double t) {
     const auto v = io::wind_vector(source, t);
     return turbulence.standard_deviations(std::hypot(v[0], v[1], v[2]))[0];
   };
-  plan.memory.add("inflow turbulence", WindGrid::estimate_turbulence_bytes(*wind.turbulence));
+  plan.memory.add("inflow turbulence", WindGrid::estimate_turbulence_bytes(box));
 
   if (!turbulence.unresolved) return;
   trees::UnresolvedTurbulenceSettings& unresolved = plan.coupling.unresolved;

@@ -3,13 +3,18 @@
 // periodic domain, the ambient wind over time, and the grid's blocks over the run's ranks.
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 #include <variant>
 
 #include "fluid/SolidMap.hpp"
 #include "host/app/plan/PlanBuilders.hpp"
+#include "io/ScenarioError.hpp"
+#include "io/ScenarioSchema.hpp"
 #include "io/WindScenario.hpp"
+#include "io/schema/Bounds.hpp"
+#include "io/schema/TimeKeys.hpp"
 
 namespace fw::host {
 
@@ -32,6 +37,27 @@ FwGust device_gust(const io::GustEvent& event, const std::array<double, 3>& wind
   return gust;
 }
 
+// The step `check` plans with, in words: where it comes from.
+std::string planned_step_words(const SimulationPlan& plan) {
+  const fluid::WindSettings& settings = plan.wind.settings;
+  if (!(settings.cfl > 0.0)) return fmt::format("time.dt = {} s", io::schema::number_text(settings.dt));
+  return fmt::format("the CFL step of {:.3g} s (dt auto, CFL {}, {} m cells, peak wind {:.3g} m/s)",
+                     planned_dt(plan), settings.cfl, plan.wind.spec.h, plan.peak_wind);
+}
+
+// A span of simulated time (time.end, time.spin_up) takes at most bounds::kMaxRunSteps steps of the planned
+// step: past it a run would not end in any wall time, nor could the planner count its frames.
+void check_steps(const io::WindScenario& scenario, const SimulationPlan& plan, double span, int line,
+                 std::string_view key) {
+  const double steps = std::ceil(span / planned_dt(plan));
+  if (steps <= io::schema::bounds::kMaxRunSteps) return;
+  throw io::ScenarioError(
+      scenario.file.string(), line, std::string(key),
+      fmt::format("at most {} steps expected (a run takes no more), got '{}' s: {} steps of {}",
+                  io::schema::number_text(io::schema::bounds::kMaxRunSteps), io::schema::number_text(span),
+                  io::schema::number_text(steps), planned_step_words(plan)));
+}
+
 }  // namespace
 
 void plan_wind(const io::WindScenario& scenario, int ranks, SimulationPlan& plan) {
@@ -46,6 +72,8 @@ void plan_wind(const io::WindScenario& scenario, int ranks, SimulationPlan& plan
   }
   if (scenario.terrain && scenario.terrain->map) solids.add_terrain(*scenario.terrain->map);
   wind.solid = solids.cells();
+  plan.solid_cells =
+      std::size_t(std::count_if(wind.solid.begin(), wind.solid.end(), [](auto s) { return s != 0; }));
   for (const auto& event : scenario.events)
     wind.gusts.push_back(device_gust(event, scenario.wind_vector(event.start)));
   if (scenario.wind.forcing) wind.forcing.relaxation_time = scenario.wind.forcing->relaxation_time;
@@ -54,22 +82,29 @@ void plan_wind(const io::WindScenario& scenario, int ranks, SimulationPlan& plan
   plan.end_time = scenario.time.end;
   plan.spin_up = scenario.time.spin_up;
   plan.inputs.ambient_wind = [source = scenario.wind](double t) { return io::wind_vector(source, t); };
+  plan.peak_wind = peak_wind_speed(plan);
+  check_steps(scenario, plan, plan.end_time, scenario.time.end_line,
+              io::schema::key(io::schema::kTimeKeys, "time.end").path);
+  check_steps(scenario, plan, plan.spin_up, scenario.time.spin_up_line,
+              io::schema::key(io::schema::kTimeKeys, "time.spin_up").path);
   // A fixed dt past the scheme's stability limit at the peak wind would blow up in the first gusty minute.
   const double limit = fluid::courant_limit(wind.settings.advection);
   if (!(wind.settings.cfl > 0.0) && std::isfinite(limit)) {
-    const double peak = peak_wind_speed(plan);
+    const double peak = plan.peak_wind;
     if (peak * wind.settings.dt / wind.spec.h > limit)
-      throw std::invalid_argument(fmt::format(
-          "{}: time.dt: {} is stable up to a Courant number (|u| + |v| + |w|) dt / h of {}; at the peak wind "
-          "of {:.1f} m/s (ambient times the profile's top, plus gusts) and h = {} m that needs dt <= {:.4g} "
-          "s, "
-          "got {} s; lower time.dt or use dt: auto",
-          scenario.file.string(), fluid::to_string(wind.settings.advection), limit, peak, wind.spec.h,
-          limit * wind.spec.h / peak, wind.settings.dt));
+      throw io::ScenarioError(
+          scenario.file.string(), scenario.time.dt_line,
+          std::string(io::schema::key(io::schema::kTimeKeys, "time.dt").path),
+          fmt::format(
+              "a step <= {:.4g} s expected ({} is stable up to a Courant number (|u| + |v| + |w|) dt / "
+              "h of {}; at the peak wind of {:.1f} m/s, ambient times the profile's top plus gusts, "
+              "and h = {} m), got '{}'; lower time.dt or use dt: auto",
+              limit * wind.spec.h / peak, fluid::to_string(wind.settings.advection), limit, peak, wind.spec.h,
+              wind.settings.dt));
   }
   // In one process a scenario's decomposition is ignored, so that the same file runs alone and over ranks.
   const double courant =
-      wind.settings.cfl > 0.0 ? wind.settings.cfl : peak_wind_speed(plan) * wind.settings.dt / wind.spec.h;
+      wind.settings.cfl > 0.0 ? wind.settings.cfl : plan.peak_wind * wind.settings.dt / wind.spec.h;
   try {
     plan.decomposition =
         fluid::Decomposition::make(wind.spec, ranks, ranks > 1 ? scenario.domain.decomposition : std::nullopt,

@@ -6,6 +6,7 @@
 #include <string>
 
 #include "host/app/CoupledStep.hpp"
+#include "io/schema/Bounds.hpp"
 #include "tests/support/TestDevice.hpp"
 
 namespace {
@@ -85,4 +86,10 @@ TEST_CASE("CoupledStep: a fixed dt far past the CFL limit stops before the first
   CHECK(coupled.steps() == 0);
   // The same dt cut to the caller's limit is a legal step.
   CHECK(coupled.step(0.1).wind.dt == 0.1);
+}
+
+TEST_CASE("CoupledStep: the scenario's largest CFL number is the runaway limit a fixed dt stops at",
+          "[simulation]") {
+  // time.cfl's upper bound (io/schema/Bounds.hpp) is this class's limit, which io cannot include.
+  CHECK(fw::io::schema::bounds::kMaxCfl == fw::host::CoupledStep::kRunawayCfl);
 }

@@ -471,3 +471,53 @@ TEST_CASE("SimulationPlan: the grid's blocks over the ranks, given or chosen, an
                     Catch::Contains("too_many.yaml:4: domain.decomposition: 4 blocks along x need at least 3 "
                                     "cells each"));
 }
+
+TEST_CASE(
+    "SimulationPlan: check's plan reports what a run's does, the turbulence box priced and the leaves "
+    "counted without building either",
+    "[simulation][plan]") {
+  TempDir dir("fw_plan_check");
+  dir.write("tree.tree", kTreeFile);
+  const std::string text =
+      "scenario: plan_check\nseed: 4\n"
+      "time: {end: 1.0}\n"
+      "domain: {size: [16, 16, 8], cell_size: 2.0}\n"
+      "wind: {speed: 5.0, direction: 270, turbulence: {intensity: 0.1, length_scale: 4}}\n"
+      "forest:\n"
+      "  species:\n"
+      "    - name: oak\n"
+      "      skeleton: {file: tree.tree}\n"
+      "      modes: {count: 4, wind_samples: 2}\n"
+      "      canopy: {leaf_area_index: 3.0}\n"
+      "      leaves: {area: 0.002}\n"
+      "  trees:\n"
+      "    - {species: oak, position: [8, 8]}\n";
+  const fw::io::Scenario scenario = fw::io::load_scenario(dir.write("check.yaml", text));
+  const fw::host::SimulationPlan run = fw::host::plan_simulation(scenario, nullptr, nullptr);
+  const fw::host::SimulationPlan check =
+      fw::host::plan_simulation(scenario, nullptr, nullptr, 1, fw::host::PlanFor::check);
+  // The run's plan holds the box and the leaves; check's their spec and count.
+  REQUIRE(run.wind.turbulence != nullptr);
+  CHECK(check.wind.turbulence == nullptr);
+  REQUIRE(check.turbulence_box.has_value());
+  CHECK(check.turbulence_box->cells == run.wind.turbulence->cells());
+  REQUIRE(run.coupling.leaves.size() == 1);
+  REQUIRE(run.coupling.leaves[0].count() > 0);
+  CHECK(run.coupling.leaves[0].leaves().size() == std::size_t(run.coupling.leaves[0].count()));
+  CHECK(check.coupling.leaves[0].leaves().empty());
+  CHECK(check.coupling.leaves[0].count() == run.coupling.leaves[0].count());
+  CHECK(check.leaf_count == run.leaf_count);
+  // The same memory, part by part (the box's from its spec: as many floats as the built box holds), and the
+  // same report, line by line.
+  CHECK(check.memory.total() == run.memory.total());
+  REQUIRE(check.memory.parts().size() == run.memory.parts().size());
+  for (std::size_t k = 0; k < run.memory.parts().size(); ++k) {
+    INFO(run.memory.parts()[k].name);
+    CHECK(check.memory.parts()[k].bytes == run.memory.parts()[k].bytes);
+  }
+  std::ostringstream run_report, check_report;
+  fw::host::print_plan(run, run_report);
+  fw::host::print_plan(check, check_report);
+  CHECK(check_report.str() == run_report.str());
+  CHECK_THAT(check_report.str(), Contains("inflow turbulence"));
+}
