@@ -60,6 +60,8 @@ UpwindOrders upwind_orders(const GridSpec& spec, const std::vector<std::uint8_t>
     const std::vector<std::uint8_t> inside = faces_inside_solids(spec, solid, c);
     auto usable = [&](int face[3], int a, int at) {
       if (at < 0 || at >= extent[a]) {
+        // Beyond an inflow face the ghosts hold the prescribed inflow (FW_PAD deep), as good as any value.
+        if (spec.boundary[std::size_t(2 * a + (at < 0 ? 0 : 1))] == BoundaryType::inflow) return true;
         if (!spec.periodic(a)) return false;
         const int n = cells_along(spec, a);  // a periodic axis' faces repeat every n
         at = ((at % n) + n) % n;

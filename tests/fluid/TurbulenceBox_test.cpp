@@ -173,6 +173,32 @@ double central_divergence_ratio(const TurbulenceBox& box, std::array<int, 3> shi
   return std::sqrt(divergence / gradient);
 }
 
+// The half spectrum of component c (FFTW r2c of the stored floats) and each mode's |k|, rad/m.
+struct ComponentSpectrum {
+  std::vector<std::complex<double>> u_hat;
+  std::vector<double> k;
+};
+ComponentSpectrum component_spectrum(const TurbulenceBox& box, int c) {
+  const int nx = box.cells()[0], ny = box.cells()[1], nz = box.cells()[2], hx = nx / 2 + 1;
+  const std::size_t points = std::size_t(nx) * ny * nz;
+  std::vector<double> real(points);
+  for (std::size_t p = 0; p < points; ++p) real[p] = box.values()[3 * p + c];
+  ComponentSpectrum out;
+  out.u_hat.resize(std::size_t(hx) * ny * nz);
+  fftw_plan plan = fftw_plan_dft_r2c_3d(nz, ny, nx, real.data(),
+                                        reinterpret_cast<fftw_complex*>(out.u_hat.data()), FFTW_ESTIMATE);
+  fftw_execute(plan);
+  fftw_destroy_plan(plan);
+  for (int iz = 0; iz < nz; ++iz)
+    for (int iy = 0; iy < ny; ++iy)
+      for (int ix = 0; ix < hx; ++ix) {
+        const double kx = 2.0 * kPi * ix / box.period()[0];
+        const double ky = 2.0 * kPi * (iy <= ny / 2 ? iy : iy - ny) / box.period()[1];
+        const double kz = 2.0 * kPi * (iz <= nz / 2 ? iz : iz - nz) / box.period()[2];
+        out.k.push_back(std::sqrt(kx * kx + ky * ky + kz * kz));
+      }
+  return out;
+}
 }  // namespace
 
 TEST_CASE("TurbulenceBox: each component's realised sigma is within 10% of the requested one") {
@@ -235,10 +261,41 @@ TEST_CASE(
     // isotropic field (random directions of u_hat) and above float rounding.
     CHECK(ratio < 1e-5);
   }
-  SECTION("any lattice: undoing each component's normalisation leaves k . u_hat = 0") {
-    // Unequal axes, and the normalisation factors f_c ~ 1 / sqrt(resolved_fraction_c) then differ, which
-    // is the only divergence the box has (header comment); dividing it out must leave float rounding.
+  SECTION("a lattice with unequal axes: the weights keep k . u_hat = 0 and give each component sigma") {
+    // 8 m = 2.7 L_u in z: the lattice holds 17% more of w's variance than of u's (resolved fractions), so
+    // scaling the components one by one would leave a divergence of that relative size; the vector
+    // potential's weights give each component the same expected variance and keep the field solenoidal.
     const TurbulenceBox box(box_spec({64, 32, 16}, 0.5, 2.0, 3.0, 22));
+    const auto fraction = box.resolved_fraction();
+    INFO("resolved fractions " << fraction[0] << ", " << fraction[1] << ", " << fraction[2]);
+    CHECK(std::max({fraction[0], fraction[1], fraction[2]}) /
+              std::min({fraction[0], fraction[1], fraction[2]}) >
+          1.1);  // the lattice is lopsided, so that the weights matter
+    REQUIRE(box.weights_balanced());
+    const double ratio = spectral_divergence_ratio(box, {1.0, 1.0, 1.0});
+    INFO("|k . u_hat| / (|k| |u_hat|) = " << ratio);
+    CHECK(ratio < 1e-5);  // float rounding, as above
+    // The expected variance of each component is sigma^2: the mean over seeds of the realised variance. One
+    // seed's variance spreads by 13% (u) to 25% (v) in so small a box, so over 400 seeds the mean's standard
+    // error is 1.2% at most, and 5% is four of them; a common factor for the three components would leave
+    // v and w 15% and 37% off (the fractions' ratios).
+    constexpr int kSeeds = 400;
+    std::array<double, 3> mean_variance{0.0, 0.0, 0.0};
+    for (int seed = 0; seed < kSeeds; ++seed) {
+      const TurbulenceBox other(box_spec({64, 32, 16}, 0.5, 2.0, 3.0, std::uint64_t(100 + seed)));
+      for (int c = 0; c < 3; ++c) mean_variance[c] += std::pow(other.realised_sigma()[c], 2) / kSeeds;
+    }
+    for (int c = 0; c < 3; ++c) {
+      INFO("component " << c << ": mean realised variance over " << kSeeds << " seeds " << mean_variance[c]);
+      CHECK(mean_variance[c] == Approx(4.0).epsilon(0.05));
+    }
+  }
+  SECTION(
+      "a narrow tube: the components are scaled one by one, which leaves a divergence below their spread") {
+    // 2048 x 32 x 32 points of 1 m with L_u = 18 m (1.8 L_u across): the lattice holds three times as much
+    // of v's variance as of u's, more than the weights can even out (header comment).
+    const TurbulenceBox box(box_spec({2048, 32, 32}, 1.0, 1.0, 18.0, 24));
+    REQUIRE_FALSE(box.weights_balanced());
     const auto fraction = box.resolved_fraction();
     const std::array<double, 3> factor{1.0 / std::sqrt(fraction[0]), 1.0 / std::sqrt(fraction[1]),
                                        1.0 / std::sqrt(fraction[2])};
@@ -246,8 +303,6 @@ TEST_CASE(
     const double as_stored = spectral_divergence_ratio(box, {1.0, 1.0, 1.0});
     INFO("undone " << undone << ", as stored " << as_stored);
     CHECK(undone < 1e-5);  // float rounding, as above
-    // As stored, the divergence is below the factors' relative spread: 0.036 against 0.17 for this flat
-    // box (8 m = 2.7 L_u in z), which is why it is so large here.
     const double spread =
         (std::max({factor[0], factor[1], factor[2]}) - std::min({factor[0], factor[1], factor[2]})) /
         std::min({factor[0], factor[1], factor[2]});
@@ -358,6 +413,83 @@ TEST_CASE("TurbulenceBox: sample interpolates trilinearly and wraps periodically
   CHECK_THROWS_WITH(box.at(0, 0, 8), Catch::StartsWith("TurbulenceBox:"));
 }
 
+TEST_CASE("TurbulenceBox: a shortest wavelength low-passes the same box and keeps its sigma") {
+  // 128 x 64 x 64 points of 0.5 m, L_u = 4 m: a third of the variance lies at wavelengths under 4 m.
+  TurbulenceBoxSpec spec = box_spec({128, 64, 64}, 0.5, 1.5, 4.0, 31);
+  const TurbulenceBox full(spec);
+  spec.shortest_wavelength = 4.0;
+  const TurbulenceBox cut(spec);
+  const double k_cut = 2.0 * kPi / spec.shortest_wavelength;
+  for (int c = 0; c < 3; ++c) {
+    INFO("component " << c);
+    const ComponentSpectrum a = component_spectrum(full, c), b = component_spectrum(cut, c);
+    // Above the cut: nothing but the float rounding of the stored values (2^-24 relative to the field).
+    double above = 0.0, total = 0.0, cross = 0.0, full_below = 0.0;
+    for (std::size_t m = 0; m < b.k.size(); ++m) {
+      total += std::norm(b.u_hat[m]);
+      if (b.k[m] > k_cut * (1.0 + 1e-12)) {
+        above += std::norm(b.u_hat[m]);
+      } else {
+        cross += std::real(b.u_hat[m] * std::conj(a.u_hat[m]));
+        full_below += std::norm(a.u_hat[m]);
+      }
+    }
+    CHECK(above / total < 1e-12);
+    // Below it the same modes, scaled alike: b = g a with g the least-squares ratio. Not to float rounding:
+    // the cut changes the lattice's sums S_a a little, and with them the weights d_a of the three terms of
+    // each component (header comment); that moves 0.2% of the field here, a mode drawn anew would move all.
+    const double g = cross / full_below;
+    double residual = 0.0;
+    for (std::size_t m = 0; m < b.k.size(); ++m)
+      if (b.k[m] <= k_cut * (1.0 + 1e-12)) residual += std::norm(b.u_hat[m] - g * a.u_hat[m]);
+    INFO("scale " << g << ", residual " << std::sqrt(residual / total));
+    CHECK(std::sqrt(residual / total) < 0.01);
+    // The lattice's variance is now on fewer modes: each kept one is scaled up, and sigma stays (the
+    // realised sigma of the full box and the cut one differ only by what the seed gave the cut modes).
+    CHECK(g > 1.1);
+    CHECK(cut.resolved_fraction()[c] < full.resolved_fraction()[c]);
+    CHECK(cut.realised_sigma()[c] == Approx(1.5).epsilon(0.10));  // the 10% of the realised-sigma test
+  }
+}
+
+TEST_CASE("TurbulenceBox: a point the box sweeps past sees sigma when the sweep's still plane is left out") {
+  // A box 8 L_u long along x (64 points of 0.5 m, L_u = 4 m), as the default inflow box is: the modes with
+  // k_x = 0 are constant along x, a fixed point's record as the box sweeps past (Taylor) does not see them,
+  // and they hold 2 L_u / P_x = a quarter of the variance (von Karman's F_u(0) = 2 sigma^2 L_u / pi).
+  TurbulenceBoxSpec spec = box_spec({64, 64, 64}, 0.5, 1.5, 4.0, 41);
+  // The variance of u along each x-line about the line's own mean, averaged over the lines: what points of
+  // an inflow plane record over one period of the box; and the largest line mean.
+  const auto line_statistics = [](const TurbulenceBox& box) {
+    const auto& n = box.cells();
+    double variance = 0.0, largest_mean = 0.0;
+    for (int k = 0; k < n[2]; ++k)
+      for (int j = 0; j < n[1]; ++j) {
+        double sum = 0.0, sum2 = 0.0;
+        for (int i = 0; i < n[0]; ++i) {
+          const double u = box.at(i, j, k)[0];
+          sum += u, sum2 += u * u;
+        }
+        const double mean = sum / n[0];
+        variance += (sum2 / n[0] - mean * mean) / (double(n[1]) * n[2]);
+        largest_mean = std::max(largest_mean, std::abs(mean));
+      }
+    return std::array<double, 2>{variance, largest_mean};
+  };
+  const auto still = line_statistics(TurbulenceBox(spec));
+  spec.sweep_axis = 0;
+  const auto swept = line_statistics(TurbulenceBox(spec));
+  const double sigma2 = 1.5 * 1.5;
+  INFO("line variance / sigma^2: " << still[0] / sigma2 << " with the still plane, " << swept[0] / sigma2
+                                   << " without; largest line mean " << still[1] << " and " << swept[1]
+                                   << " m/s");
+  // Without the still plane every line's mean is 0 (float rounding of values of order sigma) and a line
+  // carries sigma^2: within 10%, the realised-sigma test's bound for a box's own fluctuation.
+  CHECK(swept[1] < 1e-5);
+  CHECK(swept[0] / sigma2 == Approx(1.0).epsilon(0.10));
+  // With it, a line misses about a quarter: below 0.85 fails a box that does not leave the plane out.
+  CHECK(still[0] / sigma2 < 0.85);
+}
+
 TEST_CASE("TurbulenceBox: bad specs are rejected with a 'TurbulenceBox:' message") {
   const TurbulenceBoxSpec good = box_spec({8, 8, 8}, 1.0, 1.0, 2.0, 1);
   CHECK_NOTHROW(good.validate());
@@ -374,6 +506,16 @@ TEST_CASE("TurbulenceBox: bad specs are rejected with a 'TurbulenceBox:' message
     TurbulenceBoxSpec spec = good;
     spec.component_scale[1] = s;
     bad.push_back({spec, "component_scale"});
+  }
+  for (double w : {-1.0, nan, inf}) {
+    TurbulenceBoxSpec spec = good;
+    spec.shortest_wavelength = w;
+    bad.push_back({spec, "shortest_wavelength"});
+  }
+  for (int axis : {-2, 3}) {
+    TurbulenceBoxSpec spec = good;
+    spec.sweep_axis = axis;
+    bad.push_back({spec, "sweep_axis"});
   }
   for (const auto& [spec, word] : bad) {
     INFO(spec.cells[0] << " x " << spec.cells[1] << " x " << spec.cells[2] << ", h " << spec.spacing << ": "

@@ -70,22 +70,24 @@ TEST_CASE("upwind stencil: the next degree is not exact, and the bias follows th
   CHECK(fluid::upwind_interpolation(FW_UPWIND_FIRST, -1.0, step) == 1.0);  // q_m+1
 }
 
-TEST_CASE("upwind stencil: orders drop to third then first over the last faces before a wall") {
+TEST_CASE(
+    "upwind stencil: orders drop to third then first before an outflow face, and stay fifth at an inflow") {
   // 12 cells along x between an inflow and an outflow face, periodic y, slip z.
   const auto spec = grid(12, 4, 4, {B::inflow, B::outflow, B::periodic, B::periodic, B::slip, B::slip});
   const auto orders = fluid::upwind_orders(spec, {});
   using S = fluid::FluxSide;
-  // u along x: faces 0 .. 12; the lower flux of face p uses faces p - 3 .. p + 2 at fifth order.
-  CHECK(order_at(spec, orders, 0, 0, 1, 1, 0, S::lower) == FW_UPWIND_FIRST);  // a ghost is its first value
-  CHECK(order_at(spec, orders, 0, 1, 1, 1, 0, S::lower) == FW_UPWIND_FIRST);
-  CHECK(order_at(spec, orders, 0, 2, 1, 1, 0, S::lower) == FW_UPWIND_THIRD);
-  CHECK(order_at(spec, orders, 0, 3, 1, 1, 0, S::lower) == FW_UPWIND_FIFTH);
+  // u along x: faces 0 .. 12; the lower flux of face p uses faces p - 3 .. p + 2 at fifth order. Beyond the
+  // inflow face the ghosts hold the prescribed inflow, so even face 0's lower flux (faces -3 .. 2) is fifth.
+  for (int p = 0; p <= 3; ++p) CHECK(order_at(spec, orders, 0, p, 1, 1, 0, S::lower) == FW_UPWIND_FIFTH);
   CHECK(order_at(spec, orders, 0, 9, 1, 1, 0, S::upper) == FW_UPWIND_FIFTH);  // uses faces 7 .. 12
   CHECK(order_at(spec, orders, 0, 10, 1, 1, 0, S::upper) == FW_UPWIND_THIRD);
   CHECK(order_at(spec, orders, 0, 11, 1, 1, 0, S::upper) == FW_UPWIND_FIRST);
-  // v along x (4 cells of v per x-row... 12 faces 0 .. 11, all tangential): the same pattern one face in.
-  CHECK(order_at(spec, orders, 1, 2, 1, 1, 0, S::lower) == FW_UPWIND_THIRD);
-  CHECK(order_at(spec, orders, 1, 3, 1, 1, 0, S::lower) == FW_UPWIND_FIFTH);
+  // v along x (12 faces 0 .. 11 per x-row, all tangential): fifth at the inflow, the same drop one face in
+  // at the outflow.
+  CHECK(order_at(spec, orders, 1, 0, 1, 1, 0, S::lower) == FW_UPWIND_FIFTH);
+  CHECK(order_at(spec, orders, 1, 8, 1, 1, 0, S::upper) == FW_UPWIND_FIFTH);  // faces 6 .. 11
+  CHECK(order_at(spec, orders, 1, 9, 1, 1, 0, S::upper) == FW_UPWIND_THIRD);
+  CHECK(order_at(spec, orders, 1, 10, 1, 1, 0, S::upper) == FW_UPWIND_FIRST);
   // Across the periodic y axis every flux keeps fifth order, the wrap included.
   for (int c = 0; c < 3; ++c)
     for (int j = 0; j < ref::extent(spec, c, 1); ++j) {

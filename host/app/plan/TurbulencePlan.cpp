@@ -12,20 +12,18 @@ namespace fw::host {
 
 namespace {
 
-// The unit-sigma_u box on a grid of cell size h, fluid::kTurbulencePointsPerCell points a cell along each
-// axis: every face of an inflow plane (at whole cells along its normal, half cells across) then sits on a
-// box point, so that the plane carries the box's values without interpolation. Unequal sigma_u, sigma_v,
-// sigma_w scale the box's components: its x and y take the along- and across-wind values by the horizontal
-// axis closer to the wind at t = 0 (equal values, the intensity form, need no such choice).
+// The unit-sigma_u box on a grid of cell size h (fluid::inflow_box_spec: points every h / 2, so that every
+// face of an inflow plane sits on a box point; no eddy shorter than the grid carries; swept along the
+// horizontal axis closer to the wind at t = 0). Unequal sigma_u, sigma_v, sigma_w scale the box's
+// components: its x and y take the along- and across-wind values by that same axis (equal values, the
+// intensity form, need no such choice).
 fluid::TurbulenceBoxSpec inflow_box_spec(const io::TurbulenceSettings& turbulence, double h,
                                          const std::array<double, 3>& wind_at_start) {
-  fluid::TurbulenceBoxSpec spec;
-  for (int a = 0; a < 3; ++a) spec.cells[a] = fluid::kTurbulencePointsPerCell * turbulence.box_cells[a];
-  spec.spacing = h / fluid::kTurbulencePointsPerCell;
-  spec.spectrum = {1.0, turbulence.length_scale};  // unit sigma_u: the run scales it by sigma_u(t)
-  spec.seed = turbulence.seed;
-  const auto sigma = turbulence.standard_deviations(1.0);  // [along, across, vertical]
   const bool along_x = std::abs(wind_at_start[0]) >= std::abs(wind_at_start[1]);
+  fluid::TurbulenceBoxSpec spec = fluid::inflow_box_spec(
+      turbulence.box_cells, h, turbulence.length_scale, turbulence.cutoff_cells, along_x ? 0 : 1,
+      turbulence.seed);                                    // unit sigma_u: scaled by sigma_u(t)
+  const auto sigma = turbulence.standard_deviations(1.0);  // [along, across, vertical]
   if (sigma[0] > 0.0) {
     spec.component_scale = {(along_x ? sigma[0] : sigma[1]) / sigma[0],
                             (along_x ? sigma[1] : sigma[0]) / sigma[0], sigma[2] / sigma[0]};

@@ -1,12 +1,15 @@
 // Synthetic inflow turbulence on the device (docs/design.md, "Turbulence"; issue 10, "Inflow"): what enters
 // the domain has the requested intensity, integral length scale and inertial-range slope, the field stays
 // divergence-free, and a run is deterministic and unchanged when the turbulence is off.
+#include <fmt/format.h>
 #include <catch2/catch.hpp>
 
 #include <array>
 #include <cmath>
 #include <map>
 #include <memory>
+#include <string>
+#include <utility>
 #include <vector>
 
 #include "fluid/FlowStatistics.hpp"
@@ -330,4 +333,152 @@ TEST_CASE("WindGrid turbulence: what the semi-Lagrangian schemes keep of the inf
   if (!cc) return;
   for (auto scheme : {fluid::AdvectionScheme::semi_lagrangian, fluid::AdvectionScheme::maccormack})
     downstream_intensity(*cc, scheme);
+}
+
+namespace {
+
+// The issue's open ground (issue 44, part 3): a log-law inflow (z0 0.03 m) over a rough floor of the same z0,
+// 2 m cells, intensity 0.13 asked at 20 m with L_u = 18 m (9 cells), upwind5 with C_s 0.16 and dt auto at
+// CFL 0.8. The grid: 24 cells of fetch (the planes read lie 14 cells and more before the outflow, which
+// moved no figure there against 32 cells), 64 across (128 m, 7 L_u, periodic), 32 high (64 m, a slip lid 2.4
+// L_u above 20 m). The box is a run's (fluid::inflow_box_spec, the default cutoff_cells of 2) of the default
+// size along x and z (128 and 32 cells: the smallest powers of two that hold 8 L_u and the domain), and the
+// domain's period across. One such box realises sigma_u at 20 m within 5.8% (one standard deviation over 24
+// seeds), so the test sweeps four seeds' boxes and averages them: 2.9%.
+struct RoughGround {
+  bool wall_stress = true;
+  double smagorinsky_constant = fluid::WindSettings::kUpwind5SmagorinskyConstant;
+  bool log_profile = true;
+  double dt = 0.0;  // s; 0: dt auto at CFL 0.8
+};
+constexpr double kGroundSpeed = 10.0, kGroundHeight = 20.0, kGroundZ0 = 0.03, kGroundIntensity = 0.13;
+constexpr double kGroundCell = 2.0, kGroundLength = 18.0;
+constexpr std::uint64_t kGroundSeeds[] = {7, 8, 9, 10};
+
+host::WindGridSetup rough_ground(const RoughGround& c, std::uint64_t seed) {
+  host::WindGridSetup setup;
+  setup.spec.nx = 24;
+  setup.spec.ny = 64;
+  setup.spec.nz = 32;
+  setup.spec.h = kGroundCell;
+  setup.spec.boundary = {B::inflow, B::outflow, B::periodic, B::periodic, B::slip, B::slip};
+  setup.settings.advection = fluid::AdvectionScheme::upwind5;
+  setup.settings.smagorinsky_constant = c.smagorinsky_constant;
+  if (c.wall_stress) setup.settings.wall_roughness_length = kGroundZ0;
+  if (c.dt > 0.0) {
+    setup.settings.dt = c.dt;
+  } else {
+    setup.settings.cfl = 0.8;
+  }
+  setup.profile.reference_height = kGroundHeight;
+  if (c.log_profile) {
+    setup.profile.type = fluid::InflowProfile::Type::log;
+    setup.profile.roughness_length = kGroundZ0;
+  }
+  setup.ambient = {kGroundSpeed, 0.0, 0.0};
+  constexpr double kDefaultCutoffCells = 2.0;  // wind.turbulence.cutoff_cells
+  constexpr int kDefaultBoxCells = 128;        // >= 8 L_u / h = 72 cells, a power of two
+  setup.turbulence = std::make_shared<const fluid::TurbulenceBox>(
+      fluid::inflow_box_spec({kDefaultBoxCells, setup.spec.ny, setup.spec.nz}, kGroundCell, kGroundLength,
+                             kDefaultCutoffCells, 0, seed));
+  return setup;
+}
+
+// What probes at 20 m record on face plane i: sigma_u / U over the two layers of u faces either side (19 and
+// 21 m), each face's record over one period of the box after one flow-through, as a probe's about its own
+// mean, averaged over the faces and the seeds; and the variance of the records in wavelengths of 7 to 10
+// cells (U / f, Welch's estimate), likewise.
+struct PlaneIntensity {
+  double intensity = 0.0, band = 0.0;
+};
+
+std::map<int, PlaneIntensity> ground_intensities(host::ComputeContext& cc, const RoughGround& c,
+                                                 const std::vector<int>& planes) {
+  std::map<int, PlaneIntensity> out;
+  for (std::uint64_t seed : kGroundSeeds) {
+    const host::WindGridSetup setup = rough_ground(c, seed);
+    host::WindGrid wind(cc, setup);
+    wind.set_turbulence_sigma(kGroundIntensity * kGroundSpeed);
+    wind.initialise_ambient();
+    const auto& spec = wind.spec();
+    const int layers[] = {int(kGroundHeight / spec.h) - 1, int(kGroundHeight / spec.h)};
+    while (wind.time() < spec.nx * spec.h / kGroundSpeed) wind.step();
+    const double stop = wind.time() + setup.turbulence->period()[0] / kGroundSpeed;
+    std::map<int, std::vector<std::vector<double>>> records;  // [plane][face]
+    double elapsed = 0.0;
+    long steps = 0;
+    while (wind.time() < stop) {
+      elapsed += wind.step().dt, ++steps;
+      const auto vel = wind.download_velocity();
+      for (int i : planes) {
+        auto& faces = records[i];
+        faces.resize(std::size_t(2 * spec.ny));
+        for (int l = 0; l < 2; ++l)
+          for (int j = 0; j < spec.ny; ++j)
+            faces[std::size_t(j + spec.ny * l)].push_back(vel.u[ref::face_index(spec, 0, i, j, layers[l])]);
+      }
+    }
+    // dt auto barely moves (the largest speed changes little), so the records are taken as evenly spaced
+    // at the mean dt for the spectrum.
+    const double dt = elapsed / double(steps);
+    constexpr std::size_t kSegment = 128;  // 13 s: df = 0.08 Hz, two bins in the band
+    const double n = double(records.at(planes[0]).size() * std::size(kGroundSeeds));
+    for (int i : planes)
+      for (const auto& u : records[i]) {
+        out[i].intensity += fluid::standard_deviation(u) / fluid::mean(u) / n;
+        const fluid::Spectrum s = fluid::power_spectrum(u, dt, kSegment);
+        const double df = s.frequency[1] - s.frequency[0];
+        for (std::size_t q = 0; q < s.frequency.size(); ++q)
+          if (s.frequency[q] >= kGroundSpeed / (10.0 * spec.h) &&
+              s.frequency[q] <= kGroundSpeed / (7.0 * spec.h))
+            out[i].band += s.density[q] * df / n;
+      }
+  }
+  return out;
+}
+
+}  // namespace
+
+TEST_CASE(
+    "WindGrid turbulence: a sheared inflow over rough ground holds its intensity within 10% 10 cells "
+    "downstream, under upwind5") {
+  auto* cc = test::device_or_skip();
+  if (!cc) return;
+  const auto at = ground_intensities(*cc, {}, {0, 10});
+  const PlaneIntensity &inflow = at.at(0), &downstream = at.at(10);
+  WARN("intensity at 20 m: " << inflow.intensity << " at the inflow, " << downstream.intensity
+                             << " 10 cells downstream (asked " << kGroundIntensity
+                             << "); wavelengths of 7-10 cells keep " << downstream.band / inflow.band
+                             << " of their variance");
+  // The boxes' own realisation at 20 m spreads by 2.9% (above): 10% is more than three of those.
+  CHECK(std::abs(inflow.intensity / kGroundIntensity - 1.0) < 0.10);
+  CHECK(std::abs(downstream.intensity / kGroundIntensity - 1.0) < 0.10);  // the issue's 10%
+  CHECK(std::abs(downstream.intensity / inflow.intensity - 1.0) < 0.10);  // what the grid itself loses
+  // The eddies of 7-10 cells: before issue 44's fix 0.47 of their variance was left 10 cells in (the box's
+  // divergence, which the projection took, and first order over the inflow's first cell), after it 0.75 to
+  // 0.90 over six sets of four seeds; 0.65 lies between.
+  CHECK(downstream.band / inflow.band > 0.65);
+}
+
+// The intensity budget along the inflow (docs/numerics.md, "Where the inflow's intensity went"): the
+// intensity at 20 m on the inflow plane, as injected, and 1, 2, 5, 10 and 15 cells downstream, with each
+// suspect switched off in turn. A report with nothing to hold it to: `wind_tests "[report]"` prints it.
+TEST_CASE("WindGrid turbulence: the intensity budget of a sheared inflow over rough ground", "[.][report]") {
+  auto* cc = test::device_or_skip();
+  if (!cc) return;
+  const std::vector<int> planes = {0, 1, 2, 5, 10, 15};
+  const std::pair<const char*, RoughGround> cases[] = {
+      {"as in the test", {}},
+      {"no wall stress", {.wall_stress = false}},
+      {"no subgrid stress", {.smagorinsky_constant = 0.0}},
+      {"a uniform profile", {.log_profile = false}},
+      {"dt fixed at 0.1 s", {.dt = 0.1}},
+      {"all four", {.wall_stress = false, .smagorinsky_constant = 0.0, .log_profile = false, .dt = 0.1}}};
+  for (const auto& [name, c] : cases) {
+    const auto at = ground_intensities(*cc, c, planes);
+    std::string row;
+    for (int i : planes) row += fmt::format(" {:.4f}", at.at(i).intensity);
+    WARN(name << ": intensity at 20 m on planes 0, 1, 2, 5, 10, 15:" << row << "; 7-10 cells keep "
+              << at.at(10).band / at.at(0).band << " of their variance at 10");
+  }
 }
