@@ -58,9 +58,9 @@ expect_bad(wrong_type "${WORK}/wrong_type.yaml:9" "forest.species[0].modes.count
            "modes: {count: 4}" "modes: {count: many}")
 expect_bad(negative_size "${WORK}/negative_size.yaml:3" "domain.size"
            "size: [32, 16, 16]" "size: [32, -16, 16]")
-expect_bad(negative_spin_up "${WORK}/negative_spin_up.yaml:2" "time.spin_up: a number >= 0 (s) expected, got '-3'"
+expect_bad(negative_spin_up "${WORK}/negative_spin_up.yaml:2" "time.spin_up: a number >= 0 and <= 1e9 (s) expected, got '-3'"
            "time: {end: 2.0, dt: auto}" "time: {end: 2.0, dt: auto, spin_up: -3}")
-expect_bad(word_spin_up "${WORK}/word_spin_up.yaml:2" "time.spin_up: a number >= 0 (s) expected, got 'long'"
+expect_bad(word_spin_up "${WORK}/word_spin_up.yaml:2" "time.spin_up: a number >= 0 and <= 1e9 (s) expected, got 'long'"
            "time: {end: 2.0, dt: auto}" "time: {end: 2.0, dt: auto, spin_up: long}")
 expect_bad(tree_outside "${WORK}/tree_outside.yaml:11" "forest.trees[0].position"
            "position: [16, 8]" "position: [16, 80]")
