@@ -11,7 +11,9 @@
 #   make sanitize   builds the host and kernel tests with ASan + UBSan (clang, the fuzz build) and runs them
 #   make validate   builds and runs the long validations (tests/validation) that CTest runs in short form
 #   make scaling    bench wind and bench coupled over 1, 2 and 4 MPI ranks
-#   make test-long  all four
+#   make fuzz-check the mutation fuzz of `forestwind check` (tests/fuzz/check_mutants.py): MUTANTS of the
+#                   example scenarios, each with one number swapped for an extreme
+#   make test-long  all five
 BUILD_DIR ?= build
 BUILD_TYPE ?= Release
 # Compiler warnings as errors: on under CI (the variable CI is set), off otherwise, so that a user's newer
@@ -20,7 +22,7 @@ WERROR ?= $(if $(CI),ON,OFF)
 SUDO := $(shell [ "$$(id -u)" -eq 0 ] || echo sudo)
 
 .PHONY: deps configure build build-cli test test-long validate scaling demo format format-check clean \
-        fuzz-configure fuzz sanitize
+        fuzz-configure fuzz sanitize fuzz-check
 
 deps:
 	$(SUDO) bash scripts/install-deps.sh
@@ -46,7 +48,7 @@ test: deps format-check build
 	  -j $(CTEST_JOBS) $(CTEST_FLAGS) || status=$$?; \
 	python3 scripts/slowest-tests.py $(BUILD_DIR)/ctest-junit.xml 15; exit $$status
 
-test-long: fuzz sanitize validate scaling
+test-long: fuzz sanitize validate scaling fuzz-check
 
 validate: build
 	FORESTWIND_VALIDATION=full $(BUILD_DIR)/validation_tests "[validation]~[scanned]"
@@ -72,6 +74,15 @@ fuzz-configure:
 fuzz: fuzz-configure
 	cmake --build $(FUZZ_DIR) --target fuzz
 	FUZZ_SEED=$(FUZZ_SEED) bash tests/fuzz/run.sh $(FUZZ_DIR) $(FUZZ_SECONDS)
+
+# Issue 44 (docs/fuzzing.md, "The mutation fuzz of check"): exits 1 on a mutant that check answers with exit 1,
+# a signal, an exit 2 without FILE:LINE: KEY, or not within MUTANT_SECONDS of CPU time; names each.
+MUTANTS ?= 3000
+MUTANT_SEED ?= 44
+MUTANT_SECONDS ?= 5
+fuzz-check: build-cli
+	python3 tests/fuzz/check_mutants.py --forestwind $(BUILD_DIR)/forestwind --count $(MUTANTS) \
+	  --seed $(MUTANT_SEED) --timeout $(MUTANT_SECONDS) --keep $(BUILD_DIR)/fuzz-check scenarios/*.yaml
 
 sanitize: fuzz-configure
 	cmake --build $(FUZZ_DIR) --target $(SANITIZE_TESTS)
