@@ -464,7 +464,9 @@ TEST_CASE("Simulation: a runaway time step stops the run, names step and field, 
   if (!cc) return;
   TempDir dir("fw_sim");
   ScenarioText text;
-  text.dt = "3.0";  // CFL 9 at 6 m/s on 2 m cells
+  // CFL 9 at 18 m/s on 2 m cells (time.dt is at most 1 s: io/schema/Bounds.hpp)
+  text.dt = "1.0";
+  text.speed = 18.0;
   text.end = 60.0;
   std::string message;
   std::filesystem::path out;
