@@ -58,9 +58,9 @@ expect_bad(wrong_type "${WORK}/wrong_type.yaml:9" "forest.species[0].modes.count
            "modes: {count: 4}" "modes: {count: many}")
 expect_bad(negative_size "${WORK}/negative_size.yaml:3" "domain.size"
            "size: [32, 16, 16]" "size: [32, -16, 16]")
-expect_bad(negative_spin_up "${WORK}/negative_spin_up.yaml:2" "time.spin_up: a number >= 0 (s) expected, got '-3'"
+expect_bad(negative_spin_up "${WORK}/negative_spin_up.yaml:2" "time.spin_up: a number >= 0 and <= 1e9 (s) expected, got '-3'"
            "time: {end: 2.0, dt: auto}" "time: {end: 2.0, dt: auto, spin_up: -3}")
-expect_bad(word_spin_up "${WORK}/word_spin_up.yaml:2" "time.spin_up: a number >= 0 (s) expected, got 'long'"
+expect_bad(word_spin_up "${WORK}/word_spin_up.yaml:2" "time.spin_up: a number >= 0 and <= 1e9 (s) expected, got 'long'"
            "time: {end: 2.0, dt: auto}" "time: {end: 2.0, dt: auto, spin_up: long}")
 expect_bad(tree_outside "${WORK}/tree_outside.yaml:11" "forest.trees[0].position"
            "position: [16, 8]" "position: [16, 80]")
@@ -102,10 +102,11 @@ expect_bad(leaves_attached "${WORK}/leaves_attached.yaml:12" "output.leaves.atta
 
 # A leaf area index whose leaves overflow what one tree may carry (the leaf stage's 32-bit count): refused by
 # the plan at the key, not a crash of the leaf count (it was "forestwind: vector::reserve", exit 1). A small
-# generated broadleaf: the shrub above is a stick, whose crown has no area to carry leaves.
+# generated broadleaf: the shrub above is a stick, whose crown has no area to carry leaves. The index is the
+# largest a scenario takes (18), the leaves a square micrometre each.
 expect_bad(leaf_count_overflow "${WORK}/leaf_count_overflow.yaml:10" "forest.species[0].canopy.leaf_area_index"
            "{file: tree.tree}\n      modes: {count: 4}"
-           "{generate: {preset: broadleaf, height: 3.0, seed: 3}}\n      modes: {count: 4}\n      canopy: {leaf_area_index: 1e30}\n      leaves: {}")
+           "{generate: {preset: broadleaf, height: 3.0, seed: 3}}\n      modes: {count: 4}\n      canopy: {leaf_area_index: 18}\n      leaves: {area: 1e-12}")
 
 # A ',' that begins a YAML document outside any [ ] or { }: yaml-cpp 0.7 never finishes parsing it and filled
 # the memory (found by tests/fuzz/scenario_fuzz); io/YamlDocuments stops it at the comma's line.
