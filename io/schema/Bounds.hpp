@@ -22,10 +22,12 @@ namespace fw::io::schema::bounds {
 inline constexpr double kMaxRunSteps = 1e9;
 /// The same count as an integer key's highest (output.vtk.wind_every, output.checkpoint.keep, ...).
 inline constexpr int kMaxRunFrames = int(kMaxRunSteps);
-/// The longest step, s: dt: auto's cap (fluid::WindSettings::max_dt, 1 s; the trees sway at 0.1 to 5 Hz).
-inline constexpr double kMaxStep = fluid::WindSettings{}.max_dt;
-/// The longest run, s: kMaxRunSteps of the longest step (31.7 years).
-inline constexpr double kMaxRunTime = kMaxRunSteps * kMaxStep;
+/// The longest run, s: kMaxRunSteps of dt: auto's longest step (fluid::WindSettings::max_dt, 1 s), 31.7 years
+/// of simulated time; the planner holds the steps of time.end to kMaxRunSteps at the step it plans.
+inline constexpr double kMaxRunTime = kMaxRunSteps * fluid::WindSettings{}.max_dt;
+/// The longest fixed step, s: weather models step about 6 s per km of cell (60 s at 10 km); a step of an hour
+/// resolves no wind. (Large cells can take fixed steps past dt: auto's 1 s cap, which the trees set.)
+inline constexpr double kMaxStep = 3600.0;
 /// The largest CFL number: past 5 a run with a fixed dt stops as a blow-up in the making
 /// (host::CoupledStep::kRunawayCfl, which tests/host/app/CoupledStep_test.cpp holds equal to this).
 inline constexpr double kMaxCfl = 5.0;

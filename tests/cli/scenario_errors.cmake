@@ -102,10 +102,11 @@ expect_bad(leaves_attached "${WORK}/leaves_attached.yaml:12" "output.leaves.atta
 
 # A leaf area index whose leaves overflow what one tree may carry (the leaf stage's 32-bit count): refused by
 # the plan at the key, not a crash of the leaf count (it was "forestwind: vector::reserve", exit 1). A small
-# generated broadleaf: the shrub above is a stick, whose crown has no area to carry leaves.
+# generated broadleaf: the shrub above is a stick, whose crown has no area to carry leaves. The index is the
+# largest a scenario takes (18), the leaves a square micrometre each.
 expect_bad(leaf_count_overflow "${WORK}/leaf_count_overflow.yaml:10" "forest.species[0].canopy.leaf_area_index"
            "{file: tree.tree}\n      modes: {count: 4}"
-           "{generate: {preset: broadleaf, height: 3.0, seed: 3}}\n      modes: {count: 4}\n      canopy: {leaf_area_index: 1e30}\n      leaves: {}")
+           "{generate: {preset: broadleaf, height: 3.0, seed: 3}}\n      modes: {count: 4}\n      canopy: {leaf_area_index: 18}\n      leaves: {area: 1e-12}")
 
 # A ',' that begins a YAML document outside any [ ] or { }: yaml-cpp 0.7 never finishes parsing it and filled
 # the memory (found by tests/fuzz/scenario_fuzz); io/YamlDocuments stops it at the comma's line.

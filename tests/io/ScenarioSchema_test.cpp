@@ -140,7 +140,7 @@ TEST_CASE("schema: every section's keys are the run-time look-up's, each with it
 
 TEST_CASE("schema: the loader's messages come from the key's type, bound and unit", "[schema]") {
   CHECK(schema::expected(key_at("time.end")) == "a number > 0 and <= 1e9 (s)");
-  CHECK(schema::expected(key_at("time.dt")) == "a number > 0 and <= 1 (s) or auto");
+  CHECK(schema::expected(key_at("time.dt")) == "a number > 0 and <= 3600 (s) or auto");
   CHECK(schema::expected(key_at("time")) == "a map {end, dt, cfl, spin_up}");
   CHECK(schema::expected(key_at("time.spin_up")) == "a number >= 0 and <= 1e9 (s)");
   CHECK(schema::expected(key_at("domain.size")) ==

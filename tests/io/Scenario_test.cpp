@@ -873,7 +873,7 @@ TEST_CASE("load_scenario: out-of-range numbers name the key and the allowed rang
   expect_error(dir, "dt",
                "scenario: errors\ntime: {end: 10.0, dt: -0.5}\ndomain: {size: [40, 20, 10], cell_size: 2.0}\n"
                "wind: {speed: 4.0, direction: 270}\n",
-               2, "time.dt", "a number > 0 and <= 1 (s) or auto expected, got '-0.5'");
+               2, "time.dt", "a number > 0 and <= 3600 (s) or auto expected, got '-0.5'");
   expect_error(dir, "spin_up_negative",
                "scenario: errors\ntime: {end: 10.0, spin_up: -1}\ndomain: {size: [40, 20, 10], cell_size: "
                "2.0}\nwind: {speed: 4.0, direction: 270}\n",
