@@ -146,6 +146,21 @@ std::optional<SpeciesBasis> BasisCache::load(const Skeleton& skeleton, const Spe
       fit.linear_relative_residual = reader.value<double>();
       fit.shape_change = reader.value<double>();
     }
+    const int stem_nodes = reader.value<std::int32_t>();
+    if (stem_nodes < 2 || stem_nodes > nodes) throw std::runtime_error("the stem does not fit the skeleton");
+    std::vector<StemSection> profile(static_cast<std::size_t>(stem_nodes));
+    for (StemSection& section : profile) {
+      section.node = reader.value<std::int32_t>();
+      section.height = reader.value<double>();
+      section.diameter = reader.value<double>();
+    }
+    Eigen::VectorXd arc_length(stem_nodes);
+    reader.values(arc_length.data(), std::size_t(stem_nodes));
+    const int stem_rows = 2 * (stem_nodes - 1);
+    Eigen::MatrixXd elastic(stem_rows, modes), weight(stem_rows, modes), root_elastic(2, modes),
+        root_weight(2, modes);
+    for (Eigen::MatrixXd* map : {&elastic, &weight, &root_elastic, &root_weight})
+      reader.values(map->data(), std::size_t(map->size()));
     reader.expect_end();
 
     ModalBasis modal = ModalBasis::from_values(std::move(omega), std::move(shapes), settings.modal.damping,
@@ -153,7 +168,11 @@ std::optional<SpeciesBasis> BasisCache::load(const Skeleton& skeleton, const Spe
     WindBasis wind = WindBasis::from_values(std::move(projection), std::move(sample_points), settings.wind);
     StrongWindCorrection strong = StrongWindCorrection::from_values(std::move(strong_v), std::move(strong_w),
                                                                     std::move(strong_b), std::move(fits));
-    return SpeciesBasis::from_parts(skeleton, settings, std::move(modal), std::move(wind), std::move(strong));
+    StemLoads stem =
+        StemLoads::from_values(std::move(profile), std::move(arc_length), std::move(elastic),
+                               std::move(weight), std::move(root_elastic), std::move(root_weight));
+    return SpeciesBasis::from_parts(skeleton, settings, std::move(modal), std::move(wind), std::move(strong),
+                                    std::move(stem));
   } catch (const std::exception& e) {
     if (why_not) *why_not = fmt::format("{}: {}", path.string(), e.what());
     return std::nullopt;
@@ -191,6 +210,17 @@ void BasisCache::store(const SpeciesBasis& species) const {
     writer.value(fit.linear_relative_residual);
     writer.value(fit.shape_change);
   }
+  const StemLoads& stem = species.stem_loads();
+  writer.value(std::int32_t(stem.profile().size()));
+  for (const StemSection& section : stem.profile()) {
+    writer.value(std::int32_t(section.node));
+    writer.value(section.height);
+    writer.value(section.diameter);
+  }
+  writer.values(stem.arc_length().data(), std::size_t(stem.arc_length().size()));
+  for (const Eigen::MatrixXd* map :
+       {&stem.elastic(), &stem.weight(), &stem.root_elastic(), &stem.root_weight()})
+    writer.values(map->data(), std::size_t(map->size()));
 
   const auto path = entry_path(entry_key);
   std::error_code error;

@@ -40,8 +40,9 @@ class BasisCache {
  public:
   /// 2: the wind settings became air density, branch and leaf drag coefficients and leaf area index (the
   /// projections of version 1 entries hold no foliage). 3: the strong-wind correction (v, w, b, fits) follows
-  /// the sample points. The version is part of the key, so an older entry is never even opened.
-  static constexpr std::uint32_t kFormatVersion = 3;
+  /// the sample points. 4: the stem loads (trees/StemLoads.hpp) follow the correction. The version is part of
+  /// the key, so an older entry is never even opened.
+  static constexpr std::uint32_t kFormatVersion = 4;
 
   /// directory: where entries live; created on the first store.
   explicit BasisCache(std::filesystem::path directory);

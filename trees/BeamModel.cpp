@@ -16,6 +16,7 @@ BeamModel::BeamModel(const Skeleton& skeleton, const Material& material) {
         fmt::format("BeamModel: the skeleton needs at least 2 nodes (one element), got {}", skeleton.size()));
   }
   material.validate();
+  material_ = material;
 
   node_count_ = skeleton.size();
   root_ = skeleton.root();

@@ -36,6 +36,9 @@ class BeamModel {
   /// Global consistent mass of the free DOFs, kg and kg m^2.
   const Eigen::SparseMatrix<double>& mass() const { return mass_; }
 
+  /// The wood the model was assembled with.
+  const Material& material() const { return material_; }
+
   /// Number of free DOFs, 6 (n - 1).
   int dof_count() const { return dof_count_; }
   /// Number of skeleton nodes n, the root included.
@@ -55,6 +58,7 @@ class BeamModel {
   std::size_t nonzeros() const { return static_cast<std::size_t>(stiffness_.nonZeros()); }
 
  private:
+  Material material_;
   int node_count_ = 0;
   int root_ = -1;
   int dof_count_ = 0;

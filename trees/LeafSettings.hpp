@@ -10,6 +10,8 @@
 #include <cstdint>
 #include <string>
 
+#include "trees/Gravity.hpp"
+
 namespace fw::trees {
 
 enum class FlutterModel {
@@ -53,7 +55,6 @@ struct LeafSettings {
 // Constants of the model (docs/leaves.md).
 inline constexpr double kAirDensity = 1.2;  ///< rho, kg/m^3 (as the wind grid's drag convention)
 inline constexpr double kLeafNormalForceCoefficient = 1.2;  ///< C_n of a flat plate broadside
-inline constexpr double kGravity = 9.81;                    ///< m/s^2
 inline constexpr double kLeafTumbleStrouhal = 0.1;  ///< St of the tumbling rate, Omega = 2 pi St |u - v| / l
 inline constexpr double kPetioleLengthPerSide = 0.5;  ///< l_p / l
 

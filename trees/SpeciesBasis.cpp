@@ -56,14 +56,20 @@ SpeciesBasis SpeciesBasis::compute(Skeleton skeleton, const SpeciesSettings& set
   timings.wind = seconds_since(start);
 
   start = Clock::now();
-  SpeciesBasis species = from_parts(std::move(skeleton), settings, std::move(modes), std::move(wind));
+  StemLoads stem_loads = StemLoads::compute(skeleton, model, modes);
+  timings.stem_loads = seconds_since(start);
+
+  start = Clock::now();
+  SpeciesBasis species =
+      from_parts(std::move(skeleton), settings, std::move(modes), std::move(wind), {}, std::move(stem_loads));
   timings.strong_wind = seconds_since(start);  // from_parts fits the correction; the rest is copies
   species.timings_ = timings;
   return species;
 }
 
 SpeciesBasis SpeciesBasis::from_parts(Skeleton skeleton, SpeciesSettings settings, ModalBasis modes,
-                                      WindBasis wind, std::optional<StrongWindCorrection> strong_wind) {
+                                      WindBasis wind, std::optional<StrongWindCorrection> strong_wind,
+                                      std::optional<StemLoads> stem_loads) {
   const int dofs = 6 * (skeleton.size() - 1);
   if (modes.dof_count() != dofs) {
     throw std::invalid_argument(
@@ -88,7 +94,14 @@ SpeciesBasis SpeciesBasis::from_parts(Skeleton skeleton, SpeciesSettings setting
         "SpeciesBasis: the strong-wind correction has {} modes of {} nodes, expected {} of {}",
         strong_wind->mode_count(), strong_wind->node_count(), modes.mode_count(), skeleton.size()));
   }
+  if (stem_loads && stem_loads->mode_count() != modes.mode_count()) {
+    throw std::invalid_argument(fmt::format("SpeciesBasis: the stem loads have {} modes, expected {}",
+                                            stem_loads->mode_count(), modes.mode_count()));
+  }
   SpeciesBasis species;
+  species.stem_loads_ = stem_loads
+                            ? std::move(*stem_loads)
+                            : StemLoads::compute(skeleton, BeamModel(skeleton, settings.material), modes);
   species.node_shapes_ = gather_node_shapes(skeleton, modes);
   species.strong_wind_ =
       strong_wind ? std::move(*strong_wind)
@@ -104,8 +117,8 @@ SpeciesBasis SpeciesBasis::scaled(double s) const {
   ModalBasis modes = modes_.scaled(s);  // validates s
   WindBasis wind = wind_.scaled(s);
   Skeleton skeleton = skeleton_.transformed(Eigen::Matrix3d::Identity(), Eigen::Vector3d::Zero(), s);
-  return from_parts(std::move(skeleton), settings_, std::move(modes), std::move(wind),
-                    strong_wind_.scaled(s));
+  return from_parts(std::move(skeleton), settings_, std::move(modes), std::move(wind), strong_wind_.scaled(s),
+                    stem_loads_.scaled(s));
 }
 
 SpeciesBasis SpeciesBasis::with_leaf_area_index(double leaf_area_index) const {
@@ -119,7 +132,8 @@ SpeciesBasis SpeciesBasis::with_leaf_area_index(double leaf_area_index) const {
   start = Clock::now();
   WindBasis wind = WindBasis::compute(skeleton_, model, modes_.shapes(), settings.wind);
   timings.wind = seconds_since(start);
-  SpeciesBasis species = from_parts(skeleton_, std::move(settings), modes_, std::move(wind), strong_wind_);
+  SpeciesBasis species =
+      from_parts(skeleton_, std::move(settings), modes_, std::move(wind), strong_wind_, stem_loads_);
   species.timings_ = timings;
   return species;
 }

@@ -46,6 +46,12 @@ void check_same(const SpeciesBasis& a, const SpeciesBasis& b) {
   CHECK(a.wind().projection_matrix() == b.wind().projection_matrix());
   CHECK(a.wind().sample_points() == b.wind().sample_points());
   CHECK(a.node_shapes() == b.node_shapes());
+  CHECK(a.stem_loads().elastic() == b.stem_loads().elastic());
+  CHECK(a.stem_loads().weight() == b.stem_loads().weight());
+  CHECK(a.stem_loads().root_elastic() == b.stem_loads().root_elastic());
+  CHECK(a.stem_loads().root_weight() == b.stem_loads().root_weight());
+  CHECK(a.stem_loads().arc_length() == b.stem_loads().arc_length());
+  CHECK(a.stem_loads().stem_volume() == b.stem_loads().stem_volume());
   CHECK(a.strong_wind().linear_shapes() == b.strong_wind().linear_shapes());
   CHECK(a.strong_wind().quadratic_shapes() == b.strong_wind().quadratic_shapes());
   CHECK(a.strong_wind().b() == b.strong_wind().b());
@@ -165,22 +171,25 @@ TEST_CASE("BasisCache: the key changes with the skeleton, the material and every
   CHECK(BasisCache::key(tree, changed) != key);
 }
 
-TEST_CASE("BasisCache: an entry of format version 2 (no strong-wind correction) is recomputed, not misread") {
+TEST_CASE("BasisCache: an entry of format version 3 (no stem loads) is recomputed, not misread") {
   TempDir dir("fw_cache");
   const BasisCache cache(dir.path());
   const Skeleton tree = cached_tree();
   const SpeciesBasis fresh = cache.load_or_compute(tree, cached_settings());
   const auto path = cache.entry_path(BasisCache::key(tree, cached_settings()));
   const std::vector<char> good = read_bytes(path);
-  REQUIRE(BasisCache::kFormatVersion == 3);
-  // What version 2 wrote: the same entry up to the sample points, then the checksum. The correction is
-  // v and w (3 n x m doubles each), b (m) and 4 fit values per mode.
-  const std::size_t n = std::size_t(tree.size()), m = std::size_t(cached_settings().modal.mode_count);
-  const std::size_t correction = (2 * 3 * n * m + m + 4 * m) * sizeof(double);
-  std::vector<char> old(good.begin(), good.end() - std::ptrdiff_t(correction + sizeof(std::uint64_t)));
+  REQUIRE(BasisCache::kFormatVersion == 4);
+  // What version 3 wrote: the same entry up to the strong-wind correction, then the checksum. The stem
+  // loads are the stem's node count (int32), per stem node its node (int32), height and diameter, its
+  // distances along the stem, and four maps: 2 (P - 1) x m twice and 2 x m twice (doubles).
+  const std::size_t m = std::size_t(cached_settings().modal.mode_count);
+  const std::size_t p = fresh.stem_loads().profile().size();
+  const std::size_t stem = sizeof(std::int32_t) + p * (sizeof(std::int32_t) + 2 * sizeof(double)) +
+                           p * sizeof(double) + (2 * 2 * (p - 1) * m + 2 * 2 * m) * sizeof(double);
+  std::vector<char> old(good.begin(), good.end() - std::ptrdiff_t(stem + sizeof(std::uint64_t)));
   old.resize(old.size() + sizeof(std::uint64_t));
-  const std::uint32_t version_2 = 2;
-  std::memcpy(old.data() + 8, &version_2, sizeof version_2);  // after the 8-byte magic
+  const std::uint32_t version_3 = 3;
+  std::memcpy(old.data() + 8, &version_3, sizeof version_3);  // after the 8-byte magic
   reseal(old);
   // An old entry under this key could only appear by copying (the version is hashed into the key), but a
   // reader that skipped the version check would take its checksum-valid bytes for a basis.
@@ -194,8 +203,8 @@ TEST_CASE("BasisCache: an entry of format version 2 (no strong-wind correction) 
   check_same(fresh, recomputed);
   CHECK(read_bytes(path) == good);
 
-  // And with the version patched to 3, the version 2 layout is too short: also rejected.
-  std::memcpy(old.data() + 8, &BasisCache::kFormatVersion, sizeof version_2);
+  // And with the version patched to 4, the version 3 layout is too short: also rejected.
+  std::memcpy(old.data() + 8, &BasisCache::kFormatVersion, sizeof version_3);
   reseal(old);
   write_bytes(path, old);
   CHECK_FALSE(cache.load(tree, cached_settings(), &why).has_value());
