@@ -31,12 +31,23 @@ struct PresetRow {
 // broadleaf, so it takes 1 (a broadleaf's wood is not weakened by a conifer's whorls of knots), the
 // conifers' 850 kg/m^3 and Norway spruce's anchorage, the table's weakest. docs/damage.md says so.
 constexpr std::array<PresetRow, 4> kPresets{{
-    {StrengthPreset::sitka_spruce, "sitka_spruce", 34.0, 1.0, 850.0, {156.2, 138.5, 151.2, 172.1}, 153.2,
+    {StrengthPreset::sitka_spruce,
+     "sitka_spruce",
+     34.0,
+     1.0,
+     850.0,
+     {156.2, 138.5, 151.2, 172.1},
+     153.2,
      178.1},
-    {StrengthPreset::norway_spruce, "norway_spruce", 36.0, 0.9, 850.0, {128.5, 113.9, 124.4, 141.5}, 126.0,
+    {StrengthPreset::norway_spruce,
+     "norway_spruce",
+     36.0,
+     0.9,
+     850.0,
+     {128.5, 113.9, 124.4, 141.5},
+     126.0,
      146.6},
-    {StrengthPreset::scots_pine, "scots_pine", 46.0, 0.85, 850.0, {142.9, 126.7, 138.3, 157.3}, 140.1,
-     162.9},
+    {StrengthPreset::scots_pine, "scots_pine", 46.0, 0.85, 850.0, {142.9, 126.7, 138.3, 157.3}, 140.1, 162.9},
     {StrengthPreset::birch, "birch", 53.6, 1.0, 850.0, {128.5, 113.9, 124.4, 141.5}, 126.0, 146.6},
 }};
 
@@ -45,7 +56,8 @@ constexpr std::array<const char*, 3> kRootingNames{"shallow", "mean", "deep"};
 
 void require_positive(const char* name, double value) {
   if (!std::isfinite(value) || !(value > 0.0))
-    throw std::invalid_argument(fmt::format("TreeStrength: {} must be finite and positive, got {}", name, value));
+    throw std::invalid_argument(
+        fmt::format("TreeStrength: {} must be finite and positive, got {}", name, value));
 }
 
 }  // namespace
@@ -54,12 +66,15 @@ void TreeStrength::validate() const {
   require_positive("modulus_of_rupture (Pa)", modulus_of_rupture);
   require_positive("knot_factor", knot_factor);
   if (knot_factor > 1.0)
-    throw std::invalid_argument(fmt::format("TreeStrength: knot_factor must be at most 1, got {}", knot_factor));
+    throw std::invalid_argument(
+        fmt::format("TreeStrength: knot_factor must be at most 1, got {}", knot_factor));
   require_positive("green_density (kg/m^3)", green_density);
   require_positive("anchorage (N m/kg)", anchorage);
 }
 
-const char* preset_name(StrengthPreset preset) { return kPresets.at(std::size_t(preset)).name; }
+const char* preset_name(StrengthPreset preset) {
+  return kPresets.at(std::size_t(preset)).name;
+}
 
 std::optional<StrengthPreset> parse_strength_preset(std::string_view word) {
   for (const PresetRow& row : kPresets)
@@ -67,7 +82,9 @@ std::optional<StrengthPreset> parse_strength_preset(std::string_view word) {
   return std::nullopt;
 }
 
-const char* soil_name(SoilGroup soil) { return kSoilNames.at(std::size_t(soil)); }
+const char* soil_name(SoilGroup soil) {
+  return kSoilNames.at(std::size_t(soil));
+}
 
 std::optional<SoilGroup> parse_soil_group(std::string_view word) {
   for (std::size_t k = 0; k < kSoilNames.size(); ++k)
@@ -75,7 +92,9 @@ std::optional<SoilGroup> parse_soil_group(std::string_view word) {
   return std::nullopt;
 }
 
-const char* rooting_name(RootingDepth rooting) { return kRootingNames.at(std::size_t(rooting)); }
+const char* rooting_name(RootingDepth rooting) {
+  return kRootingNames.at(std::size_t(rooting));
+}
 
 std::optional<RootingDepth> parse_rooting_depth(std::string_view word) {
   for (std::size_t k = 0; k < kRootingNames.size(); ++k)
@@ -89,9 +108,9 @@ bool has_anchorage(SoilGroup soil, RootingDepth rooting) {
 
 TreeStrength strength_preset(StrengthPreset preset, SoilGroup soil, RootingDepth rooting) {
   if (!has_anchorage(soil, rooting)) {
-    throw std::invalid_argument(fmt::format(
-        "TreeStrength: the table gives {} rooting only on soil A, not on soil {}", rooting_name(rooting),
-        soil_name(soil)));
+    throw std::invalid_argument(
+        fmt::format("TreeStrength: the table gives {} rooting only on soil A, not on soil {}",
+                    rooting_name(rooting), soil_name(soil)));
   }
   const PresetRow& row = kPresets.at(std::size_t(preset));
   TreeStrength strength;
@@ -99,9 +118,15 @@ TreeStrength strength_preset(StrengthPreset preset, SoilGroup soil, RootingDepth
   strength.knot_factor = row.knot_factor;
   strength.green_density = row.green_density;
   switch (rooting) {
-    case RootingDepth::shallow: strength.anchorage = row.shallow_a; break;
-    case RootingDepth::deep: strength.anchorage = row.deep_a; break;
-    case RootingDepth::mean: strength.anchorage = row.mean_rooting.at(std::size_t(soil)); break;
+    case RootingDepth::shallow:
+      strength.anchorage = row.shallow_a;
+      break;
+    case RootingDepth::deep:
+      strength.anchorage = row.deep_a;
+      break;
+    case RootingDepth::mean:
+      strength.anchorage = row.mean_rooting.at(std::size_t(soil));
+      break;
   }
   return strength;
 }
@@ -119,7 +144,9 @@ double overturning_moment(const TreeStrength& strength, double stem_volume) {
   return strength.anchorage * strength.green_density * stem_volume;
 }
 
-double hale_turning_coefficient(double dbh, double height) { return kHaleCoefficient * dbh * dbh * height; }
+double hale_turning_coefficient(double dbh, double height) {
+  return kHaleCoefficient * dbh * dbh * height;
+}
 
 double hale_critical_wind(double moment, double dbh, double height) {
   return std::sqrt(moment / hale_turning_coefficient(dbh, height));

@@ -34,10 +34,12 @@ TEST_CASE("TreeStrength: the worked Sitka spruce of h 20 m and dbh 0.25 m has th
   CHECK(fw::trees::overturning_moment(sitka, 0.459) == Approx(61.0e3).epsilon(0.01));
 }
 
-TEST_CASE("TreeStrength: the presets give the table's anchorage by soil and rooting, and refuse what it lacks",
-          "[trees]") {
+TEST_CASE(
+    "TreeStrength: the presets give the table's anchorage by soil and rooting, and refuse what it lacks",
+    "[trees]") {
   using fw::trees::strength_preset;
-  CHECK(strength_preset(StrengthPreset::norway_spruce, SoilGroup::A, RootingDepth::shallow).anchorage == 126.0);
+  CHECK(strength_preset(StrengthPreset::norway_spruce, SoilGroup::A, RootingDepth::shallow).anchorage ==
+        126.0);
   CHECK(strength_preset(StrengthPreset::norway_spruce, SoilGroup::A, RootingDepth::deep).anchorage == 146.6);
   CHECK(strength_preset(StrengthPreset::scots_pine, SoilGroup::B).anchorage == 126.7);
   CHECK(strength_preset(StrengthPreset::sitka_spruce, SoilGroup::D).anchorage == 172.1);
