@@ -1,4 +1,5 @@
-// forest: its switches, then the species (io/scenario/Species.cpp), the stands and the single trees.
+// forest: its switches and storm damage, then the species (io/scenario/Species.cpp), the stands and the
+// single trees.
 #include "io/scenario/Forest.hpp"
 
 #include <fmt/format.h>
@@ -150,9 +151,28 @@ ForestSettings read_forest(const Loader& loader, const Field& field, const Domai
     if (const auto speed = drag.get<"reference_speed">())
       forest.drag_law.reference_speed = loader.number(*speed);
   }
+  if (const auto damage_field = map.get<"damage">()) {
+    const Section<schema::kForestKeys, "forest.damage"> damage(loader, *damage_field);
+    forest.damage.line = damage_field->line;
+    if (const auto enabled = damage.get<"enabled">()) {
+      forest.damage.enabled = loader.boolean(*enabled);
+      forest.damage.line = enabled->line;
+    }
+    if (const auto consequences = damage.get<"consequences">())
+      forest.damage.consequences = loader.boolean(*consequences);
+  }
   if (const auto species = map.get<"species">())
     for (const Field& item : loader.items(*species))
       forest.species.push_back(read_species(loader, item, forest.species, seed));
+  // Damage compares a tree's moments with its species' critical ones: every species needs its strength.
+  for (std::size_t i = 0; forest.damage.enabled && i < forest.species.size(); ++i) {
+    if (forest.species[i].strength) continue;
+    const Field absent{YAML::Node(YAML::NodeType::Null), schema::item_path("forest.species[].strength", i),
+                       forest.species[i].line};
+    loader.fail(absent,
+                fmt::format("{} expected (required: forest.damage.enabled is true on line {}), got nothing",
+                            schema::expected(key_of(absent)), forest.damage.line));
+  }
   if (const auto stands = map.get<"stands">())
     for (const Field& item : loader.items(*stands))
       forest.stands.push_back(read_stand(loader, item, forest, domain, seed));

@@ -1,12 +1,14 @@
-// forest.species: skeletons, wood, tree model (dynamics and its keys), modes, drag, canopy and leaves of
-// each species. The checks that need the skeleton (check_species_skeleton) are io/Scenario.cpp's.
+// forest.species: skeletons, wood, tree model (dynamics and its keys), modes, drag, canopy, leaves and
+// strength of each species. The checks that need the skeleton (check_species_skeleton) are io/Scenario.cpp's.
 #include "io/scenario/Species.hpp"
 
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <optional>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 namespace fw::io::reader {
 
@@ -166,6 +168,85 @@ trees::LeafSettings read_leaves(const Loader& loader, const Field& field, std::u
   return leaves;
 }
 
+/// forest.species[].strength into `species`: a preset's values on its soil and rooting with the numbers given
+/// over them, or the four numbers, each required, without a preset.
+void read_strength(const Loader& loader, const Field& field, Species& species) {
+  const Section<schema::kSpeciesKeys, "forest.species[].strength"> map(loader, field);
+  const auto preset_word = map.get<"preset">();
+  const auto soil_word = map.get<"soil">();
+  const auto rooting_word = map.get<"rooting">();
+  const auto anchorage = map.get<"anchorage">();
+  // Soil and rooting choose the preset's anchorage and nothing else: without a preset, or beside an
+  // anchorage given, they would choose nothing.
+  for (const std::optional<Field>& chooser : {soil_word, rooting_word}) {
+    if (!chooser) continue;
+    const std::string name = chooser->key.substr(chooser->key.rfind('.') + 1);
+    if (!preset_word)
+      loader.expected(
+          *chooser,
+          fmt::format("{} only beside a preset (soil and rooting choose a preset's anchorage)", name));
+    if (anchorage)
+      loader.expected(*chooser, fmt::format("{} only without anchorage (anchorage on line {} replaces the "
+                                            "anchorage soil and rooting choose)",
+                                            name, anchorage->line));
+  }
+
+  trees::TreeStrength strength;
+  std::string preset_text;
+  if (preset_word) {
+    const trees::StrengthPreset preset = *trees::parse_strength_preset(loader.word(*preset_word));
+    trees::SoilGroup soil =
+        *trees::parse_soil_group(schema::key(schema::kSpeciesKeys, "forest.species[].strength.soil").word);
+    trees::RootingDepth rooting = *trees::parse_rooting_depth(
+        schema::key(schema::kSpeciesKeys, "forest.species[].strength.rooting").word);
+    if (soil_word) soil = *trees::parse_soil_group(loader.word(*soil_word));
+    if (rooting_word) rooting = *trees::parse_rooting_depth(loader.word(*rooting_word));
+    // Only a rooting given can miss: the default has an anchorage on every soil.
+    if (!trees::has_anchorage(soil, rooting)) {
+      std::vector<std::string> fit;
+      for (const std::string& word : schema::rooting_depth_words())
+        if (trees::has_anchorage(soil, *trees::parse_rooting_depth(word))) fit.push_back(word);
+      loader.expected(rooting_word.value_or(field),
+                      fmt::format("one of {} (the table has no anchorage for {} rooting on soil {}{})",
+                                  join(fit, " | "), trees::rooting_name(rooting), trees::soil_name(soil),
+                                  soil_word ? fmt::format(", line {}", soil_word->line) : std::string()));
+    }
+    strength = trees::strength_preset(preset, soil, rooting);
+    preset_text = anchorage ? std::string(trees::preset_name(preset))
+                            : fmt::format("{} (soil {}, {} rooting)", trees::preset_name(preset),
+                                          trees::soil_name(soil), trees::rooting_name(rooting));
+  }
+
+  // Without a preset every number is needed; the first missing one, in the table's order, is named.
+  const std::string reason = "needed without a preset";
+  const auto modulus_of_rupture =
+      preset_word ? map.get<"modulus_of_rupture">() : map.require<"modulus_of_rupture">(reason);
+  const auto knot_factor = preset_word ? map.get<"knot_factor">() : map.require<"knot_factor">(reason);
+  const auto green_density = preset_word ? map.get<"green_density">() : map.require<"green_density">(reason);
+  if (!preset_word) map.require<"anchorage">(reason);
+  std::vector<std::string> given;
+  const auto read = [&](const std::optional<Field>& number, double& value) {
+    if (!number) return;
+    value = loader.number(*number);
+    given.push_back(number->key.substr(number->key.rfind('.') + 1));
+  };
+  read(modulus_of_rupture, strength.modulus_of_rupture);
+  read(knot_factor, strength.knot_factor);
+  read(green_density, strength.green_density);
+  read(anchorage, strength.anchorage);
+  // Passes: the keys' ranges lie within TreeStrength's (tests/io/ScenarioSchema_test.cpp).
+  try {
+    strength.validate();
+  } catch (const std::invalid_argument& error) {
+    loader.expected(field, fmt::format("a strength trees::TreeStrength accepts ({})", error.what()));
+  }
+  species.strength = strength;
+  species.strength_line = field.line;
+  species.strength_source = !preset_word    ? std::string("given")
+                            : given.empty() ? preset_text
+                                            : fmt::format("{} given over {}", join(given, ", "), preset_text);
+}
+
 }  // namespace
 
 // global_seed + 1 + its index seeds a species' generator, global_seed + kLeafSeedOffset + its index its
@@ -174,7 +255,7 @@ Species read_species(const Loader& loader, const Field& item, const std::vector<
                      std::uint64_t global_seed) {
   const Section<schema::kSpeciesKeys, "forest.species[]"> map(loader, item);
   Species species;
-  species.line = species.modes.count_line = item.line;
+  species.line = species.modes.count_line = species.strength_line = item.line;
   const Field name = map.require<"name">();
   species.name = loader.text(name);
   for (const Species& other : earlier)
@@ -215,6 +296,7 @@ Species read_species(const Loader& loader, const Field& item, const std::vector<
                               reason, key.number));
     }
   }
+  if (const auto strength = map.get<"strength">()) read_strength(loader, *strength, species);
   return species;
 }
 

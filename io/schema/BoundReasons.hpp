@@ -49,6 +49,13 @@ inline constexpr std::string_view kModulus =
     "wood measures 1e9 to 3e10 Pa: 1e6 Pa is rubber, and nothing is stiffer than diamond (1.2e12 Pa)";
 inline constexpr std::string_view kDensity =
     "wood is 100 to 1,400 kg/m^3: no solid is lighter than air (1.2) or denser than osmium (22,590)";
+inline constexpr std::string_view kModulusOfRupture = "green wood of every species breaks at 10 to 150 MPa";
+inline constexpr std::string_view kKnotFactor = "1 is clear wood: knots only weaken a stem";
+inline constexpr std::string_view kGreenDensity =
+    "green wood weighs about 400 to 1,300 kg/m^3; balsa, the lightest wood, 100 to 200 dry";
+inline constexpr std::string_view kAnchorage =
+    "tree-pulling regressions span about 60 to 300 N m/kg over species, soils and rooting (Nicoll et al. "
+    "2006)";
 inline constexpr std::string_view kDamping =
     "ten times critical damping (1), past which a motion no longer oscillates";
 inline constexpr std::string_view kModes =

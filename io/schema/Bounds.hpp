@@ -93,6 +93,18 @@ inline constexpr double kMinSpecificModulus = 1e6;
 inline constexpr double kMinSpecificShearModulus = 1e5;
 /// A damping ratio: 1 is critical damping, past which a mode no longer oscillates; ten times it.
 inline constexpr double kMaxDampingRatio = 10.0;
+/// Modulus of rupture of green wood, Pa: every species' lies within 10 to 150 MPa (ForestGALES's conifers
+/// 34 to 46 MPa); a tenth of the weakest and twice the strongest.
+inline constexpr double kMinModulusOfRupture = 1.0e6;
+inline constexpr double kMaxModulusOfRupture = 3.0e8;
+/// Green (fresh, sap-laden) wood density, kg/m^3: about 400 to 1,300 (ForestGALES's conifers 850); balsa, the
+/// lightest wood, weighs 100 to 200 kg/m^3 dry.
+inline constexpr double kMinGreenDensity = 100.0;
+inline constexpr double kMaxGreenDensity = 2000.0;
+/// Anchorage C_reg, N m/kg of green stem weight: the tree-pulling regressions of Nicoll et al. (2006) span
+/// about 60 to 300 over species, soils and rooting.
+inline constexpr double kMinAnchorage = 10.0;
+inline constexpr double kMaxAnchorage = 1000.0;
 /// Vibration modes of a species: a 15 m broadleaf's 200th mode is at 13.6 Hz (`forestwind tree modes`), near
 /// the highest frequency a fine grid's wind carries (U / 2h, 20 Hz at 20 m/s and 0.5 m cells); a thousand
 /// lie far above anything the wind drives (and take 40 s to solve for a 1,200-node tree).

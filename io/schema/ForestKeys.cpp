@@ -39,6 +39,19 @@ constexpr KeyDocs kDocs[] = {
     {.path = "forest.drag_law.reference_speed",
      .bounds_why = why::kWindSpeed,
      .description = "U_ref, where the species' drag coefficients hold."},
+    {.path = "forest.damage",
+     .default_note = "no damage",
+     .description = "Storm damage (docs/damage.md): which trees break or overturn in the wind."},
+    {.path = "forest.damage.enabled",
+     .description =
+         "With `true`, a tree fails when the wind's bending moment reaches its species' critical moment for "
+         "stem breakage, M_b = f_knot MOR pi d^3 / 32 at the stem's weakest section, or for overturning, "
+         "M_o = C_reg x green density x stem volume (ForestGALES); every species then needs a `strength`. "
+         "With `false`, no tree fails."},
+    {.path = "forest.damage.consequences",
+     .description = "With `true`, a failed tree falls: it no longer loads the air or moves in the wind. With "
+                    "`false`, failures are recorded and every tree stays up, so that the wind is the one "
+                    "without damage."},
     {.path = "forest.species", .description = "Tree species."},
     {.path = "forest.stands", .description = "Stands: trees scattered over a region."},
     {.path = "forest.trees", .description = "Single trees placed by hand."},

@@ -1,5 +1,5 @@
 // The keys of a scenario's forest section but its species' (io/schema/SpeciesKeys.hpp): the coupling of trees
-// and wind, the integrator, the drag law, and the items of forest.stands and forest.trees.
+// and wind, the integrator, the drag law, storm damage, and the items of forest.stands and forest.trees.
 //
 //   schema::key(schema::kForestKeys, "forest.stands[].layout").word;   // "poisson"
 //
@@ -42,6 +42,9 @@ inline constexpr Key kForestKeys[] = {
      .bound = Bound::positive,
      .at_most = bounds::kMaxWindSpeed,
      .number = fluid::DragLaw{}.reference_speed},
+    {.path = "forest.damage"},
+    {.path = "forest.damage.enabled", .type = Type::boolean, .flag = false},
+    {.path = "forest.damage.consequences", .type = Type::boolean, .flag = true},
     {.path = "forest.species", .type = Type::list, .noun = "a list of species"},
     {.path = "forest.stands", .type = Type::list, .noun = "a list of stands"},
     {.path = "forest.trees", .type = Type::list, .noun = "a list of trees"},

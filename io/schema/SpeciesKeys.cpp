@@ -1,12 +1,14 @@
 // The prose docs/scenario.md prints for each key of kSpeciesKeys (render_scenario_docs,
 // io/ScenarioSchema.cpp): its meaning, and its default, allowed values and limits in words where its type
 // does not say them. Here, not in the header, so that no reader of the keys compiles their prose. And the
-// presets' words, which only the generator knows.
+// words that only the trees know: the generator's presets, and the strength presets, soil groups and rooting
+// depths.
 #include "io/schema/SpeciesKeys.hpp"
 
 #include "io/schema/BoundReasons.hpp"
 
 #include "trees/TreeGenerator.hpp"
+#include "trees/TreeStrength.hpp"
 
 namespace fw::io::schema {
 
@@ -191,12 +193,92 @@ constexpr KeyDocs kDocs[] = {
      .description =
          "Seed of the leaves' positions, angles and petiole strengths. The same seed gives the same "
          "leaves on every machine."},
+    {.path = "forest.species[].strength",
+     .default_note = "none",
+     .constraint = "`preset`, or all four of `modulus_of_rupture`, `knot_factor`, `green_density` and "
+                   "`anchorage`; required for every species when `forest.damage.enabled` is `true`",
+     .description =
+         "How much the species' trees take before they fail, as ForestGALES models it (Gardiner et al. 2000, "
+         "2008; Hale et al. 2015; docs/damage.md has the model). The stem breaks when the bending moment at "
+         "its weakest section, of diameter d, reaches M_b = f_knot MOR pi d^3 / 32; the root-soil plate "
+         "turns over when the moment at the stem base reaches M_o = C_reg x green density x stem volume. "
+         "`preset` gives all four values from ForestGALES's table; the numbers given beside it replace the "
+         "preset's."},
+    {.path = "forest.species[].strength.preset",
+     .default_note = "none",
+     .description =
+         "A species of ForestGALES's published table (docs/damage.md, \"Presets\"): its modulus of "
+         "rupture, knot factor and green density, and its anchorage on `soil` with `rooting`."},
+    {.path = "forest.species[].strength.soil",
+     .constraint = "only with `preset`, and not beside `anchorage`",
+     .description =
+         "The soil group of the preset's anchorage, as in the tree-pulling tests of Nicoll et al. (2006): A "
+         "free-draining mineral soil, B gleyed mineral soil, C peaty mineral soil, D deep peat. It chooses "
+         "C_reg only."},
+    {.path = "forest.species[].strength.rooting",
+     .constraint = "only with `preset`, and not beside `anchorage`; `shallow` and `deep` on soil `A` only, "
+                   "where the table gives them",
+     .description = "The rooting depth of the preset's anchorage. It chooses C_reg only."},
+    {.path = "forest.species[].strength.modulus_of_rupture",
+     .default_note = "the preset's; required without `preset`",
+     .bounds_why = why::kModulusOfRupture,
+     .description = "MOR: the bending stress in the outer fibres of green wood at which it breaks. A stem "
+                    "section of diameter d breaks under the moment f_knot MOR pi d^3 / 32."},
+    {.path = "forest.species[].strength.knot_factor",
+     .default_note = "the preset's; required without `preset`",
+     .bounds_why = why::kKnotFactor,
+     .description = "f_knot: the share of clear wood's strength that the stem keeps with its knots (1: no "
+                    "loss)."},
+    {.path = "forest.species[].strength.green_density",
+     .default_note = "the preset's; required without `preset`",
+     .bounds_why = why::kGreenDensity,
+     .description =
+         "Density of the green (fresh, sap-laden) stem wood, which weighs the stem the roots hold: "
+         "W_stem = green density x stem volume. Not `material.density`, the wood's in the tree's "
+         "motion."},
+    {.path = "forest.species[].strength.anchorage",
+     .default_note = "the preset's on `soil` with `rooting`; required without `preset`",
+     .bounds_why = why::kAnchorage,
+     .description =
+         "C_reg: the slope through zero of the critical turning moment over the green stem weight in "
+         "tree-pulling tests (Nicoll et al. 2006). The roots give way under M_o = C_reg W_stem."},
 };
 
 }  // namespace
 
 std::vector<std::string> preset_words() {
   return trees::preset_names();
+}
+
+namespace {
+
+// The values of trees/TreeStrength.hpp's enums, in their order; their words are trees' own (preset_name,
+// ...).
+using trees::RootingDepth, trees::SoilGroup, trees::StrengthPreset;
+constexpr StrengthPreset kStrengthPresets[] = {StrengthPreset::sitka_spruce, StrengthPreset::norway_spruce,
+                                               StrengthPreset::scots_pine, StrengthPreset::birch};
+constexpr SoilGroup kSoilGroups[] = {SoilGroup::A, SoilGroup::B, SoilGroup::C, SoilGroup::D};
+constexpr RootingDepth kRootingDepths[] = {RootingDepth::shallow, RootingDepth::mean, RootingDepth::deep};
+
+template <typename Enum, std::size_t N>
+std::vector<std::string> names(const Enum (&values)[N], const char* (*name)(Enum)) {
+  std::vector<std::string> words;
+  for (const Enum value : values) words.emplace_back(name(value));
+  return words;
+}
+
+}  // namespace
+
+std::vector<std::string> strength_preset_words() {
+  return names(kStrengthPresets, trees::preset_name);
+}
+
+std::vector<std::string> soil_group_words() {
+  return names(kSoilGroups, trees::soil_name);
+}
+
+std::vector<std::string> rooting_depth_words() {
+  return names(kRootingDepths, trees::rooting_name);
 }
 
 std::span<const KeyDocs> species_docs() {

@@ -1,8 +1,9 @@
 // The keys of an item of a scenario's forest.species: its name, skeleton and wood, its tree model and modes,
-// its drag, its canopy and its leaves. Defaults and limits that belong to the trees (the wood of
-// trees::kDefaultWood, the drag coefficients of trees::WindBasisSettings, the modal defaults of
-// trees::ModalSettings, the models of trees::SpeciesDynamics, the leaves of trees::LeafSettings) are taken
-// from there, so that each value is written once.
+// its drag, its canopy, its leaves and its strength. Defaults and limits that belong to the trees (the wood
+// of trees::kDefaultWood, the drag coefficients of trees::WindBasisSettings, the modal defaults of
+// trees::ModalSettings, the models of trees::SpeciesDynamics, the leaves of trees::LeafSettings, the
+// strength presets' words of trees/TreeStrength.hpp) are taken from there, so that each value is written
+// once.
 //
 //   schema::key(schema::kSpeciesKeys, "forest.species[].modes.count").number;   // trees::ModalSettings{}'s
 //
@@ -40,6 +41,12 @@ inline constexpr trees::TreeDynamics kDynamicsModels[] = {
 /// The generator's presets (trees::preset_names), known at run time.
 std::vector<std::string> preset_words();
 
+/// The strength presets, soil groups and rooting depths of trees/TreeStrength.hpp (preset_name, soil_name,
+/// rooting_name), in the order of their enums.
+std::vector<std::string> strength_preset_words();
+std::vector<std::string> soil_group_words();
+std::vector<std::string> rooting_depth_words();
+
 // Defaults owned elsewhere:
 inline constexpr trees::WindBasisSettings kDragDefaults{};
 inline constexpr trees::LeafSettings kLeafDefaults{};
@@ -48,6 +55,10 @@ inline constexpr trees::SpeciesDynamics kDynamicsDefaults{};
 /// it has no meaning for one element turning about its base). TreeDynamics.cpp keeps its limit to itself, so
 /// it is written here too; tests/io/ScenarioSchema_test.cpp holds the two equal.
 inline constexpr double kSpringMaxAngleBelowDeg = 90.0;
+/// strength.knot_factor is at most 1 (clear wood), as trees::TreeStrength::validate checks. TreeStrength.cpp
+/// keeps its limit to itself, so it is written here too; tests/io/ScenarioSchema_test.cpp holds the two
+/// equal.
+inline constexpr double kMaxKnotFactor = 1.0;
 
 inline constexpr Key kSpeciesKeys[] = {
     {.path = "forest.species[].name", .type = Type::text, .required = true, .noun = "a species name"},
@@ -214,6 +225,37 @@ inline constexpr Key kSpeciesKeys[] = {
      .at_most = bounds::kMaxWindSpeed,
      .number = kLeafDefaults.reference_speed},
     {.path = "forest.species[].leaves.seed", .type = Type::seed},
+    // The defaults of soil and rooting are trees::strength_preset's (tests/io/ScenarioSchema_test.cpp); the
+    // numbers have none: a preset's, else required.
+    {.path = "forest.species[].strength"},
+    {.path = "forest.species[].strength.preset", .type = Type::word, .run_time_words = strength_preset_words},
+    {.path = "forest.species[].strength.soil",
+     .type = Type::word,
+     .run_time_words = soil_group_words,
+     .word = "A"},
+    {.path = "forest.species[].strength.rooting",
+     .type = Type::word,
+     .run_time_words = rooting_depth_words,
+     .word = "mean"},
+    {.path = "forest.species[].strength.modulus_of_rupture",
+     .type = Type::number,
+     .unit = "Pa",
+     .at_least = bounds::kMinModulusOfRupture,
+     .at_most = bounds::kMaxModulusOfRupture},
+    {.path = "forest.species[].strength.knot_factor",
+     .type = Type::number,
+     .bound = Bound::positive,
+     .at_most = kMaxKnotFactor},
+    {.path = "forest.species[].strength.green_density",
+     .type = Type::number,
+     .unit = "kg/m^3",
+     .at_least = bounds::kMinGreenDensity,
+     .at_most = bounds::kMaxGreenDensity},
+    {.path = "forest.species[].strength.anchorage",
+     .type = Type::number,
+     .unit = "N m/kg",
+     .at_least = bounds::kMinAnchorage,
+     .at_most = bounds::kMaxAnchorage},
 };
 
 /// The prose of each key of kSpeciesKeys (SpeciesKeys.cpp), which schema::docs (io/ScenarioSchema.hpp) finds

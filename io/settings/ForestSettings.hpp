@@ -1,6 +1,6 @@
 // The forest section of a scenario (docs/scenario.md, "forest"): the coupling of trees and wind, the
-// integrator, the drag law, the species (io/settings/Species.hpp), the stands and the trees placed by hand.
-// Defaults are the schema's (io/schema/ForestKeys.hpp).
+// integrator, the drag law, storm damage, the species (io/settings/Species.hpp), the stands and the trees
+// placed by hand. Defaults are the schema's (io/schema/ForestKeys.hpp).
 //
 //   for (const fw::io::Stand& stand : forest.stands) trees::place_stand(stand.layout, ...);
 //   forest.species[forest.trees[0].species_index].name;
@@ -45,6 +45,16 @@ struct PlacedTreeSettings {
   int scale_line = 0;  ///< the line of scale (of the entry when not given)
 };
 
+/// forest.damage (docs/damage.md): whether trees break or overturn, and what a failure does.
+struct DamageSettings {
+  /// Trees fail at their species' critical moments; every species has a strength then.
+  bool enabled = schema::key(schema::kForestKeys, "forest.damage.enabled").flag;
+  /// true: a failed tree falls and stops loading the air; false: failures are recorded, trees stay up.
+  bool consequences = schema::key(schema::kForestKeys, "forest.damage.consequences").flag;
+  /// The line of forest.damage.enabled (of forest.damage when not given; 0 without forest.damage).
+  int line = 0;
+};
+
 struct ForestSettings {
   /// trees' drag returned to the wind
   bool two_way_coupling = schema::key(schema::kForestKeys, "forest.two_way_coupling").flag;
@@ -55,6 +65,7 @@ struct ForestSettings {
   /// Diener's (2008, section 5.2) quadratic correction of the linear modal displacement on output frames.
   bool strong_wind_correction = schema::key(schema::kForestKeys, "forest.strong_wind_correction").flag;
   fluid::DragLaw drag_law;  ///< forest.drag_law (validated by the reader's bounds)
+  DamageSettings damage;
   std::vector<Species> species;
   std::vector<Stand> stands;
   std::vector<PlacedTreeSettings> trees;

@@ -1,5 +1,5 @@
 // An item of a scenario's forest.species (docs/scenario.md, "forest.species[]"): where its skeleton comes
-// from, its wood, tree model, modes, drag, canopy and leaves. Defaults are the schema's
+// from, its wood, tree model, modes, drag, canopy, leaves and strength. Defaults are the schema's
 // (io/schema/SpeciesKeys.hpp), which takes them from the trees' own types where they are defined.
 //
 //   fw::io::Species species;    // the default wood, modal dynamics, no leaves
@@ -8,6 +8,7 @@
 
 #include <cstdint>
 #include <filesystem>
+#include <optional>
 #include <string>
 
 #include "io/schema/SpeciesKeys.hpp"
@@ -15,6 +16,7 @@
 #include "trees/Material.hpp"
 #include "trees/TreeDynamics.hpp"
 #include "trees/TreeGenerator.hpp"
+#include "trees/TreeStrength.hpp"
 
 namespace fw::io {
 
@@ -76,6 +78,14 @@ struct Species {
   /// resolved (kLeafSeedOffset). Model none (no leaves) when the file has no `leaves`; with leaves,
   /// canopy.leaf_area_index > 0.
   trees::LeafSettings leaves{.model = trees::FlutterModel::none};
+  /// forest.species[].strength: a preset's values on its soil and rooting with the numbers given over them,
+  /// or the four numbers given; validated. nullopt when the file has no `strength` (required when
+  /// forest.damage.enabled is true).
+  std::optional<trees::TreeStrength> strength;
+  int strength_line = 0;  ///< the line of `strength` (of the species entry when not given)
+  /// Where the strength comes from, for reports: "sitka_spruce (soil A, mean rooting)", "given", or the keys
+  /// given over a preset, "knot_factor given over norway_spruce (soil A, mean rooting)". Empty without one.
+  std::string strength_source;
 };
 
 }  // namespace fw::io

@@ -129,6 +129,29 @@ expect_bad(stand_lai_above "${WORK}/stand_lai_above.yaml:11" "forest.stands[0].l
 expect_bad(stand_lai_no_crown "${WORK}/stand_lai_no_crown.yaml:11" "forest.stands[0].leaf_area_index" "  trees:"
            "  stands:\n    - {species: shrub, region: {min: [4, 4], max: [12, 12]}, spacing: 4, leaf_area_index: 2}\n  trees:")
 
+# Storm damage's keys: an unknown strength preset; a knot factor past clear wood's 1; deep rooting, which the
+# table gives on soil A only, on soil C; a strength without a preset that lacks one of its four numbers; a
+# modulus of rupture past any wood's; damage enabled with a species without strength (its entry's line).
+expect_bad(strength_preset "${WORK}/strength_preset.yaml:10"
+           "forest.species[0].strength.preset: one of sitka_spruce | norway_spruce | scots_pine | birch expected, got 'oak'"
+           "modes: {count: 4}" "modes: {count: 4}\n      strength: {preset: oak}")
+expect_bad(strength_knot_factor "${WORK}/strength_knot_factor.yaml:10"
+           "forest.species[0].strength.knot_factor: a number > 0 and <= 1 expected, got '1.5'"
+           "modes: {count: 4}" "modes: {count: 4}\n      strength: {preset: norway_spruce, knot_factor: 1.5}")
+expect_bad(strength_deep_on_c "${WORK}/strength_deep_on_c.yaml:10"
+           "forest.species[0].strength.rooting: one of mean (the table has no anchorage for deep rooting on soil C, line 10) expected, got 'deep'"
+           "modes: {count: 4}" "modes: {count: 4}\n      strength: {preset: sitka_spruce, soil: C, rooting: deep}")
+expect_bad(strength_no_anchorage "${WORK}/strength_no_anchorage.yaml:10"
+           "forest.species[0].strength.anchorage: a number >= 10 and <= 1000 (N m/kg), needed without a preset expected (required), got nothing"
+           "modes: {count: 4}"
+           "modes: {count: 4}\n      strength: {modulus_of_rupture: 4.0e7, knot_factor: 0.9, green_density: 850}")
+expect_bad(strength_mor_bound "${WORK}/strength_mor_bound.yaml:10"
+           "forest.species[0].strength.modulus_of_rupture: a number >= 1e6 and <= 3e8 (Pa) expected, got '1e30'"
+           "modes: {count: 4}" "modes: {count: 4}\n      strength: {preset: scots_pine, modulus_of_rupture: 1e30}")
+expect_bad(damage_without_strength "${WORK}/damage_without_strength.yaml:8"
+           "forest.species[0].strength: a map {preset, soil, rooting, modulus_of_rupture, knot_factor, green_density, anchorage} expected (required: forest.damage.enabled is true on line 6), got nothing"
+           "  species:" "  damage: {enabled: true}\n  species:")
+
 # The example scenarios are valid.
 file(GLOB examples "${SCENARIOS}/*.yaml")
 foreach(example ${examples})

@@ -31,6 +31,7 @@
 #include "io/schema/WindKeys.hpp"
 #include "trees/LeafSettings.hpp"
 #include "trees/TreeDynamics.hpp"
+#include "trees/TreeStrength.hpp"
 
 namespace schema = fw::io::schema;
 
@@ -401,6 +402,91 @@ TEST_CASE("schema: the tree model keys take trees::SpeciesDynamics' defaults, wo
     }
   }
   CHECK(model_key("springs.max_angle_deg").below == schema::kSpringMaxAngleBelowDeg);
+}
+
+TEST_CASE("schema: the strength keys take trees::TreeStrength's words, defaults and limits", "[schema]") {
+  namespace trees = fw::trees;
+  const auto strength_key = [](const char* name) {
+    return *schema::find(std::string("forest.species[].strength.") + name);
+  };
+  // The words are trees' own: each parses back to the value whose name it is, once.
+  const auto round_trip = [](const std::vector<std::string>& words, auto parse, auto name) {
+    std::set<std::string> seen;
+    for (const std::string& word : words) {
+      INFO(word);
+      REQUIRE(parse(word).has_value());
+      CHECK(name(*parse(word)) == word);
+      CHECK(seen.insert(word).second);
+    }
+  };
+  round_trip(schema::words(strength_key("preset")), trees::parse_strength_preset, trees::preset_name);
+  round_trip(schema::words(strength_key("soil")), trees::parse_soil_group, trees::soil_name);
+  round_trip(schema::words(strength_key("rooting")), trees::parse_rooting_depth, trees::rooting_name);
+  CHECK(schema::expected(strength_key("preset")) ==
+        "one of sitka_spruce | norway_spruce | scots_pine | birch");
+  CHECK(schema::expected(strength_key("soil")) == "one of A | B | C | D");
+  CHECK(schema::expected(strength_key("rooting")) == "one of shallow | mean | deep");
+  CHECK(schema::child_names("forest.species[].strength") ==
+        std::vector<std::string>{"preset", "soil", "rooting", "modulus_of_rupture", "knot_factor",
+                                 "green_density", "anchorage"});
+  // The default soil and rooting are trees::strength_preset's.
+  const trees::SoilGroup soil = *trees::parse_soil_group(strength_key("soil").word);
+  const trees::RootingDepth rooting = *trees::parse_rooting_depth(strength_key("rooting").word);
+  for (const std::string& word : schema::words(strength_key("preset"))) {
+    INFO(word);
+    const trees::StrengthPreset preset = *trees::parse_strength_preset(word);
+    CHECK(trees::strength_preset(preset).anchorage ==
+          trees::strength_preset(preset, soil, rooting).anchorage);
+  }
+
+  // Every number's range lies within what TreeStrength::validate takes (which the loader still calls), and
+  // knot_factor's upper limit is validate's own.
+  const auto valid = [](double trees::TreeStrength::*member, double value) {
+    trees::TreeStrength strength = trees::strength_preset(trees::StrengthPreset::sitka_spruce);
+    strength.*member = value;
+    try {
+      strength.validate();
+      return true;
+    } catch (const std::invalid_argument&) {
+      return false;
+    }
+  };
+  using Strength = trees::TreeStrength;
+  const std::pair<const char*, double Strength::*> numbers[] = {
+      {"modulus_of_rupture", &Strength::modulus_of_rupture},
+      {"knot_factor", &Strength::knot_factor},
+      {"green_density", &Strength::green_density},
+      {"anchorage", &Strength::anchorage}};
+  for (const auto& [name, member] : numbers) {
+    INFO("strength." << name);
+    const schema::Key& key = strength_key(name);
+    REQUIRE(key.at_most < schema::kNoNumberLimit);
+    CHECK(valid(member, key.at_most));
+    if (key.bound == schema::Bound::positive) {
+      CHECK(valid(member, 1e-12 * key.at_most));
+      CHECK_FALSE(valid(member, 0.0));
+    } else {
+      CHECK(key.at_least > 0.0);
+      CHECK(valid(member, key.at_least));
+    }
+  }
+  CHECK(strength_key("knot_factor").at_most == schema::kMaxKnotFactor);
+  CHECK_FALSE(valid(&Strength::knot_factor, std::nextafter(schema::kMaxKnotFactor, 2.0)));
+  // The presets lie within the keys' bounds, so that a preset's values written out load as they are.
+  for (const std::string& word : schema::words(strength_key("preset"))) {
+    const trees::TreeStrength preset = trees::strength_preset(*trees::parse_strength_preset(word));
+    for (const auto& [name, member] : numbers) {
+      INFO(word << " strength." << name);
+      const schema::Key& key = strength_key(name);
+      CHECK(preset.*member >= key.at_least);
+      CHECK(preset.*member <= key.at_most);
+    }
+  }
+
+  // forest.damage: off, and when on, a failed tree falls.
+  CHECK_FALSE(key_at("forest.damage.enabled").flag);
+  CHECK(key_at("forest.damage.consequences").flag);
+  CHECK(schema::child_names("forest.damage") == std::vector<std::string>{"enabled", "consequences"});
 }
 
 TEST_CASE("schema: a page whose tables leave a key out, or leave a table open, is refused", "[schema]") {

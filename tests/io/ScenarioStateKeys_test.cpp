@@ -56,3 +56,29 @@ TEST_CASE("ScenarioStateKeys: a changed, added or removed key is refused with it
   changed.erase(changed.find("seed: 3\n"), 8);
   CHECK(refusal(changed).starts_with("b.yaml: seed: " + expected));
 }
+
+TEST_CASE("ScenarioStateKeys: storm damage and the species' strength keep their values on a resume", "[io]") {
+  // Which trees have failed is state: the keys that decide it are the forest's, which a resume may not
+  // change.
+  const std::string forest =
+      "forest:\n"
+      "  damage: {enabled: true}\n"
+      "  species:\n"
+      "    - {name: pine, skeleton: {generate: {preset: conifer}}, strength: {preset: scots_pine}}\n";
+  const auto refused = [&](const std::string& changed) {
+    try {
+      fw::io::require_same_state(fw::io::state_keys(kScenario + forest),
+                                 fw::io::state_keys(kScenario + changed), "b.yaml");
+    } catch (const fw::base::SourceError& e) {
+      return std::string(e.what());
+    }
+    return std::string("accepted");
+  };
+  CHECK(refused(forest) == "accepted");
+  std::string changed = forest;
+  changed.replace(changed.find("{enabled: true}"), 15, "{enabled: true, consequences: false}");
+  CHECK(refused(changed).starts_with("b.yaml:8: forest.damage: the value the checkpoint was written with"));
+  changed = forest;
+  changed.replace(changed.find("{preset: scots_pine}"), 20, "{preset: scots_pine, soil: B}");
+  CHECK(refused(changed).starts_with("b.yaml:9: forest.species: the value the checkpoint was written with"));
+}

@@ -1963,3 +1963,166 @@ wind: {speed: 4.0, direction: 270}
       "[0, 1]}\nwind: {speed: 4.0, direction: 270}\n",
       3, "domain.decomposition[0]", "a number >= 1 and <= 2147483647 expected, got '0'");
 }
+
+namespace {
+
+// kBase and two species: `oak`, whose strength is `oak_strength`, and `ash`, whose strength is
+// `ash_strength`; `damage_line` (forest.damage, say) stands first in forest, on line 6, and moves the rest
+// one line down.
+std::string strong_species(const std::string& oak_strength, const std::string& damage_line = "",
+                           const std::string& ash_strength = "      strength: {preset: birch}\n") {
+  return kBase + "forest:\n" +                                  // 5
+         damage_line +                                          // (6)
+         "  species:\n"                                         // 6
+         "    - name: oak\n"                                    // 7
+         "      skeleton: {generate: {preset: broadleaf}}\n" +  // 8
+         oak_strength +                                         // 9
+         "    - name: ash\n"                                    // 10 (with oak's strength on one line)
+         "      skeleton: {generate: {preset: broadleaf}}\n" +  // 11
+         ash_strength;                                          // 12
+}
+
+}  // namespace
+
+TEST_CASE("load_scenario: a species' strength is its preset's on its soil and rooting, numbers given over it",
+          "[scenario]") {
+  using fw::trees::RootingDepth, fw::trees::SoilGroup, fw::trees::StrengthPreset;
+  fw::test::TempDir dir("fw_scenario");
+  const Scenario s = fw::io::load_scenario(dir.write("strength.yaml", kBase + R"(forest:
+  damage: {enabled: true, consequences: false}
+  species:
+    - name: spruce
+      skeleton: {generate: {preset: conifer}}
+      strength: {preset: norway_spruce, knot_factor: 0.7}
+    - name: gleyed
+      skeleton: {generate: {preset: conifer}}
+      strength:
+        preset: norway_spruce
+        soil: B
+    - name: deep
+      skeleton: {generate: {preset: conifer}}
+      strength: {preset: sitka_spruce, rooting: deep}
+    - name: measured
+      skeleton: {generate: {preset: broadleaf}}
+      strength: {modulus_of_rupture: 4.0e7, knot_factor: 0.95, green_density: 900, anchorage: 140}
+)"));
+  CHECK(s.forest.damage.enabled);
+  CHECK_FALSE(s.forest.damage.consequences);
+  CHECK(s.forest.damage.line == 6);
+  REQUIRE(s.forest.species.size() == 4);
+
+  // The explicit knot factor replaces norway_spruce's 0.9; the other three are the preset's (soil A, mean).
+  const fw::io::Species& spruce = s.forest.species[0];
+  const fw::trees::TreeStrength norway = fw::trees::strength_preset(StrengthPreset::norway_spruce);
+  REQUIRE(spruce.strength.has_value());
+  CHECK(norway.knot_factor == 0.9);
+  CHECK(spruce.strength->knot_factor == 0.7);
+  CHECK(spruce.strength->modulus_of_rupture == norway.modulus_of_rupture);
+  CHECK(spruce.strength->green_density == norway.green_density);
+  CHECK(spruce.strength->anchorage == norway.anchorage);
+  CHECK(spruce.strength_line == 10);
+  CHECK(spruce.strength_source == "knot_factor given over norway_spruce (soil A, mean rooting)");
+
+  // Soil B: the table's anchorage on gleyed mineral soil, weaker than on soil A; the wood is the preset's.
+  const fw::io::Species& gleyed = s.forest.species[1];
+  REQUIRE(gleyed.strength.has_value());
+  CHECK(
+      gleyed.strength->anchorage ==
+      fw::trees::strength_preset(StrengthPreset::norway_spruce, SoilGroup::B, RootingDepth::mean).anchorage);
+  CHECK(gleyed.strength->anchorage < norway.anchorage);
+  CHECK(gleyed.strength->modulus_of_rupture == norway.modulus_of_rupture);
+  CHECK(gleyed.strength_line == 14);  // a block map: its first key's line, as the loader blames maps
+  CHECK(gleyed.strength_source == "norway_spruce (soil B, mean rooting)");
+
+  const fw::io::Species& deep = s.forest.species[2];
+  REQUIRE(deep.strength.has_value());
+  CHECK(deep.strength->anchorage ==
+        fw::trees::strength_preset(StrengthPreset::sitka_spruce, SoilGroup::A, RootingDepth::deep).anchorage);
+  CHECK(deep.strength_source == "sitka_spruce (soil A, deep rooting)");
+
+  // Without a preset, the four numbers as given.
+  const fw::io::Species& measured = s.forest.species[3];
+  REQUIRE(measured.strength.has_value());
+  CHECK(measured.strength->modulus_of_rupture == 4.0e7);
+  CHECK(measured.strength->knot_factor == 0.95);
+  CHECK(measured.strength->green_density == 900.0);
+  CHECK(measured.strength->anchorage == 140.0);
+  CHECK(measured.strength_source == "given");
+}
+
+TEST_CASE("load_scenario: without strength and damage, no strength, damage off and its consequences on",
+          "[scenario]") {
+  fw::test::TempDir dir("fw_scenario");
+  const Scenario s = fw::io::load_scenario(dir.write("no_damage.yaml", strong_species("", "", "")));
+  REQUIRE(s.forest.species.size() == 2);
+  for (const fw::io::Species& species : s.forest.species) {
+    CHECK_FALSE(species.strength.has_value());
+    CHECK(species.strength_source.empty());
+    CHECK(species.strength_line == species.line);
+  }
+  CHECK_FALSE(s.forest.damage.enabled);
+  CHECK(s.forest.damage.consequences);
+  CHECK(s.forest.damage.line == 0);
+  CHECK_FALSE(fw::io::DamageSettings{}.enabled);
+  CHECK(fw::io::DamageSettings{}.consequences);
+  // Damage off: a species may go without strength beside one with it; damage: {} is damage off.
+  const Scenario mixed =
+      fw::io::load_scenario(dir.write("mixed.yaml", strong_species("", "  damage: {consequences: false}\n")));
+  CHECK_FALSE(mixed.forest.damage.enabled);
+  CHECK_FALSE(mixed.forest.species[0].strength.has_value());
+  CHECK(mixed.forest.species[1].strength.has_value());
+}
+
+TEST_CASE("load_scenario: bad strength and damage keys name the key and say what is expected", "[scenario]") {
+  fw::test::TempDir dir("fw_scenario");
+  const std::string key = "forest.species[0].strength.";
+  expect_error(dir, "strength_preset", strong_species("      strength: {preset: oak}\n"), 9, key + "preset",
+               "one of sitka_spruce | norway_spruce | scots_pine | birch expected, got 'oak'");
+  expect_error(dir, "strength_soil_word", strong_species("      strength: {preset: birch, soil: E}\n"), 9,
+               key + "soil", "one of A | B | C | D expected, got 'E'");
+  expect_error(dir, "strength_knot_factor",
+               strong_species("      strength: {preset: scots_pine, knot_factor: 1.5}\n"), 9,
+               key + "knot_factor", "a number > 0 and <= 1 expected, got '1.5'");
+  expect_error(dir, "strength_mor_bound",
+               strong_species("      strength: {preset: scots_pine, modulus_of_rupture: 1e30}\n"), 9,
+               key + "modulus_of_rupture", "a number >= 1e6 and <= 3e8 (Pa) expected, got '1e30'");
+  expect_error(dir, "strength_density_bound",
+               strong_species("      strength: {preset: scots_pine, green_density: 50}\n"), 9,
+               key + "green_density", "a number >= 100 and <= 2000 (kg/m^3) expected, got '50'");
+  expect_error(dir, "strength_anchorage_bound",
+               strong_species("      strength: {preset: scots_pine, anchorage: 5000}\n"), 9,
+               key + "anchorage", "a number >= 10 and <= 1000 (N m/kg) expected, got '5000'");
+  // Shallow and deep rooting: soil A only.
+  expect_error(
+      dir, "strength_deep_on_c",
+      strong_species("      strength:\n        preset: sitka_spruce\n        soil: C\n"
+                     "        rooting: deep\n"),
+      12, key + "rooting",
+      "one of mean (the table has no anchorage for deep rooting on soil C, line 11) expected, got 'deep'");
+  // Soil and rooting choose a preset's anchorage only.
+  expect_error(dir, "strength_soil_without_preset",
+               strong_species("      strength: {soil: B, modulus_of_rupture: 4e7, knot_factor: 1, "
+                              "green_density: 850, anchorage: 140}\n"),
+               9, key + "soil", "soil only beside a preset (soil and rooting choose a preset's anchorage)");
+  expect_error(dir, "strength_rooting_beside_anchorage",
+               strong_species("      strength: {preset: birch, rooting: deep, anchorage: 140}\n"), 9,
+               key + "rooting", "rooting only without anchorage (anchorage on line 9 replaces");
+  // Without a preset, the first number missing, in the table's order, at the map's line.
+  expect_error(
+      dir, "strength_no_anchorage",
+      strong_species("      strength: {modulus_of_rupture: 4e7, knot_factor: 1, green_density: 850}\n"), 9,
+      key + "anchorage",
+      "a number >= 10 and <= 1000 (N m/kg), needed without a preset expected (required), got nothing");
+  expect_error(dir, "strength_empty", strong_species("      strength: {}\n"), 9, key + "modulus_of_rupture",
+               "needed without a preset expected (required), got nothing");
+  // Damage needs every species' strength: the one without is named at its entry's line.
+  expect_error(dir, "damage_without_strength",
+               strong_species("      strength: {preset: birch}\n", "  damage: {enabled: true}\n", ""), 11,
+               "forest.species[1].strength",
+               "a map {preset, soil, rooting, modulus_of_rupture, knot_factor, green_density, anchorage} "
+               "expected (required: forest.damage.enabled is true on line 6), got nothing");
+  expect_error(dir, "damage_enabled_word", strong_species("", "  damage: {enabled: yes}\n"), 6,
+               "forest.damage.enabled", "true or false expected, got 'yes'");
+  expect_error(dir, "damage_unknown_key", strong_species("", "  damage: {enable: true}\n"), 6,
+               "forest.damage.enable", "one of the keys enabled, consequences expected");
+}
