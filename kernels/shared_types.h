@@ -333,4 +333,33 @@ typedef struct FwLeafSpecies {
 #define FW_REST_STRENGTH 27 /* petiole strength, N */
 #define FW_REST_FIELDS 28
 
+/* --- Storm damage (trees/TreeDamage.hpp, docs/damage.md) -------------------------------------------------
+ * What happened to a tree: FwTreeDamage.state. */
+#define FW_TREE_STANDING 0
+#define FW_TREE_BROKEN 1
+#define FW_TREE_OVERTURNED 2
+
+/* A species' stem loads (trees/StemLoads.hpp) and critical moments, at scale 1. maps: per section 4 rows of
+ * m floats (the elastic moment on e1, on e2, the weight's on e1, on e2; N m per unit q), then the root's 4
+ * rows (elastic x, y, weight x, y). sections: per section its height above the root (m) and its breaking
+ * moment M_b (N m). */
+typedef struct FwStem {
+  fw_int section_count;  /* J */
+  fw_int map_offset;     /* first float of its maps: 4 m (J + 1) floats */
+  fw_int section_offset; /* first float of its sections: 2 J floats */
+  float overturning;     /* M_o, N m */
+} FwStem;
+
+/* A tree's damage record: what the device updates every step (trees/TreeDamage.hpp TreeDamageRecord). */
+typedef struct FwTreeDamage {
+  fw_int state;          /* FW_TREE_* */
+  fw_int failed_section; /* the section that broke, -1 */
+  float time;            /* s: when it failed */
+  float break_height;    /* m above the root (0 when overturned) */
+  float top_wind[3];     /* m/s at its top (its highest wind sample) when it failed */
+  float max_utilisation; /* the largest applied-to-critical ratio over the run */
+  float max_base_moment; /* N m, the largest root moment over the run */
+  float utilisation;     /* the last step's largest */
+} FwTreeDamage;
+
 #endif

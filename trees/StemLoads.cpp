@@ -33,7 +33,8 @@ Eigen::MatrixXd subtree_totals(const Skeleton& skeleton, const Eigen::MatrixXd& 
 }
 
 void require_finite(const char* what, const Eigen::MatrixXd& values) {
-  if (!values.allFinite()) throw std::invalid_argument(fmt::format("StemLoads: {} holds a non-finite value", what));
+  if (!values.allFinite())
+    throw std::invalid_argument(fmt::format("StemLoads: {} holds a non-finite value", what));
 }
 
 // The unit normal pair (e1, e2) of the plane normal to the stem's axis t: e1 horizontal unless t is within
@@ -90,7 +91,8 @@ Eigen::MatrixXd section_moments_of_forces(const Skeleton& skeleton, const std::v
                                           const Eigen::MatrixXd& forces) {
   const int n = skeleton.size();
   if (forces.rows() != kAxes * n)
-    throw std::invalid_argument(fmt::format("StemLoads: forces have {} rows, expected 3 x {}", forces.rows(), n));
+    throw std::invalid_argument(
+        fmt::format("StemLoads: forces have {} rows, expected 3 x {}", forces.rows(), n));
   Eigen::MatrixXd own_moments(forces.rows(), forces.cols());
   for (int k = 0; k < n; ++k)
     own_moments.middleRows(kAxes * k, kAxes) =
@@ -127,7 +129,8 @@ Eigen::MatrixXd section_moments_of_weight(const Skeleton& skeleton, const std::v
   const Eigen::MatrixXd weighted_totals = subtree_totals(skeleton, weighted);
   const Eigen::MatrixXd mass_totals = subtree_totals(skeleton, mass_rows);
 
-  Eigen::MatrixXd moments = Eigen::MatrixXd::Zero(kAxes * Eigen::Index(sections.size()), displacements.cols());
+  Eigen::MatrixXd moments =
+      Eigen::MatrixXd::Zero(kAxes * Eigen::Index(sections.size()), displacements.cols());
   for (std::size_t j = 0; j < sections.size(); ++j) {
     const int node = sections[j];
     const double mass_above = mass_totals(kAxes * node) - masses(node);
@@ -192,17 +195,17 @@ StemLoads StemLoads::compute(const Skeleton& skeleton, const BeamModel& model, c
 }
 
 StemLoads StemLoads::from_values(std::vector<StemSection> profile, Eigen::VectorXd arc_length,
-                                 Eigen::MatrixXd elastic, Eigen::MatrixXd weight, Eigen::MatrixXd root_elastic,
-                                 Eigen::MatrixXd root_weight) {
+                                 Eigen::MatrixXd elastic, Eigen::MatrixXd weight,
+                                 Eigen::MatrixXd root_elastic, Eigen::MatrixXd root_weight) {
   const Eigen::Index J = Eigen::Index(profile.size()) - 1;
   if (J < 1 || arc_length.size() != Eigen::Index(profile.size()) || elastic.rows() != kPlane * J ||
       weight.rows() != elastic.rows() || weight.cols() != elastic.cols() || root_elastic.rows() != kPlane ||
       root_weight.rows() != kPlane || root_elastic.cols() != elastic.cols() ||
       root_weight.cols() != elastic.cols()) {
-    throw std::invalid_argument(
-        fmt::format("StemLoads: {} stem nodes, maps {} x {} and {} x {}, root maps {} x {}: sizes that do not fit",
-                    profile.size(), elastic.rows(), elastic.cols(), weight.rows(), weight.cols(),
-                    root_elastic.rows(), root_elastic.cols()));
+    throw std::invalid_argument(fmt::format(
+        "StemLoads: {} stem nodes, maps {} x {} and {} x {}, root maps {} x {}: sizes that do not fit",
+        profile.size(), elastic.rows(), elastic.cols(), weight.rows(), weight.cols(), root_elastic.rows(),
+        root_elastic.cols()));
   }
   require_finite("the elastic map", elastic);
   require_finite("the weight map", weight);
@@ -230,7 +233,8 @@ std::vector<StemSection> StemLoads::sections() const {
 Eigen::VectorXd StemLoads::bending_moments(const Eigen::VectorXd& q) const {
   const Eigen::VectorXd planar = (elastic_ + weight_) * q;
   Eigen::VectorXd moments(section_count());
-  for (int j = 0; j < section_count(); ++j) moments(j) = std::hypot(planar(kPlane * j), planar(kPlane * j + 1));
+  for (int j = 0; j < section_count(); ++j)
+    moments(j) = std::hypot(planar(kPlane * j), planar(kPlane * j + 1));
   return moments;
 }
 

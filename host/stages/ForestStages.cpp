@@ -176,6 +176,7 @@ StageState ForestStages::save_state() {
   state.save(cc_, saved::kModalState, state_);
   if (unresolved_on_) state.save(cc_, saved::kTravelled, travel_);
   if (branches_) branches_->save_state(state);
+  if (damage_) damage_->save_state(state);
   return state;
 }
 
@@ -184,6 +185,12 @@ void ForestStages::restore_state(const StageState& state) {
   state.restore(cc_, kStage, saved::kModalState, state_);
   if (unresolved_on_) state.restore(cc_, kStage, saved::kTravelled, travel_);
   if (branches_) branches_->restore_state(state);
+  if (damage_) damage_->restore_state(state);
+}
+
+void ForestStages::set_damage(const trees::Forest& forest, const trees::DamageSettings& settings) {
+  damage_.reset();
+  if (settings.enabled) damage_.emplace(cc_, forest, settings);
 }
 
 void ForestStages::enqueue_equilibrium() {

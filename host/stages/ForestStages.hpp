@@ -33,6 +33,7 @@
 #include "host/runtime/ComputeContext.hpp"
 #include "host/stages/BlockGrid.hpp"
 #include "host/stages/BranchStages.hpp"
+#include "host/stages/DamageStages.hpp"
 #include "host/stages/FluidStages.hpp"
 #include "host/stages/StageState.hpp"
 #include "host/stages/WindAtPoints.hpp"
@@ -111,6 +112,18 @@ class ForestStages {
   /// The element models' stage, when any species has one (over ranks on every rank); else null.
   BranchStages* branches() { return branches_ ? &*branches_ : nullptr; }
 
+  /// Storm damage (docs/damage.md) for `forest`, the forest this stage was built from: from now on
+  /// enqueue_damage_check computes every tree's loads against its strength and records its failure. Throws
+  /// what DamageStages throws.
+  void set_damage(const trees::Forest& forest, const trees::DamageSettings& settings);
+  /// The damage stage, when set; else null.
+  DamageStages* damage() { return damage_ ? &*damage_ : nullptr; }
+  /// Every tree's loads and failure check at `time` (s, after the step), after enqueue_modal_step; nothing
+  /// without damage.
+  void enqueue_damage_check(float time) {
+    if (damage_) damage_->enqueue_loads(time, instances_, species_, state_, samples_->wind());
+  }
+
   /// Blocking reads. Displacements: #total nodes by 3 (m, world frame); sampled wind: #total samples by 3
   /// (m/s, world frame); forces: #total modes (N / kg^1/2).
   std::vector<float> download_displacements();
@@ -183,6 +196,7 @@ class ForestStages {
   Kernel unresolved_load_, unresolved_advance_;
   Kernel equilibrium_;
   std::optional<BranchStages> branches_;
+  std::optional<DamageStages> damage_;
 };
 
 }  // namespace fw::host

@@ -25,6 +25,8 @@ inline constexpr const char* kTravelled = "travelled";
 // BranchStages (the element tree models): FW_JOINT_FLOATS an entry of an element tree; the springs' clock.
 inline constexpr const char* kJointState = "joints";
 inline constexpr const char* kBranchClock = "branch_clock";
+// DamageStages (storm damage): an FwTreeDamage record a tree.
+inline constexpr const char* kDamage = "damage";
 
 // LeafStages: per slot a state byte, four float4 and the flight drag; per own leaf the flutter angle and
 // rate; the counters.

@@ -102,6 +102,23 @@ namespace {
   X(FwBranchTree, instance);          \
   X(FwBranchTree, entry_offset);      \
   X(FwBranchTree, id)
+// The damage structs (packed by host/stages/DamageStages).
+#define FW_DAMAGE_STRUCTS(X) \
+  X(FwStem);                 \
+  X(FwTreeDamage)
+#define FW_DAMAGE_FIELDS(X)         \
+  X(FwStem, section_count);         \
+  X(FwStem, map_offset);            \
+  X(FwStem, section_offset);        \
+  X(FwStem, overturning);           \
+  X(FwTreeDamage, state);           \
+  X(FwTreeDamage, failed_section);  \
+  X(FwTreeDamage, time);            \
+  X(FwTreeDamage, break_height);    \
+  X(FwTreeDamage, top_wind);        \
+  X(FwTreeDamage, max_utilisation); \
+  X(FwTreeDamage, max_base_moment); \
+  X(FwTreeDamage, utilisation)
 // The leaves' structs (packed by host/stages/LeafStages).
 #define FW_LEAF_STRUCTS(X) X(FwLeafSpecies)
 #define FW_LEAF_FIELDS(X)            \
@@ -137,6 +154,8 @@ std::vector<LayoutEntry> host_layout() {
   FW_TREE_FIELDS(FW_OFFSET_ENTRY);
   FW_LEAF_STRUCTS(FW_SIZE_ENTRY);
   FW_LEAF_FIELDS(FW_OFFSET_ENTRY);
+  FW_DAMAGE_STRUCTS(FW_SIZE_ENTRY);
+  FW_DAMAGE_FIELDS(FW_OFFSET_ENTRY);
 #undef FW_SIZE_ENTRY
 #undef FW_OFFSET_ENTRY
   return entries;
@@ -151,6 +170,7 @@ std::string layout_kernel_source(const std::vector<LayoutEntry>& entries) {
   FW_SHARED_STRUCTS(FW_PRIVATE_INSTANCE);
   FW_TREE_STRUCTS(FW_PRIVATE_INSTANCE);
   FW_LEAF_STRUCTS(FW_PRIVATE_INSTANCE);
+  FW_DAMAGE_STRUCTS(FW_PRIVATE_INSTANCE);
 #undef FW_PRIVATE_INSTANCE
   for (std::size_t n = 0; n < entries.size(); ++n)
     source += fmt::format("  out[{}] = {};\n", n, entries[n].device);
@@ -189,6 +209,10 @@ TEST_CASE("shared_types: tree structs are packed 32-bit fields without padding",
   CHECK(offsetof(FwTreeInstance, position) == 16);
   CHECK(offsetof(FwTreeInstance, cos_yaw) == 28);
   CHECK(offsetof(FwTreeInstance, scale) == 36);
+  // FwStem 3 ints + a float; FwTreeDamage 2 ints + 2 floats + 3 of wind + 3 floats.
+  CHECK(sizeof(FwStem) == 4 * 4);
+  CHECK(sizeof(FwTreeDamage) == 10 * 4);
+  CHECK(offsetof(FwTreeDamage, top_wind) == 16);
 }
 
 TEST_CASE("shared_types: the rest-leaf table's fields take one row each, vectors three, none overlapping",
@@ -208,8 +232,8 @@ TEST_CASE("shared_types: OpenCL C and the host agree on sizeof and offsetof of e
   if (!cc) return;
   const auto entries = host_layout();
   // Shared structs and fields (FwTke's 1 and 6 among them), the trees' (the element models' 3 structs and
-  // 21 fields among them), the leaves' (1 struct, 13 fields).
-  REQUIRE(entries.size() == 5 + 36 + 5 + 37 + 1 + 13);
+  // 21 fields among them), the leaves' (1 struct, 13 fields), the damage's (2 structs, 12 fields).
+  REQUIRE(entries.size() == 5 + 36 + 5 + 37 + 1 + 13 + 2 + 12);
   const std::string source = layout_kernel_source(entries);
   INFO(source);
 

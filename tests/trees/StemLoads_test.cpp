@@ -100,7 +100,8 @@ TEST_CASE("StemLoads: a leaning pole's weight gives mu g theta (L - z)^2 / 2 at 
   }
 }
 
-TEST_CASE("StemLoads: the modal section moments in a steady wind match the FEM's static solution", "[trees]") {
+TEST_CASE("StemLoads: the modal section moments in a steady wind match the FEM's static solution",
+          "[trees]") {
   // A generated conifer (a few hundred nodes) with 24 modes; a steady 15 m/s wind. The reference is the
   // statics of the full FEM's elastic forces K u (StaticDeflection: every DOF, no truncation). The modal
   // static state q_i = f_i / omega_i^2 (the run's equilibrium) gives K Phi q = M Phi Phi^T F, the load's
@@ -128,7 +129,8 @@ TEST_CASE("StemLoads: the modal section moments in a steady wind match the FEM's
   for (int node = 0; node < tree.size(); ++node)
     for (int local = 0; local < 6; ++local)
       if (const int dof = model.free_dof_of(node, local); dof >= 0) free_loads(dof) = loads(6 * node + local);
-  const Eigen::VectorXd q = (modes.shapes().transpose() * free_loads).cwiseQuotient(modes.omega().cwiseAbs2());
+  const Eigen::VectorXd q =
+      (modes.shapes().transpose() * free_loads).cwiseQuotient(modes.omega().cwiseAbs2());
 
   // The FEM: StaticDeflection solves K u = F on every DOF, so its elastic forces K u are the load F itself
   // and its section moments are the statics of F's translational rows. The modal state is the same bend:
@@ -158,9 +160,9 @@ TEST_CASE("StemLoads: the modal section moments in a steady wind match the FEM's
   CHECK(modal(0) == Approx(base_bending).epsilon(0.02));
   double worst = 0.0;
   for (std::size_t j = 0; j < sections.size(); ++j) {
-    const Eigen::Vector3d t = (tree.node(stem.profile()[j + 1].node).position -
-                               tree.node(stem.profile()[j].node).position)
-                                  .normalized();
+    const Eigen::Vector3d t =
+        (tree.node(stem.profile()[j + 1].node).position - tree.node(stem.profile()[j].node).position)
+            .normalized();
     const Eigen::Vector3d mj = reference.col(0).segment<3>(3 * Eigen::Index(j));
     worst = std::max(worst, std::abs(modal(Eigen::Index(j)) - (mj - mj.dot(t) * t).norm()) / base);
   }
@@ -169,7 +171,8 @@ TEST_CASE("StemLoads: the modal section moments in a steady wind match the FEM's
   CHECK(stem.root_moment(q) == Approx(std::hypot(m0.x(), m0.y())).epsilon(0.02));
 }
 
-TEST_CASE("StemLoads: scaled(s) gives the moments of the tree grown by s for its own modal state", "[trees]") {
+TEST_CASE("StemLoads: scaled(s) gives the moments of the tree grown by s for its own modal state",
+          "[trees]") {
   const Skeleton tree = fw::test::asymmetric_skeleton();
   const BeamModel model(tree, kWood);
   fw::trees::ModalSettings settings;

@@ -1,0 +1,141 @@
+#include "host/stages/DamageStages.hpp"
+
+#include <fmt/format.h>
+
+#include <cstring>
+#include <stdexcept>
+
+#include "host/stages/SavedStateNames.hpp"
+
+namespace fw::host {
+
+namespace {
+
+std::vector<FwTreeDamage> standing_records(int count) {
+  FwTreeDamage standing{};
+  standing.state = FW_TREE_STANDING;
+  standing.failed_section = -1;
+  return std::vector<FwTreeDamage>(std::size_t(count), standing);
+}
+
+trees::TreeDamageRecord from_device(const FwTreeDamage& d) {
+  trees::TreeDamageRecord r;
+  r.state = trees::TreeState(d.state);
+  r.failed_section = d.failed_section;
+  r.time = d.time;
+  r.break_height = d.break_height;
+  r.top_wind = Eigen::Vector3d(d.top_wind[0], d.top_wind[1], d.top_wind[2]);
+  r.max_utilisation = d.max_utilisation;
+  r.max_base_moment = d.max_base_moment;
+  r.utilisation = d.utilisation;
+  return r;
+}
+
+}  // namespace
+
+StemPacking StemPacking::of(const trees::Forest& forest, const trees::DamageSettings& settings) {
+  if (settings.strengths.size() != forest.species().size())
+    throw std::invalid_argument(fmt::format("DamageStages: {} strengths for {} species",
+                                            settings.strengths.size(), forest.species().size()));
+  StemPacking p;
+  for (std::size_t sp = 0; sp < forest.species().size(); ++sp) {
+    const trees::StemLoads& stem = forest.species()[sp].stem_loads();
+    const trees::CriticalMoments critical = trees::critical_moments(stem, settings.strengths[sp]);
+    const int J = stem.section_count(), m = stem.mode_count();
+    p.stems.push_back({J, fw_int(p.maps.size()), fw_int(p.sections.size()), float(critical.overturning)});
+    const auto append_rows = [&](const Eigen::MatrixXd& elastic, const Eigen::MatrixXd& weight, int pair) {
+      for (const Eigen::MatrixXd* map : {&elastic, &weight})
+        for (int r = 0; r < 2; ++r)
+          for (int i = 0; i < m; ++i) p.maps.push_back(float((*map)(2 * pair + r, i)));
+    };
+    for (int j = 0; j < J; ++j) append_rows(stem.elastic(), stem.weight(), j);
+    append_rows(stem.root_elastic(), stem.root_weight(), 0);
+    const std::vector<trees::StemSection> sections = stem.sections();
+    for (int j = 0; j < J; ++j) {
+      p.sections.push_back(float(sections[std::size_t(j)].height));
+      p.sections.push_back(float(critical.breaking[std::size_t(j)]));
+    }
+  }
+  for (int k = 0; k < forest.instance_count(); ++k) {
+    p.section_offsets.push_back(p.total_sections);
+    p.total_sections += p.stems[std::size_t(forest.instances()[std::size_t(k)].species)].section_count;
+  }
+  return p;
+}
+
+DamageStages::DamageStages(ComputeContext& cc, const trees::Forest& forest,
+                           const trees::DamageSettings& settings)
+    : cc_(cc), settings_(settings) {
+  if (!settings.enabled) throw std::invalid_argument("DamageStages: damage is not enabled");
+  const StemPacking p = StemPacking::of(forest, settings);
+  instance_count_ = forest.instance_count();
+  total_sections_ = p.total_sections;
+  section_offsets_ = p.section_offsets;
+  constexpr cl_mem_flags ro = CL_MEM_READ_ONLY;
+  stems_ = cc_.upload(p.stems, ro);
+  maps_ = cc_.upload(p.maps, ro);
+  sections_ = cc_.upload(p.sections, ro);
+  section_offsets_buffer_ = cc_.upload(p.section_offsets, ro);
+  records_ = cc_.upload(standing_records(instance_count_));
+  utilisation_ = cc_.zero_floats(std::size_t(total_sections_));
+  failures_ = cc_.upload(std::vector<fw_int>{0});
+  loads_ = Kernel(cc_.build("tree_loads.cl"), "tree_loads");
+}
+
+std::size_t DamageStages::estimate_device_bytes(const trees::Forest& forest,
+                                                const trees::DamageSettings& settings) {
+  const StemPacking p = StemPacking::of(forest, settings);
+  const auto bytes = [](std::size_t count, std::size_t size) {
+    return ComputeContext::allocation_bytes(count * size);
+  };
+  return bytes(p.stems.size(), sizeof(FwStem)) + bytes(p.maps.size(), sizeof(float)) +
+         bytes(p.sections.size(), sizeof(float)) + bytes(p.section_offsets.size(), sizeof(fw_int)) +
+         bytes(std::size_t(forest.instance_count()), sizeof(FwTreeDamage)) +
+         bytes(std::size_t(p.total_sections), sizeof(float)) + bytes(1, sizeof(fw_int));
+}
+
+void DamageStages::enqueue_loads(float time, cl::Buffer& instances, cl::Buffer& species, cl::Buffer& state,
+                                 cl::Buffer& sampled_wind) {
+  if (instance_count_ == 0) return;
+  loads_
+      .set_args(instance_count_, time, settings_.consequences ? 1 : 0, instances, species, stems_, maps_,
+                sections_, section_offsets_buffer_, sampled_wind, state, records_, utilisation_, failures_)
+      .enqueue(cc_, cl::NDRange(cc_.flat_items(std::size_t(instance_count_))));
+}
+
+int DamageStages::take_new_failures() {
+  fw_int count = 0;
+  cc_.queue().enqueueReadBuffer(failures_, CL_TRUE, 0, sizeof count, &count);
+  if (count != 0) {
+    const fw_int zero = 0;
+    cc_.queue().enqueueWriteBuffer(failures_, CL_TRUE, 0, sizeof zero, &zero);
+  }
+  return count;
+}
+
+std::vector<trees::TreeDamageRecord> DamageStages::download_records() {
+  std::vector<FwTreeDamage> device(static_cast<std::size_t>(instance_count_));
+  if (!device.empty())
+    cc_.queue().enqueueReadBuffer(records_, CL_TRUE, 0, device.size() * sizeof(FwTreeDamage), device.data());
+  std::vector<trees::TreeDamageRecord> records;
+  records.reserve(device.size());
+  for (const FwTreeDamage& d : device) records.push_back(from_device(d));
+  return records;
+}
+
+std::vector<float> DamageStages::download_utilisation() {
+  std::vector<float> values(static_cast<std::size_t>(total_sections_));
+  if (!values.empty())
+    cc_.queue().enqueueReadBuffer(utilisation_, CL_TRUE, 0, values.size() * sizeof(float), values.data());
+  return values;
+}
+
+void DamageStages::save_state(StageState& state) {
+  state.save(cc_, saved::kDamage, records_);
+}
+
+void DamageStages::restore_state(const StageState& state) {
+  state.restore(cc_, saved::kTreesStage, saved::kDamage, records_);
+}
+
+}  // namespace fw::host

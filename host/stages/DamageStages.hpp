@@ -1,0 +1,79 @@
+// The loads in every tree and which trees fail, on the OpenCL device, every step (docs/damage.md;
+// trees/TreeDamage.hpp is the model and its CPU reference, kernels/tree_loads.cl the kernel).
+//
+//   fw::host::DamageStages damage(cc, forest, settings);      // uploads the stems' maps, every tree standing
+//   for (...) {
+//     trees.enqueue_modal_step(dt);
+//     damage.enqueue_loads(time_after_step, trees);          // utilisations, records, failures
+//     if (damage.take_new_failures() > 0) ...                 // blocking: a count read back
+//   }
+//   std::vector<fw::trees::TreeDamageRecord> records = damage.download_records();
+//
+// ForestStages owns one when the run asks for damage (ForestStages::set_damage). The state it carries from
+// step to step is each tree's FwTreeDamage record, saved with the trees' stage ("damage").
+#pragma once
+
+#include <vector>
+
+#include "host/runtime/ComputeContext.hpp"
+#include "host/stages/StageState.hpp"
+#include "kernels/shared_types.h"
+#include "trees/Forest.hpp"
+#include "trees/TreeDamage.hpp"
+
+namespace fw::host {
+
+/// The stems of a forest as the device reads them (kernels/shared_types.h FwStem).
+struct StemPacking {
+  std::vector<FwStem> stems;            ///< one per species
+  std::vector<float> maps;              ///< per species 4 m (J + 1) floats
+  std::vector<float> sections;          ///< per species 2 J floats: height, M_b
+  std::vector<fw_int> section_offsets;  ///< per instance, its first flat section
+  int total_sections = 0;
+  /// Packs the stems and critical moments of every species (settings.strengths, one per species).
+  /// Throws std::invalid_argument("DamageStages: ...") when a strength is missing or invalid.
+  static StemPacking of(const trees::Forest& forest, const trees::DamageSettings& settings);
+};
+
+class DamageStages {
+ public:
+  /// Uploads the packing of `forest` and a standing record for every tree. `settings.enabled` must be true
+  /// (std::invalid_argument otherwise, and for what StemPacking::of throws).
+  DamageStages(ComputeContext& cc, const trees::Forest& forest, const trees::DamageSettings& settings);
+
+  /// Bytes of device memory the constructor allocates.
+  static std::size_t estimate_device_bytes(const trees::Forest& forest,
+                                           const trees::DamageSettings& settings);
+
+  const trees::DamageSettings& settings() const { return settings_; }
+  int total_sections() const { return total_sections_; }
+
+  /// The step's loads and failure check at `time` (s, after the step), from the modal state and sampled
+  /// wind of the forest's buffers (ForestStages: instances, species, state, sampled wind).
+  void enqueue_loads(float time, cl::Buffer& instances, cl::Buffer& species, cl::Buffer& state,
+                     cl::Buffer& sampled_wind);
+  /// The trees that failed since the last call (blocking: reads and zeroes the device's counter).
+  int take_new_failures();
+
+  /// Every tree's record (blocking).
+  std::vector<trees::TreeDamageRecord> download_records();
+  /// Every stem section's utilisation of the last step (blocking), flat: instance k's from
+  /// section_offset(k).
+  std::vector<float> download_utilisation();
+  int section_offset(int instance) const { return section_offsets_.at(std::size_t(instance)); }
+
+  /// The records, for checkpoints: saved under saved::kDamage.
+  void save_state(StageState& state);
+  void restore_state(const StageState& state);
+
+ private:
+  ComputeContext& cc_;
+  trees::DamageSettings settings_;
+  int instance_count_ = 0;
+  int total_sections_ = 0;
+  std::vector<fw_int> section_offsets_;
+  cl::Buffer stems_, maps_, sections_, section_offsets_buffer_, records_, utilisation_, failures_;
+  Kernel loads_;
+};
+
+}  // namespace fw::host

@@ -1,0 +1,222 @@
+// kernels/tree_loads.cl (host/stages/DamageStages) against its CPU reference trees/TreeDamage: every stem
+// section's utilisation, the root's moment and the failure records of a forest of two small species with
+// various yaws and scales, and what a failed tree does on the next step.
+#include <catch2/catch.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <random>
+
+#include "host/stages/ForestStages.hpp"
+#include "tests/support/Fields.hpp"
+#include "tests/support/SmallSpecies.hpp"
+#include "tests/support/TestDevice.hpp"
+#include "trees/TreeDamage.hpp"
+
+using namespace fw;
+
+namespace {
+
+// Float32 dot products of m terms with maps in float against the double reference: a few ulps of the
+// largest term; q of both signs cancels, so the tolerance is relative to the largest utilisation.
+constexpr double kUtilisationTolerance = 1e-5;
+
+fluid::GridSpec loads_grid() {
+  fluid::GridSpec spec;
+  spec.nx = 32;
+  spec.ny = 24;
+  spec.nz = 14;
+  spec.h = 1.0;
+  return spec;
+}
+
+// 16 instances of two species, yaws all round, scales 0.6 .. 1.5.
+trees::Forest loads_forest() {
+  std::vector<trees::SpeciesBasis> species = {test::small_species("broadleaf", 6.0, 1, 5, 8, 3),
+                                              test::small_species("conifer", 5.0, 2, 4, 10, 2)};
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<double> x(2.0, 28.0), y(2.0, 20.0), yaw(-M_PI, M_PI), scale(0.6, 1.5);
+  std::vector<trees::TreeInstance> trees;
+  for (int k = 0; k < 16; ++k) trees.push_back({k % 2, {x(rng), y(rng), 0.0}, yaw(rng), scale(rng)});
+  return trees::Forest(std::move(species), std::move(trees));
+}
+
+// Every tree's loads by the reference, for the modal state `q` (flat, instance-major).
+std::vector<trees::TreeLoad> reference_loads(const trees::Forest& forest,
+                                             const trees::DamageSettings& settings,
+                                             const std::vector<float>& q) {
+  std::vector<trees::TreeLoad> loads;
+  for (int k = 0; k < forest.instance_count(); ++k) {
+    const trees::SpeciesBasis& species = forest.species_of(k);
+    const int sp = forest.instances()[std::size_t(k)].species;
+    Eigen::VectorXd qk(species.modes().mode_count());
+    for (int i = 0; i < qk.size(); ++i) qk(i) = q[std::size_t(forest.mode_offset(k) + i)];
+    const auto critical = trees::critical_moments(species.stem_loads(), settings.strengths[std::size_t(sp)]);
+    loads.push_back(
+        trees::tree_load(species.stem_loads(), critical, forest.instances()[std::size_t(k)].scale, qk));
+  }
+  return loads;
+}
+
+}  // namespace
+
+TEST_CASE("tree_loads: utilisations, root moments and failures match the reference, once per tree",
+          "[forest]") {
+  auto* cc = test::device_or_skip();
+  if (!cc) return;
+  const fluid::GridSpec spec = loads_grid();
+  const trees::Forest forest = loads_forest();
+  host::ForestStages stages(*cc, spec, forest);
+  host::DeviceVelocity wind;
+  wind.u = cc->buffer(spec.u_count() * sizeof(float));
+  wind.v = cc->buffer(spec.v_count() * sizeof(float));
+  wind.w = cc->buffer(spec.w_count() * sizeof(float));
+  test::upload(*cc, test::smooth_velocity(spec, {8.0, -2.0, 0.3}, {2.0, 1.0, 0.5}), wind);
+
+  // A random modal state of the size a strong wind gives (its static response, times 3).
+  stages.enqueue_wind_load(wind);
+  stages.enqueue_equilibrium();
+  const std::vector<float> q_static = stages.download_modal_state().q;
+  const float amplitude = 3.0f * *std::max_element(q_static.begin(), q_static.end(), [](float a, float b) {
+                            return std::abs(a) < std::abs(b);
+                          });
+  std::mt19937 rng(4);
+  std::uniform_real_distribution<float> unit(-1.0f, 1.0f);
+  host::ModalState state;
+  for (int j = 0; j < stages.total_modes(); ++j) {
+    state.q.push_back(std::abs(amplitude) * unit(rng));
+    state.qdot.push_back(unit(rng));
+  }
+
+  // Strengths that fail about half the trees: the broadleaf (species 0) by overturning, its anchorage
+  // brought to its trees' median overturning ratio and its wood a hundred times its largest breaking
+  // ratio; the conifer (species 1) by breakage, the other way round.
+  trees::DamageSettings settings;
+  settings.enabled = true;
+  settings.strengths = {trees::strength_preset(trees::StrengthPreset::birch),
+                        trees::strength_preset(trees::StrengthPreset::norway_spruce)};
+  std::vector<double> overturning[2], breaking[2];
+  const std::vector<trees::TreeLoad> preset_loads = reference_loads(forest, settings, state.q);
+  for (int k = 0; k < forest.instance_count(); ++k) {
+    const int sp = forest.instances()[std::size_t(k)].species;
+    overturning[sp].push_back(preset_loads[std::size_t(k)].overturning);
+    breaking[sp].push_back(preset_loads[std::size_t(k)].utilisation.maxCoeff());
+  }
+  const auto median = [](std::vector<double> v) {
+    std::nth_element(v.begin(), v.begin() + std::ptrdiff_t(v.size() / 2), v.end());
+    return v[v.size() / 2];
+  };
+  const auto largest = [](const std::vector<double>& v) { return *std::max_element(v.begin(), v.end()); };
+  settings.strengths[0].anchorage *= median(overturning[0]);
+  settings.strengths[0].modulus_of_rupture *= 100.0 * largest(breaking[0]);
+  settings.strengths[1].modulus_of_rupture *= median(breaking[1]);
+  settings.strengths[1].anchorage *= 100.0 * largest(overturning[1]);
+  const std::vector<trees::TreeLoad> expected = reference_loads(forest, settings, state.q);
+
+  stages.set_damage(forest, settings);
+  host::DamageStages& damage = *stages.damage();
+  stages.upload_modal_state(state);
+  stages.enqueue_damage_check(2.5f);
+  const std::vector<float> utilisation = damage.download_utilisation();
+  const std::vector<trees::TreeDamageRecord> records = damage.download_records();
+  const std::vector<float> sampled = stages.download_sampled_wind();
+
+  int failed = 0, broken = 0, overturned = 0;
+  double worst_error = 0.0;
+  for (int k = 0; k < forest.instance_count(); ++k) {
+    INFO("tree " << k);
+    const trees::TreeLoad& load = expected[std::size_t(k)];
+    const double scale = load.largest();
+    for (Eigen::Index j = 0; j < load.utilisation.size(); ++j)
+      worst_error = std::max(
+          worst_error,
+          std::abs(utilisation[std::size_t(damage.section_offset(k) + j)] - load.utilisation(j)) / scale);
+    const trees::TreeDamageRecord& r = records[std::size_t(k)];
+    CHECK(r.utilisation == Approx(scale).epsilon(kUtilisationTolerance));
+    CHECK(r.max_base_moment == Approx(load.root_moment).epsilon(kUtilisationTolerance));
+    // Far enough from 1 that float rounding cannot decide (the reference's ratio is used to skip the rest).
+    if (std::abs(scale - 1.0) < 10 * kUtilisationTolerance) continue;
+    trees::TreeDamageRecord reference;
+    const bool fails =
+        trees::record_load(reference, load, 2.5, Eigen::Vector3d::Zero(),
+                           forest.instances()[std::size_t(k)].scale, forest.species_of(k).stem_loads());
+    CHECK((r.state != trees::TreeState::standing) == fails);
+    CHECK(r.state == reference.state);
+    CHECK(r.failed_section == reference.failed_section);
+    CHECK(r.break_height == Approx(reference.break_height).epsilon(1e-6));
+    if (!fails) continue;
+    ++failed;
+    broken += r.state == trees::TreeState::broken;
+    overturned += r.state == trees::TreeState::overturned;
+    CHECK(r.time == 2.5);
+    const int top = forest.sample_offset(k) + forest.species_of(k).wind().sample_count() - 1;
+    for (int a = 0; a < 3; ++a) CHECK(r.top_wind(a) == sampled[std::size_t(3 * top + a)]);
+  }
+  WARN("tree_loads: " << failed << " of 16 failed (" << broken << " broken, " << overturned
+                      << " overturned); largest utilisation error " << worst_error);
+  CHECK(worst_error < kUtilisationTolerance);
+  CHECK(broken > 0);
+  CHECK(overturned > 0);
+  // The counter counts every tree that failed, those near 1 that the checks above skip included.
+  const auto down = std::count_if(records.begin(), records.end(), [](const trees::TreeDamageRecord& r) {
+    return r.state != trees::TreeState::standing;
+  });
+  CHECK(down >= failed);
+  CHECK(damage.take_new_failures() == down);
+  CHECK(damage.take_new_failures() == 0);
+
+  // The next step: a failed tree is held at rest and carries nothing; a standing one goes on. Its record
+  // keeps its time and maxima.
+  stages.enqueue_damage_check(3.0f);
+  const host::ModalState after = stages.download_modal_state();
+  const std::vector<trees::TreeDamageRecord> later = damage.download_records();
+  for (int k = 0; k < forest.instance_count(); ++k) {
+    const bool down = later[std::size_t(k)].state != trees::TreeState::standing;
+    for (int i = 0; i < forest.species_of(k).modes().mode_count(); ++i) {
+      const std::size_t j = std::size_t(forest.mode_offset(k) + i);
+      CHECK(after.q[j] == (down ? 0.0f : state.q[j]));
+    }
+    if (down) {
+      CHECK(later[std::size_t(k)].utilisation == 0.0f);
+      CHECK(later[std::size_t(k)].time == records[std::size_t(k)].time);
+      CHECK(later[std::size_t(k)].max_utilisation == records[std::size_t(k)].max_utilisation);
+    }
+  }
+  CHECK(damage.take_new_failures() == 0);
+}
+
+TEST_CASE("tree_loads: without consequences a failed tree keeps swaying and its record its first failure",
+          "[forest]") {
+  auto* cc = test::device_or_skip();
+  if (!cc) return;
+  const fluid::GridSpec spec = loads_grid();
+  const trees::Forest forest = loads_forest();
+  host::ForestStages stages(*cc, spec, forest);
+  trees::DamageSettings settings;
+  settings.enabled = true;
+  settings.consequences = false;
+  // Wood and roots of a thousandth of the preset's: any bend fails every tree.
+  for (int sp = 0; sp < 2; ++sp) {
+    trees::TreeStrength weak = trees::strength_preset(trees::StrengthPreset::scots_pine);
+    weak.modulus_of_rupture *= 1e-3;
+    weak.anchorage *= 1e-3;
+    settings.strengths.push_back(weak);
+  }
+  stages.set_damage(forest, settings);
+  host::ModalState state;
+  for (int j = 0; j < stages.total_modes(); ++j) {
+    state.q.push_back(j % 3 == 0 ? 0.05f : -0.02f);
+    state.qdot.push_back(0.0f);
+  }
+  stages.upload_modal_state(state);
+  stages.enqueue_damage_check(1.0f);
+  CHECK(stages.damage()->take_new_failures() == forest.instance_count());
+  stages.enqueue_damage_check(2.0f);
+  CHECK(stages.damage()->take_new_failures() == 0);
+  CHECK(stages.download_modal_state().q == state.q);
+  for (const trees::TreeDamageRecord& r : stages.damage()->download_records()) {
+    CHECK(r.state != trees::TreeState::standing);
+    CHECK(r.time == 1.0);
+    CHECK(r.utilisation > 1.0);  // still loaded
+  }
+}
