@@ -28,6 +28,31 @@ double length(const CanopyElement& e) {
 
 }  // namespace
 
+CellBox CellBox::around(const GridSpec& spec, const std::array<double, 3>& low,
+                        const std::array<double, 3>& high) {
+  CellBox box;
+  for (std::size_t a = 0; a < 3; ++a)
+    if (!(low[a] <= high[a])) return box;
+  const int cells[3] = {spec.nx, spec.ny, spec.nz};
+  for (int a = 0; a < 3; ++a) {
+    // Clamped in double first: a reach far outside the grid is no int.
+    const auto cell = [&](double x) {
+      return int(std::clamp(std::floor((x - spec.origin[std::size_t(a)]) / spec.h), -1.0, double(cells[a])));
+    };
+    const int first = std::max(0, cell(low[std::size_t(a)]) - 1);
+    const int last = std::min(cells[a] - 1, cell(high[std::size_t(a)]) + 1);
+    box.first[std::size_t(a)] = std::min(first, cells[a]);
+    box.count[std::size_t(a)] = std::max(0, last - first + 1);
+  }
+  return box;
+}
+
+bool CellBox::overlaps(const CellBox& other) const {
+  for (std::size_t a = 0; a < 3; ++a)
+    if (first[a] >= other.first[a] + other.count[a] || other.first[a] >= first[a] + count[a]) return false;
+  return true;
+}
+
 CanopyField::CanopyField(const GridSpec& spec, const CellBox& box) : spec_(validated(spec)), box_(box) {
   const int n[3] = {spec_.nx, spec_.ny, spec_.nz};
   for (int a = 0; a < 3; ++a)

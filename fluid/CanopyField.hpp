@@ -62,6 +62,13 @@ struct CellBox {
   std::array<int, 3> first{0, 0, 0}, count{0, 0, 0};
   /// Every cell of `spec`.
   static CellBox whole(const GridSpec& spec) { return {{0, 0, 0}, {spec.nx, spec.ny, spec.nz}}; }
+  /// The cells of `spec` within one cell of the box from `low` to `high` (m, world), clamped to the grid:
+  /// every cell a segment inside it crosses. Empty (a zero count) when the box is empty (low > high on an
+  /// axis) or lies outside the grid.
+  static CellBox around(const GridSpec& spec, const std::array<double, 3>& low,
+                        const std::array<double, 3>& high);
+  /// Whether the two boxes share a cell.
+  bool overlaps(const CellBox& other) const;
   std::size_t cell_count() const {
     return std::size_t(count[0]) * std::size_t(count[1]) * std::size_t(count[2]);
   }

@@ -17,18 +17,18 @@
 namespace fw::io {
 
 ProbesCsv::ProbesCsv(std::filesystem::path path, std::vector<std::string> probe_names,
-                     std::vector<int> tree_ids, std::size_t rewrite_limit_bytes, bool leaf_counts)
-    : ProbesCsv(std::move(path), std::move(probe_names), std::move(tree_ids), rewrite_limit_bytes,
-                leaf_counts, Start::fresh) {}
+                     std::vector<int> tree_ids, std::size_t rewrite_limit_bytes, CountColumns counts)
+    : ProbesCsv(std::move(path), std::move(probe_names), std::move(tree_ids), rewrite_limit_bytes, counts,
+                Start::fresh) {}
 
 ProbesCsv ProbesCsv::continued(std::filesystem::path path, std::vector<std::string> probe_names,
                                std::vector<int> tree_ids, std::size_t rows, std::size_t rewrite_limit_bytes,
-                               bool leaf_counts) {
+                               CountColumns counts) {
   if (!std::filesystem::exists(path))
     return ProbesCsv(std::move(path), std::move(probe_names), std::move(tree_ids), rewrite_limit_bytes,
-                     leaf_counts);
-  ProbesCsv csv(std::move(path), std::move(probe_names), std::move(tree_ids), rewrite_limit_bytes,
-                leaf_counts, Start::continued);
+                     counts);
+  ProbesCsv csv(std::move(path), std::move(probe_names), std::move(tree_ids), rewrite_limit_bytes, counts,
+                Start::continued);
   csv.content_ = csv.kept_rows(rows);
   base::write_text_atomically("ProbesCsv", csv.path_, csv.content_);
   csv.rows_ = rows;
@@ -40,9 +40,9 @@ ProbesCsv ProbesCsv::continued(std::filesystem::path path, std::vector<std::stri
 }
 
 void ProbesCsv::check_continuable(std::filesystem::path path, std::vector<std::string> probe_names,
-                                  std::vector<int> tree_ids, std::size_t rows, bool leaf_counts) {
+                                  std::vector<int> tree_ids, std::size_t rows, CountColumns counts) {
   if (!std::filesystem::exists(path)) return;
-  ProbesCsv(std::move(path), std::move(probe_names), std::move(tree_ids), kDefaultRewriteLimit, leaf_counts,
+  ProbesCsv(std::move(path), std::move(probe_names), std::move(tree_ids), kDefaultRewriteLimit, counts,
             Start::continued)
       .kept_rows(rows);
 }
@@ -72,13 +72,13 @@ std::string ProbesCsv::kept_rows(std::size_t rows) const {
 }
 
 ProbesCsv::ProbesCsv(std::filesystem::path path, std::vector<std::string> probe_names,
-                     std::vector<int> tree_ids, std::size_t rewrite_limit_bytes, bool leaf_counts,
+                     std::vector<int> tree_ids, std::size_t rewrite_limit_bytes, CountColumns counts,
                      Start start)
     : path_(std::move(path)),
       probes_(probe_names.size()),
       trees_(tree_ids.size()),
       rewrite_limit_(rewrite_limit_bytes),
-      leaf_counts_(leaf_counts) {
+      counts_(counts) {
   std::set<std::string> seen_names;
   for (const std::string& name : probe_names) {
     if (name.empty()) throw std::invalid_argument("ProbesCsv: expected a probe name, got an empty one");
@@ -100,7 +100,8 @@ ProbesCsv::ProbesCsv(std::filesystem::path path, std::vector<std::string> probe_
   header_ = "time_s";
   for (const std::string& name : probe_names) header_ += fmt::format(",{0}_u,{0}_v,{0}_w", name);
   for (int id : tree_ids) header_ += fmt::format(",tree{0}_tip_dx,tree{0}_tip_dy,tree{0}_tip_dz", id);
-  if (leaf_counts_) header_ += ",leaves_shed,leaves_flying,leaves_landed,leaves_exited";
+  if (counts_.leaves) header_ += ",leaves_shed,leaves_flying,leaves_landed,leaves_exited";
+  if (counts_.damage) header_ += ",trees_standing,trees_broken,trees_overturned";
   if (start == Start::continued) return;
   content_ = header_ + "\n";
   base::write_text_atomically("ProbesCsv", path_, content_);
@@ -127,17 +128,21 @@ void ProbesCsv::append_rows(const std::vector<Row>& rows) {
           fmt::format("ProbesCsv: {}: expected {} probe velocities and {} tip displacements, got {} and {}",
                       path_.string(), probes_, trees_, probe_velocity.size(), tip_displacement.size()));
     }
-    if (leaf_counts_ && !row.leaf_counts) {
+    if ((counts_.leaves && !row.leaf_counts) || (counts_.damage && !row.damage_counts)) {
       throw std::invalid_argument(fmt::format(
-          "ProbesCsv: {}: the file has leaf count columns: expected leaf counts with every row, at time {}",
-          path_.string(), row.time));
+          "ProbesCsv: {}: the file has {} count columns: expected those counts with every row, at time {}",
+          path_.string(), counts_.leaves && !row.leaf_counts ? "leaf" : "damage", row.time));
     }
     lines += fmt::format("{:.12g}", row.time);
     for (const auto& v : probe_velocity) lines += fmt::format(",{:.9g},{:.9g},{:.9g}", v[0], v[1], v[2]);
     for (const auto& d : tip_displacement) lines += fmt::format(",{:.9g},{:.9g},{:.9g}", d[0], d[1], d[2]);
-    if (leaf_counts_) {
+    if (counts_.leaves) {
       const trees::LeafCounts& n = *row.leaf_counts;
       lines += fmt::format(",{},{},{},{}", n.shed, n.flying, n.landed, n.exited);
+    }
+    if (counts_.damage) {
+      const trees::DamageCounts& n = *row.damage_counts;
+      lines += fmt::format(",{},{},{}", n.standing, n.broken, n.overturned);
     }
     lines += '\n';
   }

@@ -54,9 +54,14 @@ struct TreesVtp::Layout {
   vtkNew<vtkPoints> points;
   vtkNew<vtkFloatArray> displacement;
   vtkNew<vtkDoubleArray> time;
+  // With damage: the points' utilisation and their tree's state, and each tree's first point and size.
+  vtkNew<vtkFloatArray> utilisation;
+  vtkNew<vtkIntArray> state;
+  std::vector<vtkIdType> tree_first, tree_points;
 };
 
-TreesVtp::TreesVtp(const std::vector<TreesFrame::Tree>& trees) : layout_(std::make_unique<Layout>()) {
+TreesVtp::TreesVtp(const std::vector<TreesFrame::Tree>& trees, bool damage)
+    : layout_(std::make_unique<Layout>()) {
   vtkIdType point_count = 0, line_count = 0;
   for (std::size_t t = 0; t < trees.size(); ++t) {
     const TreesFrame::Tree& tree = trees[t];
@@ -92,6 +97,8 @@ TreesVtp::TreesVtp(const std::vector<TreesFrame::Tree>& trees) : layout_(std::ma
   l.rest.reserve(3 * std::size_t(point_count));
   vtkIdType first = 0;  // index of the current tree's node 0 among all points
   for (const TreesFrame::Tree& tree : trees) {
+    l.tree_first.push_back(first);
+    l.tree_points.push_back(tree.rest.rows());
     for (Eigen::Index i = 0; i < tree.rest.rows(); ++i) {
       const vtkIdType point = first + i;
       for (int c = 0; c < 3; ++c) l.rest.push_back(float(tree.rest(i, c)));
@@ -113,6 +120,14 @@ TreesVtp::TreesVtp(const std::vector<TreesFrame::Tree>& trees) : layout_(std::ma
   l.data->GetPointData()->AddArray(tree_id);
   l.data->GetPointData()->AddArray(species);
   l.data->GetPointData()->AddArray(node_id);
+  if (damage) {
+    l.utilisation->SetName("utilisation");
+    l.utilisation->SetNumberOfTuples(point_count);
+    l.state->SetName("state");
+    l.state->SetNumberOfTuples(point_count);
+    l.data->GetPointData()->AddArray(l.utilisation);
+    l.data->GetPointData()->AddArray(l.state);
+  }
   l.time->SetName("TimeValue");
   l.time->SetNumberOfTuples(1);
   l.data->GetFieldData()->AddArray(l.time);
@@ -129,7 +144,25 @@ std::size_t TreesVtp::point_count() const {
 }
 
 void TreesVtp::write(const std::filesystem::path& path, double time, std::span<const float> displacement) {
+  write(path, time, displacement, {}, {});
+}
+
+void TreesVtp::write(const std::filesystem::path& path, double time, std::span<const float> displacement,
+                     std::span<const float> utilisation, std::span<const std::int32_t> state) {
   Layout& l = *layout_;
+  if (l.utilisation->GetNumberOfTuples() > 0) {
+    if ((!utilisation.empty() && utilisation.size() != point_count()) ||
+        (!state.empty() && state.size() != l.tree_first.size()))
+      throw std::invalid_argument(fmt::format(
+          "write_trees_vtp: damage: expected {} utilisations (one per point) and {} states (one per tree) or "
+          "none, got {} and {}",
+          point_count(), l.tree_first.size(), utilisation.size(), state.size()));
+    for (std::size_t v = 0; v < point_count(); ++v)
+      l.utilisation->SetValue(vtkIdType(v), utilisation.empty() ? 0.0f : utilisation[v]);
+    for (std::size_t t = 0; t < l.tree_first.size(); ++t)
+      for (vtkIdType i = 0; i < l.tree_points[t]; ++i)
+        l.state->SetValue(l.tree_first[t] + i, state.empty() ? 0 : state[t]);
+  }
   const std::size_t n = point_count();
   if (!displacement.empty() && displacement.size() != 3 * n) {
     throw std::invalid_argument(

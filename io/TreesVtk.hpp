@@ -35,6 +35,7 @@
 
 #include <Eigen/Core>
 
+#include <cstdint>
 #include <filesystem>
 
 #include <vector>
@@ -65,8 +66,10 @@ void write_trees_vtp(const std::filesystem::path& path, const TreesFrame& frame)
 class TreesVtp {
  public:
   /// The static part of the layout from the trees' rest, radius and parent (their displacement is ignored).
-  /// Throws std::invalid_argument("write_trees_vtp: tree K (id I): ...") as write_trees_vtp does.
-  explicit TreesVtp(const std::vector<TreesFrame::Tree>& trees);
+  /// damage: the frames also carry each point's stress `utilisation` and its tree's `state` (0 standing, 1
+  /// broken, 2 overturned: trees::TreeState; docs/damage.md). Throws std::invalid_argument
+  /// ("write_trees_vtp: tree K (id I): ...") as write_trees_vtp does.
+  explicit TreesVtp(const std::vector<TreesFrame::Tree>& trees, bool damage = false);
   ~TreesVtp();
   TreesVtp(const TreesVtp&) = delete;
   TreesVtp& operator=(const TreesVtp&) = delete;
@@ -80,6 +83,10 @@ class TreesVtp {
   /// rest shape. Throws std::invalid_argument("write_trees_vtp: ...") for another size or a non-finite
   /// value, std::runtime_error as write_trees_vtp.
   void write(const std::filesystem::path& path, double time, std::span<const float> displacement);
+  /// The same with the damage arrays (a layout made with damage): utilisation one float per point, state
+  /// one int per tree, each empty for zeros. Throws std::invalid_argument for other sizes.
+  void write(const std::filesystem::path& path, double time, std::span<const float> displacement,
+             std::span<const float> utilisation, std::span<const std::int32_t> state);
 
  private:
   struct Layout;

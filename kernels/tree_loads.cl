@@ -9,7 +9,10 @@
  *
  * A tree that has failed, when failures have consequences, takes no load: its modes are held at rest (q and
  * qdot zeroed every step, after the modal step: the deformation and the next step see a tree at rest) and
- * its sections carry nothing. */
+ * its sections carry nothing.
+ *
+ * counters: [0] the trees failed since the host last read it (DamageStages::take_new_failures), [1] and [2]
+ * every broken and overturned tree so far: a failure adds 1 to [0] and to [its state]. */
 #include "common.cl"
 
 __kernel void tree_loads(const int instance_count, const float time, const int consequences,
@@ -17,7 +20,7 @@ __kernel void tree_loads(const int instance_count, const float time, const int c
                          __global const FwStem* stems, __global const float* maps,
                          __global const float* sections, __global const int* section_offsets,
                          __global const float* sampled_wind, __global float* state,
-                         __global FwTreeDamage* damage, __global float* utilisation, __global int* failures) {
+                         __global FwTreeDamage* damage, __global float* utilisation, __global int* counters) {
   FW_FLAT_FOR(k, instance_count) {
     const FwTreeInstance tree = instances[k];
     const FwSpecies sp = species[tree.species];
@@ -74,7 +77,8 @@ __kernel void tree_loads(const int instance_count, const float time, const int c
       record.time = time;
       __global const float* top = sampled_wind + 3 * (tree.sample_offset + sp.sample_count - 1);
       for (int a = 0; a < 3; ++a) record.top_wind[a] = top[a];
-      atomic_inc(failures);
+      atomic_inc(&counters[0]);
+      atomic_inc(&counters[record.state]);
     }
     damage[k] = record;
   }

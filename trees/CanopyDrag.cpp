@@ -66,4 +66,25 @@ fluid::CanopyTreeReport add_to_canopy(fluid::CanopyField& canopy, const Forest& 
   return report;
 }
 
+Eigen::AlignedBox3d instance_reach(const Forest& forest, int instance) {
+  const TreeInstance& tree = forest.instances().at(std::size_t(instance));
+  const Eigen::AlignedBox3d skeleton = forest.species_of(instance).skeleton().bounding_box();
+  const Eigen::Matrix3d rotation = forest.rotation(instance);
+  Eigen::AlignedBox3d reach;
+  for (int corner = 0; corner < 8; ++corner)
+    reach.extend(tree.position + tree.scale * rotation *
+                                     skeleton.corner(static_cast<Eigen::AlignedBox3d::CornerType>(corner)));
+  return reach;
+}
+
+fluid::CellBox cells_around(const fluid::GridSpec& spec, const Eigen::AlignedBox3d& reach) {
+  if (reach.isEmpty()) return {};
+  return fluid::CellBox::around(spec, {reach.min().x(), reach.min().y(), reach.min().z()},
+                                {reach.max().x(), reach.max().y(), reach.max().z()});
+}
+
+fluid::CellBox instance_cells(const fluid::GridSpec& spec, const Forest& forest, int instance) {
+  return cells_around(spec, instance_reach(forest, instance));
+}
+
 }  // namespace fw::trees

@@ -43,4 +43,11 @@ std::vector<fluid::CanopyElement> canopy_elements(const Skeleton& world_skeleton
 /// std::invalid_argument("CanopyDrag: ...") for an instance index out of range.
 fluid::CanopyTreeReport add_to_canopy(fluid::CanopyField& canopy, const Forest& forest, int instance);
 
+/// The world box of instance k's skeleton nodes (m): where add_to_canopy puts its drag, within a cell of it.
+Eigen::AlignedBox3d instance_reach(const Forest& forest, int instance);
+/// The cells instance k's drag can reach (fluid::CellBox::around its instance_reach).
+fluid::CellBox instance_cells(const fluid::GridSpec& spec, const Forest& forest, int instance);
+/// fluid::CellBox::around a box in metres.
+fluid::CellBox cells_around(const fluid::GridSpec& spec, const Eigen::AlignedBox3d& reach);
+
 }  // namespace fw::trees

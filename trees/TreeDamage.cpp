@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <numbers>
 
 namespace fw::trees {
 
@@ -50,6 +51,28 @@ TreeLoad tree_load(const StemLoads& stem, const CriticalMoments& critical, doubl
   load.root_moment = grown.root_moment(q);
   load.overturning = load.root_moment / (critical.overturning * strength_scale);
   return load;
+}
+
+StaticCriticalWind static_critical_wind(const SpeciesBasis& species, const CriticalMoments& critical) {
+  StaticCriticalWind worst;
+  double largest = 0.0;
+  const int bands = species.wind().sample_count();
+  const Eigen::VectorXd omega_squared = species.modes().omega().cwiseAbs2();
+  for (int d = 0; d < kCriticalDirections; ++d) {
+    const double angle = 2.0 * std::numbers::pi * d / kCriticalDirections;
+    const Eigen::RowVector3d unit_wind(std::cos(angle), std::sin(angle), 0.0);  // 1 m/s
+    const Eigen::MatrixX3d wind = unit_wind.replicate(bands, 1);
+    const Eigen::VectorXd q = species.wind().modal_forces(wind).cwiseQuotient(omega_squared);
+    const TreeLoad load = tree_load(species.stem_loads(), critical, 1.0, q);
+    if (load.largest() > largest) {
+      largest = load.largest();
+      const int section = load.worst_section();
+      worst.breaks = section >= 0 && load.utilisation(section) > load.overturning;
+      worst.section = worst.breaks ? section : -1;
+    }
+  }
+  worst.speed = largest > 0.0 ? 1.0 / std::sqrt(largest) : 0.0;
+  return worst;
 }
 
 bool record_load(TreeDamageRecord& record, const TreeLoad& load, double time, const Eigen::Vector3d& top_wind,

@@ -21,6 +21,7 @@
 
 #include <vector>
 
+#include "trees/SpeciesBasis.hpp"
 #include "trees/StemLoads.hpp"
 #include "trees/TreeStrength.hpp"
 
@@ -66,6 +67,11 @@ struct TreeLoad {
 TreeLoad tree_load(const StemLoads& stem, const CriticalMoments& critical, double scale,
                    const Eigen::VectorXd& q);
 
+/// How many trees stand, broke and overturned.
+struct DamageCounts {
+  long standing = 0, broken = 0, overturned = 0;
+};
+
 /// What happened to one tree over the run.
 struct TreeDamageRecord {
   TreeState state = TreeState::standing;
@@ -77,6 +83,20 @@ struct TreeDamageRecord {
   double max_base_moment = 0.0;                        ///< N m, the largest root moment over the run
   double utilisation = 0.0;                            ///< the last step's largest
 };
+
+/// The model's own static critical wind of a species at scale 1, m/s: the uniform wind over the whole tree
+/// (the same in every wind band, horizontal, from the direction that loads it most of kCriticalDirections)
+/// whose static modal response (q = f / omega^2) brings the largest utilisation to 1. Utilisation grows as
+/// the wind's square (drag |v| v; the weight's moment is linear in q), so it is 1 / sqrt of the utilisation
+/// at 1 m/s. No turbulence, no shelter, no drag law: a reference against Hale's and ForestGALES's winds,
+/// which are the hour's mean at the canopy top and carry the gusts in their coefficients.
+inline constexpr int kCriticalDirections = 16;
+struct StaticCriticalWind {
+  double speed = 0.0;  ///< m/s
+  bool breaks = true;  ///< whether breakage (else overturning) comes first
+  int section = -1;    ///< the section that breaks, else -1
+};
+StaticCriticalWind static_critical_wind(const SpeciesBasis& species, const CriticalMoments& critical);
 
 /// Records a step's load (at time `time`, the wind `top_wind` at the tree's top) in `record`: the maxima,
 /// and the failure when the tree is standing and its largest utilisation exceeds 1. scale and stem give

@@ -58,7 +58,15 @@ CoupledStep::CoupledStep(ComputeContext& cc, WindGridSetup wind, const trees::Fo
       rank_forest_(rank_trees(forest, wind_, this->blocks())),
       own_forest_(blocks_ ? &rank_forest_ : &forest),
       trees_(cc, wind_.local_spec(), *own_forest_, this->blocks(), coupling.dynamics),
-      tree_count_(forest.instance_count()) {
+      tree_count_(forest.instance_count()),
+      drag_law_(coupling.drag_law) {
+  if (coupling.damage.enabled && has_trees()) {
+    trees_.set_damage(*own_forest_, coupling.damage);
+    damage_consequences_ = coupling.damage.consequences;
+    known_fallen_.assign(std::size_t(own_forest_->instance_count()), false);
+    if (damage_consequences_ && !coupling.drag_density.empty())
+      standing_canopy_.emplace(wind_.setup().spec, forest, coupling.drag_density);
+  }
   if (!coupling.drag_density.empty()) wind_.set_canopy(std::move(coupling.drag_density), coupling.drag_law);
   trees_.set_drag_law(coupling.drag_law);
   trees_.set_integrator(coupling.integrator);
@@ -145,6 +153,27 @@ void CoupledStep::restore_state(const std::map<std::string, StageState>& states)
   wind_.restore_state(of(saved::kWindStage));
   if (has_trees()) trees_.restore_state(of(saved::kTreesStage));
   if (leaves_) leaves_->restore_state(of(saved::kLeavesStage));
+  // The trees that had fallen by the checkpoint leave the air's drag again, all at once: the standing
+  // canopy is a function of which trees stand (StandingCanopy), so this is the field the run had.
+  if (damage_consequences_) remove_fallen(/*from_records=*/true);
+}
+
+void CoupledStep::remove_fallen(bool from_records) {
+  DamageStages& damage = *trees_.damage();
+  const long long mine = damage.take_new_failures();
+  if (!from_records && (blocks_ ? blocks_->world->sum(mine) : mine) == 0) return;
+  std::vector<int> fallen;  // whole-forest ids of this rank's trees that fell since the last call
+  if (mine > 0 || from_records) {
+    const std::vector<trees::TreeDamageRecord> records = damage.download_records();
+    for (std::size_t k = 0; k < records.size(); ++k) {
+      if (records[k].state == trees::TreeState::standing || known_fallen_[k]) continue;
+      known_fallen_[k] = true;
+      fallen.push_back(own_forest_->id(int(k)));
+    }
+  }
+  if (blocks_) fallen = joined(blocks_->world->gather(fallen));
+  if (standing_canopy_ && standing_canopy_->fell(fallen))
+    wind_.set_canopy(standing_canopy_->drag_density(), drag_law_);
 }
 
 CoupledStepReport CoupledStep::step(const NextStep& next) {
@@ -157,6 +186,15 @@ CoupledStepReport CoupledStep::step(const NextStep& next) {
     if (stage_timing_) {
       cc_.finish();
       trees_ms_ += std::chrono::duration<double, std::milli>(Clock::now() - trees_start).count();
+    }
+    if (trees_.damage()) {
+      const auto damage_start = Clock::now();
+      trees_.enqueue_damage_check(float(time()));
+      if (damage_consequences_) remove_fallen(/*from_records=*/false);
+      if (stage_timing_) {
+        cc_.finish();
+        damage_ms_ += std::chrono::duration<double, std::milli>(Clock::now() - damage_start).count();
+      }
     }
   }
   if (leaves_) {
@@ -216,6 +254,59 @@ CoupledStepReport CoupledStep::step_wind(const NextStep& next) {
   return report;
 }
 
+trees::DamageCounts CoupledStep::damage_counts() {
+  if (!trees_.has_damage()) return {};
+  trees::DamageCounts n = trees_.damage()->counts();
+  if (blocks_) {
+    const Communicator& world = *blocks_->world;
+    n.standing = long(world.sum((long long)n.standing));
+    n.broken = long(world.sum((long long)n.broken));
+    n.overturned = long(world.sum((long long)n.overturned));
+  }
+  return n;
+}
+
+std::vector<trees::TreeDamageRecord> CoupledStep::gather_damage() {
+  if (!trees_.has_damage()) return {};
+  std::vector<FwTreeDamage> mine = trees_.damage()->download_device_records();
+  std::vector<fw_int> ids;
+  for (int k = 0; k < own_forest_->instance_count(); ++k) ids.push_back(own_forest_->id(k));
+  if (blocks_) {
+    const Communicator& world = *blocks_->world;
+    const std::vector<FwTreeDamage> all = joined(world.gather(mine));
+    const std::vector<fw_int> all_ids = joined(world.gather(ids));
+    if (world.rank() != 0) return {};
+    mine.assign(std::size_t(tree_count_), FwTreeDamage{});
+    for (std::size_t j = 0; j < all.size(); ++j) mine[std::size_t(all_ids[j])] = all[j];
+  }
+  std::vector<trees::TreeDamageRecord> records;
+  records.reserve(mine.size());
+  for (const FwTreeDamage& d : mine) records.push_back(to_record(d));
+  return records;
+}
+
+std::vector<float> CoupledStep::node_utilisation() {
+  std::vector<float> nodes(std::size_t(own_forest_->total_nodes()), 0.0f);
+  if (!trees_.has_damage()) return nodes;
+  DamageStages& damage = *trees_.damage();
+  const std::vector<float> sections = damage.download_utilisation();
+  for (int k = 0; k < own_forest_->instance_count(); ++k) {
+    const std::vector<trees::StemSection> stem = own_forest_->species_of(k).stem_loads().sections();
+    for (std::size_t j = 0; j < stem.size(); ++j)
+      nodes[std::size_t(own_forest_->node_offset(k) + stem[j].node)] =
+          sections[std::size_t(damage.section_offset(k)) + j];
+  }
+  return nodes;
+}
+
+std::vector<std::int32_t> CoupledStep::tree_states() {
+  std::vector<std::int32_t> states(std::size_t(own_forest_->instance_count()), 0);
+  if (!trees_.has_damage()) return states;
+  const std::vector<FwTreeDamage> records = trees_.damage()->download_device_records();
+  for (std::size_t k = 0; k < records.size(); ++k) states[k] = records[k].state;
+  return states;
+}
+
 void CoupledStep::set_stage_timing(bool on) {
   stage_timing_ = on;
   wind_.set_stage_timing(on);
@@ -224,6 +315,7 @@ void CoupledStep::set_stage_timing(bool on) {
 std::map<std::string, double> CoupledStep::stage_ms() const {
   std::map<std::string, double> ms = wind_.stage_ms();
   if (has_trees()) ms["trees"] += trees_ms_;
+  if (trees_.has_damage()) ms["damage"] += damage_ms_;
   if (leaves_) ms["leaves"] += leaves_ms_;
   return ms;
 }
@@ -231,6 +323,7 @@ std::map<std::string, double> CoupledStep::stage_ms() const {
 void CoupledStep::reset_stage_ms() {
   wind_.reset_stage_ms();
   trees_ms_ = 0.0;
+  damage_ms_ = 0.0;
   leaves_ms_ = 0.0;
 }
 

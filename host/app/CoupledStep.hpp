@@ -14,8 +14,10 @@
 //
 // A step: choose dt (fixed, or the CFL number from max|u|, capped to land on the caller's limit) -> check it
 // -> wind grid step (advect, forces and gusts, canopy drag, projection) -> sample the wind at every tree's
-// sample points -> modal forces -> modal step -> leaves in the step's new wind (flutter, shedding, flight;
-// when there are any). Only the scalars of reductions come back to the host.
+// sample points -> modal forces -> modal step -> with damage, every tree's loads and failure check (a
+// failed tree's drag leaves the air: StandingCanopy) -> leaves in the step's new wind (flutter, shedding,
+// flight; when there are any). Only the scalars of reductions and the count of new failures come back to
+// the host.
 //
 // Checks, every step, before anything moves (a SimulationError names the step, the time and the field):
 //   - the velocity is finite (max|u| is read back each step: the CFL time step needs it, and a fixed dt
@@ -36,6 +38,7 @@
 
 #include "host/app/CouplingSettings.hpp"
 #include "host/app/SimulationPlan.hpp"
+#include "host/app/StandingCanopy.hpp"
 #include "host/app/TimeInputs.hpp"
 #include "host/runtime/ComputeContext.hpp"
 #include "host/stages/ForestStages.hpp"
@@ -141,7 +144,7 @@ class CoupledStep {
   double integrator_dt_limit() const { return integrator_dt_limit_; }
 
   /// When on, each stage ends with a queue finish and its wall time is added to stage_ms() (benchmarks and
-  /// run.json): the wind grid's stages and "trees".
+  /// run.json): the wind grid's stages, "trees" and, with damage, "damage".
   void set_stage_timing(bool on);
   std::map<std::string, double> stage_ms() const;
   void reset_stage_ms();
@@ -151,6 +154,20 @@ class CoupledStep {
   bool has_leaves() const { return leaves_ != nullptr; }
   /// The leaf stage; throws std::logic_error without leaves (has_leaves()).
   LeafStages& leaves();
+  /// Whether the run checks its trees for damage (forest.damage).
+  bool has_damage() const { return trees_.has_damage(); }
+  /// The trees by state over every rank (zero without damage). Collective.
+  trees::DamageCounts damage_counts();
+  /// Every tree's damage record in whole-forest order (Forest::id), on rank 0 and in one process; empty on
+  /// the other ranks and without damage. Collective.
+  std::vector<trees::TreeDamageRecord> gather_damage();
+  /// The stress utilisation of this rank's trees' nodes (one float a node, own_forest() order): a
+  /// stem node's section's, 0 on the other nodes (branches are not checked) and without damage.
+  std::vector<float> node_utilisation();
+  /// Each of this rank's trees' state (trees::TreeState as an int; own_forest() order), all 0 without
+  /// damage.
+  std::vector<std::int32_t> tree_states();
+
   /// An output frame's deformation: the trees' displacements (u = Phi q, strong-wind corrected as set), and
   /// the attached leaves moved with them.
   void enqueue_frame_deformation();
@@ -158,6 +175,10 @@ class CoupledStep {
  private:
   /// The time inputs at time t: ambient wind, turbulence sigma_u and unresolved intensity where given.
   void apply_inputs(double t);
+  /// The trees that failed since the last call, over every rank (whole-forest ids), and their drag out of
+  /// the air (consequences). from_records: take every failed tree of the records (a resume), not only the
+  /// step's new ones. Collective.
+  void remove_fallen(bool from_records);
   /// The wind grid's part of step(next): the report so far.
   CoupledStepReport step_wind(const NextStep& next);
 
@@ -171,7 +192,14 @@ class CoupledStep {
   std::unique_ptr<LeafStages> leaves_;  // null without leaves
   int tree_count_ = 0;
   double integrator_dt_limit_ = std::numeric_limits<double>::infinity();
+  // Storm damage with consequences: the trees of this rank known to have fallen, and the canopy of the
+  // standing ones (with two-way coupling).
+  bool damage_consequences_ = false;
+  std::vector<bool> known_fallen_;
+  std::optional<StandingCanopy> standing_canopy_;
+  fluid::DragLaw drag_law_;
   bool stage_timing_ = false;
+  double damage_ms_ = 0.0;
   double trees_ms_ = 0.0;
   double leaves_ms_ = 0.0;
 };

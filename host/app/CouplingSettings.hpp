@@ -9,6 +9,7 @@
 
 #include "trees/ModalIntegrator.hpp"
 #include "trees/SpeciesLeaves.hpp"
+#include "trees/TreeDamage.hpp"
 #include "trees/TreeDynamics.hpp"
 #include "trees/UnresolvedTurbulence.hpp"
 
@@ -31,6 +32,9 @@ struct CouplingSettings {
   /// The model that moves each species' trees (trees/TreeDynamics.hpp), one per forest species; empty: every
   /// species modal.
   std::vector<trees::SpeciesDynamics> dynamics;
+  /// Storm damage (forest.damage, docs/damage.md): every tree's loads against its species' strength, one
+  /// per forest species when enabled.
+  trees::DamageSettings damage;
 };
 
 }  // namespace fw::host

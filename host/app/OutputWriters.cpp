@@ -5,6 +5,7 @@
 #include <cmath>
 #include <string>
 
+#include "io/writers/DamageCsvWriter.hpp"
 #include "io/writers/LeavesVtkWriter.hpp"
 #include "io/writers/ProbesWriter.hpp"
 #include "io/writers/TreesVtkWriter.hpp"
@@ -35,6 +36,7 @@ io::RunManifest manifest_of(const SimulationPlan& plan, const DeviceInfo& device
   m.species = plan.species;
   m.two_way_coupling = plan.two_way_coupling;
   m.leaves = plan.leaf_count > 0;
+  m.damage = plan.coupling.damage.enabled && plan.forest.instance_count() > 0;
   m.ranks = plan.decomposition.ranks();
   m.decomposition = plan.decomposition.describe();
   return m;
@@ -61,6 +63,23 @@ std::unique_ptr<io::FrameWriter> wind_pieces(const SimulationPlan& plan,
   return std::make_unique<io::WindVtkWriter>(directory, share.local, cut(plan.wind.solid),
                                              cut(plan.canopy_density), plan.output.vtk_fields,
                                              std::move(pieces));
+}
+
+// What damage.csv says of each tree that never changes: its place, size and critical moments (its species'
+// at scale 1, grown by its scale: lengths s, the critical moments s^3).
+std::vector<io::DamageTree> damage_trees(const SimulationPlan& plan) {
+  std::vector<io::DamageTree> trees;
+  const trees::Forest& forest = plan.forest;
+  for (int k = 0; k < forest.instance_count(); ++k) {
+    const trees::TreeInstance& instance = forest.instances()[std::size_t(k)];
+    const SpeciesStrength& strength = *plan.strengths.at(std::size_t(instance.species));
+    const double s = instance.scale, volume_scale = s * s * s;
+    trees.push_back({forest.id(k), plan.species[std::size_t(instance.species)].name, instance.position.x(),
+                     instance.position.y(), s * strength.height, s * strength.dbh,
+                     volume_scale * strength.critical.breaking.front(),
+                     volume_scale * strength.critical.overturning});
+  }
+  return trees;
 }
 
 // A writer that takes every `every`-th frame only.
@@ -107,14 +126,15 @@ std::vector<std::unique_ptr<io::FrameWriter>> make_writers(const SimulationPlan&
   const io::OutputSettings& out = plan.output;
   const bool trees_present = plan.forest.instance_count() > 0;
   const bool leaves_present = plan.leaf_count > 0;
+  const bool damage = plan.coupling.damage.enabled && trees_present;
   std::vector<std::unique_ptr<io::FrameWriter>> writers;
   if (share != nullptr) {
     if (out.vtk_wind)
       writers.push_back(taking_every(wind_pieces(plan, directory, *share), out.vtk_wind_every));
     if (out.vtk_trees && trees_present)
-      writers.push_back(taking_every(
-          std::make_unique<io::TreesVtkWriter>(directory, *share->own_forest, share->rank, share->ranks),
-          out.vtk_trees_every));
+      writers.push_back(taking_every(std::make_unique<io::TreesVtkWriter>(directory, *share->own_forest,
+                                                                          damage, share->rank, share->ranks),
+                                     out.vtk_trees_every));
     if (out.vtk_leaves && leaves_present)
       writers.push_back(taking_every(
           std::make_unique<io::LeavesVtkWriter>(directory, share->rank, share->ranks), out.leaves_every));
@@ -128,8 +148,8 @@ std::vector<std::unique_ptr<io::FrameWriter>> make_writers(const SimulationPlan&
                      out.vtk_wind_every));
   }
   if (out.vtk_trees && trees_present && share == nullptr)
-    writers.push_back(
-        taking_every(std::make_unique<io::TreesVtkWriter>(directory, plan.forest), out.vtk_trees_every));
+    writers.push_back(taking_every(std::make_unique<io::TreesVtkWriter>(directory, plan.forest, damage),
+                                   out.vtk_trees_every));
   if (out.vtk_leaves && leaves_present && share == nullptr)
     writers.push_back(taking_every(std::make_unique<io::LeavesVtkWriter>(directory), out.leaves_every));
   if (out.vdb_enabled) {
@@ -143,7 +163,9 @@ std::vector<std::unique_ptr<io::FrameWriter>> make_writers(const SimulationPlan&
   for (const auto& probe : out.probes) probe_names.push_back(probe.name);
   if (!probe_names.empty() || !tip_trees.empty())
     writers.push_back(
-        std::make_unique<io::ProbesWriter>(directory, std::move(probe_names), tip_trees, leaves_present));
+        std::make_unique<io::ProbesWriter>(directory, std::move(probe_names), tip_trees,
+                                           io::CountColumns{leaves_present, plan.coupling.damage.enabled}));
+  if (damage) writers.push_back(std::make_unique<io::DamageCsvWriter>(directory, damage_trees(plan)));
   writers.push_back(std::make_unique<viz::ViewScriptWriter>(directory, view_settings(plan)));
   return writers;
 }

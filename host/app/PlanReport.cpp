@@ -72,6 +72,21 @@ void print_decomposition(const SimulationPlan& plan, std::ostream& out) {
   }
 }
 
+// A species' strength and critical winds at scale 1 (host/app/plan/DamagePlan.cpp). The section whose M_b
+// is least is the top's, where nothing bends: what breaks first is the section a load brings to its M_b
+// first, which the uniform wind finds.
+std::string strength_line(const SpeciesStrength& s) {
+  constexpr double kKilo = 1e3;
+  const auto& wind = s.static_wind;
+  return fmt::format(
+      "strength {}: breaks at {:.1f} kN m at the base, overturns at {:.1f} kN m; a uniform wind {} first, at "
+      "{:.1f} m/s (the model, static); Hale's critical mean wind at the canopy top {:.1f} m/s (h {:.1f} m, "
+      "dbh {:.2f} m, lean 1.14)",
+      s.source, s.critical.breaking.front() / kKilo, s.critical.overturning / kKilo,
+      wind.breaks ? fmt::format("breaks it {:.1f} m up", s.static_break_height) : std::string("overturns it"),
+      wind.speed, s.hale_wind, s.height, s.dbh);
+}
+
 }  // namespace
 
 void print_plan(const SimulationPlan& plan, std::ostream& out) {
@@ -98,7 +113,13 @@ void print_plan(const SimulationPlan& plan, std::ostream& out) {
         "species {}: {}, {} nodes, {} modes from {:.3f} Hz, {} wind samples, {} trees{} (basis {})\n", s.name,
         s.dynamics, s.nodes, s.modes, s.first_hz, s.samples, s.trees,
         leaves > 0 ? fmt::format(", {} leaves a tree", leaves) : "", s.cache);
+    if (plan.strengths[i]) out << "  " << strength_line(*plan.strengths[i]) << "\n";
   }
+  if (plan.coupling.damage.enabled)
+    out << fmt::format("damage: on; {}\n",
+                       plan.coupling.damage.consequences
+                           ? "a failed tree falls, takes no load and leaves the air's drag"
+                           : "failures recorded, failed trees stay up (consequences: false)");
   out << fmt::format("trees: {}, leaves: {}, two-way coupling: {}\n", plan.forest.instance_count(),
                      plan.leaf_count, plan.two_way_coupling ? "on" : "off");
   for (std::size_t k = 0; k < plan.stands.size(); ++k) out << stand_line(k, plan.stands[k]) << "\n";

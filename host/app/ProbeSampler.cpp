@@ -98,6 +98,7 @@ io::ProbeSample ProbeSampler::sample(CoupledStep& coupled) {
   for (std::size_t at = 0; at + 3 < tips.size(); at += 4)
     out.tips[std::size_t(tips[at])] = {tips[at + 1], tips[at + 2], tips[at + 3]};
   if (coupled.has_leaves()) out.leaf_counts = coupled.leaves().counts();
+  out.damage_counts = coupled.damage_counts();
   return out;
 }
 

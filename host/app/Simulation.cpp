@@ -81,6 +81,11 @@ io::OutputFrame capture_frame(CoupledStep& coupled, const io::FrameNeeds& needs,
     frame.leaves = leaf_frame(coupled.leaves().download(), coupled.leaves().counts(), attached_stride);
   else if (needs.leaf_counts && coupled.has_leaves())
     frame.leaves.counts = coupled.leaves().counts();
+  if (needs.damage) frame.damage = coupled.gather_damage();
+  if (needs.utilisation && coupled.has_damage()) {
+    frame.utilisation = coupled.node_utilisation();
+    frame.tree_state = coupled.tree_states();
+  }
   return frame;
 }
 
@@ -205,7 +210,7 @@ class RunLoop {
   static io::FrameNeeds agreed_needs(io::FrameNeeds needs, const Communicator& world) {
     if (world.size() == 1) return needs;
     for (bool* flag : {&needs.velocity, &needs.pressure, &needs.displacement, &needs.probe_samples,
-                       &needs.leaves, &needs.leaf_counts})
+                       &needs.leaves, &needs.leaf_counts, &needs.damage, &needs.utilisation})
       *flag = world.max(*flag ? 1.0 : 0.0) > 0.0;
     return needs;
   }
@@ -418,6 +423,7 @@ class RunLoop {
     outcome.spin_up_seconds = summary_.spin_up_seconds;
     outcome.spin_up_steps = summary_.spin_up_steps;
     outcome.spin_up_wall_seconds = summary_.spin_up_wall_seconds;
+    if (every_rank) outcome.damage = coupled_.gather_damage();  // collective
     output_.finish(outcome);
     if (write_error) std::rethrow_exception(write_error);
   }

@@ -40,6 +40,7 @@
 #include "trees/BasisCache.hpp"
 #include "trees/Forest.hpp"
 #include "trees/StandDensity.hpp"
+#include "trees/TreeDamage.hpp"
 
 namespace fw::io {
 struct Scenario;  // io/Scenario.hpp
@@ -77,6 +78,19 @@ struct StandPlan {
 /// the same, so that a scenario `check` accepts does not fail `run` on anything `check` could have known.
 enum class PlanFor { run, check };
 
+/// A forest species' strength (forest.species[].strength) and what it means for its trees at scale 1
+/// (host/app/plan/DamagePlan.cpp; docs/damage.md): what `check` prints and run.json records.
+struct SpeciesStrength {
+  trees::TreeStrength strength;
+  std::string source;  ///< "sitka_spruce (soil A, mean rooting)", "given", ...
+  trees::CriticalMoments critical;
+  trees::StaticCriticalWind static_wind;  ///< the model's own, in a uniform wind
+  double static_break_height = -1.0;  ///< m above the root: where the uniform wind breaks it (-1: overturns)
+  double height = 0.0;                ///< m
+  double dbh = 0.0;                   ///< m, 1.3 m above the root
+  double hale_wind = 0.0;  ///< m/s: the mean canopy-top wind whose peak base moment is the base's critical
+};
+
 struct SimulationPlan {
   ScenarioRecord scenario;
   PlanFor purpose = PlanFor::run;
@@ -97,6 +111,8 @@ struct SimulationPlan {
   /// Per forest species (forest.species()): its basis, its trees, the cache; the scenario's species first,
   /// in file order, then one for each stand that gives its own leaf area index.
   std::vector<io::SpeciesSummary> species;
+  /// Per forest species, like `species`: its strength, nullopt when the scenario gives none.
+  std::vector<std::optional<SpeciesStrength>> strengths;
   std::vector<StandPlan> stands;  ///< per forest.stands[] entry, in file order
   long leaf_count = 0;            ///< leaves of all instances: the sum over trees of their species' count
   /// per cell, frontal area density a (1/m); empty without trees, and in a plan for check (which

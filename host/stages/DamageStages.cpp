@@ -18,7 +18,11 @@ std::vector<FwTreeDamage> standing_records(int count) {
   return std::vector<FwTreeDamage>(std::size_t(count), standing);
 }
 
-trees::TreeDamageRecord from_device(const FwTreeDamage& d) {
+constexpr int kCounters = 3;  // new failures, broken, overturned
+
+}  // namespace
+
+trees::TreeDamageRecord to_record(const FwTreeDamage& d) {
   trees::TreeDamageRecord r;
   r.state = trees::TreeState(d.state);
   r.failed_section = d.failed_section;
@@ -30,8 +34,6 @@ trees::TreeDamageRecord from_device(const FwTreeDamage& d) {
   r.utilisation = d.utilisation;
   return r;
 }
-
-}  // namespace
 
 StemPacking StemPacking::of(const trees::Forest& forest, const trees::DamageSettings& settings) {
   if (settings.strengths.size() != forest.species().size())
@@ -78,7 +80,7 @@ DamageStages::DamageStages(ComputeContext& cc, const trees::Forest& forest,
   section_offsets_buffer_ = cc_.upload(p.section_offsets, ro);
   records_ = cc_.upload(standing_records(instance_count_));
   utilisation_ = cc_.zero_floats(std::size_t(total_sections_));
-  failures_ = cc_.upload(std::vector<fw_int>{0});
+  counters_ = cc_.upload(std::vector<fw_int>(kCounters, 0));
   loads_ = Kernel(cc_.build("tree_loads.cl"), "tree_loads");
 }
 
@@ -91,7 +93,7 @@ std::size_t DamageStages::estimate_device_bytes(const trees::Forest& forest,
   return bytes(p.stems.size(), sizeof(FwStem)) + bytes(p.maps.size(), sizeof(float)) +
          bytes(p.sections.size(), sizeof(float)) + bytes(p.section_offsets.size(), sizeof(fw_int)) +
          bytes(std::size_t(forest.instance_count()), sizeof(FwTreeDamage)) +
-         bytes(std::size_t(p.total_sections), sizeof(float)) + bytes(1, sizeof(fw_int));
+         bytes(std::size_t(p.total_sections), sizeof(float)) + bytes(kCounters, sizeof(fw_int));
 }
 
 void DamageStages::enqueue_loads(float time, cl::Buffer& instances, cl::Buffer& species, cl::Buffer& state,
@@ -99,27 +101,40 @@ void DamageStages::enqueue_loads(float time, cl::Buffer& instances, cl::Buffer& 
   if (instance_count_ == 0) return;
   loads_
       .set_args(instance_count_, time, settings_.consequences ? 1 : 0, instances, species, stems_, maps_,
-                sections_, section_offsets_buffer_, sampled_wind, state, records_, utilisation_, failures_)
+                sections_, section_offsets_buffer_, sampled_wind, state, records_, utilisation_, counters_)
       .enqueue(cc_, cl::NDRange(cc_.flat_items(std::size_t(instance_count_))));
 }
 
 int DamageStages::take_new_failures() {
   fw_int count = 0;
-  cc_.queue().enqueueReadBuffer(failures_, CL_TRUE, 0, sizeof count, &count);
+  cc_.queue().enqueueReadBuffer(counters_, CL_TRUE, 0, sizeof count, &count);
   if (count != 0) {
     const fw_int zero = 0;
-    cc_.queue().enqueueWriteBuffer(failures_, CL_TRUE, 0, sizeof zero, &zero);
+    cc_.queue().enqueueWriteBuffer(counters_, CL_TRUE, 0, sizeof zero, &zero);
   }
   return count;
 }
 
-std::vector<trees::TreeDamageRecord> DamageStages::download_records() {
+trees::DamageCounts DamageStages::counts() {
+  fw_int counters[kCounters] = {};
+  cc_.queue().enqueueReadBuffer(counters_, CL_TRUE, 0, sizeof counters, counters);
+  trees::DamageCounts n;
+  n.broken = counters[FW_TREE_BROKEN];
+  n.overturned = counters[FW_TREE_OVERTURNED];
+  n.standing = instance_count_ - n.broken - n.overturned;
+  return n;
+}
+
+std::vector<FwTreeDamage> DamageStages::download_device_records() {
   std::vector<FwTreeDamage> device(static_cast<std::size_t>(instance_count_));
   if (!device.empty())
     cc_.queue().enqueueReadBuffer(records_, CL_TRUE, 0, device.size() * sizeof(FwTreeDamage), device.data());
+  return device;
+}
+
+std::vector<trees::TreeDamageRecord> DamageStages::download_records() {
   std::vector<trees::TreeDamageRecord> records;
-  records.reserve(device.size());
-  for (const FwTreeDamage& d : device) records.push_back(from_device(d));
+  for (const FwTreeDamage& d : download_device_records()) records.push_back(to_record(d));
   return records;
 }
 
@@ -136,6 +151,11 @@ void DamageStages::save_state(StageState& state) {
 
 void DamageStages::restore_state(const StageState& state) {
   state.restore(cc_, saved::kTreesStage, saved::kDamage, records_);
+  // The totals follow from the records; nothing failed since the host last read the counter.
+  std::vector<fw_int> counters(kCounters, 0);
+  for (const FwTreeDamage& d : download_device_records())
+    if (d.state != FW_TREE_STANDING) ++counters[std::size_t(d.state)];
+  cc_.queue().enqueueWriteBuffer(counters_, CL_TRUE, 0, counters.size() * sizeof(fw_int), counters.data());
 }
 
 }  // namespace fw::host

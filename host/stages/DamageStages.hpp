@@ -35,6 +35,9 @@ struct StemPacking {
   static StemPacking of(const trees::Forest& forest, const trees::DamageSettings& settings);
 };
 
+/// A device record as the model's (trees/TreeDamage.hpp).
+trees::TreeDamageRecord to_record(const FwTreeDamage& record);
+
 class DamageStages {
  public:
   /// Uploads the packing of `forest` and a standing record for every tree. `settings.enabled` must be true
@@ -54,8 +57,11 @@ class DamageStages {
                      cl::Buffer& sampled_wind);
   /// The trees that failed since the last call (blocking: reads and zeroes the device's counter).
   int take_new_failures();
+  /// This stage's trees by state (blocking: two counters read back).
+  trees::DamageCounts counts();
 
-  /// Every tree's record (blocking).
+  /// Every tree's record (blocking), as the device holds it, and as the model's record.
+  std::vector<FwTreeDamage> download_device_records();
   std::vector<trees::TreeDamageRecord> download_records();
   /// Every stem section's utilisation of the last step (blocking), flat: instance k's from
   /// section_offset(k).
@@ -72,7 +78,8 @@ class DamageStages {
   int instance_count_ = 0;
   int total_sections_ = 0;
   std::vector<fw_int> section_offsets_;
-  cl::Buffer stems_, maps_, sections_, section_offsets_buffer_, records_, utilisation_, failures_;
+  cl::Buffer stems_, maps_, sections_, section_offsets_buffer_, records_, utilisation_;
+  cl::Buffer counters_;  // kernels/tree_loads.cl: new failures, broken, overturned
   Kernel loads_;
 };
 

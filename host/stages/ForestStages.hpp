@@ -118,6 +118,7 @@ class ForestStages {
   void set_damage(const trees::Forest& forest, const trees::DamageSettings& settings);
   /// The damage stage, when set; else null.
   DamageStages* damage() { return damage_ ? &*damage_ : nullptr; }
+  bool has_damage() const { return damage_.has_value(); }
   /// Every tree's loads and failure check at `time` (s, after the step), after enqueue_modal_step; nothing
   /// without damage.
   void enqueue_damage_check(float time) {

@@ -24,6 +24,7 @@
 
 #include "fluid/MacVelocity.hpp"
 #include "trees/LeafState.hpp"
+#include "trees/TreeDamage.hpp"
 
 namespace fw::io {
 
@@ -33,6 +34,7 @@ struct ProbeSample {
   std::vector<std::array<float, 3>> wind;   ///< per probe point, m/s
   std::vector<std::array<double, 3>> tips;  ///< tip displacement per tracked tree, m, world frame
   trees::LeafCounts leaf_counts;            ///< at the sample's time; written only in runs with leaves
+  trees::DamageCounts damage_counts;        ///< at the sample's time; written only in runs with damage
 };
 
 /// The leaves of a frame (docs/leaves.md): the written leaves (attached ones thinned or left out as the
@@ -61,6 +63,13 @@ struct OutputFrame {
   std::vector<float>
       displacement;  ///< 3 per forest node (instance order, world frame), m; empty unless needed
   LeafFrame leaves;  ///< empty unless a writer needs the leaves
+  /// Storm damage (docs/damage.md), empty unless needed: every tree's record in whole-forest order (over
+  /// ranks on rank 0 only), and the stress utilisation of each of this rank's trees' nodes (as
+  /// `displacement`, one float a node: a stem node's section's, 0 elsewhere) with each of its trees' state
+  /// (trees::TreeState as an int).
+  std::vector<trees::TreeDamageRecord> damage;
+  std::vector<float> utilisation;
+  std::vector<std::int32_t> tree_state;
   /// Over MPI ranks a rank's frame holds its block's velocity (with the halo) and its leaves. For the files
   /// that hold the whole domain (VDB), rank 0's frame also holds every rank's part, gathered: the domain's
   /// faces and every leaf in one process's order. Empty in one process, and on the other ranks.
@@ -84,6 +93,8 @@ struct FrameNeeds {
   bool probe_samples = false;
   bool leaves = false;
   bool leaf_counts = false;  ///< the counts over every leaf only (LeafFrame::counts); implied by leaves
+  bool damage = false;       ///< every tree's damage record (OutputFrame::damage)
+  bool utilisation = false;  ///< the nodes' stress utilisation and trees' states (OutputFrame::utilisation)
   FrameNeeds& operator|=(const FrameNeeds& other) {
     velocity = velocity || other.velocity;
     pressure = pressure || other.pressure;
@@ -91,6 +102,8 @@ struct FrameNeeds {
     probe_samples = probe_samples || other.probe_samples;
     leaves = leaves || other.leaves;
     leaf_counts = leaf_counts || other.leaf_counts;
+    damage = damage || other.damage;
+    utilisation = utilisation || other.utilisation;
     return *this;
   }
 };
@@ -130,6 +143,9 @@ struct RunOutcome {
   /// The run's segments in order, this one last: one for a run that was never resumed. Empty only for a
   /// caller that does not keep them (run.json then lists none).
   std::vector<RunSegment> segments;
+  /// Every tree's damage record at the end (whole-forest order; rank 0), empty without damage or when a
+  /// failure left it out of reach.
+  std::vector<trees::TreeDamageRecord> damage;
 };
 
 /// Whether an output written every `every`-th frame takes frame `index`: the multiples of `every`, so that

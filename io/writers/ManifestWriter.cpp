@@ -111,6 +111,25 @@ void ManifestWriter::write_run_json(const RunOutcome& outcome) const {
       json.null();  // no frame was written: no counts to report
     }
   }
+  if (m.damage) {
+    json.key("damage");
+    if (!outcome.damage.empty()) {
+      trees::DamageCounts n;
+      for (const trees::TreeDamageRecord& r : outcome.damage) {
+        n.standing += r.state == trees::TreeState::standing;
+        n.broken += r.state == trees::TreeState::broken;
+        n.overturned += r.state == trees::TreeState::overturned;
+      }
+      json.begin_object();
+      json.key("standing").value(std::int64_t(n.standing));
+      json.key("broken").value(std::int64_t(n.broken));
+      json.key("overturned").value(std::int64_t(n.overturned));
+      json.key("time_s").value(outcome.simulated_time);
+      json.end_object();
+    } else {
+      json.null();  // still running, or a failure left the records out of reach: damage.csv has the last
+    }
+  }
   json.end_object();
   base::write_text_atomically("ManifestWriter", directory_ / "run.json", json.str() + "\n");
 }

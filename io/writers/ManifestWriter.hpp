@@ -56,6 +56,7 @@ struct RunManifest {
   std::vector<SpeciesSummary> species;
   bool two_way_coupling = false;
   bool leaves = false;        ///< the run has leaves: run.json reports their counts
+  bool damage = false;        ///< the run checks its trees for damage: run.json reports the totals
   int ranks = 1;              ///< MPI ranks of the run (docs/parallel.md)
   std::string decomposition;  ///< their blocks (fluid::Decomposition::describe), over several ranks
 };

@@ -1,10 +1,11 @@
 // probes.csv: the wind at named points and the tip displacement of the first trees, one row per probe
 // sample (io/ProbesCsv.hpp has the columns). The samples are taken by the run loop at the probes' own
 // interval (host/app/ProbeSampler) and reach this writer in batches, with each frame. In runs with leaves
-// each sample's leaf counts (ProbeSample::leaf_counts) follow as four more columns.
+// each sample's leaf counts (ProbeSample::leaf_counts) follow as four more columns, in runs with storm damage
+// its tree counts (ProbeSample::damage_counts) as three more.
 //
 //   fw::io::ProbesWriter probes("out/storm", {"mast", "edge"}, /*tip_trees=*/{0, 1, 2, 3});
-//   fw::io::ProbesWriter probes("out/storm", {"mast"}, {0}, /*leaf_counts=*/true);
+//   fw::io::ProbesWriter probes("out/storm", {"mast"}, {0}, {.leaves = true});
 #pragma once
 
 #include <filesystem>
@@ -20,9 +21,9 @@ namespace fw::io {
 class ProbesWriter : public FrameWriter {
  public:
   /// probe_names: the columns' probe names; tip_trees: the instance ids whose tip columns follow;
-  /// leaf_counts: add the leaf count columns (a run with leaves).
+  /// counts: the count columns to add (a run with leaves, with damage).
   ProbesWriter(std::filesystem::path directory, std::vector<std::string> probe_names,
-               std::vector<int> tip_trees, bool leaf_counts = false);
+               std::vector<int> tip_trees, CountColumns counts = {});
 
   std::string name() const override { return "probes"; }
   FrameNeeds needs() const override { return {.probe_samples = true}; }
@@ -37,7 +38,7 @@ class ProbesWriter : public FrameWriter {
   std::filesystem::path directory_;
   std::vector<std::string> probe_names_;
   std::vector<int> tip_trees_;
-  bool leaf_counts_ = false;
+  CountColumns counts_;
   std::optional<ProbesCsv> csv_;
 };
 

@@ -27,18 +27,19 @@ std::vector<TreesFrame::Tree> forest_at_rest(const trees::Forest& forest) {
   return rest;
 }
 
-TreesVtkWriter::TreesVtkWriter(std::filesystem::path directory, const trees::Forest& forest)
+TreesVtkWriter::TreesVtkWriter(std::filesystem::path directory, const trees::Forest& forest, bool damage)
     : directory_(std::move(directory)),
-      forest_(std::make_unique<TreesVtp>(forest_at_rest(forest))),
+      damage_(damage),
+      forest_(std::make_unique<TreesVtp>(forest_at_rest(forest), damage)),
       collection_(directory_ / "trees.pvd") {}
 
 void TreesVtkWriter::begin() {
   std::filesystem::create_directories(directory_ / "trees");
 }
 
-TreesVtkWriter::TreesVtkWriter(std::filesystem::path directory, const trees::Forest& forest, int rank,
-                               int ranks)
-    : TreesVtkWriter(std::move(directory), forest) {
+TreesVtkWriter::TreesVtkWriter(std::filesystem::path directory, const trees::Forest& forest, bool damage,
+                               int rank, int ranks)
+    : TreesVtkWriter(std::move(directory), forest, damage) {
   rank_ = rank;
   ranks_ = ranks;
 }
@@ -55,12 +56,12 @@ std::string TreesVtkWriter::frame_file(int index, bool pieces) {
 void TreesVtkWriter::write(const OutputFrame& frame) {
   if (ranks_ == 0) {
     const std::string file = frame_file(frame.index, false);
-    forest_->write(directory_ / file, frame.time, frame.displacement);
+    forest_->write(directory_ / file, frame.time, frame.displacement, frame.utilisation, frame.tree_state);
     collection_.add(frame.time, file);
     return;
   }
   forest_->write(directory_ / "trees" / piece_file("trees", frame.index, rank_, "vtp"), frame.time,
-                 frame.displacement);
+                 frame.displacement, frame.utilisation, frame.tree_state);
   if (rank_ != 0) return;
   write_pvtp(directory_ / frame_file(frame.index, true), forest_->arrays(),
              piece_files("trees", frame.index, ranks_, "vtp"));

@@ -21,16 +21,18 @@ std::vector<TreesFrame::Tree> forest_at_rest(const trees::Forest& forest);
 
 class TreesVtkWriter : public FrameWriter {
  public:
-  TreesVtkWriter(std::filesystem::path directory, const trees::Forest& forest);
+  /// damage: the frames carry each node's stress utilisation and its tree's state (a run with damage).
+  TreesVtkWriter(std::filesystem::path directory, const trees::Forest& forest, bool damage = false);
   /// Over MPI ranks: `forest` is this rank's trees; it writes trees/trees_NNNNNN_RRRR.vtp, rank 0 also
   /// trees/trees_NNNNNN.pvtp listing the `ranks` pieces, and the run adds the frame to trees.pvd once every
   /// rank has written it.
-  TreesVtkWriter(std::filesystem::path directory, const trees::Forest& forest, int rank, int ranks);
+  TreesVtkWriter(std::filesystem::path directory, const trees::Forest& forest, bool damage, int rank,
+                 int ranks);
   /// The file trees.pvd lists for frame `index`: its .vtp, or over ranks its .pvtp.
   static std::string frame_file(int index, bool pieces);
 
   std::string name() const override { return "trees VTK"; }
-  FrameNeeds needs() const override { return {.displacement = true}; }
+  FrameNeeds needs() const override { return {.displacement = true, .utilisation = damage_}; }
   void begin() override;
   /// In one process the .pvd keeps its frames up to the checkpoint (over ranks the run lists them).
   void resume(const OutputResume& resume) override;
@@ -38,6 +40,7 @@ class TreesVtkWriter : public FrameWriter {
 
  private:
   std::filesystem::path directory_;
+  bool damage_ = false;
   std::unique_ptr<TreesVtp> forest_;
   int rank_ = 0, ranks_ = 0;  // ranks_ 0: one process, no pieces
   PvdCollection collection_;

@@ -123,7 +123,7 @@ TEST_CASE("ProbesCsv: leaf count columns follow the existing columns only when a
   const std::string leaf_columns = ",leaves_shed,leaves_flying,leaves_landed,leaves_exited";
   // A limit of the header plus about two rows: rewritten rows and appended rows both carry the counts.
   fw::io::ProbesCsv probes(path, {"mast", "gap"}, {0, 17}, kHeader.size() + leaf_columns.size() + 220,
-                           /*leaf_counts=*/true);
+                           {.leaves = true});
   CHECK(probes.header() == kHeader + leaf_columns);
   for (int n = 0; n < 5; ++n) {
     const fw::trees::LeafCounts counts{
@@ -168,7 +168,7 @@ TEST_CASE("ProbesCsv: leaf count columns follow the existing columns only when a
 TEST_CASE("probes writer: with leaf counts on, each sample's counts end its row", "[output]") {
   fw::test::TempDir dir("fw_out");
   const fs::path out(dir.path());
-  fw::io::ProbesWriter writer(out, {"mast"}, {}, /*leaf_counts=*/true);
+  fw::io::ProbesWriter writer(out, {"mast"}, {}, {.leaves = true});
   CHECK(writer.needs().probe_samples);
   writer.begin();
   fw::io::OutputFrame frame;

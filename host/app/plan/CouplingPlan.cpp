@@ -64,31 +64,12 @@ fluid::CellBox canopy_box(const SimulationPlan& plan) {
   const fluid::GridSpec& grid = plan.wind.spec;
   if (plan.purpose == PlanFor::run) return fluid::CellBox::whole(grid);
   Eigen::AlignedBox3d reach;  // m, world
-  for (int k = 0; k < plan.forest.instance_count(); ++k) {
-    const trees::TreeInstance& tree = plan.forest.instances()[std::size_t(k)];
-    const Eigen::AlignedBox3d skeleton = plan.forest.species_of(k).skeleton().bounding_box();
-    const Eigen::Matrix3d rotation = plan.forest.rotation(k);
-    for (int corner = 0; corner < 8; ++corner)
-      reach.extend(tree.position + tree.scale * rotation *
-                                       skeleton.corner(static_cast<Eigen::AlignedBox3d::CornerType>(corner)));
-  }
+  for (int k = 0; k < plan.forest.instance_count(); ++k) reach.extend(trees::instance_reach(plan.forest, k));
   for (const StandPlan& stand : plan.stands) {
     reach.extend(Eigen::Vector3d(stand.min.x(), stand.min.y(), grid.origin[2]));
     reach.extend(Eigen::Vector3d(stand.max.x(), stand.max.y(), grid.origin[2]));
   }
-  const int cells[3] = {grid.nx, grid.ny, grid.nz};
-  fluid::CellBox box;
-  for (int a = 0; a < 3; ++a) {
-    // Clamped in double first: a reach far outside the grid is no int.
-    const auto cell = [&](double x) {
-      return int(std::clamp(std::floor((x - grid.origin[std::size_t(a)]) / grid.h), -1.0, double(cells[a])));
-    };
-    const int first = std::max(0, cell(reach.min()[a]) - 1);
-    const int last = std::min(cells[a] - 1, cell(reach.max()[a]) + 1);
-    box.first[std::size_t(a)] = std::min(first, cells[a]);
-    box.count[std::size_t(a)] = std::max(0, last - first + 1);
-  }
-  return box;
+  return trees::cells_around(grid, reach);
 }
 
 }  // namespace

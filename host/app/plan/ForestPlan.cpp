@@ -60,6 +60,7 @@ int stand_basis(const io::Scenario& scenario, std::size_t index, const std::vect
   plan.coupling.leaves.push_back(
       species_leaves(scenario, bases.back(), given_species.leaves, leaf_area, plan.purpose));
   plan.coupling.dynamics.push_back(given_species.dynamics);
+  plan.strengths.push_back(plan.strengths[std::size_t(stand.species_index)]);
   io::SpeciesSummary summary = plan.species[std::size_t(stand.species_index)];
   summary.name = fmt::format("{} (stand {})", stand.species, index);
   summary.trees = 0;

@@ -8,6 +8,7 @@
 //   plan_turbulence(scenario.wind, plan);   // the inflow box and its sigma_u(t); Stam's unresolved forcing
 //   auto bases = plan_species(scenario, cache, log, plan);   // bases (cache), leaves, summaries
 //   plan_forest(scenario, std::move(bases), plan);          // the placed instances, the stands
+//   plan_damage(scenario, plan);        // the species' critical moments; the damage stage
 //   plan_coupling(scenario, plan);      // the canopy and its drag, the stands' density, integrator, ...
 //   plan_outputs(scenario, plan);       // writers, probes, the scenario record
 #pragma once
@@ -55,6 +56,9 @@ trees::SpeciesLeaves species_leaves(const io::Scenario& scenario, const trees::S
 /// host/app/plan/ForestPlan.cpp (after plan_species): the placed instances, and a basis of its own for every
 /// stand that gives its leaf area index (plan.stands, plan.species, plan.coupling.leaves)
 void plan_forest(const io::Scenario& scenario, std::vector<trees::SpeciesBasis> bases, SimulationPlan& plan);
+/// host/app/plan/DamagePlan.cpp (after plan_forest): every species' critical moments and winds
+/// (plan.strengths), and the damage stage's settings and memory when forest.damage is enabled
+void plan_damage(const io::Scenario& scenario, SimulationPlan& plan);
 /// host/app/plan/CouplingPlan.cpp (after plan_forest and plan_turbulence)
 void plan_coupling(const io::Scenario& scenario, SimulationPlan& plan);
 /// host/app/plan/OutputPlan.cpp

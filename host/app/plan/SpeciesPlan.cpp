@@ -153,6 +153,12 @@ std::vector<trees::SpeciesBasis> plan_species(const io::Scenario& scenario, cons
     plan.coupling.leaves.push_back(species_leaves(scenario, basis, species.leaves, leaf_area, plan.purpose));
     species.dynamics.validate();  // the loader's ranges are its own: a failure here is a bug, not the file's
     plan.coupling.dynamics.push_back(species.dynamics);
+    std::optional<SpeciesStrength>& strength = plan.strengths.emplace_back();
+    if (species.strength) {
+      strength.emplace();
+      strength->strength = *species.strength;
+      strength->source = species.strength_source;
+    }
     if (log) {
       const int leaves = plan.coupling.leaves.back().count();
       *log << fmt::format(
