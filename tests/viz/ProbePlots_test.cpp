@@ -130,6 +130,24 @@ TEST_CASE("ProbeTable: reads what a run writes and names the line of a bad value
   REQUIRE(table.tips.size() == 1);
   CHECK(table.tips[0].name == "tree3");
   CHECK(std::isnan(table.tips[0].xyz[1][0]));
+  CHECK_FALSE(table.damage);
+  // With storm damage: the tree counts after the leaf counts.
+  const auto damaged = fw::viz::read_probe_table(
+      dir.write("damaged.csv",
+                "time_s,mast_u,mast_v,mast_w,leaves_shed,leaves_flying,leaves_landed,leaves_exited,"
+                "trees_standing,trees_broken,trees_overturned\n"
+                "0,1,0,0,0,0,0,0,12,0,0\n"
+                "0.5,2,0,0,3,1,1,0,10,1,1\n"));
+  REQUIRE(damaged.damage);
+  CHECK(damaged.damage->time == damaged.time);
+  CHECK(damaged.damage->standing == std::vector<int>{12, 10});
+  CHECK(damaged.damage->broken == std::vector<int>{0, 1});
+  CHECK(damaged.damage->overturned == std::vector<int>{0, 1});
+  CHECK_THROWS_WITH(
+      fw::viz::read_probe_table(dir.write("counts.csv",
+                                          "time_s,mast_u,mast_v,mast_w,trees_standing,trees_broken,"
+                                          "trees_overturned\n0,1,0,0,12,0.5,0\n")),
+      Catch::Contains("counts.csv:2: trees_broken: expected a whole number >= 0, got '0.5'"));
   const std::string bad = dir.write("bad.csv", "time_s,mast_u,mast_v,mast_w\n0,1,2,3\n0.5,1,x,3\n");
   CHECK_THROWS_WITH(fw::viz::read_probe_table(bad),
                     Catch::Contains("bad.csv:3: mast_v: expected a number, got 'x'"));
