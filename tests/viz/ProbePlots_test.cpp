@@ -104,6 +104,45 @@ TEST_CASE("ProbePlots: the spectrum of a sine peaks at its frequency on log axes
   CHECK(f == Approx(f0).epsilon(0.08));
 }
 
+TEST_CASE("ProbePlots: the damage panel lies under the wind on its time axis and steps at the failures",
+          "[viz]") {
+  fw::test::TempDir dir("fw_viz");
+  auto table = table_of(200, 0.1, [](double t) { return 8.0 + std::sin(t); });  // 0 .. 19.9 s
+  // Ten trees: one breaks by 5 s and two more by 12 s; one overturns by 8 s (the rows a run samples).
+  fw::viz::DamageCounts counts;
+  for (double t : table.time) {
+    const int broken = t >= 12.0 - 1e-9 ? 3 : t >= 5.0 - 1e-9 ? 1 : 0, overturned = t >= 8.0 - 1e-9 ? 1 : 0;
+    counts.time.push_back(t);
+    counts.standing.push_back(10 - broken - overturned);
+    counts.broken.push_back(broken);
+    counts.overturned.push_back(overturned);
+  }
+  table.damage = counts;
+  const auto plot = fw::viz::plot_probes(table, {}, "test", {});
+  REQUIRE(plot.panels == std::vector<std::string>{"wind", "damage", "tips"});
+  const auto& wind = plot.plot_areas[0];
+  const auto& area = plot.plot_areas[1];
+  CHECK(area.x == wind.x);  // the same time axis: 0 .. 19.9 s across the same columns
+  CHECK(area.width == wind.width);
+  const fs::path png = fs::path(dir.path()) / "damage.png";
+  plot.canvas.write_png(png);
+  const auto image = fw::test::read_png(png);
+  // The y axis runs from a little below 0, so that 0 shows above the axis, to 1.08 x the most failed trees,
+  // at least 5.
+  const double lo = -0.05 * 1.08 * 5, hi = 1.08 * 5;
+  auto column = [&](double t) { return int(area.x + area.width * t / 19.9); };
+  auto row = [&](double count) { return area.y + area.height * (hi - count) / (hi - lo); };
+  const fw::viz::Rgb broken{0.90, 0.11, 0.09};
+  for (const auto& [t, before, after] : {std::tuple{5.0, 0, 1}, std::tuple{12.0, 1, 3}}) {
+    INFO("the step at " << t << " s");
+    CHECK(topmost(image, area, column(t) - 3, broken) == Approx(row(before)).margin(2));
+    CHECK(topmost(image, area, column(t) + 3, broken) == Approx(row(after)).margin(2));
+  }
+  // And nowhere else: flat between the steps.
+  for (double t : {2.0, 9.0, 18.0})
+    CHECK(topmost(image, area, column(t), broken) == Approx(row(t < 5 ? 0 : t < 12 ? 1 : 3)).margin(2));
+}
+
 TEST_CASE("ProbePlots: spectra need enough samples, and a table needs probes or trees", "[viz]") {
   fw::viz::PlotSettings settings;
   settings.spectrum = true;
