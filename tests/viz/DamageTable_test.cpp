@@ -71,39 +71,39 @@ TEST_CASE("DamageTable: reads each state, leaves a standing tree's failure empty
 TEST_CASE("DamageTable: a bad row says FILE:LINE: COLUMN: what was expected, and what was there", "[viz]") {
   using fw::test::check_source_error;
   const std::string name = "damage.csv";
-  // A standing tree with a failure time is an error, not tolerated: the row contradicts itself.
-  check_source_error(read_file, name, with_row("1,spruce,1,2,20,0.3,standing,12.5,,,1e4,5e4,6e4,0.5"), 3,
-                     "time_s", "expected no value for a standing tree, got '12.5'");
-  check_source_error(read_file, name, with_row("1,spruce,1,2,20,0.3,standing,,,3,1e4,5e4,6e4,0.5"), 3,
-                     "top_wind_m_s", "expected no value for a standing tree");
-  check_source_error(read_file, name, with_row("1,spruce,1,2,20,0.3,fallen,,,,1e4,5e4,6e4,0.5"), 3, "state",
-                     "expected standing, broken or overturned, got 'fallen'");
-  check_source_error(read_file, name, with_row("1,spruce,1,2,20,0.3,broken,,5,20,1e4,5e4,6e4,1.2"), 3,
-                     "time_s", "expected a number >= 0, got ''");
-  check_source_error(read_file, name, with_row("1,spruce,1,2,20,0.3,broken,4,21,20,1e4,5e4,6e4,1.2"), 3,
-                     "break_height_m", "expected a height up to the tree's, 20 m, got '21'");
-  check_source_error(read_file, name, with_row("1,spruce,1,2,20,0.3,overturned,4,2,20,1e4,5e4,6e4,1.2"), 3,
-                     "break_height_m", "expected 0 for an overturned tree, got '2'");
-  check_source_error(read_file, name, with_row("1,spruce,1,2,20,0.3,broken,4,5,,1e4,5e4,6e4,1.2"), 3,
-                     "top_wind_m_s", "expected a number >= 0");
-  check_source_error(read_file, name, with_row("1,spruce,1,2,20,0.3,broken,4,5,20,1e4,5e4,6e4,0.9"), 3,
-                     "max_utilisation", "expected a number >= 1 for a broken tree, got '0.9'");
-  check_source_error(read_file, name, with_row("0,spruce,1,2,20,0.3,standing,,,,1e4,5e4,6e4,0.5"), 3,
-                     "tree_id", "tree 0 is on line 2 already");
-  check_source_error(read_file, name, with_row("-1,spruce,1,2,20,0.3,standing,,,,1e4,5e4,6e4,0.5"), 3,
-                     "tree_id", "expected a whole number >= 0, got '-1'");
-  check_source_error(read_file, name, with_row("1.5,spruce,1,2,20,0.3,standing,,,,1e4,5e4,6e4,0.5"), 3,
-                     "tree_id", "expected a whole number >= 0");
-  check_source_error(read_file, name, with_row("1,,1,2,20,0.3,standing,,,,1e4,5e4,6e4,0.5"), 3, "species",
-                     "expected the species' name");
-  check_source_error(read_file, name, with_row("1,spruce,east,2,20,0.3,standing,,,,1e4,5e4,6e4,0.5"), 3, "x",
-                     "expected a number, got 'east'");
-  check_source_error(read_file, name, with_row("1,spruce,1,2,0,0.3,standing,,,,1e4,5e4,6e4,0.5"), 3,
-                     "height_m", "expected a number > 0, got '0'");
-  check_source_error(read_file, name, with_row("1,spruce,1,2,20,0.3,standing,,,,1e4,nan,6e4,0.5"), 3,
-                     "critical_breakage_Nm", "expected a number > 0, got 'nan'");
-  check_source_error(read_file, name, with_row("1,spruce,1,2,20,0.3,standing,,,,1e4,5e4,6e4"), 3, "row",
-                     "expected 14 values, got 13");
+  // Line 3 of a file whose line 2 is a good standing tree 0: the row, its column, what is said.
+  struct BadRow {
+    const char *row, *column, *detail;
+  };
+  const BadRow bad_rows[] = {
+      // A standing tree with a failure time is an error, not tolerated: the row contradicts itself.
+      {"1,spruce,1,2,20,0.3,standing,12.5,,,1e4,5e4,6e4,0.5", "time_s",
+       "expected no value for a standing tree, got '12.5'"},
+      {"1,spruce,1,2,20,0.3,standing,,,3,1e4,5e4,6e4,0.5", "top_wind_m_s",
+       "expected no value for a standing tree"},
+      {"1,spruce,1,2,20,0.3,fallen,,,,1e4,5e4,6e4,0.5", "state",
+       "expected standing, broken or overturned, got 'fallen'"},
+      {"1,spruce,1,2,20,0.3,broken,,5,20,1e4,5e4,6e4,1.2", "time_s", "expected a number >= 0, got ''"},
+      {"1,spruce,1,2,20,0.3,broken,4,21,20,1e4,5e4,6e4,1.2", "break_height_m",
+       "expected a height up to the tree's, 20 m, got '21'"},
+      {"1,spruce,1,2,20,0.3,overturned,4,2,20,1e4,5e4,6e4,1.2", "break_height_m",
+       "expected 0 for an overturned tree, got '2'"},
+      {"1,spruce,1,2,20,0.3,broken,4,5,,1e4,5e4,6e4,1.2", "top_wind_m_s", "expected a number >= 0"},
+      {"1,spruce,1,2,20,0.3,broken,4,5,20,1e4,5e4,6e4,0.9", "max_utilisation",
+       "expected a number >= 1 for a broken tree, got '0.9'"},
+      {"0,spruce,1,2,20,0.3,standing,,,,1e4,5e4,6e4,0.5", "tree_id", "tree 0 is on line 2 already"},
+      {"-1,spruce,1,2,20,0.3,standing,,,,1e4,5e4,6e4,0.5", "tree_id",
+       "expected a whole number >= 0, got '-1'"},
+      {"1.5,spruce,1,2,20,0.3,standing,,,,1e4,5e4,6e4,0.5", "tree_id", "expected a whole number >= 0"},
+      {"1,,1,2,20,0.3,standing,,,,1e4,5e4,6e4,0.5", "species", "expected the species' name"},
+      {"1,spruce,east,2,20,0.3,standing,,,,1e4,5e4,6e4,0.5", "x", "expected a number, got 'east'"},
+      {"1,spruce,1,2,0,0.3,standing,,,,1e4,5e4,6e4,0.5", "height_m", "expected a number > 0, got '0'"},
+      {"1,spruce,1,2,20,0.3,standing,,,,1e4,nan,6e4,0.5", "critical_breakage_Nm",
+       "expected a number > 0, got 'nan'"},
+      {"1,spruce,1,2,20,0.3,standing,,,,1e4,5e4,6e4", "row", "expected 14 values, got 13"},
+  };
+  for (const BadRow& bad : bad_rows)
+    check_source_error(read_file, name, with_row(bad.row), 3, bad.column, bad.detail);
   // The header.
   check_source_error(read_file, name,
                      "tree_id,species,x,y,height,dbh_m,state,time_s,break_height_m,top_wind_m_s,"
