@@ -20,13 +20,6 @@ constexpr double kOutline = 1.2;          // px of dark ring around a disc
 constexpr double kLabelSize = 12.0, kLegendRow = 20.0, kLegendDisc = 7.0;
 const Rgb kInk{0.1, 0.1, 0.1}, kMarkInk{0.0, 0.0, 0.0}, kHalo{1.0, 1.0, 1.0};
 
-RenderSettings top_without_trees(RenderSettings settings) {
-  if (settings.view != ViewKind::top)
-    throw std::invalid_argument("render: --field damage: draws the top view only (--view top)");
-  settings.trees = false;
-  return settings;
-}
-
 // A tree at `c` with a disc of radius r, filled with `fill`, marked by its state.
 void draw_tree(Canvas& canvas, Point2 c, double r, Rgb fill, TreeState state) {
   canvas.disc(c, r + kOutline, kInk);
@@ -75,9 +68,16 @@ void draw_key(Canvas& canvas, const RenderSettings& settings, const std::array<i
 
 }  // namespace
 
+RenderSettings damage_map_settings(RenderSettings settings) {
+  if (settings.view != ViewKind::top)
+    throw std::invalid_argument("render: --field damage: draws the top view only (--view top)");
+  settings.trees = false;
+  return settings;
+}
+
 DamageMap::DamageMap(const FrameData& frame, const DamageTable& damage, const std::string& scenario,
                      const RenderSettings& settings)
-    : picture_(frame, scenario, top_without_trees(settings)), counts_(damage.counts_at(frame.time)) {
+    : picture_(frame, scenario, damage_map_settings(settings)), counts_(damage.counts_at(frame.time)) {
   Canvas& canvas = picture_.canvas();
   const Camera& camera = picture_.camera();
   const ColourMap& map = ColourMap::named("utilisation");

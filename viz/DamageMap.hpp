@@ -26,6 +26,11 @@ namespace fw::viz {
 /// The smallest disc radius, px: a short tree far away stays a visible dot with a visible mark.
 constexpr double kSmallestDisc = 4.0;
 
+/// The settings DamageMap draws the wind with: `settings` without the trees (RenderSettings::trees false).
+/// Throws std::invalid_argument("render: --field damage: draws the top view only ...") for another view, so
+/// that a command can refuse it before reading any frame.
+RenderSettings damage_map_settings(RenderSettings settings);
+
 class DamageMap {
  public:
   /// Draws `damage` over `frame`. Throws std::invalid_argument("render: --field damage: ...") for a view

@@ -51,7 +51,7 @@ viz::RenderSettings settings_of(const RenderOptions& options) {
   s.arrows = options.arrows;
   s.width = options.width;
   s.height_px = options.height_px;
-  return s;
+  return options.field == kDamageField ? viz::damage_map_settings(s) : s;
 }
 
 // The first executable `name` on PATH, or empty.
