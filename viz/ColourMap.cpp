@@ -13,6 +13,8 @@ namespace {
 // sRGB <-> CIELAB through linear RGB and CIE XYZ with the D65 white (IEC 61966-2-1, CIE 15).
 constexpr double kWhiteX = 0.95047, kWhiteY = 1.0, kWhiteZ = 1.08883;
 constexpr double kLabEpsilon = 216.0 / 24389.0, kLabKappa = 24389.0 / 27.0;
+// The utilisation map's scale runs 0 .. kUtilisationTop; a utilisation of 1 (failure) sits here on it.
+constexpr double kUtilisationFailure = 1.0 / kUtilisationTop;
 
 double to_linear(double c) {
   return c <= 0.04045 ? c / 12.92 : std::pow((c + 0.055) / 1.055, 2.4);
@@ -62,6 +64,13 @@ std::vector<ColourMap> make_named_maps() {
                 {{0.0, {0.22, 0.12, 0.05}}, {0.5, {0.86, 0.24, 0.10}}, {1.0, {1.0, 0.95, 0.72}}}, no_data),
       ColourMap("diverging",
                 {{0.0, {0.230, 0.299, 0.754}}, {0.5, {0.865, 0.865, 0.865}}, {1.0, {0.706, 0.016, 0.150}}},
+                no_data),
+      // Greys darkening up to a utilisation of 1 (of 1.5), then reds: a step of hue at failure.
+      ColourMap("utilisation",
+                {{0.0, {0.97, 0.97, 0.97}},
+                 {kUtilisationFailure - 1e-9, {0.40, 0.40, 0.40}},
+                 {kUtilisationFailure, {0.90, 0.11, 0.09}},
+                 {1.0, {0.48, 0.00, 0.16}}},
                 no_data),
   };
 }

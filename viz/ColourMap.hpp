@@ -10,6 +10,9 @@
 //   wind          sequential, deep blue -> teal -> yellow-green -> yellow: speeds, densities (>= 0)
 //   displacement  sequential, dark brown -> red -> pale yellow: the trees' displacement (m)
 //   diverging     blue -> light grey -> red (Moreland's cool-to-warm end points): signed fields
+//   utilisation   storm damage, on a scale of 0 .. kUtilisationTop: light grey darkening to mid grey up to
+//                 a utilisation of 1, then bright red darkening to wine red: a tree at or past failure is a
+//                 different hue, not a shade further along
 #pragma once
 
 #include <array>
@@ -17,6 +20,9 @@
 #include <vector>
 
 namespace fw::viz {
+
+/// The top of the "utilisation" map's scale (applied-to-critical load ratio); 1 is failure.
+inline constexpr double kUtilisationTop = 1.5;
 
 /// An sRGB colour, each channel 0..1.
 struct Rgb {

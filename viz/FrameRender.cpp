@@ -342,6 +342,12 @@ std::array<double, 2> slice_range(const FrameData& frame, const RenderSettings& 
   return field_range(g.field(settings.field), slice_of(g, settings.view, settings.height), g);
 }
 
+Viewport colour_bar_place(const RenderSettings& settings, int n) {
+  const double x = settings.width - kMarginRight + 40, h = settings.height_px;
+  return n == 0 ? Viewport{x, kMarginTop + 20, 22, 0.42 * h}
+                : Viewport{x, kMarginTop + 60 + 0.42 * h, 22, 0.28 * h};
+}
+
 ViewKind parse_view(const std::string& name) {
   for (ViewKind kind : {ViewKind::top, ViewKind::side, ViewKind::perspective})
     if (name == view_name(kind)) return kind;
@@ -368,25 +374,21 @@ FrameRender::FrameRender(const FrameData& frame, const std::string& scenario, co
     field_map_ = &ColourMap::named(field->is_signed ? "diverging" : "wind");
     subject = settings.view == ViewKind::side ? fmt::format("{} at y = {:g} m", field->name, slice->position)
                                               : fmt::format("{} at z = {:g} m", field->name, slice->position);
-    draw_colour_bar(canvas_,
-                    {settings.width - kMarginRight + 40, kMarginTop + 20, 22, 0.42 * settings.height_px},
-                    *field_map_, range_[0], range_[1],
+    draw_colour_bar(canvas_, colour_bar_place(settings, 0), *field_map_, range_[0], range_[1],
                     field->unit.empty() ? field->name : fmt::format("{} ({})", field->name, field->unit));
   }
-  if (frame.trees) displacement_range_ = displacement_scale(frame.trees->displacement);
-  if (frame.trees && !frame.trees->segments.empty())
-    draw_colour_bar(canvas_,
-                    {settings.width - kMarginRight + 40, kMarginTop + 60 + 0.42 * settings.height_px, 22,
-                     0.28 * settings.height_px},
-                    ColourMap::named("displacement"), 0.0,
+  const bool trees = frame.trees && settings.trees, leaves = frame.leaves && settings.trees;
+  if (trees) displacement_range_ = displacement_scale(frame.trees->displacement);
+  if (trees && !frame.trees->segments.empty())
+    draw_colour_bar(canvas_, colour_bar_place(settings, 1), ColourMap::named("displacement"), 0.0,
                     displacement_range_ > 0.0 ? displacement_range_ : 1.0, "tree displacement (m)");
 
   const bool perspective = settings.view == ViewKind::perspective;
   if (perspective) draw_box(canvas_, camera_, domain);
   // Perspective: what lies below the slice is painted first, so the slice hides it.
-  if (perspective && frame.trees)
+  if (perspective && trees)
     draw_trees(canvas_, tree_strokes(*frame.trees, camera_, true, slice_position_, displacement_range_));
-  if (perspective && frame.leaves) draw_leaves(canvas_, camera_, *frame.leaves, true, slice_position_);
+  if (perspective && leaves) draw_leaves(canvas_, camera_, *frame.leaves, true, slice_position_);
   if (slice) {
     const WindGrid& g = *frame.wind;
     if (!perspective)
@@ -399,11 +401,11 @@ FrameRender::FrameRender(const FrameData& frame, const std::string& scenario, co
     canvas_.clip(camera_.viewport().x, camera_.viewport().y, camera_.viewport().width,
                  camera_.viewport().height);
   }
-  if (frame.trees)
+  if (trees)
     draw_trees(canvas_,
                tree_strokes(*frame.trees, camera_, perspective ? std::optional<bool>(false) : std::nullopt,
                             slice_position_, displacement_range_));
-  if (frame.leaves)
+  if (leaves)
     draw_leaves(canvas_, camera_, *frame.leaves, perspective ? std::optional<bool>(false) : std::nullopt,
                 slice_position_);
   canvas_.reset_clip();

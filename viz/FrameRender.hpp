@@ -39,7 +39,8 @@ struct RenderSettings {
   std::optional<double> height;                ///< slice height z (world), m
   std::optional<std::array<double, 2>> range;  ///< colour range of the field, its unit
   bool arrows = false;                         ///< in-plane wind arrows over the slice
-  int width = 1280, height_px = 800;           ///< picture size, px
+  bool trees = true;  ///< draw the deformed trees and leaves (without wind, the view still fits the trees)
+  int width = 1280, height_px = 800;  ///< picture size, px
 };
 
 class FrameRender {
@@ -49,6 +50,8 @@ class FrameRender {
   FrameRender(const FrameData& frame, const std::string& scenario, const RenderSettings& settings);
 
   const Canvas& canvas() const { return canvas_; }
+  /// For drawing over the picture (viz/DamageMap).
+  Canvas& canvas() { return canvas_; }
   /// Where the world lands in the picture (the slice's and the trees' projection).
   const Camera& camera() const { return camera_; }
   /// The slice's layer (top, perspective: k; side: j) and its height or position, m.
@@ -73,6 +76,10 @@ class FrameRender {
 /// The colour range FrameRender gives the field of `frame` (settings.range, else the slice's, as above),
 /// without drawing; for one scale over many frames. Throws as FrameRender for a field the frame lacks.
 std::array<double, 2> slice_range(const FrameData& frame, const RenderSettings& settings);
+
+/// Where FrameRender puts its colour bars in a picture of `settings`' size, px: n = 0 the field's, n = 1 the
+/// trees' displacement's (free in a frame without trees, for a picture drawn over it).
+Viewport colour_bar_place(const RenderSettings& settings, int n);
 
 /// "top", "side", "perspective" -> ViewKind. Throws std::invalid_argument naming the choices.
 ViewKind parse_view(const std::string& name);

@@ -16,6 +16,12 @@ constexpr double kTitleHeight = 40.0;  // px above the first panel for the scena
 constexpr std::size_t kShortestSegment = 64;
 constexpr double kKolmogorovSlope = -5.0 / 3.0;
 const Rgb kInk{0.1, 0.1, 0.1}, kReference{0.45, 0.45, 0.45};
+// The damage panel's lines: the utilisation map's reds (viz/ColourMap.hpp), overturned the darker.
+const Rgb kBroken{0.90, 0.11, 0.09}, kOverturned{0.48, 0.00, 0.16};
+// Its y axis: up to 8% above the most failed trees (at least kFewestOnAxis), and 5% of that below 0, so that
+// a count of 0 shows above the axis rather than on it.
+constexpr double kAboveMost = 1.08, kBelowZero = 0.05;
+constexpr int kFewestOnAxis = 5;  // trees: an axis of whole numbers for one or two failures too
 
 double median_interval(const std::vector<double>& t) {
   std::vector<double> d;
@@ -43,15 +49,47 @@ std::size_t segment_for(std::size_t samples) {
   return segment;
 }
 
+// `count` as steps: each value holds from its time until the next time, where the line rises (or falls).
+std::array<std::vector<double>, 2> steps(const std::vector<double>& time, const std::vector<int>& count) {
+  std::array<std::vector<double>, 2> xy;
+  for (std::size_t n = 0; n < time.size(); ++n) {
+    if (n > 0 && count[n] != count[n - 1]) xy[0].push_back(time[n]), xy[1].push_back(count[n - 1]);
+    xy[0].push_back(time[n]), xy[1].push_back(count[n]);
+  }
+  return xy;
+}
+
+// Broken and overturned trees so far, over the wind panel's time span; returns the plot area.
+Viewport damage_panel(Canvas& canvas, const Viewport& panel, const DamageCounts& counts,
+                      const std::array<double, 2>& span, const std::vector<double>& frame_times) {
+  const auto [broken_t, broken] = steps(counts.time, counts.broken);
+  const auto [overturned_t, overturned] = steps(counts.time, counts.overturned);
+  int most = kFewestOnAxis;
+  for (std::size_t n = 0; n < counts.time.size(); ++n)
+    most = std::max({most, counts.broken[n], counts.overturned[n]});
+  const int trees = counts.time.empty() ? 0 : counts.standing[0] + counts.broken[0] + counts.overturned[0];
+  const ChartAxes axes{.x_title = "time (s)",
+                       .y_title = "failed trees",
+                       .x_range = span[1] > span[0] ? std::optional(span) : std::nullopt,
+                       .y_range = std::array<double, 2>{-kBelowZero * kAboveMost * most, kAboveMost * most}};
+  const Chart chart(canvas, panel, axes, fmt::format("trees broken and overturned so far (of {})", trees),
+                    // Overturned first, wide and dashed, so that where the counts are equal both show.
+                    {{"overturned", overturned_t, overturned, kOverturned, 3.5, 5.0},
+                     {"broken", broken_t, broken, kBroken, 1.8}},
+                    frame_times);
+  return chart.plot_area();
+}
+
 }  // namespace
 
 ProbePlot plot_probes(const ProbeTable& table, const std::vector<double>& frame_times,
                       const std::string& scenario, const PlotSettings& settings) {
   if (table.time.empty()) throw std::invalid_argument("plot: probes.csv holds no samples yet");
-  if (table.probes.empty() && table.tips.empty())
+  if (table.probes.empty() && table.tips.empty() && !table.damage)
     throw std::invalid_argument("plot: probes.csv holds neither probes nor tracked trees");
   std::vector<std::string> panels;
   if (!table.probes.empty()) panels.push_back("wind");
+  if (table.damage) panels.push_back("damage");
   if (!table.tips.empty()) panels.push_back("tips");
   if (settings.spectrum) {
     if (table.probes.empty())
@@ -85,6 +123,11 @@ ProbePlot plot_probes(const ProbeTable& table, const std::vector<double>& frame_
                         wind ? "wind speed at the probes" : "tip displacement of the tracked trees", series,
                         frame_times);
       plot.plot_areas.push_back(chart.plot_area());
+      continue;
+    }
+    if (panels[p] == "damage") {
+      plot.plot_areas.push_back(damage_panel(plot.canvas, panel, *table.damage,
+                                             {table.time.front(), table.time.back()}, frame_times));
       continue;
     }
     // Spectra of the wind speed at each probe.

@@ -1,6 +1,8 @@
-// `forestwind plot`: a run's probes.csv as a picture. One panel for the wind speed at each probe over time,
-// one for the tip displacement of each tracked tree, both with the output frames' times marked along the top;
-// with `spectrum`, a third panel with the power spectrum of each probe's wind speed on log axes and the
+// `forestwind plot`: a run's probes.csv as a picture. One panel for the wind speed at each probe over time;
+// in a run with storm damage, under it and on the same time axis, one for the number of broken and of
+// overturned trees so far (steps: a count holds until the time at which it changes); one for the tip
+// displacement of each tracked tree; all with the output frames' times marked along the top. With
+// `spectrum`, a last panel with the power spectrum of each probe's wind speed on log axes and the
 // Kolmogorov f^-5/3 slope for reference.
 //
 //   fw::viz::ProbeTable table = fw::viz::read_probe_table("out/storm/probes.csv");
@@ -34,11 +36,13 @@ struct PlotSettings {
 struct ProbePlot {
   Canvas canvas;
   std::vector<Viewport> plot_areas;  ///< per panel drawn, top to bottom: the rectangle inside its axes
-  std::vector<std::string> panels;   ///< "wind", "tips", "spectrum"
+  std::vector<std::string> panels;   ///< "wind", "damage", "tips", "spectrum"
 };
 
-/// Throws std::invalid_argument("plot: ...") when the table has no rows, no probes and no trees, or (with
-/// `spectrum`) fewer than kSpectrumSamples samples or no probes.
+/// The damage panel is drawn from table.damage (probes.csv's tree counts, or damage.csv's failures through
+/// DamageTable::counts_over) over the table's time span. Throws std::invalid_argument("plot: ...") when the
+/// table has no rows, neither probes, nor trees, nor tree counts, or (with `spectrum`) fewer than
+/// kSpectrumSamples samples or no probes.
 ProbePlot plot_probes(const ProbeTable& table, const std::vector<double>& frame_times,
                       const std::string& scenario, const PlotSettings& settings);
 

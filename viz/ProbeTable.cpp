@@ -9,18 +9,13 @@
 #include <stdexcept>
 
 #include "base/TextNumber.hpp"
+#include "viz/CsvText.hpp"
 
 namespace fw::viz {
 
 namespace {
 
-std::vector<std::string> split(const std::string& line) {
-  std::vector<std::string> fields;
-  std::stringstream in(line);
-  for (std::string field; std::getline(in, field, ',');) fields.push_back(field);
-  if (!line.empty() && line.back() == ',') fields.emplace_back();
-  return fields;
-}
+const std::array<const char*, 3> kTreeCounts{"trees_standing", "trees_broken", "trees_overturned"};
 
 bool ends_with(const std::string& text, const std::string& suffix) {
   return text.size() >= suffix.size() &&
@@ -53,17 +48,11 @@ ProbeTable read_probe_table(const std::filesystem::path& path) {
   const std::string text = buffer.str();
   const std::string file = path.string();
 
-  std::vector<std::string> lines;
-  for (std::size_t start = 0; start < text.size();) {
-    const std::size_t end = text.find('\n', start);
-    if (end == std::string::npos) break;  // an unfinished last row
-    lines.push_back(text.substr(start, end - start));
-    start = end + 1;
-  }
-  if (lines.empty() || split(lines[0]).empty() || split(lines[0])[0] != "time_s")
+  const std::vector<std::string> lines = csv_lines(text, /*keep_unfinished_last=*/false);
+  if (lines.empty() || split_csv(lines[0]).empty() || split_csv(lines[0])[0] != "time_s")
     throw std::invalid_argument(
         fmt::format("{}:1: header: expected 'time_s,...' (a forestwind probes.csv)", file));
-  const std::vector<std::string> header = split(lines[0]);
+  const std::vector<std::string> header = split_csv(lines[0]);
 
   ProbeTable table;
   struct Columns {
@@ -71,6 +60,7 @@ ProbeTable read_probe_table(const std::filesystem::path& path) {
     bool tip;
   };
   std::vector<Columns> columns;
+  std::optional<std::size_t> tree_counts;  // the first of the three columns
   std::size_t column = 1;
   while (column < header.size()) {
     if (std::string name = triple_name(header, column, {"_tip_dx", "_tip_dy", "_tip_dz"}); !name.empty()) {
@@ -80,18 +70,24 @@ ProbeTable read_probe_table(const std::filesystem::path& path) {
       table.probes.push_back({probe, {}});
       columns.push_back({column, false});
     } else if (header[column].rfind("leaves_", 0) == 0) {
-      break;  // the leaf counts close the row
+      ++column;  // a leaf count: not plotted
+      continue;
+    } else if (column + 2 < header.size() && header[column] == kTreeCounts[0] &&
+               header[column + 1] == kTreeCounts[1] && header[column + 2] == kTreeCounts[2]) {
+      tree_counts = column;
     } else {
       throw std::invalid_argument(
-          fmt::format("{}:1: {}: expected a column triple NAME_u,NAME_v,NAME_w or treeID_tip_dx,_dy,_dz",
+          fmt::format("{}:1: {}: expected a column triple NAME_u,NAME_v,NAME_w or treeID_tip_dx,_dy,_dz, the "
+                      "leaf counts leaves_* or the tree counts trees_standing,trees_broken,trees_overturned",
                       file, header[column]));
     }
     column += 3;
   }
+  if (tree_counts) table.damage = DamageCounts{};
 
   for (std::size_t n = 1; n < lines.size(); ++n) {
     if (lines[n].empty()) continue;
-    const std::vector<std::string> fields = split(lines[n]);
+    const std::vector<std::string> fields = split_csv(lines[n]);
     if (fields.size() != header.size())
       throw std::invalid_argument(
           fmt::format("{}:{}: row: expected {} values, got {}", file, n + 1, header.size(), fields.size()));
@@ -108,6 +104,19 @@ ProbeTable read_probe_table(const std::filesystem::path& path) {
       const std::array<double, 3> v{number(c.first), number(c.first + 1), number(c.first + 2)};
       (c.tip ? table.tips[tip++] : table.probes[probe++]).xyz.push_back(v);
     }
+    if (!tree_counts) continue;
+    std::array<int, 3> count{};
+    for (std::size_t c = 0; c < 3; ++c) {
+      const std::optional<int> value = base::parse_number<int>(fields[*tree_counts + c]);
+      if (!value || *value < 0)
+        throw std::invalid_argument(fmt::format("{}:{}: {}: expected a whole number >= 0, got '{}'", file,
+                                                n + 1, header[*tree_counts + c], fields[*tree_counts + c]));
+      count[c] = *value;
+    }
+    table.damage->time.push_back(table.time.back());
+    table.damage->standing.push_back(count[0]);
+    table.damage->broken.push_back(count[1]);
+    table.damage->overturned.push_back(count[2]);
   }
   return table;
 }

@@ -84,7 +84,7 @@ struct RenderOptions {
   std::optional<int> frame;           // --frame K (0-based); default: the last complete frame
   std::optional<double> time;         // --time T, s: the nearest frame
   std::string view = "top";           // --view top|side|perspective
-  std::string field = "speed";        // --field NAME
+  std::string field = "speed";        // --field NAME, or damage: damage.csv over the speed
   std::optional<double> height;       // --height Z, m: the slice's height (world z)
   std::vector<double> range;          // --range LO HI: the field's colour range
   bool arrows = false;                // --arrows
@@ -95,7 +95,8 @@ struct RenderOptions {
   bool quiet = false;
 };
 
-/// `forestwind render`: 0 written, 2 bad input (folder, frame, field, view), 1 a frame that does not read.
+/// `forestwind render`: 0 written, 2 bad input (folder, frame, field, view; --field damage: no damage.csv, a
+/// bad row, a view other than top), 1 a frame that does not read.
 int run_render(const RenderOptions& options);
 
 struct PlotOptions {

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "host/cli/Commands.hpp"
+#include "viz/DamageTable.hpp"
 #include "viz/ProbePlots.hpp"
 #include "viz/ProbeTable.hpp"
 #include "viz/RunFolder.hpp"
@@ -24,7 +25,11 @@ int run_plot(const PlotOptions& options) {
   if (!fs::is_regular_file(csv))
     throw std::invalid_argument(fmt::format(
         "plot: {}: no probes.csv: the scenario has no output.probes and tracks no trees", folder.string()));
-  const viz::ProbeTable table = viz::read_probe_table(csv);
+  viz::ProbeTable table = viz::read_probe_table(csv);
+  // Storm damage: probes.csv's tree counts, else damage.csv's failures over the probes' time span.
+  if (!table.damage && !table.time.empty() && fs::is_regular_file(folder / "damage.csv"))
+    table.damage =
+        viz::read_damage_table(folder / "damage.csv").counts_over(table.time.front(), table.time.back());
   // The frames' times, from whichever collection the run wrote.
   std::vector<double> frame_times;
   try {
@@ -38,9 +43,10 @@ int run_plot(const PlotOptions& options) {
   const viz::ProbePlot plot = viz::plot_probes(table, frame_times, viz::scenario_name_of(folder), settings);
   plot.canvas.write_png(options.output);
   if (!options.quiet)
-    std::cout << fmt::format("wrote {} ({} x {} px: {} probes, {} trees, {} samples{})\n", options.output,
+    std::cout << fmt::format("wrote {} ({} x {} px: {} probes, {} trees, {} samples{}{})\n", options.output,
                              plot.canvas.width(), plot.canvas.height(), table.probes.size(),
-                             table.tips.size(), table.time.size(), options.spectrum ? ", spectra" : "");
+                             table.tips.size(), table.time.size(), table.damage ? ", damage" : "",
+                             options.spectrum ? ", spectra" : "");
   return 0;
 }
 

@@ -1,18 +1,23 @@
-// `forestwind render`: pictures of a run's frames (docs/design.md, "Command line"; viz/FrameRender.hpp).
+// `forestwind render`: pictures of a run's frames (docs/design.md, "Command line"; viz/FrameRender.hpp), and
+// with --field damage the storm damage over the wind (viz/DamageMap.hpp).
 #include <fmt/format.h>
 
+#include <array>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <iostream>
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <vector>
 
 #include "base/AtomicFile.hpp"
 #include "host/cli/Commands.hpp"
+#include "viz/DamageMap.hpp"
+#include "viz/DamageTable.hpp"
 #include "viz/FrameRender.hpp"
 #include "viz/RunFolder.hpp"
 
@@ -26,6 +31,8 @@ using Clock = std::chrono::steady_clock;
 // A movie plays the run in real time (one frame per output interval) when frames are at most 0.1 s apart;
 // sparser frames play at 10 per second rather than as a slide show.
 constexpr double kSlowestFps = 10.0, kFastestFps = 30.0;
+// --field damage: the trees of damage.csv over the wind speed.
+const std::string kDamageField = "damage";
 
 double seconds_since(Clock::time_point start) {
   return std::chrono::duration<double>(Clock::now() - start).count();
@@ -34,7 +41,7 @@ double seconds_since(Clock::time_point start) {
 viz::RenderSettings settings_of(const RenderOptions& options) {
   viz::RenderSettings s;
   s.view = viz::parse_view(options.view);
-  s.field = options.field;
+  s.field = options.field == kDamageField ? "speed" : options.field;
   s.height = options.height;
   if (!options.range.empty()) {
     if (options.range.size() != 2)
@@ -44,7 +51,7 @@ viz::RenderSettings settings_of(const RenderOptions& options) {
   s.arrows = options.arrows;
   s.width = options.width;
   s.height_px = options.height_px;
-  return s;
+  return options.field == kDamageField ? viz::damage_map_settings(s) : s;
 }
 
 // The first executable `name` on PATH, or empty.
@@ -70,7 +77,17 @@ std::string shell_quote(const std::string& text) {
   return out + "'";
 }
 
-int render_one(const viz::RunFolder& run, const RenderOptions& options, const viz::RenderSettings& settings) {
+// One frame's picture: with `damage` the damage map over the wind, else the frame itself.
+void write_picture(const viz::RunFolder& run, const viz::FrameData& data, const viz::RenderSettings& settings,
+                   const viz::DamageTable* damage, const fs::path& png) {
+  if (damage)
+    viz::DamageMap(data, *damage, run.scenario_name(), settings).canvas().write_png(png);
+  else
+    viz::FrameRender(data, run.scenario_name(), settings).canvas().write_png(png);
+}
+
+int render_one(const viz::RunFolder& run, const RenderOptions& options, const viz::RenderSettings& settings,
+               const viz::DamageTable* damage) {
   const auto start = Clock::now();
   const viz::RunFolder::Frame& frame = run.select(options.frame, options.time);
   std::string note;
@@ -78,15 +95,21 @@ int render_one(const viz::RunFolder& run, const RenderOptions& options, const vi
   const viz::FrameData data =
       options.frame || options.time ? run.load(frame) : run.load_last_complete(frame, &note);
   if (!note.empty()) std::cerr << "forestwind: " << note << "\n";
-  const viz::FrameRender picture(data, run.scenario_name(), settings);
-  picture.canvas().write_png(options.output);
+  write_picture(run, data, settings, damage, options.output);
+  std::string trees;
+  if (damage) {
+    const std::array<int, 3> counts = damage->counts_at(data.time);
+    trees = fmt::format(", {} standing, {} broken, {} overturned", counts[0], counts[1], counts[2]);
+  }
   if (!options.quiet)
-    std::cout << fmt::format("wrote {} ({} x {} px, frame {}, t = {:g} s) in {:.2f} s\n", options.output,
-                             settings.width, settings.height_px, data.index, data.time, seconds_since(start));
+    std::cout << fmt::format("wrote {} ({} x {} px, frame {}, t = {:g} s{}) in {:.2f} s\n", options.output,
+                             settings.width, settings.height_px, data.index, data.time, trees,
+                             seconds_since(start));
   return 0;
 }
 
-int render_all(const viz::RunFolder& run, const RenderOptions& options, viz::RenderSettings settings) {
+int render_all(const viz::RunFolder& run, const RenderOptions& options, viz::RenderSettings settings,
+               const viz::DamageTable* damage) {
   const auto start = Clock::now();
   const auto& frames = run.frames();
   // One colour scale for the whole movie: the last complete frame's (a storm's strongest), unless given.
@@ -98,9 +121,7 @@ int render_all(const viz::RunFolder& run, const RenderOptions& options, viz::Ren
   fs::create_directories(folder);
   int written = 0;
   auto write = [&](const viz::FrameData& data) {
-    viz::FrameRender(data, run.scenario_name(), settings)
-        .canvas()
-        .write_png(folder / fmt::format("frame_{:06d}.png", written++));
+    write_picture(run, data, settings, damage, folder / fmt::format("frame_{:06d}.png", written++));
   };
   for (const auto& frame : frames) {
     if (frame.index >= last.index) break;
@@ -156,8 +177,17 @@ std::pair<int, int> parse_size(const std::string& text) {
 
 int run_render(const RenderOptions& options) {
   const viz::RenderSettings settings = settings_of(options);
+  const fs::path damage_csv = fs::path(options.folder) / "damage.csv";
+  const bool damage = options.field == kDamageField;
+  if (damage && fs::is_directory(options.folder) && !fs::is_regular_file(damage_csv))
+    throw std::invalid_argument(fmt::format(
+        "render: --field damage: {} has no damage.csv (run with forest.damage.enabled)", options.folder));
   const viz::RunFolder run(options.folder);
-  return options.all ? render_all(run, options, settings) : render_one(run, options, settings);
+  // The folder's damage.csv: the state at the last frame written, drawn at each frame's time.
+  const std::optional<viz::DamageTable> table =
+      damage ? std::optional(viz::read_damage_table(damage_csv)) : std::nullopt;
+  const viz::DamageTable* trees = table ? &*table : nullptr;
+  return options.all ? render_all(run, options, settings, trees) : render_one(run, options, settings, trees);
 }
 
 }  // namespace fw::cli

@@ -146,7 +146,10 @@ int main(int argc, char** argv) {
   render_cmd->add_option("--time", render.time, "simulated time, s: the nearest frame")
       ->excludes(render_frame);
   render_cmd->add_option("--view", render.view, "top | side | perspective")->capture_default_str();
-  render_cmd->add_option("--field", render.field, "wind field: speed, velocity_x, pressure, vorticity, ...")
+  render_cmd
+      ->add_option("--field", render.field,
+                   "wind field: speed, velocity_x, pressure, vorticity, ...; or damage: the trees of "
+                   "damage.csv over the wind speed")
       ->capture_default_str();
   render_cmd->add_option("--height", render.height,
                          "height of the horizontal slice, m (default: 10 m above the floor)");

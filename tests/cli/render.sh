@@ -41,6 +41,22 @@ expect 2 "choose one of velocity, velocity_x" render "$work/out" --field tempera
 expect 2 "choose one of top, side, perspective" render "$work/out" --view diagonal -o "$work/bad.png"
 expect 2 "expected a run's output folder" render "$work/nowhere" -o "$work/bad.png"
 expect 2 "a spectrum needs at least 256" plot "$work/out" --spectrum -o "$work/bad.png"
+# Storm damage: --field damage needs the folder's damage.csv; with one (written here by hand: the palm breaks
+# at 0.6 s) the trees are drawn over the wind, standing in the frames before the failure, and plot adds the
+# damage panel from it.
+expect 2 "has no damage.csv (run with forest.damage.enabled)" render "$work/out" --field damage -o "$work/bad.png"
+header="tree_id,species,x,y,height_m,dbh_m,state,time_s,break_height_m,top_wind_m_s,max_base_moment_Nm"
+header="$header,critical_breakage_Nm,critical_overturning_Nm,max_utilisation"
+printf '%s\n0,palm,12,8,8,0.3,broken,0.6,3,5.2,1e5,5e4,6e4,1.4\n' "$header" >"$work/out/damage.csv"
+expect 0 "frame 4, t = 1 s, 0 standing, 1 broken, 0 overturned" render "$work/out" --field damage -o "$work/damage.png"
+[ -s "$work/damage.png" ] || fail "render --field damage wrote no picture"
+expect 0 "frame 2, t = 0.5 s, 1 standing, 0 broken" render "$work/out" --field damage --frame 2 -o "$work/d2.png"
+expect 0 "wrote 5 pictures" render "$work/out" --field damage --all -o "$work/damage_frames"
+expect 0 "5 samples, damage" plot "$work/out" -o "$work/damage_plot.png"
+expect 2 "draws the top view only" render "$work/out" --field damage --view side -o "$work/bad.png"
+printf '%s\n0,palm,12,8,8,0.3,standing,0.6,,,1e5,5e4,6e4,0.4\n' "$header" >"$work/out/damage.csv"
+expect 2 "damage.csv:2: time_s: expected no value for a standing tree, got '0.6'" \
+  render "$work/out" --field damage -o "$work/bad.png"
 # A damaged frame file is bad input too: the frame asked for exits 2 naming the file; without --frame the
 # last complete one is drawn, and a folder where no frame reads exits 2.
 last=$(ls "$work/out/wind/"*.vti | sort | tail -1)

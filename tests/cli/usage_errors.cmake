@@ -32,3 +32,15 @@ expect_usage_error("--grid" bench wind --grid 4x4)
 expect_usage_error("" nosuchcommand)
 expect_usage_error("" bench nosuchbench)
 expect_usage_error("" bench wind --steps 0)
+
+# render --field damage draws the folder's damage.csv (docs/pictures.md): a folder without one is refused
+# before any frame is read, and nothing is written.
+set(no_damage "${CMAKE_CURRENT_BINARY_DIR}/test-work/usage_errors/no_damage")
+file(REMOVE_RECURSE "${no_damage}")
+file(MAKE_DIRECTORY "${no_damage}")
+expect_usage_error("render: --field damage: ${no_damage} has no damage.csv (run with forest.damage.enabled)"
+                   render "${no_damage}" --field damage -o "${no_damage}/damage.png")
+if(EXISTS "${no_damage}/damage.png")
+  message(FATAL_ERROR "render --field damage without damage.csv wrote a picture")
+endif()
+file(REMOVE_RECURSE "${no_damage}")

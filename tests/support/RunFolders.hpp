@@ -85,4 +85,14 @@ inline void write_run(const std::filesystem::path& folder, const UniformWind& wi
   }
 }
 
+/// A damage.csv as a run with forest.damage.enabled writes it: the header line, then `rows` (each without
+/// its line end), e.g. "0,spruce,6,10,8,0.3,standing,,,,1e4,5e4,6e4,0.5".
+inline std::string damage_csv(const std::vector<std::string>& rows) {
+  std::string text =
+      "tree_id,species,x,y,height_m,dbh_m,state,time_s,break_height_m,top_wind_m_s,max_base_moment_Nm,"
+      "critical_breakage_Nm,critical_overturning_Nm,max_utilisation\n";
+  for (const std::string& row : rows) text += row + "\n";
+  return text;
+}
+
 }  // namespace fw::test

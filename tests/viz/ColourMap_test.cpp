@@ -50,6 +50,30 @@ TEST_CASE("ColourMap: the diverging map is symmetric in lightness about its midd
   CHECK(luminance(map.colour(0.5)) > luminance(map.colour(0.1)));
 }
 
+TEST_CASE("ColourMap: the utilisation map darkens in greys up to 1 and turns red from 1 on", "[viz]") {
+  const ColourMap& map = ColourMap::named("utilisation");
+  auto at = [&](double u) { return map.colour(u, 0.0, fw::viz::kUtilisationTop); };
+  double previous = 2.0;
+  for (int n = 0; n < 100; ++n) {  // 0 .. 0.99: greys, each darker
+    const Rgb c = at(n / 100.0);
+    INFO("utilisation " << n / 100.0);
+    CHECK(std::abs(c.r - c.b) < 0.02);
+    CHECK(std::abs(c.g - c.b) < 0.02);
+    CHECK(luminance(c) < previous);
+    previous = luminance(c);
+  }
+  previous = 2.0;
+  for (int n = 100; n <= 150; ++n) {  // 1 .. 1.5: reds, each darker
+    const Rgb c = at(n / 100.0);
+    INFO("utilisation " << n / 100.0);
+    CHECK(c.r - c.b > 0.25);
+    CHECK(c.r - c.g > 0.4);
+    CHECK(luminance(c) < previous);
+    previous = luminance(c);
+  }
+  CHECK(at(1.0).r - at(0.999).r > 0.4);  // the step at failure
+}
+
 TEST_CASE("ColourMap: bad maps and names are refused with the class name", "[viz]") {
   CHECK_THROWS_WITH(ColourMap("x", {{0.0, {0, 0, 0}}}, {}), Catch::Contains("ColourMap: x"));
   CHECK_THROWS_WITH(ColourMap("x", {{0.0, {0, 0, 0}}, {0.5, {1, 1, 1}}}, {}), Catch::Contains("0 to 1"));

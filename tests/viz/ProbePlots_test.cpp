@@ -104,6 +104,45 @@ TEST_CASE("ProbePlots: the spectrum of a sine peaks at its frequency on log axes
   CHECK(f == Approx(f0).epsilon(0.08));
 }
 
+TEST_CASE("ProbePlots: the damage panel lies under the wind on its time axis and steps at the failures",
+          "[viz]") {
+  fw::test::TempDir dir("fw_viz");
+  auto table = table_of(200, 0.1, [](double t) { return 8.0 + std::sin(t); });  // 0 .. 19.9 s
+  // Ten trees: one breaks by 5 s and two more by 12 s; one overturns by 8 s (the rows a run samples).
+  fw::viz::DamageCounts counts;
+  for (double t : table.time) {
+    const int broken = t >= 12.0 - 1e-9 ? 3 : t >= 5.0 - 1e-9 ? 1 : 0, overturned = t >= 8.0 - 1e-9 ? 1 : 0;
+    counts.time.push_back(t);
+    counts.standing.push_back(10 - broken - overturned);
+    counts.broken.push_back(broken);
+    counts.overturned.push_back(overturned);
+  }
+  table.damage = counts;
+  const auto plot = fw::viz::plot_probes(table, {}, "test", {});
+  REQUIRE(plot.panels == std::vector<std::string>{"wind", "damage", "tips"});
+  const auto& wind = plot.plot_areas[0];
+  const auto& area = plot.plot_areas[1];
+  CHECK(area.x == wind.x);  // the same time axis: 0 .. 19.9 s across the same columns
+  CHECK(area.width == wind.width);
+  const fs::path png = fs::path(dir.path()) / "damage.png";
+  plot.canvas.write_png(png);
+  const auto image = fw::test::read_png(png);
+  // The y axis runs from a little below 0, so that 0 shows above the axis, to 1.08 x the most failed trees,
+  // at least 5.
+  const double lo = -0.05 * 1.08 * 5, hi = 1.08 * 5;
+  auto column = [&](double t) { return int(area.x + area.width * t / 19.9); };
+  auto row = [&](double count) { return area.y + area.height * (hi - count) / (hi - lo); };
+  const fw::viz::Rgb broken{0.90, 0.11, 0.09};
+  for (const auto& [t, before, after] : {std::tuple{5.0, 0, 1}, std::tuple{12.0, 1, 3}}) {
+    INFO("the step at " << t << " s");
+    CHECK(topmost(image, area, column(t) - 3, broken) == Approx(row(before)).margin(2));
+    CHECK(topmost(image, area, column(t) + 3, broken) == Approx(row(after)).margin(2));
+  }
+  // And nowhere else: flat between the steps.
+  for (double t : {2.0, 9.0, 18.0})
+    CHECK(topmost(image, area, column(t), broken) == Approx(row(t < 5 ? 0 : t < 12 ? 1 : 3)).margin(2));
+}
+
 TEST_CASE("ProbePlots: spectra need enough samples, and a table needs probes or trees", "[viz]") {
   fw::viz::PlotSettings settings;
   settings.spectrum = true;
@@ -130,6 +169,24 @@ TEST_CASE("ProbeTable: reads what a run writes and names the line of a bad value
   REQUIRE(table.tips.size() == 1);
   CHECK(table.tips[0].name == "tree3");
   CHECK(std::isnan(table.tips[0].xyz[1][0]));
+  CHECK_FALSE(table.damage);
+  // With storm damage: the tree counts after the leaf counts.
+  const auto damaged = fw::viz::read_probe_table(
+      dir.write("damaged.csv",
+                "time_s,mast_u,mast_v,mast_w,leaves_shed,leaves_flying,leaves_landed,leaves_exited,"
+                "trees_standing,trees_broken,trees_overturned\n"
+                "0,1,0,0,0,0,0,0,12,0,0\n"
+                "0.5,2,0,0,3,1,1,0,10,1,1\n"));
+  REQUIRE(damaged.damage);
+  CHECK(damaged.damage->time == damaged.time);
+  CHECK(damaged.damage->standing == std::vector<int>{12, 10});
+  CHECK(damaged.damage->broken == std::vector<int>{0, 1});
+  CHECK(damaged.damage->overturned == std::vector<int>{0, 1});
+  CHECK_THROWS_WITH(
+      fw::viz::read_probe_table(dir.write("counts.csv",
+                                          "time_s,mast_u,mast_v,mast_w,trees_standing,trees_broken,"
+                                          "trees_overturned\n0,1,0,0,12,0.5,0\n")),
+      Catch::Contains("counts.csv:2: trees_broken: expected a whole number >= 0, got '0.5'"));
   const std::string bad = dir.write("bad.csv", "time_s,mast_u,mast_v,mast_w\n0,1,2,3\n0.5,1,x,3\n");
   CHECK_THROWS_WITH(fw::viz::read_probe_table(bad),
                     Catch::Contains("bad.csv:3: mast_v: expected a number, got 'x'"));

@@ -1,0 +1,21 @@
+// The comma-separated files a run writes (probes.csv, damage.csv) as text: their lines and each line's
+// values. No quoting: forestwind writes none (a name with a comma is refused where it is given).
+//
+//   const std::vector<std::string> lines = fw::viz::csv_lines(text, /*keep_unfinished_last=*/true);
+//   const std::vector<std::string> header = fw::viz::split_csv(lines.at(0));
+#pragma once
+
+#include <string>
+#include <vector>
+
+namespace fw::viz {
+
+/// The lines of `text` without their '\n' line ends: line n + 1 of the file is element n. A last line
+/// without its line end is kept when `keep_unfinished_last` (a file written whole, through a rename) and
+/// left out otherwise (a file appended row by row, whose last row a killed run may have cut short).
+std::vector<std::string> csv_lines(const std::string& text, bool keep_unfinished_last);
+
+/// The values of one line between its commas: "a,,b" gives a, "", b; "a," gives a, ""; "" gives none.
+std::vector<std::string> split_csv(const std::string& line);
+
+}  // namespace fw::viz
