@@ -71,6 +71,8 @@ Roughness method (Gardiner et al. 2000):
     and falls away from the edge only for s/h in (0.0566, 0.871), the script's limits; the fit was made
     for the spacings of the wind-tunnel stands and is an extrapolation beyond them.
     Interior: x -> inf, G = (2.7193 s/h - 0.061) / (0.68 s/h - 0.0385), 6.0 at s/h 0.125.
+    The coefficients are Gardiner et al. 2000's as we know them; we could not read the paper's text here to
+    check them. The interior value agrees with the published "about 6" at D/h = 0.125.
     Edge tree: x = 0 (--edge-distance-h). ForestGALES 2.5 also scales the edge term with the length of the
     upwind gap (Hale et al. 2015); we have not its published form, so the edge here is the wind tunnel's,
     open upwind (stand-in: gap factor 1).
