@@ -139,12 +139,12 @@ SPECIES = {
                       "c_reg": _creg(126.0, 146.6, 128.5, 113.9, 124.4, 141.5), "stand_in": None},
     "scots_pine": {"name": "Scots pine", "mor": 46e6, "knot_factor": 0.85, "green_density": 850.0,
                    "c_reg": _creg(140.1, 162.9, 142.9, 126.7, 138.3, 157.3), "stand_in": None},
-    # Birch: the Nordic MOR (53.6 MPa); everything else Norway spruce's (knot factor 0.9, 850 kg/m^3, its
-    # C_reg). forestwind's birch preset takes a knot factor of 1 instead (trees/TreeStrength.cpp).
-    "birch": {"name": "birch", "mor": 53.6e6, "knot_factor": 0.9, "green_density": 850.0,
+    # Birch: the Nordic MOR (53.6 MPa), a knot factor of 1 (a broadleaf's wood has no conifer's whorls of
+    # knots), the conifers' 850 kg/m^3 and Norway spruce's C_reg, as forestwind's preset (stand-ins).
+    "birch": {"name": "birch", "mor": 53.6e6, "knot_factor": 1.0, "green_density": 850.0,
               "c_reg": _creg(126.0, 146.6, 128.5, 113.9, 124.4, 141.5),
-              "stand_in": "birch: MOR 53.6 MPa (Nordic); knot factor, green density and C_reg are Norway "
-                          "spruce's (stand-in; forestwind's birch preset takes knot factor 1)"},
+              "stand_in": "birch: MOR 53.6 MPa (Nordic); knot factor 1, green density and C_reg Norway "
+                          "spruce's (stand-ins, as forestwind's birch preset)"},
 }
 
 # The built-in trees: the summary's worked example first, then one of each other species.
