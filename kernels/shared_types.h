@@ -362,4 +362,16 @@ typedef struct FwTreeDamage {
   float utilisation;     /* the last step's largest */
 } FwTreeDamage;
 
+/* A failed tree falling on an output frame (host/stages/DamageStages enqueue_falls; docs/damage.md, "What
+ * follows a failure"): the part above its pivot node (the broken section's node, or the root for an
+ * overturned tree) turned by the angle about the horizontal axis z x direction, and dropped. */
+typedef struct FwFall {
+  fw_int instance; /* the tree */
+  fw_int pivot;    /* its pivot node, within the tree */
+  float cos_angle; /* cos and sin of the angle it has turned through, from upright */
+  float sin_angle;
+  float direction[2]; /* the horizontal unit vector it falls toward, world frame */
+  float drop;         /* m: how far the falling part has come down (a broken top, to the ground) */
+} FwFall;
+
 #endif

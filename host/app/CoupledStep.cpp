@@ -93,6 +93,7 @@ LeafStages& CoupledStep::leaves() {
 void CoupledStep::enqueue_frame_deformation() {
   if (!has_trees()) return;
   trees_.enqueue_deform();
+  trees_.enqueue_falls(time());
   if (leaves_) leaves_->enqueue_frame(trees_.displacements());
 }
 

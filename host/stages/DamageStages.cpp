@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include <cmath>
 #include <cstring>
 #include <stdexcept>
 
@@ -19,6 +20,14 @@ std::vector<FwTreeDamage> standing_records(int count) {
 }
 
 constexpr int kCounters = 3;  // new failures, broken, overturned
+
+// The falls' tables: each species' tour (2 ints a node) and rest nodes (3 floats a node).
+std::size_t fall_bytes(const trees::Forest& forest) {
+  std::size_t nodes = 0;
+  for (const trees::SpeciesBasis& species : forest.species()) nodes += std::size_t(species.skeleton().size());
+  return ComputeContext::allocation_bytes(2 * nodes * sizeof(fw_int)) +
+         ComputeContext::allocation_bytes(3 * nodes * sizeof(float));
+}
 
 }  // namespace
 
@@ -82,6 +91,22 @@ DamageStages::DamageStages(ComputeContext& cc, const trees::Forest& forest,
   utilisation_ = cc_.zero_floats(std::size_t(total_sections_));
   counters_ = cc_.upload(std::vector<fw_int>(kCounters, 0));
   loads_ = Kernel(cc_.build("tree_loads.cl"), "tree_loads");
+  // The falls: each species' skeleton tour and rest nodes, in the order of FwSpecies.skeleton_offset.
+  std::vector<fw_int> tour;
+  std::vector<float> rest;
+  for (const trees::SpeciesBasis& species : forest.species()) {
+    fall_geometry_.push_back(trees::FallGeometry::of(species));
+    for (const int order : trees::skeleton_tour(species.skeleton())) tour.push_back(order);
+    for (const trees::SkeletonNode& node : species.skeleton().nodes())
+      for (int a = 0; a < 3; ++a) rest.push_back(float(node.position(a)));
+  }
+  for (const trees::TreeInstance& tree : forest.instances()) {
+    instance_species_.push_back(tree.species);
+    instance_scale_.push_back(tree.scale);
+  }
+  tour_ = cc_.upload(tour, ro);
+  rest_nodes_ = cc_.upload(rest, ro);
+  fall_ = Kernel(cc_.build("tree_fall.cl"), "tree_fall");
 }
 
 std::size_t DamageStages::estimate_device_bytes(const trees::Forest& forest,
@@ -93,7 +118,8 @@ std::size_t DamageStages::estimate_device_bytes(const trees::Forest& forest,
   return bytes(p.stems.size(), sizeof(FwStem)) + bytes(p.maps.size(), sizeof(float)) +
          bytes(p.sections.size(), sizeof(float)) + bytes(p.section_offsets.size(), sizeof(fw_int)) +
          bytes(std::size_t(forest.instance_count()), sizeof(FwTreeDamage)) +
-         bytes(std::size_t(p.total_sections), sizeof(float)) + bytes(kCounters, sizeof(fw_int));
+         bytes(std::size_t(p.total_sections), sizeof(float)) + bytes(kCounters, sizeof(fw_int)) +
+         fall_bytes(forest);
 }
 
 void DamageStages::enqueue_loads(float time, cl::Buffer& instances, cl::Buffer& species, cl::Buffer& state,
@@ -143,6 +169,31 @@ std::vector<float> DamageStages::download_utilisation() {
   if (!values.empty())
     cc_.queue().enqueueReadBuffer(utilisation_, CL_TRUE, 0, values.size() * sizeof(float), values.data());
   return values;
+}
+
+void DamageStages::enqueue_falls(double time, cl::Buffer& instances, cl::Buffer& species,
+                                 cl::Buffer& displacements) {
+  if (!settings_.consequences || instance_count_ == 0) return;
+  std::vector<FwFall> falls;
+  const std::vector<trees::TreeDamageRecord> records = download_records();
+  for (int k = 0; k < instance_count_; ++k) {
+    const trees::TreeDamageRecord& record = records[std::size_t(k)];
+    if (record.state == trees::TreeState::standing) continue;
+    const trees::FallPose pose =
+        trees::fall_pose(record, fall_geometry_[std::size_t(instance_species_[std::size_t(k)])],
+                         instance_scale_[std::size_t(k)], time);
+    falls.push_back({k,
+                     pose.pivot,
+                     float(std::cos(pose.angle)),
+                     float(std::sin(pose.angle)),
+                     {float(pose.direction.x()), float(pose.direction.y())},
+                     float(pose.drop)});
+  }
+  if (falls.empty()) return;
+  // A frame's falls are few: a buffer of their own, released with the frame.
+  cl::Buffer table = cc_.upload(falls, CL_MEM_READ_ONLY);
+  fall_.set_args(int(falls.size()), table, instances, species, tour_, rest_nodes_, displacements)
+      .enqueue(cc_, cl::NDRange(cc_.flat_items(falls.size())));
 }
 
 void DamageStages::save_state(StageState& state) {

@@ -20,6 +20,7 @@
 #include "kernels/shared_types.h"
 #include "trees/Forest.hpp"
 #include "trees/TreeDamage.hpp"
+#include "trees/TreeFall.hpp"
 
 namespace fw::host {
 
@@ -68,6 +69,11 @@ class DamageStages {
   std::vector<float> download_utilisation();
   int section_offset(int instance) const { return section_offsets_.at(std::size_t(instance)); }
 
+  /// An output frame's falls at `time` (s), after the modal deformation: every failed tree's nodes in its
+  /// fall's pose (trees/TreeFall.hpp), when failures have consequences; nothing otherwise. Blocking (the
+  /// records come back to compute the poses).
+  void enqueue_falls(double time, cl::Buffer& instances, cl::Buffer& species, cl::Buffer& displacements);
+
   /// The records, for checkpoints: saved under saved::kDamage.
   void save_state(StageState& state);
   void restore_state(const StageState& state);
@@ -78,9 +84,13 @@ class DamageStages {
   int instance_count_ = 0;
   int total_sections_ = 0;
   std::vector<fw_int> section_offsets_;
+  std::vector<trees::FallGeometry> fall_geometry_;  // per species
+  std::vector<int> instance_species_;               // per instance
+  std::vector<double> instance_scale_;              // per instance
+  cl::Buffer tour_, rest_nodes_;                    // kernels/tree_fall.cl
   cl::Buffer stems_, maps_, sections_, section_offsets_buffer_, records_, utilisation_;
   cl::Buffer counters_;  // kernels/tree_loads.cl: new failures, broken, overturned
-  Kernel loads_;
+  Kernel loads_, fall_;
 };
 
 }  // namespace fw::host

@@ -119,6 +119,10 @@ class ForestStages {
   /// The damage stage, when set; else null.
   DamageStages* damage() { return damage_ ? &*damage_ : nullptr; }
   bool has_damage() const { return damage_.has_value(); }
+  /// An output frame's falling and fallen trees at `time` (s), after enqueue_deform (DamageStages).
+  void enqueue_falls(double time) {
+    if (damage_) damage_->enqueue_falls(time, instances_, species_, displacements_);
+  }
   /// Every tree's loads and failure check at `time` (s, after the step), after enqueue_modal_step; nothing
   /// without damage.
   void enqueue_damage_check(float time) {

@@ -105,7 +105,8 @@ namespace {
 // The damage structs (packed by host/stages/DamageStages).
 #define FW_DAMAGE_STRUCTS(X) \
   X(FwStem);                 \
-  X(FwTreeDamage)
+  X(FwTreeDamage);           \
+  X(FwFall)
 #define FW_DAMAGE_FIELDS(X)         \
   X(FwStem, section_count);         \
   X(FwStem, map_offset);            \
@@ -118,7 +119,13 @@ namespace {
   X(FwTreeDamage, top_wind);        \
   X(FwTreeDamage, max_utilisation); \
   X(FwTreeDamage, max_base_moment); \
-  X(FwTreeDamage, utilisation)
+  X(FwTreeDamage, utilisation);     \
+  X(FwFall, instance);              \
+  X(FwFall, pivot);                 \
+  X(FwFall, cos_angle);             \
+  X(FwFall, sin_angle);             \
+  X(FwFall, direction);             \
+  X(FwFall, drop)
 // The leaves' structs (packed by host/stages/LeafStages).
 #define FW_LEAF_STRUCTS(X) X(FwLeafSpecies)
 #define FW_LEAF_FIELDS(X)            \
@@ -232,8 +239,8 @@ TEST_CASE("shared_types: OpenCL C and the host agree on sizeof and offsetof of e
   if (!cc) return;
   const auto entries = host_layout();
   // Shared structs and fields (FwTke's 1 and 6 among them), the trees' (the element models' 3 structs and
-  // 21 fields among them), the leaves' (1 struct, 13 fields), the damage's (2 structs, 12 fields).
-  REQUIRE(entries.size() == 5 + 36 + 5 + 37 + 1 + 13 + 2 + 12);
+  // 21 fields among them), the leaves' (1 struct, 13 fields), the damage's (3 structs, 18 fields).
+  REQUIRE(entries.size() == 5 + 36 + 5 + 37 + 1 + 13 + 3 + 18);
   const std::string source = layout_kernel_source(entries);
   INFO(source);
 

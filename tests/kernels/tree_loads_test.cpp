@@ -220,3 +220,59 @@ TEST_CASE("tree_loads: without consequences a failed tree keeps swaying and its 
     CHECK(r.utilisation > 1.0);  // still loaded
   }
 }
+
+TEST_CASE("tree_fall: a failed tree's nodes on a frame are the reference's fall, its stump at rest",
+          "[forest]") {
+  auto* cc = test::device_or_skip();
+  if (!cc) return;
+  const fluid::GridSpec spec = loads_grid();
+  const trees::Forest forest = loads_forest();
+  host::ForestStages stages(*cc, spec, forest);
+  host::DeviceVelocity wind;
+  wind.u = cc->buffer(spec.u_count() * sizeof(float));
+  wind.v = cc->buffer(spec.v_count() * sizeof(float));
+  wind.w = cc->buffer(spec.w_count() * sizeof(float));
+  test::upload(*cc, test::smooth_velocity(spec, {8.0, -2.0, 0.3}, {2.0, 1.0, 0.5}), wind);
+  stages.enqueue_wind_load(wind);
+  stages.enqueue_equilibrium();
+  // Strengths that fail about half the trees in the wind's static bend: both presets brought to the
+  // median tree's largest ratio.
+  trees::DamageSettings settings;
+  settings.enabled = true;
+  settings.strengths = {trees::strength_preset(trees::StrengthPreset::birch),
+                        trees::strength_preset(trees::StrengthPreset::scots_pine)};
+  std::vector<double> largest;
+  for (const trees::TreeLoad& load : reference_loads(forest, settings, stages.download_modal_state().q))
+    largest.push_back(load.largest());
+  std::nth_element(largest.begin(), largest.begin() + 8, largest.end());
+  for (trees::TreeStrength& s : settings.strengths) {
+    s.modulus_of_rupture *= 0.999 * largest[8];
+    s.anchorage *= 0.999 * largest[8];
+  }
+  stages.set_damage(forest, settings);
+  stages.enqueue_damage_check(4.0f);
+  const std::vector<trees::TreeDamageRecord> records = stages.damage()->download_records();
+  stages.enqueue_damage_check(4.5f);  // the failed trees' modes now at rest
+  constexpr double kFrameTime = 6.0;  // 2 s into the falls: part way down
+  stages.enqueue_deform();
+  stages.enqueue_falls(kFrameTime);
+  const std::vector<float> u = stages.download_displacements();
+  int falling = 0;
+  double worst = 0.0;
+  for (int k = 0; k < forest.instance_count(); ++k) {
+    const trees::TreeDamageRecord& r = records[std::size_t(k)];
+    if (r.state == trees::TreeState::standing) continue;
+    ++falling;
+    const trees::FallPose pose = trees::fall_pose(r, trees::FallGeometry::of(forest.species_of(k)),
+                                                  forest.instances()[std::size_t(k)].scale, kFrameTime);
+    const Eigen::MatrixX3d expected = trees::fall_displacements(forest, k, pose);
+    for (Eigen::Index n = 0; n < expected.rows(); ++n)
+      for (int a = 0; a < 3; ++a)
+        worst =
+            std::max(worst, std::abs(u[std::size_t(3 * (forest.node_offset(k) + n) + a)] - expected(n, a)));
+  }
+  WARN("tree_fall: " << falling << " trees falling, largest difference " << worst << " m");
+  CHECK(falling >= 4);
+  // Float positions of a few metres and a float rotation: 1e-5 m.
+  CHECK(worst < 1e-5);
+}
