@@ -146,6 +146,9 @@ StageState trees_state(const std::vector<RunSnapshot>& parts, const trees::Fores
   gather(kModalState, modal);
   const StageState& first = stage_of(parts.front(), kTreesStage);
   if (first.buffers.count(kTravelled) > 0) gather(kTravelled, travel);
+  // Storm damage: each tree's record, moved as its bytes (the ints among them too).
+  const auto record = [](int) { return sizeof(FwTreeDamage) / sizeof(float); };
+  if (first.buffers.count(kDamage) > 0) gather(kDamage, record);
   if (first.buffers.count(kJointState) > 0) {
     gather(kJointState, joints);
     // The springs' clock is the run's time, the same on every rank.

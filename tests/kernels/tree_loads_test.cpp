@@ -276,3 +276,15 @@ TEST_CASE("tree_fall: a failed tree's nodes on a frame are the reference's fall,
   // Float positions of a few metres and a float rotation: 1e-5 m.
   CHECK(worst < 1e-5);
 }
+
+TEST_CASE("DamageStages: the estimate is what the constructor allocates", "[forest]") {
+  auto* cc = test::device_or_skip();
+  if (!cc) return;
+  const trees::Forest forest = loads_forest();
+  trees::DamageSettings settings;
+  settings.enabled = true;
+  settings.strengths.assign(2, trees::strength_preset(trees::StrengthPreset::scots_pine));
+  const std::size_t before = cc->allocated_bytes();
+  host::DamageStages damage(*cc, forest, settings);
+  CHECK(cc->allocated_bytes() - before == host::DamageStages::estimate_device_bytes(forest, settings));
+}
