@@ -65,6 +65,14 @@ CanopyField::CanopyField(const GridSpec& spec, const CellBox& box) : spec_(valid
   drag_.assign(box_.cell_count(), 0.0);
 }
 
+float CanopyField::drag_density_at(int i, int j, int k) const {
+  const int cell[3] = {i, j, k};
+  for (int a = 0; a < 3; ++a)
+    if (cell[a] < box_.first[a] || cell[a] >= box_.first[a] + box_.count[a])
+      throw std::out_of_range(fmt::format("CanopyField: cell ({}, {}, {}) outside the box", i, j, k));
+  return float(drag_[box_index(i, j, k)]);
+}
+
 std::size_t CanopyField::box_index(int i, int j, int k) const {
   const int local[3] = {i - box_.first[0], j - box_.first[1], k - box_.first[2]};
   for (int a = 0; a < 3; ++a)

@@ -93,6 +93,8 @@ class CanopyField {
   /// k = 1/2 sum beta l / h^3 per cell of the whole grid (header comment), 1/m, x-fastest like GridSpec:
   /// what host::WindGrid::set_canopy takes.
   std::vector<float> drag_density() const { return to_float(drag_); }
+  /// drag_density() of one cell of the box (std::out_of_range for a cell outside it), the same float.
+  float drag_density_at(int i, int j, int k) const;
   /// a per cell of the whole grid, 1/m (the ParaView field `canopy_density`).
   std::vector<float> frontal_area_density() const { return to_float(area_); }
   /// The cells whose frontal area density is above 0 in float (those frontal_area_density() holds).

@@ -339,15 +339,17 @@ typedef struct FwLeafSpecies {
 #define FW_TREE_BROKEN 1
 #define FW_TREE_OVERTURNED 2
 
-/* A species' stem loads (trees/StemLoads.hpp) and critical moments, at scale 1. maps: per section 4 rows of
- * m floats (the elastic moment on e1, on e2, the weight's on e1, on e2; N m per unit q), then the root's 4
- * rows (elastic x, y, weight x, y). sections: per section its height above the root (m) and its breaking
- * moment M_b (N m). */
+/* A species' stem loads (trees/StemLoads.hpp) and critical moments, at scale 1, as lanes of FW_LANES: its
+ * J sections and then its root make J + 1 lanes, in blocks of FW_LANES (the last block padded with zero
+ * maps and a critical moment of 1). maps: per block 4 rows (the elastic moment on e1, on e2, the weight's
+ * on e1, on e2; for the root's lane its x and y), each m modes of FW_LANES floats (N m per unit q).
+ * sections: per block 2 rows of FW_LANES: the height above the root (m) and the critical moment (N m: M_b
+ * of the section, M_o in the root's lane). */
 typedef struct FwStem {
   fw_int section_count;  /* J */
-  fw_int map_offset;     /* first float of its maps: 4 m (J + 1) floats */
-  fw_int section_offset; /* first float of its sections: 2 J floats */
-  float overturning;     /* M_o, N m */
+  fw_int block_count;    /* ceil((J + 1) / FW_LANES) */
+  fw_int map_offset;     /* first float of its maps: 4 m FW_LANES floats a block */
+  fw_int section_offset; /* first float of its sections: 2 FW_LANES floats a block */
 } FwStem;
 
 /* A tree's damage record: what the device updates every step (trees/TreeDamage.hpp TreeDamageRecord). */

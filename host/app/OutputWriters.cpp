@@ -74,7 +74,7 @@ std::vector<io::DamageTree> damage_trees(const SimulationPlan& plan) {
     const trees::TreeInstance& instance = forest.instances()[std::size_t(k)];
     const SpeciesStrength& strength = *plan.strengths.at(std::size_t(instance.species));
     const double s = instance.scale, volume_scale = s * s * s;
-    trees.push_back({forest.id(k), plan.species[std::size_t(instance.species)].name, instance.position.x(),
+    trees.push_back({forest.id(k), plan.species[std::size_t(instance.species)].species, instance.position.x(),
                      instance.position.y(), s * strength.height, s * strength.dbh,
                      volume_scale * strength.critical.breaking.front(),
                      volume_scale * strength.critical.overturning});

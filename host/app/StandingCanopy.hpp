@@ -14,6 +14,7 @@
 
 #include <vector>
 
+#include "fluid/CanopyField.hpp"
 #include "fluid/GridSpec.hpp"
 #include "trees/Forest.hpp"
 
@@ -36,6 +37,7 @@ class StandingCanopy {
   const trees::Forest& forest_;
   std::vector<float> drag_density_;
   std::vector<bool> fallen_;
+  std::vector<fluid::CellBox> boxes_;  // the cells each tree's drag reaches (trees::instance_cells)
 };
 
 }  // namespace fw::host

@@ -22,6 +22,7 @@
 #include "trees/ForestReference.hpp"
 #include "trees/LSystem.hpp"
 #include "trees/TreeGenerator.hpp"
+#include "trees/TreeStrength.hpp"
 
 namespace fw::bench {
 
@@ -138,6 +139,12 @@ io::Scenario bench_scenario(const CoupledBenchOptions& options, const std::array
   scenario.forest.integrator = trees::ModalIntegrator::exact;
   scenario.forest.species = {species};
   if (!variant.leaves) scenario.forest.species[0].leaves.model = trees::FlutterModel::none;
+  // Every tree's loads and failure check, timed as the "damage" stage; without consequences, so that a
+  // failure changes nothing else in the step (a failed tree's loads go on being computed).
+  scenario.forest.damage.enabled = true;
+  scenario.forest.damage.consequences = false;
+  scenario.forest.species[0].strength = trees::strength_preset(trees::StrengthPreset::birch);
+  scenario.forest.species[0].strength_source = "birch";
   scenario.forest.trees = forest_trees(options.trees, grid, h);
   return scenario;
 }
@@ -194,9 +201,10 @@ void time_steps(host::ComputeContext& cc, host::CoupledStep& coupled, const Coup
   c.pressure_iterations /= options.steps;
   for (const auto& [stage, ms] : coupled.stage_ms()) {
     c.stages_ms[stage] = ms / options.steps;
-    if (stage != "trees" && stage != "leaves") c.fluid_ms += ms / options.steps;
+    if (stage != "trees" && stage != "leaves" && stage != "damage") c.fluid_ms += ms / options.steps;
   }
   c.trees_ms = c.stages_ms["trees"];
+  c.damage_ms = c.stages_ms["damage"];
 }
 
 }  // namespace
@@ -366,6 +374,9 @@ void print_coupled_bench_table(const CoupledBenchResult& r, std::ostream& out) {
       "trees' step on the device {:.2f} ms; CPU reference (double, 1 thread) {:.2f} ms: x{:.1f}\n",
       head.trees_ms, r.trees_reference_ms, r.trees_reference_ms / head.trees_ms);
   out << fmt::format(
+      "storm damage (every tree's stem loads and failure check) {:.2f} ms = {:.1f}% of the trees' step\n",
+      head.damage_ms, 100.0 * head.damage_ms / head.trees_ms);
+  out << fmt::format(
       "\ndeformation of all {} nodes (output frames): {:.2f} ms = {:.1f} frames/s, {:.3g} node*modes/s\n",
       r.trees * r.nodes_per_tree, r.deform_ms, r.deform_frames_per_s, r.node_modes_per_s);
   out << fmt::format("of which the strong-wind correction {:.2f} ms (linear deformation alone {:.2f} ms)\n",
@@ -415,6 +426,7 @@ std::string coupled_bench_json(const CoupledBenchResult& r) {
     json.key("ms_per_step").value(c.ms_per_step);
     json.key("fluid_ms").value(c.fluid_ms);
     json.key("trees_ms").value(c.trees_ms);
+    json.key("damage_ms").value(c.damage_ms);
     json.key("pressure_iterations").value(c.pressure_iterations);
     json.key("stages_ms").object(c.stages_ms);
     json.end_object();

@@ -71,6 +71,8 @@ struct CoupledBenchCase {
   std::map<std::string, double> stages_ms;  // per step: the wind grid's stages, "trees" (load + modal step)
   double fluid_ms = 0.0;                    // the wind grid's share of a step
   double trees_ms = 0.0;                    // sampling + modal forces + modal step
+  double damage_ms =
+      0.0;  // every tree's stem loads and failure check (docs/damage.md), after the trees' step
   double pressure_iterations = 0.0;
   host::HaloTraffic halo;  // this rank's halo exchanges over the timed steps (none in one process)
 };

@@ -49,27 +49,45 @@ StemPacking StemPacking::of(const trees::Forest& forest, const trees::DamageSett
     throw std::invalid_argument(fmt::format("DamageStages: {} strengths for {} species",
                                             settings.strengths.size(), forest.species().size()));
   StemPacking p;
+  constexpr int kLanes = FW_LANES;
+  std::vector<int> lanes_of_species;  // FW_LANES x blocks, per species
   for (std::size_t sp = 0; sp < forest.species().size(); ++sp) {
     const trees::StemLoads& stem = forest.species()[sp].stem_loads();
     const trees::CriticalMoments critical = trees::critical_moments(stem, settings.strengths[sp]);
     const int J = stem.section_count(), m = stem.mode_count();
-    p.stems.push_back({J, fw_int(p.maps.size()), fw_int(p.sections.size()), float(critical.overturning)});
-    const auto append_rows = [&](const Eigen::MatrixXd& elastic, const Eigen::MatrixXd& weight, int pair) {
-      for (const Eigen::MatrixXd* map : {&elastic, &weight})
-        for (int r = 0; r < 2; ++r)
-          for (int i = 0; i < m; ++i) p.maps.push_back(float((*map)(2 * pair + r, i)));
+    const int blocks = (J + 1 + kLanes - 1) / kLanes;
+    p.stems.push_back({J, blocks, fw_int(p.maps.size()), fw_int(p.sections.size())});
+    lanes_of_species.push_back(blocks * kLanes);
+    // Lane j < J: row r of section j (r = 0, 1 the elastic map's pair, 2, 3 the weight's); lane J: the
+    // root's; then zeros.
+    const auto row = [&](int r, int j) -> Eigen::RowVectorXd {
+      const bool elastic = r < 2;
+      const Eigen::MatrixXd& map = j < J ? (elastic ? stem.elastic() : stem.weight())
+                                         : (elastic ? stem.root_elastic() : stem.root_weight());
+      return map.row(2 * (j < J ? j : 0) + r % 2);
     };
-    for (int j = 0; j < J; ++j) append_rows(stem.elastic(), stem.weight(), j);
-    append_rows(stem.root_elastic(), stem.root_weight(), 0);
     const std::vector<trees::StemSection> sections = stem.sections();
-    for (int j = 0; j < J; ++j) {
-      p.sections.push_back(float(sections[std::size_t(j)].height));
-      p.sections.push_back(float(critical.breaking[std::size_t(j)]));
+    for (int b = 0; b < blocks; ++b) {
+      for (int r = 0; r < 4; ++r)
+        for (int i = 0; i < m; ++i)
+          for (int lane = 0; lane < kLanes; ++lane) {
+            const int j = b * kLanes + lane;
+            p.maps.push_back(j <= J ? float(row(r, j)(i)) : 0.0f);
+          }
+      for (int lane = 0; lane < kLanes; ++lane) {
+        const int j = b * kLanes + lane;
+        p.sections.push_back(j < J ? float(sections[std::size_t(j)].height) : 0.0f);
+      }
+      for (int lane = 0; lane < kLanes; ++lane) {
+        const int j = b * kLanes + lane;
+        p.sections.push_back(j < J ? float(critical.breaking[std::size_t(j)])
+                                   : (j == J ? float(critical.overturning) : 1.0f));
+      }
     }
   }
   for (int k = 0; k < forest.instance_count(); ++k) {
     p.section_offsets.push_back(p.total_sections);
-    p.total_sections += p.stems[std::size_t(forest.instances()[std::size_t(k)].species)].section_count;
+    p.total_sections += lanes_of_species[std::size_t(forest.instances()[std::size_t(k)].species)];
   }
   return p;
 }

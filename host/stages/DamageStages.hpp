@@ -64,8 +64,8 @@ class DamageStages {
   /// Every tree's record (blocking), as the device holds it, and as the model's record.
   std::vector<FwTreeDamage> download_device_records();
   std::vector<trees::TreeDamageRecord> download_records();
-  /// Every stem section's utilisation of the last step (blocking), flat: instance k's from
-  /// section_offset(k).
+  /// Every stem section's utilisation of the last step (blocking), flat: instance k's J sections from
+  /// section_offset(k), then its root's (overturning) and the padding of its lanes.
   std::vector<float> download_utilisation();
   int section_offset(int instance) const { return section_offsets_.at(std::size_t(instance)); }
 

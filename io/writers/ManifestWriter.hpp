@@ -31,7 +31,8 @@
 namespace fw::io {
 
 struct SpeciesSummary {
-  std::string name;
+  std::string name;     ///< the forest species' name: the scenario's, or "NAME (stand K)" for a stand's basis
+  std::string species;  ///< the scenario's species it is (forest.species[].name)
   std::string dynamics = "modal";  ///< the model that moves its trees (trees::dynamics_name)
   int nodes = 0;
   int modes = 0;

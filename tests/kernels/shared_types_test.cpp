@@ -109,9 +109,9 @@ namespace {
   X(FwFall)
 #define FW_DAMAGE_FIELDS(X)         \
   X(FwStem, section_count);         \
+  X(FwStem, block_count);           \
   X(FwStem, map_offset);            \
   X(FwStem, section_offset);        \
-  X(FwStem, overturning);           \
   X(FwTreeDamage, state);           \
   X(FwTreeDamage, failed_section);  \
   X(FwTreeDamage, time);            \
@@ -216,7 +216,7 @@ TEST_CASE("shared_types: tree structs are packed 32-bit fields without padding",
   CHECK(offsetof(FwTreeInstance, position) == 16);
   CHECK(offsetof(FwTreeInstance, cos_yaw) == 28);
   CHECK(offsetof(FwTreeInstance, scale) == 36);
-  // FwStem 3 ints + a float; FwTreeDamage 2 ints + 2 floats + 3 of wind + 3 floats.
+  // FwStem 4 ints; FwTreeDamage 2 ints + 2 floats + 3 of wind + 3 floats.
   CHECK(sizeof(FwStem) == 4 * 4);
   CHECK(sizeof(FwTreeDamage) == 10 * 4);
   CHECK(offsetof(FwTreeDamage, top_wind) == 16);

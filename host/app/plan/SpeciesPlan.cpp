@@ -137,7 +137,7 @@ std::vector<trees::SpeciesBasis> plan_species(const io::Scenario& scenario, cons
     trees::SpeciesSettings settings = species_settings(species);
     settings.modal.mode_count = io::species_mode_count(scenario, int(index), skeleton.size());
     io::SpeciesSummary summary;
-    summary.name = species.name;
+    summary.name = summary.species = species.name;
     summary.dynamics = trees::dynamics_name(species.dynamics.model);
     bases.push_back(species_basis(scenario, index, skeleton, settings, cache, summary, plan));
     const trees::SpeciesBasis& basis = bases.back();
