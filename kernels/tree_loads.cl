@@ -121,25 +121,25 @@ __kernel void tree_loads(const int instance_count, const float time, const int c
  * in a^2 (the first terms left out, a^14 / 15! and a^16 / 16!, are 4e-10 and 7e-11 there), a few FMAs where
  * PoCL's scalar tan costs about a hundred ns; the library's beyond. The springs' angles stay below their cap,
  * under a right angle. Its float rounding stays under 1.2e-7 / cos(a) (measured from 0 to 90 degrees against
- * tan in double): under 1.3e-7 up to 20 degrees, and near a right angle what the angle's own rounding in float
- * gives tan. */
+ * tan in double): under 1.3e-7 up to 20 degrees, and near a right angle what the angle's own rounding in
+ * float gives tan. */
 FW_INLINE float tan_over_angle(const float a2) {
   if (a2 >= FW_SERIES_MAX_ANGLE * FW_SERIES_MAX_ANGLE) {
     const float a = sqrt(a2);
     return tan(a) / a;
   }
   const float sinc =
-      1.0f +
-      a2 * (-1.0f / 6 +
-            a2 * (1.0f / 120 + a2 * (-1.0f / 5040 + a2 * (1.0f / 362880 + a2 * (-1.0f / 39916800 +
-                                                                                a2 * (1.0f / 6227020800.0f))))));
+      1.0f + a2 * (-1.0f / 6 +
+                   a2 * (1.0f / 120 +
+                         a2 * (-1.0f / 5040 + a2 * (1.0f / 362880 +
+                                                    a2 * (-1.0f / 39916800 + a2 * (1.0f / 6227020800.0f))))));
   const float cosine =
       1.0f +
       a2 * (-1.0f / 2 +
             a2 * (1.0f / 24 +
-                  a2 * (-1.0f / 720 +
-                        a2 * (1.0f / 40320 + a2 * (-1.0f / 3628800 +
-                                                   a2 * (1.0f / 479001600 + a2 * (-1.0f / 87178291200.0f)))))));
+                  a2 * (-1.0f / 720 + a2 * (1.0f / 40320 +
+                                            a2 * (-1.0f / 3628800 + a2 * (1.0f / 479001600 +
+                                                                          a2 * (-1.0f / 87178291200.0f)))))));
   return sinc / cosine;
 }
 
