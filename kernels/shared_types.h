@@ -344,13 +344,31 @@ typedef struct FwLeafSpecies {
  * maps and a critical moment of 1). maps: per block 4 rows (the elastic moment on e1, on e2, the weight's
  * on e1, on e2; for the root's lane its x and y), each m modes of FW_LANES floats (N m per unit q).
  * sections: per block 2 rows of FW_LANES: the height above the root (m) and the critical moment (N m: M_b
- * of the section, M_o in the root's lane). */
+ * of the section, M_o in the root's lane). The maps of a species an element model moves are not read: its
+ * trees' moments come from their joints (FwStemAxis). */
 typedef struct FwStem {
   fw_int section_count;  /* J */
   fw_int block_count;    /* ceil((J + 1) / FW_LANES) */
   fw_int map_offset;     /* first float of its maps: 4 m FW_LANES floats a block */
   fw_int section_offset; /* first float of its sections: 2 FW_LANES floats a block */
+  fw_int axis_offset;    /* first of its J FwStemAxis (the element trees' stem) */
 } FwStem;
+
+/* A stem section as the element trees' loads see it (trees/BranchStemLoads.hpp BranchStem): the stem's unit
+ * axis at rest (to the next stem node), skeleton frame, and its node's entry in the species' FwBranch table.
+ * Per entry of that table (in its layout, from FwSpecies.skeleton_offset) the loads read 2 ints: the section
+ * at its joint (its element starts at that stem node) or -1, and the highest section its element lies above
+ * (-1 for the root's entry). */
+typedef struct FwStemAxis {
+  float axis[3];
+  fw_int entry;
+} FwStemAxis;
+
+/* kernels/tree_loads.cl branch_tree_loads' scratch, per work-item: per section the joint moments at it (3)
+ * and the weight of the elements it lies under, sum m u_c and sum m (4); per entry its orientation (a
+ * quaternion, 4) and its node's displacement (3). */
+#define FW_LOADS_SECTION_FLOATS 7
+#define FW_LOADS_ENTRY_FLOATS 7
 
 /* A tree's damage record: what the device updates every step (trees/TreeDamage.hpp TreeDamageRecord). */
 typedef struct FwTreeDamage {

@@ -10,6 +10,7 @@
 #include "host/bench/FmaPeak.hpp"
 #include "host/stages/ForestStages.hpp"
 #include "io/JsonWriter.hpp"
+#include "trees/TreeDamage.hpp"
 #include "trees/TreeGenerator.hpp"
 
 namespace fw::bench {
@@ -82,6 +83,16 @@ TreeModelsBenchResult run_tree_models_bench(host::ComputeContext& cc, const Tree
                   stages.enqueue_modal_step(kBenchDt);
                 });
     c.frame_ms = 1e3 * best_seconds(cc, options.repetitions, [&] { stages.enqueue_deform(); });
+    // The damage check on the trees the steps above bent. Without consequences, so that a tree that fails
+    // keeps being checked as a standing one is.
+    trees::DamageSettings damage;
+    damage.enabled = true;
+    damage.consequences = false;
+    damage.strengths.assign(1, trees::strength_preset(trees::StrengthPreset::norway_spruce));
+    stages.set_damage(forest, damage);
+    c.loads_ms = 1e3 * best_seconds(cc, options.repetitions, [&] { stages.enqueue_damage_check(1.0f); });
+    c.loads_ns_per_element = 1e6 * c.loads_ms / elements;
+    c.loads_vs_step = c.loads_ms / c.step_ms;
     c.step_ns_per_element = 1e6 * c.step_ms / elements;
     c.frame_ns_per_element = 1e6 * c.frame_ms / elements;
     c.flops_per_element_step = model == trees::TreeDynamics::rigid_bodies ? kRigidFlopsPerElement
@@ -103,12 +114,15 @@ TreeModelsBenchResult run_tree_models_bench(host::ComputeContext& cc, const Tree
 void print_tree_models_bench_table(const TreeModelsBenchResult& r, std::ostream& out) {
   out << fmt::format("tree models on {}: {} trees of {} nodes ({} modes for the modal model)\n", r.device,
                      r.trees, r.nodes_per_tree, r.modes);
-  out << fmt::format("{:<14}{:>11}{:>12}{:>9}{:>12}{:>12}{:>9}{:>12}\n", "model", "step ms", "ns/elem",
-                     "x modal", "frame ms", "ns/elem", "x modal", "% FMA peak");
+  out << fmt::format("{:<14}{:>11}{:>12}{:>9}{:>12}{:>12}{:>9}{:>12}{:>11}{:>12}{:>10}\n", "model", "step ms",
+                     "ns/elem", "x modal", "frame ms", "ns/elem", "x modal", "% FMA peak", "loads ms",
+                     "ns/elem", "% step");
   for (const TreeModelCase& c : r.cases)
-    out << fmt::format("{:<14}{:>11.2f}{:>12.2f}{:>9.2f}{:>12.2f}{:>12.2f}{:>9.2f}{:>12.1f}\n", c.model,
-                       c.step_ms, c.step_ns_per_element, c.step_vs_modal, c.frame_ms, c.frame_ns_per_element,
-                       c.frame_vs_modal, 100.0 * c.step_fraction_of_peak);
+    out << fmt::format(
+        "{:<14}{:>11.2f}{:>12.2f}{:>9.2f}{:>12.2f}{:>12.2f}{:>9.2f}{:>12.1f}{:>11.2f}{:>12.2f}{:>10.1f}\n",
+        c.model, c.step_ms, c.step_ns_per_element, c.step_vs_modal, c.frame_ms, c.frame_ns_per_element,
+        c.frame_vs_modal, 100.0 * c.step_fraction_of_peak, c.loads_ms, c.loads_ns_per_element,
+        100.0 * c.loads_vs_step);
   out << fmt::format(
       "FMA peak {:.1f} GFMA/s, measured in this process; a step's flops per element are counted "
       "from the kernels\n",
@@ -135,6 +149,9 @@ std::string tree_models_bench_json(const TreeModelsBenchResult& r) {
     json.key("frame_vs_modal").value(c.frame_vs_modal);
     json.key("flops_per_element_step").value(c.flops_per_element_step);
     json.key("step_fraction_of_peak").value(c.step_fraction_of_peak);
+    json.key("loads_ms").value(c.loads_ms);
+    json.key("loads_ns_per_element").value(c.loads_ns_per_element);
+    json.key("loads_vs_step").value(c.loads_vs_step);
     json.end_object();
   }
   json.end_array();

@@ -1,7 +1,8 @@
 // `forestwind bench models`: the three tree models (docs/tree-models.md) on the same forest and the same
 // wind, per step (the wind at the samples, and the model's step) and per output frame (the deformation of
 // every node), each per element, with the modal model as the baseline run in the same process and the
-// device's FMA peak as the limit.
+// device's FMA peak as the limit; and the storm damage's loads and failure check (docs/damage.md,
+// ForestStages::enqueue_damage_check) per step, beside the step it follows.
 //
 //   fw::bench::TreeModelsBenchOptions options;                  // 1000 trees of about 3,500 nodes
 //   auto result = fw::bench::run_tree_models_bench(cc, options);
@@ -31,7 +32,9 @@ struct TreeModelCase {
   std::string model;
   double step_ms = 0.0;   // wind sampling + the model's step, every tree
   double frame_ms = 0.0;  // the deformation of every node
-  double step_ns_per_element = 0.0, frame_ns_per_element = 0.0;
+  double loads_ms = 0.0;  // the damage check: every tree's stem loads against its strength
+  double step_ns_per_element = 0.0, frame_ns_per_element = 0.0, loads_ns_per_element = 0.0;
+  double loads_vs_step = 0.0;                        // the damage check's time over the step's
   double step_vs_modal = 0.0, frame_vs_modal = 0.0;  // ratios to the modal case's times
   double flops_per_element_step = 0.0;  // counted from the kernel's arithmetic, per element and step
   double step_fraction_of_peak = 0.0;   // flops_per_element_step x elements / step time, over the FMA peak

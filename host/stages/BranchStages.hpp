@@ -82,6 +82,16 @@ class BranchStages {
   void save_state(StageState& state);
   void restore_state(const StageState& state);
 
+  /// What the damage stage's kernel reads (host/stages/DamageStages, kernels/tree_loads.cl
+  /// branch_tree_loads): the element trees, their table on the device (FwBranchTree each), the species'
+  /// models (FwBranchSpecies) and element tables (FwBranch, in the FwSpecies.skeleton_offset layout), and the
+  /// joint state, which it zeroes for a failed tree held at rest.
+  const std::vector<FwBranchTree>& trees() const { return trees_; }
+  cl::Buffer& trees_buffer() { return trees_buffer_; }
+  cl::Buffer& models() { return models_; }
+  cl::Buffer& table() { return branches_; }
+  cl::Buffer& joints() { return joints_; }
+
  private:
   void enqueue_spring_angles();
 

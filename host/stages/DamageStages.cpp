@@ -2,11 +2,14 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <stdexcept>
 
 #include "host/stages/SavedStateNames.hpp"
+#include "trees/BranchStemLoads.hpp"
+#include "trees/Gravity.hpp"
 
 namespace fw::host {
 
@@ -29,6 +32,18 @@ std::size_t fall_bytes(const trees::Forest& forest) {
          ComputeContext::allocation_bytes(3 * nodes * sizeof(float));
 }
 
+// The element trees' largest skeleton and stem, over the species of `instances` (indices into the forest):
+// what each work-item's slice of the loads' scratch holds, floats.
+int scratch_stride(const trees::Forest& forest, const std::vector<int>& instances) {
+  int stride = 0;
+  for (const int k : instances) {
+    const trees::SpeciesBasis& basis = forest.species_of(k);
+    stride = std::max(stride, FW_LOADS_SECTION_FLOATS * basis.stem_loads().section_count() +
+                                  FW_LOADS_ENTRY_FLOATS * basis.skeleton().size());
+  }
+  return stride;
+}
+
 }  // namespace
 
 trees::TreeDamageRecord to_record(const FwTreeDamage& d) {
@@ -44,7 +59,8 @@ trees::TreeDamageRecord to_record(const FwTreeDamage& d) {
   return r;
 }
 
-StemPacking StemPacking::of(const trees::Forest& forest, const trees::DamageSettings& settings) {
+StemPacking StemPacking::of(const trees::Forest& forest, const trees::DamageSettings& settings,
+                            bool element_trees) {
   if (settings.strengths.size() != forest.species().size())
     throw std::invalid_argument(fmt::format("DamageStages: {} strengths for {} species",
                                             settings.strengths.size(), forest.species().size()));
@@ -56,8 +72,20 @@ StemPacking StemPacking::of(const trees::Forest& forest, const trees::DamageSett
     const trees::CriticalMoments critical = trees::critical_moments(stem, settings.strengths[sp]);
     const int J = stem.section_count(), m = stem.mode_count();
     const int blocks = (J + 1 + kLanes - 1) / kLanes;
-    p.stems.push_back({J, blocks, fw_int(p.maps.size()), fw_int(p.sections.size())});
+    p.stems.push_back({J, blocks, fw_int(p.maps.size()), fw_int(p.sections.size()), fw_int(p.axes.size())});
     lanes_of_species.push_back(blocks * kLanes);
+    const trees::BranchStem branch_stem = trees::BranchStem::of(forest.species()[sp].skeleton());
+    if (branch_stem.section_count() != J)  // both are stem_path's: a bug here
+      throw std::logic_error("StemPacking: the element trees' stem is not the modal one");
+    for (int j = 0; j < J; ++j) {
+      const Eigen::Vector3d& axis = branch_stem.axes()[std::size_t(j)];
+      p.axes.push_back({{float(axis.x()), float(axis.y()), float(axis.z())},
+                        fw_int(branch_stem.section_entries()[std::size_t(j)])});
+    }
+    if (element_trees)
+      for (std::size_t e = 0; e < branch_stem.joint_sections().size(); ++e)
+        p.entry_sections.insert(p.entry_sections.end(), {fw_int(branch_stem.joint_sections()[e]),
+                                                         fw_int(branch_stem.element_sections()[e])});
     // Lane j < J: row r of section j (r = 0, 1 the elastic map's pair, 2, 3 the weight's); lane J: the
     // root's; then zeros.
     const auto row = [&](int r, int j) -> Eigen::RowVectorXd {
@@ -93,10 +121,11 @@ StemPacking StemPacking::of(const trees::Forest& forest, const trees::DamageSett
 }
 
 DamageStages::DamageStages(ComputeContext& cc, const trees::Forest& forest,
-                           const trees::DamageSettings& settings)
+                           const trees::DamageSettings& settings, BranchStages* branches)
     : cc_(cc), settings_(settings) {
   if (!settings.enabled) throw std::invalid_argument("DamageStages: damage is not enabled");
-  const StemPacking p = StemPacking::of(forest, settings);
+  if (branches && branches->tree_count() > 0) branches_ = branches;
+  const StemPacking p = StemPacking::of(forest, settings, branches_ != nullptr);
   instance_count_ = forest.instance_count();
   total_sections_ = p.total_sections;
   section_offsets_ = p.section_offsets;
@@ -108,7 +137,8 @@ DamageStages::DamageStages(ComputeContext& cc, const trees::Forest& forest,
   records_ = cc_.upload(standing_records(instance_count_));
   utilisation_ = cc_.zero_floats(std::size_t(total_sections_));
   counters_ = cc_.upload(std::vector<fw_int>(kCounters, 0));
-  loads_ = Kernel(cc_.build("tree_loads.cl"), "tree_loads");
+  const cl::Program program = cc_.build("tree_loads.cl");
+  loads_ = Kernel(program, "tree_loads");
   // The falls: each species' skeleton tour and rest nodes, in the order of FwSpecies.skeleton_offset.
   std::vector<fw_int> tour;
   std::vector<float> rest;
@@ -125,28 +155,57 @@ DamageStages::DamageStages(ComputeContext& cc, const trees::Forest& forest,
   tour_ = cc_.upload(tour, ro);
   rest_nodes_ = cc_.upload(rest, ro);
   fall_ = Kernel(cc_.build("tree_fall.cl"), "tree_fall");
+  if (!branches_) return;
+  axes_ = cc_.upload(p.axes, ro);
+  entry_sections_ = cc_.upload(p.entry_sections, ro);
+  std::vector<int> element_instances;
+  for (const FwBranchTree& tree : branches_->trees()) element_instances.push_back(tree.instance);
+  scratch_stride_ = scratch_stride(forest, element_instances);
+  // A slice for each item that gets a tree: at most one a tree (as BranchStages' scratch).
+  scratch_items_ = cc_.flat_items(element_instances.size());
+  scratch_ =
+      cc_.zero_floats(std::min(scratch_items_, element_instances.size()) * std::size_t(scratch_stride_));
+  branch_loads_ = Kernel(program, "branch_tree_loads");
 }
 
 std::size_t DamageStages::estimate_device_bytes(const trees::Forest& forest,
-                                                const trees::DamageSettings& settings) {
-  const StemPacking p = StemPacking::of(forest, settings);
+                                                const trees::DamageSettings& settings,
+                                                const std::vector<trees::SpeciesDynamics>& dynamics) {
+  std::vector<int> element_instances;
+  for (int k = 0; k < forest.instance_count(); ++k)
+    if (BranchStages::entries_of(forest, dynamics, k) > 0) element_instances.push_back(k);
+  const StemPacking p = StemPacking::of(forest, settings, !element_instances.empty());
   const auto bytes = [](std::size_t count, std::size_t size) {
     return ComputeContext::allocation_bytes(count * size);
   };
-  return bytes(p.stems.size(), sizeof(FwStem)) + bytes(p.maps.size(), sizeof(float)) +
-         bytes(p.sections.size(), sizeof(float)) + bytes(p.section_offsets.size(), sizeof(fw_int)) +
-         bytes(std::size_t(forest.instance_count()), sizeof(FwTreeDamage)) +
-         bytes(std::size_t(p.total_sections), sizeof(float)) + bytes(kCounters, sizeof(fw_int)) +
-         fall_bytes(forest);
+  std::size_t total = bytes(p.stems.size(), sizeof(FwStem)) + bytes(p.maps.size(), sizeof(float)) +
+                      bytes(p.sections.size(), sizeof(float)) +
+                      bytes(p.section_offsets.size(), sizeof(fw_int)) +
+                      bytes(std::size_t(forest.instance_count()), sizeof(FwTreeDamage)) +
+                      bytes(std::size_t(p.total_sections), sizeof(float)) + bytes(kCounters, sizeof(fw_int)) +
+                      fall_bytes(forest);
+  if (!element_instances.empty())  // the scratch: at most a slice a tree
+    total += bytes(p.axes.size(), sizeof(FwStemAxis)) + bytes(p.entry_sections.size(), sizeof(fw_int)) +
+             bytes(element_instances.size() * std::size_t(scratch_stride(forest, element_instances)),
+                   sizeof(float));
+  return total;
 }
 
 void DamageStages::enqueue_loads(float time, cl::Buffer& instances, cl::Buffer& species, cl::Buffer& state,
                                  cl::Buffer& sampled_wind) {
   if (instance_count_ == 0) return;
+  const fw_int consequences = settings_.consequences ? 1 : 0;
   loads_
-      .set_args(instance_count_, time, settings_.consequences ? 1 : 0, instances, species, stems_, maps_,
-                sections_, section_offsets_buffer_, sampled_wind, state, records_, utilisation_, counters_)
+      .set_args(instance_count_, time, consequences, instances, species, stems_, maps_, sections_,
+                section_offsets_buffer_, sampled_wind, state, records_, utilisation_, counters_)
       .enqueue(cc_, cl::NDRange(cc_.flat_items(std::size_t(instance_count_))));
+  if (!branches_) return;
+  branch_loads_
+      .set_args(branches_->tree_count(), time, consequences, branches_->trees_buffer(), instances, species,
+                branches_->models(), branches_->table(), entry_sections_, stems_, axes_, sections_,
+                section_offsets_buffer_, sampled_wind, float(trees::kGravity), branches_->joints(), records_,
+                utilisation_, counters_, scratch_, fw_int(scratch_stride_))
+      .enqueue(cc_, cl::NDRange(scratch_items_));
 }
 
 int DamageStages::take_new_failures() {

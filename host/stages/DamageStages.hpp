@@ -11,29 +11,41 @@
 //
 // ForestStages owns one when the run asks for damage (ForestStages::set_damage). The state it carries from
 // step to step is each tree's FwTreeDamage record, saved with the trees' stage ("damage").
+//
+// The modal trees' loads come from their modal state (kernel tree_loads); the element trees' (rigid_bodies,
+// springs: trees/BranchStemLoads.hpp) from the joints of the forest's BranchStages (kernel
+// branch_tree_loads), which a failed element tree's zero when failures have consequences.
 #pragma once
 
 #include <vector>
 
 #include "host/runtime/ComputeContext.hpp"
+#include "host/stages/BranchStages.hpp"
 #include "host/stages/StageState.hpp"
 #include "kernels/shared_types.h"
 #include "trees/Forest.hpp"
 #include "trees/TreeDamage.hpp"
+#include "trees/TreeDynamics.hpp"
 #include "trees/TreeFall.hpp"
 
 namespace fw::host {
 
-/// The stems of a forest as the device reads them (kernels/shared_types.h FwStem).
+/// The stems of a forest as the device reads them (kernels/shared_types.h FwStem, FwStemAxis).
 struct StemPacking {
   std::vector<FwStem> stems;            ///< one per species
-  std::vector<float> maps;              ///< per species 4 m (J + 1) floats
-  std::vector<float> sections;          ///< per species 2 J floats: height, M_b
-  std::vector<fw_int> section_offsets;  ///< per instance, its first flat section
-  int total_sections = 0;
-  /// Packs the stems and critical moments of every species (settings.strengths, one per species).
-  /// Throws std::invalid_argument("DamageStages: ...") when a strength is missing or invalid.
-  static StemPacking of(const trees::Forest& forest, const trees::DamageSettings& settings);
+  std::vector<float> maps;              ///< per species 4 m FW_LANES floats a block
+  std::vector<float> sections;          ///< per species 2 FW_LANES floats a block: heights, critical moments
+  std::vector<FwStemAxis> axes;         ///< per species J (trees::BranchStem)
+  std::vector<fw_int> section_offsets;  ///< per instance, its first lane in the flat utilisation
+  /// With element trees: per species 2 ints an entry of its skeleton (trees::BranchStem's joint and element
+  /// sections), species after species as FwSpecies.skeleton_offset lays them out; else empty.
+  std::vector<fw_int> entry_sections;
+  int total_sections = 0;  ///< lanes of every instance: its blocks x FW_LANES
+  /// Packs the stems and critical moments of every species (settings.strengths, one per species), and with
+  /// `element_trees` every species' entry sections. Throws std::invalid_argument("DamageStages: ...") when a
+  /// strength is missing or invalid.
+  static StemPacking of(const trees::Forest& forest, const trees::DamageSettings& settings,
+                        bool element_trees = false);
 };
 
 /// A device record as the model's (trees/TreeDamage.hpp).
@@ -42,18 +54,23 @@ trees::TreeDamageRecord to_record(const FwTreeDamage& record);
 class DamageStages {
  public:
   /// Uploads the packing of `forest` and a standing record for every tree. `settings.enabled` must be true
-  /// (std::invalid_argument otherwise, and for what StemPacking::of throws).
-  DamageStages(ComputeContext& cc, const trees::Forest& forest, const trees::DamageSettings& settings);
+  /// (std::invalid_argument otherwise, and for what StemPacking::of throws). branches: the forest's element
+  /// models' stage (ForestStages::branches()), whose trees' loads come from their joints; null when every
+  /// species is modal. It must outlive this stage.
+  DamageStages(ComputeContext& cc, const trees::Forest& forest, const trees::DamageSettings& settings,
+               BranchStages* branches = nullptr);
 
-  /// Bytes of device memory the constructor allocates.
-  static std::size_t estimate_device_bytes(const trees::Forest& forest,
-                                           const trees::DamageSettings& settings);
+  /// Bytes of device memory the constructor allocates (at most), for the forest under `dynamics` (one per
+  /// species; empty: all modal).
+  static std::size_t estimate_device_bytes(const trees::Forest& forest, const trees::DamageSettings& settings,
+                                           const std::vector<trees::SpeciesDynamics>& dynamics = {});
 
   const trees::DamageSettings& settings() const { return settings_; }
   int total_sections() const { return total_sections_; }
 
   /// The step's loads and failure check at `time` (s, after the step), from the modal state and sampled
-  /// wind of the forest's buffers (ForestStages: instances, species, state, sampled wind).
+  /// wind of the forest's buffers (ForestStages: instances, species, state, sampled wind), and from the
+  /// element trees' joints.
   void enqueue_loads(float time, cl::Buffer& instances, cl::Buffer& species, cl::Buffer& state,
                      cl::Buffer& sampled_wind);
   /// The trees that failed since the last call (blocking: reads and zeroes the device's counter).
@@ -84,13 +101,20 @@ class DamageStages {
   int instance_count_ = 0;
   int total_sections_ = 0;
   std::vector<fw_int> section_offsets_;
+  cl::Buffer stems_, maps_, sections_, section_offsets_buffer_, records_, utilisation_;
+  cl::Buffer counters_;                             // kernels/tree_loads.cl: new failures, broken, overturned
   std::vector<trees::FallGeometry> fall_geometry_;  // per species
   std::vector<int> instance_species_;               // per instance
   std::vector<double> instance_scale_;              // per instance
   cl::Buffer tour_, rest_nodes_;                    // kernels/tree_fall.cl
-  cl::Buffer stems_, maps_, sections_, section_offsets_buffer_, records_, utilisation_;
-  cl::Buffer counters_;  // kernels/tree_loads.cl: new failures, broken, overturned
   Kernel loads_, fall_;
+  // The element trees (kernels/tree_loads.cl branch_tree_loads): their stage, the stems' axes and entry
+  // sections, and the kernel's scratch (a slice of scratch_stride_ floats a work-item).
+  BranchStages* branches_ = nullptr;
+  cl::Buffer axes_, entry_sections_, scratch_;
+  std::size_t scratch_items_ = 0;
+  int scratch_stride_ = 0;
+  Kernel branch_loads_;
 };
 
 }  // namespace fw::host

@@ -190,7 +190,7 @@ void ForestStages::restore_state(const StageState& state) {
 
 void ForestStages::set_damage(const trees::Forest& forest, const trees::DamageSettings& settings) {
   damage_.reset();
-  if (settings.enabled) damage_.emplace(cc_, forest, settings);
+  if (settings.enabled) damage_.emplace(cc_, forest, settings, branches());
 }
 
 void ForestStages::enqueue_equilibrium() {

@@ -105,6 +105,7 @@ namespace {
 // The damage structs (packed by host/stages/DamageStages).
 #define FW_DAMAGE_STRUCTS(X) \
   X(FwStem);                 \
+  X(FwStemAxis);             \
   X(FwTreeDamage);           \
   X(FwFall)
 #define FW_DAMAGE_FIELDS(X)         \
@@ -112,6 +113,9 @@ namespace {
   X(FwStem, block_count);           \
   X(FwStem, map_offset);            \
   X(FwStem, section_offset);        \
+  X(FwStem, axis_offset);           \
+  X(FwStemAxis, axis);              \
+  X(FwStemAxis, entry);             \
   X(FwTreeDamage, state);           \
   X(FwTreeDamage, failed_section);  \
   X(FwTreeDamage, time);            \
@@ -216,8 +220,9 @@ TEST_CASE("shared_types: tree structs are packed 32-bit fields without padding",
   CHECK(offsetof(FwTreeInstance, position) == 16);
   CHECK(offsetof(FwTreeInstance, cos_yaw) == 28);
   CHECK(offsetof(FwTreeInstance, scale) == 36);
-  // FwStem 4 ints; FwTreeDamage 2 ints + 2 floats + 3 of wind + 3 floats.
-  CHECK(sizeof(FwStem) == 4 * 4);
+  // FwStem 5 ints; FwStemAxis 3 floats + an int; FwTreeDamage 2 ints + 2 floats + 3 of wind + 3 floats.
+  CHECK(sizeof(FwStem) == 5 * 4);
+  CHECK(sizeof(FwStemAxis) == 4 * 4);
   CHECK(sizeof(FwTreeDamage) == 10 * 4);
   CHECK(offsetof(FwTreeDamage, top_wind) == 16);
 }
@@ -239,8 +244,8 @@ TEST_CASE("shared_types: OpenCL C and the host agree on sizeof and offsetof of e
   if (!cc) return;
   const auto entries = host_layout();
   // Shared structs and fields (FwTke's 1 and 6 among them), the trees' (the element models' 3 structs and
-  // 21 fields among them), the leaves' (1 struct, 13 fields), the damage's (3 structs, 18 fields).
-  REQUIRE(entries.size() == 5 + 36 + 5 + 37 + 1 + 13 + 3 + 18);
+  // 21 fields among them), the leaves' (1 struct, 13 fields), the damage's (4 structs, 21 fields).
+  REQUIRE(entries.size() == 5 + 36 + 5 + 37 + 1 + 13 + 4 + 21);
   const std::string source = layout_kernel_source(entries);
   INFO(source);
 

@@ -1,6 +1,7 @@
-// kernels/tree_loads.cl (host/stages/DamageStages) against its CPU reference trees/TreeDamage: every stem
-// section's utilisation, the root's moment and the failure records of a forest of two small species with
-// various yaws and scales, and what a failed tree does on the next step.
+// kernels/tree_loads.cl (host/stages/DamageStages) against its CPU references trees/TreeDamage (modal trees)
+// and trees/BranchStemLoads (element trees): every stem section's utilisation, the root's moment and the
+// failure records of forests of small species with various yaws and scales, and what a failed tree does on
+// the next step.
 #include <catch2/catch.hpp>
 
 #include <algorithm>
@@ -11,7 +12,9 @@
 #include "tests/support/Fields.hpp"
 #include "tests/support/SmallSpecies.hpp"
 #include "tests/support/TestDevice.hpp"
+#include "trees/BranchStemLoads.hpp"
 #include "trees/TreeDamage.hpp"
+#include "trees/TreeGenerator.hpp"
 
 using namespace fw;
 
@@ -57,6 +60,91 @@ std::vector<trees::TreeLoad> reference_loads(const trees::Forest& forest,
   }
   return loads;
 }
+
+// A forest of the three models (docs/tree-models.md): rigid bodies, springs and modal, four trees each, yaws
+// all round, scales 0.6 .. 1.5.
+constexpr int kRigid = 0, kSprings = 1, kModal = 2;
+
+trees::Forest element_forest() {
+  // The springs' wood is soft, as a user after a visible bend sets it (docs/tree-models.md): their joints
+  // then turn by a few degrees and their pose's weight counts.
+  trees::GeneratorSettings g;
+  g.preset = "conifer";
+  g.height = 5.0;
+  g.seed = 2;
+  g.iterations = 4;
+  g.max_element_length = 5.0;
+  trees::SpeciesSettings soft;
+  soft.material = {2.0e7, 0.77e7, 900.0};
+  soft.modal.mode_count = 6;
+  soft.wind.samples = 2;
+  soft.wind.leaf_area_index = 2.0;
+  std::vector<trees::SpeciesBasis> species = {test::small_species("broadleaf", 6.0, 1, 5, 8, 3, 2.0),
+                                              trees::SpeciesBasis::compute(trees::generate_tree(g), soft),
+                                              test::small_species("broadleaf", 5.0, 3, 4, 6, 2)};
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<double> x(2.0, 28.0), y(2.0, 20.0), yaw(-M_PI, M_PI), scale(0.6, 1.5);
+  std::vector<trees::TreeInstance> trees;
+  for (int k = 0; k < 12; ++k) trees.push_back({k % 3, {x(rng), y(rng), 0.0}, yaw(rng), scale(rng)});
+  return trees::Forest(std::move(species), std::move(trees));
+}
+
+std::vector<trees::SpeciesDynamics> element_dynamics() {
+  std::vector<trees::SpeciesDynamics> dynamics(3);
+  dynamics[kRigid].model = trees::TreeDynamics::rigid_bodies;
+  dynamics[kRigid].rigid_bodies.damping_ratio = 0.08;
+  dynamics[kSprings].model = trees::TreeDynamics::springs;
+  dynamics[kSprings].springs.max_angle_deg = 25.0;
+  dynamics[kSprings].springs.sway_amplitude = 0.5;
+  return dynamics;
+}
+
+// The forest of element_forest() on the device, moved by a wind for a while: every joint turned, the rigid
+// bodies off their equilibrium.
+struct ElementFixture {
+  host::ComputeContext& cc;
+  fluid::GridSpec spec = loads_grid();
+  trees::Forest forest = element_forest();
+  std::vector<trees::SpeciesDynamics> dynamics = element_dynamics();
+  host::ForestStages stages{cc, spec, forest, nullptr, dynamics};
+
+  explicit ElementFixture(host::ComputeContext& c) : cc(c) {
+    host::DeviceVelocity wind;
+    wind.u = cc.buffer(spec.u_count() * sizeof(float));
+    wind.v = cc.buffer(spec.v_count() * sizeof(float));
+    wind.w = cc.buffer(spec.w_count() * sizeof(float));
+    test::upload(cc, test::smooth_velocity(spec, {8.0, -2.0, 0.3}, {2.0, 1.0, 0.5}), wind);
+    stages.enqueue_wind_load(wind);
+    stages.enqueue_equilibrium();
+    // A gust of twice the wind's drag on the rigid bodies' equilibrium: 0.3 s later they swing through it.
+    test::upload(cc, test::smooth_velocity(spec, {11.0, -3.0, 0.4}, {2.5, 1.5, 0.6}), wind);
+    for (int n = 0; n < 6; ++n) {
+      stages.enqueue_wind_load(wind);
+      stages.enqueue_modal_step(0.05f);
+    }
+  }
+  int species(int k) const { return forest.instances()[std::size_t(k)].species; }
+  double scale(int k) const { return forest.instances()[std::size_t(k)].scale; }
+  // Tree k's loads by the references: trees/BranchStemLoads from the device's own joint angles, or tree_load
+  // from the modal state.
+  trees::TreeLoad reference(int k, const trees::DamageSettings& settings, const host::ModalState& modal) {
+    const trees::SpeciesBasis& basis = forest.species_of(k);
+    const auto critical =
+        trees::critical_moments(basis.stem_loads(), settings.strengths[std::size_t(species(k))]);
+    if (species(k) == kModal) {
+      Eigen::VectorXd q(basis.modes().mode_count());
+      for (int i = 0; i < q.size(); ++i) q(i) = modal.q[std::size_t(forest.mode_offset(k) + i)];
+      return trees::tree_load(basis.stem_loads(), critical, scale(k), q);
+    }
+    const trees::BranchElements elements =
+        trees::BranchElements::of(basis.skeleton(), basis.settings().material, basis.settings().wind);
+    const std::vector<Eigen::Vector3d> angles = stages.branches()->download_angles(k, elements.size());
+    const auto moments =
+        trees::branch_stem_moments(basis.skeleton(), elements, trees::BranchStem::of(basis.skeleton()),
+                                   dynamics[std::size_t(species(k))].model, scale(k), angles);
+    return trees::branch_tree_load(moments, critical, scale(k));
+  }
+};
 
 }  // namespace
 
@@ -287,4 +375,184 @@ TEST_CASE("DamageStages: the estimate is what the constructor allocates", "[fore
   const std::size_t before = cc->allocated_bytes();
   host::DamageStages damage(*cc, forest, settings);
   CHECK(cc->allocated_bytes() - before == host::DamageStages::estimate_device_bytes(forest, settings));
+}
+
+TEST_CASE(
+    "tree_loads: the element trees' utilisations, root moments and failures match their reference, and a "
+    "failed tree's joints are held at rest",
+    "[forest][branches]") {
+  auto* cc = test::device_or_skip();
+  if (!cc) return;
+  ElementFixture f(*cc);
+  host::BranchStages& branches = *f.stages.branches();
+  const std::vector<float> joints = branches.download_joints();
+  const host::ModalState modal = f.stages.download_modal_state();
+
+  // Strengths that fail half the element trees: the rigid bodies by overturning (their anchorage brought to
+  // 0.95 of their trees' median overturning ratio, their wood a hundred times its largest breaking ratio),
+  // the springs by breakage, the other way round; the modal trees stand (a hundred times both).
+  trees::DamageSettings settings;
+  settings.enabled = true;
+  settings.strengths.assign(3, trees::strength_preset(trees::StrengthPreset::norway_spruce));
+  std::vector<double> overturning[3], breaking[3];
+  double largest_angle = 0.0;
+  for (int k = 0; k < f.forest.instance_count(); ++k) {
+    const trees::TreeLoad load = f.reference(k, settings, modal);
+    overturning[f.species(k)].push_back(load.overturning);
+    breaking[f.species(k)].push_back(load.utilisation.maxCoeff());
+    if (f.species(k) == kSprings)
+      for (const Eigen::Vector3d& theta :
+           branches.download_angles(k, f.forest.species_of(k).skeleton().size()))
+        largest_angle = std::max(largest_angle, theta.norm());
+  }
+  // The soft springs bend: their pose and its weight count.
+  CHECK(largest_angle > 0.03);
+  const auto median = [](std::vector<double> v) {
+    std::nth_element(v.begin(), v.begin() + std::ptrdiff_t(v.size() / 2), v.end());
+    return v[v.size() / 2];
+  };
+  const auto largest = [](const std::vector<double>& v) { return *std::max_element(v.begin(), v.end()); };
+  settings.strengths[kRigid].anchorage *= 0.95 * median(overturning[kRigid]);
+  settings.strengths[kRigid].modulus_of_rupture *= 100.0 * largest(breaking[kRigid]);
+  settings.strengths[kSprings].modulus_of_rupture *= 0.95 * median(breaking[kSprings]);
+  settings.strengths[kSprings].anchorage *= 100.0 * largest(overturning[kSprings]);
+  settings.strengths[kModal].modulus_of_rupture *= 100.0 * largest(breaking[kModal]);
+  settings.strengths[kModal].anchorage *= 100.0 * largest(overturning[kModal]);
+  std::vector<trees::TreeLoad> expected;
+  for (int k = 0; k < f.forest.instance_count(); ++k) expected.push_back(f.reference(k, settings, modal));
+
+  const std::size_t before = cc->allocated_bytes();
+  f.stages.set_damage(f.forest, settings);
+  const std::size_t allocated = cc->allocated_bytes() - before;
+  // What the plan reports (host/app/plan/DamagePlan.cpp): a slice of scratch a tree, as many as a device
+  // uses.
+  CHECK(allocated == host::DamageStages::estimate_device_bytes(f.forest, settings, f.dynamics));
+  CHECK(allocated > host::DamageStages::estimate_device_bytes(f.forest, settings));
+  host::DamageStages& damage = *f.stages.damage();
+  f.stages.enqueue_damage_check(2.5f);
+  const std::vector<float> utilisation = damage.download_utilisation();
+  const std::vector<trees::TreeDamageRecord> records = damage.download_records();
+  const std::vector<float> sampled = f.stages.download_sampled_wind();
+
+  int failed[3] = {}, broken = 0, overturned = 0;
+  double worst_error[3] = {};
+  for (int k = 0; k < f.forest.instance_count(); ++k) {
+    INFO("tree " << k << ", species " << f.species(k));
+    const trees::TreeLoad& load = expected[std::size_t(k)];
+    const double scale = load.largest();
+    // Relative to the tree's largest section utilisation (a hundredth of its largest where it overturns).
+    for (Eigen::Index j = 0; j < load.utilisation.size(); ++j)
+      worst_error[f.species(k)] =
+          std::max(worst_error[f.species(k)],
+                   std::abs(utilisation[std::size_t(damage.section_offset(k) + j)] - load.utilisation(j)) /
+                       load.utilisation.maxCoeff());
+    const trees::TreeDamageRecord& r = records[std::size_t(k)];
+    CHECK(r.utilisation == Approx(scale).epsilon(kUtilisationTolerance));
+    CHECK(r.max_base_moment == Approx(load.root_moment).epsilon(kUtilisationTolerance));
+    if (std::abs(scale - 1.0) < 10 * kUtilisationTolerance) continue;
+    trees::TreeDamageRecord reference;
+    const bool fails = trees::record_load(reference, load, 2.5, Eigen::Vector3d::Zero(), f.scale(k),
+                                          f.forest.species_of(k).stem_loads());
+    CHECK((r.state != trees::TreeState::standing) == fails);
+    CHECK(r.state == reference.state);
+    CHECK(r.failed_section == reference.failed_section);
+    CHECK(r.break_height == Approx(reference.break_height).epsilon(1e-6));
+    if (!fails) continue;
+    ++failed[f.species(k)];
+    broken += r.state == trees::TreeState::broken;
+    overturned += r.state == trees::TreeState::overturned;
+    CHECK(r.time == 2.5);
+    const int top = f.forest.sample_offset(k) + f.forest.species_of(k).wind().sample_count() - 1;
+    for (int a = 0; a < 3; ++a) CHECK(r.top_wind(a) == sampled[std::size_t(3 * top + a)]);
+  }
+  WARN("tree_loads, element trees: failed "
+       << failed[kRigid] << " rigid (of 4), " << failed[kSprings] << " springs (of 4), " << failed[kModal]
+       << " modal; largest utilisation error: rigid " << worst_error[kRigid] << ", springs "
+       << worst_error[kSprings] << ", modal " << worst_error[kModal]);
+  for (const double error : worst_error) CHECK(error < kUtilisationTolerance);
+  CHECK(failed[kRigid] == 2);
+  CHECK(failed[kSprings] == 2);
+  CHECK(failed[kModal] == 0);
+  CHECK(broken > 0);
+  CHECK(overturned > 0);
+  const auto down = std::count_if(records.begin(), records.end(), [](const trees::TreeDamageRecord& r) {
+    return r.state != trees::TreeState::standing;
+  });
+  CHECK(damage.take_new_failures() == down);
+
+  // The next check: a failed element tree's joints are zeroed (angles and rates) and its sections carry
+  // nothing; a standing tree's joints are as they were.
+  f.stages.enqueue_damage_check(3.0f);
+  const std::vector<float> after = branches.download_joints();
+  const std::vector<trees::TreeDamageRecord> later = damage.download_records();
+  const std::vector<float> later_utilisation = damage.download_utilisation();
+  int held = 0;
+  for (int k = 0; k < f.forest.instance_count(); ++k) {
+    if (f.species(k) == kModal) continue;
+    INFO("tree " << k);
+    const bool is_down = later[std::size_t(k)].state != trees::TreeState::standing;
+    held += is_down;
+    const int entries = f.forest.species_of(k).skeleton().size();
+    for (int i = 0; i < FW_JOINT_FLOATS * entries; ++i) {
+      const std::size_t j = std::size_t(FW_JOINT_FLOATS * branches.entry_offset(k) + i);
+      CHECK(after[j] == (is_down ? 0.0f : joints[j]));
+    }
+    if (!is_down) continue;
+    CHECK(later[std::size_t(k)].utilisation == 0.0f);
+    CHECK(later[std::size_t(k)].time == records[std::size_t(k)].time);
+    CHECK(later[std::size_t(k)].max_utilisation == records[std::size_t(k)].max_utilisation);
+    for (int j = 0; j < f.forest.species_of(k).stem_loads().section_count(); ++j)
+      CHECK(later_utilisation[std::size_t(damage.section_offset(k) + j)] == 0.0f);
+  }
+  CHECK(held == down);
+  CHECK(damage.take_new_failures() == 0);
+
+  // Stepped on, a held tree moves for one step and is zeroed again (after the step): the pose of a frame
+  // shows it at rest.
+  f.stages.enqueue_modal_step(0.05f);
+  f.stages.enqueue_damage_check(3.05f);
+  const std::vector<float> stepped = branches.download_joints();
+  for (int k = 0; k < f.forest.instance_count(); ++k) {
+    if (f.species(k) == kModal || later[std::size_t(k)].state == trees::TreeState::standing) continue;
+    const int entries = f.forest.species_of(k).skeleton().size();
+    for (int i = 0; i < FW_JOINT_FLOATS * entries; ++i)
+      CHECK(stepped[std::size_t(FW_JOINT_FLOATS * branches.entry_offset(k) + i)] == 0.0f);
+  }
+}
+
+TEST_CASE("tree_loads: without consequences a failed element tree keeps its joints and fails once",
+          "[forest][branches]") {
+  auto* cc = test::device_or_skip();
+  if (!cc) return;
+  ElementFixture f(*cc);
+  trees::DamageSettings settings;
+  settings.enabled = true;
+  settings.consequences = false;
+  // Wood and roots of a millionth of the preset's: any bend fails every element tree; the modal trees'
+  // a thousand times the preset's stand.
+  for (int sp = 0; sp < 3; ++sp) {
+    trees::TreeStrength strength = trees::strength_preset(trees::StrengthPreset::scots_pine);
+    const double factor = sp == kModal ? 1e3 : 1e-6;
+    strength.modulus_of_rupture *= factor;
+    strength.anchorage *= factor;
+    settings.strengths.push_back(strength);
+  }
+  f.stages.set_damage(f.forest, settings);
+  const std::vector<float> joints = f.stages.branches()->download_joints();
+  f.stages.enqueue_damage_check(1.0f);
+  CHECK(f.stages.damage()->take_new_failures() == 8);
+  f.stages.enqueue_damage_check(2.0f);
+  CHECK(f.stages.damage()->take_new_failures() == 0);
+  CHECK(f.stages.branches()->download_joints() == joints);
+  const std::vector<trees::TreeDamageRecord> records = f.stages.damage()->download_records();
+  for (int k = 0; k < f.forest.instance_count(); ++k) {
+    const trees::TreeDamageRecord& r = records[std::size_t(k)];
+    if (f.species(k) == kModal) {
+      CHECK(r.state == trees::TreeState::standing);
+      continue;
+    }
+    CHECK(r.state != trees::TreeState::standing);
+    CHECK(r.time == 1.0);
+    CHECK(r.utilisation > 1.0);  // still loaded
+  }
 }

@@ -47,7 +47,7 @@ void plan_damage(const io::Scenario& scenario, SimulationPlan& plan) {
       throw std::logic_error(fmt::format("plan_damage: forest species {} has no strength", sp));
     damage.strengths.push_back(plan.strengths[sp]->strength);
   }
-  plan.memory.add("damage", DamageStages::estimate_device_bytes(plan.forest, damage));
+  plan.memory.add("damage", DamageStages::estimate_device_bytes(plan.forest, damage, plan.coupling.dynamics));
 }
 
 }  // namespace fw::host
