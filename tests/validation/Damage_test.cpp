@@ -16,7 +16,8 @@
 //      standard deviation and mean-crossing rate nu (Rice: nu = sigma_dM/dt / (2 pi sigma_M)), and with them
 //      Davenport's (1964) peak factor g(nu T) = sqrt(2 ln nu T) + 0.5772 / sqrt(2 ln nu T): the hour's
 //      expected maximum is the window's plus (g(nu 3600 s) - g(nu T)) sigma_M. The long form's window is the
-//      hour itself. Held: the hour's ratio within a factor of two of the span of ForestGALES's two methods.
+//      hour itself. Held: the hour's ratio within a factor of two (short: three) of the span of ForestGALES's
+//      two methods.
 //   2. The edge: the Norway spruce stand behind a clearing, inflow from the west; the largest root moments of
 //      the first two rows against those of the interior rows 4-6 h inside. Held: edge / interior > 1.5.
 //   3. The gap: a stand of weak roots whose trees overturn within a minute, run with consequences and
@@ -272,6 +273,16 @@ StandRun run_stand(host::ComputeContext& cc, const host::SimulationPlan& plan, c
   return run;
 }
 
+// tests/validation/`file`. FORESTWIND_DAMAGE_SEED=N replaces its turbulence's seed (the initial or inflow
+// eddies and each tree's unresolved forcing): another realisation of the same stand, for studies of the
+// scatter between runs (docs/damage-validation.md).
+io::Scenario load_stand(const std::string& file) {
+  io::Scenario scenario = io::load_scenario(kSource / "tests/validation" / file);
+  if (const char* seed = std::getenv("FORESTWIND_DAMAGE_SEED"); seed && scenario.wind.turbulence)
+    scenario.wind.turbulence->seed = std::stoull(seed);
+  return scenario;
+}
+
 host::SimulationPlan plan_of(const io::Scenario& scenario) {
   return host::plan_simulation(scenario, nullptr, nullptr);
 }
@@ -503,13 +514,16 @@ void print_hale(const std::string& stand, const StandRun& run, const HaleFigures
   std::cout << "\n";
 }
 
-// Hale's ratio is held within this factor of the span of ForestGALES's two methods for the stand's mean tree
-// (docs/damage-validation.md says why a factor of two).
-constexpr double kHaleBandFactor = 2.0;
+// Hale's ratio is held within this factor of the span of ForestGALES's two methods for the stand's mean tree:
+// 2 over the long form's hour, 3 over the short form's minute, whose u_h and peaks scatter between
+// realisations by up to 30% (docs/damage-validation.md says why each).
+double hale_band_factor(bool full) {
+  return full ? 2.0 : 3.0;
+}
 
 void check_hale_stand(host::ComputeContext& cc, const std::string& file, const std::string& stand,
                       const std::string& preset, double spacing) {
-  const io::Scenario scenario = io::load_scenario(kSource / "tests/validation" / file);
+  const io::Scenario scenario = load_stand(file);
   const host::SimulationPlan plan = plan_of(scenario);
   const StandRun run = run_stand(cc, plan, stand, periodic_lengths());
   check_records_match(run);
@@ -526,8 +540,8 @@ void check_hale_stand(host::ComputeContext& cc, const std::string& file, const s
   // ForestGALES's moments per u_h^2 in units of T_C: the single-tree method's is its lean factor (1.14),
   // the roughness method's carries the spacing and the canopy (Raupach's u* / u_h, Gardiner's gust factor).
   const double single = fg.single_moment / fg.hale_tc, rough = fg.rough_moment / fg.hale_tc;
-  const double low = std::min(single, rough) / kHaleBandFactor,
-               high = std::max(single, rough) * kHaleBandFactor;
+  const double band = hale_band_factor(run.lengths.full);
+  const double low = std::min(single, rough) / band, high = std::max(single, rough) * band;
   std::cout << "  ForestGALES's peak moments over T_C u_h^2 for the mean tree: single-tree "
             << fixed(single, 3) << ", roughness " << fixed(rough, 3) << " (its gust factor G "
             << fixed(fg.gust_factor) << "); the model's (hour estimate) " << fixed(f.ratio_hour, 3)
@@ -544,7 +558,7 @@ void check_hale_stand(host::ComputeContext& cc, const std::string& file, const s
             << fg.fails_first << " first); failed in the window: " << run.counts.broken << " broken, "
             << run.counts.overturned << " overturned of " << all.size() << std::endl;
 
-  // The stand's mean hour's peak, in units of its trees' T_C u_h^2, within a factor of two of the span of
+  // The stand's mean hour's peak, in units of its trees' T_C u_h^2, within the band around the span of
   // ForestGALES's two methods. The window's own ratio is lower (a shorter window) and printed beside it.
   CHECK(f.ratio_hour > low);
   CHECK(f.ratio_hour < high);
@@ -585,7 +599,7 @@ TEST_CASE(
     "[validation][damage]") {
   auto* cc = test::device_or_skip();
   if (!cc) return;
-  const io::Scenario scenario = io::load_scenario(kSource / "tests/validation/damage_edge.yaml");
+  const io::Scenario scenario = load_stand("damage_edge.yaml");
   const host::SimulationPlan plan = plan_of(scenario);
   const trees::Forest& forest = plan.forest;
   constexpr double kSpacing = 4.0;  // m, damage_edge.yaml's grid
@@ -686,7 +700,7 @@ TEST_CASE("validation: damage, the wind inside a stand rises once its trees fall
           "[validation][damage]") {
   auto* cc = test::device_or_skip();
   if (!cc) return;
-  io::Scenario scenario = io::load_scenario(kSource / "tests/validation/damage_gap.yaml");
+  io::Scenario scenario = load_stand("damage_gap.yaml");
   const Lengths lengths = gap_lengths();
   scenario.forest.damage.consequences = true;
   const host::SimulationPlan fall_plan = plan_of(scenario);
