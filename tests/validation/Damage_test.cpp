@@ -630,16 +630,27 @@ TEST_CASE(
   std::sort(rows.begin(), rows.end());
   REQUIRE(!edge_ids.empty());
   REQUIRE(!interior_ids.empty());
+  // The trees' sizes differ (scales 0.9-1.1: T_C and the moments go as s^3), so each tree's peak is taken
+  // over its own T_C = 111.6 dbh^2 h: the ratio is of sheltering, not of the rows' sizes.
   const auto mean_peak = [&](const std::vector<int>& ids, bool hour) {
     double sum = 0.0;
-    for (int k : ids)
-      sum += hour ? run.moments[std::size_t(k)].hour_max(run.lengths.window)
-                  : run.records[std::size_t(k)].max_base_moment;
+    for (int k : ids) {
+      const TreeSize size = tree_size(forest, k);
+      sum += (hour ? run.moments[std::size_t(k)].hour_max(run.lengths.window)
+                   : run.records[std::size_t(k)].max_base_moment) /
+             trees::hale_turning_coefficient(size.dbh, size.height);
+    }
+    return sum / double(ids.size());
+  };
+  const auto mean_raw_peak = [&](const std::vector<int>& ids) {
+    double sum = 0.0;
+    for (int k : ids) sum += run.records[std::size_t(k)].max_base_moment;
     return sum / double(ids.size());
   };
   const double interior_peak = mean_peak(interior_ids, false);
   const double ratio = mean_peak(edge_ids, false) / interior_peak;
   const double ratio_hour = mean_peak(edge_ids, true) / mean_peak(interior_ids, true);
+  const double raw_ratio = mean_raw_peak(edge_ids) / mean_raw_peak(interior_ids);
   const double u_h = run.mean_u_top();
   const HaleFigures interior_hale = hale_figures(plan, run, interior_ids, u_h);
   const HaleFigures edge_hale = hale_figures(plan, run, edge_ids, u_h);
@@ -659,15 +670,13 @@ TEST_CASE(
             << fixed(run.wall_s, 1) << " s wall) | h " << fixed(h, 2) << " m, u_h (4-6 h inside) "
             << fixed(u_h, 3) << " m/s | edge (first two rows, " << edge_ids.size()
             << " trees) over interior (4-6 h, " << interior_ids.size()
-            << " trees), mean largest root moment: " << fixed(ratio, 3) << " (hour estimate "
-            << fixed(ratio_hour, 3) << ") | ForestGALES's edge factor E at the edge "
-            << fixed(fg.edge_factor, 3) << "\n"
+            << " trees), mean largest root moment over T_C: " << fixed(ratio, 3) << " (hour estimate "
+            << fixed(ratio_hour, 3) << "; of the moments alone " << fixed(raw_ratio, 3)
+            << ") | ForestGALES's edge factor E at the edge " << fixed(fg.edge_factor, 3) << "\n"
             << "  Hale, M_max/(T_C u_h^2) of the interior trees " << fixed(interior_hale.ratio_mean, 3)
             << " (hour " << fixed(interior_hale.ratio_hour, 3) << "), of the edge trees "
             << fixed(edge_hale.ratio_mean, 3) << " (hour " << fixed(edge_hale.ratio_hour, 3) << ")\n"
-            << "  by row, (x - edge) / h : mean largest root moment / the interior's (ForestGALES's fit at "
-               "the same "
-               "distance)\n   ";
+            << "  by row, (x - edge) / h : mean largest root moment over T_C / the interior's\n   ";
   for (double x : rows) {
     std::vector<int> row;
     for (int k = 0; k < forest.instance_count(); ++k)
