@@ -189,16 +189,14 @@ struct StandRun {
   }
 };
 
-// A tree's size: height, dbh and stem volume at its scale (StemLoads at scale 1 times s, s, s^3).
+// A tree's size: its height and dbh at its scale s (the skeleton's and StemLoads' at scale 1, times s).
 struct TreeSize {
-  double height = 0.0, dbh = 0.0, volume = 0.0, x = 0.0;
+  double height = 0.0, dbh = 0.0;
 };
 TreeSize tree_size(const trees::Forest& forest, int k) {
-  const trees::TreeInstance& tree = forest.instances()[std::size_t(k)];
   const trees::SpeciesBasis& species = forest.species_of(k);
-  const double s = tree.scale;
-  return {s * species.skeleton().height(), s * species.stem_loads().breast_height_diameter(),
-          s * s * s * species.stem_loads().stem_volume(), tree.position.x()};
+  const double s = forest.instances()[std::size_t(k)].scale;
+  return {s * species.skeleton().height(), s * species.stem_loads().breast_height_diameter()};
 }
 
 double mean_height(const fluid::GridSpec& spec, const trees::Forest& forest) {
