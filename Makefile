@@ -50,6 +50,10 @@ test: deps format-check build
 
 test-long: fuzz sanitize validate scaling fuzz-check
 
+# Every [validation] test case at its long length (FORESTWIND_VALIDATION=full; CTest runs the same cases short):
+# the periodic canopies, decaying turbulence, the tree models, and storm damage (tests/validation/Damage_test.cpp:
+# Hale's relation over an hour in three stands, the edge behind a clearing, the gap; docs/damage-validation.md).
+# The scanned tree needs FORESTWIND_QSM_TREE and is left out.
 validate: build
 	FORESTWIND_VALIDATION=full $(BUILD_DIR)/validation_tests "[validation]~[scanned]"
 
