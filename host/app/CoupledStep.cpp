@@ -172,7 +172,7 @@ void CoupledStep::remove_fallen(bool from_records) {
       fallen.push_back(own_forest_->id(int(k)));
     }
   }
-  if (blocks_) fallen = joined(blocks_->world->gather(fallen));
+  if (blocks_) fallen = joined(blocks_->world->gather_to_all(fallen));
   if (standing_canopy_ && standing_canopy_->fell(fallen))
     wind_.set_canopy(standing_canopy_->drag_density(), drag_law_);
 }

@@ -69,6 +69,11 @@ class Communicator {
     to_each[0] = mine;
     return exchange(to_each);
   }
+  /// Every rank's `mine` on every rank, by rank. Collective (an exchange).
+  template <typename T>
+  std::vector<std::vector<T>> gather_to_all(const std::vector<T>& mine) const {
+    return exchange(std::vector<std::vector<T>>(static_cast<std::size_t>(size_), mine));
+  }
   /// Stops every rank with `code` (MPI_Abort), or exits this process when alone. Never returns.
   [[noreturn]] void abort(int code) const;
 

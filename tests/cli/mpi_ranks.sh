@@ -73,7 +73,10 @@ output:
     - {name: lee, position: [110, 30, 12]}
 YAML
 # Weak petioles (0.05 N median): thousands of leaves are shed at once and fly downwind across the cuts.
-sed 's/      canopy: {leaf_area_index: 3.0, drag_coefficient: 0.4}/&\n      leaves: {model: stochastic, area: 0.003, fraction: 0.01, petiole_strength: 0.05, strength_spread: 0.7}/
+# Storm damage with consequences: with birch's anchorage at 100 N m/kg, 8 of the 25 trees overturn in the
+# first step and 2 more in the gust, on both sides of the cuts, and their drag leaves the air.
+sed 's/      canopy: {leaf_area_index: 3.0, drag_coefficient: 0.4}/&\n      leaves: {model: stochastic, area: 0.003, fraction: 0.01, petiole_strength: 0.05, strength_spread: 0.7}\n      strength: {preset: birch, anchorage: 100}/
+     s/  two_way_coupling: true/&\n  damage: {enabled: true}/
      s/  interval: 1.0/&\n  vdb: {enabled: true, grids: [vel, speed, leaves]}\n  leaves: {attached: 5}\n  checkpoint: {interval: 1.0}/
      s/cell_size: 2.0}/cell_size: 2.0, decomposition: [2, 2]}/' forest.yaml >leaves.yaml
 # The same over 2 x 2 blocks (4 ranks choose 4 x 1 themselves): cuts along y too, and corners.
@@ -114,6 +117,8 @@ else
   "$forestwind" run leaves.yaml -o leafy_one --quiet || fail "the run with leaves in one process exited $?"
   out=$(ranks 4 "$forestwind" run leaves.yaml -o leafy_ranks 2>&1) || fail "the run with leaves over 2 x 2 ranks exited $?: $out"
   cmp -s leafy_one/probes.csv leafy_ranks/probes.csv || fail "probes.csv with leaves over 2 x 2 ranks differs from one process's"
+  cmp -s leafy_one/damage.csv leafy_ranks/damage.csv || fail "damage.csv over 2 x 2 ranks differs from one process's"
+  grep -q ",overturned," leafy_one/damage.csv || fail "no tree failed: damage.csv has nothing to compare"
   # Resumed over the same 2 x 2 ranks from the checkpoint at 1 s (every rank its own part): the same bytes.
   # In one process and over 2 ranks (2 x 1 blocks) the 4 parts are redistributed: the same probes.csv
   # and frames as one process's, leaves in flight included.
@@ -123,6 +128,7 @@ else
   out=$(ranks 4 "$forestwind" run leaves.yaml -o leafy_resumed --resume "leafy_resumed/checkpoints/$first" 2>&1) ||
     fail "the resume over 2 x 2 ranks exited $?: $out"
   cmp -s leafy_ranks/probes.csv leafy_resumed/probes.csv || fail "probes.csv resumed over 2 x 2 ranks differs"
+  cmp -s leafy_ranks/damage.csv leafy_resumed/damage.csv || fail "damage.csv resumed over 2 x 2 ranks differs"
   out=$("$compare_runs" leafy_ranks leafy_resumed) || fail "the frames resumed over 2 x 2 ranks differ: $out"
   for n in 1 2; do
     cp -r leafy_ranks "leafy_on$n"
@@ -131,6 +137,7 @@ else
       fail "the 2 x 2 checkpoint resumed over $n ranks exited $?: $out"
     grep -q "written by 4 ranks (2 x 2 blocks.*redistributed" <<<"$out" || fail "no redistribution over $n ranks: $out"
     cmp -s leafy_one/probes.csv "leafy_on$n/probes.csv" || fail "probes.csv of the 2 x 2 checkpoint resumed over $n ranks differs"
+    cmp -s leafy_one/damage.csv "leafy_on$n/damage.csv" || fail "damage.csv of the 2 x 2 checkpoint resumed over $n ranks differs"
     out=$("$compare_runs" leafy_one "leafy_on$n") || fail "the frames of the 2 x 2 checkpoint resumed over $n ranks differ: $out"
   done
   grep -q 'file="leaves/leaves_000002.pvtp"' leafy_ranks/leaves.pvd || fail "leaves.pvd over ranks lists no .pvtp"

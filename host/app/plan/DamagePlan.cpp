@@ -42,14 +42,6 @@ void plan_damage(const io::Scenario& scenario, SimulationPlan& plan) {
   damage.enabled = scenario.forest.damage.enabled;
   damage.consequences = scenario.forest.damage.consequences;
   if (!damage.enabled || plan.forest.instance_count() == 0) return;
-  // Over MPI ranks a run whose failures have consequences hangs in its first step with failures (found at
-  // this stop, not yet understood; without consequences the files are one process's, byte for byte:
-  // docs/damage.md, "Over ranks"): refused before any rank starts.
-  if (plan.decomposition.ranks() > 1 && damage.consequences)
-    throw std::invalid_argument(fmt::format(
-        "{}:{}: forest.damage: consequences: false, or one process, expected (failed trees falling over {} "
-        "MPI ranks are not supported yet)",
-        scenario.file.string(), scenario.forest.damage.line, plan.decomposition.ranks()));
   for (std::size_t sp = 0; sp < plan.strengths.size(); ++sp) {
     if (!plan.strengths[sp])  // the loader requires a strength of every species with damage: a bug here
       throw std::logic_error(fmt::format("plan_damage: forest species {} has no strength", sp));

@@ -1,5 +1,6 @@
 // host/runtime/Communicator under mpirun -np 1, 2 and 4 (CTest runs this binary at each): sums over ranks
-// equal the sum of the same terms in one process, bit for bit; maxima see every rank's NaN.
+// equal the sum of the same terms in one process, bit for bit; maxima see every rank's NaN; gathers bring
+// every rank's list, in rank order.
 #include "host/runtime/Communicator.hpp"
 #include "host/runtime/Device.hpp"
 
@@ -42,6 +43,23 @@ TEST_CASE("Communicator: the maximum over ranks, NaN on any rank winning", "[mpi
   CHECK(world.max(double(world.rank())) == double(world.size() - 1));
   const double last_has_nan = world.rank() == world.size() - 1 ? std::nan("") : 1.0;
   CHECK(std::isnan(world.max(last_has_nan)));
+}
+
+TEST_CASE("Communicator: gather brings every rank's list to rank 0 only, gather_to_all to every rank", "[mpi]") {
+  const auto& world = fw::test::world();
+  // Rank r sends r + 1 values r * 100, r * 100 + 1, ...: lists of different lengths, one empty on no rank.
+  std::vector<int> mine;
+  for (int i = 0; i <= world.rank(); ++i) mine.push_back(world.rank() * 100 + i);
+  const auto on_root = world.gather(mine);
+  const auto on_all = world.gather_to_all(mine);
+  REQUIRE(on_all.size() == std::size_t(world.size()));
+  REQUIRE(on_root.size() == std::size_t(world.size()));
+  for (int r = 0; r < world.size(); ++r) {
+    std::vector<int> sent;
+    for (int i = 0; i <= r; ++i) sent.push_back(r * 100 + i);
+    CHECK(on_all[std::size_t(r)] == sent);
+    CHECK(on_root[std::size_t(r)] == (world.rank() == 0 ? sent : std::vector<int>{}));
+  }
 }
 
 TEST_CASE("Communicator: a process started without a launcher is one rank alone", "[mpi]") {
