@@ -156,7 +156,11 @@ std::optional<SpeciesBasis> BasisCache::load(const Skeleton& skeleton, const Spe
     }
     Eigen::VectorXd arc_length(stem_nodes);
     reader.values(arc_length.data(), std::size_t(stem_nodes));
-    const int stem_rows = 2 * (stem_nodes - 1);
+    const int sections = reader.value<std::int32_t>();
+    if (sections < 1 || sections >= stem_nodes) throw std::runtime_error("the stem's sections do not fit it");
+    std::vector<int> section_indices(static_cast<std::size_t>(sections));
+    for (int& index : section_indices) index = reader.value<std::int32_t>();
+    const int stem_rows = 2 * sections;
     Eigen::MatrixXd elastic(stem_rows, modes), weight(stem_rows, modes), root_elastic(2, modes),
         root_weight(2, modes);
     for (Eigen::MatrixXd* map : {&elastic, &weight, &root_elastic, &root_weight})
@@ -168,9 +172,9 @@ std::optional<SpeciesBasis> BasisCache::load(const Skeleton& skeleton, const Spe
     WindBasis wind = WindBasis::from_values(std::move(projection), std::move(sample_points), settings.wind);
     StrongWindCorrection strong = StrongWindCorrection::from_values(std::move(strong_v), std::move(strong_w),
                                                                     std::move(strong_b), std::move(fits));
-    StemLoads stem =
-        StemLoads::from_values(std::move(profile), std::move(arc_length), std::move(elastic),
-                               std::move(weight), std::move(root_elastic), std::move(root_weight));
+    StemLoads stem = StemLoads::from_values(std::move(profile), std::move(arc_length),
+                                            std::move(section_indices), std::move(elastic), std::move(weight),
+                                            std::move(root_elastic), std::move(root_weight));
     return SpeciesBasis::from_parts(skeleton, settings, std::move(modal), std::move(wind), std::move(strong),
                                     std::move(stem));
   } catch (const std::exception& e) {
@@ -218,6 +222,8 @@ void BasisCache::store(const SpeciesBasis& species) const {
     writer.value(section.diameter);
   }
   writer.values(stem.arc_length().data(), std::size_t(stem.arc_length().size()));
+  writer.value(std::int32_t(stem.section_indices().size()));
+  for (const int index : stem.section_indices()) writer.value(std::int32_t(index));
   for (const Eigen::MatrixXd* map :
        {&stem.elastic(), &stem.weight(), &stem.root_elastic(), &stem.root_weight()})
     writer.values(map->data(), std::size_t(map->size()));

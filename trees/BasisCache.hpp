@@ -40,9 +40,10 @@ class BasisCache {
  public:
   /// 2: the wind settings became air density, branch and leaf drag coefficients and leaf area index (the
   /// projections of version 1 entries hold no foliage). 3: the strong-wind correction (v, w, b, fits) follows
-  /// the sample points. 4: the stem loads (trees/StemLoads.hpp) follow the correction. The version is part of
-  /// the key, so an older entry is never even opened.
-  static constexpr std::uint32_t kFormatVersion = 4;
+  /// the sample points. 4: the stem loads (trees/StemLoads.hpp) follow the correction. 5: the stem's sections
+  /// (at most kMaxStemSections of its nodes) follow its lengths. The version is part of the key, so an older
+  /// entry is never even opened.
+  static constexpr std::uint32_t kFormatVersion = 5;
 
   /// directory: where entries live; created on the first store.
   explicit BasisCache(std::filesystem::path directory);

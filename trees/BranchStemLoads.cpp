@@ -13,27 +13,30 @@ namespace fw::trees {
 BranchStem BranchStem::of(const Skeleton& skeleton) {
   BranchStem stem;
   stem.path_ = stem_path(skeleton);
-  const int n = skeleton.size(), J = int(stem.path_.size()) - 1;
+  const int n = skeleton.size();
   const std::vector<int>& order = skeleton.topological_order();
-  std::vector<int> entry_of(std::size_t(n), -1), stem_index(std::size_t(n), -1);
+  std::vector<int> entry_of(std::size_t(n), -1), section_of(std::size_t(n), -1);
   for (int j = 0; j < n; ++j) entry_of[std::size_t(order[std::size_t(j)])] = j;
-  for (int i = 0; i <= J; ++i) stem_index[std::size_t(stem.path_[std::size_t(i)])] = i;
-  for (int i = 0; i < J; ++i) {
-    const int node = stem.path_[std::size_t(i)];
+  const std::vector<int> sections = stem_section_indices(stem_arc_length(skeleton, stem.path_));
+  for (std::size_t j = 0; j < sections.size(); ++j) {
+    const std::size_t i = std::size_t(sections[j]);
+    const int node = stem.path_[i];
+    section_of[std::size_t(node)] = int(j);
+    stem.section_nodes_.push_back(node);
     stem.section_entries_.push_back(entry_of[std::size_t(node)]);
     stem.axes_.push_back(
-        (skeleton.node(stem.path_[std::size_t(i) + 1]).position - skeleton.node(node).position).normalized());
+        (skeleton.node(stem.path_[i + 1]).position - skeleton.node(node).position).normalized());
   }
-  // The deepest stem node among each node and its ancestors, parents first.
+  // The deepest section node among each node and its ancestors, parents first.
   std::vector<int> deepest(std::size_t(n), -1);
   stem.joint_sections_.assign(std::size_t(n), -1);
   stem.element_sections_.assign(std::size_t(n), -1);
   for (int j = 0; j < n; ++j) {
     const int node = order[std::size_t(j)], parent = skeleton.node(node).parent;
-    const int own = stem_index[std::size_t(node)];
-    deepest[std::size_t(node)] = own >= 0 ? own : deepest[std::size_t(parent)];
+    const int own = section_of[std::size_t(node)];
+    deepest[std::size_t(node)] = own >= 0 ? own : (parent >= 0 ? deepest[std::size_t(parent)] : -1);
     if (parent < 0) continue;
-    stem.joint_sections_[std::size_t(j)] = stem_index[std::size_t(parent)];
+    stem.joint_sections_[std::size_t(j)] = section_of[std::size_t(parent)];
     stem.element_sections_[std::size_t(j)] = deepest[std::size_t(parent)];
   }
   return stem;
@@ -83,9 +86,8 @@ BranchStemMoments branch_stem_moments(const Skeleton& skeleton, const BranchElem
   const Eigen::MatrixX3d u = branch_displacements(elements, scale, angles);
   Eigen::MatrixXd displacements(3 * n, 1);
   for (int k = 0; k < n; ++k) displacements.middleRows(3 * k, 3) = u.row(k).transpose();
-  const std::vector<int> sections(stem.path().begin(), stem.path().end() - 1);
   const Eigen::MatrixXd weight =
-      section_moments_of_weight(skeleton, sections, masses, displacements, gravity);
+      section_moments_of_weight(skeleton, stem.section_nodes(), masses, displacements, gravity);
   out.weight = Eigen::Map<const Eigen::Matrix3Xd>(weight.data(), 3, J);
 
   out.bending.resize(J);

@@ -10,8 +10,9 @@
 //   M.bending(j), M.root;                                                     // N m
 //   fw::trees::TreeLoad load = fw::trees::branch_tree_load(M, critical, 1.2);  // as tree_load's
 //
-// The sections are the modal model's (stem_path; StemLoads::sections): stem node j, the top excluded, and its
-// moment is that of everything above it, the cut just below the node (StemLoads: the descendants of j).
+// The sections are the modal model's (stem_path, stem_section_indices; StemLoads::sections): at most
+// kMaxStemSections stem nodes, the top excluded, and a section's moment is that of everything above its
+// node, the cut just below the node (StemLoads: the node's descendants).
 //
 // The elastic moment. A joint's spring carries what bends the wood at it:
 //   - rigid_bodies: the joint moment K_e theta_e (s^3 K_e at scale s). In statics it is the moment about the
@@ -28,9 +29,10 @@
 //     own load only: in this model no joint carries the load of the elements beyond it, so the stem's moments
 //     are single elements' (w L_e^2 on a uniform pole, where a beam carries w (L - x)^2 / 2), change with the
 //     cut (halving the elements quarters them), and a springs tree fails only on a weak stem of its own.
-// The cut below stem node j passes every joint at j: the section's elastic moment is the sum of the joint
-// moments of every element that starts at stem node j (the stem's next element and the side branches there),
-// each a vector in the skeleton frame (the parent's frame at rest, in which the linearised joints turn).
+// The cut below a section's node passes every joint at it: the section's elastic moment is the sum of the
+// joint moments of every element that starts at its node (the stem's next element and the side branches
+// there), each a vector in the skeleton frame (the parent's frame at rest, in which the linearised joints
+// turn).
 //
 // The weight on the deflection, as the modal model's (StemLoads: Hale et al. 2015's deflection loading):
 //   W_j = sum over the descendants k of j of (u_k - u_j) x (0, 0, -m_k g),
@@ -70,23 +72,25 @@ class BranchStem {
   /// The stem of `skeleton` (stem_path; std::invalid_argument("StemLoads: ...") when the root has no child).
   static BranchStem of(const Skeleton& skeleton);
 
-  /// J, the sections: the stem's nodes but the top (StemLoads::section_count()).
+  /// J, the sections: StemLoads::section_count()'s.
   int section_count() const { return int(axes_.size()); }
   /// The stem's nodes, root first, the top included (stem_path).
   const std::vector<int>& path() const { return path_; }
+  /// Per section: its skeleton node (StemLoads::sections()[j].node).
+  const std::vector<int>& section_nodes() const { return section_nodes_; }
   /// Per section: its stem node's table entry.
   const std::vector<int>& section_entries() const { return section_entries_; }
   /// Per section: the stem's unit axis at rest, from its node to the next stem node.
   const std::vector<Eigen::Vector3d>& axes() const { return axes_; }
-  /// Per table entry: the section whose node is the entry's joint (its element starts at stem node j), else
-  /// -1 (the root's entry: -1).
+  /// Per table entry: the section whose node is the entry's joint (its element starts at section j's node),
+  /// else -1 (the root's entry: -1).
   const std::vector<int>& joint_sections() const { return joint_sections_; }
-  /// Per table entry: the highest section its element lies above (the stem index of the deepest stem node
-  /// among its base node and the base's ancestors); it is above every section up to that one. Root: -1.
+  /// Per table entry: the highest section its element lies above (that of the deepest section node among
+  /// its base node and the base's ancestors); it is above every section up to that one. Root: -1.
   const std::vector<int>& element_sections() const { return element_sections_; }
 
  private:
-  std::vector<int> path_, section_entries_, joint_sections_, element_sections_;
+  std::vector<int> path_, section_nodes_, section_entries_, joint_sections_, element_sections_;
   std::vector<Eigen::Vector3d> axes_;
 };
 

@@ -75,6 +75,35 @@ std::vector<int> stem_path(const Skeleton& skeleton) {
   return path;
 }
 
+Eigen::VectorXd stem_arc_length(const Skeleton& skeleton, const std::vector<int>& path) {
+  Eigen::VectorXd along = Eigen::VectorXd::Zero(Eigen::Index(path.size()));
+  for (std::size_t i = 1; i < path.size(); ++i)
+    along(Eigen::Index(i)) = along(Eigen::Index(i) - 1) +
+                             (skeleton.node(path[i]).position - skeleton.node(path[i - 1]).position).norm();
+  return along;
+}
+
+std::vector<int> stem_section_indices(const Eigen::VectorXd& arc_length) {
+  const int nodes = int(arc_length.size());
+  if (nodes < 2) throw std::invalid_argument("StemLoads: a stem needs at least 2 nodes");
+  std::vector<int> indices;
+  if (nodes - 1 <= kMaxStemSections) {
+    for (int i = 0; i + 1 < nodes; ++i) indices.push_back(i);
+    return indices;
+  }
+  const double length = arc_length(nodes - 1);
+  int node = 0;
+  for (int k = 0; k < kMaxStemSections; ++k) {
+    const double target = length * k / kMaxStemSections;
+    // The nodes' distances increase: walk on while the next node is nearer the target.
+    while (node + 1 < nodes && std::abs(arc_length(node + 1) - target) < std::abs(arc_length(node) - target))
+      ++node;
+    const int section = std::min(node, nodes - 2);  // the top bends nothing
+    if (indices.empty() || section > indices.back()) indices.push_back(section);
+  }
+  return indices;
+}
+
 Eigen::VectorXd lumped_node_masses(const Skeleton& skeleton, double density) {
   Eigen::VectorXd masses = Eigen::VectorXd::Zero(skeleton.size());
   for (const auto& [a, b] : skeleton.elements()) {
@@ -149,7 +178,10 @@ StemLoads StemLoads::compute(const Skeleton& skeleton, const BeamModel& model, c
   if (model.node_count() != skeleton.size() || modes.dof_count() != model.dof_count())
     throw std::invalid_argument("StemLoads: the modes do not fit the model or the skeleton");
   const std::vector<int> path = stem_path(skeleton);
-  const std::vector<int> sections(path.begin(), path.end() - 1);
+  const Eigen::VectorXd arc_length = stem_arc_length(skeleton, path);
+  const std::vector<int> section_indices = stem_section_indices(arc_length);
+  std::vector<int> sections;
+  for (const int i : section_indices) sections.push_back(path[std::size_t(i)]);
   const int n = skeleton.size(), m = modes.mode_count();
 
   // The translational rows, node-major, of K Phi (the elastic forces per unit q) and of Phi.
@@ -172,9 +204,9 @@ StemLoads StemLoads::compute(const Skeleton& skeleton, const BeamModel& model, c
   loads.elastic_.resize(kPlane * J, m);
   loads.weight_.resize(kPlane * J, m);
   for (Eigen::Index j = 0; j < J; ++j) {
+    const std::size_t i = std::size_t(section_indices[std::size_t(j)]);
     const Eigen::Vector3d axis =
-        (skeleton.node(path[std::size_t(j) + 1]).position - skeleton.node(path[std::size_t(j)]).position)
-            .normalized();
+        (skeleton.node(path[i + 1]).position - skeleton.node(path[i]).position).normalized();
     const Eigen::Matrix<double, 2, 3> plane = bending_plane(axis);
     loads.elastic_.middleRows(kPlane * j, kPlane) = plane * elastic.middleRows(kAxes * j, kAxes);
     loads.weight_.middleRows(kPlane * j, kPlane) = plane * weight.middleRows(kAxes * j, kAxes);
@@ -183,28 +215,34 @@ StemLoads StemLoads::compute(const Skeleton& skeleton, const BeamModel& model, c
   loads.root_weight_ = weight.topRows(kPlane);
 
   const Eigen::Vector3d& root = skeleton.node(skeleton.root()).position;
-  loads.arc_length_.resize(Eigen::Index(path.size()));
-  double along = 0.0;
-  for (std::size_t i = 0; i < path.size(); ++i) {
-    const SkeletonNode& node = skeleton.node(path[i]);
-    if (i > 0) along += (node.position - skeleton.node(path[i - 1]).position).norm();
-    loads.arc_length_(Eigen::Index(i)) = along;
-    loads.profile_.push_back({path[i], node.position.z() - root.z(), 2.0 * node.radius});
-  }
+  loads.arc_length_ = arc_length;
+  loads.section_indices_ = section_indices;
+  for (const int node : path)
+    loads.profile_.push_back(
+        {node, skeleton.node(node).position.z() - root.z(), 2.0 * skeleton.node(node).radius});
   return loads;
 }
 
 StemLoads StemLoads::from_values(std::vector<StemSection> profile, Eigen::VectorXd arc_length,
-                                 Eigen::MatrixXd elastic, Eigen::MatrixXd weight,
-                                 Eigen::MatrixXd root_elastic, Eigen::MatrixXd root_weight) {
-  const Eigen::Index J = Eigen::Index(profile.size()) - 1;
+                                 std::vector<int> section_indices, Eigen::MatrixXd elastic,
+                                 Eigen::MatrixXd weight, Eigen::MatrixXd root_elastic,
+                                 Eigen::MatrixXd root_weight) {
+  const Eigen::Index J = Eigen::Index(section_indices.size());
+  for (std::size_t j = 0; j < section_indices.size(); ++j) {
+    const int i = section_indices[j];
+    if ((j == 0 && i != 0) || (j > 0 && i <= section_indices[j - 1]) || i + 1 >= int(profile.size()))
+      throw std::invalid_argument(fmt::format(
+          "StemLoads: section {} at stem node {} of {}: sections increase from the root, below the top", j, i,
+          profile.size()));
+  }
   if (J < 1 || arc_length.size() != Eigen::Index(profile.size()) || elastic.rows() != kPlane * J ||
       weight.rows() != elastic.rows() || weight.cols() != elastic.cols() || root_elastic.rows() != kPlane ||
       root_weight.rows() != kPlane || root_elastic.cols() != elastic.cols() ||
       root_weight.cols() != elastic.cols()) {
     throw std::invalid_argument(fmt::format(
-        "StemLoads: {} stem nodes, maps {} x {} and {} x {}, root maps {} x {}: sizes that do not fit",
-        profile.size(), elastic.rows(), elastic.cols(), weight.rows(), weight.cols(), root_elastic.rows(),
+        "StemLoads: {} stem nodes, {} sections, maps {} x {} and {} x {}, root maps {} x {}: sizes that do "
+        "not fit",
+        profile.size(), J, elastic.rows(), elastic.cols(), weight.rows(), weight.cols(), root_elastic.rows(),
         root_elastic.cols()));
   }
   require_finite("the elastic map", elastic);
@@ -218,6 +256,7 @@ StemLoads StemLoads::from_values(std::vector<StemSection> profile, Eigen::Vector
   StemLoads loads;
   loads.profile_ = std::move(profile);
   loads.arc_length_ = std::move(arc_length);
+  loads.section_indices_ = std::move(section_indices);
   loads.elastic_ = std::move(elastic);
   loads.weight_ = std::move(weight);
   loads.root_elastic_ = std::move(root_elastic);
@@ -226,8 +265,9 @@ StemLoads StemLoads::from_values(std::vector<StemSection> profile, Eigen::Vector
 }
 
 std::vector<StemSection> StemLoads::sections() const {
-  return profile_.empty() ? std::vector<StemSection>{}
-                          : std::vector<StemSection>(profile_.begin(), profile_.end() - 1);
+  std::vector<StemSection> sections;
+  for (const int i : section_indices_) sections.push_back(profile_[std::size_t(i)]);
+  return sections;
 }
 
 Eigen::VectorXd StemLoads::bending_moments(const Eigen::VectorXd& q) const {

@@ -12,7 +12,12 @@
 //
 // The stem: from the root, at every node the child with the largest radius (the thickest continuation;
 // a tie goes to the child that turns least), up to a node without children, the top of the trunk. Its
-// sections are its nodes but the top, where nothing bends.
+// sections are its nodes but the top, where nothing bends; a stem of more than kMaxStemSections such nodes
+// keeps kMaxStemSections of them, evenly along it by arc length from the root (stem_section_indices), so
+// that a tree's sections and its root fill one 16-wide block of the device's loads (kernels/tree_loads.cl).
+// Under the crown the outer-fibre stress is nearly constant with height (Morgan & Cannell 1994), so the
+// weakest section is found to the spacing, a fifteenth of the stem (1.3 m on a 20 m tree); in the crown the
+// bending moment falls off faster than d^3 and the stress with it.
 //
 // The math. The elastic forces of the deformed tree, K u = K Phi q (BeamModel's stiffness, u the free DOFs),
 // are the loads that bend it: the wind's minus the inertia's, as the FEM distributes them to the nodes. The
@@ -60,11 +65,13 @@ class StemLoads {
   /// std::invalid_argument("StemLoads: ...") when the modes do not fit the model or the root has no child.
   static StemLoads compute(const Skeleton& skeleton, const BeamModel& model, const ModalBasis& modes,
                            double gravity = kGravity);
-  /// Rebuilds stored maps (the basis cache): sections J, profile P >= J + 1 entries (every stem node, the
-  /// top included: heights, diameters, distances along the stem), maps 2J x m, root maps 2 x m. Throws
-  /// std::invalid_argument("StemLoads: ...") for sizes that do not fit or non-finite values.
+  /// Rebuilds stored maps (the basis cache): profile P >= 2 entries (every stem node, the top included:
+  /// heights, diameters, distances along the stem), the J sections' indices into it (increasing, from 0,
+  /// below P - 1), maps 2J x m, root maps 2 x m. Throws std::invalid_argument("StemLoads: ...") for sizes
+  /// or indices that do not fit or non-finite values.
   static StemLoads from_values(std::vector<StemSection> profile, Eigen::VectorXd arc_length,
-                               Eigen::MatrixXd elastic, Eigen::MatrixXd weight, Eigen::MatrixXd root_elastic,
+                               std::vector<int> section_indices, Eigen::MatrixXd elastic,
+                               Eigen::MatrixXd weight, Eigen::MatrixXd root_elastic,
                                Eigen::MatrixXd root_weight);
 
   StemLoads() = default;
@@ -73,6 +80,8 @@ class StemLoads {
   int mode_count() const { return int(elastic_.cols()); }
   /// The sections, root first (section_count() entries).
   std::vector<StemSection> sections() const;
+  /// Each section's index into profile() (stem_section_indices).
+  const std::vector<int>& section_indices() const { return section_indices_; }
   /// Every stem node, the top included, root first, and its distance along the stem from the root (m).
   const std::vector<StemSection>& profile() const { return profile_; }
   const Eigen::VectorXd& arc_length() const { return arc_length_; }
@@ -107,12 +116,25 @@ class StemLoads {
  private:
   std::vector<StemSection> profile_;
   Eigen::VectorXd arc_length_;
+  std::vector<int> section_indices_;
   Eigen::MatrixXd elastic_, weight_, root_elastic_, root_weight_;
 };
 
 /// The stem's nodes, root first (see StemLoads). Throws std::invalid_argument("StemLoads: ...") for a
 /// skeleton whose root has no child.
 std::vector<int> stem_path(const Skeleton& skeleton);
+
+/// The most sections a stem keeps: with the root's lane, one FW_LANES-wide block (kernels/lanes.cl).
+inline constexpr int kMaxStemSections = 15;
+
+/// Each node's distance from the root along `path` (stem_path's), m.
+Eigen::VectorXd stem_arc_length(const Skeleton& skeleton, const std::vector<int>& path);
+
+/// The sections of a stem whose nodes lie at `arc_length` (root first, the top last; at least 2 nodes), as
+/// indices into it: every node but the top when there are at most kMaxStemSections of them, else the node
+/// nearest to each of k L / kMaxStemSections, k = 0 .. kMaxStemSections - 1 (L the stem's length), the top
+/// left out and repeats taken once. Always the root (index 0), increasing.
+std::vector<int> stem_section_indices(const Eigen::VectorXd& arc_length);
 
 /// The statics behind StemLoads' elastic map: the moment about each node of `sections` of the forces on its
 /// descendants, sum_k (x_k - x_j) x F_k. forces: (3 n) x c, node-major (rows 3k..3k+2 node k's force, N),

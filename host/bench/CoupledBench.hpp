@@ -93,6 +93,7 @@ struct CoupledBenchResult {
   double deform_fraction_of_peak = 0.0;         // 3 FMAs a node-mode at the corrected frames' rate
   double deform_linear_fraction_of_peak = 0.0;  // 3 FMAs a node-mode at the linear frames' rate
   double deform_strong_fraction_of_peak = 0.0;  // the corrected kernel's own 6 (v and w) at its rate
+  double damage_fraction_of_peak = 0.0;         // the first case's damage stage: its maps' FMAs at its rate
   double trees_reference_ms = 0.0;   // CPU reference: sampling + modal forces + modal step, per step
   double deform_reference_ms = 0.0;  // CPU reference: one frame's deformation
   std::vector<CoupledBenchCase> cases;

@@ -15,6 +15,11 @@ namespace fw::host {
 
 namespace {
 
+/// The FW_LANES-wide blocks of a stem's lanes: its sections, then the root.
+int stem_blocks(const trees::StemLoads& stem) {
+  return (stem.section_count() + 1 + FW_LANES - 1) / FW_LANES;
+}
+
 std::vector<FwTreeDamage> standing_records(int count) {
   FwTreeDamage standing{};
   standing.state = FW_TREE_STANDING;
@@ -71,7 +76,7 @@ StemPacking StemPacking::of(const trees::Forest& forest, const trees::DamageSett
     const trees::StemLoads& stem = forest.species()[sp].stem_loads();
     const trees::CriticalMoments critical = trees::critical_moments(stem, settings.strengths[sp]);
     const int J = stem.section_count(), m = stem.mode_count();
-    const int blocks = (J + 1 + kLanes - 1) / kLanes;
+    const int blocks = stem_blocks(stem);
     p.stems.push_back({J, blocks, fw_int(p.maps.size()), fw_int(p.sections.size()), fw_int(p.axes.size())});
     lanes_of_species.push_back(blocks * kLanes);
     const trees::BranchStem branch_stem = trees::BranchStem::of(forest.species()[sp].skeleton());
@@ -206,6 +211,17 @@ void DamageStages::enqueue_loads(float time, cl::Buffer& instances, cl::Buffer& 
                 section_offsets_buffer_, sampled_wind, float(trees::kGravity), branches_->joints(), records_,
                 utilisation_, counters_, scratch_, fw_int(scratch_stride_))
       .enqueue(cc_, cl::NDRange(scratch_items_));
+}
+
+double DamageStages::modal_load_fmas(const trees::Forest& forest) {
+  constexpr double kFmasPerModeLane = 4.0;  // two rows of the elastic map and two of the weight's
+  double fmas = 0.0;
+  for (const trees::TreeInstance& tree : forest.instances()) {
+    const trees::StemLoads& stem = forest.species()[std::size_t(tree.species)].stem_loads();
+    const int blocks = stem_blocks(stem);
+    fmas += kFmasPerModeLane * stem.mode_count() * FW_LANES * blocks;
+  }
+  return fmas;
 }
 
 int DamageStages::take_new_failures() {

@@ -65,6 +65,10 @@ class DamageStages {
   static std::size_t estimate_device_bytes(const trees::Forest& forest, const trees::DamageSettings& settings,
                                            const std::vector<trees::SpeciesDynamics>& dynamics = {});
 
+  /// The multiply-adds of one tree_loads pass over the modal trees of `forest` (4 a mode, lane and block:
+  /// the elastic and weight maps' two rows), for benchmarks' ratio to the FMA peak.
+  static double modal_load_fmas(const trees::Forest& forest);
+
   const trees::DamageSettings& settings() const { return settings_; }
   int total_sections() const { return total_sections_; }
 

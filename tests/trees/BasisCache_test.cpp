@@ -51,6 +51,7 @@ void check_same(const SpeciesBasis& a, const SpeciesBasis& b) {
   CHECK(a.stem_loads().root_elastic() == b.stem_loads().root_elastic());
   CHECK(a.stem_loads().root_weight() == b.stem_loads().root_weight());
   CHECK(a.stem_loads().arc_length() == b.stem_loads().arc_length());
+  CHECK(a.stem_loads().section_indices() == b.stem_loads().section_indices());
   CHECK(a.stem_loads().stem_volume() == b.stem_loads().stem_volume());
   CHECK(a.strong_wind().linear_shapes() == b.strong_wind().linear_shapes());
   CHECK(a.strong_wind().quadratic_shapes() == b.strong_wind().quadratic_shapes());
@@ -171,25 +172,28 @@ TEST_CASE("BasisCache: the key changes with the skeleton, the material and every
   CHECK(BasisCache::key(tree, changed) != key);
 }
 
-TEST_CASE("BasisCache: an entry of format version 3 (no stem loads) is recomputed, not misread") {
+TEST_CASE(
+    "BasisCache: an entry of format version 4 (a section at every stem node) is recomputed, not misread") {
   TempDir dir("fw_cache");
   const BasisCache cache(dir.path());
   const Skeleton tree = cached_tree();
   const SpeciesBasis fresh = cache.load_or_compute(tree, cached_settings());
   const auto path = cache.entry_path(BasisCache::key(tree, cached_settings()));
   const std::vector<char> good = read_bytes(path);
-  REQUIRE(BasisCache::kFormatVersion == 4);
-  // What version 3 wrote: the same entry up to the strong-wind correction, then the checksum. The stem
-  // loads are the stem's node count (int32), per stem node its node (int32), height and diameter, its
-  // distances along the stem, and four maps: 2 (P - 1) x m twice and 2 x m twice (doubles).
+  REQUIRE(BasisCache::kFormatVersion == 5);
+  // What version 4 wrote: the same entry up to the stem's distances along it, then four maps with a section
+  // at every stem node but the top, 2 (P - 1) x m twice and 2 x m twice (doubles), then the checksum.
+  // Version 5 puts the sections' count (int32) and indices (int32 each) before its 2 J x m maps.
+  const fw::trees::StemLoads& loads = fresh.stem_loads();
   const std::size_t m = std::size_t(cached_settings().modal.mode_count);
-  const std::size_t p = fresh.stem_loads().profile().size();
-  const std::size_t stem = sizeof(std::int32_t) + p * (sizeof(std::int32_t) + 2 * sizeof(double)) +
-                           p * sizeof(double) + (2 * 2 * (p - 1) * m + 2 * 2 * m) * sizeof(double);
-  std::vector<char> old(good.begin(), good.end() - std::ptrdiff_t(stem + sizeof(std::uint64_t)));
-  old.resize(old.size() + sizeof(std::uint64_t));
-  const std::uint32_t version_3 = 3;
-  std::memcpy(old.data() + 8, &version_3, sizeof version_3);  // after the 8-byte magic
+  const std::size_t p = loads.profile().size(), sections = std::size_t(loads.section_count());
+  const std::size_t maps_now = (2 * 2 * sections * m + 2 * 2 * m) * sizeof(double);
+  const std::size_t indices = sizeof(std::int32_t) * (1 + sections);
+  std::vector<char> old(good.begin(),
+                        good.end() - std::ptrdiff_t(maps_now + indices + sizeof(std::uint64_t)));
+  old.resize(old.size() + (2 * 2 * (p - 1) * m + 2 * 2 * m) * sizeof(double) + sizeof(std::uint64_t));
+  const std::uint32_t version_4 = 4;
+  std::memcpy(old.data() + 8, &version_4, sizeof version_4);  // after the 8-byte magic
   reseal(old);
   // An old entry under this key could only appear by copying (the version is hashed into the key), but a
   // reader that skipped the version check would take its checksum-valid bytes for a basis.
@@ -203,12 +207,13 @@ TEST_CASE("BasisCache: an entry of format version 3 (no stem loads) is recompute
   check_same(fresh, recomputed);
   CHECK(read_bytes(path) == good);
 
-  // And with the version patched to 4, the version 3 layout is too short: also rejected.
-  std::memcpy(old.data() + 8, &BasisCache::kFormatVersion, sizeof version_3);
+  // And with the version patched to 5, the version 4 layout (here its maps zero) is refused: its first map
+  // entry read as the section count is no count of sections.
+  std::memcpy(old.data() + 8, &BasisCache::kFormatVersion, sizeof version_4);
   reseal(old);
   write_bytes(path, old);
   CHECK_FALSE(cache.load(tree, cached_settings(), &why).has_value());
-  CHECK(why.find("truncated") != std::string::npos);
+  CHECK(why.find("sections do not fit") != std::string::npos);
 }
 
 TEST_CASE("BasisCache: a corrupted entry is detected and recomputed") {

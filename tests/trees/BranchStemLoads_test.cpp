@@ -6,6 +6,8 @@
 
 #include <catch2/catch.hpp>
 
+#include <algorithm>
+
 #include <cmath>
 #include <numbers>
 #include <vector>
@@ -72,9 +74,10 @@ PoleErrors pole_errors(int n, const std::vector<Eigen::Vector3d>& angles, const 
   const Beam beam{kPoleLength, kWood.youngs_modulus * area * kPoleRadius * kPoleRadius / 4.0,
                   kWood.density * area, w};
   PoleErrors e;
-  REQUIRE(stem.section_count() == n);
-  for (int j = 0; j < n; ++j) {
-    const double x = kPoleLength * j / n;
+  // More nodes than kMaxStemSections: the sections are spread along the pole, each at its node's height.
+  REQUIRE(stem.section_count() == std::min(n, fw::trees::kMaxStemSections));
+  for (int j = 0; j < stem.section_count(); ++j) {
+    const double x = skeleton.node(stem.section_nodes()[std::size_t(j)]).position.z();
     // The wind along +x bends the pole about +y; nothing else.
     e.elastic = std::max(e.elastic, std::abs(moments.elastic(1, j) - beam.wind_moment(x)));
     e.weight = std::max(e.weight, std::abs(moments.weight(1, j) - beam.weight_moment(x)));
@@ -167,16 +170,19 @@ TEST_CASE(
   constexpr double s = 1.3;
   const double s3 = s * s * s;
   const int n = elements.size(), J = stem.section_count();
-  // The stem is the modal model's.
+  // The stem and its sections are the modal model's.
   const std::vector<int> path = fw::trees::stem_path(skeleton);
   CHECK(stem.path() == path);
-  REQUIRE(J == int(path.size()) - 1);
+  const std::vector<int> indices =
+      fw::trees::stem_section_indices(fw::trees::stem_arc_length(skeleton, path));
+  REQUIRE(J == int(indices.size()));
+  for (int i = 0; i < J; ++i) CHECK(stem.section_nodes()[std::size_t(i)] == path[std::size_t(indices[i])]);
   int side_joints = 0;
   for (int j = 1; j < n; ++j) {
     const int section = stem.joint_sections()[std::size_t(j)];
     if (section < 0) continue;
-    CHECK(elements[j].parent_node == path[std::size_t(section)]);
-    side_joints += elements[j].node != path[std::size_t(section) + 1];
+    CHECK(elements[j].parent_node == stem.section_nodes()[std::size_t(section)]);
+    side_joints += std::find(path.begin(), path.end(), elements[j].node) == path.end();
   }
   CHECK(side_joints > 0);  // side branches leave the stem nodes: their joints are in the sections' sums
 
@@ -191,8 +197,9 @@ TEST_CASE(
 
   double elastic_error = 0.0, weight_error = 0.0, largest = 0.0, largest_weight = 0.0;
   for (int i = 0; i < J; ++i) {
-    const Eigen::Vector3d x = s * skeleton.node(path[std::size_t(i)]).position;
-    const Eigen::Vector3d u_i = u.row(path[std::size_t(i)]).transpose();
+    const int node = stem.section_nodes()[std::size_t(i)];
+    const Eigen::Vector3d x = s * skeleton.node(node).position;
+    const Eigen::Vector3d u_i = u.row(node).transpose();
     Eigen::Vector3d statics = Eigen::Vector3d::Zero(), weight = Eigen::Vector3d::Zero();
     for (int j = 1; j < n; ++j) {
       if (stem.element_sections()[std::size_t(j)] < i) continue;  // not above section i
@@ -238,12 +245,13 @@ TEST_CASE(
   const double mass = kWood.density * std::numbers::pi * kPoleRadius * kPoleRadius * h;
   std::vector<double> X(std::size_t(n + 1), 0.0);
   for (int k = 1; k <= n; ++k) X[std::size_t(k)] = X[std::size_t(k) - 1] + h * std::sin(k * theta);
-  for (int j = 0; j < n; ++j) {
+  for (int j = 0; j < stem.section_count(); ++j) {
     INFO("section " << j);
+    const int node = stem.section_nodes()[std::size_t(j)];  // the pole's node i is its i-th stem node
     CHECK(moments.elastic(1, j) == Approx(w * h * h).epsilon(1e-12));
     double weight = 0.0;
-    for (int k = j + 1; k <= n; ++k)
-      weight += (k == n ? 0.5 : 1.0) * mass * kGravity * (X[std::size_t(k)] - X[std::size_t(j)]);
+    for (int k = node + 1; k <= n; ++k)
+      weight += (k == n ? 0.5 : 1.0) * mass * kGravity * (X[std::size_t(k)] - X[std::size_t(node)]);
     CHECK(moments.weight(1, j) == Approx(weight).epsilon(1e-12));
   }
   // Against the beam's w (L - x)^2 / 2, the root carries 2 / n^2 of it: not the tree's load.

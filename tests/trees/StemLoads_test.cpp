@@ -4,6 +4,7 @@
 
 #include <catch2/catch.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 #include <vector>
@@ -51,6 +52,42 @@ Eigen::VectorXd wind_loads(const Skeleton& skeleton, const fw::trees::WindBasisS
 TEST_CASE("StemLoads: the stem follows the thickest child from the root to the top of the trunk", "[trees]") {
   const Skeleton tree = fw::test::asymmetric_skeleton();  // trunk 0-1-2-3-4-9; side branches thinner
   CHECK(fw::trees::stem_path(tree) == std::vector<int>{0, 1, 2, 3, 4, 9});
+}
+
+TEST_CASE(
+    "StemLoads: a stem of more than 15 sections keeps 15, evenly along it, the root first and the top "
+    "out",
+    "[trees]") {
+  using fw::trees::kMaxStemSections;
+  using fw::trees::stem_section_indices;
+  // Up to 15 sections (16 nodes), every node but the top.
+  const Eigen::VectorXd short_stem = Eigen::VectorXd::LinSpaced(16, 0.0, 15.0);
+  CHECK(stem_section_indices(short_stem) ==
+        std::vector<int>{0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14});
+  // 60 equal elements: every 4th node, exactly at k L / 15.
+  const Eigen::VectorXd even = Eigen::VectorXd::LinSpaced(61, 0.0, 30.0);
+  const std::vector<int> every_fourth = stem_section_indices(even);
+  REQUIRE(int(every_fourth.size()) == kMaxStemSections);
+  for (int k = 0; k < kMaxStemSections; ++k) CHECK(every_fourth[std::size_t(k)] == 4 * k);
+  // Nodes crowded near the base (lengths growing as i^2): the nearest node to each target, repeats once, and
+  // never the top, even when a target lies nearest to it.
+  Eigen::VectorXd crowded(40);
+  for (int i = 0; i < 40; ++i) crowded(i) = double(i) * i;
+  const std::vector<int> picked = stem_section_indices(crowded);
+  const double length = crowded(39);
+  CHECK(picked.front() == 0);
+  CHECK(picked.back() < 39);
+  CHECK(std::is_sorted(picked.begin(), picked.end()));
+  CHECK(std::adjacent_find(picked.begin(), picked.end()) == picked.end());
+  for (int k = 1; k < kMaxStemSections; ++k) {
+    const double target = length * k / kMaxStemSections;
+    int nearest = 0;
+    for (int i = 1; i < 40; ++i)
+      if (std::abs(crowded(i) - target) < std::abs(crowded(nearest) - target)) nearest = i;
+    INFO("target " << target);
+    CHECK(std::find(picked.begin(), picked.end(), std::min(nearest, 38)) != picked.end());
+  }
+  CHECK_THROWS_AS(stem_section_indices(Eigen::VectorXd::Zero(1)), std::invalid_argument);
 }
 
 TEST_CASE("StemLoads: a uniformly loaded cantilever gives M = w (L - x)^2 / 2 at every section", "[trees]") {

@@ -45,7 +45,8 @@ TEST_CASE("Communicator: the maximum over ranks, NaN on any rank winning", "[mpi
   CHECK(std::isnan(world.max(last_has_nan)));
 }
 
-TEST_CASE("Communicator: gather brings every rank's list to rank 0 only, gather_to_all to every rank", "[mpi]") {
+TEST_CASE("Communicator: gather brings every rank's list to rank 0 only, gather_to_all to every rank",
+          "[mpi]") {
   const auto& world = fw::test::world();
   // Rank r sends r + 1 values r * 100, r * 100 + 1, ...: lists of different lengths, one empty on no rank.
   std::vector<int> mine;
