@@ -120,12 +120,7 @@ struct ForestFixture {
   host::ForestStages stages{cc, spec, forest};
   host::DeviceVelocity dwind;
 
-  explicit ForestFixture(host::ComputeContext& c) : cc(c) {
-    dwind.u = cc.buffer(spec.u_count() * sizeof(float));
-    dwind.v = cc.buffer(spec.v_count() * sizeof(float));
-    dwind.w = cc.buffer(spec.w_count() * sizeof(float));
-    test::upload(cc, wind, dwind);
-  }
+  explicit ForestFixture(host::ComputeContext& c) : cc(c) { dwind = test::upload_velocity(cc, wind); }
 };
 
 }  // namespace
@@ -410,11 +405,7 @@ TEST_CASE("ForestStages: wind load + modal step timing", "[.][forest-bench]") {
   const trees::Forest forest(std::move(species), std::move(trees));
   host::ForestStages stages(*cc, spec, forest);
   const auto wind = smooth_wind(spec, 2);
-  host::DeviceVelocity dwind;
-  dwind.u = cc->buffer(spec.u_count() * sizeof(float));
-  dwind.v = cc->buffer(spec.v_count() * sizeof(float));
-  dwind.w = cc->buffer(spec.w_count() * sizeof(float));
-  test::upload(*cc, wind, dwind);
+  host::DeviceVelocity dwind = test::upload_velocity(*cc, wind);
   auto run = [&](int steps) {
     const auto start = std::chrono::steady_clock::now();
     for (int n = 0; n < steps; ++n) {

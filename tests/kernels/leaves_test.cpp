@@ -102,11 +102,7 @@ TEST_CASE("leaves: the device step matches the CPU reference through shedding, f
     REQUIRE(stages.own_count() == ref.count());
 
     const auto wind = shear_wind(spec, 18.0);
-    host::DeviceVelocity dwind;
-    dwind.u = cc->buffer(spec.u_count() * sizeof(float));
-    dwind.v = cc->buffer(spec.v_count() * sizeof(float));
-    dwind.w = cc->buffer(spec.w_count() * sizeof(float));
-    test::upload(*cc, wind, dwind);
+    host::DeviceVelocity dwind = test::upload_velocity(*cc, wind);
     const auto fine = fluid::build_fine_pressure_level(spec, solid);
     cl::Buffer mask = cc->upload(fine.mask, CL_MEM_READ_ONLY);
 

@@ -136,12 +136,7 @@ struct BranchFixture {
   host::ForestStages stages{cc, spec, forest, nullptr, dynamics};
   host::DeviceVelocity dwind;
 
-  explicit BranchFixture(host::ComputeContext& c) : cc(c) {
-    dwind.u = cc.buffer(spec.u_count() * sizeof(float));
-    dwind.v = cc.buffer(spec.v_count() * sizeof(float));
-    dwind.w = cc.buffer(spec.w_count() * sizeof(float));
-    test::upload(cc, wind, dwind);
-  }
+  explicit BranchFixture(host::ComputeContext& c) : cc(c) { dwind = test::upload_velocity(cc, wind); }
   int species(int k) const { return forest.instances()[std::size_t(k)].species; }
   double scale(int k) const { return forest.instances()[std::size_t(k)].scale; }
   double damping(int k) const {
@@ -310,11 +305,7 @@ TEST_CASE("tree_branches: a tree's frame is the same to the bit alone and among 
   const trees::Forest forest(test_forest().species(), std::move(placed));
   const std::vector<trees::SpeciesDynamics> dynamics = test_dynamics();
   const fluid::MacVelocity wind = test::smooth_velocity(spec, {6.0, -3.0, 0.5}, {2.0, 1.5, 1.0});
-  host::DeviceVelocity dwind;
-  dwind.u = cc->buffer(spec.u_count() * sizeof(float));
-  dwind.v = cc->buffer(spec.v_count() * sizeof(float));
-  dwind.w = cc->buffer(spec.w_count() * sizeof(float));
-  test::upload(*cc, wind, dwind);
+  host::DeviceVelocity dwind = test::upload_velocity(*cc, wind);
   // A few steps of 0.05 s from rest, then the frame.
   constexpr int kSteps = 3;
   const auto frame = [&](const trees::Forest& trees) {

@@ -33,6 +33,11 @@ fluid::GridSpec loads_grid() {
   return spec;
 }
 
+// The tests' wind: 8 m/s from the west-north-west with a long-wave ripple.
+fluid::MacVelocity loads_wind(const fluid::GridSpec& spec) {
+  return test::smooth_velocity(spec, {8.0, -2.0, 0.3}, {2.0, 1.0, 0.5});
+}
+
 // 16 instances of two species, yaws all round, scales 0.6 .. 1.5.
 trees::Forest loads_forest() {
   std::vector<trees::SpeciesBasis> species = {test::small_species("broadleaf", 6.0, 1, 5, 8, 3),
@@ -109,11 +114,7 @@ struct ElementFixture {
   host::ForestStages stages{cc, spec, forest, nullptr, dynamics};
 
   explicit ElementFixture(host::ComputeContext& c) : cc(c) {
-    host::DeviceVelocity wind;
-    wind.u = cc.buffer(spec.u_count() * sizeof(float));
-    wind.v = cc.buffer(spec.v_count() * sizeof(float));
-    wind.w = cc.buffer(spec.w_count() * sizeof(float));
-    test::upload(cc, test::smooth_velocity(spec, {8.0, -2.0, 0.3}, {2.0, 1.0, 0.5}), wind);
+    host::DeviceVelocity wind = test::upload_velocity(cc, loads_wind(spec));
     stages.enqueue_wind_load(wind);
     stages.enqueue_equilibrium();
     // A gust of twice the wind's drag on the rigid bodies' equilibrium: 0.3 s later they swing through it.
@@ -155,11 +156,7 @@ TEST_CASE("tree_loads: utilisations, root moments and failures match the referen
   const fluid::GridSpec spec = loads_grid();
   const trees::Forest forest = loads_forest();
   host::ForestStages stages(*cc, spec, forest);
-  host::DeviceVelocity wind;
-  wind.u = cc->buffer(spec.u_count() * sizeof(float));
-  wind.v = cc->buffer(spec.v_count() * sizeof(float));
-  wind.w = cc->buffer(spec.w_count() * sizeof(float));
-  test::upload(*cc, test::smooth_velocity(spec, {8.0, -2.0, 0.3}, {2.0, 1.0, 0.5}), wind);
+  host::DeviceVelocity wind = test::upload_velocity(*cc, loads_wind(spec));
 
   // A random modal state of the size a strong wind gives (its static response, times 3).
   stages.enqueue_wind_load(wind);
@@ -316,11 +313,7 @@ TEST_CASE("tree_fall: a failed tree's nodes on a frame are the reference's fall,
   const fluid::GridSpec spec = loads_grid();
   const trees::Forest forest = loads_forest();
   host::ForestStages stages(*cc, spec, forest);
-  host::DeviceVelocity wind;
-  wind.u = cc->buffer(spec.u_count() * sizeof(float));
-  wind.v = cc->buffer(spec.v_count() * sizeof(float));
-  wind.w = cc->buffer(spec.w_count() * sizeof(float));
-  test::upload(*cc, test::smooth_velocity(spec, {8.0, -2.0, 0.3}, {2.0, 1.0, 0.5}), wind);
+  host::DeviceVelocity wind = test::upload_velocity(*cc, loads_wind(spec));
   stages.enqueue_wind_load(wind);
   stages.enqueue_equilibrium();
   // Strengths that fail about half the trees in the wind's static bend: both presets brought to the

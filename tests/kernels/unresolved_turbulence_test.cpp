@@ -120,12 +120,7 @@ struct Fixture {
   fluid::MacVelocity wind = smooth_wind(spec, 23);
   host::DeviceVelocity dwind;
 
-  explicit Fixture(host::ComputeContext& c) : cc(c) {
-    dwind.u = cc.buffer(spec.u_count() * sizeof(float));
-    dwind.v = cc.buffer(spec.v_count() * sizeof(float));
-    dwind.w = cc.buffer(spec.w_count() * sizeof(float));
-    test::upload(cc, wind, dwind);
-  }
+  explicit Fixture(host::ComputeContext& c) : cc(c) { dwind = test::upload_velocity(cc, wind); }
 };
 
 }  // namespace

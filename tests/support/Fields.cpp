@@ -125,6 +125,24 @@ void upload(host::ComputeContext& cc, const fluid::MacVelocity& host, host::Devi
   for (int c = 0; c < 3; ++c) upload(cc, host.component(c), device.component(c));
 }
 
+double u_centre(const fluid::GridSpec& spec, const fluid::MacVelocity& vel, int i, int j, int k) {
+  return 0.5 * (vel.u[fluid::reference::face_index(spec, 0, i, j, k)] +
+                vel.u[fluid::reference::face_index(spec, 0, i + 1, j, k)]);
+}
+
+double u_at(const fluid::GridSpec& spec, const fluid::MacVelocity& vel, int i, int j, double z) {
+  const double level = std::clamp(z / spec.h - 0.5, 0.0, spec.nz - 1.0);
+  const int k0 = std::min(int(level), spec.nz - 1), k1 = std::min(k0 + 1, spec.nz - 1);
+  const double t = level - k0;
+  return (1 - t) * u_centre(spec, vel, i, j, k0) + t * u_centre(spec, vel, i, j, k1);
+}
+
+host::DeviceVelocity upload_velocity(host::ComputeContext& cc, const fluid::MacVelocity& host) {
+  host::DeviceVelocity device;
+  for (int c = 0; c < 3; ++c) device.component(c) = cc.upload(host.component(c));
+  return device;
+}
+
 fluid::MacVelocity download(host::ComputeContext& cc, host::DeviceVelocity& device,
                             const fluid::GridSpec& spec) {
   fluid::MacVelocity out(spec);

@@ -43,6 +43,8 @@ std::vector<float> random_cells(std::size_t n, double amplitude, std::uint32_t s
 void upload(host::ComputeContext& cc, const std::vector<float>& host, cl::Buffer& device);
 std::vector<float> download(host::ComputeContext& cc, cl::Buffer& device, std::size_t n);
 void upload(host::ComputeContext& cc, const fluid::MacVelocity& host, host::DeviceVelocity& device);
+/// New device buffers holding `host`.
+host::DeviceVelocity upload_velocity(host::ComputeContext& cc, const fluid::MacVelocity& host);
 fluid::MacVelocity download(host::ComputeContext& cc, host::DeviceVelocity& device,
                             const fluid::GridSpec& spec);
 /// Inflow turbulence for the kernel tests: a small box whose spacing (2.5 m) differs from the test grids'
@@ -51,6 +53,12 @@ fluid::MacVelocity download(host::ComputeContext& cc, host::DeviceVelocity& devi
 void add_small_turbulence(fluid::InflowState& inflow);
 cl::Buffer upload_profile(host::ComputeContext& cc, const fluid::InflowState& inflow,
                           const fluid::GridSpec& spec);
+
+/// u at the centre of cell (i, j, k): the mean of its two x faces, m/s.
+double u_centre(const fluid::GridSpec& spec, const fluid::MacVelocity& vel, int i, int j, int k);
+/// u at the point (i + 1/2, j + 1/2) at height z (m) above the grid's floor: u_centre interpolated linearly
+/// in z between cell centres, the lowest and highest centres' below and above them.
+double u_at(const fluid::GridSpec& spec, const fluid::MacVelocity& vel, int i, int j, double z);
 
 /// max |a - b| / max(max |b|, floor): the relative error of a against reference b.
 double relative_error(const std::vector<float>& a, const std::vector<float>& b, double floor = 1e-30);

@@ -43,6 +43,7 @@
 #include "host/app/CoupledStep.hpp"
 #include "host/app/SimulationPlan.hpp"
 #include "io/Scenario.hpp"
+#include "tests/support/Fields.hpp"
 #include "tests/support/TestDevice.hpp"
 #include "trees/Forest.hpp"
 
@@ -118,19 +119,8 @@ struct PointMoments {
   double skew_w() const { return skewness(www, ww, mean_w(), sigma_w(), n); }
 };
 
-// u at the centre of cell (i, j, k): the mean of its two x faces.
-double u_centre(const fluid::GridSpec& spec, const fluid::MacVelocity& vel, int i, int j, int k) {
-  return 0.5 * (vel.u[ref::face_index(spec, 0, i, j, k)] + vel.u[ref::face_index(spec, 0, i + 1, j, k)]);
-}
-
-// Cell-column averages at the point (i + 1/2, j + 1/2) of u and w at height z (m): w faces sit on whole
-// cells, u faces at half cells, so both are interpolated linearly in z (and u over its two x faces).
-double u_at(const fluid::GridSpec& spec, const fluid::MacVelocity& vel, int i, int j, double z) {
-  const double level = std::clamp(z / spec.h - 0.5, 0.0, spec.nz - 1.0);
-  const int k0 = std::min(int(level), spec.nz - 1), k1 = std::min(k0 + 1, spec.nz - 1);
-  const double t = level - k0;
-  return (1 - t) * u_centre(spec, vel, i, j, k0) + t * u_centre(spec, vel, i, j, k1);
-}
+// Cell-column averages at the point (i + 1/2, j + 1/2) of w at height z (m): w faces sit on whole cells
+// (u: test::u_at, at half cells), so both are interpolated linearly in z.
 double w_at(const fluid::GridSpec& spec, const fluid::MacVelocity& vel, int i, int j, double z) {
   const double level = std::clamp(z / spec.h, 0.0, double(spec.nz));
   const int k0 = std::min(int(level), spec.nz), k1 = std::min(k0 + 1, spec.nz);
@@ -146,7 +136,8 @@ std::pair<double, double> subgrid_at_face_layer(const fluid::GridSpec& spec, con
                                                 const std::vector<float>* energy, int i, int j, int top) {
   const auto cell = [&](int k) { return (std::size_t(k) * spec.ny + j) * spec.nx + i; };
   const double nu = 0.5 * (viscosity[cell(top - 1)] + viscosity[cell(top)]);
-  const double du_dz = (u_centre(spec, vel, i, j, top) - u_centre(spec, vel, i, j, top - 1)) / spec.h;
+  const double du_dz =
+      (test::u_centre(spec, vel, i, j, top) - test::u_centre(spec, vel, i, j, top - 1)) / spec.h;
   const int east = (i + 1) % spec.nx, west = (i + spec.nx - 1) % spec.nx;
   const double dw_dx =
       (vel.w[ref::face_index(spec, 2, east, j, top)] - vel.w[ref::face_index(spec, 2, west, j, top)]) /
@@ -245,13 +236,13 @@ void check_canopy(host::ComputeContext& cc, const std::filesystem::path& file,
     for (std::size_t n = 0; n < heights.size(); ++n) {
       double sum = 0;
       for (int j = 0; j < spec.ny; ++j)
-        for (int i = 0; i < spec.nx; ++i) sum += u_at(spec, vel, i, j, heights[n]);
+        for (int i = 0; i < spec.nx; ++i) sum += test::u_at(spec, vel, i, j, heights[n]);
       profile[n] += sum / (spec.nx * spec.ny);
     }
     auto& plane = w_top.planes.emplace_back(std::size_t(spec.nx) * spec.ny);
     for (int j = 0; j < spec.ny; ++j)
       for (int i = 0; i < spec.nx; ++i) {
-        const double u = u_at(spec, vel, i, j, canopy_height), w = w_at(spec, vel, i, j, canopy_height);
+        const double u = test::u_at(spec, vel, i, j, canopy_height), w = w_at(spec, vel, i, j, canopy_height);
         top.add(u, w);
         if (!viscosity.empty()) {
           const auto [tau_uw, e] = subgrid_at_face_layer(spec, vel, viscosity,
@@ -261,7 +252,7 @@ void check_canopy(host::ComputeContext& cc, const std::filesystem::path& file,
         plane[std::size_t(j) * spec.nx + i] = float(w);
         for (std::size_t n = 0; n < near.size(); ++n) {
           const double z = around[n] * canopy_height;
-          if (z < spec.nz * spec.h) near[n].add(u_at(spec, vel, i, j, z), w_at(spec, vel, i, j, z));
+          if (z < spec.nz * spec.h) near[n].add(test::u_at(spec, vel, i, j, z), w_at(spec, vel, i, j, z));
         }
       }
   }

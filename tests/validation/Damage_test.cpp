@@ -54,6 +54,7 @@
 #include "host/app/CoupledStep.hpp"
 #include "host/app/SimulationPlan.hpp"
 #include "io/Scenario.hpp"
+#include "tests/support/Fields.hpp"
 #include "tests/support/TestDevice.hpp"
 #include "trees/Forest.hpp"
 #include "trees/TreeDamage.hpp"
@@ -101,18 +102,6 @@ Lengths edge_lengths() {
 Lengths gap_lengths() {
   if (full_validation()) return {120.0, 300.0, true};
   return {30.0, 80.0, false};
-}
-
-// u at the centre of cell (i, j, k), and at height z (m) above the grid's floor at column (i, j), linear
-// between cell centres (as CanopyFlow_test.cpp).
-double u_centre(const fluid::GridSpec& spec, const fluid::MacVelocity& vel, int i, int j, int k) {
-  return 0.5 * (vel.u[ref::face_index(spec, 0, i, j, k)] + vel.u[ref::face_index(spec, 0, i + 1, j, k)]);
-}
-double u_at(const fluid::GridSpec& spec, const fluid::MacVelocity& vel, int i, int j, double z) {
-  const double level = std::clamp(z / spec.h - 0.5, 0.0, spec.nz - 1.0);
-  const int k0 = std::min(int(level), spec.nz - 1), k1 = std::min(k0 + 1, spec.nz - 1);
-  const double t = level - k0;
-  return (1 - t) * u_centre(spec, vel, i, j, k0) + t * u_centre(spec, vel, i, j, k1);
 }
 
 // Davenport's peak factor: the expected largest standardised value of a stationary Gaussian process over
@@ -254,7 +243,7 @@ StandRun run_stand(host::ComputeContext& cc, const host::SimulationPlan& plan, c
     double top = 0.0, half = 0.0;
     for (int j = 0; j < spec.ny; ++j)
       for (int i : columns)
-        top += u_at(spec, vel, i, j, run.height), half += u_at(spec, vel, i, j, 0.5 * run.height);
+        top += test::u_at(spec, vel, i, j, run.height), half += test::u_at(spec, vel, i, j, 0.5 * run.height);
     const double count = double(columns.size()) * spec.ny;
     run.times.push_back(coupled.time());
     run.u_top.push_back(top / count);
