@@ -43,14 +43,7 @@ Elements elements_of(const Skeleton& world, const WindBasisSettings& settings) {
   return out;
 }
 
-}  // namespace
-
-std::vector<fluid::CanopyElement> canopy_elements(const Skeleton& world_skeleton,
-                                                  const WindBasisSettings& settings) {
-  return elements_of(world_skeleton, settings).elements;
-}
-
-fluid::CanopyTreeReport add_to_canopy(fluid::CanopyField& canopy, const Forest& forest, int instance) {
+Elements instance_elements(const Forest& forest, int instance) {
   if (instance < 0 || instance >= forest.instance_count()) {
     throw std::invalid_argument(
         fmt::format("CanopyDrag: instance {} outside 0..{}", instance, forest.instance_count() - 1));
@@ -58,7 +51,22 @@ fluid::CanopyTreeReport add_to_canopy(fluid::CanopyField& canopy, const Forest& 
   const TreeInstance& tree = forest.instances()[std::size_t(instance)];
   const SpeciesBasis& species = forest.species_of(instance);
   const Skeleton world = species.skeleton().transformed(forest.rotation(instance), tree.position, tree.scale);
-  const Elements parts = elements_of(world, species.settings().wind);
+  return elements_of(world, species.settings().wind);
+}
+
+}  // namespace
+
+std::vector<fluid::CanopyElement> canopy_elements(const Skeleton& world_skeleton,
+                                                  const WindBasisSettings& settings) {
+  return elements_of(world_skeleton, settings).elements;
+}
+
+std::vector<fluid::CanopyElement> instance_canopy_elements(const Forest& forest, int instance) {
+  return instance_elements(forest, instance).elements;
+}
+
+fluid::CanopyTreeReport add_to_canopy(fluid::CanopyField& canopy, const Forest& forest, int instance) {
+  const Elements parts = instance_elements(forest, instance);
   fluid::CanopyTreeReport report = canopy.add_elements(parts.elements);
   report.woody_area = parts.woody_area;
   report.leaf_area = parts.foliage.leaf_area;

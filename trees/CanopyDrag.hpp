@@ -42,6 +42,9 @@ std::vector<fluid::CanopyElement> canopy_elements(const Skeleton& world_skeleton
 /// report's woody_area, leaf_area and crown_projected_area are filled in (m^2). Throws
 /// std::invalid_argument("CanopyDrag: ...") for an instance index out of range.
 fluid::CanopyTreeReport add_to_canopy(fluid::CanopyField& canopy, const Forest& forest, int instance);
+/// The elements add_to_canopy adds for instance k, the same values: canopy.add_elements of them is
+/// add_to_canopy's field, bit for bit. Throws as add_to_canopy.
+std::vector<fluid::CanopyElement> instance_canopy_elements(const Forest& forest, int instance);
 
 /// The world box of instance k's skeleton nodes (m): where add_to_canopy puts its drag, within a cell of it.
 Eigen::AlignedBox3d instance_reach(const Forest& forest, int instance);

@@ -38,6 +38,10 @@ class StandingCanopy {
   std::vector<float> drag_density_;
   std::vector<bool> fallen_;
   std::vector<fluid::CellBox> boxes_;  // the cells each tree's drag reaches (trees::instance_cells)
+  // The canopy elements of the trees that stood beside a fall, kept once computed (64 bytes an element):
+  // the front of a storm's damage passes each tree's neighbours several times, and a tree's elements cost
+  // its crown's convex hull.
+  std::vector<std::vector<fluid::CanopyElement>> elements_;
 };
 
 }  // namespace fw::host

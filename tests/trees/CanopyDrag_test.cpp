@@ -347,6 +347,22 @@ TEST_CASE("CanopyDrag: the leaf-bearing rule and the foliage distribution", "[ca
   }
 }
 
+TEST_CASE("CanopyDrag: an instance's elements, added, are add_to_canopy's field bit for bit", "[canopy]") {
+  trees::SpeciesSettings settings;
+  settings.modal.mode_count = 2;
+  settings.wind.leaf_area_index = 3.0;  // the crown's foliage too
+  const trees::Forest forest({trees::SpeciesBasis::compute(small_tree(), settings)},
+                             {{0, {3.2, 2.7, 0.0}, 0.9, 1.3}, {0, {4.1, 3.3, 0.0}, -2.0, 0.8}});
+  fluid::CanopyField whole(grid(8, 8, 8, 1.0)), from_elements(grid(8, 8, 8, 1.0));
+  for (int k = 0; k < forest.instance_count(); ++k) {
+    trees::add_to_canopy(whole, forest, k);
+    from_elements.add_elements(trees::instance_canopy_elements(forest, k));
+  }
+  CHECK(from_elements.drag_density() == whole.drag_density());
+  CHECK(from_elements.frontal_area_density() == whole.frontal_area_density());
+  CHECK_THROWS_WITH(trees::instance_canopy_elements(forest, 2), Catch::Matchers::Contains("instance"));
+}
+
 TEST_CASE("CanopyDrag: bad arguments throw std::invalid_argument naming the unit", "[canopy]") {
   using Catch::Matchers::Contains;
   trees::SpeciesSettings settings;
