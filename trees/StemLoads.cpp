@@ -270,6 +270,25 @@ std::vector<StemSection> StemLoads::sections() const {
   return sections;
 }
 
+std::vector<float> StemLoads::along_stem(const std::vector<float>& at_sections) const {
+  if (int(at_sections.size()) != section_count())
+    throw std::invalid_argument(
+        fmt::format("StemLoads: {} values for {} sections", at_sections.size(), section_count()));
+  std::vector<float> nodes(profile_.size(), 0.0f);
+  std::size_t j = 0;  // the section at or below node i
+  for (std::size_t i = 0; i < profile_.size(); ++i) {
+    while (j + 1 < section_indices_.size() && std::size_t(section_indices_[j + 1]) <= i) ++j;
+    if (j + 1 == section_indices_.size()) {
+      nodes[i] = at_sections[j];
+      continue;
+    }
+    const double below = arc_length_(section_indices_[j]), above = arc_length_(section_indices_[j + 1]);
+    const double t = (arc_length_(Eigen::Index(i)) - below) / (above - below);
+    nodes[i] = float((1.0 - t) * at_sections[j] + t * at_sections[j + 1]);
+  }
+  return nodes;
+}
+
 Eigen::VectorXd StemLoads::bending_moments(const Eigen::VectorXd& q) const {
   const Eigen::VectorXd planar = (elastic_ + weight_) * q;
   Eigen::VectorXd moments(section_count());

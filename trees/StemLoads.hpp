@@ -82,6 +82,11 @@ class StemLoads {
   std::vector<StemSection> sections() const;
   /// Each section's index into profile() (stem_section_indices).
   const std::vector<int>& section_indices() const { return section_indices_; }
+  /// Values at the sections (section_count() of them) carried to every stem node (profile()'s order):
+  /// linear in the distance along the stem between two sections, the last section's above it. For drawing
+  /// a stem whose every node shows a checked section's figure. Throws std::invalid_argument for a count
+  /// that is not section_count().
+  std::vector<float> along_stem(const std::vector<float>& at_sections) const;
   /// Every stem node, the top included, root first, and its distance along the stem from the root (m).
   const std::vector<StemSection>& profile() const { return profile_; }
   const Eigen::VectorXd& arc_length() const { return arc_length_; }

@@ -292,10 +292,11 @@ std::vector<float> CoupledStep::node_utilisation() {
   DamageStages& damage = *trees_.damage();
   const std::vector<float> sections = damage.download_utilisation();
   for (int k = 0; k < own_forest_->instance_count(); ++k) {
-    const std::vector<trees::StemSection> stem = own_forest_->species_of(k).stem_loads().sections();
-    for (std::size_t j = 0; j < stem.size(); ++j)
-      nodes[std::size_t(own_forest_->node_offset(k) + stem[j].node)] =
-          sections[std::size_t(damage.section_offset(k)) + j];
+    const trees::StemLoads& stem = own_forest_->species_of(k).stem_loads();
+    const auto first = sections.begin() + damage.section_offset(k);
+    const std::vector<float> along = stem.along_stem(std::vector<float>(first, first + stem.section_count()));
+    for (std::size_t i = 0; i < along.size(); ++i)
+      nodes[std::size_t(own_forest_->node_offset(k) + stem.profile()[i].node)] = along[i];
   }
   return nodes;
 }

@@ -90,6 +90,37 @@ TEST_CASE(
   CHECK_THROWS_AS(stem_section_indices(Eigen::VectorXd::Zero(1)), std::invalid_argument);
 }
 
+TEST_CASE("StemLoads: along_stem carries the sections' values to every stem node, linear between them",
+          "[trees]") {
+  // A 40-element pole keeps 15 sections (every node nearest k 40 / 15 elements up): values 0, 1, 2, ...
+  // at them are the distance along the pole in section spacings, the last's above the last section.
+  constexpr double kLength = 10.0;
+  const Skeleton stick = pole(40, kLength, 0.1);
+  const fw::trees::BeamModel model(stick, kWood);
+  fw::trees::ModalSettings modal;
+  modal.mode_count = 2;
+  const StemLoads stem = StemLoads::compute(stick, model, fw::trees::ModalBasis::compute(model, modal));
+  REQUIRE(stem.section_count() == fw::trees::kMaxStemSections);
+  std::vector<float> values;
+  for (int j = 0; j < stem.section_count(); ++j) values.push_back(float(j));
+  const std::vector<float> along = stem.along_stem(values);
+  REQUIRE(along.size() == stem.profile().size());
+  const std::vector<int>& at = stem.section_indices();
+  for (std::size_t i = 0; i < along.size(); ++i) {
+    INFO("stem node " << i);
+    const auto above = std::upper_bound(at.begin(), at.end(), int(i));
+    if (above == at.end()) {
+      CHECK(along[i] == float(at.size() - 1));  // above the last section: its value
+      continue;
+    }
+    const int j = int(above - at.begin()) - 1;  // the section at or below node i
+    const double t =
+        double(int(i) - at[std::size_t(j)]) / double(*above - at[std::size_t(j)]);  // equal elements
+    CHECK(along[i] == Approx(j + t).margin(1e-6));
+  }
+  CHECK_THROWS_AS(stem.along_stem({1.0f}), std::invalid_argument);
+}
+
 TEST_CASE("StemLoads: a uniformly loaded cantilever gives M = w (L - x)^2 / 2 at every section", "[trees]") {
   constexpr double kLength = 10.0, kRadius = 0.15, kSpeed = 20.0;
   const Skeleton stick = pole(16, kLength, kRadius);
