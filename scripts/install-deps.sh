@@ -49,6 +49,8 @@ packages=(
   libeigen3-dev libspectra-dev libglm-dev libmuparser-dev libfftw3-dev
   # output: VTK for ParaView, OpenVDB for Houdini/Blender (its CMake module needs boost-iostreams)
   libvtk9-dev libopenvdb-dev libboost-iostreams-dev
+  # GIS (io/gis): terrain from any raster GDAL reads (GeoTIFF, ESRI ASCII), with its CRS
+  libgdal-dev
   # pictures (viz/): cairo draws without an X server or GL; DejaVu is the face of their text
   libcairo2-dev fonts-dejavu-core
   # render decodes a frame's cell offsets (LZ4 or zlib, as VTK stores them) before VTK reads the file
