@@ -1,44 +1,16 @@
 #include "io/gis/GeoRaster.hpp"
 
-#include <cpl_error.h>
 #include <fmt/format.h>
 #include <gdal_priv.h>
 #include <ogr_spatialref.h>
 
 #include <cmath>
-#include <memory>
-#include <mutex>
+
+#include "io/gis/Gdal.hpp"
 
 namespace fw::io {
 
 namespace {
-
-// GDAL's drivers, registered once per process.
-void register_drivers() {
-  static std::once_flag once;
-  std::call_once(once, [] { GDALAllRegister(); });
-}
-
-// GDAL reports its errors through a handler (stderr by default); while this lives they are kept quiet, and
-// the last one's message is read back for the exception.
-class QuietGdal {
- public:
-  QuietGdal() {
-    CPLPushErrorHandler(CPLQuietErrorHandler);
-    CPLErrorReset();
-  }
-  ~QuietGdal() { CPLPopErrorHandler(); }
-  QuietGdal(const QuietGdal&) = delete;
-  QuietGdal& operator=(const QuietGdal&) = delete;
-  static std::string last_message() {
-    const char* message = CPLGetLastErrorMsg();
-    return message && *message ? message : "no reason given";
-  }
-};
-
-struct CloseDataset {
-  void operator()(GDALDataset* dataset) const { GDALClose(GDALDataset::ToHandle(dataset)); }
-};
 
 CoordinateSystem coordinate_system(const OGRSpatialReference& srs) {
   CoordinateSystem crs;
@@ -57,13 +29,12 @@ CoordinateSystem coordinate_system(const OGRSpatialReference& srs) {
 }  // namespace
 
 GeoRaster GeoRaster::read(const std::string& path) {
-  register_drivers();
-  const QuietGdal quiet;
-  const std::unique_ptr<GDALDataset, CloseDataset> dataset(
-      GDALDataset::Open(path.c_str(), GDAL_OF_RASTER | GDAL_OF_READONLY));
+  gdal::register_drivers();
+  const gdal::QuietErrors quiet;
+  const gdal::Dataset dataset(GDALDataset::Open(path.c_str(), GDAL_OF_RASTER | GDAL_OF_READONLY));
   if (!dataset)
     throw GeoRasterError(
-        fmt::format("{}: a raster GDAL reads expected ({})", path, QuietGdal::last_message()));
+        fmt::format("{}: a raster GDAL reads expected ({})", path, gdal::QuietErrors::last_message()));
   if (dataset->GetRasterCount() < 1) throw GeoRasterError(fmt::format("{}: a raster band expected", path));
   GeoRaster raster;
   raster.path_ = path;
@@ -83,7 +54,8 @@ GeoRaster GeoRaster::read(const std::string& path) {
   raster.values_.resize(std::size_t(raster.columns_) * std::size_t(raster.rows_));
   if (band->RasterIO(GF_Read, 0, 0, raster.columns_, raster.rows_, raster.values_.data(), raster.columns_,
                      raster.rows_, GDT_Float64, 0, 0) != CE_None)
-    throw GeoRasterError(fmt::format("{}: readable pixels expected ({})", path, QuietGdal::last_message()));
+    throw GeoRasterError(
+        fmt::format("{}: readable pixels expected ({})", path, gdal::QuietErrors::last_message()));
   return raster;
 }
 
