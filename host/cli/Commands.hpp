@@ -99,6 +99,21 @@ struct RenderOptions {
 /// bad row, a view other than top), 1 a frame that does not read.
 int run_render(const RenderOptions& options);
 
+struct ExportOptions {
+  std::string folder;           // DIR: a run's output folder
+  std::string field = "speed";  // --field NAME: any field of the wind frames
+  double height = 10.0;         // --height Z, m above the ground
+  std::optional<int> frame;     // --frame K (0-based); default: the last complete frame
+  std::optional<double> time;   // --time T, s: the nearest frame
+  std::string output;           // -o FILE.tif
+  bool quiet = false;
+};
+
+/// `forestwind export`: a wind field at a height above the ground as a GeoTIFF (viz/GroundSlice.hpp). 0
+/// written, 2 bad input (folder, frame, field, height; a run without wind frames), 1 a frame that does not
+/// read or a file that cannot be written.
+int run_export(const ExportOptions& options);
+
 struct PlotOptions {
   std::string folder;     // DIR: a run's output folder
   bool spectrum = false;  // --spectrum: add the probes' power spectra

@@ -163,6 +163,21 @@ int main(int argc, char** argv) {
   render_cmd->add_option("-o,--output", render.output, "FILE.png, or DIR with --all")->required();
   render_cmd->add_flag("--quiet", render.quiet, "no summary line");
 
+  cli::ExportOptions export_options;
+  auto* export_cmd = app.add_subcommand(
+      "export", "a wind field at a height above the ground as a GeoTIFF, for QGIS and other GIS (TIF)");
+  export_cmd->add_option("folder", export_options.folder, "DIR: the run's output folder")->required();
+  export_cmd->add_option("--field", export_options.field, "wind field: speed, velocity_x, pressure, ...")
+      ->capture_default_str();
+  export_cmd->add_option("--height", export_options.height, "height above the ground, m")
+      ->capture_default_str();
+  auto* export_frame =
+      export_cmd->add_option("--frame", export_options.frame, "frame number, 0-based (default: the last)");
+  export_cmd->add_option("--time", export_options.time, "simulated time, s: the nearest frame")
+      ->excludes(export_frame);
+  export_cmd->add_option("-o,--output", export_options.output, "FILE.tif")->required();
+  export_cmd->add_flag("--quiet", export_options.quiet, "no summary line");
+
   cli::PlotOptions plot;
   auto* plot_cmd =
       app.add_subcommand("plot", "a run's probes and tracked tree tips over time, and spectra (PNG)");
@@ -188,6 +203,7 @@ int main(int argc, char** argv) {
     if (tree_generate->parsed()) return cli::run_tree_generate(generate);
     if (tree_modes->parsed()) return cli::run_tree_modes(modes);
     if (plot_cmd->parsed()) return cli::run_plot(plot);
+    if (export_cmd->parsed()) return cli::run_export(export_options);
     if (render_cmd->parsed()) {
       if (!render_size.empty()) std::tie(render.width, render.height_px) = cli::parse_size(render_size);
       return cli::run_render(render);

@@ -89,13 +89,21 @@ double GeoRaster::value_at(double x, double y) const {
         fmt::format("{}: a point within the pixel centres expected, got ({}, {})", path_, x, y));
   const int c0 = std::min(int(fc), columns_ - 1), r0 = std::min(int(fr), rows_ - 1);
   const int c1 = std::min(c0 + 1, columns_ - 1), r1 = std::min(r0 + 1, rows_ - 1);
-  for (const auto& [c, r] : {std::array{c0, r0}, std::array{c1, r0}, std::array{c0, r1}, std::array{c1, r1}})
+  const double a = fc - c0, b = fr - r0;
+  // The four centres around the point and their weights; one of weight 0 (the point on a centre or its
+  // row or column) takes no part, so a nodata pixel there does not matter.
+  const std::array<std::array<int, 2>, 4> corners{{{c0, r0}, {c1, r0}, {c0, r1}, {c1, r1}}};
+  const std::array<double, 4> weights{(1 - a) * (1 - b), a * (1 - b), (1 - a) * b, a * b};
+  double value = 0.0;
+  for (std::size_t n = 0; n < corners.size(); ++n) {
+    if (weights[n] == 0.0) continue;
+    const auto [c, r] = corners[n];
     if (is_nodata(c, r))
       throw GeoRasterError(fmt::format(
           "{}: data around ({}, {}) expected, pixel (column {}, row {}) is nodata", path_, x, y, c, r));
-  const double a = fc - c0, b = fr - r0;
-  return (1 - a) * (1 - b) * sample(c0, r0) + a * (1 - b) * sample(c1, r0) + (1 - a) * b * sample(c0, r1) +
-         a * b * sample(c1, r1);
+    value += weights[n] * sample(c, r);
+  }
+  return value;
 }
 
 }  // namespace fw::io

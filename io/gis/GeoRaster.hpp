@@ -70,7 +70,7 @@ class GeoRaster {
   std::array<double, 2> pixel_of(double x, double y) const;
 
   /// The value at CRS (x, y): bilinear between the four pixel centres around it. Throws GeoRasterError for
-  /// a point outside the lattice of pixel centres or next to a nodata pixel.
+  /// a point outside the lattice of pixel centres or one a nodata pixel weighs on.
   double value_at(double x, double y) const;
 
  private:

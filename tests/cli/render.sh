@@ -35,6 +35,17 @@ fi
 expect 0 "1 probes, 1 trees, 5 samples" plot "$work/out" -o "$work/probes.png"
 [ -s "$work/probes.png" ] || fail "plot wrote no picture"
 
+# A GeoTIFF of the wind at 10 m above the ground (the palm run has no site: local coordinates, no CRS),
+# and of another field, height and frame; its values are read back in tests/viz/GroundSlice_test.cpp.
+expect 0 "speed at 10 m above the ground, frame 4, t = 1 s: 16 x 8 pixels of 2 m" export "$work/out" -o "$work/speed.tif"
+[ "$(head -c 4 "$work/speed.tif" | od -An -c | tr -d ' ')" = 'II*\0' ] || fail "export wrote no TIFF"
+expect 0 "no CRS (the scenario has no site)" export "$work/out" --field velocity_z --height 3 --time 0.5 -o "$work/w.tif"
+expect 0 "velocity_z at 3 m above the ground, frame 2" export "$work/out" --field velocity_z --height 3 --frame 2 -o "$work/w.tif"
+expect 2 "export: no field 'temperature'" export "$work/out" --field temperature -o "$work/bad.tif"
+expect 2 "a height above the ground (m, >= 0) expected, got -2" export "$work/out" --height -2 -o "$work/bad.tif"
+expect 2 "frames 0..4 (t = 0 .. 1 s)" export "$work/out" --frame 5 -o "$work/bad.tif"
+[ ! -e "$work/bad.tif" ] || fail "a refused export wrote a file"
+
 # Bad input: exit 2, what there is, nothing written.
 expect 2 "frames 0..4 (t = 0 .. 1 s)" render "$work/out" --frame 5 -o "$work/bad.png"
 expect 2 "choose one of velocity, velocity_x" render "$work/out" --field temperature -o "$work/bad.png"
@@ -66,5 +77,5 @@ expect 0 "rendering frame 3" render "$work/out" -o "$work/fallback.png"
 for frame in "$work/out/wind/"*.vti; do printf 'XXXX' | dd of="$frame" bs=1 seek=200 conv=notrunc status=none; done
 expect 2 "no frame up to 4 reads" render "$work/out" -o "$work/bad.png"
 [ ! -e "$work/bad.png" ] || fail "a refused command wrote a picture"
-echo "render and plot: pictures written, bad input refused"
+echo "render, plot and export: pictures and GeoTIFFs written, bad input refused"
 rm -rf "$work"
