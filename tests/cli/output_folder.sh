@@ -71,6 +71,8 @@ shared="$work/shared"
 faults="$(dirname "$0")/faults_run.yaml" # it writes checkpoints, for the resume
 "$forestwind" run "$faults" -o "$shared" --quiet >"$work/first.out" 2>&1 &
 first=$!
+# A failing check below exits the script: the first run (endless in simulated time) must not outlive it.
+trap 'kill -9 "$first" 2>/dev/null' EXIT
 for _ in $(seq 1 3000); do # until its first checkpoint (t = 0.5 s) is written (at most 300 s on a slow machine)
   [ -n "$(ls "$shared/checkpoints" 2>/dev/null)" ] && break
   kill -0 "$first" 2>/dev/null || fail "the first run ended: $(cat "$work/first.out")"
