@@ -270,7 +270,7 @@ std::vector<StemSection> StemLoads::sections() const {
   return sections;
 }
 
-std::vector<float> StemLoads::along_stem(const std::vector<float>& at_sections) const {
+std::vector<float> StemLoads::along_stem(std::span<const float> at_sections) const {
   if (int(at_sections.size()) != section_count())
     throw std::invalid_argument(
         fmt::format("StemLoads: {} values for {} sections", at_sections.size(), section_count()));

@@ -43,6 +43,7 @@
 
 #include <Eigen/Core>
 
+#include <span>
 #include <vector>
 
 #include "trees/BeamModel.hpp"
@@ -86,7 +87,7 @@ class StemLoads {
   /// linear in the distance along the stem between two sections, the last section's above it. For drawing
   /// a stem whose every node shows a checked section's figure. Throws std::invalid_argument for a count
   /// that is not section_count().
-  std::vector<float> along_stem(const std::vector<float>& at_sections) const;
+  std::vector<float> along_stem(std::span<const float> at_sections) const;
   /// Every stem node, the top included, root first, and its distance along the stem from the root (m).
   const std::vector<StemSection>& profile() const { return profile_; }
   const Eigen::VectorXd& arc_length() const { return arc_length_; }

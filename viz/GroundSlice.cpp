@@ -20,12 +20,9 @@ GroundSlice ground_slice(const WindGrid& wind, const std::string& field, double 
     throw std::invalid_argument(
         fmt::format("export: --height: a height above the ground (m, >= 0) expected, got {}", height));
   const std::vector<std::string> names = wind.field_names();
-  if (std::find(names.begin(), names.end(), field) == names.end()) {
-    std::string choices;
-    for (const std::string& name : names) choices += (choices.empty() ? "" : ", ") + name;
-    throw std::invalid_argument(
-        fmt::format("export: no field '{}' in {}: choose one of {}", field, wind.file.string(), choices));
-  }
+  if (std::find(names.begin(), names.end(), field) == names.end())
+    throw std::invalid_argument(fmt::format("export: no field '{}' in {}: choose one of {}", field,
+                                            wind.file.string(), fmt::join(names, ", ")));
   const ScalarField scalars = wind.field(field);
   const auto [nx, ny, nz] = wind.cells;
   const double h = wind.cell_size;

@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <span>
 #include <utility>
 
 namespace fw::host {
@@ -293,8 +294,8 @@ std::vector<float> CoupledStep::node_utilisation() {
   const std::vector<float> sections = damage.download_utilisation();
   for (int k = 0; k < own_forest_->instance_count(); ++k) {
     const trees::StemLoads& stem = own_forest_->species_of(k).stem_loads();
-    const auto first = sections.begin() + damage.section_offset(k);
-    const std::vector<float> along = stem.along_stem(std::vector<float>(first, first + stem.section_count()));
+    const std::vector<float> along = stem.along_stem(std::span(sections).subspan(
+        std::size_t(damage.section_offset(k)), std::size_t(stem.section_count())));
     for (std::size_t i = 0; i < along.size(); ++i)
       nodes[std::size_t(own_forest_->node_offset(k) + stem.profile()[i].node)] = along[i];
   }

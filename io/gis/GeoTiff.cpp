@@ -42,9 +42,10 @@ void write_geotiff(const std::filesystem::path& path, const GeoGrid& grid) {
     GDALRasterBand* band = dataset->GetRasterBand(1);
     if (grid.nodata) band->SetNoDataValue(*grid.nodata);
     if (!grid.description.empty()) band->SetDescription(grid.description.c_str());
-    std::vector<float> values = grid.values;  // RasterIO takes a non-const buffer
-    if (band->RasterIO(GF_Write, 0, 0, grid.columns, grid.rows, values.data(), grid.columns, grid.rows,
-                       GDT_Float32, 0, 0) != CE_None)
+    // RasterIO takes one buffer for both directions; GF_Write only reads it.
+    float* values = const_cast<float*>(grid.values.data());
+    if (band->RasterIO(GF_Write, 0, 0, grid.columns, grid.rows, values, grid.columns, grid.rows, GDT_Float32,
+                       0, 0) != CE_None)
       throw GeoRasterError(fmt::format("{}: cannot write it ({})", name, gdal::QuietErrors::last_message()));
   }  // closing the dataset flushes it
   if (CPLGetLastErrorType() >= CE_Failure)

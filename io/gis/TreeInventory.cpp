@@ -19,12 +19,6 @@ std::string quoted(const std::string& text) {
   return fmt::format("\"{}\"", text);
 }
 
-std::string joined(const std::vector<std::string>& names) {
-  std::string out;
-  for (const std::string& name : names) out += (out.empty() ? "" : ", ") + name;
-  return out;
-}
-
 // Where each field the mapping names sits in the header (-1: absent; the required ones are checked).
 struct ColumnIndex {
   int x = -1, y = -1, species = -1, height = -1, dbh = -1, crown_width = -1, id = -1;
@@ -42,7 +36,7 @@ ColumnIndex index_header(const std::vector<std::string>& header, const Inventory
     if (it != at.end()) return it->second;
     if (required)
       throw base::SourceError(file, 1, name, fmt::format("a column named {}", name),
-                              fmt::format("the header {}", joined(header)));
+                              fmt::format("the header {}", fmt::join(header, ", ")));
     return -1;
   };
   ColumnIndex index;
@@ -136,7 +130,7 @@ TreeInventory read_tree_inventory(const std::string& path, const InventoryColumn
     const auto known = std::find(species.begin(), species.end(), field(at.species));
     if (known == species.end())
       throw base::SourceError(path, number, name(at.species),
-                              fmt::format("one of the scenario's species ({})", joined(species)),
+                              fmt::format("one of the scenario's species ({})", fmt::join(species, ", ")),
                               quoted(field(at.species)));
     tree.species = int(known - species.begin());
     tree.height = positive_at(at.height);

@@ -10,6 +10,7 @@
 
 #include "host/stages/ForestStages.hpp"
 #include "host/stages/SavedStateNames.hpp"
+#include "tests/support/BranchModels.hpp"
 #include "tests/support/Fields.hpp"
 #include "tests/support/SmallSpecies.hpp"
 #include "tests/support/TestDevice.hpp"
@@ -34,8 +35,6 @@ constexpr double kSpringTolerance = 1e-5;
 // elements (2e-7).
 constexpr double kPoseTolerance = 1e-5;
 
-constexpr int kRigid = 0, kSprings = 1, kModal = 2;
-
 fluid::GridSpec forest_grid() {
   fluid::GridSpec spec;
   spec.nx = 28;
@@ -55,16 +54,6 @@ trees::Forest test_forest() {
   std::vector<trees::TreeInstance> trees;
   for (int k = 0; k < 9; ++k) trees.push_back({k % 3, {x(rng), y(rng), 0.0}, yaw(rng), scale(rng)});
   return trees::Forest(std::move(species), std::move(trees));
-}
-
-std::vector<trees::SpeciesDynamics> test_dynamics() {
-  std::vector<trees::SpeciesDynamics> dynamics(3);
-  dynamics[kRigid].model = trees::TreeDynamics::rigid_bodies;
-  dynamics[kRigid].rigid_bodies.damping_ratio = 0.08;
-  dynamics[kSprings].model = trees::TreeDynamics::springs;
-  dynamics[kSprings].springs.max_angle_deg = 25.0;
-  dynamics[kSprings].springs.sway_amplitude = 0.5;
-  return dynamics;
 }
 
 // The CPU side of one element tree: its table and the loads of the wind at its element centres.
@@ -130,7 +119,7 @@ struct BranchFixture {
   host::ComputeContext& cc;
   fluid::GridSpec spec = forest_grid();
   trees::Forest forest = test_forest();
-  std::vector<trees::SpeciesDynamics> dynamics = test_dynamics();
+  std::vector<trees::SpeciesDynamics> dynamics = test::three_model_dynamics();
   // A mean flow of ~7 m/s with a long-wave ripple: every element feels its own wind.
   fluid::MacVelocity wind = test::smooth_velocity(spec, {6.0, -3.0, 0.5}, {2.0, 1.5, 1.0});
   host::ForestStages stages{cc, spec, forest, nullptr, dynamics};
@@ -140,7 +129,7 @@ struct BranchFixture {
   int species(int k) const { return forest.instances()[std::size_t(k)].species; }
   double scale(int k) const { return forest.instances()[std::size_t(k)].scale; }
   double damping(int k) const {
-    return trees::rigid_damping(dynamics[kRigid].rigid_bodies.damping_ratio,
+    return trees::rigid_damping(dynamics[test::kRigid].rigid_bodies.damping_ratio,
                                 forest.species_of(k).modes().omega()(0) / scale(k));
   }
 };
@@ -170,7 +159,7 @@ TEST_CASE("tree_branches: the rigid trees' equilibrium and 40 implicit steps fro
   const std::vector<float> stepped = branches.download_joints();
   int rigid_trees = 0;
   for (int k = 0; k < f.forest.instance_count(); ++k) {
-    if (f.species(k) != kRigid) continue;
+    if (f.species(k) != test::kRigid) continue;
     ++rigid_trees;
     const ElementTree tree = element_tree(f.forest, k, f.spec, f.wind);
     const trees::RigidBranches rigid(tree.elements, f.scale(k), f.damping(k));
@@ -221,16 +210,16 @@ TEST_CASE("tree_branches: the spring trees' angles and every element tree's pose
   int spring_trees = 0;
   for (int k = 0; k < f.forest.instance_count(); ++k) {
     const int offset = branches.entry_offset(k);
-    if (f.species(k) == kModal) {
+    if (f.species(k) == test::kModal) {
       // The modal kernels' (tests/kernels/forest_stages_test.cpp); no element entries.
       REQUIRE(offset == -1);
       continue;
     }
     const ElementTree tree = element_tree(f.forest, k, f.spec, f.wind);
-    if (f.species(k) == kSprings) {
+    if (f.species(k) == test::kSprings) {
       ++spring_trees;
       const std::vector<Eigen::Vector3d> angles =
-          trees::spring_angles(tree.elements, f.dynamics[kSprings].springs, f.scale(k), tree.loads,
+          trees::spring_angles(tree.elements, f.dynamics[test::kSprings].springs, f.scale(k), tree.loads,
                                trees::spring_phases(f.forest.id(k), tree.elements.size()), time);
       double largest = 0.0;
       const double error = angle_error(joints, offset, angles, largest) / largest;
@@ -271,7 +260,7 @@ TEST_CASE("tree_branches: the pose of joints turned past the series' reach match
   f.stages.enqueue_deform();
   const std::vector<float> u = f.stages.download_displacements();
   for (int k = 0; k < f.forest.instance_count(); ++k) {
-    if (f.species(k) == kModal) continue;
+    if (f.species(k) == test::kModal) continue;
     const trees::SpeciesBasis& basis = f.forest.species_of(k);
     const trees::BranchElements elements =
         trees::BranchElements::of(basis.skeleton(), basis.settings().material, basis.settings().wind);
@@ -300,10 +289,10 @@ TEST_CASE("tree_branches: a tree's frame is the same to the bit alone and among 
     placed.push_back({kind(rng), {x(rng), y(rng), 0.0}, yaw(rng), scale(rng)});
     ++per_species[std::size_t(placed.back().species)];
   }
-  REQUIRE(per_species[kRigid] > FW_LANES);
-  REQUIRE(per_species[kSprings] > FW_LANES);
+  REQUIRE(per_species[test::kRigid] > FW_LANES);
+  REQUIRE(per_species[test::kSprings] > FW_LANES);
   const trees::Forest forest(test_forest().species(), std::move(placed));
-  const std::vector<trees::SpeciesDynamics> dynamics = test_dynamics();
+  const std::vector<trees::SpeciesDynamics> dynamics = test::three_model_dynamics();
   const fluid::MacVelocity wind = test::smooth_velocity(spec, {6.0, -3.0, 0.5}, {2.0, 1.5, 1.0});
   host::DeviceVelocity dwind = test::upload_velocity(*cc, wind);
   // A few steps of 0.05 s from rest, then the frame.
@@ -320,7 +309,7 @@ TEST_CASE("tree_branches: a tree's frame is the same to the bit alone and among 
   const std::vector<float> together = frame(forest);
   int checked = 0;
   for (int k = 0; k < forest.instance_count(); ++k) {
-    if (forest.instances()[std::size_t(k)].species == kModal) continue;
+    if (forest.instances()[std::size_t(k)].species == test::kModal) continue;
     INFO("instance " << k);
     const std::vector<float> u = frame(forest.subset({k}));
     const auto from = together.begin() + 3 * std::ptrdiff_t(forest.node_offset(k));
@@ -328,7 +317,7 @@ TEST_CASE("tree_branches: a tree's frame is the same to the bit alone and among 
     CHECK(*std::max_element(u.begin(), u.end()) > 0.0f);
     ++checked;
   }
-  CHECK(checked == per_species[kRigid] + per_species[kSprings]);
+  CHECK(checked == per_species[test::kRigid] + per_species[test::kSprings]);
 }
 
 // The planner reports the estimate (host/app/plan/ForestPlan.cpp) and refuses a run that would not fit: it
@@ -338,7 +327,7 @@ TEST_CASE("tree_branches: the device memory estimate bounds what the element sta
   auto* cc = test::device_or_skip();
   if (!cc) return;
   const trees::Forest forest = test_forest();
-  const std::vector<trees::SpeciesDynamics> dynamics = test_dynamics();
+  const std::vector<trees::SpeciesDynamics> dynamics = test::three_model_dynamics();
   const std::size_t before = cc->allocated_bytes();
   const host::ForestStages stages(*cc, forest_grid(), forest, nullptr, dynamics);
   const std::size_t allocated = cc->allocated_bytes() - before;

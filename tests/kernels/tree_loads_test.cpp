@@ -9,6 +9,7 @@
 #include <random>
 
 #include "host/stages/ForestStages.hpp"
+#include "tests/support/BranchModels.hpp"
 #include "tests/support/Fields.hpp"
 #include "tests/support/SmallSpecies.hpp"
 #include "tests/support/TestDevice.hpp"
@@ -68,8 +69,6 @@ std::vector<trees::TreeLoad> reference_loads(const trees::Forest& forest,
 
 // A forest of the three models (docs/tree-models.md): rigid bodies, springs and modal, four trees each, yaws
 // all round, scales 0.6 .. 1.5.
-constexpr int kRigid = 0, kSprings = 1, kModal = 2;
-
 trees::Forest element_forest() {
   // The springs' wood is soft, as a user after a visible bend sets it (docs/tree-models.md): their joints
   // then turn by a few degrees and their pose's weight counts.
@@ -94,23 +93,13 @@ trees::Forest element_forest() {
   return trees::Forest(std::move(species), std::move(trees));
 }
 
-std::vector<trees::SpeciesDynamics> element_dynamics() {
-  std::vector<trees::SpeciesDynamics> dynamics(3);
-  dynamics[kRigid].model = trees::TreeDynamics::rigid_bodies;
-  dynamics[kRigid].rigid_bodies.damping_ratio = 0.08;
-  dynamics[kSprings].model = trees::TreeDynamics::springs;
-  dynamics[kSprings].springs.max_angle_deg = 25.0;
-  dynamics[kSprings].springs.sway_amplitude = 0.5;
-  return dynamics;
-}
-
 // The forest of element_forest() on the device, moved by a wind for a while: every joint turned, the rigid
 // bodies off their equilibrium.
 struct ElementFixture {
   host::ComputeContext& cc;
   fluid::GridSpec spec = loads_grid();
   trees::Forest forest = element_forest();
-  std::vector<trees::SpeciesDynamics> dynamics = element_dynamics();
+  std::vector<trees::SpeciesDynamics> dynamics = test::three_model_dynamics();
   host::ForestStages stages{cc, spec, forest, nullptr, dynamics};
 
   explicit ElementFixture(host::ComputeContext& c) : cc(c) {
@@ -132,7 +121,7 @@ struct ElementFixture {
     const trees::SpeciesBasis& basis = forest.species_of(k);
     const auto critical =
         trees::critical_moments(basis.stem_loads(), settings.strengths[std::size_t(species(k))]);
-    if (species(k) == kModal) {
+    if (species(k) == test::kModal) {
       Eigen::VectorXd q(basis.modes().mode_count());
       for (int i = 0; i < q.size(); ++i) q(i) = modal.q[std::size_t(forest.mode_offset(k) + i)];
       return trees::tree_load(basis.stem_loads(), critical, scale(k), q);
@@ -393,7 +382,7 @@ TEST_CASE(
     const trees::TreeLoad load = f.reference(k, settings, modal);
     overturning[f.species(k)].push_back(load.overturning);
     breaking[f.species(k)].push_back(load.utilisation.maxCoeff());
-    if (f.species(k) == kSprings)
+    if (f.species(k) == test::kSprings)
       for (const Eigen::Vector3d& theta :
            branches.download_angles(k, f.forest.species_of(k).skeleton().size()))
         largest_angle = std::max(largest_angle, theta.norm());
@@ -405,12 +394,12 @@ TEST_CASE(
     return v[v.size() / 2];
   };
   const auto largest = [](const std::vector<double>& v) { return *std::max_element(v.begin(), v.end()); };
-  settings.strengths[kRigid].anchorage *= 0.95 * median(overturning[kRigid]);
-  settings.strengths[kRigid].modulus_of_rupture *= 100.0 * largest(breaking[kRigid]);
-  settings.strengths[kSprings].modulus_of_rupture *= 0.95 * median(breaking[kSprings]);
-  settings.strengths[kSprings].anchorage *= 100.0 * largest(overturning[kSprings]);
-  settings.strengths[kModal].modulus_of_rupture *= 100.0 * largest(breaking[kModal]);
-  settings.strengths[kModal].anchorage *= 100.0 * largest(overturning[kModal]);
+  settings.strengths[test::kRigid].anchorage *= 0.95 * median(overturning[test::kRigid]);
+  settings.strengths[test::kRigid].modulus_of_rupture *= 100.0 * largest(breaking[test::kRigid]);
+  settings.strengths[test::kSprings].modulus_of_rupture *= 0.95 * median(breaking[test::kSprings]);
+  settings.strengths[test::kSprings].anchorage *= 100.0 * largest(overturning[test::kSprings]);
+  settings.strengths[test::kModal].modulus_of_rupture *= 100.0 * largest(breaking[test::kModal]);
+  settings.strengths[test::kModal].anchorage *= 100.0 * largest(overturning[test::kModal]);
   std::vector<trees::TreeLoad> expected;
   for (int k = 0; k < f.forest.instance_count(); ++k) expected.push_back(f.reference(k, settings, modal));
 
@@ -459,13 +448,13 @@ TEST_CASE(
     for (int a = 0; a < 3; ++a) CHECK(r.top_wind(a) == sampled[std::size_t(3 * top + a)]);
   }
   WARN("tree_loads, element trees: failed "
-       << failed[kRigid] << " rigid (of 4), " << failed[kSprings] << " springs (of 4), " << failed[kModal]
-       << " modal; largest utilisation error: rigid " << worst_error[kRigid] << ", springs "
-       << worst_error[kSprings] << ", modal " << worst_error[kModal]);
+       << failed[test::kRigid] << " rigid (of 4), " << failed[test::kSprings] << " springs (of 4), "
+       << failed[test::kModal] << " modal; largest utilisation error: rigid " << worst_error[test::kRigid]
+       << ", springs " << worst_error[test::kSprings] << ", modal " << worst_error[test::kModal]);
   for (const double error : worst_error) CHECK(error < kUtilisationTolerance);
-  CHECK(failed[kRigid] == 2);
-  CHECK(failed[kSprings] == 2);
-  CHECK(failed[kModal] == 0);
+  CHECK(failed[test::kRigid] == 2);
+  CHECK(failed[test::kSprings] == 2);
+  CHECK(failed[test::kModal] == 0);
   CHECK(broken > 0);
   CHECK(overturned > 0);
   const auto down = std::count_if(records.begin(), records.end(), [](const trees::TreeDamageRecord& r) {
@@ -481,7 +470,7 @@ TEST_CASE(
   const std::vector<float> later_utilisation = damage.download_utilisation();
   int held = 0;
   for (int k = 0; k < f.forest.instance_count(); ++k) {
-    if (f.species(k) == kModal) continue;
+    if (f.species(k) == test::kModal) continue;
     INFO("tree " << k);
     const bool is_down = later[std::size_t(k)].state != trees::TreeState::standing;
     held += is_down;
@@ -506,7 +495,7 @@ TEST_CASE(
   f.stages.enqueue_damage_check(3.05f);
   const std::vector<float> stepped = branches.download_joints();
   for (int k = 0; k < f.forest.instance_count(); ++k) {
-    if (f.species(k) == kModal || later[std::size_t(k)].state == trees::TreeState::standing) continue;
+    if (f.species(k) == test::kModal || later[std::size_t(k)].state == trees::TreeState::standing) continue;
     const int entries = f.forest.species_of(k).skeleton().size();
     for (int i = 0; i < FW_JOINT_FLOATS * entries; ++i)
       CHECK(stepped[std::size_t(FW_JOINT_FLOATS * branches.entry_offset(k) + i)] == 0.0f);
@@ -525,7 +514,7 @@ TEST_CASE("tree_loads: without consequences a failed element tree keeps its join
   // a thousand times the preset's stand.
   for (int sp = 0; sp < 3; ++sp) {
     trees::TreeStrength strength = trees::strength_preset(trees::StrengthPreset::scots_pine);
-    const double factor = sp == kModal ? 1e3 : 1e-6;
+    const double factor = sp == test::kModal ? 1e3 : 1e-6;
     strength.modulus_of_rupture *= factor;
     strength.anchorage *= factor;
     settings.strengths.push_back(strength);
@@ -540,7 +529,7 @@ TEST_CASE("tree_loads: without consequences a failed element tree keeps its join
   const std::vector<trees::TreeDamageRecord> records = f.stages.damage()->download_records();
   for (int k = 0; k < f.forest.instance_count(); ++k) {
     const trees::TreeDamageRecord& r = records[std::size_t(k)];
-    if (f.species(k) == kModal) {
+    if (f.species(k) == test::kModal) {
       CHECK(r.state == trees::TreeState::standing);
       continue;
     }

@@ -1,6 +1,7 @@
 // What the tests of the element tree models share (tests/trees/RigidBranches_test.cpp,
-// tests/trees/SpringBranches_test.cpp, tests/validation/TreeModels_test.cpp): every element's load in a
-// uniform wind, the highest node, and the peak of a series' spectrum.
+// tests/trees/SpringBranches_test.cpp, tests/validation/TreeModels_test.cpp, and the kernels' tree_branches
+// and tree_loads tests): every element's load in a uniform wind, the highest node, the peak of a series'
+// spectrum, and one species of each model.
 #pragma once
 
 #include <Eigen/Core>
@@ -11,6 +12,7 @@
 
 #include "trees/BranchElements.hpp"
 #include "trees/Skeleton.hpp"
+#include "trees/TreeDynamics.hpp"
 
 namespace fw::test {
 
@@ -20,6 +22,22 @@ inline std::vector<Eigen::Vector3d> uniform_loads(const trees::BranchElements& e
   std::vector<Eigen::Vector3d> loads(std::size_t(elements.size()), Eigen::Vector3d::Zero());
   for (int j = 1; j < elements.size(); ++j) loads[std::size_t(j)] = elements.load(j, wind);
   return loads;
+}
+
+/// Species 0, 1 and 2 of a forest of the three models (docs/tree-models.md), as three_model_dynamics gives
+/// them.
+inline constexpr int kRigid = 0, kSprings = 1, kModal = 2;
+
+/// Rigid bodies (damping 0.08), springs (capped at 25 degrees, sway 0.5) and modal: the kernel tests' three
+/// species, settings away from the defaults so that each enters the result.
+inline std::vector<trees::SpeciesDynamics> three_model_dynamics() {
+  std::vector<trees::SpeciesDynamics> dynamics(3);
+  dynamics[kRigid].model = trees::TreeDynamics::rigid_bodies;
+  dynamics[kRigid].rigid_bodies.damping_ratio = 0.08;
+  dynamics[kSprings].model = trees::TreeDynamics::springs;
+  dynamics[kSprings].springs.max_angle_deg = 25.0;
+  dynamics[kSprings].springs.sway_amplitude = 0.5;
+  return dynamics;
 }
 
 /// The highest node (the first of equal heights): the tip that probes.csv reports.

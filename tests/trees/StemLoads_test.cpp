@@ -118,7 +118,7 @@ TEST_CASE("StemLoads: along_stem carries the sections' values to every stem node
         double(int(i) - at[std::size_t(j)]) / double(*above - at[std::size_t(j)]);  // equal elements
     CHECK(along[i] == Approx(j + t).margin(1e-6));
   }
-  CHECK_THROWS_AS(stem.along_stem({1.0f}), std::invalid_argument);
+  CHECK_THROWS_AS(stem.along_stem(std::vector<float>{1.0f}), std::invalid_argument);
 }
 
 TEST_CASE("StemLoads: a uniformly loaded cantilever gives M = w (L - x)^2 / 2 at every section", "[trees]") {
