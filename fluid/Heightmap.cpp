@@ -23,22 +23,8 @@ namespace {
 // Caps the allocation a corrupt header could ask for (2^28 doubles = 2 GiB).
 constexpr std::int64_t kMaxSamples = std::int64_t(1) << 28;
 
-// Header keys of an ESRI ASCII grid, lower case (the format is case-insensitive).
-constexpr const char* kEsriKeys[] = {"ncols",     "nrows",     "xllcorner", "xllcenter",
-                                     "yllcorner", "yllcenter", "cellsize",  "nodata_value"};
-
-bool is_esri_key(const std::string& lower_case) {
-  return std::find(std::begin(kEsriKeys), std::end(kEsriKeys), lower_case) != std::end(kEsriKeys);
-}
-
 bool is_space(char c) {
   return std::isspace(static_cast<unsigned char>(c)) != 0;
-}
-
-std::string lower(std::string_view text) {
-  std::string out(text);
-  for (char& c : out) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-  return out;
 }
 
 // Tokens go into error messages; a binary file must not fill the terminal with garbage.
@@ -55,8 +41,8 @@ struct Token {
   int line = 0;  // 1-based
 };
 
-// Whitespace-separated tokens with line numbers. PGM allows '#' comments to the end of the line; ESRI has
-// none.
+// Whitespace-separated tokens with line numbers. PGM allows '#' comments to the end of the line; the sniff
+// of the magic number reads without them.
 class Scanner {
  public:
   Scanner(const std::string& path, std::string_view data, bool comments)
@@ -234,112 +220,13 @@ Heightmap read_pgm(const std::string& path, Scanner& scan, const Token& magic, d
                    south_rows_first(image, width));
 }
 
-Heightmap read_esri(Scanner& scan) {
-  constexpr std::string_view kKeyList =
-      "ncols, nrows, xllcorner, xllcenter, yllcorner, yllcenter, cellsize, NODATA_value";
-  struct Entry {
-    Token value;
-    int line = 0;  // 0: absent
-  };
-  Entry entries[std::size(kEsriKeys)];
-
-  // The header ends at the first token that does not start with a letter.
-  while (true) {
-    const auto peeked = scan.peek();
-    if (!peeked || !std::isalpha(static_cast<unsigned char>(peeked->text.front()))) break;
-    const Token key = *scan.next();
-    const std::string name = lower(key.text);
-    const auto it = std::find(std::begin(kEsriKeys), std::end(kEsriKeys), name);
-    if (it == std::end(kEsriKeys))
-      scan.fail(key.line,
-                fmt::format("expected an ESRI header key ({}), got '{}'", kKeyList, printable(key.text)));
-    Entry& entry = entries[it - std::begin(kEsriKeys)];
-    if (entry.line != 0)
-      scan.fail(key.line,
-                fmt::format("{}: duplicate header key, first given on line {}", key.text, entry.line));
-    const auto value = scan.next();
-    if (!value || value->line != key.line)
-      scan.fail(key.line, fmt::format("{}: expected a value on the same line", key.text));
-    entry = {*value, key.line};
-  }
-  auto find = [&](const char* key) -> const Entry& {
-    return entries[std::find(std::begin(kEsriKeys), std::end(kEsriKeys), std::string_view(key)) -
-                   std::begin(kEsriKeys)];
-  };
-  const auto first_data = scan.peek();
-  const int header_end_line = first_data ? first_data->line : scan.last_line();
-  auto required = [&](const char* key, const char* alternative) -> const Entry& {
-    const Entry& entry = find(key);
-    if (alternative) {
-      const Entry& other = find(alternative);
-      if (entry.line != 0 && other.line != 0)
-        scan.fail(other.line, fmt::format("{}: expected either {} or {}, got both (line {})", alternative,
-                                          key, alternative, entry.line));
-      if (entry.line == 0 && other.line != 0) return other;
-      if (entry.line == 0)
-        scan.fail(header_end_line,
-                  fmt::format("expected header key {} or {} before the data", key, alternative));
-    } else if (entry.line == 0) {
-      scan.fail(header_end_line, fmt::format("expected header key {} before the data", key));
-    }
-    return entry;
-  };
-  auto number = [&](const Entry& entry, std::string_view what, std::string_view expected, bool positive) {
-    const auto value = base::parse_finite(entry.value.text);
-    if (!value || (positive && !(*value > 0.0)))
-      scan.fail(entry.value.line,
-                fmt::format("{}: expected {}, got '{}'", what, expected, printable(entry.value.text)));
-    return *value;
-  };
-
-  constexpr std::string_view kPositive = "a positive integer";
-  const Entry& ncols_entry = required("ncols", nullptr);
-  const Entry& nrows_entry = required("nrows", nullptr);
-  const std::int64_t ncols = parse_integer(scan, ncols_entry.value, "ncols", 1, 1 << 24, kPositive);
-  const std::int64_t nrows = parse_integer(scan, nrows_entry.value, "nrows", 1, 1 << 24, kPositive);
-  check_sample_count(scan, nrows_entry.line, ncols, nrows);
-  const Entry& x_entry = required("xllcorner", "xllcenter");
-  const Entry& y_entry = required("yllcorner", "yllcenter");
-  const Entry& cell_entry = required("cellsize", nullptr);
-  const double cell_size = number(cell_entry, "cellsize", "a positive number", true);
-  // The *corner keys give the outer corner of the south-west cell, the *center keys its centre.
-  const bool x_corner = &x_entry == &find("xllcorner");
-  const bool y_corner = &y_entry == &find("yllcorner");
-  const double x0 = number(x_entry, x_corner ? "xllcorner" : "xllcenter", "a finite number", false) +
-                    (x_corner ? 0.5 * cell_size : 0.0);
-  const double y0 = number(y_entry, y_corner ? "yllcorner" : "yllcenter", "a finite number", false) +
-                    (y_corner ? 0.5 * cell_size : 0.0);
-  const Entry& nodata_entry = find("nodata_value");
-  const bool has_nodata = nodata_entry.line != 0;
-  const double nodata = has_nodata ? number(nodata_entry, "NODATA_value", "a finite number", false) : 0.0;
-
-  const std::int64_t count = ncols * nrows;
-  std::vector<double> file_order;  // north row first
-  file_order.reserve(text_samples_room(scan, count));
-  for (std::int64_t i = 0; i < count; ++i) {
-    const auto token = scan.next();
-    if (!token)
-      scan.fail(scan.last_line(),
-                fmt::format("truncated data: expected {} values ({} columns x {} rows), got {}", count, ncols,
-                            nrows, i));
-    const auto value = base::parse_finite(token->text);
-    if (!value)
-      scan.fail(token->line, fmt::format("row {}, column {}: expected a height in metres, got '{}'",
-                                         i / ncols + 1, i % ncols + 1, printable(token->text)));
-    file_order.push_back((has_nodata && *value == nodata) ? 0.0 : *value);
-  }
-  if (const auto extra = scan.next())
-    scan.fail(extra->line,
-              fmt::format("wrong number of values: expected {} ({} columns x {} rows), got more: '{}'", count,
-                          ncols, nrows, printable(extra->text)));
-  return Heightmap(int(ncols), int(nrows), cell_size, {x0, y0}, south_rows_first(file_order, ncols));
-}
-
 }  // namespace
 
 Heightmap Heightmap::read(const std::string& path, double cell_size_m, double max_height_m) {
   const std::string data = read_file(path);
-  constexpr std::string_view kExpected = "expected a PGM (P2/P5) or ESRI ASCII grid";
+  // Georeferenced rasters (ESRI ASCII grids, GeoTIFFs) are GDAL's to read (io/gis/GeoRaster.hpp).
+  constexpr std::string_view kExpected =
+      "expected a PGM image (P2/P5; an ESRI grid or a GeoTIFF is read as terrain.raster)";
   // Sniff the first token without comment handling: the format decides whether '#' means anything.
   Scanner sniff(path, data, false);
   const auto first = sniff.next();
@@ -348,10 +235,6 @@ Heightmap Heightmap::read(const std::string& path, double cell_size_m, double ma
     Scanner scan(path, data, true);
     const Token magic = *scan.next();
     return read_pgm(path, scan, magic, cell_size_m, max_height_m);
-  }
-  if (is_esri_key(lower(first->text))) {
-    Scanner scan(path, data, false);
-    return read_esri(scan);
   }
   sniff.fail(first->line, fmt::format("{}, got '{}'", kExpected, printable(first->text)));
 }

@@ -1,5 +1,6 @@
-// A terrain height field: samples on a regular horizontal lattice, read from a PGM image or an ESRI ASCII
-// grid, interpolated bilinearly. SolidMap::add_terrain turns it into solid cells.
+// A terrain height field: samples on a regular horizontal lattice, interpolated bilinearly, from a PGM image
+// (read here) or from a georeferenced raster (read through GDAL by the scenario's terrain.raster,
+// io/scenario/Terrain.cpp). SolidMap::add_terrain turns it into solid cells.
 //
 //   auto terrain = fw::fluid::Heightmap::read("hills.pgm", /*cell_size_m=*/4.0, /*max_height_m=*/20.0);
 //   double z = terrain.height_at(120.0, 80.0);   // metres above the domain floor at world (x, y)
@@ -7,15 +8,12 @@
 // Coordinates are the domain's world frame (x east, y north, metres). Heights are metres above the domain's
 // floor (GridSpec::origin[2]), not absolute elevations.
 //
-// Formats, chosen from the content, never from the extension:
-// - PGM, P2 (ASCII) or P5 (binary; 16-bit big-endian samples when maxval > 255), maxval 1..65535, '#'
-//   comments in the header. A pixel v becomes v / maxval * max_height_m metres. Pixels are cell_size_m apart;
-//   the image's first row is the north edge, columns run east, and the south-west pixel's centre lies at
-//   world (0.5, 0.5) * cell_size_m, so the image covers [0, columns * cell_size_m] x [0, rows * cell_size_m].
-// - ESRI ASCII grid: header keys ncols, nrows, xllcorner|xllcenter, yllcorner|yllcenter, cellsize and the
-//   optional NODATA_value (case-insensitive), then nrows rows of ncols values, north row first. Heights are
-//   the metres written in the file; cell size and placement come from the header, so the cell_size_m and
-//   max_height_m arguments of read() are ignored. NODATA cells become height 0.
+// The PGM reader takes P2 (ASCII) or P5 (binary; 16-bit big-endian samples when maxval > 255), maxval
+// 1..65535, '#' comments in the header, chosen from the content, never from the extension. A pixel v becomes
+// v / maxval * max_height_m metres. Pixels are cell_size_m apart; the image's first row is the north edge,
+// columns run east, and the south-west pixel's centre lies at world (0.5, 0.5) * cell_size_m, so the image
+// covers [0, columns * cell_size_m] x [0, rows * cell_size_m]. (GDAL's PNM driver reads P5 only, so both
+// forms stay here, one reader.)
 //
 // Every read error throws std::runtime_error("FILE:LINE: what was expected, got what"), or
 // "FILE: binary data: ..." inside P5 pixel data.
@@ -29,8 +27,8 @@ namespace fw::fluid {
 
 class Heightmap {
  public:
-  /// Reads a PGM (P2/P5) or ESRI ASCII grid, see the header comment. cell_size_m (> 0) and max_height_m
-  /// (>= 0) apply to PGM only. Throws std::runtime_error naming the file and line.
+  /// Reads a PGM (P2/P5), see the header comment; cell_size_m > 0, max_height_m >= 0. Throws
+  /// std::runtime_error naming the file and line.
   static Heightmap read(const std::string& path, double cell_size_m, double max_height_m);
 
   /// A height field from samples already in memory. heights_m holds columns * rows values, row-major with

@@ -51,6 +51,9 @@ struct WindScenario {
   std::optional<TerrainSettings> terrain;
   SolverSettings solver;
 
+  /// The site a terrain.raster places the run on, or nullptr (io/settings/SiteSettings.hpp).
+  const SiteSettings* site() const { return terrain && terrain->site ? &*terrain->site : nullptr; }
+
   /// The ambient wind at the reference height at time t (s), m/s, x east, y north: the wind blows TOWARD
   /// direction + 180 degrees, so v = -speed * (sin theta, cos theta, 0). Direction 270 blows toward +x.
   std::array<double, 3> wind_vector(double t) const;

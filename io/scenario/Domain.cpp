@@ -18,7 +18,11 @@ namespace fw::io::reader {
 
 void read_domain(const Loader& loader, const Field& field, DomainSettings& domain) {
   const Section<schema::kDomainKeys, "domain"> map(loader, field);
-  if (const auto origin = map.get<"origin">()) domain.origin = loader.vector<3>(*origin);
+  domain.origin_line = field.line;
+  if (const auto origin = map.get<"origin">()) {
+    domain.origin = loader.vector<3>(*origin);
+    domain.origin_line = origin->line;
+  }
   const Field size = map.require<"size">();
   domain.size = loader.vector<3>(size);
   constexpr std::size_t kVertical = 2;

@@ -88,6 +88,9 @@ Scenario load_scenario(const std::filesystem::path& file) {
   if (const auto seed = top.get<"seed">()) scenario.seed = loader.seed(*seed);
   read_time(loader, top.require<"time">(), scenario.time);
   read_domain(loader, top.require<"domain">(), scenario.domain);
+  // A raster places the run on its site and makes every later position local (io/scenario/Terrain.hpp).
+  if (const auto terrain = top.get<"terrain">())
+    scenario.terrain = read_terrain(loader, *terrain, scenario.domain);
   const auto boundaries = top.get<"boundaries">();
   if (boundaries)
     read_boundaries(loader, *boundaries, scenario.domain, scenario.boundaries,
@@ -99,8 +102,6 @@ Scenario load_scenario(const std::filesystem::path& file) {
                              scenario.ground_roughness_length);
   if (const auto events = top.get<"events">()) scenario.events = read_events(loader, *events, scenario.wind);
   if (const auto obstacles = top.get<"obstacles">()) scenario.obstacles = read_obstacles(loader, *obstacles);
-  if (const auto terrain = top.get<"terrain">())
-    scenario.terrain = read_terrain(loader, *terrain, scenario.domain);
   if (const auto forest = top.get<"forest">())
     scenario.forest = read_forest(loader, *forest, scenario.domain, scenario.terrain, scenario.seed);
   if (const auto solver = top.get<"solver">()) read_solver(loader, *solver, scenario.solver);

@@ -168,6 +168,9 @@ class Loader {
   Loader(std::string file, std::filesystem::path folder)
       : file_(std::move(file)), folder_(std::move(folder)) {}
 
+  /// The scenario file, as its messages name it.
+  const std::string& file() const { return file_; }
+
   [[noreturn]] void fail(const Field& field, const std::string& message) const;
   /// "WHAT expected, got VALUE".
   [[noreturn]] void expected(const Field& field, const std::string& what) const;

@@ -1,5 +1,6 @@
-// The reader of a scenario's terrain (Terrain.cpp), which load_scenario (Load.cpp) calls once the domain is
-// read: a PGM is placed at the domain's corner.
+// The reader of a scenario's terrain (Terrain.cpp), which load_scenario (Load.cpp) calls right after the
+// domain, before anything is placed in it: a PGM is placed at the domain's corner; a raster GDAL reads
+// (terrain.raster) makes the run's site, and the domain's origin becomes the local (0, 0, 0).
 //
 //   scenario.terrain = read_terrain(loader, *terrain, scenario.domain);
 #pragma once
@@ -10,6 +11,7 @@
 
 namespace fw::io::reader {
 
-TerrainSettings read_terrain(const Loader& loader, const Field& field, const DomainSettings& domain);
+/// Reads the terrain; with a raster, moves domain.origin into the site and sets it to (0, 0, 0).
+TerrainSettings read_terrain(const Loader& loader, const Field& field, DomainSettings& domain);
 
 }  // namespace fw::io::reader

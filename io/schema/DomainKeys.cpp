@@ -14,7 +14,9 @@ namespace {
 constexpr KeyDocs kDocs[] = {
     {.path = "domain.origin",
      .bounds_why = why::kEarth,
-     .description = "The minimum (south-west, bottom) corner. Its z is the domain floor."},
+     .description = "The minimum (south-west, bottom) corner. Its z is the domain floor. With a "
+                    "`terrain.raster` it is in the raster's CRS, x and y of the corner and the floor's "
+                    "elevation, and the scenario's other positions count from it (docs/gis.md)."},
     {.path = "domain.size",
      .constraint = "each a whole multiple of `cell_size` (to {0} relative), at least one cell; z at most {1} "
                    "(the troposphere, where weather happens, ends below 20 km)",

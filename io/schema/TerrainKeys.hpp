@@ -1,6 +1,6 @@
-// The keys of a scenario's terrain section: the heightmap and, for a PGM, its scale.
+// The keys of a scenario's terrain section: a PGM heightmap and its scale, or a raster GDAL reads.
 //
-//   schema::key(schema::kTerrainKeys, "terrain.heightmap").required;   // true
+//   schema::key(schema::kTerrainKeys, "terrain.raster").type;   // Type::file
 //
 // Each map's keys stand in the order the loader's messages and the docs list them. Each key's prose is in
 // TerrainKeys.cpp (terrain_docs).
@@ -14,10 +14,10 @@
 namespace fw::io::schema {
 
 inline constexpr Key kTerrainKeys[] = {
-    {.path = "terrain.heightmap",
+    {.path = "terrain.heightmap", .type = Type::file, .noun = "a file path (PGM image)"},
+    {.path = "terrain.raster",
      .type = Type::file,
-     .required = true,
-     .noun = "a file path (PGM or ESRI ASCII grid)"},
+     .noun = "a file path (a raster GDAL reads: GeoTIFF, ESRI ASCII grid, ...)"},
     {.path = "terrain.cell_size",
      .type = Type::number,
      .unit = "m",

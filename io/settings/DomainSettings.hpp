@@ -13,10 +13,12 @@
 namespace fw::io {
 
 struct DomainSettings {
-  /// minimum corner, m
+  /// minimum corner, m; (0, 0, 0) once a terrain.raster has taken the file's origin for the site
+  /// (TerrainSettings::site)
   std::array<double, 3> origin{schema::key(schema::kDomainKeys, "domain.origin").number,
                                schema::key(schema::kDomainKeys, "domain.origin").number,
                                schema::key(schema::kDomainKeys, "domain.origin").number};
+  int origin_line = 0;                  ///< the line of origin in the file (of domain when not given)
   std::array<double, 3> size{0, 0, 0};  ///< extent along x, y, z, m (> 0)
   double cell_size = 0.0;               ///< h, m (> 0); cells are cubic
   std::array<int, 3> cells{0, 0, 0};    ///< round(size / h); size is a whole multiple of h

@@ -214,25 +214,17 @@ TEST_CASE("SolidMap: terrain from 8-bit and 16-bit P5 PGMs marks the same column
   }
 }
 
-TEST_CASE("SolidMap: terrain from an ESRI grid is placed by xllcorner/yllcorner in world coordinates") {
-  TempDir dir;
-  // Samples 4 m apart at x = 12, 16 and y = 22 (south row: 1, 5 m), 26 (north row: 3 m, NODATA).
-  const std::string path = dir.write("hills.asc",
-                                     "ncols 2\n"
-                                     "nrows 2\n"
-                                     "xllcorner 10\n"
-                                     "yllcorner 20\n"
-                                     "cellsize 4\n"
-                                     "NODATA_value -9999\n"
-                                     "3 -9999\n"
-                                     "1 5\n");
+TEST_CASE("SolidMap: terrain samples are placed by their south-west centre in world coordinates") {
+  // Samples 4 m apart at x = 12, 16 and y = 22 (south row: 1, 5 m), 26 (north row: 3, 0 m), as a raster
+  // with its corner at (10, 20) gives them (io/scenario/Terrain.cpp).
+  const Heightmap terrain(2, 2, 4.0, {12.0, 22.0}, {1.0, 5.0, 3.0, 0.0});
   SolidMap map(grid(8, 8, 8, 1.0, {10, 20, 0}));
-  map.add_terrain(Heightmap::read(path, 1.0, 1.0));
+  map.add_terrain(terrain);
   CHECK(column_height(map, 0, 0) == 1);  // south-west: 1 m
   CHECK(column_height(map, 1, 1) == 1);
   CHECK(column_height(map, 7, 0) == 5);  // south-east: 5 m
   CHECK(column_height(map, 0, 7) == 3);  // north-west: 3 m
-  CHECK(column_height(map, 7, 7) == 0);  // north-east: NODATA, flat ground
+  CHECK(column_height(map, 7, 7) == 0);  // north-east: 0 m, flat ground
   // (13.5, 23.5): bilinear H = 2.27 m.
   CHECK(column_height(map, 3, 3) == 2);
 }

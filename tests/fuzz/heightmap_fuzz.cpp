@@ -1,4 +1,4 @@
-// Fuzz target: the terrain reader, PGM (P2, P5) and ESRI ASCII grid (fluid/Heightmap), chosen from content.
+// Fuzz target: the PGM terrain reader, P2 and P5 (fluid/Heightmap), chosen from content.
 // Feeds: the bytes as scratch/terrain, read with the cell size and height of scenarios/hills.pgm's use.
 // Checks: a terrain it reads has finite heights at its corners and centre.
 // Clean refusals: std::runtime_error whose message names the file ("FILE:LINE: ...", the header comment's

@@ -52,7 +52,7 @@ obstacles:
   - box: {name: barn, center: [300, 100, 6], size: [30, 15, 12], yaw: 15.0}
   - cylinder: {name: silo, base: [340, 60, 0], radius: 4.0, height: 20.0}
   - sphere: {name: dome, center: [420, 40, 0], radius: 10.0}
-terrain: {heightmap: hills.pgm, cell_size: 4.0, max_height: 20.0}   # optional; PGM or ESRI ASCII grid
+terrain: {heightmap: hills.pgm, cell_size: 4.0, max_height: 20.0}   # optional; a PGM, or a raster
 forest:
   two_way_coupling: true
   species:
@@ -320,10 +320,8 @@ TEST_CASE(
 
 TEST_CASE("load_scenario: values other than the defaults are read for every optional key", "[scenario]") {
   fw::test::TempDir dir("fw_scenario");
-  // ESRI grid, north row first: centres x = 5, 15, 25 and y = 15 (north), 5 (south).
-  dir.write("ground.asc",
-            "ncols 3\nnrows 2\nxllcorner 0\nyllcorner 0\ncellsize 10\nNODATA_value -9999\n"
-            "1 2 3\n4 5 6\n");
+  // A PGM at the domain's corner (-10, 0), 10 m pixels: centres x = -5, 5, 15, 25, heights 0, 1, 2, 3 m.
+  dir.write("ground.pgm", ramp_pgm(4, 2));
   dir.write("willow.tree", kTreeFile);
   dir.write("birch_qsm.txt", kQsmFile);
   const fs::path results = fs::path(dir.path()) / "results";
@@ -343,7 +341,7 @@ events:
 obstacles:
   - sphere: {{name: boulder, center: [0, 5, 5], radius: 1.5}}
   - box: {{name: shed, center: [5, 5, 6], size: [2, 3, 2]}}
-terrain: {{heightmap: ground.asc}}
+terrain: {{heightmap: ground.pgm, cell_size: 10, max_height: 3}}
 forest:
   two_way_coupling: false
   integrator: semi_implicit
@@ -416,11 +414,10 @@ output:
   CHECK(shed->size == std::array<double, 3>{2, 3, 2});
   CHECK(shed->yaw_rad == 0.0);  // not given
 
-  // An ESRI grid needs neither cell_size nor max_height.
   REQUIRE(s.terrain.has_value());
-  CHECK(s.terrain->cell_size == 0.0);
-  CHECK(s.terrain->map->columns() == 3);
-  CHECK(s.terrain->map->cell_size() == 10.0);
+  CHECK(s.terrain->cell_size == 10.0);
+  CHECK(s.terrain->map->columns() == 4);
+  CHECK_FALSE(s.terrain->site.has_value());  // an image places no site
 
   const fw::io::ForestSettings& forest = s.forest;
   CHECK_FALSE(forest.two_way_coupling);
@@ -453,11 +450,11 @@ output:
   CHECK(stand.layout.seed == 99);
 
   REQUIRE(forest.trees.size() == 2);
-  // On the ESRI ground: x = 15 is column 1, y = 10 halfway between the south (5) and north (2) rows, and the
-  // terrain counts from the domain floor z = 5. Tolerance: bilinear in doubles, 1e-12 m.
+  // On the ramp: x = 15 is column 2, 2 m, and the terrain counts from the domain floor z = 5. Tolerance:
+  // bilinear in doubles, 1e-12 m.
   CHECK_FALSE(forest.trees[0].height_given);
   CHECK(forest.trees[0].species_index == 0);
-  CHECK(forest.trees[0].position[2] == Approx(5.0 + 3.5).margin(1e-12));
+  CHECK(forest.trees[0].position[2] == Approx(5.0 + 2.0).margin(1e-12));
   CHECK(forest.trees[1].species == "birch");
   CHECK(forest.trees[1].species_index == 1);
   CHECK(forest.trees[1].height_given);
@@ -1047,10 +1044,10 @@ TEST_CASE("load_scenario: a missing heightmap names the heightmap key's line", "
   dir.write("hills.pgm", ramp_pgm(5, 5));
   expect_error(dir, "no_max_height", kBase + "terrain:\n  heightmap: hills.pgm\n  cell_size: 4\n", 6,
                "terrain.max_height", "needed for a PGM heightmap");
-  // A file that is neither PGM nor ESRI grid.
+  // A file that is not a PGM.
   dir.write("notes.txt", "hills to the east\n");
   expect_error(dir, "not_a_heightmap", kBase + "terrain: {heightmap: notes.txt}\n", 5, "terrain.heightmap",
-               "a PGM or ESRI ASCII grid");
+               "a PGM image");
 }
 
 TEST_CASE("load_scenario: a YAML syntax error reports key (yaml) and its line", "[scenario]") {

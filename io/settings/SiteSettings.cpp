@@ -1,0 +1,13 @@
+#include "io/settings/SiteSettings.hpp"
+
+#include <fmt/format.h>
+
+namespace fw::io {
+
+std::string SiteSettings::crs_label() const {
+  if (!crs) return "none";
+  if (crs->epsg) return fmt::format("EPSG:{} ({})", *crs->epsg, crs->name);
+  return crs->name.empty() ? "a CRS without a name" : crs->name;
+}
+
+}  // namespace fw::io
