@@ -39,6 +39,46 @@ std::string subgrid_words(const fluid::WindSettings& settings) {
   return fmt::format("smagorinsky, C_s {:.3g}", settings.smagorinsky_constant);
 }
 
+// The inventory (docs/gis.md): what was placed, what lies outside, and the girth classes per species.
+void print_inventory(const SimulationPlan& plan, std::ostream& out) {
+  const InventoryPlan& inventory = *plan.inventory;
+  out << fmt::format("inventory {}: {} trees, {} in the domain, {} outside it (not placed){}\n",
+                     inventory.file, inventory.rows, inventory.placed, inventory.outside.size(),
+                     inventory.outside.empty() ? "" : ":");
+  constexpr std::size_t kListed = 5;  // the first few by name; the rest counted
+  for (std::size_t k = 0; k < std::min(inventory.outside.size(), kListed); ++k) {
+    const io::InventoryTree& tree = inventory.outside[k];
+    out << fmt::format("  {} (line {}) at x {}, y {}\n", tree.id, tree.line, tree.x, tree.y);
+  }
+  if (inventory.outside.size() > kListed)
+    out << fmt::format("  and {} more\n", inventory.outside.size() - kListed);
+  // Per scenario species: its inventory trees over its girth classes.
+  std::vector<std::string> names;
+  for (const io::SpeciesSummary& s : plan.species)
+    if (s.girth == 1.0 && std::find(names.begin(), names.end(), s.species) == names.end())
+      names.push_back(s.species);
+  for (const std::string& name : names) {
+    int classes = 0, trees = 0;
+    double low = 1.0, high = 1.0, low_hz = 0.0, high_hz = 0.0;
+    for (const io::SpeciesSummary& s : plan.species) {
+      if (s.species != name || s.girth == 1.0) continue;
+      if (classes++ == 0) low_hz = high_hz = s.first_hz;
+      trees += s.trees;
+      low = std::min(low, s.girth);
+      high = std::max(high, s.girth);
+      low_hz = std::min(low_hz, s.first_hz);
+      high_hz = std::max(high_hz, s.first_hz);
+    }
+    if (classes == 0) continue;
+    out << fmt::format(
+        "  {}: {} trees in {} girth classes of their own, radii {:.2f} to {:.2f} times the "
+        "template's, f1 {:.3f} to {:.3f} Hz at the template's height\n",
+        name, trees, classes, low, high, low_hz, high_hz);
+  }
+  out << fmt::format("  each tree its measured height, and its dbh within {:.2f}%\n",
+                     100.0 * inventory.largest_dbh_error);
+}
+
 // A stand's density as foresters give it (trees/StandDensity.hpp): LAI over its region, with the leaf area
 // index of each crown that makes it, and FAI over its grid columns.
 std::string stand_line(std::size_t index, const StandPlan& stand) {
@@ -108,6 +148,7 @@ void print_plan(const SimulationPlan& plan, std::ostream& out) {
   }
   for (std::size_t i = 0; i < plan.species.size(); ++i) {
     const io::SpeciesSummary& s = plan.species[i];
+    if (s.girth != 1.0) continue;  // an inventory's girth class: summed up below
     const int leaves = plan.coupling.leaves[i].count();
     out << fmt::format(
         "species {}: {}, {} nodes, {} modes from {:.3f} Hz, {} wind samples, {} trees{} (basis {})\n", s.name,
@@ -115,6 +156,7 @@ void print_plan(const SimulationPlan& plan, std::ostream& out) {
         leaves > 0 ? fmt::format(", {} leaves a tree", leaves) : "", s.cache);
     if (plan.strengths[i]) out << "  " << strength_line(*plan.strengths[i]) << "\n";
   }
+  if (plan.inventory) print_inventory(plan, out);
   if (plan.coupling.damage.enabled)
     out << fmt::format("damage: on; {}\n",
                        plan.coupling.damage.consequences

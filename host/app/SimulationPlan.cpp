@@ -18,7 +18,7 @@ SimulationPlan plan_simulation(const io::Scenario& scenario, const trees::BasisC
   plan.purpose = purpose;
   plan_wind(scenario, ranks, plan);
   plan_turbulence(scenario.wind, plan);
-  plan_forest(scenario, plan_species(scenario, cache, log, plan), plan);
+  plan_forest(scenario, plan_species(scenario, cache, log, plan), cache, plan);
   plan_damage(scenario, plan);
   plan_coupling(scenario, plan);
   plan_outputs(scenario, plan);

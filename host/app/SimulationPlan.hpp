@@ -35,6 +35,7 @@
 #include "host/app/DeviceMemory.hpp"
 #include "host/app/TimeInputs.hpp"
 #include "host/stages/WindGrid.hpp"
+#include "io/gis/TreeInventory.hpp"
 #include "io/settings/OutputSettings.hpp"
 #include "io/writers/ManifestWriter.hpp"
 #include "trees/BasisCache.hpp"
@@ -91,6 +92,17 @@ struct SpeciesStrength {
   double hale_wind = 0.0;  ///< m/s: the mean canopy-top wind whose peak base moment is the base's critical
 };
 
+/// The forest inventory as planned (forest.inventory; docs/gis.md): its trees fitted to their sizes.
+struct InventoryPlan {
+  std::string file;
+  int rows = 0;            ///< tree rows in the file
+  int first_instance = 0;  ///< its trees are the instances [first_instance, first_instance + placed)
+  int placed = 0;          ///< inside the domain
+  std::vector<io::InventoryTree> outside;  ///< outside the domain, as the file gives them: not placed
+  int girth_classes = 0;           ///< bases added for them (the species' own girth, class 0, adds none)
+  double largest_dbh_error = 0.0;  ///< max |fitted dbh / measured - 1| over its trees
+};
+
 struct SimulationPlan {
   ScenarioRecord scenario;
   PlanFor purpose = PlanFor::run;
@@ -114,7 +126,10 @@ struct SimulationPlan {
   /// Per forest species, like `species`: its strength, nullopt when the scenario gives none.
   std::vector<std::optional<SpeciesStrength>> strengths;
   std::vector<StandPlan> stands;  ///< per forest.stands[] entry, in file order
-  long leaf_count = 0;            ///< leaves of all instances: the sum over trees of their species' count
+  std::optional<InventoryPlan> inventory;
+  /// Per instance, its id in the inventory; empty without an inventory, "" for a tree not from it.
+  std::vector<std::string> tree_ids;
+  long leaf_count = 0;  ///< leaves of all instances: the sum over trees of their species' count
   /// per cell, frontal area density a (1/m); empty without trees, and in a plan for check (which
   /// rasterises the trees on the cells they reach only, host/app/plan/CouplingPlan.cpp)
   std::vector<float> canopy_density;

@@ -5,6 +5,7 @@
 #include <fmt/format.h>
 
 #include <stdexcept>
+#include <utility>
 
 #include "io/scenario/Species.hpp"
 
@@ -133,6 +134,45 @@ PlacedTreeSettings read_tree(const Loader& loader, const Field& item, const Fore
   return tree;
 }
 
+InventorySettings read_inventory(const Loader& loader, const Field& field, const ForestSettings& forest,
+                                 const DomainSettings& domain, const SiteSettings* site) {
+  const Section<schema::kForestKeys, "forest.inventory"> map(loader, field);
+  InventorySettings inventory;
+  inventory.line = field.line;
+  inventory.file = loader.readable_file(map.require<"file">());
+  if (const auto columns_field = map.get<"columns">()) {
+    const Section<schema::kForestKeys, "forest.inventory.columns"> columns(loader, *columns_field);
+    InventoryColumns& names = inventory.columns;
+    for (auto [name, given] : {std::pair{&names.x, columns.get<"x">()},
+                               {&names.y, columns.get<"y">()},
+                               {&names.species, columns.get<"species">()},
+                               {&names.height, columns.get<"height">()},
+                               {&names.dbh, columns.get<"dbh">()},
+                               {&names.crown_width, columns.get<"crown_width">()},
+                               {&names.id, columns.get<"id">()}})
+      if (given) *name = loader.text(*given);
+  }
+  std::vector<std::string> names;
+  for (const Species& species : forest.species) names.push_back(species.name);
+  // The file's own errors name its line and column (base::SourceError): they pass through.
+  TreeInventory read = read_tree_inventory(inventory.file.string(), inventory.columns, names);
+  inventory.rows = int(read.trees.size());
+  const std::array<double, 2> origin =
+      site ? std::array{site->origin[0], site->origin[1]} : std::array{0.0, 0.0};
+  const Vec3 top = domain.max_corner();
+  for (InventoryTree& tree : read.trees) {
+    const double x = tree.x - origin[0], y = tree.y - origin[1];
+    if (!inside(x, domain.origin[0], top[0]) || !inside(y, domain.origin[1], top[1])) {
+      inventory.outside.push_back(std::move(tree));
+      continue;
+    }
+    tree.x = x;
+    tree.y = y;
+    inventory.trees.push_back(std::move(tree));
+  }
+  return inventory;
+}
+
 }  // namespace
 
 ForestSettings read_forest(const Loader& loader, const Field& field, const DomainSettings& domain,
@@ -179,6 +219,9 @@ ForestSettings read_forest(const Loader& loader, const Field& field, const Domai
   if (const auto trees = map.get<"trees">())
     for (const Field& item : loader.items(*trees))
       forest.trees.push_back(read_tree(loader, item, forest, domain, terrain));
+  if (const auto inventory = map.get<"inventory">())
+    forest.inventory = read_inventory(loader, *inventory, forest, domain,
+                                      terrain && terrain->site ? &*terrain->site : nullptr);
   return forest;
 }
 

@@ -1,5 +1,6 @@
 // The keys of a scenario's forest section but its species' (io/schema/SpeciesKeys.hpp): the coupling of trees
-// and wind, the integrator, the drag law, storm damage, and the items of forest.stands and forest.trees.
+// and wind, the integrator, the drag law, storm damage, the items of forest.stands and forest.trees, and the
+// forest inventory.
 //
 //   schema::key(schema::kForestKeys, "forest.stands[].layout").word;   // "poisson"
 //
@@ -48,6 +49,16 @@ inline constexpr Key kForestKeys[] = {
     {.path = "forest.species", .type = Type::list, .noun = "a list of species"},
     {.path = "forest.stands", .type = Type::list, .noun = "a list of stands"},
     {.path = "forest.trees", .type = Type::list, .noun = "a list of trees"},
+    {.path = "forest.inventory"},
+    {.path = "forest.inventory.file", .type = Type::file, .required = true, .noun = "a file path (CSV)"},
+    {.path = "forest.inventory.columns"},
+    {.path = "forest.inventory.columns.x", .type = Type::text, .noun = "a column name"},
+    {.path = "forest.inventory.columns.y", .type = Type::text, .noun = "a column name"},
+    {.path = "forest.inventory.columns.species", .type = Type::text, .noun = "a column name"},
+    {.path = "forest.inventory.columns.height", .type = Type::text, .noun = "a column name"},
+    {.path = "forest.inventory.columns.dbh", .type = Type::text, .noun = "a column name"},
+    {.path = "forest.inventory.columns.crown_width", .type = Type::text, .noun = "a column name"},
+    {.path = "forest.inventory.columns.id", .type = Type::text, .noun = "a column name"},
     // forest.stands[]
     {.path = "forest.stands[].species", .type = Type::text, .required = true, .noun = "a species name"},
     {.path = "forest.stands[].region", .required = true},

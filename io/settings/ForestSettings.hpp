@@ -7,11 +7,13 @@
 #pragma once
 
 #include <array>
+#include <filesystem>
 #include <optional>
 #include <string>
 #include <vector>
 
 #include "fluid/DragLaw.hpp"
+#include "io/gis/TreeInventory.hpp"
 #include "io/schema/ForestKeys.hpp"
 #include "io/settings/Radians.hpp"
 #include "io/settings/Species.hpp"
@@ -55,6 +57,19 @@ struct DamageSettings {
   int line = 0;
 };
 
+/// forest.inventory (docs/gis.md): a field inventory's trees, read at load.
+struct InventorySettings {
+  std::filesystem::path file;  ///< resolved against the scenario folder
+  InventoryColumns columns;
+  /// The rows inside the domain's horizontal extent, in file order, x and y local (the site's origin taken
+  /// off); `species` indexes ForestSettings::species.
+  std::vector<InventoryTree> trees;
+  /// The rows outside it (x and y as the file gives them): counted and reported, never placed.
+  std::vector<InventoryTree> outside;
+  int rows = 0;  ///< every tree row of the file
+  int line = 0;  ///< the line of forest.inventory
+};
+
 struct ForestSettings {
   /// trees' drag returned to the wind
   bool two_way_coupling = schema::key(schema::kForestKeys, "forest.two_way_coupling").flag;
@@ -69,6 +84,7 @@ struct ForestSettings {
   std::vector<Species> species;
   std::vector<Stand> stands;
   std::vector<PlacedTreeSettings> trees;
+  std::optional<InventorySettings> inventory;
 };
 
 }  // namespace fw::io

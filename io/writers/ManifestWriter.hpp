@@ -41,6 +41,9 @@ struct SpeciesSummary {
   double first_hz = 0.0;           ///< lowest natural frequency at scale 1
   std::string cache = "disabled";  ///< "hit", "miss", "corrupt_recomputed" or "disabled"
   double seconds = 0.0;            ///< time to obtain the basis (load or compute)
+  /// The radii's factor of an inventory's girth class (trees/SizeFit.hpp); 1 for the species' own basis and
+  /// a stand's.
+  double girth = 1.0;
 };
 
 /// What run.json says about the run's set-up.

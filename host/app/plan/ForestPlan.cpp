@@ -7,12 +7,25 @@
 // appended after the scenario's species, with its leaves, its model and its summary): its species' with the
 // crown leaf area index at which the stand's trees, as placed, carry that leaf area index over its region
 // (trees/StandDensity.hpp). The species' own index stays for its other stands and its single trees.
+//
+// An inventory's trees come last, in file order (docs/gis.md): each is its species' template fitted to its
+// height and dbh (trees/SizeFit.hpp), an instance of scale H / H_T of a girth class. A class other than the
+// species' own girth gets a basis of its own (through the cache), appended after the stands', with the
+// species' leaves, model and strength; `check` sums the classes up per species. An inventory gives no yaw:
+// each tree turns by a yaw drawn uniformly from the scenario's seed, in file order, so that the trees of one
+// template do not all face one way.
 #include <fmt/format.h>
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
+#include <map>
+#include <numbers>
+#include <random>
 #include <stdexcept>
+#include <utility>
 
+#include "base/SourceError.hpp"
 #include "host/app/plan/PlanBuilders.hpp"
 #include "host/stages/ForestStages.hpp"
 #include "host/stages/LeafStages.hpp"
@@ -21,6 +34,7 @@
 #include "io/schema/Bounds.hpp"
 #include "trees/Foliage.hpp"
 #include "trees/ForestLayout.hpp"
+#include "trees/SizeFit.hpp"
 #include "trees/StandDensity.hpp"
 
 namespace fw::host {
@@ -130,10 +144,96 @@ std::vector<trees::TreeInstance> place_instances(const io::Scenario& scenario,
   return instances;
 }
 
+// The basis of the girth class k of forest.species[sp] (header comment), appended to `bases` with its
+// leaves, model, strength and summary; its index.
+int girth_class_basis(const io::Scenario& scenario, std::size_t sp, int k, const trees::BasisCache* cache,
+                      std::vector<trees::SpeciesBasis>& bases, SimulationPlan& plan) {
+  const auto start = std::chrono::steady_clock::now();
+  const double girth = trees::SizeFitter::girth_of_class(k);
+  const trees::SpeciesBasis& species = bases[sp];
+  io::SpeciesSummary summary = plan.species[sp];
+  summary.name = fmt::format("{} (girth {:.4f})", summary.species, girth);
+  summary.trees = 0;
+  summary.girth = girth;
+  trees::SpeciesBasis basis = cached_species_basis(scenario, sp, trees::with_girth(species.skeleton(), girth),
+                                                   species.settings(), cache, summary, plan);
+  summary.first_hz = basis.modes().frequencies_hz()(0);
+  bases.push_back(std::move(basis));
+  const io::Species& given = scenario.forest.species[sp];
+  plan.coupling.leaves.push_back(species_leaves(scenario, bases.back(), given.leaves,
+                                                species_leaf_area_key(scenario, sp), plan.purpose));
+  plan.coupling.dynamics.push_back(given.dynamics);
+  plan.strengths.push_back(plan.strengths[sp]);
+  summary.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  plan.species.push_back(summary);
+  return int(bases.size()) - 1;
+}
+
+// Draws each inventory tree's yaw (header comment); its own stream of the scenario's seed.
+constexpr std::uint64_t kInventoryYawStream = 0x1a7e'0f1e'1d5e'ed00;
+
+// Places the inventory's trees after `instances` (header comment); fills plan.inventory and plan.tree_ids.
+void place_inventory(const io::Scenario& scenario, const trees::BasisCache* cache,
+                     std::vector<trees::SpeciesBasis>& bases, std::vector<trees::TreeInstance>& instances,
+                     SimulationPlan& plan) {
+  const io::InventorySettings& inventory = *scenario.forest.inventory;
+  const std::string file = inventory.file.string();
+  std::vector<trees::SizeFitter> fitters;
+  for (std::size_t sp = 0; sp < scenario.forest.species.size(); ++sp)
+    fitters.emplace_back(bases[sp].skeleton().height(), bases[sp].stem_loads());
+  InventoryPlan& planned = plan.inventory.emplace();
+  planned.file = file;
+  planned.rows = inventory.rows;
+  planned.first_instance = int(instances.size());
+  planned.outside = inventory.outside;
+  plan.tree_ids.resize(instances.size());
+  std::map<std::pair<int, int>, int> classes;  // (species, girth class) -> forest species
+  std::mt19937_64 yaws(scenario.seed ^ kInventoryYawStream);
+  std::uniform_real_distribution<double> turn(0.0, 2.0 * std::numbers::pi);
+  namespace bounds = io::schema::bounds;
+  for (const io::InventoryTree& tree : inventory.trees) {
+    if (!(tree.height >= bounds::kMinTreeHeight && tree.height <= bounds::kMaxTreeHeight))
+      throw base::SourceError(file, tree.line, inventory.columns.height,
+                              fmt::format("a height of {} to {} m (the tallest tree is 116 m)",
+                                          bounds::kMinTreeHeight, bounds::kMaxTreeHeight),
+                              fmt::format("'{}'", tree.height));
+    const trees::SizeFitter& fitter = fitters[std::size_t(tree.species)];
+    if (!fitter.fits(tree.height, tree.dbh)) {
+      const auto [low, high] = fitter.dbh_range(tree.height);
+      throw base::SourceError(
+          file, tree.line, inventory.columns.dbh,
+          fmt::format("a dbh its species' template fits at {} m: {:.3g} to {:.3g} m (radii at most {} times "
+                      "or a {}th of the template's scaled; is it in metres?)",
+                      tree.height, low, high, trees::SizeFitter::kMaxGirth, trees::SizeFitter::kMaxGirth),
+          fmt::format("'{}'", tree.dbh));
+    }
+    const trees::SizeFit fit = fitter.fit(tree.height, tree.dbh);
+    int species = tree.species;
+    if (fit.girth_class != 0) {
+      const auto key = std::pair{tree.species, fit.girth_class};
+      auto found = classes.find(key);
+      if (found == classes.end())
+        found = classes
+                    .emplace(key, girth_class_basis(scenario, std::size_t(tree.species), fit.girth_class,
+                                                    cache, bases, plan))
+                    .first;
+      species = found->second;
+    }
+    planned.largest_dbh_error = std::max(planned.largest_dbh_error, std::abs(fit.dbh / tree.dbh - 1.0));
+    instances.push_back(
+        {species, {tree.x, tree.y, ground_z(scenario, tree.x, tree.y)}, turn(yaws), fit.scale});
+    plan.tree_ids.push_back(tree.id);
+  }
+  planned.placed = int(inventory.trees.size());
+  planned.girth_classes = int(classes.size());
+}
+
 }  // namespace
 
-void plan_forest(const io::Scenario& scenario, std::vector<trees::SpeciesBasis> bases, SimulationPlan& plan) {
+void plan_forest(const io::Scenario& scenario, std::vector<trees::SpeciesBasis> bases,
+                 const trees::BasisCache* cache, SimulationPlan& plan) {
   std::vector<trees::TreeInstance> instances = place_instances(scenario, bases, plan);
+  if (scenario.forest.inventory) place_inventory(scenario, cache, bases, instances, plan);
   for (const auto& tree : instances) {
     ++plan.species[std::size_t(tree.species)].trees;
     plan.leaf_count += plan.coupling.leaves[std::size_t(tree.species)].count();

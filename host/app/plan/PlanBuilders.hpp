@@ -46,6 +46,18 @@ struct LeafAreaKey {
   int line = 0;
   double value = 0.0;
 };
+/// host/app/plan/SpeciesPlan.cpp: forest.species[index]'s basis of `skeleton`, through the cache when there
+/// is one (summary.cache says how; plan.warnings gets a cache that failed). Throws io::ScenarioError at the
+/// species when its modes cannot be solved.
+trees::SpeciesBasis cached_species_basis(const io::Scenario& scenario, std::size_t index,
+                                         const trees::Skeleton& skeleton,
+                                         const trees::SpeciesSettings& settings,
+                                         const trees::BasisCache* cache, io::SpeciesSummary& summary,
+                                         SimulationPlan& plan);
+
+/// host/app/plan/SpeciesPlan.cpp: the key of forest.species[index]'s canopy.leaf_area_index.
+LeafAreaKey species_leaf_area_key(const io::Scenario& scenario, std::size_t index);
+
 /// host/app/plan/SpeciesPlan.cpp: the leaves `settings` ask for on a basis' own skeleton and foliage (its
 /// settings().wind.leaf_area_index), so that their elements are the forest's; none without leaves; generated
 /// for a run's plan, counted for `check`'s (PlanFor). Throws io::ScenarioError at `source` when one tree
@@ -53,9 +65,12 @@ struct LeafAreaKey {
 trees::SpeciesLeaves species_leaves(const io::Scenario& scenario, const trees::SpeciesBasis& basis,
                                     const trees::LeafSettings& settings, const LeafAreaKey& source,
                                     PlanFor purpose);
-/// host/app/plan/ForestPlan.cpp (after plan_species): the placed instances, and a basis of its own for every
-/// stand that gives its leaf area index (plan.stands, plan.species, plan.coupling.leaves)
-void plan_forest(const io::Scenario& scenario, std::vector<trees::SpeciesBasis> bases, SimulationPlan& plan);
+/// host/app/plan/ForestPlan.cpp (after plan_species): the placed instances, a basis of its own for every
+/// stand that gives its leaf area index and for every girth class of the inventory's trees (through `cache`,
+/// which may be null), with their summaries (plan.stands, plan.species, plan.coupling.leaves, plan.inventory,
+/// plan.tree_ids)
+void plan_forest(const io::Scenario& scenario, std::vector<trees::SpeciesBasis> bases,
+                 const trees::BasisCache* cache, SimulationPlan& plan);
 /// host/app/plan/DamagePlan.cpp (after plan_forest): every species' critical moments and winds
 /// (plan.strengths), and the damage stage's settings and memory when forest.damage is enabled
 void plan_damage(const io::Scenario& scenario, SimulationPlan& plan);

@@ -59,12 +59,26 @@ trees::Skeleton species_skeleton(const io::Scenario& scenario, const io::Species
   return skeleton;
 }
 
-// The species' basis, through the cache when there is one. A modal problem that cannot be solved (its
-// stiffness and mass far out of scale, say) is the species' to blame.
-trees::SpeciesBasis species_basis(const io::Scenario& scenario, std::size_t index,
-                                  const trees::Skeleton& skeleton, const trees::SpeciesSettings& settings,
-                                  const trees::BasisCache* cache, io::SpeciesSummary& summary,
-                                  SimulationPlan& plan) {
+trees::SpeciesSettings species_settings(const io::Species& species) {
+  trees::SpeciesSettings settings;
+  settings.material = species.material;
+  // modal.mode_count: io::species_mode_count, once the skeleton is known.
+  settings.modal.damping = trees::Damping::modal_ratio(species.modes.damping_ratio);
+  settings.wind.samples = species.modes.wind_samples;
+  // One drag convention on both sides of the coupling (trees/CanopyDrag.hpp): 1/2 rho C_D A |u| u.
+  settings.wind.branch_drag_coefficient = species.drag_coefficient;
+  settings.wind.leaf_area_index = species.canopy.leaf_area_index;
+  settings.wind.leaf_drag_coefficient = species.canopy.drag_coefficient;
+  return settings;
+}
+
+}  // namespace
+
+trees::SpeciesBasis cached_species_basis(const io::Scenario& scenario, std::size_t index,
+                                         const trees::Skeleton& skeleton,
+                                         const trees::SpeciesSettings& settings,
+                                         const trees::BasisCache* cache, io::SpeciesSummary& summary,
+                                         SimulationPlan& plan) {
   const io::Species& species = scenario.forest.species[index];
   try {
     if (!cache) return trees::SpeciesBasis::compute(skeleton, settings);
@@ -89,20 +103,13 @@ trees::SpeciesBasis species_basis(const io::Scenario& scenario, std::size_t inde
   }
 }
 
-trees::SpeciesSettings species_settings(const io::Species& species) {
-  trees::SpeciesSettings settings;
-  settings.material = species.material;
-  // modal.mode_count: io::species_mode_count, once the skeleton is known.
-  settings.modal.damping = trees::Damping::modal_ratio(species.modes.damping_ratio);
-  settings.wind.samples = species.modes.wind_samples;
-  // One drag convention on both sides of the coupling (trees/CanopyDrag.hpp): 1/2 rho C_D A |u| u.
-  settings.wind.branch_drag_coefficient = species.drag_coefficient;
-  settings.wind.leaf_area_index = species.canopy.leaf_area_index;
-  settings.wind.leaf_drag_coefficient = species.canopy.drag_coefficient;
-  return settings;
+LeafAreaKey species_leaf_area_key(const io::Scenario& scenario, std::size_t index) {
+  const io::Species& species = scenario.forest.species[index];
+  return {
+      io::schema::item_path(
+          io::schema::key(io::schema::kSpeciesKeys, "forest.species[].canopy.leaf_area_index").path, index),
+      species.canopy.leaf_area_index_line, species.canopy.leaf_area_index};
 }
-
-}  // namespace
 
 trees::SpeciesLeaves species_leaves(const io::Scenario& scenario, const trees::SpeciesBasis& basis,
                                     const trees::LeafSettings& settings, const LeafAreaKey& source,
@@ -139,18 +146,15 @@ std::vector<trees::SpeciesBasis> plan_species(const io::Scenario& scenario, cons
     io::SpeciesSummary summary;
     summary.name = summary.species = species.name;
     summary.dynamics = trees::dynamics_name(species.dynamics.model);
-    bases.push_back(species_basis(scenario, index, skeleton, settings, cache, summary, plan));
+    bases.push_back(cached_species_basis(scenario, index, skeleton, settings, cache, summary, plan));
     const trees::SpeciesBasis& basis = bases.back();
     summary.seconds = std::chrono::duration<double>(Clock::now() - start).count();
     summary.nodes = basis.skeleton().size();
     summary.modes = basis.modes().mode_count();
     summary.samples = basis.wind().sample_count();
     summary.first_hz = basis.modes().frequencies_hz()(0);
-    const LeafAreaKey leaf_area{
-        io::schema::item_path(
-            io::schema::key(io::schema::kSpeciesKeys, "forest.species[].canopy.leaf_area_index").path, index),
-        species.canopy.leaf_area_index_line, species.canopy.leaf_area_index};
-    plan.coupling.leaves.push_back(species_leaves(scenario, basis, species.leaves, leaf_area, plan.purpose));
+    plan.coupling.leaves.push_back(species_leaves(scenario, basis, species.leaves,
+                                                  species_leaf_area_key(scenario, index), plan.purpose));
     species.dynamics.validate();  // the loader's ranges are its own: a failure here is a bug, not the file's
     plan.coupling.dynamics.push_back(species.dynamics);
     std::optional<SpeciesStrength>& strength = plan.strengths.emplace_back();
