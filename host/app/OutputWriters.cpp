@@ -28,6 +28,7 @@ io::RunManifest manifest_of(const SimulationPlan& plan, const DeviceInfo& device
   m.scenario_file_name = plan.scenario.file_name;
   m.scenario_text = plan.scenario.text;
   m.seed = plan.scenario.seed;
+  m.site = plan.scenario.site;
   m.device = device.device_name;
   m.platform = device.platform_name;
   m.grid = {plan.wind.spec.nx, plan.wind.spec.ny, plan.wind.spec.nz};

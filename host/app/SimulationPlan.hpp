@@ -37,6 +37,7 @@
 #include "host/stages/WindGrid.hpp"
 #include "io/gis/TreeInventory.hpp"
 #include "io/settings/OutputSettings.hpp"
+#include "io/settings/SiteSettings.hpp"
 #include "io/writers/ManifestWriter.hpp"
 #include "trees/BasisCache.hpp"
 #include "trees/Forest.hpp"
@@ -55,6 +56,8 @@ struct ScenarioRecord {
   std::string file_name;  ///< the scenario file's name, without its folder
   std::string text;       ///< the file's bytes
   std::uint64_t seed = 0;
+  /// Where the run stands on the Earth (a terrain.raster's CRS and domain.origin in it); none without.
+  std::optional<io::SiteSettings> site;
 };
 
 /// One stand of the scenario (forest.stands[k]) as planned: which trees are its own and how dense they stand.

@@ -49,6 +49,27 @@ void ManifestWriter::write_run_json(const RunOutcome& outcome) const {
   if (!outcome.message.empty()) json.key("message").value(outcome.message);
   json.key("grid").values(m.grid);
   json.key("cell_size_m").value(m.cell_size);
+  if (m.site) {
+    // Local coordinates are metres from the domain's corner; origin + local is the site's CRS.
+    json.key("site").begin_object();
+    json.key("crs");
+    if (const auto& crs = m.site->crs) {
+      json.begin_object();
+      json.key("name").value(crs->name);
+      json.key("epsg");
+      if (crs->epsg)
+        json.value(*crs->epsg);
+      else
+        json.null();
+      json.key("wkt").value(crs->wkt);
+      json.end_object();
+    } else {
+      json.null();
+    }
+    json.key("origin").values(m.site->origin);
+    json.key("raster").value(m.site->raster.filename().string());
+    json.end_object();
+  }
   json.key("trees").value(m.trees);
   json.key("species").begin_array();
   for (const SpeciesSummary& s : m.species) {

@@ -25,6 +25,7 @@
 #include <string>
 #include <vector>
 
+#include "io/settings/SiteSettings.hpp"
 #include "io/writers/FrameWriter.hpp"
 #include "trees/LeafState.hpp"
 
@@ -56,6 +57,8 @@ struct RunManifest {
   std::string device, platform;
   std::array<int, 3> grid{0, 0, 0};
   double cell_size = 0.0;  ///< m
+  /// The site (docs/gis.md): the CRS and the domain's origin in it, to put the local results back.
+  std::optional<SiteSettings> site;
   int trees = 0;
   std::vector<SpeciesSummary> species;
   bool two_way_coupling = false;

@@ -7,7 +7,8 @@
 namespace fw::host {
 
 void plan_outputs(const io::Scenario& scenario, SimulationPlan& plan) {
-  plan.scenario = {scenario.name, scenario.file.filename().string(), scenario.text, scenario.seed};
+  plan.scenario = {scenario.name, scenario.file.filename().string(), scenario.text, scenario.seed, {}};
+  if (const io::SiteSettings* site = scenario.site()) plan.scenario.site = *site;
   plan.output = scenario.output;
   plan.probe_interval = scenario.resolved_probe_interval().value_or(0.0);
   if (!plan.output.probes.empty())
