@@ -4,7 +4,7 @@
 // (wood and foliage, with the drag convention of trees/WindBasis.hpp) into elements.
 //
 //   fw::fluid::CanopyField canopy(spec);
-//   auto r = fw::trees::add_to_canopy(canopy, forest, k);             // instance k of a trees::Forest
+//   auto r = fw::trees::ForestCanopy(forest).add(canopy, k);          // instance k of a trees::Forest
 //   if (r.dropped_area > 0) ...                                        // parts outside the domain
 //   wind.set_canopy(canopy.drag_density());                            // host::WindGrid, du/dt = -k |u| u
 //   vtk.add("canopy_density", canopy.frontal_area_density());
@@ -35,14 +35,15 @@ struct CanopyElement {
   double drag_area_per_metre = 0.0;     ///< beta = sum of C_D x area per metre, m^2/m, >= 0
 };
 
-/// What one add_elements (or trees::add_to_canopy) put on the grid, m^2.
+/// What one add_elements (or trees::ForestCanopy::add) put on the grid, m^2.
 struct CanopyTreeReport {
   double frontal_area = 0.0;       ///< sum of alpha L over the elements
   double drag_area = 0.0;          ///< sum of beta L over the elements (C_D x area)
   double dropped_area = 0.0;       ///< the part of frontal_area outside the domain
   double dropped_drag_area = 0.0;  ///< the part of drag_area outside the domain
   bool outside = false;            ///< nothing of the tree landed in the domain
-  /// Filled by callers that know what the elements are (trees::add_to_canopy); add_elements leaves them 0.
+  /// Filled by callers that know what the elements are (trees::ForestCanopy::add); add_elements leaves them
+  /// 0.
   double woody_area = 0.0;            ///< sum of D x L over the elements
   double leaf_area = 0.0;             ///< one-sided leaf area, LAI x crown_projected_area
   double crown_projected_area = 0.0;  ///< horizontal convex hull of the leaf-bearing elements

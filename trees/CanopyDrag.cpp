@@ -43,17 +43,6 @@ Elements elements_of(const Skeleton& world, const WindBasisSettings& settings) {
   return out;
 }
 
-Elements instance_elements(const Forest& forest, int instance) {
-  if (instance < 0 || instance >= forest.instance_count()) {
-    throw std::invalid_argument(
-        fmt::format("CanopyDrag: instance {} outside 0..{}", instance, forest.instance_count() - 1));
-  }
-  const TreeInstance& tree = forest.instances()[std::size_t(instance)];
-  const SpeciesBasis& species = forest.species_of(instance);
-  const Skeleton world = species.skeleton().transformed(forest.rotation(instance), tree.position, tree.scale);
-  return elements_of(world, species.settings().wind);
-}
-
 }  // namespace
 
 std::vector<fluid::CanopyElement> canopy_elements(const Skeleton& world_skeleton,
@@ -61,16 +50,44 @@ std::vector<fluid::CanopyElement> canopy_elements(const Skeleton& world_skeleton
   return elements_of(world_skeleton, settings).elements;
 }
 
-std::vector<fluid::CanopyElement> instance_canopy_elements(const Forest& forest, int instance) {
-  return instance_elements(forest, instance).elements;
+ForestCanopy::ForestCanopy(const Forest& forest) : forest_(&forest) {
+  species_.reserve(forest.species().size());
+  for (const SpeciesBasis& species : forest.species()) {
+    Elements parts = elements_of(species.skeleton(), species.settings().wind);
+    species_.push_back({std::move(parts.elements), parts.woody_area, parts.foliage.leaf_area,
+                        parts.foliage.crown_projected_area});
+  }
 }
 
-fluid::CanopyTreeReport add_to_canopy(fluid::CanopyField& canopy, const Forest& forest, int instance) {
-  const Elements parts = instance_elements(forest, instance);
-  fluid::CanopyTreeReport report = canopy.add_elements(parts.elements);
-  report.woody_area = parts.woody_area;
-  report.leaf_area = parts.foliage.leaf_area;
-  report.crown_projected_area = parts.foliage.crown_projected_area;
+std::vector<fluid::CanopyElement> ForestCanopy::elements(int instance) const {
+  if (instance < 0 || instance >= forest_->instance_count()) {
+    throw std::invalid_argument(
+        fmt::format("CanopyDrag: instance {} outside 0..{}", instance, forest_->instance_count() - 1));
+  }
+  const TreeInstance& tree = forest_->instances()[std::size_t(instance)];
+  const Eigen::Matrix3d rotation = forest_->rotation(instance);
+  const double s = tree.scale;
+  auto world = [&](const std::array<double, 3>& p) {
+    const Eigen::Vector3d x = tree.position + s * (rotation * Eigen::Vector3d(p[0], p[1], p[2]));
+    return std::array<double, 3>{x.x(), x.y(), x.z()};
+  };
+  std::vector<fluid::CanopyElement> out = species_[std::size_t(tree.species)].elements;
+  for (fluid::CanopyElement& e : out) {
+    e.start = world(e.start);
+    e.end = world(e.end);
+    e.frontal_area_per_metre *= s;
+    e.drag_area_per_metre *= s;
+  }
+  return out;
+}
+
+fluid::CanopyTreeReport ForestCanopy::add(fluid::CanopyField& canopy, int instance) const {
+  fluid::CanopyTreeReport report = canopy.add_elements(elements(instance));
+  const SpeciesElements& species = species_[std::size_t(forest_->instances()[std::size_t(instance)].species)];
+  const double s = forest_->instances()[std::size_t(instance)].scale, area = s * s;
+  report.woody_area = species.woody_area * area;
+  report.leaf_area = species.leaf_area * area;
+  report.crown_projected_area = species.crown_projected_area * area;
   return report;
 }
 

@@ -14,12 +14,12 @@ StandingCanopy::StandingCanopy(const fluid::GridSpec& spec, const trees::Forest&
     : spec_(spec),
       forest_(forest),
       drag_density_(std::move(drag_density)),
-      fallen_(std::size_t(forest.instance_count()), false) {
+      fallen_(std::size_t(forest.instance_count()), false),
+      canopy_(forest) {
   if (drag_density_.size() != spec_.cell_count())
     throw std::invalid_argument(fmt::format("StandingCanopy: {} cells of drag for a grid of {}",
                                             drag_density_.size(), spec_.cell_count()));
   for (int k = 0; k < forest.instance_count(); ++k) boxes_.push_back(trees::instance_cells(spec_, forest, k));
-  elements_.resize(std::size_t(forest.instance_count()));
 }
 
 bool StandingCanopy::fell(const std::vector<int>& fallen) {
@@ -55,11 +55,7 @@ bool StandingCanopy::fell(const std::vector<int>& fallen) {
     extend(box);
   }
   fluid::CanopyField field(spec_, reach);
-  for (const int k : neighbours) {
-    std::vector<fluid::CanopyElement>& elements = elements_[std::size_t(k)];
-    if (elements.empty()) elements = trees::instance_canopy_elements(forest_, k);
-    field.add_elements(elements);
-  }
+  for (const int k : neighbours) field.add_elements(canopy_.elements(k));
   for (const fluid::CellBox& c : cleared)
     for (int z = c.first[2]; z < c.first[2] + c.count[2]; ++z)
       for (int y = c.first[1]; y < c.first[1] + c.count[1]; ++y)

@@ -16,6 +16,7 @@
 
 #include "fluid/CanopyField.hpp"
 #include "fluid/GridSpec.hpp"
+#include "trees/CanopyDrag.hpp"
 #include "trees/Forest.hpp"
 
 namespace fw::host {
@@ -38,10 +39,8 @@ class StandingCanopy {
   std::vector<float> drag_density_;
   std::vector<bool> fallen_;
   std::vector<fluid::CellBox> boxes_;  // the cells each tree's drag reaches (trees::instance_cells)
-  // The canopy elements of the trees that stood beside a fall, kept once computed (64 bytes an element):
-  // the front of a storm's damage passes each tree's neighbours several times, and a tree's elements cost
-  // its crown's convex hull.
-  std::vector<std::vector<fluid::CanopyElement>> elements_;
+  // Each species' elements once; a neighbour's are theirs moved into place, with no crown hull of its own.
+  trees::ForestCanopy canopy_;
 };
 
 }  // namespace fw::host

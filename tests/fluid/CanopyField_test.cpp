@@ -78,7 +78,7 @@ TEST_CASE("CanopyField: a vertical trunk of diameter D gives a = D h / h^3 and k
   CHECK(r.dropped_area == 0.0);
   CHECK(r.dropped_drag_area == 0.0);
   CHECK_FALSE(r.outside);
-  CHECK(r.leaf_area == 0.0);  // only trees::add_to_canopy knows about leaves
+  CHECK(r.leaf_area == 0.0);  // only trees::ForestCanopy knows about leaves
   const auto a = canopy.frontal_area_density();
   const auto k = canopy.drag_density();
   const double h = spec.h, expected = D * h / (h * h * h);  // 0.8 1/m

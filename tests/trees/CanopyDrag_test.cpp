@@ -112,7 +112,7 @@ TEST_CASE("CanopyDrag: in a uniform wind the air loses the force the trees' wind
 
   // 1 m cells, 80 x 64 x 24 m: the whole tree (15.6 m tall, a crown about 12 m across) is inside.
   fluid::CanopyField canopy(grid(80, 64, 24, 1.0));
-  const fluid::CanopyTreeReport report = trees::add_to_canopy(canopy, forest, 0);
+  const fluid::CanopyTreeReport report = trees::ForestCanopy(forest).add(canopy, 0);
   REQUIRE(report.dropped_area == 0.0);
   REQUIRE_FALSE(report.outside);
   CHECK(canopy.tree_count() == 1);
@@ -182,8 +182,8 @@ TEST_CASE("CanopyDrag: leaves add 1/2 rho C_Df A_leaf |u| u to both sides and be
   const trees::Forest forest({bare, leafy},
                              {{0, {20.0, 20.0, 0.0}, 0.0, 1.0}, {1, {20.0, 20.0, 0.0}, 0.0, 1.0}});
   fluid::CanopyField air_bare(grid(40, 40, 16, 1.0)), air_leafy(grid(40, 40, 16, 1.0));
-  trees::add_to_canopy(air_bare, forest, 0);
-  const auto report = trees::add_to_canopy(air_leafy, forest, 1);
+  trees::ForestCanopy(forest).add(air_bare, 0);
+  const auto report = trees::ForestCanopy(forest).add(air_leafy, 1);
   const Eigen::Vector3d u(10.0, 0.0, 0.0);
   const Eigen::Vector3d leaves =
       0.5 * kRho * leafy_settings.wind.leaf_drag_coefficient * report.leaf_area * u.norm() * u;
@@ -215,7 +215,7 @@ TEST_CASE("CanopyDrag: per cell, the air in each cell loses what the tree's elem
   const trees::Forest forest({trees::SpeciesBasis::compute(skeleton, settings)}, {{0, {0, 0, 0}, 0.0, 1.0}});
   const fluid::GridSpec spec = grid(6, 6, 5, 1.0);
   fluid::CanopyField canopy(spec);
-  const auto report = trees::add_to_canopy(canopy, forest, 0);
+  const auto report = trees::ForestCanopy(forest).add(canopy, 0);
 
   // Foliage: LAI x the triangle of the branch ends, shared over the two branches per metre.
   const double crown = 0.5 * kBranchLength * kBranchLength;  // 2.42 m^2
@@ -347,20 +347,37 @@ TEST_CASE("CanopyDrag: the leaf-bearing rule and the foliage distribution", "[ca
   }
 }
 
-TEST_CASE("CanopyDrag: an instance's elements, added, are add_to_canopy's field bit for bit", "[canopy]") {
+TEST_CASE("CanopyDrag: an instance's elements, carried from its species', are its world skeleton's",
+          "[canopy]") {
   trees::SpeciesSettings settings;
   settings.modal.mode_count = 2;
   settings.wind.leaf_area_index = 3.0;  // the crown's foliage too
   const trees::Forest forest({trees::SpeciesBasis::compute(small_tree(), settings)},
                              {{0, {3.2, 2.7, 0.0}, 0.9, 1.3}, {0, {4.1, 3.3, 0.0}, -2.0, 0.8}});
-  fluid::CanopyField whole(grid(8, 8, 8, 1.0)), from_elements(grid(8, 8, 8, 1.0));
+  const trees::ForestCanopy canopy(forest);
   for (int k = 0; k < forest.instance_count(); ++k) {
-    trees::add_to_canopy(whole, forest, k);
-    from_elements.add_elements(trees::instance_canopy_elements(forest, k));
+    const trees::TreeInstance& tree = forest.instances()[std::size_t(k)];
+    const trees::Skeleton world =
+        forest.species_of(k).skeleton().transformed(forest.rotation(k), tree.position, tree.scale);
+    const auto expected = trees::canopy_elements(world, settings.wind);
+    const auto carried = canopy.elements(k);
+    REQUIRE(carried.size() == expected.size());
+    // Tolerance: the same products in another order, a few ulps of metres and areas.
+    for (std::size_t e = 0; e < carried.size(); ++e) {
+      for (std::size_t axis = 0; axis < 3; ++axis) {
+        CHECK(carried[e].start[axis] == Approx(expected[e].start[axis]).margin(1e-12));
+        CHECK(carried[e].end[axis] == Approx(expected[e].end[axis]).margin(1e-12));
+      }
+      CHECK(carried[e].frontal_area_per_metre == Approx(expected[e].frontal_area_per_metre).epsilon(1e-12));
+      CHECK(carried[e].drag_area_per_metre == Approx(expected[e].drag_area_per_metre).epsilon(1e-12));
+    }
+    fluid::CanopyField field(grid(8, 8, 8, 1.0));
+    const fluid::CanopyTreeReport report = canopy.add(field, k);
+    const trees::Foliage foliage = trees::Foliage::of(world, settings.wind.leaf_area_index);
+    CHECK(report.leaf_area == Approx(foliage.leaf_area).epsilon(1e-12));
+    CHECK(report.crown_projected_area == Approx(foliage.crown_projected_area).epsilon(1e-12));
   }
-  CHECK(from_elements.drag_density() == whole.drag_density());
-  CHECK(from_elements.frontal_area_density() == whole.frontal_area_density());
-  CHECK_THROWS_WITH(trees::instance_canopy_elements(forest, 2), Catch::Matchers::Contains("instance"));
+  CHECK_THROWS_WITH(canopy.elements(2), Catch::Matchers::Contains("instance"));
 }
 
 TEST_CASE("CanopyDrag: bad arguments throw std::invalid_argument naming the unit", "[canopy]") {
@@ -370,8 +387,9 @@ TEST_CASE("CanopyDrag: bad arguments throw std::invalid_argument naming the unit
   const trees::Forest forest({trees::SpeciesBasis::compute(small_tree(), settings)},
                              {{0, {0, 0, 0}, 0.0, 1.0}});
   fluid::CanopyField canopy(grid(6, 6, 6, 1.0));
-  CHECK_THROWS_WITH(trees::add_to_canopy(canopy, forest, 1), Contains("CanopyDrag") && Contains("instance"));
-  CHECK_THROWS_AS(trees::add_to_canopy(canopy, forest, -1), std::invalid_argument);
+  CHECK_THROWS_WITH(trees::ForestCanopy(forest).add(canopy, 1),
+                    Contains("CanopyDrag") && Contains("instance"));
+  CHECK_THROWS_AS(trees::ForestCanopy(forest).add(canopy, -1), std::invalid_argument);
   CHECK(canopy.tree_count() == 0);
   trees::WindBasisSettings bad;
   bad.leaf_area_index = -1.0;

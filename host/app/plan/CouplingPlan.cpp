@@ -93,8 +93,9 @@ void plan_coupling(const io::Scenario& scenario, SimulationPlan& plan) {
   }
   fluid::CanopyField canopy(plan.wind.spec, canopy_box(plan));
   std::vector<double> leaf_area(std::size_t(plan.forest.instance_count()));  // m^2, one-sided, per tree
+  const trees::ForestCanopy trees_canopy(plan.forest);
   for (int k = 0; k < plan.forest.instance_count(); ++k)
-    leaf_area[std::size_t(k)] = trees::add_to_canopy(canopy, plan.forest, k).leaf_area;
+    leaf_area[std::size_t(k)] = trees_canopy.add(canopy, k).leaf_area;
   plan.canopy_cells = canopy.occupied_cells();
   if (plan.purpose == PlanFor::run) plan.canopy_density = canopy.frontal_area_density();
   plan.canopy_dropped_area = canopy.dropped_frontal_area();

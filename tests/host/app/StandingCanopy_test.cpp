@@ -39,7 +39,7 @@ std::vector<float> standing_field(const fluid::GridSpec& spec, const trees::Fore
                                   const std::vector<int>& fallen) {
   fluid::CanopyField field(spec);
   for (int k = 0; k < forest.instance_count(); ++k)
-    if (std::find(fallen.begin(), fallen.end(), k) == fallen.end()) trees::add_to_canopy(field, forest, k);
+    if (std::find(fallen.begin(), fallen.end(), k) == fallen.end()) trees::ForestCanopy(forest).add(field, k);
   return field.drag_density();
 }
 
