@@ -9,8 +9,9 @@
 // overturned, empty while standing), top_wind_m_s (the wind speed at its top when it failed; empty while
 // standing), max_base_moment_Nm (the largest root moment over the run), critical_breakage_Nm (M_b at the
 // base), critical_overturning_Nm (M_o), max_utilisation (the largest applied-to-critical ratio of any stem
-// section or the root over the run). Comma-separated, a header line, '\n' line ends; numbers with 9
-// significant digits, time with 12.
+// section or the root over the run), inventory_id (the tree's id in the forest inventory, docs/gis.md; empty
+// for a tree not from one). Comma-separated, a header line, '\n' line ends; numbers with 9 significant
+// digits, time with 12; an id holding a comma, a quote or a line end is quoted as RFC 4180 quotes it.
 #pragma once
 
 #include <string>
@@ -28,6 +29,7 @@ struct DamageTree {
   double height = 0.0, dbh = 0.0;     ///< m
   double critical_breakage = 0.0;     ///< N m, M_b at the base
   double critical_overturning = 0.0;  ///< N m, M_o
+  std::string inventory_id;           ///< its id in the inventory; empty for a tree not from one
 };
 
 /// The header line, without its line end.

@@ -1,5 +1,7 @@
 #include "io/TreesVtk.hpp"
 
+#include "io/SiteVtk.hpp"
+
 #include "io/VtkXml.hpp"
 
 #include <fmt/format.h>
@@ -13,6 +15,7 @@
 #include <vtkPointData.h>
 #include <vtkPoints.h>
 #include <vtkPolyData.h>
+#include <vtkStringArray.h>
 #include <vtkXMLPolyDataWriter.h>
 
 #include <cmath>
@@ -60,7 +63,7 @@ struct TreesVtp::Layout {
   std::vector<vtkIdType> tree_first, tree_points;
 };
 
-TreesVtp::TreesVtp(const std::vector<TreesFrame::Tree>& trees, bool damage)
+TreesVtp::TreesVtp(const std::vector<TreesFrame::Tree>& trees, bool damage, const TreesFieldData& field_data)
     : layout_(std::make_unique<Layout>()) {
   vtkIdType point_count = 0, line_count = 0;
   for (std::size_t t = 0; t < trees.size(); ++t) {
@@ -131,6 +134,15 @@ TreesVtp::TreesVtp(const std::vector<TreesFrame::Tree>& trees, bool damage)
   l.time->SetName("TimeValue");
   l.time->SetNumberOfTuples(1);
   l.data->GetFieldData()->AddArray(l.time);
+  if (field_data.site) add_site_field_data(*l.data->GetFieldData(), *field_data.site);
+  if (!field_data.inventory_ids.empty()) {
+    vtkNew<vtkStringArray> ids;
+    ids->SetName("inventory_id");
+    ids->SetNumberOfValues(vtkIdType(field_data.inventory_ids.size()));
+    for (std::size_t t = 0; t < field_data.inventory_ids.size(); ++t)
+      ids->SetValue(vtkIdType(t), field_data.inventory_ids[t]);
+    l.data->GetFieldData()->AddArray(ids);
+  }
 }
 
 TreesVtp::~TreesVtp() = default;

@@ -26,7 +26,9 @@
 //   tree_id       int32, the tree's id (TreesFrame::Tree::tree_id)
 //   species       int32, the species index
 //   node_id       int32, the node's index within its tree
-// Field data: "TimeValue" (float64, 1 tuple, s).
+// Field data: "TimeValue" (float64, 1 tuple, s); with a site, site_origin, site_epsg and site_crs
+// (io/SiteVtk.hpp); with a forest inventory, "inventory_id" (String, one per tree of the whole forest, in
+// tree_id order: tree t's id in the inventory, "" for a tree not from it).
 // Files are binary (appended raw data, LZ4, 64-bit headers; io/VtkXml) and written through AtomicFile.
 #pragma once
 
@@ -38,8 +40,11 @@
 #include <cstdint>
 #include <filesystem>
 
+#include <optional>
+#include <string>
 #include <vector>
 #include "io/ParallelVtk.hpp"
+#include "io/settings/SiteSettings.hpp"
 
 namespace fw::io {
 
@@ -63,13 +68,20 @@ struct TreesFrame {
 /// or the file cannot be written (no partial file or temporary is left behind).
 void write_trees_vtp(const std::filesystem::path& path, const TreesFrame& frame);
 
+/// The field data a trees frame carries besides its time (the header's list).
+struct TreesFieldData {
+  std::optional<SiteSettings> site;
+  std::vector<std::string> inventory_ids;  ///< by tree_id; empty: none written
+};
+
 class TreesVtp {
  public:
   /// The static part of the layout from the trees' rest, radius and parent (their displacement is ignored).
   /// damage: the frames also carry each point's stress `utilisation` and its tree's `state` (0 standing, 1
   /// broken, 2 overturned: trees::TreeState; docs/damage.md). Throws std::invalid_argument
   /// ("write_trees_vtp: tree K (id I): ...") as write_trees_vtp does.
-  explicit TreesVtp(const std::vector<TreesFrame::Tree>& trees, bool damage = false);
+  explicit TreesVtp(const std::vector<TreesFrame::Tree>& trees, bool damage = false,
+                    const TreesFieldData& field_data = {});
   ~TreesVtp();
   TreesVtp(const TreesVtp&) = delete;
   TreesVtp& operator=(const TreesVtp&) = delete;

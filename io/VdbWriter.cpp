@@ -168,6 +168,14 @@ void write_wind_vdb(const std::filesystem::path& path, const WindFrame& frame, b
   openvdb::MetaMap file_meta;
   file_meta.insertMeta("time_s", openvdb::DoubleMetadata(frame.time));
   file_meta.insertMeta("step", openvdb::Int64Metadata(frame.step));
+  if (frame.site) {
+    // The site (docs/gis.md): origin + a local position is the position in the CRS.
+    const auto& o = frame.site->origin;
+    file_meta.insertMeta("site_origin", openvdb::Vec3DMetadata(openvdb::Vec3d(o[0], o[1], o[2])));
+    const auto& crs = frame.site->crs;
+    file_meta.insertMeta("site_epsg", openvdb::Int32Metadata(crs && crs->epsg ? *crs->epsg : 0));
+    if (crs) file_meta.insertMeta("site_crs", openvdb::StringMetadata(crs->wkt));
+  }
 
   base::AtomicFile file(path);
   try {

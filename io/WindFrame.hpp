@@ -13,6 +13,7 @@
 
 #include "fluid/GridSpec.hpp"
 #include "fluid/MacVelocity.hpp"
+#include "io/settings/SiteSettings.hpp"
 
 #include <array>
 #include <cstddef>
@@ -36,6 +37,9 @@ struct WindFrame {
   std::vector<float> pressure;        ///< 1 per cell, kinematic p/rho, m^2/s^2; may be empty
   std::vector<std::uint8_t> solid;    ///< 1 per cell, nonzero = solid (obstacle, terrain); may be empty
   std::vector<float> canopy_density;  ///< 1 per cell, frontal area density a, 1/m; may be empty
+  /// The run's site, written with the frame (io/SiteVtk.hpp, the VDB metadata); null without one. Not owned:
+  /// the writer's.
+  const SiteSettings* site = nullptr;
 
   std::size_t cell_count() const { return std::size_t(dims[0]) * dims[1] * dims[2]; }
   std::size_t cell_index(int i, int j, int k) const {

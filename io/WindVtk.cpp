@@ -1,5 +1,7 @@
 #include "io/WindVtk.hpp"
 
+#include "io/SiteVtk.hpp"
+
 #include "io/VtkXml.hpp"
 
 #include <type_traits>
@@ -125,6 +127,7 @@ void write_wind_vti(const std::filesystem::path& path, const WindFrame& frame,
   time->SetNumberOfTuples(1);
   time->SetValue(0, frame.time);
   image->GetFieldData()->AddArray(time);
+  if (frame.site) add_site_field_data(*image->GetFieldData(), *frame.site);
   if (declared != nullptr) *declared = describe_arrays(image);
 
   vtkNew<vtkXMLImageDataWriter> writer;

@@ -14,7 +14,8 @@
 //   vorticity       float32 x 3, 1/s (see wind_vorticity)
 //   solid           uint8, 1 in solid cells, 0 in fluid
 //   canopy_density  float32, frontal area density a, 1/m
-// Field data: "TimeValue" (float64, 1 tuple, s), which ParaView uses as the dataset's time.
+// Field data: "TimeValue" (float64, 1 tuple, s), which ParaView uses as the dataset's time; with a site,
+// site_origin, site_epsg and site_crs (io/SiteVtk.hpp).
 // Files are written by io/VtkXml (binary appended data, LZ4, 64-bit headers, through AtomicFile).
 #pragma once
 

@@ -1,7 +1,5 @@
 #include "viz/CsvText.hpp"
 
-#include <sstream>
-
 namespace fw::viz {
 
 std::vector<std::string> csv_lines(const std::string& text, bool keep_unfinished_last) {
@@ -19,10 +17,24 @@ std::vector<std::string> csv_lines(const std::string& text, bool keep_unfinished
 }
 
 std::vector<std::string> split_csv(const std::string& line) {
-  std::vector<std::string> fields;
-  std::stringstream in(line);
-  for (std::string field; std::getline(in, field, ',');) fields.push_back(field);
-  if (!line.empty() && line.back() == ',') fields.emplace_back();
+  // RFC 4180's quotes (damage.csv quotes an inventory id that holds a comma); an unclosed quote runs to the
+  // end of the line.
+  std::vector<std::string> fields(1);
+  bool quoted = false;
+  for (std::size_t i = 0; i < line.size(); ++i) {
+    const char c = line[i];
+    if (quoted && c == '"' && i + 1 < line.size() && line[i + 1] == '"') {
+      fields.back() += '"';
+      ++i;
+    } else if (c == '"' && (quoted || fields.back().empty())) {
+      quoted = !quoted;
+    } else if (c == ',' && !quoted) {
+      fields.emplace_back();
+    } else {
+      fields.back() += c;
+    }
+  }
+  if (line.empty()) fields.clear();
   return fields;
 }
 

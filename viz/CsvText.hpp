@@ -1,5 +1,6 @@
 // The comma-separated files a run writes (probes.csv, damage.csv) as text: their lines and each line's
-// values. No quoting: forestwind writes none (a name with a comma is refused where it is given).
+// values. Quotes as RFC 4180 has them: damage.csv quotes an inventory id that holds a comma or a quote;
+// every other name with a comma is refused where it is given.
 //
 //   const std::vector<std::string> lines = fw::viz::csv_lines(text, /*keep_unfinished_last=*/true);
 //   const std::vector<std::string> header = fw::viz::split_csv(lines.at(0));
@@ -15,7 +16,8 @@ namespace fw::viz {
 /// left out otherwise (a file appended row by row, whose last row a killed run may have cut short).
 std::vector<std::string> csv_lines(const std::string& text, bool keep_unfinished_last);
 
-/// The values of one line between its commas: "a,,b" gives a, "", b; "a," gives a, ""; "" gives none.
+/// The values of one line between its commas: "a,,b" gives a, "", b; "a," gives a, ""; "" gives none;
+/// "\"x,\"\"y\"\"\",b" gives x,"y" and b.
 std::vector<std::string> split_csv(const std::string& line);
 
 }  // namespace fw::viz

@@ -42,6 +42,9 @@ constexpr std::uint64_t kNominalBlockBytes = std::uint64_t(1) << 20;
 // bounds keep every product of count, components and value bytes within 64 bits (2^40 * 2^10 * 8 = 2^53).
 constexpr long long kMaxCount = 1LL << 40;
 constexpr long long kMaxComponents = 1LL << 10;
+// A String array of <FieldData> (a site's CRS as WKT, an inventory's tree ids): each string with its
+// terminating NUL, at most this long (a WKT2 of a projected CRS runs to 2-3 kB).
+constexpr std::uint64_t kMaxStringBytes = std::uint64_t(1) << 16;
 // The four cell arrays of a poly data piece, each with the attribute counting its cells.
 constexpr std::array<std::pair<const char*, const char*>, 4> kPolyCells = {{{"Verts", "NumberOfVerts"},
                                                                             {"Lines", "NumberOfLines"},
@@ -345,13 +348,33 @@ class FrameFile {
     check_names_unique(group);
   }
 
-  /// Checks the arrays of <FieldData>, each of the tuples it declares.
+  /// Checks the arrays of <FieldData>, each of the tuples it declares; a String array's block holds one to
+  /// kMaxStringBytes bytes a string.
   void check_field_data(vtkXMLDataElement* field) {
     for (int n = 0; n < field->GetNumberOfNestedElements(); ++n) {
       vtkXMLDataElement* array = field->GetNestedElement(n);
-      check_array(array, std::uint64_t(count(array, "NumberOfTuples", std::nullopt)));
+      const auto tuples = std::uint64_t(count(array, "NumberOfTuples", std::nullopt));
+      if (is(array->GetAttribute("type"), "String"))
+        check_string_array(array, tuples);
+      else
+        check_array(array, tuples);
     }
     check_names_unique(field);
+  }
+
+  void check_string_array(vtkXMLDataElement* array, std::uint64_t tuples) {
+    const char* name = array->GetAttribute("Name");
+    if (!name || !*name) refuse(path_, "a data array without a Name");
+    const std::string label = fmt::format("string array '{}'", name);
+    if (!is(array->GetAttribute("format"), "appended"))
+      refuse(path_, fmt::format("{}: format appended expected (raw binary, as forestwind writes)", label));
+    if (count(array, "NumberOfComponents", 1, 1) != 1)
+      refuse(path_, fmt::format("{}: one component expected", label));
+    const std::uint64_t holds =
+        blocks().expanded_bytes(std::uint64_t(count(array, "offset", std::nullopt, LLONG_MAX)));
+    if (holds < tuples || holds > tuples * kMaxStringBytes)
+      refuse(path_, fmt::format("{}: its block holds {} bytes, for {} strings of 1 to {} bytes", label, holds,
+                                tuples, kMaxStringBytes));
   }
 
   /// Refuses two arrays of one name in `group`: VTK's dataset keeps one array a name, while its reader

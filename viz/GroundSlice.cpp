@@ -56,12 +56,16 @@ GroundSlice ground_slice(const WindGrid& wind, const std::string& field, double 
   return slice;
 }
 
-io::GeoGrid geo_grid(const GroundSlice& slice, double time) {
+io::GeoGrid geo_grid(const GroundSlice& slice, double time, const io::SiteSettings* site) {
   io::GeoGrid grid;
   grid.columns = slice.columns;
   grid.rows = slice.rows;
   const double h = slice.cell_size;
-  grid.transform = {slice.origin[0], h, 0.0, slice.origin[1] + slice.rows * h, 0.0, -h};
+  // Local metres, or with a site its CRS: the site's origin plus the local position.
+  const double x0 = slice.origin[0] + (site ? site->origin[0] : 0.0);
+  const double y0 = slice.origin[1] + (site ? site->origin[1] : 0.0);
+  grid.transform = {x0, h, 0.0, y0 + slice.rows * h, 0.0, -h};
+  if (site && site->crs) grid.crs_wkt = site->crs->wkt;
   grid.values.reserve(slice.values.size());
   for (int row = slice.rows - 1; row >= 0; --row)  // GeoTIFF rows run north to south
     for (int i = 0; i < slice.columns; ++i) {

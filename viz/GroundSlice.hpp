@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "io/gis/GeoTiff.hpp"
+#include "io/settings/SiteSettings.hpp"
 #include "viz/RunFolder.hpp"
 
 namespace fw::viz {
@@ -39,8 +40,9 @@ GroundSlice ground_slice(const WindGrid& wind, const std::string& field, double 
 /// The value io::write_geotiff marks columns without a value with (NaN in the slice).
 inline constexpr double kGeoTiffNoData = -9999.0;
 
-/// The slice as a GeoTIFF's grid in the domain's own coordinates (no CRS): north row first, one pixel a
-/// column of cells, the band described by field, height and `time` (s).
-io::GeoGrid geo_grid(const GroundSlice& slice, double time);
+/// The slice as a GeoTIFF's grid: north row first, one pixel a column of cells, the band described by field,
+/// height and `time` (s). In the domain's own coordinates without a site (no CRS); with one, at the site's
+/// origin plus the local position, in its CRS (none when the site has none).
+io::GeoGrid geo_grid(const GroundSlice& slice, double time, const io::SiteSettings* site = nullptr);
 
 }  // namespace fw::viz

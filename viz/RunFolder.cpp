@@ -28,6 +28,7 @@
 #include <string_view>
 
 #include "io/PvdCollection.hpp"
+#include "io/SiteVtk.hpp"
 #include "io/YamlDocuments.hpp"
 #include "viz/FrameFileCheck.hpp"
 #include "viz/VtkErrorCapture.hpp"
@@ -108,6 +109,7 @@ WindGrid read_wind(const fs::path& path) {
   grid.file = path;
   for (int a = 0; a < 3; ++a) grid.cells[a] = dims[a] - 1, grid.origin[a] = origin[a];
   grid.cell_size = spacing[0];
+  grid.site = io::read_site_field_data(*image->GetFieldData());
   if (grid.cells[0] < 1 || grid.cells[1] < 1 || grid.cells[2] < 1 || !(grid.cell_size > 0.0))
     throw FrameReadError(fmt::format("render: {}: expected a grid of cells, got {} x {} x {} points",
                                      path.string(), dims[0], dims[1], dims[2]));

@@ -21,6 +21,7 @@
 #include <string>
 #include <vector>
 
+#include "io/settings/SiteSettings.hpp"
 #include "viz/FrameFileCheck.hpp"
 
 namespace fw::viz {
@@ -46,6 +47,8 @@ struct WindGrid {
   };
   std::vector<Array> arrays;
   std::vector<std::uint8_t> solid;  ///< 1 per solid cell; empty when the file holds no "solid" array
+  /// The run's site, from the frame's field data (io/SiteVtk.hpp); none for a run without one.
+  std::optional<io::SiteSettings> site;
 
   /// The field names field() accepts: every scalar array, and for a vector array NAME its magnitude NAME
   /// and its components NAME_x, NAME_y, NAME_z.

@@ -63,7 +63,7 @@ std::unique_ptr<io::FrameWriter> wind_pieces(const SimulationPlan& plan,
   }
   return std::make_unique<io::WindVtkWriter>(directory, share.local, cut(plan.wind.solid),
                                              cut(plan.canopy_density), plan.output.vtk_fields,
-                                             std::move(pieces));
+                                             std::move(pieces), plan.scenario.site);
 }
 
 // What damage.csv says of each tree that never changes: its place, size and critical moments (its species'
@@ -78,9 +78,15 @@ std::vector<io::DamageTree> damage_trees(const SimulationPlan& plan) {
     trees.push_back({forest.id(k), plan.species[std::size_t(instance.species)].species, instance.position.x(),
                      instance.position.y(), s * strength.height, s * strength.dbh,
                      volume_scale * strength.critical.breaking.front(),
-                     volume_scale * strength.critical.overturning});
+                     volume_scale * strength.critical.overturning,
+                     plan.tree_ids.empty() ? std::string() : plan.tree_ids.at(std::size_t(forest.id(k)))});
   }
   return trees;
+}
+
+// The trees frames' field data: the site, and the inventory's id of every tree of the whole forest.
+io::TreesFieldData trees_field_data(const SimulationPlan& plan) {
+  return {plan.scenario.site, plan.tree_ids};
 }
 
 // A writer that takes every `every`-th frame only.
@@ -133,9 +139,10 @@ std::vector<std::unique_ptr<io::FrameWriter>> make_writers(const SimulationPlan&
     if (out.vtk_wind)
       writers.push_back(taking_every(wind_pieces(plan, directory, *share), out.vtk_wind_every));
     if (out.vtk_trees && trees_present)
-      writers.push_back(taking_every(std::make_unique<io::TreesVtkWriter>(directory, *share->own_forest,
-                                                                          damage, share->rank, share->ranks),
-                                     out.vtk_trees_every));
+      writers.push_back(taking_every(
+          std::make_unique<io::TreesVtkWriter>(directory, *share->own_forest, damage, share->rank,
+                                               share->ranks, trees_field_data(plan)),
+          out.vtk_trees_every));
     if (out.vtk_leaves && leaves_present)
       writers.push_back(taking_every(
           std::make_unique<io::LeavesVtkWriter>(directory, share->rank, share->ranks), out.leaves_every));
@@ -143,21 +150,22 @@ std::vector<std::unique_ptr<io::FrameWriter>> make_writers(const SimulationPlan&
   }
   writers.insert(writers.begin(), std::make_unique<io::ManifestWriter>(directory, manifest_of(plan, device)));
   if (out.vtk_wind && share == nullptr) {
-    writers.push_back(
-        taking_every(std::make_unique<io::WindVtkWriter>(directory, plan.wind.spec, plan.wind.solid,
-                                                         plan.canopy_density, out.vtk_fields),
-                     out.vtk_wind_every));
+    writers.push_back(taking_every(
+        std::make_unique<io::WindVtkWriter>(directory, plan.wind.spec, plan.wind.solid, plan.canopy_density,
+                                            out.vtk_fields, std::nullopt, plan.scenario.site),
+        out.vtk_wind_every));
   }
   if (out.vtk_trees && trees_present && share == nullptr)
-    writers.push_back(taking_every(std::make_unique<io::TreesVtkWriter>(directory, plan.forest, damage),
-                                   out.vtk_trees_every));
+    writers.push_back(taking_every(
+        std::make_unique<io::TreesVtkWriter>(directory, plan.forest, damage, trees_field_data(plan)),
+        out.vtk_trees_every));
   if (out.vtk_leaves && leaves_present && share == nullptr)
     writers.push_back(taking_every(std::make_unique<io::LeavesVtkWriter>(directory), out.leaves_every));
   if (out.vdb_enabled) {
     writers.push_back(taking_every(
         std::make_unique<io::WindVdbWriter>(directory, plan.wind.spec, plan.wind.solid,
                                             contains(out.vdb_grids, "vel"), contains(out.vdb_grids, "speed"),
-                                            vdb_holds_leaves(plan)),
+                                            vdb_holds_leaves(plan), plan.scenario.site),
         out.vdb_every));
   }
   std::vector<std::string> probe_names;

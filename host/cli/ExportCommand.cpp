@@ -1,9 +1,11 @@
 // `forestwind export`: a wind field of a run's frame at a height above the ground, as a GeoTIFF a GIS opens
-// (viz/GroundSlice.hpp, io/gis/GeoTiff.hpp). A run has no site yet (issue 46), so the file is in the
-// domain's own coordinates, metres from its origin, without a CRS, and the summary says so.
+// (viz/GroundSlice.hpp, io/gis/GeoTiff.hpp). A run with a site (the frames' field data) gets its file in the
+// site's CRS; one without, in the domain's own coordinates, metres from its origin, without a CRS, and the
+// summary says which.
 #include <fmt/format.h>
 
 #include <iostream>
+#include <optional>
 #include <stdexcept>
 #include <string>
 
@@ -26,14 +28,23 @@ int run_export(const ExportOptions& options) {
     throw std::invalid_argument(
         fmt::format("export: {} has no wind frames (output.wind off): nothing to export", options.folder));
   const viz::GroundSlice slice = viz::ground_slice(*data.wind, options.field, options.height);
-  io::write_geotiff(options.output, viz::geo_grid(slice, data.time));
-  if (!options.quiet)
+  const std::optional<io::SiteSettings>& site = data.wind->site;
+  io::write_geotiff(options.output, viz::geo_grid(slice, data.time, site ? &*site : nullptr));
+  if (options.quiet) return 0;
+  std::cout << fmt::format(
+      "wrote {} ({} at {:g} m above the ground, frame {}, t = {:g} s: {} x {} pixels of {:g} m, {} of them "
+      "without a value)\n",
+      options.output, slice.field, slice.height, data.index, data.time, slice.columns, slice.rows,
+      slice.cell_size, slice.values.size() - slice.valid_count());
+  if (site)
+    std::cout << fmt::format("  in the site's CRS, {}: the domain's corner at ({:.12g}, {:.12g})\n",
+                             site->crs_label(), site->origin[0] + slice.origin[0],
+                             site->origin[1] + slice.origin[1]);
+  else
     std::cout << fmt::format(
-        "wrote {} ({} at {:g} m above the ground, frame {}, t = {:g} s: {} x {} pixels of {:g} m, {} of them "
-        "without a value)\n  local coordinates: metres from the domain's origin ({:g}, {:g}), no CRS (the "
+        "  local coordinates: metres from the domain's origin ({:g}, {:g}), no CRS (the "
         "scenario has no site)\n",
-        options.output, slice.field, slice.height, data.index, data.time, slice.columns, slice.rows,
-        slice.cell_size, slice.values.size() - slice.valid_count(), slice.origin[0], slice.origin[1]);
+        slice.origin[0], slice.origin[1]);
   return 0;
 }
 

@@ -41,7 +41,9 @@ constexpr KeyDocs kDocs[] = {
      .description = "As `output.vtk.wind_every`, for `trees.pvd`."},
     {.path = "output.vtk.fields",
      .description = "Arrays in the wind `.vti` files. `pressure` is the kinematic pressure p/rho (m^2/s^2). "
-                    "`canopy_density` is the trees' frontal area density (1/m)."},
+                    "`canopy_density` is the trees' frontal area density (1/m). A domain with solid cells "
+                    "(obstacles, terrain) writes `solid` too, listed or not: `export` and `render` find the "
+                    "ground by it."},
     {.path = "output.vdb", .description = "OpenVDB output (Houdini, Blender)."},
     {.path = "output.vdb.enabled", .description = "Write `vdb/wind.NNNN.vdb` per frame."},
     {.path = "output.vdb.grids",

@@ -29,7 +29,8 @@ struct SiteSettings {
   std::array<double, 3> to_site(const std::array<double, 3>& local) const {
     return {origin[0] + local[0], origin[1] + local[1], origin[2] + local[2]};
   }
-  /// The CRS in the words a GIS user reads: "EPSG:32632 (WGS 84 / UTM zone 32N)", or "none".
+  /// The CRS in the words a GIS user reads: "EPSG:32632 (WGS 84 / UTM zone 32N)", "EPSG:32632" when the
+  /// name is not known, or "none".
   std::string crs_label() const;
 };
 

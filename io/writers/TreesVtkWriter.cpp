@@ -27,10 +27,11 @@ std::vector<TreesFrame::Tree> forest_at_rest(const trees::Forest& forest) {
   return rest;
 }
 
-TreesVtkWriter::TreesVtkWriter(std::filesystem::path directory, const trees::Forest& forest, bool damage)
+TreesVtkWriter::TreesVtkWriter(std::filesystem::path directory, const trees::Forest& forest, bool damage,
+                               const TreesFieldData& field_data)
     : directory_(std::move(directory)),
       damage_(damage),
-      forest_(std::make_unique<TreesVtp>(forest_at_rest(forest), damage)),
+      forest_(std::make_unique<TreesVtp>(forest_at_rest(forest), damage, field_data)),
       collection_(directory_ / "trees.pvd") {}
 
 void TreesVtkWriter::begin() {
@@ -38,8 +39,8 @@ void TreesVtkWriter::begin() {
 }
 
 TreesVtkWriter::TreesVtkWriter(std::filesystem::path directory, const trees::Forest& forest, bool damage,
-                               int rank, int ranks)
-    : TreesVtkWriter(std::move(directory), forest, damage) {
+                               int rank, int ranks, const TreesFieldData& field_data)
+    : TreesVtkWriter(std::move(directory), forest, damage, field_data) {
   rank_ = rank;
   ranks_ = ranks;
 }

@@ -22,12 +22,14 @@ std::vector<TreesFrame::Tree> forest_at_rest(const trees::Forest& forest);
 class TreesVtkWriter : public FrameWriter {
  public:
   /// damage: the frames carry each node's stress utilisation and its tree's state (a run with damage).
-  TreesVtkWriter(std::filesystem::path directory, const trees::Forest& forest, bool damage = false);
+  /// field_data: the site and the inventory's ids, into every frame (io/TreesVtk.hpp).
+  TreesVtkWriter(std::filesystem::path directory, const trees::Forest& forest, bool damage = false,
+                 const TreesFieldData& field_data = {});
   /// Over MPI ranks: `forest` is this rank's trees; it writes trees/trees_NNNNNN_RRRR.vtp, rank 0 also
   /// trees/trees_NNNNNN.pvtp listing the `ranks` pieces, and the run adds the frame to trees.pvd once every
   /// rank has written it.
   TreesVtkWriter(std::filesystem::path directory, const trees::Forest& forest, bool damage, int rank,
-                 int ranks);
+                 int ranks, const TreesFieldData& field_data = {});
   /// The file trees.pvd lists for frame `index`: its .vtp, or over ranks its .pvtp.
   static std::string frame_file(int index, bool pieces);
 

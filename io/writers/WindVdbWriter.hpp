@@ -7,10 +7,12 @@
 
 #include <cstdint>
 #include <filesystem>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "fluid/GridSpec.hpp"
+#include "io/settings/SiteSettings.hpp"
 #include "io/writers/FrameWriter.hpp"
 
 namespace fw::io {
@@ -20,7 +22,7 @@ class WindVdbWriter : public FrameWriter {
   /// solid: 1 byte a cell (empty = none); solid cells are inactive voxels. leaves: write each frame's
   /// leaves (OutputFrame::leaves) as the points grid "leaves", also when a frame has none.
   WindVdbWriter(std::filesystem::path directory, fluid::GridSpec spec, std::vector<std::uint8_t> solid,
-                bool vel, bool speed, bool leaves = false);
+                bool vel, bool speed, bool leaves = false, std::optional<SiteSettings> site = std::nullopt);
 
   std::string name() const override { return "VDB"; }
   FrameNeeds needs() const override { return {.velocity = true, .leaves = leaves_}; }
@@ -32,6 +34,7 @@ class WindVdbWriter : public FrameWriter {
   fluid::GridSpec spec_;
   std::vector<std::uint8_t> solid_;
   bool vel_ = true, speed_ = true, leaves_ = false;
+  std::optional<SiteSettings> site_;  // into every file's metadata
 };
 
 }  // namespace fw::io

@@ -12,13 +12,15 @@ namespace fw::io {
 
 WindVtkWriter::WindVtkWriter(std::filesystem::path directory, fluid::GridSpec spec,
                              std::vector<std::uint8_t> solid, std::vector<float> canopy_density,
-                             std::vector<std::string> fields, std::optional<WindPieces> pieces)
+                             std::vector<std::string> fields, std::optional<WindPieces> pieces,
+                             std::optional<SiteSettings> site)
     : directory_(std::move(directory)),
       spec_(std::move(spec)),
       solid_(std::move(solid)),
       canopy_density_(std::move(canopy_density)),
       fields_(std::move(fields)),
       pieces_(std::move(pieces)),
+      site_(std::move(site)),
       collection_(directory_ / "wind.pvd") {}
 
 FrameNeeds WindVtkWriter::needs() const {
@@ -42,8 +44,9 @@ std::string WindVtkWriter::frame_file(int index, bool pieces) {
 }
 
 void WindVtkWriter::write(const OutputFrame& frame) {
-  const WindFrame wind =
+  WindFrame wind =
       make_wind_frame(spec_, frame.velocity, frame.pressure, solid_, canopy_density_, frame.time, frame.step);
+  wind.site = site_ ? &*site_ : nullptr;
   if (!pieces_) {
     const std::string file = frame_file(frame.index, false);
     write_wind_vti(directory_ / file, wind, fields_);

@@ -14,6 +14,7 @@
 #include "fluid/GridSpec.hpp"
 #include "io/PvdCollection.hpp"
 #include "io/WindVtk.hpp"
+#include "io/settings/SiteSettings.hpp"
 #include "io/writers/FrameWriter.hpp"
 
 namespace fw::io {
@@ -32,10 +33,11 @@ class WindVtkWriter : public FrameWriter {
   /// wind_field_names() (an unknown one throws std::invalid_argument at the first frame).
   /// Over ranks (pieces given): spec, solid and canopy_density are this rank's block with the halo; it
   /// writes wind/wind_NNNNNN_RRRR.vti, rank 0 also wind/wind_NNNNNN.pvti, and the run adds the frame to
-  /// wind.pvd once every rank has written it.
+  /// wind.pvd once every rank has written it. site: the run's, into every frame (io/SiteVtk.hpp).
   WindVtkWriter(std::filesystem::path directory, fluid::GridSpec spec, std::vector<std::uint8_t> solid,
                 std::vector<float> canopy_density, std::vector<std::string> fields,
-                std::optional<WindPieces> pieces = std::nullopt);
+                std::optional<WindPieces> pieces = std::nullopt,
+                std::optional<SiteSettings> site = std::nullopt);
   /// The file wind.pvd lists for frame `index`: its .vti, or over ranks its .pvti.
   static std::string frame_file(int index, bool pieces);
 
@@ -53,6 +55,7 @@ class WindVtkWriter : public FrameWriter {
   std::vector<float> canopy_density_;
   std::vector<std::string> fields_;
   std::optional<WindPieces> pieces_;
+  std::optional<SiteSettings> site_;  // written into every frame's field data
   PvdCollection collection_;
 };
 

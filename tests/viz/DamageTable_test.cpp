@@ -2,10 +2,13 @@
 
 #include <filesystem>
 #include <string>
+#include <vector>
 
+#include "io/DamageCsv.hpp"
 #include "tests/support/RunFolders.hpp"
 #include "tests/support/SourceErrors.hpp"
 #include "tests/support/TempDir.hpp"
+#include "viz/CsvText.hpp"
 #include "viz/DamageTable.hpp"
 
 namespace fs = std::filesystem;
@@ -142,4 +145,34 @@ TEST_CASE("DamageTable: a tree stands until its failure time, and the counts ste
   CHECK(counts.overturned == std::vector<int>{0, 0, 1, 1});
   // Failures before the start are in every point.
   CHECK(table.counts_over(3.0, 3.5).broken == std::vector<int>{1, 1});
+}
+
+TEST_CASE("DamageTable: an inventory id with a comma or a quote reads back whole, as damage.csv quotes it",
+          "[viz]") {
+  std::vector<fw::io::DamageTree> trees(2);
+  // Sizes and strengths as a run gives them: the table checks them.
+  for (fw::io::DamageTree& tree : trees) {
+    tree.height = 20.0;
+    tree.dbh = 0.3;
+    tree.critical_breakage = 1e5;
+    tree.critical_overturning = 8e4;
+  }
+  trees[0].species = "spruce";
+  trees[0].inventory_id = "plot 3, tree 7";
+  trees[1].id = 1;
+  trees[1].species = "beech";
+  trees[1].inventory_id = "the \"old\" one";
+  std::vector<fw::trees::TreeDamageRecord> records(2);
+  const std::string text = fw::io::damage_csv(trees, records);
+  CHECK_THAT(text, Catch::Contains(",\"plot 3, tree 7\"\n") && Catch::Contains(",\"the \"\"old\"\" one\"\n"));
+  const std::vector<std::string> lines = fw::viz::csv_lines(text, false);
+  REQUIRE(lines.size() == 3);
+  const std::vector<std::string> header = fw::viz::split_csv(lines[0]);
+  CHECK(header.back() == "inventory_id");
+  CHECK(fw::viz::split_csv(lines[1]).back() == "plot 3, tree 7");
+  CHECK(fw::viz::split_csv(lines[2]).back() == "the \"old\" one");
+  CHECK(fw::viz::split_csv(lines[2]).size() == header.size());
+  fw::test::TempDir dir("fw_viz");
+  const auto table = read_damage_table(dir.write("damage.csv", text));
+  CHECK(table.trees.size() == 2);
 }

@@ -91,3 +91,28 @@ TEST_CASE("GroundSlice: as a GeoTIFF, north row first, in the domain's coordinat
       CHECK(back.value_at(101.0 + 2 * i, 201.0 + 2 * j) == slice.value(i, j));
     }
 }
+
+TEST_CASE("GroundSlice: with a site, the GeoTIFF is in its CRS, at its origin plus the local position",
+          "[viz]") {
+  const fw::viz::GroundSlice slice = fw::viz::ground_slice(test_grid(), "speed", 3.0);
+  fw::io::SiteSettings site;
+  site.origin = {512040.0, 5401040.0, 421.0};
+  fw::io::CoordinateSystem& crs = site.crs.emplace();
+  crs.wkt = "EPSG:32632";  // GDAL takes any user input: the writer sets it, the reader gives its WKT back
+  crs.epsg = 32632;
+  const fw::test::TempDir dir("fw_ground_slice");
+  const std::string path = dir.path() + "/speed.tif";
+  fw::io::write_geotiff(path, fw::viz::geo_grid(slice, 12.5, &site));
+  const fw::io::GeoRaster back = fw::io::GeoRaster::read(path);
+  REQUIRE(back.crs().has_value());
+  CHECK(back.crs()->epsg == 32632);
+  CHECK(back.transform().x0 == 512040.0 + 100.0);
+  CHECK(back.transform().y0 == 5401040.0 + 204.0);
+  CHECK(back.transform().dx == 2.0);
+  for (int j = 0; j < 2; ++j)
+    for (int i = 0; i < 3; ++i) {
+      INFO("column " << i << ", " << j);
+      if (std::isnan(slice.value(i, j))) continue;
+      CHECK(back.value_at(512040.0 + 101.0 + 2 * i, 5401040.0 + 201.0 + 2 * j) == slice.value(i, j));
+    }
+}
