@@ -2,6 +2,7 @@
 
 #include "fluid/TurbulenceBox.hpp"
 #include "kernels/shared_types.h"
+#include "tests/support/ScenarioErrors.hpp"
 #include "tests/support/TempDir.hpp"
 #include "trees/StandDensity.hpp"
 
@@ -98,25 +99,7 @@ const std::string kBase =
     "domain: {size: [40, 20, 10], cell_size: 2.0}\n"  // 3
     "wind: {speed: 4.0, direction: 270}\n";           // 4
 
-// Loads `text` as NAME.yaml in dir and checks the ScenarioError: file, line, key, the "FILE:LINE: KEY: "
-// prefix of what() and a fragment of the rest.
-void expect_error(const fw::test::TempDir& dir, const std::string& name, const std::string& text, int line,
-                  const std::string& key, const std::string& fragment) {
-  INFO("case " << name << ":\n" << text);
-  const std::string path = dir.write(name + ".yaml", text);
-  try {
-    fw::io::load_scenario(path);
-    FAIL("load_scenario accepted the file");
-  } catch (const fw::io::ScenarioError& error) {
-    const std::string what = error.what();
-    INFO("what(): " << what);
-    CHECK(error.file() == path);
-    CHECK(error.line() == line);
-    CHECK(error.key() == key);
-    CHECK_THAT(what, StartsWith(fmt::format("{}:{}: {}: ", path, line, key)));
-    CHECK_THAT(what, Contains(fragment));
-  }
-}
+using fw::test::expect_scenario_error;
 
 void check_vector(const std::array<double, 3>& actual, const std::array<double, 3>& expected, double margin) {
   INFO("actual [" << actual[0] << ", " << actual[1] << ", " << actual[2] << "], expected [" << expected[0]
@@ -743,26 +726,26 @@ forest:
 
 TEST_CASE("load_scenario: unknown key names file, line and dotted key", "[scenario]") {
   fw::test::TempDir dir("fw_scenario");
-  expect_error(dir, "nested",
-               kBase +
-                   "forest:\n"                                          // 5
-                   "  species:\n"                                       // 6
-                   "    - name: oak\n"                                  // 7
-                   "      skeleton: {generate: {preset: broadleaf}}\n"  // 8
-                   "      modes:\n"                                     // 9
-                   "        count: 8\n"                                 // 10
-                   "        damping: 0.05\n",                           // 11
-               11, "forest.species[0].modes.damping",
-               "one of the keys count, damping_ratio, wind_samples expected, got 'damping'");
-  expect_error(dir, "top_level", kBase + "gusts: []\n", 5, "gusts", "got 'gusts'");
-  expect_error(dir, "in_event",
-               kBase +
-                   "events:\n  - gust: {start: 1, duration: 2, peak_speed: 3, center: [1, 1, 1], radius: 2,\n"
-                   "            spin: 4}\n",
-               7, "events[0].gust.spin",
-               "one of the keys start, duration, peak_speed, center, radius, travel");
+  expect_scenario_error(dir, "nested",
+                        kBase +
+                            "forest:\n"                                          // 5
+                            "  species:\n"                                       // 6
+                            "    - name: oak\n"                                  // 7
+                            "      skeleton: {generate: {preset: broadleaf}}\n"  // 8
+                            "      modes:\n"                                     // 9
+                            "        count: 8\n"                                 // 10
+                            "        damping: 0.05\n",                           // 11
+                        11, "forest.species[0].modes.damping",
+                        "one of the keys count, damping_ratio, wind_samples expected, got 'damping'");
+  expect_scenario_error(dir, "top_level", kBase + "gusts: []\n", 5, "gusts", "got 'gusts'");
+  expect_scenario_error(
+      dir, "in_event",
+      kBase +
+          "events:\n  - gust: {start: 1, duration: 2, peak_speed: 3, center: [1, 1, 1], radius: 2,\n"
+          "            spin: 4}\n",
+      7, "events[0].gust.spin", "one of the keys start, duration, peak_speed, center, radius, travel");
   // The profile's keys depend on its type: alpha belongs to power only.
-  expect_error(
+  expect_scenario_error(
       dir, "profile_key",
       "scenario: errors\ntime: {end: 10.0}\ndomain: {size: [40, 20, 10], cell_size: 2.0}\n"
       "wind:\n  speed: 4\n  direction: 270\n  profile: {type: log, roughness_length: 0.1, alpha: 0.2}\n",
@@ -771,72 +754,74 @@ TEST_CASE("load_scenario: unknown key names file, line and dotted key", "[scenar
 
 TEST_CASE("load_scenario: duplicate key names its second line and the first", "[scenario]") {
   fw::test::TempDir dir("fw_scenario");
-  expect_error(dir, "duplicate",
-               "scenario: errors\n"
-               "time: {end: 10.0}\n"
-               "domain: {size: [40, 20, 10], cell_size: 2.0}\n"
-               "wind:\n"
-               "  speed: 4.0\n"  // 5
-               "  direction: 270\n"
-               "  speed: 6.0\n",  // 7
-               7, "wind.speed", "each key once expected, got 'speed' again (first on line 5)");
-  expect_error(dir, "duplicate_top", kBase + "time: {end: 20.0}\n", 5, "time", "(first on line 2)");
+  expect_scenario_error(dir, "duplicate",
+                        "scenario: errors\n"
+                        "time: {end: 10.0}\n"
+                        "domain: {size: [40, 20, 10], cell_size: 2.0}\n"
+                        "wind:\n"
+                        "  speed: 4.0\n"  // 5
+                        "  direction: 270\n"
+                        "  speed: 6.0\n",  // 7
+                        7, "wind.speed", "each key once expected, got 'speed' again (first on line 5)");
+  expect_scenario_error(dir, "duplicate_top", kBase + "time: {end: 20.0}\n", 5, "time", "(first on line 2)");
 }
 
 TEST_CASE("load_scenario: wrong type names the key and shows the value", "[scenario]") {
   fw::test::TempDir dir("fw_scenario");
-  expect_error(dir, "end_word",
-               "scenario: errors\ntime: {end: soon}\ndomain: {size: [40, 20, 10], cell_size: 2.0}\n"
-               "wind: {speed: 4.0, direction: 270}\n",
-               2, "time.end", "a number > 0 and <= 1e9 (s) expected, got 'soon'");
-  expect_error(dir, "spin_up_word",
-               "scenario: errors\ntime:\n  end: 10.0\n  spin_up: long\n"
-               "domain: {size: [40, 20, 10], cell_size: 2.0}\nwind: {speed: 4.0, direction: 270}\n",
-               4, "time.spin_up", "a number >= 0 and <= 1e9 (s) expected, got 'long'");
-  expect_error(dir, "spin_up_list",
-               "scenario: errors\ntime: {end: 10.0, spin_up: [5]}\n"
-               "domain: {size: [40, 20, 10], cell_size: 2.0}\nwind: {speed: 4.0, direction: 270}\n",
-               2, "time.spin_up", "a number >= 0 and <= 1e9 (s) expected, got '[5]'");
-  expect_error(dir, "coupling", kBase + "forest:\n  two_way_coupling: maybe\n", 6, "forest.two_way_coupling",
-               "true or false expected, got 'maybe'");
-  expect_error(dir, "cell_list",
-               "scenario: errors\ntime: {end: 10.0}\ndomain: {size: [40, 20, 10], cell_size: [2]}\n"
-               "wind: {speed: 4.0, direction: 270}\n",
-               3, "domain.cell_size", "got '[2]'");
-  expect_error(dir, "probes_map", kBase + "output:\n  probes: {name: mast}\n", 6, "output.probes",
-               "a list of probes expected, got a map");
-  expect_error(dir, "size_two",
-               "scenario: errors\ntime: {end: 10.0}\ndomain: {size: [40, 20], cell_size: 2}\n"
-               "wind: {speed: 4.0, direction: 270}\n",
-               3, "domain.size",
-               "a list of 3 numbers [x, y, z], each > 0 and <= 40075017 (m) expected, got '[40, 20]'");
-  expect_error(dir, "root_list", "- scenario: errors\n", 1, "(top level)", "a map of scenario keys");
-  expect_error(dir, "empty", "", 1, "(top level)",
-               "a map of scenario keys (scenario, time, domain, wind, ...) "
-               "expected, got nothing");
+  expect_scenario_error(dir, "end_word",
+                        "scenario: errors\ntime: {end: soon}\ndomain: {size: [40, 20, 10], cell_size: 2.0}\n"
+                        "wind: {speed: 4.0, direction: 270}\n",
+                        2, "time.end", "a number > 0 and <= 1e9 (s) expected, got 'soon'");
+  expect_scenario_error(dir, "spin_up_word",
+                        "scenario: errors\ntime:\n  end: 10.0\n  spin_up: long\n"
+                        "domain: {size: [40, 20, 10], cell_size: 2.0}\nwind: {speed: 4.0, direction: 270}\n",
+                        4, "time.spin_up", "a number >= 0 and <= 1e9 (s) expected, got 'long'");
+  expect_scenario_error(dir, "spin_up_list",
+                        "scenario: errors\ntime: {end: 10.0, spin_up: [5]}\n"
+                        "domain: {size: [40, 20, 10], cell_size: 2.0}\nwind: {speed: 4.0, direction: 270}\n",
+                        2, "time.spin_up", "a number >= 0 and <= 1e9 (s) expected, got '[5]'");
+  expect_scenario_error(dir, "coupling", kBase + "forest:\n  two_way_coupling: maybe\n", 6,
+                        "forest.two_way_coupling", "true or false expected, got 'maybe'");
+  expect_scenario_error(dir, "cell_list",
+                        "scenario: errors\ntime: {end: 10.0}\ndomain: {size: [40, 20, 10], cell_size: [2]}\n"
+                        "wind: {speed: 4.0, direction: 270}\n",
+                        3, "domain.cell_size", "got '[2]'");
+  expect_scenario_error(dir, "probes_map", kBase + "output:\n  probes: {name: mast}\n", 6, "output.probes",
+                        "a list of probes expected, got a map");
+  expect_scenario_error(
+      dir, "size_two",
+      "scenario: errors\ntime: {end: 10.0}\ndomain: {size: [40, 20], cell_size: 2}\n"
+      "wind: {speed: 4.0, direction: 270}\n",
+      3, "domain.size",
+      "a list of 3 numbers [x, y, z], each > 0 and <= 40075017 (m) expected, got '[40, 20]'");
+  expect_scenario_error(dir, "root_list", "- scenario: errors\n", 1, "(top level)", "a map of scenario keys");
+  expect_scenario_error(dir, "empty", "", 1, "(top level)",
+                        "a map of scenario keys (scenario, time, domain, wind, ...) "
+                        "expected, got nothing");
 }
 
 TEST_CASE("load_scenario: missing required key names the map that lacks it", "[scenario]") {
   fw::test::TempDir dir("fw_scenario");
-  expect_error(dir, "no_speed",
-               "scenario: errors\ntime: {end: 10.0}\ndomain: {size: [40, 20, 10], cell_size: 2.0}\n"
-               "wind:\n"
-               "  direction: 270\n"  // 5: the map starts here
-               "  reference_height: 10\n",
-               5, "wind.speed", "(required), got nothing");
-  expect_error(dir, "no_time",
-               "scenario: errors\ndomain: {size: [40, 20, 10], cell_size: 2.0}\n"
-               "wind: {speed: 4.0, direction: 270}\n",
-               1, "time", "a map {end, dt, cfl, spin_up} expected (required), got nothing");
-  expect_error(dir, "no_radius",
-               kBase + "events:\n  - gust: {start: 1, duration: 2, peak_speed: 3, center: [1, 1, 1]}\n", 6,
-               "events[0].gust.radius", "a number > 0 and <= 40075017 (m) expected (required)");
-  expect_error(dir, "no_roughness",
-               "scenario: errors\ntime: {end: 10.0}\ndomain: {size: [40, 20, 10], cell_size: 2.0}\n"
-               "wind:\n  speed: 4\n  direction: 270\n  profile: {type: log}\n",
-               7, "wind.profile.roughness_length", "(required)");
-  expect_error(dir, "no_skeleton", kBase + "forest:\n  species:\n    - name: oak\n", 7,
-               "forest.species[0].skeleton", "(required)");
+  expect_scenario_error(dir, "no_speed",
+                        "scenario: errors\ntime: {end: 10.0}\ndomain: {size: [40, 20, 10], cell_size: 2.0}\n"
+                        "wind:\n"
+                        "  direction: 270\n"  // 5: the map starts here
+                        "  reference_height: 10\n",
+                        5, "wind.speed", "(required), got nothing");
+  expect_scenario_error(dir, "no_time",
+                        "scenario: errors\ndomain: {size: [40, 20, 10], cell_size: 2.0}\n"
+                        "wind: {speed: 4.0, direction: 270}\n",
+                        1, "time", "a map {end, dt, cfl, spin_up} expected (required), got nothing");
+  expect_scenario_error(
+      dir, "no_radius",
+      kBase + "events:\n  - gust: {start: 1, duration: 2, peak_speed: 3, center: [1, 1, 1]}\n", 6,
+      "events[0].gust.radius", "a number > 0 and <= 40075017 (m) expected (required)");
+  expect_scenario_error(dir, "no_roughness",
+                        "scenario: errors\ntime: {end: 10.0}\ndomain: {size: [40, 20, 10], cell_size: 2.0}\n"
+                        "wind:\n  speed: 4\n  direction: 270\n  profile: {type: log}\n",
+                        7, "wind.profile.roughness_length", "(required)");
+  expect_scenario_error(dir, "no_skeleton", kBase + "forest:\n  species:\n    - name: oak\n", 7,
+                        "forest.species[0].skeleton", "(required)");
 }
 
 TEST_CASE("load_scenario: out-of-range numbers name the key and the allowed range", "[scenario]") {
@@ -846,40 +831,45 @@ TEST_CASE("load_scenario: out-of-range numbers name the key and the allowed rang
                               "  species:\n"
                               "    - name: oak\n"
                               "      skeleton: {generate: {preset: broadleaf}}\n";  // 8
-  expect_error(dir, "samples", species + "      modes: {wind_samples: 17}\n", 9,
-               "forest.species[0].modes.wind_samples", "an integer 1..16 expected, got '17'");
-  expect_error(dir, "count", species + "      modes: {count: 0}\n", 9, "forest.species[0].modes.count",
-               "an integer 1..1000 expected, got '0'");
-  expect_error(dir, "damping", species + "      modes: {damping_ratio: -0.1}\n", 9,
-               "forest.species[0].modes.damping_ratio", "a number >= 0 and <= 10 expected, got '-0.1'");
-  expect_error(dir, "density", species + "      material: {density: 0}\n", 9,
-               "forest.species[0].material.density",
-               "a number >= 1.2 and <= 22590 (kg/m^3) expected, got '0'");
-  expect_error(
+  expect_scenario_error(dir, "samples", species + "      modes: {wind_samples: 17}\n", 9,
+                        "forest.species[0].modes.wind_samples", "an integer 1..16 expected, got '17'");
+  expect_scenario_error(dir, "count", species + "      modes: {count: 0}\n", 9,
+                        "forest.species[0].modes.count", "an integer 1..1000 expected, got '0'");
+  expect_scenario_error(dir, "damping", species + "      modes: {damping_ratio: -0.1}\n", 9,
+                        "forest.species[0].modes.damping_ratio",
+                        "a number >= 0 and <= 10 expected, got '-0.1'");
+  expect_scenario_error(dir, "density", species + "      material: {density: 0}\n", 9,
+                        "forest.species[0].material.density",
+                        "a number >= 1.2 and <= 22590 (kg/m^3) expected, got '0'");
+  expect_scenario_error(
       dir, "gust_zero",
       kBase + "events:\n  - gust: {start: 1, duration: 0, peak_speed: 3, center: [1, 1, 1], radius: 2}\n", 6,
       "events[0].gust.duration", "a number > 0 and <= 1e9 (s) expected, got '0'");
-  expect_error(dir, "drag_law", kBase + "forest: {drag_law: {exponent: -2}}\n", 5, "forest.drag_law.exponent",
-               "a number >= -1.3333333333333333 and <= 0 expected, got '-2'");
-  expect_error(dir, "seed", kBase + "seed: -1\n", 5, "seed",
-               "an integer 0..18446744073709551615 expected, got '-1'");
-  expect_error(dir, "cfl",
-               "scenario: errors\ntime: {end: 10.0, cfl: 0}\ndomain: {size: [40, 20, 10], cell_size: 2.0}\n"
-               "wind: {speed: 4.0, direction: 270}\n",
-               2, "time.cfl", "a number > 0 and <= 5 expected, got '0'");
-  expect_error(dir, "dt",
-               "scenario: errors\ntime: {end: 10.0, dt: -0.5}\ndomain: {size: [40, 20, 10], cell_size: 2.0}\n"
-               "wind: {speed: 4.0, direction: 270}\n",
-               2, "time.dt", "a number > 0 and <= 3600 (s) or auto expected, got '-0.5'");
-  expect_error(dir, "spin_up_negative",
-               "scenario: errors\ntime: {end: 10.0, spin_up: -1}\ndomain: {size: [40, 20, 10], cell_size: "
-               "2.0}\nwind: {speed: 4.0, direction: 270}\n",
-               2, "time.spin_up", "a number >= 0 and <= 1e9 (s) expected, got '-1'");
-  expect_error(dir, "scale",
-               species +
-                   "  stands:\n    - {species: oak, region: {min: [5, 5], max: [15, 15]}, "
-                   "spacing: 4, scale: {min: 1.2, max: 1.1}}\n",
-               10, "forest.stands[0].scale.max", "a number >= scale.min (1.2)");
+  expect_scenario_error(dir, "drag_law", kBase + "forest: {drag_law: {exponent: -2}}\n", 5,
+                        "forest.drag_law.exponent",
+                        "a number >= -1.3333333333333333 and <= 0 expected, got '-2'");
+  expect_scenario_error(dir, "seed", kBase + "seed: -1\n", 5, "seed",
+                        "an integer 0..18446744073709551615 expected, got '-1'");
+  expect_scenario_error(
+      dir, "cfl",
+      "scenario: errors\ntime: {end: 10.0, cfl: 0}\ndomain: {size: [40, 20, 10], cell_size: 2.0}\n"
+      "wind: {speed: 4.0, direction: 270}\n",
+      2, "time.cfl", "a number > 0 and <= 5 expected, got '0'");
+  expect_scenario_error(
+      dir, "dt",
+      "scenario: errors\ntime: {end: 10.0, dt: -0.5}\ndomain: {size: [40, 20, 10], cell_size: 2.0}\n"
+      "wind: {speed: 4.0, direction: 270}\n",
+      2, "time.dt", "a number > 0 and <= 3600 (s) or auto expected, got '-0.5'");
+  expect_scenario_error(
+      dir, "spin_up_negative",
+      "scenario: errors\ntime: {end: 10.0, spin_up: -1}\ndomain: {size: [40, 20, 10], cell_size: "
+      "2.0}\nwind: {speed: 4.0, direction: 270}\n",
+      2, "time.spin_up", "a number >= 0 and <= 1e9 (s) expected, got '-1'");
+  expect_scenario_error(dir, "scale",
+                        species +
+                            "  stands:\n    - {species: oak, region: {min: [5, 5], max: [15, 15]}, "
+                            "spacing: 4, scale: {min: 1.2, max: 1.1}}\n",
+                        10, "forest.stands[0].scale.max", "a number >= scale.min (1.2)");
 }
 
 TEST_CASE("load_scenario: a number past what a scenario can mean is refused, naming the key (issue 44)",
@@ -890,82 +880,89 @@ TEST_CASE("load_scenario: a number past what a scenario can mean is refused, nam
                               "  species:\n"
                               "    - name: oak\n";  // 7
   // The mutants of the issue: a tree taller than any tree, an end time past any run.
-  expect_error(
+  expect_scenario_error(
       dir, "tree_height", species + "      skeleton: {generate: {preset: broadleaf, height: 1e30}}\n", 8,
       "forest.species[0].skeleton.generate.height", "a number >= 0 and <= 150 (m) expected, got '1e30'");
-  expect_error(dir, "tree_too_small",
-               species + "      skeleton: {generate: {preset: broadleaf, height: 1e-3}}\n", 8,
-               "forest.species[0].skeleton.generate.height",
-               "0 (the preset's height) or at least 0.01 m expected, got '1e-3'");
-  expect_error(dir, "end",
-               "scenario: errors\ntime: {end: 1e30, cfl: 3.5}\ndomain: {size: [40, 20, 10], cell_size: 2.0}\n"
-               "wind: {speed: 4.0, direction: 270}\n",
-               2, "time.end", "a number > 0 and <= 1e9 (s) expected, got '1e30'");
+  expect_scenario_error(dir, "tree_too_small",
+                        species + "      skeleton: {generate: {preset: broadleaf, height: 1e-3}}\n", 8,
+                        "forest.species[0].skeleton.generate.height",
+                        "0 (the preset's height) or at least 0.01 m expected, got '1e-3'");
+  expect_scenario_error(
+      dir, "end",
+      "scenario: errors\ntime: {end: 1e30, cfl: 3.5}\ndomain: {size: [40, 20, 10], cell_size: 2.0}\n"
+      "wind: {speed: 4.0, direction: 270}\n",
+      2, "time.end", "a number > 0 and <= 1e9 (s) expected, got '1e30'");
   // An expression is held to its key's range at every time it is sampled.
-  expect_error(dir, "speed_past_any_wind",
-               "scenario: errors\ntime: {end: 10.0}\ndomain: {size: [40, 20, 10], cell_size: 2.0}\n"
-               "wind: {speed: '100 + 10*t', direction: 270}\n",
-               4, "wind.speed", "a finite value >= 0 and <= 150 (m/s) for 0 <= t <= 10 s (it gives 150.1");
+  expect_scenario_error(dir, "speed_past_any_wind",
+                        "scenario: errors\ntime: {end: 10.0}\ndomain: {size: [40, 20, 10], cell_size: 2.0}\n"
+                        "wind: {speed: '100 + 10*t', direction: 270}\n",
+                        4, "wind.speed",
+                        "a finite value >= 0 and <= 150 (m/s) for 0 <= t <= 10 s (it gives 150.1");
   // A domain as tall as the troposphere, however wide.
-  expect_error(dir, "domain_height",
-               "scenario: errors\ntime: {end: 10.0}\ndomain: {size: [40, 20, 32000], cell_size: 2.0}\n"
-               "wind: {speed: 4.0, direction: 270}\n",
-               3, "domain.size[2]", "the height at most 20000 m expected, got '32000'");
+  expect_scenario_error(
+      dir, "domain_height",
+      "scenario: errors\ntime: {end: 10.0}\ndomain: {size: [40, 20, 32000], cell_size: 2.0}\n"
+      "wind: {speed: 4.0, direction: 270}\n",
+      3, "domain.size[2]", "the height at most 20000 m expected, got '32000'");
   // A yaw past a turn, whose radians would overflow at 1e308.
-  expect_error(dir, "yaw",
-               species +
-                   "      skeleton: {generate: {preset: broadleaf}}\n  trees:\n"
-                   "    - {species: oak, position: [10, 10], yaw: 1e308}\n",
-               10, "forest.trees[0].yaw", "a number >= -360 and <= 360 (degrees) expected, got '1e308'");
+  expect_scenario_error(dir, "yaw",
+                        species +
+                            "      skeleton: {generate: {preset: broadleaf}}\n  trees:\n"
+                            "    - {species: oak, position: [10, 10], yaw: 1e308}\n",
+                        10, "forest.trees[0].yaw",
+                        "a number >= -360 and <= 360 (degrees) expected, got '1e308'");
   // Frames, probe rows and checkpoints: at most one a step, and at most 10^9 steps.
   const std::string long_run =
       "scenario: errors\ntime: {end: 1e9}\ndomain: {size: [40, 20, 10], cell_size: 2.0}\n"
       "wind: {speed: 4.0, direction: 270}\n";
-  expect_error(dir, "frames", long_run + "output: {interval: 0.5}\n", 5, "output.interval",
-               "and at least time.end / 1e9 = 1 s (a run writes at most one a step, and takes at most 1e9 "
-               "steps) expected, got '0.5'");
-  expect_error(dir, "probe_rows", long_run + "output: {probe_interval: 0.5}\n", 5, "output.probe_interval",
-               "at least time.end / 1e9 = 1 s");
-  expect_error(dir, "checkpoints", long_run + "output: {checkpoint: {interval: 0.5}}\n", 5,
-               "output.checkpoint.interval", "at least time.end / 1e9 = 1 s");
+  expect_scenario_error(
+      dir, "frames", long_run + "output: {interval: 0.5}\n", 5, "output.interval",
+      "and at least time.end / 1e9 = 1 s (a run writes at most one a step, and takes at most 1e9 "
+      "steps) expected, got '0.5'");
+  expect_scenario_error(dir, "probe_rows", long_run + "output: {probe_interval: 0.5}\n", 5,
+                        "output.probe_interval", "at least time.end / 1e9 = 1 s");
+  expect_scenario_error(dir, "checkpoints", long_run + "output: {checkpoint: {interval: 0.5}}\n", 5,
+                        "output.checkpoint.interval", "at least time.end / 1e9 = 1 s");
   CHECK_NOTHROW(fw::io::load_scenario(dir.write("every_second.yaml", long_run + "output: {interval: 1}\n")));
 }
 
 TEST_CASE("load_scenario: unknown enum word lists the allowed words", "[scenario]") {
   fw::test::TempDir dir("fw_scenario");
-  expect_error(dir, "pressure", kBase + "solver: {pressure: sor}\n", 5, "solver.pressure",
-               "one of multigrid | cg | jacobi expected, got 'sor'");
+  expect_scenario_error(dir, "pressure", kBase + "solver: {pressure: sor}\n", 5, "solver.pressure",
+                        "one of multigrid | cg | jacobi expected, got 'sor'");
   // auto follows the horizontal wind, so the ground and the top do not take it.
-  expect_error(dir, "ground_auto", kBase + "boundaries: {ground: auto}\n", 5, "boundaries.ground",
-               "one of inflow | outflow | slip | no_slip | periodic | rough expected, got 'auto'");
-  expect_error(dir, "profile",
-               "scenario: errors\ntime: {end: 10.0}\ndomain: {size: [40, 20, 10], cell_size: 2.0}\n"
-               "wind:\n  speed: 4\n  direction: 270\n  profile: {type: exponential}\n",
-               7, "wind.profile.type", "one of uniform | power | log expected, got 'exponential'");
-  expect_error(dir, "field", kBase + "output:\n  vtk: {fields: [velocity, temperature]}\n", 6,
-               "output.vtk.fields[1]", "got 'temperature'");
-  expect_error(dir, "preset",
-               kBase + "forest:\n  species:\n    - name: oak\n      skeleton: {generate: {preset: baobab}}\n",
-               8, "forest.species[0].skeleton.generate.preset", "got 'baobab'");
+  expect_scenario_error(dir, "ground_auto", kBase + "boundaries: {ground: auto}\n", 5, "boundaries.ground",
+                        "one of inflow | outflow | slip | no_slip | periodic | rough expected, got 'auto'");
+  expect_scenario_error(dir, "profile",
+                        "scenario: errors\ntime: {end: 10.0}\ndomain: {size: [40, 20, 10], cell_size: 2.0}\n"
+                        "wind:\n  speed: 4\n  direction: 270\n  profile: {type: exponential}\n",
+                        7, "wind.profile.type", "one of uniform | power | log expected, got 'exponential'");
+  expect_scenario_error(dir, "field", kBase + "output:\n  vtk: {fields: [velocity, temperature]}\n", 6,
+                        "output.vtk.fields[1]", "got 'temperature'");
+  expect_scenario_error(
+      dir, "preset",
+      kBase + "forest:\n  species:\n    - name: oak\n      skeleton: {generate: {preset: baobab}}\n", 8,
+      "forest.species[0].skeleton.generate.preset", "got 'baobab'");
 }
 
 TEST_CASE("load_scenario: a size that is not a whole multiple of cell_size names the axis", "[scenario]") {
   fw::test::TempDir dir("fw_scenario");
-  expect_error(dir, "odd_z",
-               "scenario: errors\ntime: {end: 10.0}\ndomain: {size: [40, 20, 15], cell_size: 2.0}\n"
-               "wind: {speed: 4.0, direction: 270}\n",
-               3, "domain.size[2]", "a whole multiple of cell_size (2 m) along z expected, got '15'");
-  expect_error(dir, "too_small",
-               "scenario: errors\ntime: {end: 10.0}\ndomain: {size: [40, 1, 10], cell_size: 2.0}\n"
-               "wind: {speed: 4.0, direction: 270}\n",
-               3, "domain.size[1]", "along y");
+  expect_scenario_error(dir, "odd_z",
+                        "scenario: errors\ntime: {end: 10.0}\ndomain: {size: [40, 20, 15], cell_size: 2.0}\n"
+                        "wind: {speed: 4.0, direction: 270}\n",
+                        3, "domain.size[2]",
+                        "a whole multiple of cell_size (2 m) along z expected, got '15'");
+  expect_scenario_error(dir, "too_small",
+                        "scenario: errors\ntime: {end: 10.0}\ndomain: {size: [40, 1, 10], cell_size: 2.0}\n"
+                        "wind: {speed: 4.0, direction: 270}\n",
+                        3, "domain.size[1]", "along y");
   // Periodic faces come in pairs, along an axis with an even cell count.
-  expect_error(dir, "periodic_pair", kBase + "boundaries: {west: periodic}\n", 5, "boundaries.west",
-               "periodic on both west and east (a pair), or neither; east is 'auto'");
-  expect_error(dir, "periodic_odd",
-               "scenario: errors\ntime: {end: 10.0}\ndomain: {size: [42, 20, 10], cell_size: 2.0}\n"
-               "wind: {speed: 4.0, direction: 270}\nboundaries: {west: periodic, east: periodic}\n",
-               5, "boundaries.west", "an even cell count; x has 21 cells");
+  expect_scenario_error(dir, "periodic_pair", kBase + "boundaries: {west: periodic}\n", 5, "boundaries.west",
+                        "periodic on both west and east (a pair), or neither; east is 'auto'");
+  expect_scenario_error(dir, "periodic_odd",
+                        "scenario: errors\ntime: {end: 10.0}\ndomain: {size: [42, 20, 10], cell_size: 2.0}\n"
+                        "wind: {speed: 4.0, direction: 270}\nboundaries: {west: periodic, east: periodic}\n",
+                        5, "boundaries.west", "an even cell count; x has 21 cells");
 }
 
 TEST_CASE("load_scenario: a grid is as large as fluid::GridSpec allows, and no larger", "[scenario]") {
@@ -981,9 +978,10 @@ TEST_CASE("load_scenario: a grid is as large as fluid::GridSpec allows, and no l
   const Scenario largest = fw::io::load_scenario(dir.write("largest.yaml", cube(1289)));
   CHECK_NOTHROW(largest.grid_spec(0.0).validate());
   CHECK_THROWS(fw::fluid::GridSpec{1290, 1290, 1290, 1.0}.validate());
-  expect_error(dir, "too_large", cube(1290), 3, "domain.cell_size",
-               "a cell size giving (nx + 1)(ny + 1)(nz + 1) <= 2147483647 (size / cell_size gives 2.15e+09 "
-               "cells) expected, got '1.0'");
+  expect_scenario_error(
+      dir, "too_large", cube(1290), 3, "domain.cell_size",
+      "a cell size giving (nx + 1)(ny + 1)(nz + 1) <= 2147483647 (size / cell_size gives 2.15e+09 "
+      "cells) expected, got '1.0'");
 }
 
 TEST_CASE("load_scenario: positions outside the domain name the position's key", "[scenario]") {
@@ -993,69 +991,72 @@ TEST_CASE("load_scenario: positions outside the domain name the position's key",
                               "  species:\n"
                               "    - name: oak\n"
                               "      skeleton: {generate: {preset: broadleaf}}\n";  // 8
-  expect_error(dir, "tree_west", species + "  trees:\n    - {species: oak, position: [-1, 10]}\n", 10,
-               "forest.trees[0].position", "inside the domain's horizontal extent [0, 40] x [0, 20] m");
-  expect_error(
+  expect_scenario_error(dir, "tree_west", species + "  trees:\n    - {species: oak, position: [-1, 10]}\n",
+                        10, "forest.trees[0].position",
+                        "inside the domain's horizontal extent [0, 40] x [0, 20] m");
+  expect_scenario_error(
       dir, "stand_corner",
       species + "  stands:\n    - {species: oak, spacing: 4,\n       region: {min: [5, 5], max: [50, 15]}}\n",
       11, "forest.stands[0].region.max", "a point [x, y] inside the domain's horizontal extent");
-  expect_error(dir, "probe_high",
-               kBase + "output:\n  probes:\n    - {name: mast, position: [10, 10, 10.5]}\n", 7,
-               "output.probes[0].position", "a position inside the domain [0, 40] x [0, 20] x [0, 10] m");
-  expect_error(dir, "probe_name",
-               kBase + "output:\n  probes:\n    - {name: wind-mast, position: [10, 10, 5]}\n", 7,
-               "output.probes[0].name", "a probe name of letters, digits and _");
-  expect_error(dir, "unknown_species", species + "  trees:\n    - {species: elm, position: [10, 10]}\n", 10,
-               "forest.trees[0].species", "a species name, one of oak expected, got 'elm'");
-  expect_error(dir, "species_twice",
-               species + "    - name: oak\n      skeleton: {generate: {preset: conifer}}\n", 9,
-               "forest.species[1].name", "a species name not used before");
+  expect_scenario_error(
+      dir, "probe_high", kBase + "output:\n  probes:\n    - {name: mast, position: [10, 10, 10.5]}\n", 7,
+      "output.probes[0].position", "a position inside the domain [0, 40] x [0, 20] x [0, 10] m");
+  expect_scenario_error(dir, "probe_name",
+                        kBase + "output:\n  probes:\n    - {name: wind-mast, position: [10, 10, 5]}\n", 7,
+                        "output.probes[0].name", "a probe name of letters, digits and _");
+  expect_scenario_error(dir, "unknown_species",
+                        species + "  trees:\n    - {species: elm, position: [10, 10]}\n", 10,
+                        "forest.trees[0].species", "a species name, one of oak expected, got 'elm'");
+  expect_scenario_error(dir, "species_twice",
+                        species + "    - name: oak\n      skeleton: {generate: {preset: conifer}}\n", 9,
+                        "forest.species[1].name", "a species name not used before");
 }
 
 TEST_CASE("load_scenario: a bad expression, or one that goes negative or infinite, names the key",
           "[scenario]") {
   fw::test::TempDir dir("fw_scenario");
-  expect_error(dir, "unknown_function",
-               "scenario: errors\ntime: {end: 10.0}\ndomain: {size: [40, 20, 10], cell_size: 2.0}\n"
-               "wind:\n  speed: 4\n  direction: \"270 + wobble(t)\"\n",
-               6, "wind.direction", "unknown variable or function \"wobble\"");
+  expect_scenario_error(dir, "unknown_function",
+                        "scenario: errors\ntime: {end: 10.0}\ndomain: {size: [40, 20, 10], cell_size: 2.0}\n"
+                        "wind:\n  speed: 4\n  direction: \"270 + wobble(t)\"\n",
+                        6, "wind.direction", "unknown variable or function \"wobble\"");
   // A valid formula that gives a negative speed during the run: sampled over [0, end].
-  expect_error(dir, "negative_speed",
-               "scenario: errors\ntime: {end: 10.0}\ndomain: {size: [40, 20, 10], cell_size: 2.0}\n"
-               "wind:\n  speed: \"5 - t\"\n  direction: 270\n",
-               5, "wind.speed", "a finite value >= 0 and <= 150 (m/s) for 0 <= t <= 10 s");
+  expect_scenario_error(dir, "negative_speed",
+                        "scenario: errors\ntime: {end: 10.0}\ndomain: {size: [40, 20, 10], cell_size: 2.0}\n"
+                        "wind:\n  speed: \"5 - t\"\n  direction: 270\n",
+                        5, "wind.speed", "a finite value >= 0 and <= 150 (m/s) for 0 <= t <= 10 s");
   // Beyond the end of the run the formula is never used.
   CHECK_NOTHROW(fw::io::load_scenario(
       dir.write("late.yaml",
                 "scenario: late\ntime: {end: 4.0}\ndomain: {size: [40, 20, 10], cell_size: 2.0}\n"
                 "wind:\n  speed: \"5 - t\"\n  direction: 270\n")));
-  expect_error(dir, "infinite_direction",
-               "scenario: errors\ntime: {end: 10.0}\ndomain: {size: [40, 20, 10], cell_size: 2.0}\n"
-               "wind:\n  speed: 4\n  direction: \"270 + 1/(t-5)\"\n",
-               6, "wind.direction", "a finite value >= -3.6e8 and <= 3.6e8 (degrees) for 0 <= t <= 10 s");
+  expect_scenario_error(dir, "infinite_direction",
+                        "scenario: errors\ntime: {end: 10.0}\ndomain: {size: [40, 20, 10], cell_size: 2.0}\n"
+                        "wind:\n  speed: 4\n  direction: \"270 + 1/(t-5)\"\n",
+                        6, "wind.direction",
+                        "a finite value >= -3.6e8 and <= 3.6e8 (degrees) for 0 <= t <= 10 s");
 }
 
 TEST_CASE("load_scenario: a missing heightmap names the heightmap key's line", "[scenario]") {
   fw::test::TempDir dir("fw_scenario");
-  expect_error(dir, "no_heightmap",
-               kBase + "terrain:\n  cell_size: 4\n  heightmap: nowhere.pgm\n  max_height: 10\n", 7,
-               "terrain.heightmap", "no such file");
+  expect_scenario_error(dir, "no_heightmap",
+                        kBase + "terrain:\n  cell_size: 4\n  heightmap: nowhere.pgm\n  max_height: 10\n", 7,
+                        "terrain.heightmap", "no such file");
   // A PGM needs cell_size and max_height; the error points at the terrain map.
   dir.write("hills.pgm", ramp_pgm(5, 5));
-  expect_error(dir, "no_max_height", kBase + "terrain:\n  heightmap: hills.pgm\n  cell_size: 4\n", 6,
-               "terrain.max_height", "needed for a PGM heightmap");
+  expect_scenario_error(dir, "no_max_height", kBase + "terrain:\n  heightmap: hills.pgm\n  cell_size: 4\n", 6,
+                        "terrain.max_height", "needed for a PGM heightmap");
   // A file that is not a PGM.
   dir.write("notes.txt", "hills to the east\n");
-  expect_error(dir, "not_a_heightmap", kBase + "terrain: {heightmap: notes.txt}\n", 5, "terrain.heightmap",
-               "a PGM image");
+  expect_scenario_error(dir, "not_a_heightmap", kBase + "terrain: {heightmap: notes.txt}\n", 5,
+                        "terrain.heightmap", "a PGM image");
 }
 
 TEST_CASE("load_scenario: a YAML syntax error reports key (yaml) and its line", "[scenario]") {
   fw::test::TempDir dir("fw_scenario");
-  expect_error(dir, "indent", kBase + "seed: 3\n  extra: 4\n", 6, "(yaml)",
-               "valid YAML expected, got a syntax error");
-  expect_error(dir, "two_documents", kBase + "---\nscenario: again\n", 6, "(yaml)",
-               "one YAML document expected, got 2");
+  expect_scenario_error(dir, "indent", kBase + "seed: 3\n  extra: 4\n", 6, "(yaml)",
+                        "valid YAML expected, got a syntax error");
+  expect_scenario_error(dir, "two_documents", kBase + "---\nscenario: again\n", 6, "(yaml)",
+                        "one YAML document expected, got 2");
 }
 
 TEST_CASE("load_scenario: a file that cannot be read reports line 0 and key (file)", "[scenario]") {
@@ -1084,41 +1085,42 @@ TEST_CASE("load_scenario: a log profile whose reference height is not above d + 
           "[scenario]") {
   fw::test::TempDir dir("fw_scenario");
   // docs/design.md's own combination: 10 m reference, d = 12 m, z0 = 0.8 m.
-  expect_error(dir, "log_below_displacement",
-               "scenario: errors\n"
-               "time: {end: 10.0}\n"
-               "domain: {size: [40, 20, 30], cell_size: 2.0}\n"
-               "wind:\n"
-               "  speed: 4.0\n"
-               "  direction: 270\n"
-               "  reference_height: 10.0\n"
-               "  profile: {type: log, roughness_length: 0.8, displacement_height: 12.0}\n",
-               8, "wind.profile.displacement_height", "(now 12.8 m) below wind.reference_height (10 m)");
+  expect_scenario_error(dir, "log_below_displacement",
+                        "scenario: errors\n"
+                        "time: {end: 10.0}\n"
+                        "domain: {size: [40, 20, 30], cell_size: 2.0}\n"
+                        "wind:\n"
+                        "  speed: 4.0\n"
+                        "  direction: 270\n"
+                        "  reference_height: 10.0\n"
+                        "  profile: {type: log, roughness_length: 0.8, displacement_height: 12.0}\n",
+                        8, "wind.profile.displacement_height",
+                        "(now 12.8 m) below wind.reference_height (10 m)");
   // Without a displacement height the roughness length alone is checked, and named.
-  expect_error(dir, "log_rough",
-               "scenario: errors\n"
-               "time: {end: 10.0}\n"
-               "domain: {size: [40, 20, 30], cell_size: 2.0}\n"
-               "wind:\n"
-               "  speed: 4.0\n"
-               "  direction: 270\n"
-               "  reference_height: 2.0\n"
-               "  profile:\n"
-               "    type: log\n"
-               "    roughness_length: 3.0\n",
-               10, "wind.profile.roughness_length", "(now 3 m) below wind.reference_height (2 m)");
+  expect_scenario_error(dir, "log_rough",
+                        "scenario: errors\n"
+                        "time: {end: 10.0}\n"
+                        "domain: {size: [40, 20, 30], cell_size: 2.0}\n"
+                        "wind:\n"
+                        "  speed: 4.0\n"
+                        "  direction: 270\n"
+                        "  reference_height: 2.0\n"
+                        "  profile:\n"
+                        "    type: log\n"
+                        "    roughness_length: 3.0\n",
+                        10, "wind.profile.roughness_length", "(now 3 m) below wind.reference_height (2 m)");
 }
 
 TEST_CASE("load_scenario: a tree's height outside the domain names position[2]", "[scenario]") {
   fw::test::TempDir dir("fw_scenario");
-  expect_error(dir, "tree_above",
-               kBase +
-                   "forest:\n"
-                   "  species:\n"
-                   "    - {name: stick, skeleton: {generate: {preset: palm}}}\n"
-                   "  trees:\n"
-                   "    - {species: stick, position: [10, 10, 12]}\n",
-               9, "forest.trees[0].position[2]", "a height inside the domain's [0, 10] m");
+  expect_scenario_error(dir, "tree_above",
+                        kBase +
+                            "forest:\n"
+                            "  species:\n"
+                            "    - {name: stick, skeleton: {generate: {preset: palm}}}\n"
+                            "  trees:\n"
+                            "    - {species: stick, position: [10, 10, 12]}\n",
+                        9, "forest.trees[0].position[2]", "a height inside the domain's [0, 10] m");
 }
 
 TEST_CASE("load_scenario: stands and generated skeletons take their default seeds from the global seed",
@@ -1183,12 +1185,12 @@ TEST_CASE("load_scenario: a stand's own leaf_area_index is read with its line, a
 
   const std::string key = "forest.stands[1].leaf_area_index";
   const std::string range = "a number > 0 and <= " + most + " (m^2/m^2) expected";
-  expect_error(dir, "lai_zero", with("0"), 11, key, range + ", got '0'");
-  expect_error(dir, "lai_negative", with("-2"), 11, key, range + ", got '-2'");
-  expect_error(dir, "lai_above", with("19"), 11, key, range + ", got '19'");
-  expect_error(dir, "lai_infinite", with(".inf"), 11, key, range + ", got '.inf'");
-  expect_error(dir, "lai_nan", with(".nan"), 11, key, range + ", got '.nan'");
-  expect_error(dir, "lai_word", with("dense"), 11, key, range + ", got 'dense'");
+  expect_scenario_error(dir, "lai_zero", with("0"), 11, key, range + ", got '0'");
+  expect_scenario_error(dir, "lai_negative", with("-2"), 11, key, range + ", got '-2'");
+  expect_scenario_error(dir, "lai_above", with("19"), 11, key, range + ", got '19'");
+  expect_scenario_error(dir, "lai_infinite", with(".inf"), 11, key, range + ", got '.inf'");
+  expect_scenario_error(dir, "lai_nan", with(".nan"), 11, key, range + ", got '.nan'");
+  expect_scenario_error(dir, "lai_word", with("dense"), 11, key, range + ", got 'dense'");
 }
 
 TEST_CASE("check_species_skeleton: more modes than the skeleton has DOFs names modes.count's line",
@@ -1409,52 +1411,55 @@ TEST_CASE("load_scenario: four periodic sides switch the mean forcing on, with o
 
 TEST_CASE("load_scenario: bad turbulence keys name the key and say what is expected", "[scenario]") {
   fw::test::TempDir dir("fw_scenario");
-  expect_error(dir, "negative_intensity", kWindBase + "  turbulence: {intensity: -0.1, length_scale: 10}\n",
-               7, "wind.turbulence.intensity", "a number >= 0 and <= 2 expected, got '-0.1'");
-  expect_error(dir, "both",
-               kWindBase +
-                   "  turbulence:\n"          // 7
-                   "    intensity: 0.1\n"     // 8
-                   "    sigma: [1, 1, 1]\n"   // 9
-                   "    length_scale: 10\n",  // 10
-               9, "wind.turbulence.sigma",
-               "exactly one of intensity and sigma expected, got both (intensity on line 8)");
-  expect_error(dir, "neither", kWindBase + "  turbulence: {length_scale: 10}\n", 7,
-               "wind.turbulence.intensity",
-               "a number >= 0 and <= 2, or sigma (exactly one of intensity and sigma) expected (required), "
-               "got nothing");
-  expect_error(dir, "no_length_scale", kWindBase + "  turbulence: {intensity: 0.1}\n", 7,
-               "wind.turbulence.length_scale",
-               "a number >= 1e-3 and <= 10000 (m) expected (required), got nothing");
-  expect_error(dir, "zero_sigma", kWindBase + "  turbulence: {sigma: [1, 0, 1], length_scale: 10}\n", 7,
-               "wind.turbulence.sigma[1]", "a number > 0 and <= 150 (m/s) expected, got '0'");
-  expect_error(
+  expect_scenario_error(dir, "negative_intensity",
+                        kWindBase + "  turbulence: {intensity: -0.1, length_scale: 10}\n", 7,
+                        "wind.turbulence.intensity", "a number >= 0 and <= 2 expected, got '-0.1'");
+  expect_scenario_error(dir, "both",
+                        kWindBase +
+                            "  turbulence:\n"          // 7
+                            "    intensity: 0.1\n"     // 8
+                            "    sigma: [1, 1, 1]\n"   // 9
+                            "    length_scale: 10\n",  // 10
+                        9, "wind.turbulence.sigma",
+                        "exactly one of intensity and sigma expected, got both (intensity on line 8)");
+  expect_scenario_error(
+      dir, "neither", kWindBase + "  turbulence: {length_scale: 10}\n", 7, "wind.turbulence.intensity",
+      "a number >= 0 and <= 2, or sigma (exactly one of intensity and sigma) expected (required), "
+      "got nothing");
+  expect_scenario_error(dir, "no_length_scale", kWindBase + "  turbulence: {intensity: 0.1}\n", 7,
+                        "wind.turbulence.length_scale",
+                        "a number >= 1e-3 and <= 10000 (m) expected (required), got nothing");
+  expect_scenario_error(dir, "zero_sigma", kWindBase + "  turbulence: {sigma: [1, 0, 1], length_scale: 10}\n",
+                        7, "wind.turbulence.sigma[1]", "a number > 0 and <= 150 (m/s) expected, got '0'");
+  expect_scenario_error(
       dir, "sigma_pair", kWindBase + "  turbulence: {sigma: [1, 1], length_scale: 10}\n", 7,
       "wind.turbulence.sigma",
       "a list of 3 numbers [sigma_u, sigma_v, sigma_w], each > 0 and <= 150 (m/s) expected, got '[1, 1]'");
-  expect_error(
+  expect_scenario_error(
       dir, "unknown_key", kWindBase + "  turbulence: {intensity: 0.1, length_scale: 10, spectrum: kaimal}\n",
       7, "wind.turbulence.spectrum",
       "one of the keys model, intensity, sigma, length_scale, box_size, seed, unresolved, cutoff_cells "
       "expected, got 'spectrum'");
-  expect_error(dir, "model", kWindBase + "  turbulence: {model: mann, intensity: 0.1, length_scale: 10}\n", 7,
-               "wind.turbulence.model", "one of von_karman expected, got 'mann'");
-  expect_error(dir, "cutoff",
-               kWindBase + "  turbulence: {intensity: 0.1, length_scale: 10, cutoff_cells: 0}\n", 7,
-               "wind.turbulence.cutoff_cells", "a number > 0 and <= 2147483647 expected, got '0'");
-  expect_error(dir, "unresolved",
-               kWindBase + "  turbulence: {intensity: 0.1, length_scale: 10, unresolved: 1}\n", 7,
-               "wind.turbulence.unresolved", "true or false expected, got '1'");
-  expect_error(dir, "box_negative",
-               kWindBase + "  turbulence: {intensity: 0.1, length_scale: 10, box_size: [64, -2, 8]}\n", 7,
-               "wind.turbulence.box_size[1]", "a number > 0 and <= 40075017 (m) expected, got '-2'");
+  expect_scenario_error(dir, "model",
+                        kWindBase + "  turbulence: {model: mann, intensity: 0.1, length_scale: 10}\n", 7,
+                        "wind.turbulence.model", "one of von_karman expected, got 'mann'");
+  expect_scenario_error(dir, "cutoff",
+                        kWindBase + "  turbulence: {intensity: 0.1, length_scale: 10, cutoff_cells: 0}\n", 7,
+                        "wind.turbulence.cutoff_cells", "a number > 0 and <= 2147483647 expected, got '0'");
+  expect_scenario_error(dir, "unresolved",
+                        kWindBase + "  turbulence: {intensity: 0.1, length_scale: 10, unresolved: 1}\n", 7,
+                        "wind.turbulence.unresolved", "true or false expected, got '1'");
+  expect_scenario_error(
+      dir, "box_negative",
+      kWindBase + "  turbulence: {intensity: 0.1, length_scale: 10, box_size: [64, -2, 8]}\n", 7,
+      "wind.turbulence.box_size[1]", "a number > 0 and <= 40075017 (m) expected, got '-2'");
   // 8 length scales of a million metres in cells of 2 m: 2^22 cells along x and y is far too many.
-  expect_error(dir, "default_box_too_big",
-               kWindBase + "  turbulence: {intensity: 0.1, length_scale: 1.0e4}\n", 7,
-               "wind.turbulence.box_size",
-               "of at most 715827882 points in all, 2 per cell along each axis expected (required here: the "
-               "default box, 8 length_scale along x and y, is 65536 x 65536 x 8 cells of 2 m");
-  expect_error(
+  expect_scenario_error(
+      dir, "default_box_too_big", kWindBase + "  turbulence: {intensity: 0.1, length_scale: 1.0e4}\n", 7,
+      "wind.turbulence.box_size",
+      "of at most 715827882 points in all, 2 per cell along each axis expected (required here: the "
+      "default box, 8 length_scale along x and y, is 65536 x 65536 x 8 cells of 2 m");
+  expect_scenario_error(
       dir, "box_too_big",
       kWindBase + "  turbulence: {intensity: 0.1, length_scale: 10, box_size: [1.0e5, 1.0e5, 1000]}\n", 7,
       "wind.turbulence.box_size",
@@ -1487,67 +1492,73 @@ TEST_CASE("load_scenario: the turbulence box's limit counts the points fluid::Tu
   CHECK_NOTHROW(spec_of(largest.wind.turbulence->box_cells).validate());
 
   CHECK_THROWS_WITH(spec_of({5592406, 4, 4}).validate(), Contains("exceed the limit of 715827882"));
-  expect_error(dir, "one_cell_more", box(5592406), 7, "wind.turbulence.box_size",
-               "a list of 3 numbers [x, y, z], each > 0 and <= 40075017 (m) of at most 715827882 points in "
-               "all, 2 per cell along each axis (this box is 5592406 x 4 x 4 cells of 2 m, 7.16e+08 points) "
-               "expected, got '[11184812, 8, 8]'");
+  expect_scenario_error(
+      dir, "one_cell_more", box(5592406), 7, "wind.turbulence.box_size",
+      "a list of 3 numbers [x, y, z], each > 0 and <= 40075017 (m) of at most 715827882 points in "
+      "all, 2 per cell along each axis (this box is 5592406 x 4 x 4 cells of 2 m, 7.16e+08 points) "
+      "expected, got '[11184812, 8, 8]'");
 }
 
 TEST_CASE("load_scenario: bad rough-ground, forcing, Smagorinsky and probe keys name the key", "[scenario]") {
   fw::test::TempDir dir("fw_scenario");
   // rough is a ground condition: a side or the top is told so.
-  expect_error(
+  expect_scenario_error(
       dir, "rough_side", kBase + "boundaries: {west: rough}\n", 5, "boundaries.west",
       "one of auto | inflow | outflow | slip | no_slip | periodic (rough is for the ground only) expected, "
       "got 'rough'");
-  expect_error(dir, "rough_top", kBase + "boundaries: {top: rough}\n", 5, "boundaries.top",
-               "one of inflow | outflow | slip | no_slip | periodic (rough is for the ground only) expected");
-  expect_error(dir, "roughness_smooth", kBase + "boundaries: {roughness_length: 0.1}\n", 5,
-               "boundaries.roughness_length",
-               "nothing unless boundaries.ground is rough (it is 'no_slip') expected, got '0.1'");
-  expect_error(dir, "roughness_high", kBase + "boundaries: {ground: rough, roughness_length: 1.0}\n", 5,
-               "boundaries.roughness_length",
-               "a number > 0 and <= 10 (m) below cell_size / 2 = 1 m (the log law is evaluated at the first "
-               "cell centre) expected, got '1.0'");
-  expect_error(dir, "roughness_zero", kBase + "boundaries: {ground: rough, roughness_length: 0}\n", 5,
-               "boundaries.roughness_length", "a number > 0 and <= 10 (m) expected, got '0'");
+  expect_scenario_error(
+      dir, "rough_top", kBase + "boundaries: {top: rough}\n", 5, "boundaries.top",
+      "one of inflow | outflow | slip | no_slip | periodic (rough is for the ground only) expected");
+  expect_scenario_error(dir, "roughness_smooth", kBase + "boundaries: {roughness_length: 0.1}\n", 5,
+                        "boundaries.roughness_length",
+                        "nothing unless boundaries.ground is rough (it is 'no_slip') expected, got '0.1'");
+  expect_scenario_error(
+      dir, "roughness_high", kBase + "boundaries: {ground: rough, roughness_length: 1.0}\n", 5,
+      "boundaries.roughness_length",
+      "a number > 0 and <= 10 (m) below cell_size / 2 = 1 m (the log law is evaluated at the first "
+      "cell centre) expected, got '1.0'");
+  expect_scenario_error(dir, "roughness_zero", kBase + "boundaries: {ground: rough, roughness_length: 0}\n",
+                        5, "boundaries.roughness_length", "a number > 0 and <= 10 (m) expected, got '0'");
   // The default from the log profile is checked too, and blamed on the missing key at the boundaries' line.
-  expect_error(dir, "roughness_default",
-               kWindBase + "  profile: {type: log, roughness_length: 1.5}\nboundaries: {ground: rough}\n", 8,
-               "boundaries.roughness_length",
-               "a number > 0 and <= 10 (m) below cell_size / 2 = 1 m expected (required here: the default, "
-               "wind.profile.roughness_length, is 1.5 m), got nothing");
-  expect_error(
+  expect_scenario_error(
+      dir, "roughness_default",
+      kWindBase + "  profile: {type: log, roughness_length: 1.5}\nboundaries: {ground: rough}\n", 8,
+      "boundaries.roughness_length",
+      "a number > 0 and <= 10 (m) below cell_size / 2 = 1 m expected (required here: the default, "
+      "wind.profile.roughness_length, is 1.5 m), got nothing");
+  expect_scenario_error(
       dir, "forcing_open", kWindBase + "  forcing: {relaxation_time: 5}\n", 7, "wind.forcing",
       "forcing only in a domain whose west, east, south and north are all periodic (boundaries.west is "
       "'auto') expected, got a map");
-  expect_error(
+  expect_scenario_error(
       dir, "forcing_channel",
       kWindBase + "  forcing: {}\nboundaries: {west: periodic, east: periodic, south: slip, north: slip}\n",
       7, "wind.forcing", "(boundaries.south is 'slip') expected, got a map");
-  expect_error(dir, "forcing_zero",
-               kWindBase + "  forcing: {relaxation_time: 0}\n" +
-                   "boundaries: {west: periodic, east: periodic, south: periodic, north: periodic}\n",
-               7, "wind.forcing.relaxation_time", "a number > 0 and <= 1e9 (s) expected, got '0'");
-  expect_error(dir, "smagorinsky_one", kBase + "solver: {smagorinsky_constant: 1}\n", 5,
-               "solver.smagorinsky_constant", "a number >= 0 and < 1 expected, got '1'");
-  expect_error(dir, "smagorinsky_negative", kBase + "solver: {smagorinsky_constant: -0.1}\n", 5,
-               "solver.smagorinsky_constant", "a number >= 0 and < 1 expected, got '-0.1'");
-  expect_error(dir, "subgrid_word", kBase + "solver: {subgrid: deardorff}\n", 5, "solver.subgrid",
-               "one of smagorinsky | tke expected, got 'deardorff'");
+  expect_scenario_error(
+      dir, "forcing_zero",
+      kWindBase + "  forcing: {relaxation_time: 0}\n" +
+          "boundaries: {west: periodic, east: periodic, south: periodic, north: periodic}\n",
+      7, "wind.forcing.relaxation_time", "a number > 0 and <= 1e9 (s) expected, got '0'");
+  expect_scenario_error(dir, "smagorinsky_one", kBase + "solver: {smagorinsky_constant: 1}\n", 5,
+                        "solver.smagorinsky_constant", "a number >= 0 and < 1 expected, got '1'");
+  expect_scenario_error(dir, "smagorinsky_negative", kBase + "solver: {smagorinsky_constant: -0.1}\n", 5,
+                        "solver.smagorinsky_constant", "a number >= 0 and < 1 expected, got '-0.1'");
+  expect_scenario_error(dir, "subgrid_word", kBase + "solver: {subgrid: deardorff}\n", 5, "solver.subgrid",
+                        "one of smagorinsky | tke expected, got 'deardorff'");
   // Strict: the tke model takes no Smagorinsky constant, whichever key comes first in the map.
-  expect_error(dir, "subgrid_constant", kBase + "solver:\n  smagorinsky_constant: 0.17\n  subgrid: tke\n", 6,
-               "solver.smagorinsky_constant",
-               "nothing unless solver.subgrid is smagorinsky (it is 'tke': its eddy viscosity comes from the "
-               "subgrid energy) expected, got '0.17'");
-  expect_error(dir, "probe_zero", kBase + "output: {probe_interval: 0}\n", 5, "output.probe_interval",
-               "a number > 0 and <= 1e9 (s) or auto expected, got '0'");
-  expect_error(dir, "probe_negative", kBase + "output: {probe_interval: -0.5}\n", 5, "output.probe_interval",
-               "a number > 0 and <= 1e9 (s) or auto expected, got '-0.5'");
-  expect_error(dir, "probe_word", kBase + "output: {probe_interval: often}\n", 5, "output.probe_interval",
-               "got 'often'");
-  expect_error(dir, "correction", kBase + "forest: {strong_wind_correction: yes}\n", 5,
-               "forest.strong_wind_correction", "true or false expected, got 'yes'");
+  expect_scenario_error(
+      dir, "subgrid_constant", kBase + "solver:\n  smagorinsky_constant: 0.17\n  subgrid: tke\n", 6,
+      "solver.smagorinsky_constant",
+      "nothing unless solver.subgrid is smagorinsky (it is 'tke': its eddy viscosity comes from the "
+      "subgrid energy) expected, got '0.17'");
+  expect_scenario_error(dir, "probe_zero", kBase + "output: {probe_interval: 0}\n", 5,
+                        "output.probe_interval", "a number > 0 and <= 1e9 (s) or auto expected, got '0'");
+  expect_scenario_error(dir, "probe_negative", kBase + "output: {probe_interval: -0.5}\n", 5,
+                        "output.probe_interval", "a number > 0 and <= 1e9 (s) or auto expected, got '-0.5'");
+  expect_scenario_error(dir, "probe_word", kBase + "output: {probe_interval: often}\n", 5,
+                        "output.probe_interval", "got 'often'");
+  expect_scenario_error(dir, "correction", kBase + "forest: {strong_wind_correction: yes}\n", 5,
+                        "forest.strong_wind_correction", "true or false expected, got 'yes'");
 }
 
 TEST_CASE("load_scenario: each output's every-N is a whole number >= 1, else FILE:LINE: KEY", "[scenario]") {
@@ -1567,14 +1578,14 @@ TEST_CASE("load_scenario: each output's every-N is a whole number >= 1, else FIL
   CHECK(defaults.vdb_every == 1);
   CHECK(defaults.leaves_every == 1);
 
-  expect_error(dir, "trees_zero", kBase + "output:\n  vtk: {trees_every: 0}\n", 6, "output.vtk.trees_every",
-               "an integer 1..1000000000 expected, got '0'");
-  expect_error(dir, "wind_fraction", kBase + "output:\n  vtk: {wind_every: 1.5}\n", 6,
-               "output.vtk.wind_every", "got '1.5'");
-  expect_error(dir, "vdb_word", kBase + "output:\n  vdb: {every: often}\n", 6, "output.vdb.every",
-               "got 'often'");
-  expect_error(dir, "leaves_negative", kBase + "output:\n  leaves: {every: -2}\n", 6, "output.leaves.every",
-               "got '-2'");
+  expect_scenario_error(dir, "trees_zero", kBase + "output:\n  vtk: {trees_every: 0}\n", 6,
+                        "output.vtk.trees_every", "an integer 1..1000000000 expected, got '0'");
+  expect_scenario_error(dir, "wind_fraction", kBase + "output:\n  vtk: {wind_every: 1.5}\n", 6,
+                        "output.vtk.wind_every", "got '1.5'");
+  expect_scenario_error(dir, "vdb_word", kBase + "output:\n  vdb: {every: often}\n", 6, "output.vdb.every",
+                        "got 'often'");
+  expect_scenario_error(dir, "leaves_negative", kBase + "output:\n  leaves: {every: -2}\n", 6,
+                        "output.leaves.every", "got '-2'");
 }
 
 namespace {
@@ -1674,65 +1685,70 @@ forest:
 TEST_CASE("load_scenario: bad leaf keys name the key and say what is expected", "[scenario]") {
   fw::test::TempDir dir("fw_scenario");
   const std::string key = "forest.species[0].leaves.";
-  expect_error(dir, "leaf_area_type", leafy_species("      leaves: {area: big}\n"), 10, key + "area",
-               "a number > 0 and <= 100 (m^2) expected, got 'big'");
-  expect_error(dir, "leaf_area_zero", leafy_species("      leaves: {area: 0}\n"), 10, key + "area",
-               "a number > 0 and <= 100 (m^2) expected, got '0'");
-  expect_error(dir, "leaf_fraction", leafy_species("      leaves: {fraction: 1.5}\n"), 10, key + "fraction",
-               "a number > 0 and <= 1 expected, got '1.5'");
-  expect_error(dir, "leaf_fraction_zero", leafy_species("      leaves: {fraction: 0}\n"), 10,
-               key + "fraction", "a number > 0 and <= 1 expected, got '0'");
-  expect_error(dir, "leaf_mass", leafy_species("      leaves: {mass_per_area: -0.1}\n"), 10,
-               key + "mass_per_area", "a number > 0 and <= 5 (kg/m^2) expected, got '-0.1'");
-  expect_error(dir, "leaf_frequency", leafy_species("      leaves: {frequency: [3]}\n"), 10,
-               key + "frequency", "a number > 0 and <= 500 (Hz) expected, got '[3]'");
-  expect_error(dir, "leaf_damping", leafy_species("      leaves: {damping_ratio: 1}\n"), 10,
-               key + "damping_ratio", "a number >= 0 and < 1 expected, got '1'");
-  expect_error(dir, "leaf_strength", leafy_species("      leaves: {petiole_strength: 0}\n"), 10,
-               key + "petiole_strength", "a number > 0 and <= 10000 (N) expected, got '0'");
-  expect_error(dir, "leaf_spread", leafy_species("      leaves: {strength_spread: -1}\n"), 10,
-               key + "strength_spread", "a number >= 0 and <= 10 expected, got '-1'");
-  expect_error(dir, "leaf_drag", leafy_species("      leaves: {flight_drag_coefficient: 0}\n"), 10,
-               key + "flight_drag_coefficient", "a number > 0 and <= 10 expected, got '0'");
-  expect_error(dir, "leaf_roll", leafy_species("      leaves: {roll_coupling: .inf}\n"), 10,
-               key + "roll_coupling", "a number >= -10 and <= 10 expected, got '.inf'");
-  expect_error(dir, "leaf_reference_speed", leafy_species("      leaves: {reference_speed: 0}\n"), 10,
-               key + "reference_speed", "a number > 0 and <= 150 (m/s) expected, got '0'");
-  expect_error(dir, "leaf_seed", leafy_species("      leaves: {seed: -1}\n"), 10, key + "seed",
-               "an integer 0..18446744073709551615 expected, got '-1'");
-  expect_error(dir, "leaf_model", leafy_species("      leaves: {model: flutter}\n"), 10, key + "model",
-               "one of none | pseudo_branch | stochastic expected, got 'flutter'");
-  expect_error(dir, "leaf_amplitudes_pair", leafy_species("      leaves: {amplitudes: [20, 30]}\n"), 10,
-               key + "amplitudes",
-               "a list of 3 numbers [W_H, W_V, W_R], each >= 0 and <= 90 (degrees) expected, got '[20, 30]'");
-  expect_error(dir, "leaf_amplitudes_four", leafy_species("      leaves: {amplitudes: [20, 30, 15, 5]}\n"),
-               10, key + "amplitudes",
-               "a list of 3 numbers [W_H, W_V, W_R], each >= 0 and <= 90 (degrees) expected");
-  expect_error(dir, "leaf_amplitude_high", leafy_species("      leaves: {amplitudes: [20, 95, 15]}\n"), 10,
-               key + "amplitudes[1]", "a number >= 0 and <= 90 (degrees) expected, got '95'");
-  expect_error(dir, "leaf_amplitude_negative", leafy_species("      leaves: {amplitudes: [20, 30, -5]}\n"),
-               10, key + "amplitudes[2]", "a number >= 0 and <= 90 (degrees) expected, got '-5'");
-  expect_error(dir, "leaf_unknown_key", leafy_species("      leaves: {colour: green}\n"), 10, key + "colour",
-               "one of the keys model, area, fraction, mass_per_area, frequency, damping_ratio, "
-               "petiole_strength, strength_spread, flight_drag_coefficient, amplitudes, roll_coupling, "
-               "reference_speed, seed expected, got 'colour'");
-  expect_error(dir, "leaves_not_a_map", leafy_species("      leaves: true\n"), 10, "forest.species[0].leaves",
-               "a map with the keys model, area, fraction");
+  expect_scenario_error(dir, "leaf_area_type", leafy_species("      leaves: {area: big}\n"), 10, key + "area",
+                        "a number > 0 and <= 100 (m^2) expected, got 'big'");
+  expect_scenario_error(dir, "leaf_area_zero", leafy_species("      leaves: {area: 0}\n"), 10, key + "area",
+                        "a number > 0 and <= 100 (m^2) expected, got '0'");
+  expect_scenario_error(dir, "leaf_fraction", leafy_species("      leaves: {fraction: 1.5}\n"), 10,
+                        key + "fraction", "a number > 0 and <= 1 expected, got '1.5'");
+  expect_scenario_error(dir, "leaf_fraction_zero", leafy_species("      leaves: {fraction: 0}\n"), 10,
+                        key + "fraction", "a number > 0 and <= 1 expected, got '0'");
+  expect_scenario_error(dir, "leaf_mass", leafy_species("      leaves: {mass_per_area: -0.1}\n"), 10,
+                        key + "mass_per_area", "a number > 0 and <= 5 (kg/m^2) expected, got '-0.1'");
+  expect_scenario_error(dir, "leaf_frequency", leafy_species("      leaves: {frequency: [3]}\n"), 10,
+                        key + "frequency", "a number > 0 and <= 500 (Hz) expected, got '[3]'");
+  expect_scenario_error(dir, "leaf_damping", leafy_species("      leaves: {damping_ratio: 1}\n"), 10,
+                        key + "damping_ratio", "a number >= 0 and < 1 expected, got '1'");
+  expect_scenario_error(dir, "leaf_strength", leafy_species("      leaves: {petiole_strength: 0}\n"), 10,
+                        key + "petiole_strength", "a number > 0 and <= 10000 (N) expected, got '0'");
+  expect_scenario_error(dir, "leaf_spread", leafy_species("      leaves: {strength_spread: -1}\n"), 10,
+                        key + "strength_spread", "a number >= 0 and <= 10 expected, got '-1'");
+  expect_scenario_error(dir, "leaf_drag", leafy_species("      leaves: {flight_drag_coefficient: 0}\n"), 10,
+                        key + "flight_drag_coefficient", "a number > 0 and <= 10 expected, got '0'");
+  expect_scenario_error(dir, "leaf_roll", leafy_species("      leaves: {roll_coupling: .inf}\n"), 10,
+                        key + "roll_coupling", "a number >= -10 and <= 10 expected, got '.inf'");
+  expect_scenario_error(dir, "leaf_reference_speed", leafy_species("      leaves: {reference_speed: 0}\n"),
+                        10, key + "reference_speed", "a number > 0 and <= 150 (m/s) expected, got '0'");
+  expect_scenario_error(dir, "leaf_seed", leafy_species("      leaves: {seed: -1}\n"), 10, key + "seed",
+                        "an integer 0..18446744073709551615 expected, got '-1'");
+  expect_scenario_error(dir, "leaf_model", leafy_species("      leaves: {model: flutter}\n"), 10,
+                        key + "model", "one of none | pseudo_branch | stochastic expected, got 'flutter'");
+  expect_scenario_error(
+      dir, "leaf_amplitudes_pair", leafy_species("      leaves: {amplitudes: [20, 30]}\n"), 10,
+      key + "amplitudes",
+      "a list of 3 numbers [W_H, W_V, W_R], each >= 0 and <= 90 (degrees) expected, got '[20, 30]'");
+  expect_scenario_error(
+      dir, "leaf_amplitudes_four", leafy_species("      leaves: {amplitudes: [20, 30, 15, 5]}\n"), 10,
+      key + "amplitudes", "a list of 3 numbers [W_H, W_V, W_R], each >= 0 and <= 90 (degrees) expected");
+  expect_scenario_error(dir, "leaf_amplitude_high",
+                        leafy_species("      leaves: {amplitudes: [20, 95, 15]}\n"), 10,
+                        key + "amplitudes[1]", "a number >= 0 and <= 90 (degrees) expected, got '95'");
+  expect_scenario_error(dir, "leaf_amplitude_negative",
+                        leafy_species("      leaves: {amplitudes: [20, 30, -5]}\n"), 10,
+                        key + "amplitudes[2]", "a number >= 0 and <= 90 (degrees) expected, got '-5'");
+  expect_scenario_error(
+      dir, "leaf_unknown_key", leafy_species("      leaves: {colour: green}\n"), 10, key + "colour",
+      "one of the keys model, area, fraction, mass_per_area, frequency, damping_ratio, "
+      "petiole_strength, strength_spread, flight_drag_coefficient, amplitudes, roll_coupling, "
+      "reference_speed, seed expected, got 'colour'");
+  expect_scenario_error(dir, "leaves_not_a_map", leafy_species("      leaves: true\n"), 10,
+                        "forest.species[0].leaves", "a map with the keys model, area, fraction");
 
   // Leaves sit on the canopy's foliage: a leaf area index of 0 (given or the default) is blamed on the key.
   const std::string lai = "forest.species[0].canopy.leaf_area_index";
-  expect_error(
+  expect_scenario_error(
       dir, "leaves_lai_zero", leafy_species("      leaves: {}\n", "      canopy: {leaf_area_index: 0}\n"), 9,
       lai,
       "a number > 0 (m^2/m^2) (leaves need a leaf area index > 0; forest.species[0].leaves is on line "
       "10) expected, got '0'");
-  expect_error(dir, "leaves_lai_default",
-               leafy_species("      leaves: {area: 0.01}\n", "      canopy: {drag_coefficient: 0.4}\n"), 9,
-               lai,
-               "a number > 0 (m^2/m^2) expected (required here: leaves need a leaf area index > 0; "
-               "forest.species[0].leaves is on line 10, and the default is 0), got nothing");
-  expect_error(dir, "leaves_no_canopy", leafy_species("      leaves: {}\n", ""), 7, lai,
-               "(required here: leaves need a leaf area index > 0; forest.species[0].leaves is on line 9");
+  expect_scenario_error(
+      dir, "leaves_lai_default",
+      leafy_species("      leaves: {area: 0.01}\n", "      canopy: {drag_coefficient: 0.4}\n"), 9, lai,
+      "a number > 0 (m^2/m^2) expected (required here: leaves need a leaf area index > 0; "
+      "forest.species[0].leaves is on line 10, and the default is 0), got nothing");
+  expect_scenario_error(
+      dir, "leaves_no_canopy", leafy_species("      leaves: {}\n", ""), 7, lai,
+      "(required here: leaves need a leaf area index > 0; forest.species[0].leaves is on line 9");
   // Without leaves (model none) a bare crown is fine.
   CHECK_NOTHROW(
       fw::io::load_scenario(dir.write("winter.yaml", leafy_species("      leaves: {model: none}\n", ""))));
@@ -1833,70 +1849,79 @@ TEST_CASE("load_scenario: a bad dynamics word, a bad model value and a key of an
           "[scenario]") {
   fw::test::TempDir dir("fw_scenario");
   const std::string species = "forest.species[0].";
-  expect_error(dir, "dynamics_word", model_species("      dynamics: pendulum\n"), 9, species + "dynamics",
-               "one of modal | rigid_bodies | springs expected, got 'pendulum'");
-  expect_error(dir, "dynamics_list", model_species("      dynamics: [modal]\n"), 9, species + "dynamics",
-               "one of modal | rigid_bodies | springs expected, got '[modal]'");
+  expect_scenario_error(dir, "dynamics_word", model_species("      dynamics: pendulum\n"), 9,
+                        species + "dynamics",
+                        "one of modal | rigid_bodies | springs expected, got 'pendulum'");
+  expect_scenario_error(dir, "dynamics_list", model_species("      dynamics: [modal]\n"), 9,
+                        species + "dynamics",
+                        "one of modal | rigid_bodies | springs expected, got '[modal]'");
 
   // A key of one model on a species that another moves: the key's line, its model and the species' dynamics.
-  expect_error(dir, "springs_on_default", model_species("      springs: {max_angle_deg: 10}\n"), 9,
-               species + "springs",
-               "a key of the springs model, but this species' dynamics is modal (the default); leave springs "
-               "out or set dynamics: springs");
-  expect_error(dir, "springs_on_rigid",
-               model_species("      dynamics: rigid_bodies\n      springs: {max_angle_deg: 10}\n"), 10,
-               species + "springs",
-               "a key of the springs model, but this species' dynamics is rigid_bodies (on line 9); leave "
-               "springs out or set dynamics: springs");
-  expect_error(dir, "rigid_on_modal",
-               model_species("      rigid_bodies: {damping_ratio: 0.1}\n      dynamics: modal\n"), 9,
-               species + "rigid_bodies",
-               "a key of the rigid_bodies model, but this species' dynamics is modal (on line 10); leave "
-               "rigid_bodies out or set dynamics: rigid_bodies");
-  expect_error(dir, "rigid_on_springs", model_species("      dynamics: springs\n      rigid_bodies: {}\n"),
-               10, species + "rigid_bodies",
-               "a key of the rigid_bodies model, but this species' dynamics is springs (on line 9); leave "
-               "rigid_bodies out or set dynamics: rigid_bodies");
-  expect_error(
+  expect_scenario_error(
+      dir, "springs_on_default", model_species("      springs: {max_angle_deg: 10}\n"), 9,
+      species + "springs",
+      "a key of the springs model, but this species' dynamics is modal (the default); leave springs "
+      "out or set dynamics: springs");
+  expect_scenario_error(
+      dir, "springs_on_rigid",
+      model_species("      dynamics: rigid_bodies\n      springs: {max_angle_deg: 10}\n"), 10,
+      species + "springs",
+      "a key of the springs model, but this species' dynamics is rigid_bodies (on line 9); leave "
+      "springs out or set dynamics: springs");
+  expect_scenario_error(
+      dir, "rigid_on_modal",
+      model_species("      rigid_bodies: {damping_ratio: 0.1}\n      dynamics: modal\n"), 9,
+      species + "rigid_bodies",
+      "a key of the rigid_bodies model, but this species' dynamics is modal (on line 10); leave "
+      "rigid_bodies out or set dynamics: rigid_bodies");
+  expect_scenario_error(
+      dir, "rigid_on_springs", model_species("      dynamics: springs\n      rigid_bodies: {}\n"), 10,
+      species + "rigid_bodies",
+      "a key of the rigid_bodies model, but this species' dynamics is springs (on line 9); leave "
+      "rigid_bodies out or set dynamics: rigid_bodies");
+  expect_scenario_error(
       dir, "modes_on_rigid", model_species("      dynamics: rigid_bodies\n      modes: {count: 8}\n"), 10,
       species + "modes",
       "a key of the modal model, but this species' dynamics is rigid_bodies (on line 9); leave modes "
       "out or set dynamics: modal");
-  expect_error(
+  expect_scenario_error(
       dir, "modes_on_springs", model_species("      modes: {count: 8}\n      dynamics: springs\n"), 9,
       species + "modes",
       "a key of the modal model, but this species' dynamics is springs (on line 10); leave modes out "
       "or set dynamics: modal");
   // The second species is blamed by its index.
-  expect_error(dir, "second_species",
-               model_species("    - name: elm\n"                                  // 9
-                             "      skeleton: {generate: {preset: broadleaf}}\n"  // 10
-                             "      dynamics: rigid_bodies\n"                     // 11
-                             "      springs: {sway_amplitude: 0.1}\n"),           // 12
-               12, "forest.species[1].springs",
-               "a key of the springs model, but this species' dynamics is rigid_bodies (on line 11)");
+  expect_scenario_error(
+      dir, "second_species",
+      model_species("    - name: elm\n"                                  // 9
+                    "      skeleton: {generate: {preset: broadleaf}}\n"  // 10
+                    "      dynamics: rigid_bodies\n"                     // 11
+                    "      springs: {sway_amplitude: 0.1}\n"),           // 12
+      12, "forest.species[1].springs",
+      "a key of the springs model, but this species' dynamics is rigid_bodies (on line 11)");
 
   // The model's own keys, out of range or unknown.
   const std::string springs = species + "springs.";
   const auto spring = [&](const std::string& map) {
     return model_species("      dynamics: springs\n" + map);
   };
-  expect_error(dir, "angle_right", spring("      springs: {max_angle_deg: 90}\n"), 10,
-               springs + "max_angle_deg", "a number > 0 and < 90 (degrees) expected, got '90'");
-  expect_error(dir, "angle_zero", spring("      springs: {max_angle_deg: 0}\n"), 10,
-               springs + "max_angle_deg", "a number > 0 and < 90 (degrees) expected, got '0'");
-  expect_error(dir, "sway_amplitude", spring("      springs: {sway_amplitude: -0.1}\n"), 10,
-               springs + "sway_amplitude", "a number >= 0 and <= 10 expected, got '-0.1'");
-  expect_error(dir, "sway_frequency", spring("      springs: {sway_frequency: 0}\n"), 10,
-               springs + "sway_frequency", "a number > 0 and <= 500 (Hz) expected, got '0'");
-  expect_error(dir, "springs_unknown", spring("      springs: {stiffness: 3}\n"), 10, springs + "stiffness",
-               "one of the keys max_angle_deg, sway_amplitude, sway_frequency expected, got 'stiffness'");
-  expect_error(dir, "rigid_damping",
-               model_species("      dynamics: rigid_bodies\n      rigid_bodies: {damping_ratio: -0.05}\n"),
-               10, species + "rigid_bodies.damping_ratio", "a number >= 0 and <= 10 expected, got '-0.05'");
-  expect_error(dir, "rigid_not_a_map",
-               model_species("      dynamics: rigid_bodies\n      rigid_bodies: 0.1\n"), 10,
-               species + "rigid_bodies", "a map with the keys damping_ratio expected, got '0.1'");
+  expect_scenario_error(dir, "angle_right", spring("      springs: {max_angle_deg: 90}\n"), 10,
+                        springs + "max_angle_deg", "a number > 0 and < 90 (degrees) expected, got '90'");
+  expect_scenario_error(dir, "angle_zero", spring("      springs: {max_angle_deg: 0}\n"), 10,
+                        springs + "max_angle_deg", "a number > 0 and < 90 (degrees) expected, got '0'");
+  expect_scenario_error(dir, "sway_amplitude", spring("      springs: {sway_amplitude: -0.1}\n"), 10,
+                        springs + "sway_amplitude", "a number >= 0 and <= 10 expected, got '-0.1'");
+  expect_scenario_error(dir, "sway_frequency", spring("      springs: {sway_frequency: 0}\n"), 10,
+                        springs + "sway_frequency", "a number > 0 and <= 500 (Hz) expected, got '0'");
+  expect_scenario_error(
+      dir, "springs_unknown", spring("      springs: {stiffness: 3}\n"), 10, springs + "stiffness",
+      "one of the keys max_angle_deg, sway_amplitude, sway_frequency expected, got 'stiffness'");
+  expect_scenario_error(
+      dir, "rigid_damping",
+      model_species("      dynamics: rigid_bodies\n      rigid_bodies: {damping_ratio: -0.05}\n"), 10,
+      species + "rigid_bodies.damping_ratio", "a number >= 0 and <= 10 expected, got '-0.05'");
+  expect_scenario_error(dir, "rigid_not_a_map",
+                        model_species("      dynamics: rigid_bodies\n      rigid_bodies: 0.1\n"), 10,
+                        species + "rigid_bodies", "a map with the keys damping_ratio expected, got '0.1'");
 }
 
 TEST_CASE("load_scenario: output.leaves takes all, none or a stride, and vtk", "[scenario]") {
@@ -1917,22 +1942,23 @@ TEST_CASE("load_scenario: output.leaves takes all, none or a stride, and vtk", "
   CHECK(off.output.vdb_grids == std::vector<std::string>{"leaves"});
 
   const std::string what = "one of all | none or an integer 1..2147483647 expected";
-  expect_error(dir, "attached_zero", kBase + "output: {leaves: {attached: 0}}\n", 5, "output.leaves.attached",
-               what + ", got '0'");
-  expect_error(dir, "attached_negative", kBase + "output: {leaves: {attached: -3}}\n", 5,
-               "output.leaves.attached", what + ", got '-3'");
-  expect_error(dir, "attached_fraction", kBase + "output: {leaves: {attached: 2.5}}\n", 5,
-               "output.leaves.attached", what + ", got '2.5'");
-  expect_error(dir, "attached_word", kBase + "output: {leaves: {attached: some}}\n", 5,
-               "output.leaves.attached", what + ", got 'some'");
-  expect_error(dir, "attached_list", kBase + "output: {leaves: {attached: [1]}}\n", 5,
-               "output.leaves.attached", what + ", got '[1]'");
-  expect_error(dir, "leaves_vtk", kBase + "output: {leaves: {vtk: yes}}\n", 5, "output.leaves.vtk",
-               "true or false expected, got 'yes'");
-  expect_error(dir, "leaves_unknown", kBase + "output: {leaves: {flying: all}}\n", 5, "output.leaves.flying",
-               "one of the keys attached, vtk, every expected, got 'flying'");
-  expect_error(dir, "vdb_grid", kBase + "output: {vdb: {grids: [vel, leaf]}}\n", 5, "output.vdb.grids[1]",
-               "one of vel | speed | leaves expected, got 'leaf'");
+  expect_scenario_error(dir, "attached_zero", kBase + "output: {leaves: {attached: 0}}\n", 5,
+                        "output.leaves.attached", what + ", got '0'");
+  expect_scenario_error(dir, "attached_negative", kBase + "output: {leaves: {attached: -3}}\n", 5,
+                        "output.leaves.attached", what + ", got '-3'");
+  expect_scenario_error(dir, "attached_fraction", kBase + "output: {leaves: {attached: 2.5}}\n", 5,
+                        "output.leaves.attached", what + ", got '2.5'");
+  expect_scenario_error(dir, "attached_word", kBase + "output: {leaves: {attached: some}}\n", 5,
+                        "output.leaves.attached", what + ", got 'some'");
+  expect_scenario_error(dir, "attached_list", kBase + "output: {leaves: {attached: [1]}}\n", 5,
+                        "output.leaves.attached", what + ", got '[1]'");
+  expect_scenario_error(dir, "leaves_vtk", kBase + "output: {leaves: {vtk: yes}}\n", 5, "output.leaves.vtk",
+                        "true or false expected, got 'yes'");
+  expect_scenario_error(dir, "leaves_unknown", kBase + "output: {leaves: {flying: all}}\n", 5,
+                        "output.leaves.flying",
+                        "one of the keys attached, vtk, every expected, got 'flying'");
+  expect_scenario_error(dir, "vdb_grid", kBase + "output: {vdb: {grids: [vel, leaf]}}\n", 5,
+                        "output.vdb.grids[1]", "one of vel | speed | leaves expected, got 'leaf'");
 }
 
 TEST_CASE("load_scenario: domain.decomposition takes whole blocks along x and y, with its line",
@@ -1949,12 +1975,12 @@ wind: {speed: 4.0, direction: 270}
   REQUIRE(s.domain.decomposition.has_value());
   CHECK(*s.domain.decomposition == std::array<int, 2>{2, 1});
   CHECK(s.domain.decomposition_line == 6);
-  expect_error(
+  expect_scenario_error(
       dir, "blocks_fraction",
       "scenario: errors\ntime: {end: 10.0}\ndomain: {size: [40, 20, 10], cell_size: 2.0, decomposition: "
       "[2.5, 1]}\nwind: {speed: 4.0, direction: 270}\n",
       3, "domain.decomposition[0]", "a whole number of blocks along x expected, got '2.5'");
-  expect_error(
+  expect_scenario_error(
       dir, "blocks_zero",
       "scenario: errors\ntime: {end: 10.0}\ndomain: {size: [40, 20, 10], cell_size: 2.0, decomposition: "
       "[0, 1]}\nwind: {speed: 4.0, direction: 270}\n",
@@ -2073,53 +2099,58 @@ TEST_CASE("load_scenario: without strength and damage, no strength, damage off a
 TEST_CASE("load_scenario: bad strength and damage keys name the key and say what is expected", "[scenario]") {
   fw::test::TempDir dir("fw_scenario");
   const std::string key = "forest.species[0].strength.";
-  expect_error(dir, "strength_preset", strong_species("      strength: {preset: oak}\n"), 9, key + "preset",
-               "one of sitka_spruce | norway_spruce | scots_pine | birch expected, got 'oak'");
-  expect_error(dir, "strength_soil_word", strong_species("      strength: {preset: birch, soil: E}\n"), 9,
-               key + "soil", "one of A | B | C | D expected, got 'E'");
-  expect_error(dir, "strength_knot_factor",
-               strong_species("      strength: {preset: scots_pine, knot_factor: 1.5}\n"), 9,
-               key + "knot_factor", "a number > 0 and <= 1 expected, got '1.5'");
-  expect_error(dir, "strength_mor_bound",
-               strong_species("      strength: {preset: scots_pine, modulus_of_rupture: 1e30}\n"), 9,
-               key + "modulus_of_rupture", "a number >= 1e6 and <= 3e8 (Pa) expected, got '1e30'");
-  expect_error(dir, "strength_density_bound",
-               strong_species("      strength: {preset: scots_pine, green_density: 50}\n"), 9,
-               key + "green_density", "a number >= 100 and <= 2000 (kg/m^3) expected, got '50'");
-  expect_error(dir, "strength_anchorage_bound",
-               strong_species("      strength: {preset: scots_pine, anchorage: 5000}\n"), 9,
-               key + "anchorage", "a number >= 10 and <= 1000 (N m/kg) expected, got '5000'");
+  expect_scenario_error(dir, "strength_preset", strong_species("      strength: {preset: oak}\n"), 9,
+                        key + "preset",
+                        "one of sitka_spruce | norway_spruce | scots_pine | birch expected, got 'oak'");
+  expect_scenario_error(dir, "strength_soil_word",
+                        strong_species("      strength: {preset: birch, soil: E}\n"), 9, key + "soil",
+                        "one of A | B | C | D expected, got 'E'");
+  expect_scenario_error(dir, "strength_knot_factor",
+                        strong_species("      strength: {preset: scots_pine, knot_factor: 1.5}\n"), 9,
+                        key + "knot_factor", "a number > 0 and <= 1 expected, got '1.5'");
+  expect_scenario_error(dir, "strength_mor_bound",
+                        strong_species("      strength: {preset: scots_pine, modulus_of_rupture: 1e30}\n"), 9,
+                        key + "modulus_of_rupture", "a number >= 1e6 and <= 3e8 (Pa) expected, got '1e30'");
+  expect_scenario_error(dir, "strength_density_bound",
+                        strong_species("      strength: {preset: scots_pine, green_density: 50}\n"), 9,
+                        key + "green_density", "a number >= 100 and <= 2000 (kg/m^3) expected, got '50'");
+  expect_scenario_error(dir, "strength_anchorage_bound",
+                        strong_species("      strength: {preset: scots_pine, anchorage: 5000}\n"), 9,
+                        key + "anchorage", "a number >= 10 and <= 1000 (N m/kg) expected, got '5000'");
   // Shallow and deep rooting: soil A only.
-  expect_error(
+  expect_scenario_error(
       dir, "strength_deep_on_c",
       strong_species("      strength:\n        preset: sitka_spruce\n        soil: C\n"
                      "        rooting: deep\n"),
       12, key + "rooting",
       "one of mean (the table has no anchorage for deep rooting on soil C, line 11) expected, got 'deep'");
   // Soil and rooting choose a preset's anchorage only.
-  expect_error(dir, "strength_soil_without_preset",
-               strong_species("      strength: {soil: B, modulus_of_rupture: 4e7, knot_factor: 1, "
-                              "green_density: 850, anchorage: 140}\n"),
-               9, key + "soil", "soil only beside a preset (soil and rooting choose a preset's anchorage)");
-  expect_error(dir, "strength_rooting_beside_anchorage",
-               strong_species("      strength: {preset: birch, rooting: deep, anchorage: 140}\n"), 9,
-               key + "rooting", "rooting only without anchorage (anchorage on line 9 replaces");
+  expect_scenario_error(dir, "strength_soil_without_preset",
+                        strong_species("      strength: {soil: B, modulus_of_rupture: 4e7, knot_factor: 1, "
+                                       "green_density: 850, anchorage: 140}\n"),
+                        9, key + "soil",
+                        "soil only beside a preset (soil and rooting choose a preset's anchorage)");
+  expect_scenario_error(dir, "strength_rooting_beside_anchorage",
+                        strong_species("      strength: {preset: birch, rooting: deep, anchorage: 140}\n"), 9,
+                        key + "rooting", "rooting only without anchorage (anchorage on line 9 replaces");
   // Without a preset, the first number missing, in the table's order, at the map's line.
-  expect_error(
+  expect_scenario_error(
       dir, "strength_no_anchorage",
       strong_species("      strength: {modulus_of_rupture: 4e7, knot_factor: 1, green_density: 850}\n"), 9,
       key + "anchorage",
       "a number >= 10 and <= 1000 (N m/kg), needed without a preset expected (required), got nothing");
-  expect_error(dir, "strength_empty", strong_species("      strength: {}\n"), 9, key + "modulus_of_rupture",
-               "needed without a preset expected (required), got nothing");
+  expect_scenario_error(dir, "strength_empty", strong_species("      strength: {}\n"), 9,
+                        key + "modulus_of_rupture",
+                        "needed without a preset expected (required), got nothing");
   // Damage needs every species' strength: the one without is named at its entry's line.
-  expect_error(dir, "damage_without_strength",
-               strong_species("      strength: {preset: birch}\n", "  damage: {enabled: true}\n", ""), 11,
-               "forest.species[1].strength",
-               "a map {preset, soil, rooting, modulus_of_rupture, knot_factor, green_density, anchorage} "
-               "expected (required: forest.damage.enabled is true on line 6), got nothing");
-  expect_error(dir, "damage_enabled_word", strong_species("", "  damage: {enabled: yes}\n"), 6,
-               "forest.damage.enabled", "true or false expected, got 'yes'");
-  expect_error(dir, "damage_unknown_key", strong_species("", "  damage: {enable: true}\n"), 6,
-               "forest.damage.enable", "one of the keys enabled, consequences expected");
+  expect_scenario_error(
+      dir, "damage_without_strength",
+      strong_species("      strength: {preset: birch}\n", "  damage: {enabled: true}\n", ""), 11,
+      "forest.species[1].strength",
+      "a map {preset, soil, rooting, modulus_of_rupture, knot_factor, green_density, anchorage} "
+      "expected (required: forest.damage.enabled is true on line 6), got nothing");
+  expect_scenario_error(dir, "damage_enabled_word", strong_species("", "  damage: {enabled: yes}\n"), 6,
+                        "forest.damage.enabled", "true or false expected, got 'yes'");
+  expect_scenario_error(dir, "damage_unknown_key", strong_species("", "  damage: {enable: true}\n"), 6,
+                        "forest.damage.enable", "one of the keys enabled, consequences expected");
 }

@@ -39,7 +39,7 @@ fw::io::WindFrame small_frame() {
 
 }  // namespace
 
-TEST_CASE("SiteVtk: a wind frame with a site reads back its origin, EPSG code and WKT; without, none",
+TEST_CASE("SiteVtk: a wind frame with a site reads back its origin, EPSG code and WKT, and one without none",
           "[io]") {
   const fw::test::TempDir dir("fw_site_vtk");
   const fw::io::SiteSettings site = utm_site();

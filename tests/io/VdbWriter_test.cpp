@@ -148,6 +148,28 @@ TEST_CASE("write_wind_vdb: grids vel and speed with cell-centred transform, valu
   CHECK_FALSE(vel_at.isValueOn(openvdb::Coord(5, 0, 0)));  // outside the domain
 }
 
+TEST_CASE("write_wind_vdb: a run's site goes into the file's metadata: origin, EPSG code and WKT",
+          "[output]") {
+  fw::test::TempDir dir("fw_out");
+  fw::io::WindFrame frame = sample_frame();
+  fw::io::SiteSettings site;
+  site.origin = {512040.25, 5401040.5, 421.0};
+  site.crs.emplace().wkt = "PROJCRS[\"WGS 84 / UTM zone 32N\"]";
+  site.crs->epsg = 32632;
+  frame.site = &site;
+  const fs::path path = fs::path(dir.path()) / "wind.0001.vdb";
+  fw::io::write_wind_vdb(path, frame, true, false);
+  const ReadBack vdb = read_vdb(path);
+  REQUIRE(vdb.meta != nullptr);
+  CHECK(vdb.meta->metaValue<openvdb::Vec3d>("site_origin") == openvdb::Vec3d(512040.25, 5401040.5, 421.0));
+  CHECK(vdb.meta->metaValue<openvdb::Int32>("site_epsg") == 32632);
+  CHECK(vdb.meta->metaValue<std::string>("site_crs") == site.crs->wkt);
+  // Without a site: none of them.
+  frame.site = nullptr;
+  fw::io::write_wind_vdb(path, frame, true, false);
+  CHECK_FALSE(read_vdb(path).meta->operator[]("site_origin"));
+}
+
 TEST_CASE("write_wind_vdb: only the selected grids are written and selecting none is an error", "[output]") {
   fw::test::TempDir dir("fw_out");
   fw::io::WindFrame frame = sample_frame();

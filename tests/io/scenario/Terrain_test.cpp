@@ -8,12 +8,10 @@
 
 #include "io/Scenario.hpp"
 #include "io/gis/GeoTiff.hpp"
+#include "tests/support/ScenarioErrors.hpp"
 #include "tests/support/TempDir.hpp"
 
 namespace {
-
-using Catch::Matchers::Contains;
-using Catch::Matchers::StartsWith;
 
 // A UTM zone 32 N raster: north-west corner (500,000 m E, 5,400,000 m N), 4 m pixels, 30 x 20 (120 x 80 m).
 constexpr double kWest = 500000.0, kNorth = 5400000.0, kPixel = 4.0;
@@ -67,27 +65,11 @@ std::string site_scenario(const std::string& terrain, const std::string& origin 
       origin, size, terrain);
 }
 
-void expect_error(const fw::test::TempDir& dir, const std::string& name, const std::string& text, int line,
-                  const std::string& key, const std::string& fragment) {
-  INFO("case " << name << ":\n" << text);
-  const std::string path = dir.write(name + ".yaml", text);
-  try {
-    fw::io::load_scenario(path);
-    FAIL("load_scenario accepted the file");
-  } catch (const fw::io::ScenarioError& error) {
-    const std::string what = error.what();
-    INFO("what(): " << what);
-    CHECK(error.line() == line);
-    CHECK(error.key() == key);
-    CHECK_THAT(what, StartsWith(fmt::format("{}:{}: {}: ", path, line, key)));
-    CHECK_THAT(what, Contains(fragment));
-  }
-}
-
 }  // namespace
 
-TEST_CASE("terrain: a raster makes the site; the run is local to the domain's corner, heights over its floor",
-          "[scenario]") {
+TEST_CASE(
+    "terrain: a raster makes the site, the run local to the domain's corner, its heights over the floor",
+    "[scenario]") {
   fw::test::TempDir dir("fw_terrain");
   write_dem(dir, "dem.tif", {});
   const fw::io::Scenario s =
@@ -136,28 +118,34 @@ TEST_CASE("terrain: each raster the run cannot stand on is refused at the key to
   write_dem(dir, "holes.tif", {.nodata = true});
   write_dem(dir, "oblong.tif", {.dy = -2.0});
   dir.write("text.tif", "not a raster\n");
-  expect_error(dir, "rotated", site_scenario("{raster: rotated.tif}"), 5, "terrain.raster",
-               "a north-up raster");
-  expect_error(dir, "geographic", site_scenario("{raster: degrees.tif}"), 5, "terrain.raster",
-               "a raster in a projected CRS, in metres (EPSG:4326 (WGS 84) is in degrees");
+  fw::test::expect_scenario_error(dir, "rotated", site_scenario("{raster: rotated.tif}"), 5, "terrain.raster",
+                                  "a north-up raster");
+  fw::test::expect_scenario_error(dir, "geographic", site_scenario("{raster: degrees.tif}"), 5,
+                                  "terrain.raster",
+                                  "a raster in a projected CRS, in metres (EPSG:4326 (WGS 84) is in degrees");
   // Pixel (10, 10)'s centre: x 500042, y 5399958, under the domain.
-  expect_error(dir, "nodata", site_scenario("{raster: holes.tif}"), 5, "terrain.raster",
-               "elevations under the whole domain (its pixel at x 500042, y 5399958, column 10, row 10, is "
-               "nodata");
-  expect_error(dir, "oblong", site_scenario("{raster: oblong.tif}", "[500020, 5399962, 400]", "[64, 32, 32]"),
-               5, "terrain.raster", "square pixels (these are 4 x 2 m");
-  expect_error(dir, "not_a_raster", site_scenario("{raster: text.tif}"), 5, "terrain.raster",
-               "a georeferenced raster GDAL reads");
+  fw::test::expect_scenario_error(
+      dir, "nodata", site_scenario("{raster: holes.tif}"), 5, "terrain.raster",
+      "elevations under the whole domain (its pixel at x 500042, y 5399958, column 10, row 10, is "
+      "nodata");
+  fw::test::expect_scenario_error(
+      dir, "oblong", site_scenario("{raster: oblong.tif}", "[500020, 5399962, 400]", "[64, 32, 32]"), 5,
+      "terrain.raster", "square pixels (these are 4 x 2 m");
+  fw::test::expect_scenario_error(dir, "not_a_raster", site_scenario("{raster: text.tif}"), 5,
+                                  "terrain.raster", "a georeferenced raster GDAL reads");
   // The raster covers x 500000 .. 500120, y 5399920 .. 5400000.
-  expect_error(dir, "past_east", site_scenario("{raster: dem.tif}", "[500060, 5399940, 400]"), 3,
-               "domain.origin",
-               "a domain inside the terrain raster expected: dem.tif covers x 500000 .. 500120, y 5399920 .. "
-               "5400000; the domain reaches x 500060 .. 500124");
-  expect_error(dir, "floor_too_high", site_scenario("{raster: dem.tif}", "[500020, 5399940, 412]"), 3,
-               "domain.origin", "the terrain under the domain falls to");
-  expect_error(dir, "both", site_scenario("{raster: dem.tif, heightmap: hills.pgm}"), 5, "terrain.raster",
-               "either terrain.heightmap (a PGM image) or terrain.raster, not both");
-  expect_error(dir, "scale", site_scenario("{raster: dem.tif, max_height: 10}"), 5, "terrain.max_height",
-               "no PGM scale with a raster");
-  expect_error(dir, "neither", site_scenario("{}"), 5, "terrain.raster", "or a terrain.heightmap");
+  fw::test::expect_scenario_error(
+      dir, "past_east", site_scenario("{raster: dem.tif}", "[500060, 5399940, 400]"), 3, "domain.origin",
+      "a domain inside the terrain raster expected: dem.tif covers x 500000 .. 500120, y 5399920 .. "
+      "5400000; the domain reaches x 500060 .. 500124");
+  fw::test::expect_scenario_error(dir, "floor_too_high",
+                                  site_scenario("{raster: dem.tif}", "[500020, 5399940, 412]"), 3,
+                                  "domain.origin", "the terrain under the domain falls to");
+  fw::test::expect_scenario_error(dir, "both", site_scenario("{raster: dem.tif, heightmap: hills.pgm}"), 5,
+                                  "terrain.raster",
+                                  "either terrain.heightmap (a PGM image) or terrain.raster, not both");
+  fw::test::expect_scenario_error(dir, "scale", site_scenario("{raster: dem.tif, max_height: 10}"), 5,
+                                  "terrain.max_height", "no PGM scale with a raster");
+  fw::test::expect_scenario_error(dir, "neither", site_scenario("{}"), 5, "terrain.raster",
+                                  "or a terrain.heightmap");
 }
