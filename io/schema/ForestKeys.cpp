@@ -81,7 +81,8 @@ constexpr KeyDocs kDocs[] = {
      .description = "Column of the stem's diameter 1.3 m above its base, m."},
     {.path = "forest.inventory.columns.crown_width",
      .default_note = "`crown_width` (optional in the file)",
-     .description = "Crown width column, m; read and checked, and reported by `check`."},
+     .description = "Crown width column, m; read and checked (> 0, or empty). The crowns are the "
+                    "template's, scaled with the height: the width is not used yet."},
     {.path = "forest.inventory.columns.id",
      .default_note = "`id` (optional in the file: the row's line number without it)",
      .description = "Tree id column, any text: carried into the trees frames and `damage.csv`."},

@@ -87,7 +87,7 @@ cmp -s one/damage.csv resumed/damage.csv || fail "damage.csv resumed differs fro
 out=$("$compare_runs" one resumed) || fail "the resumed frames differ: $out"
 
 # A dbh in centimetres: refused at its line and column, nothing written.
-sed '3s/,0\.\([0-9]*\)$/,3\1/' trees.csv >cm.csv
+sed '3s/,0\.\([0-9][0-9]\)\([0-9]\)$/,\1.\2/' trees.csv >cm.csv
 sed 's/inventory: {file: trees.csv}/inventory: {file: cm.csv}/' site.yaml >cm.yaml
 out=$("$forestwind" run cm.yaml -o cm 2>&1)
 status=$?

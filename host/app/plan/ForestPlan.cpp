@@ -202,8 +202,8 @@ void place_inventory(const io::Scenario& scenario, const trees::BasisCache* cach
       const auto [low, high] = fitter.dbh_range(tree.height);
       throw base::SourceError(
           file, tree.line, inventory.columns.dbh,
-          fmt::format("a dbh its species' template fits at {} m: {:.3g} to {:.3g} m (radii at most {} times "
-                      "or a {}th of the template's scaled; is it in metres?)",
+          fmt::format("a dbh its species' template fits at {} m: {:.3g} to {:.3g} m (radii from 1/{} to {} "
+                      "times the template's, scaled to the height; is it in metres?)",
                       tree.height, low, high, trees::SizeFitter::kMaxGirth, trees::SizeFitter::kMaxGirth),
           fmt::format("'{}'", tree.dbh));
     }
