@@ -236,6 +236,23 @@ __kernel void leaves_pack(const int count, __global const int* slots, __global u
   }
 }
 
+/* Over ranks: the leaves that other ranks sent (packed as leaves_pack packs them) into `slots`: freed slots
+ * of leaves that moved on, or new ones past the last. */
+__kernel void leaves_unpack(const int count, __global const int* slots, __global const float4* packed,
+                            __global uchar* state, __global float4* position, __global float4* velocity,
+                            __global float4* normal, __global float4* flight, __global float* flight_drag) {
+  FW_FLAT_FOR(n, count) {
+    const int j = slots[n];
+    const float4 where = packed[4 * n], motion = packed[4 * n + 1];
+    position[j] = (float4)(where.xyz, 0.0f);
+    state[j] = (uchar)where.w;
+    velocity[j] = (float4)(motion.xyz, 0.0f);
+    flight_drag[j] = motion.w;
+    normal[j] = packed[4 * n + 2];
+    flight[j] = packed[4 * n + 3];
+  }
+}
+
 /* Field `field` (one row) of rest leaf r. */
 FW_INLINE float rest_value(__global const float* rest, const int stride, const int field, const int r) {
   return rest[field * stride + r];

@@ -168,6 +168,7 @@ LeafStages::LeafStages(ComputeContext& cc, const fluid::GridSpec& spec, const tr
     const trees::TreeInstance& tree = forest.instances()[std::size_t(k)];
     const trees::SpeciesLeaves& leaves = species_leaves[std::size_t(tree.species)];
     first_leaf.push_back(static_cast<std::int32_t>(total));
+    own_first_slot_.emplace(forest.id(k), int(total));
     first_block.push_back(block_count_);
     total += leaves.count();
     block_count_ += (leaves.count() + FW_LANES - 1) / FW_LANES;
@@ -226,6 +227,7 @@ LeafStages::LeafStages(ComputeContext& cc, const fluid::GridSpec& spec, const tr
   frame_ = Kernel(program, "leaves_frame");
   leaving_kernel_ = Kernel(program, "leaves_leaving");
   pack_ = Kernel(program, "leaves_pack");
+  unpack_ = Kernel(program, "leaves_unpack");
 }
 
 void LeafStages::reserve_slots(int slots) {
@@ -281,6 +283,14 @@ void LeafStages::restore_state(const StageState& state) {
   copy("slot_tree", slot_tree_);
   copy("slot_leaf", slot_leaf_);
   copy("slot_side", slot_side_);
+  // The free slots are the arrived ones whose leaf moved on, as the saving run had them.
+  free_slots_.clear();
+  if (count > own_count_) {
+    std::vector<std::uint8_t> states(std::size_t(count - own_count_));
+    cc_.queue().enqueueReadBuffer(state_, CL_TRUE, std::size_t(own_count_), states.size(), states.data());
+    for (std::size_t m = 0; m < states.size(); ++m)
+      if (states[m] == FW_LEAF_MOVED) free_slots_.push_back(own_count_ + int(m));
+  }
   time_ = float(state.number(kStage, "time", 1)[0]);
   frame_ready_ = false;
 }
@@ -355,6 +365,7 @@ void LeafStages::move_leaves() {
         cc_.queue().enqueueWriteBuffer(state_, CL_TRUE, std::size_t(j), 1, &state);
         continue;
       }
+      if (j >= own_count_) free_slots_.push_back(j);  // leaves_pack marked it FW_LEAF_MOVED
       MovingLeaf leaf;
       leaf.tree = slot_tree_[std::size_t(j)];
       leaf.leaf = slot_leaf_[std::size_t(j)];
@@ -370,33 +381,42 @@ void LeafStages::move_leaves() {
   std::sort(arrived.begin(), arrived.end(), [](const MovingLeaf& a, const MovingLeaf& b) {
     return a.tree != b.tree ? a.tree < b.tree : a.leaf < b.leaf;
   });
-  const std::size_t n = arrived.size(), first = std::size_t(slot_count_);
-  reserve_slots(slot_count_ + int(n));
-  std::vector<std::uint8_t> state(n);
-  std::vector<float> position(4 * n), velocity(4 * n), normal(4 * n), flight(4 * n), drag(n);
+  // A leaf of an own tree to its own slot; the others to the freed slots, lowest first, then to new ones past
+  // the last: in one order on every run of a split.
+  const std::size_t n = arrived.size();
+  arrivals_ += static_cast<long long>(n);
+  std::sort(free_slots_.begin(), free_slots_.end());
+  std::vector<std::int32_t> slots(n);
+  std::size_t reused = 0;
+  int appended = 0;
   for (std::size_t m = 0; m < n; ++m) {
-    const float* v = arrived[m].packed;
-    state[m] = static_cast<std::uint8_t>(v[3]);
-    drag[m] = v[7];
-    for (int a = 0; a < 4; ++a) {
-      position[4 * m + a] = a < 3 ? v[a] : 0.0f;
-      velocity[4 * m + a] = a < 3 ? v[4 + a] : 0.0f;
-      normal[4 * m + a] = v[8 + a];
-      flight[4 * m + a] = v[12 + a];
-    }
-    slot_tree_.push_back(arrived[m].tree);
-    slot_leaf_.push_back(arrived[m].leaf);
-    slot_side_.push_back(arrived[m].side);
+    if (const auto own = own_first_slot_.find(arrived[m].tree); own != own_first_slot_.end())
+      slots[m] = own->second + arrived[m].leaf;
+    else if (reused < free_slots_.size())
+      slots[m] = free_slots_[reused++];
+    else
+      slots[m] = slot_count_ + appended++;
   }
-  constexpr std::size_t float4 = 4 * sizeof(float);
-  auto& q = cc_.queue();
-  q.enqueueWriteBuffer(state_, CL_FALSE, first, n, state.data());
-  q.enqueueWriteBuffer(position_, CL_FALSE, first * float4, n * float4, position.data());
-  q.enqueueWriteBuffer(velocity_, CL_FALSE, first * float4, n * float4, velocity.data());
-  q.enqueueWriteBuffer(normal_, CL_FALSE, first * float4, n * float4, normal.data());
-  q.enqueueWriteBuffer(flight_, CL_FALSE, first * float4, n * float4, flight.data());
-  q.enqueueWriteBuffer(flight_drag_, CL_TRUE, first * sizeof(float), n * sizeof(float), drag.data());
-  slot_count_ += int(n);
+  free_slots_.erase(free_slots_.begin(), free_slots_.begin() + std::ptrdiff_t(reused));
+  reserve_slots(slot_count_ + appended);
+  slot_count_ += appended;
+  slot_tree_.resize(std::size_t(slot_count_));
+  slot_leaf_.resize(std::size_t(slot_count_));
+  slot_side_.resize(std::size_t(slot_count_));
+  std::vector<float> packed(n * FW_LEAF_PACKED_FLOATS);
+  for (std::size_t m = 0; m < n; ++m) {
+    const std::size_t j = std::size_t(slots[m]);
+    slot_tree_[j] = arrived[m].tree;
+    slot_leaf_[j] = arrived[m].leaf;
+    slot_side_[j] = arrived[m].side;
+    std::copy_n(arrived[m].packed, FW_LEAF_PACKED_FLOATS, &packed[m * FW_LEAF_PACKED_FLOATS]);
+  }
+  cl::Buffer slot_list = cc_.upload(slots, CL_MEM_READ_ONLY);
+  cl::Buffer packed_leaves = cc_.upload(packed, CL_MEM_READ_ONLY);
+  unpack_
+      .set_args(int(n), slot_list, packed_leaves, state_, position_, velocity_, normal_, flight_,
+                flight_drag_)
+      .enqueue(cc_, cl::NDRange(cc_.flat_items(n)));
 }
 
 void LeafStages::enqueue_blades(cl::Buffer& displacements, bool displaced) {

@@ -25,6 +25,7 @@
 #include <cstdint>
 #include <limits>
 #include <optional>
+#include <unordered_map>
 #include <vector>
 
 #include "fluid/GridSpec.hpp"
@@ -73,8 +74,11 @@ class LeafStages {
 
   /// The leaves of this rank's own trees (all leaves in one process).
   int own_count() const { return own_count_; }
-  /// The slots taken by leaves that other ranks sent here (some may have moved on since).
+  /// The slots taken by leaves that other ranks sent here (some may have moved on since, their slots free for
+  /// the next to arrive).
   int arrived_count() const { return slot_count_ - own_count_; }
+  /// How many leaves other ranks have sent here since the run began (or resumed).
+  long long arrivals() const { return arrivals_; }
 
   /// One step of every leaf over step.dt, ending at step.time + step.dt, in the wind `vel` (the step's end
   /// velocity); mask: the pressure mask (FW_MASK_FLUID marks fluid cells). Over ranks collective: it then
@@ -108,8 +112,9 @@ class LeafStages {
 
   /// The frame kernel: every own leaf's blade at the last step's end into frame_position_ and frame_normal_.
   void enqueue_blades(cl::Buffer& displacements, bool displaced);
-  /// Over ranks, after a step: the leaves outside the block's own columns go to the ranks holding them, and
-  /// those sent here take new slots.
+  /// Over ranks, after a step: the leaves outside the block's own columns go to the ranks holding them. Those
+  /// sent here take their own slots (a leaf of this rank's trees coming back), else the slots that leaves
+  /// sent here before have left (lowest first), else new ones.
   void move_leaves();
   /// Room for `slots` slots in every per-slot array, their values kept.
   void reserve_slots(int slots);
@@ -126,8 +131,14 @@ class LeafStages {
   FwGrid grid_{};
   int own_count_ = 0, instance_count_ = 0;
   int slot_count_ = 0, slot_capacity_ = 0;  // own leaves and the leaves sent here
-  long long leaf_total_ = 0;                // every rank's own leaves
-  int block_count_ = 0;                     // blocks of FW_LANES leaves of one instance (kernels/leaves.cl)
+  // Slots past the own leaves whose leaf moved on (FW_LEAF_MOVED): a leaf crossing cuts back and forth would
+  // otherwise take a new slot every time, and a storm's leaf memory grow without bound.
+  std::vector<int> free_slots_;
+  long long arrivals_ = 0;
+  // Each own tree's first own slot, by its id: a leaf of an own tree that comes back takes its own slot.
+  std::unordered_map<std::int32_t, int> own_first_slot_;
+  long long leaf_total_ = 0;  // every rank's own leaves
+  int block_count_ = 0;       // blocks of FW_LANES leaves of one instance (kernels/leaves.cl)
   int rest_stride_ = 0;
   float time_ = 0.0f;  // the last step's end, s
   bool frame_ready_ = false;
@@ -141,7 +152,7 @@ class LeafStages {
   cl::Buffer theta_, theta_rate_, frame_position_, frame_normal_;                     // own leaves
   cl::Buffer state_, position_, velocity_, normal_, flight_, flight_drag_, leaving_;  // every slot
   cl::Buffer counters_, no_displacements_;
-  Kernel flying_, attached_, frame_, leaving_kernel_, pack_;
+  Kernel flying_, attached_, frame_, leaving_kernel_, pack_, unpack_;
 };
 
 }  // namespace fw::host

@@ -112,3 +112,36 @@ TEST_CASE("LeafStages over ranks: leaves wrap through a periodic side that is al
   setup.wind.ambient[1] = 0.75 * kSpeed;  // 12 m/s north: 18 m in the run, more than the 16 m domain
   check_every_split_against_one_process(*cc, setup);
 }
+
+// Leaves that wrap through the periodic north side again and again cross the cuts many times: each crossing
+// once took a new slot on the rank it reached and left the old one behind, so a storm's leaf memory grew
+// without bound. Now a leaf takes a slot that an earlier one left: a rank never holds more arrived slots
+// than there are leaves of other ranks' trees, however often they come.
+TEST_CASE("LeafStages over ranks: leaves crossing the cuts again and again reuse the slots they left",
+          "[mpi]") {
+  auto* cc = test::device_or_skip();
+  if (!cc) return;
+  const host::Communicator& world = test::world();
+  if (world.size() == 1) return;  // nothing crosses a cut in one process
+  test::LeafRun setup(kSpeed);
+  setup.wind.ambient[1] = 0.75 * kSpeed;  // 12 m/s north across the 16 m domain: a wrap every 1.3 s
+  const std::array<int, 2> blocks{1, world.size()};  // cuts across the cross-wind only
+  INFO(blocks[0] << " x " << blocks[1] << " blocks on " << world.size() << " ranks");
+  const host::WindBlocks split{
+      &world,
+      fluid::Decomposition::make(setup.wind.spec, world.size(), blocks,
+                                 fluid::halo_cells(setup.wind.settings.advection, setup.wind.settings.cfl))};
+  host::CoupledStep coupled(*cc, setup.wind, setup.forest, setup.coupling,
+                            host::TimeInputs::steady(setup.wind.ambient), &split);
+  coupled.start();
+  constexpr double kLong = 4.0;  // s: the leaves shed first cross the cuts a few times over
+  while (coupled.time() < kLong - 1e-9) coupled.step(kLong - coupled.time());
+  const host::LeafStages& leaves = coupled.leaves();
+  const long long total = world.sum(static_cast<long long>(leaves.own_count()));
+  const long long others = total - leaves.own_count();
+  WARN("rank " << world.rank() << ": " << leaves.arrivals() << " arrivals in " << kLong << " s, "
+               << leaves.arrived_count() << " arrived slots, " << others << " leaves of other ranks' trees");
+  CHECK(leaves.arrived_count() <= others);
+  // The test means something: over the ranks, more leaves arrived than one slot each would have held.
+  CHECK(world.sum(leaves.arrivals()) > world.sum(others));
+}
