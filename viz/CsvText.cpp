@@ -1,5 +1,7 @@
 #include "viz/CsvText.hpp"
 
+#include "io/gis/TreeInventory.hpp"
+
 namespace fw::viz {
 
 std::vector<std::string> csv_lines(const std::string& text, bool keep_unfinished_last) {
@@ -16,26 +18,9 @@ std::vector<std::string> csv_lines(const std::string& text, bool keep_unfinished
   return lines;
 }
 
-std::vector<std::string> split_csv(const std::string& line) {
-  // RFC 4180's quotes (damage.csv quotes an inventory id that holds a comma); an unclosed quote runs to the
-  // end of the line.
-  std::vector<std::string> fields(1);
-  bool quoted = false;
-  for (std::size_t i = 0; i < line.size(); ++i) {
-    const char c = line[i];
-    if (quoted && c == '"' && i + 1 < line.size() && line[i + 1] == '"') {
-      fields.back() += '"';
-      ++i;
-    } else if (c == '"' && (quoted || fields.back().empty())) {
-      quoted = !quoted;
-    } else if (c == ',' && !quoted) {
-      fields.emplace_back();
-    } else {
-      fields.back() += c;
-    }
-  }
-  if (line.empty()) fields.clear();
-  return fields;
+std::vector<std::string> split_csv(const std::string& line, const std::string& file, int line_number) {
+  if (line.empty()) return {};
+  return io::split_csv_fields(line, file, line_number);
 }
 
 }  // namespace fw::viz

@@ -3,7 +3,7 @@
 // every other name with a comma is refused where it is given.
 //
 //   const std::vector<std::string> lines = fw::viz::csv_lines(text, /*keep_unfinished_last=*/true);
-//   const std::vector<std::string> header = fw::viz::split_csv(lines.at(0));
+//   const std::vector<std::string> header = fw::viz::split_csv(lines.at(0), "damage.csv", 1);
 #pragma once
 
 #include <string>
@@ -16,8 +16,9 @@ namespace fw::viz {
 /// left out otherwise (a file appended row by row, whose last row a killed run may have cut short).
 std::vector<std::string> csv_lines(const std::string& text, bool keep_unfinished_last);
 
-/// The values of one line between its commas: "a,,b" gives a, "", b; "a," gives a, ""; "" gives none;
-/// "\"x,\"\"y\"\"\",b" gives x,"y" and b.
-std::vector<std::string> split_csv(const std::string& line);
+/// The values of line `line_number` of `file` between its commas, quotes read as io::split_csv_fields reads
+/// them (io/gis/TreeInventory.hpp): "a,,b" gives a, "", b; "a," gives a, ""; "" gives none;
+/// "\"x,\"\"y\"\"\",b" gives x,"y" and b. Throws base::SourceError at FILE:LINE for a quote left open.
+std::vector<std::string> split_csv(const std::string& line, const std::string& file, int line_number);
 
 }  // namespace fw::viz

@@ -153,7 +153,8 @@ DamageTable read_damage_table(const std::filesystem::path& path) {
   std::stringstream buffer;
   buffer << in.rdbuf();
   const std::vector<std::string> lines = csv_lines(buffer.str(), /*keep_unfinished_last=*/true);
-  const std::vector<std::string> header = lines.empty() ? std::vector<std::string>{} : split_csv(lines[0]);
+  const std::vector<std::string> header =
+      lines.empty() ? std::vector<std::string>{} : split_csv(lines[0], file, 1);
   for (std::size_t c = 0; c < kDamageColumns.size(); ++c)
     if (c >= header.size() || header[c] != kDamageColumns[c])
       throw base::SourceError(file, 1, "header",
@@ -167,7 +168,7 @@ DamageTable read_damage_table(const std::filesystem::path& path) {
   for (std::size_t n = 1; n < lines.size(); ++n) {
     if (lines[n].empty()) continue;
     const int line = int(n) + 1;
-    const std::vector<std::string> values = split_csv(lines[n]);
+    const std::vector<std::string> values = split_csv(lines[n], file, line);
     if (values.size() != header.size())
       throw base::SourceError(file, line, "row", fmt::format("expected {} values", header.size()),
                               std::to_string(values.size()));

@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 #include <stdexcept>
@@ -61,10 +62,10 @@ io::GeoGrid geo_grid(const GroundSlice& slice, double time, const io::SiteSettin
   grid.columns = slice.columns;
   grid.rows = slice.rows;
   const double h = slice.cell_size;
-  // Local metres, or with a site its CRS: the site's origin plus the local position.
-  const double x0 = slice.origin[0] + (site ? site->origin[0] : 0.0);
-  const double y0 = slice.origin[1] + (site ? site->origin[1] : 0.0);
-  grid.transform = {x0, h, 0.0, y0 + slice.rows * h, 0.0, -h};
+  // Local metres, or with a site its CRS.
+  const std::array<double, 3> local{slice.origin[0], slice.origin[1], 0.0};
+  const std::array<double, 3> corner = site ? site->to_site(local) : local;
+  grid.transform = {corner[0], h, 0.0, corner[1] + slice.rows * h, 0.0, -h};
   if (site && site->crs) grid.crs_wkt = site->crs->wkt;
   grid.values.reserve(slice.values.size());
   for (int row = slice.rows - 1; row >= 0; --row)  // GeoTIFF rows run north to south

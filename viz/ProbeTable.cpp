@@ -49,10 +49,10 @@ ProbeTable read_probe_table(const std::filesystem::path& path) {
   const std::string file = path.string();
 
   const std::vector<std::string> lines = csv_lines(text, /*keep_unfinished_last=*/false);
-  if (lines.empty() || split_csv(lines[0]).empty() || split_csv(lines[0])[0] != "time_s")
+  if (lines.empty() || split_csv(lines[0], file, 1).empty() || split_csv(lines[0], file, 1)[0] != "time_s")
     throw std::invalid_argument(
         fmt::format("{}:1: header: expected 'time_s,...' (a forestwind probes.csv)", file));
-  const std::vector<std::string> header = split_csv(lines[0]);
+  const std::vector<std::string> header = split_csv(lines[0], file, 1);
 
   ProbeTable table;
   struct Columns {
@@ -87,7 +87,7 @@ ProbeTable read_probe_table(const std::filesystem::path& path) {
 
   for (std::size_t n = 1; n < lines.size(); ++n) {
     if (lines[n].empty()) continue;
-    const std::vector<std::string> fields = split_csv(lines[n]);
+    const std::vector<std::string> fields = split_csv(lines[n], file, int(n) + 1);
     if (fields.size() != header.size())
       throw std::invalid_argument(
           fmt::format("{}:{}: row: expected {} values, got {}", file, n + 1, header.size(), fields.size()));

@@ -43,8 +43,8 @@ std::string subgrid_words(const fluid::WindSettings& settings) {
 void print_inventory(const SimulationPlan& plan, std::ostream& out) {
   const InventoryPlan& inventory = *plan.inventory;
   out << fmt::format("inventory {}: {} trees, {} in the domain, {} outside it (not placed){}\n",
-                     inventory.file, inventory.rows, inventory.placed, inventory.outside.size(),
-                     inventory.outside.empty() ? "" : ":");
+                     inventory.file, inventory.placed + inventory.outside.size(), inventory.placed,
+                     inventory.outside.size(), inventory.outside.empty() ? "" : ":");
   constexpr std::size_t kListed = 5;  // the first few by name; the rest counted
   for (std::size_t k = 0; k < std::min(inventory.outside.size(), kListed); ++k) {
     const io::InventoryTree& tree = inventory.outside[k];

@@ -98,12 +98,9 @@ struct SpeciesStrength {
 /// The forest inventory as planned (forest.inventory; docs/gis.md): its trees fitted to their sizes.
 struct InventoryPlan {
   std::string file;
-  int rows = 0;            ///< tree rows in the file
-  int first_instance = 0;  ///< its trees are the instances [first_instance, first_instance + placed)
-  int placed = 0;          ///< inside the domain
+  int placed = 0;                          ///< inside the domain: the last `placed` instances
   std::vector<io::InventoryTree> outside;  ///< outside the domain, as the file gives them: not placed
-  int girth_classes = 0;           ///< bases added for them (the species' own girth, class 0, adds none)
-  double largest_dbh_error = 0.0;  ///< max |fitted dbh / measured - 1| over its trees
+  double largest_dbh_error = 0.0;          ///< max |fitted dbh / measured - 1| over its trees
 };
 
 struct SimulationPlan {

@@ -4,6 +4,7 @@
 // summary says which.
 #include <fmt/format.h>
 
+#include <array>
 #include <iostream>
 #include <optional>
 #include <stdexcept>
@@ -36,11 +37,11 @@ int run_export(const ExportOptions& options) {
       "without a value)\n",
       options.output, slice.field, slice.height, data.index, data.time, slice.columns, slice.rows,
       slice.cell_size, slice.values.size() - slice.valid_count());
-  if (site)
+  if (site) {
+    const std::array<double, 3> corner = site->to_site({slice.origin[0], slice.origin[1], 0.0});
     std::cout << fmt::format("  in the site's CRS, {}: the domain's corner at ({:.12g}, {:.12g})\n",
-                             site->crs_label(), site->origin[0] + slice.origin[0],
-                             site->origin[1] + slice.origin[1]);
-  else
+                             site->crs_label(), corner[0], corner[1]);
+  } else
     std::cout << fmt::format(
         "  local coordinates: metres from the domain's origin ({:g}, {:g}), no CRS (the "
         "scenario has no site)\n",

@@ -138,7 +138,6 @@ InventorySettings read_inventory(const Loader& loader, const Field& field, const
                                  const DomainSettings& domain, const SiteSettings* site) {
   const Section<schema::kForestKeys, "forest.inventory"> map(loader, field);
   InventorySettings inventory;
-  inventory.line = field.line;
   inventory.file = loader.readable_file(map.require<"file">());
   if (const auto columns_field = map.get<"columns">()) {
     const Section<schema::kForestKeys, "forest.inventory.columns"> columns(loader, *columns_field);
@@ -156,7 +155,6 @@ InventorySettings read_inventory(const Loader& loader, const Field& field, const
   for (const Species& species : forest.species) names.push_back(species.name);
   // The file's own errors name its line and column (base::SourceError): they pass through.
   TreeInventory read = read_tree_inventory(inventory.file.string(), inventory.columns, names);
-  inventory.rows = int(read.trees.size());
   const std::array<double, 2> origin =
       site ? std::array{site->origin[0], site->origin[1]} : std::array{0.0, 0.0};
   const Vec3 top = domain.max_corner();

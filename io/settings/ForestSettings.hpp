@@ -66,8 +66,8 @@ struct InventorySettings {
   std::vector<InventoryTree> trees;
   /// The rows outside it (x and y as the file gives them): counted and reported, never placed.
   std::vector<InventoryTree> outside;
-  int rows = 0;  ///< every tree row of the file
-  int line = 0;  ///< the line of forest.inventory
+  /// Every tree row of the file.
+  int rows() const { return int(trees.size() + outside.size()); }
 };
 
 struct ForestSettings {

@@ -167,11 +167,11 @@ TEST_CASE("DamageTable: an inventory id with a comma or a quote reads back whole
   CHECK_THAT(text, Catch::Contains(",\"plot 3, tree 7\"\n") && Catch::Contains(",\"the \"\"old\"\" one\"\n"));
   const std::vector<std::string> lines = fw::viz::csv_lines(text, false);
   REQUIRE(lines.size() == 3);
-  const std::vector<std::string> header = fw::viz::split_csv(lines[0]);
+  const std::vector<std::string> header = fw::viz::split_csv(lines[0], "damage.csv", 1);
   CHECK(header.back() == "inventory_id");
-  CHECK(fw::viz::split_csv(lines[1]).back() == "plot 3, tree 7");
-  CHECK(fw::viz::split_csv(lines[2]).back() == "the \"old\" one");
-  CHECK(fw::viz::split_csv(lines[2]).size() == header.size());
+  CHECK(fw::viz::split_csv(lines[1], "damage.csv", 2).back() == "plot 3, tree 7");
+  CHECK(fw::viz::split_csv(lines[2], "damage.csv", 3).back() == "the \"old\" one");
+  CHECK(fw::viz::split_csv(lines[2], "damage.csv", 3).size() == header.size());
   fw::test::TempDir dir("fw_viz");
   const auto table = read_damage_table(dir.write("damage.csv", text));
   CHECK(table.trees.size() == 2);

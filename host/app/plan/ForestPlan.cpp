@@ -183,8 +183,6 @@ void place_inventory(const io::Scenario& scenario, const trees::BasisCache* cach
     fitters.emplace_back(bases[sp].skeleton().height(), bases[sp].stem_loads());
   InventoryPlan& planned = plan.inventory.emplace();
   planned.file = file;
-  planned.rows = inventory.rows;
-  planned.first_instance = int(instances.size());
   planned.outside = inventory.outside;
   plan.tree_ids.resize(instances.size());
   std::map<std::pair<int, int>, int> classes;  // (species, girth class) -> forest species
@@ -225,7 +223,6 @@ void place_inventory(const io::Scenario& scenario, const trees::BasisCache* cach
     plan.tree_ids.push_back(tree.id);
   }
   planned.placed = int(inventory.trees.size());
-  planned.girth_classes = int(classes.size());
 }
 
 }  // namespace

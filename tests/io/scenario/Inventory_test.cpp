@@ -39,7 +39,7 @@ TEST_CASE("inventory: trees inside the domain are read in file order, the ones o
       scenario("{file: survey.csv, columns: {id: Tree, x: E, y: N, species: Art, height: Z, dbh: BHD}}")));
   REQUIRE(s.forest.inventory.has_value());
   const fw::io::InventorySettings& inventory = *s.forest.inventory;
-  CHECK(inventory.rows == 3);
+  CHECK(inventory.rows() == 3);
   REQUIRE(inventory.trees.size() == 2);
   CHECK(inventory.trees[0].id == "a1");
   CHECK(inventory.trees[0].species == 0);
