@@ -69,12 +69,6 @@ int axis_alignment(const GridSpec& spec, int axis, int p, int halo) {
 
 }  // namespace
 
-int halo_cells(AdvectionScheme scheme, double courant) {
-  if (scheme == AdvectionScheme::upwind5) return FW_PAD;
-  const double reach = std::floor(std::max(courant, 0.0)) + 1.0;
-  return reach > FW_PAD ? int(std::min(reach, double(std::numeric_limits<int>::max()))) : FW_PAD;
-}
-
 Decomposition Decomposition::make(const GridSpec& spec, int ranks,
                                   std::optional<std::array<int, 2>> requested, int halo) {
   if (ranks < 1) throw DecompositionError(fmt::format("{} ranks: at least 1 expected", ranks));

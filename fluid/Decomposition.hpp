@@ -36,13 +36,6 @@ struct DecompositionError : std::invalid_argument {
   using std::invalid_argument::invalid_argument;
 };
 
-/// The halo, in cells, that a step of `scheme` needs around a block when the largest Courant number of a
-/// component is `courant`: upwind5's stencil reaches FW_PAD cells; the corners of a semi-Lagrangian
-/// back-trace (and of MacCormack's forward trace) lie within floor(courant) + 1 cells of the face, and its
-/// RK2 midpoint's within half that; never less than FW_PAD, the ghost layers every scheme's padded copies
-/// have.
-int halo_cells(AdvectionScheme scheme, double courant);
-
 /// One rank's block: cells first .. first + count - 1 along x and y, every z, and the halo it receives on
 /// each side: the decomposition's halo where another block lies across that side (a periodic wrap onto
 /// itself included only when the axis is cut), else 0.

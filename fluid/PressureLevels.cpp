@@ -101,6 +101,16 @@ PressureLevel coarsen_pressure_level(const PressureLevel& fine, const GridSpec& 
   return c;
 }
 
+std::vector<std::array<int, 3>> pressure_level_extents(const GridSpec& spec, std::size_t coarsest_cells) {
+  PressureLevel level{spec.nx, spec.ny, spec.nz, {}};  // the rules read the extents only
+  std::vector<std::array<int, 3>> extents{{level.nx, level.ny, level.nz}};
+  while (level.cell_count() > coarsest_cells && can_coarsen(level, spec)) {
+    level = PressureLevel{(level.nx + 1) / 2, (level.ny + 1) / 2, (level.nz + 1) / 2, {}};
+    extents.push_back({level.nx, level.ny, level.nz});
+  }
+  return extents;
+}
+
 std::vector<PressureLevel> build_pressure_levels(const GridSpec& spec, const std::vector<std::uint8_t>& solid,
                                                  std::size_t coarsest_cells) {
   std::vector<PressureLevel> levels;

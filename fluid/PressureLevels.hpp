@@ -12,6 +12,7 @@
 // colouring a true two-colouring across the seam), or once the level has at most `coarsest_cells` cells.
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <vector>
 
@@ -34,6 +35,11 @@ PressureLevel coarsen_pressure_level(const PressureLevel& fine, const GridSpec& 
 /// Fine level first, then coarser levels until the stopping rule holds.
 std::vector<PressureLevel> build_pressure_levels(const GridSpec& spec, const std::vector<std::uint8_t>& solid,
                                                  std::size_t coarsest_cells = 512);
+
+/// The cells along x, y and z of each level build_pressure_levels(spec, any solid, coarsest_cells) makes: the
+/// hierarchy's shape depends on the grid alone, so its memory is known before the solids are.
+std::vector<std::array<int, 3>> pressure_level_extents(const GridSpec& spec,
+                                                       std::size_t coarsest_cells = 512);
 
 /// True if the level can be halved again without breaking the periodic even-count rule.
 bool can_coarsen(const PressureLevel& level, const GridSpec& spec);

@@ -20,10 +20,6 @@ std::string to_string(AdvectionScheme scheme) {
   return "?";
 }
 
-double courant_limit(AdvectionScheme scheme) {
-  return scheme == AdvectionScheme::upwind5 ? kUpwind5CourantLimit : std::numeric_limits<double>::infinity();
-}
-
 std::string to_string(PressureSolverType solver) {
   switch (solver) {
     case PressureSolverType::jacobi:

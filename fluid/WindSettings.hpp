@@ -29,9 +29,6 @@ std::string to_string(SubgridModel model);
 /// maxima, which bounds every cell's sum.
 inline constexpr double kUpwind5CourantLimit = 1.2;
 
-/// The largest sum of Courant numbers at which `scheme` is stable: kUpwind5CourantLimit for upwind5,
-/// infinity for the semi-Lagrangian schemes (stable at any Courant number).
-double courant_limit(AdvectionScheme scheme);
 /// The relative residual at which the converging solvers stop, unless told otherwise (the scenario's
 /// solver.tolerance reads it too): a tenth of a per cent of the divergence left, and well above the float32
 /// floor near 1e-5 that a solve cannot get below.
@@ -55,7 +52,7 @@ struct WindSettings {
   std::array<double, 3> body_force{0, 0, 0};  // uniform acceleration, m/s^2
   double dt = 0.05;                           // fixed time step, s (used when cfl <= 0)
   /// > 0: dt = cfl * h / max|u| each step (max over the components), capped at max_dt and at the scheme's
-  /// courant_limit on the sum of the components' maxima.
+  /// stability limit on the sum of the components' maxima (host AdvectionMethod::courant_limit).
   double cfl = 0.0;
   double max_dt = 1.0;  // s
   /// smagorinsky: the subgrid stage runs while smagorinsky_constant > 0. tke: it always runs, its eddy

@@ -226,16 +226,15 @@ NextStep CoupledStep::next_step(double max_dt) {
   chosen.cfl = wind_.courant_number(maxima, dt);
   const double cfl = chosen.cfl;
   // A scheme with a stability limit blows up past it; the semi-Lagrangian ones only lose accuracy.
-  const double scheme_limit = fluid::courant_limit(wind_.setup().settings.advection);
+  const double scheme_limit = wind_.advection_method().courant_limit;
   const double runaway = std::isfinite(scheme_limit) ? scheme_limit : kRunawayCfl;
   if (wind_.fixed_dt() && cfl > runaway) {
     throw SimulationError(fmt::format(
         "{}: field velocity reaches {:.1f} m/s, Courant number {:.2f} > {} ({}) with the fixed dt {} s; "
         "lower time.dt or use dt: auto",
         where(next, time()), std::max({maxima[0], maxima[1], maxima[2]}), cfl, runaway,
-        std::isfinite(scheme_limit)
-            ? fluid::to_string(wind_.setup().settings.advection) + "'s stability limit"
-            : "the runaway limit",
+        std::isfinite(scheme_limit) ? wind_.advection_method().name() + "'s stability limit"
+                                    : "the runaway limit",
         dt));
   }
   if (dt >= integrator_dt_limit_) {

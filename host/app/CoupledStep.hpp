@@ -22,7 +22,8 @@
 // Checks, every step, before anything moves (a SimulationError names the step, the time and the field):
 //   - the velocity is finite (max|u| is read back each step: the CFL time step needs it, and a fixed dt
 //     needs it for the next check; one reduction over the faces costs under 1% of a step);
-//   - a fixed dt whose Courant number exceeds the scheme's stability limit (upwind5: fluid::courant_limit)
+//   - a fixed dt whose Courant number exceeds the scheme's stability limit (upwind5:
+//   AdvectionMethod::courant_limit)
 //     or, for the semi-Lagrangian schemes, kRunawayCfl is a blow-up in the making, not a slow run;
 //   - Diener's semi-implicit Euler is stable only while dt^2 omega^2 + 2 gamma dt < 4 for every mode.
 #pragma once

@@ -3,7 +3,7 @@
 // shows where the memory goes before any device is touched.
 //
 //   fw::host::DeviceMemory memory;
-//   memory.add("wind grid", fw::host::WindGrid::estimate_device_bytes(spec, settings, 1));
+//   memory.add("wind grid", fw::host::WindGrid::estimate_device_bytes(setup));
 //   memory.total();      // bytes
 //   fw::host::require_fits(memory, device, "storm.yaml");   // exit 2 when the device is too small
 #pragma once

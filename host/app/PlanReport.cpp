@@ -103,12 +103,12 @@ void print_decomposition(const SimulationPlan& plan, std::ostream& out) {
                      d.describe(), d.ranks(), d.halo(), d.halo_cells());
   for (int r = 0; r < d.ranks(); ++r) {
     const fluid::Block b = d.block(r);
-    fluid::GridSpec local = plan.wind.spec;
-    local.nx = b.extent(0), local.ny = b.extent(1);
+    const BlockShare share{&d, r};
+    const fluid::GridSpec local = share.local(plan.wind.spec);
     out << fmt::format("  rank {}: cells x {}-{}, y {}-{}; wind grid with its halo {} x {} x {}: {}\n", r,
                        b.first[0], b.first[0] + b.count[0] - 1, b.first[1], b.first[1] + b.count[1] - 1,
                        local.nx, local.ny, local.nz,
-                       megabytes(WindGrid::estimate_device_bytes(local, plan.wind.settings, 1)));
+                       megabytes(WindGrid::estimate_device_bytes(plan.wind, share)));
   }
 }
 
@@ -182,9 +182,9 @@ void print_plan(const SimulationPlan& plan, std::ostream& out) {
         "= "
         "{} s)\n",
         long(std::ceil(plan.end_time / dt)), settings.cfl,
-        std::isfinite(fluid::courant_limit(settings.advection))
-            ? fmt::format(", {} limit {}", fluid::to_string(settings.advection),
-                          fluid::courant_limit(settings.advection))
+        std::isfinite(advection_method(settings.advection).courant_limit)
+            ? fmt::format(", {} limit {}", advection_method(settings.advection).name(),
+                          advection_method(settings.advection).courant_limit)
             : "",
         dt, peak, plan.end_time);
   }

@@ -102,8 +102,7 @@ SolverRun time_solver(host::ComputeContext& cc, const std::array<int, 3>& grid,
     const auto it = run.stages_ms.find(stage);
     return it == run.stages_ms.end() || it->second <= 0.0 ? 0.0 : amount / (it->second * 1e-3);
   };
-  run.advect_loads_per_s =
-      per_second(faces * advection_loads_per_face(wind.setup().settings.advection), "advect");
+  run.advect_loads_per_s = per_second(faces * wind.advection_method().gathered_loads_per_face, "advect");
   run.divergence_gb_s = per_second(cells * kDivergenceBytesPerCell, "divergence") * 1e-9;
   run.gradient_gb_s = per_second(cells * kGradientBytesPerCell, "gradient") * 1e-9;
   run.pressure_gb_s =
@@ -118,8 +117,8 @@ SchemeRun time_scheme(host::ComputeContext& cc, const std::array<int, 3>& grid, 
       bench_setup(grid, fluid::PressureSolverType::cg, opt, Turbulence::inflow_subgrid);
   setup.settings.advection = scheme;
   setup.settings.stage_projection = projection;
-  const bool limited = std::isfinite(fluid::courant_limit(scheme));
-  setup.settings.cfl = limited ? fluid::courant_limit(scheme) : kDefaultCfl;
+  const double limit = host::advection_method(scheme).courant_limit;
+  setup.settings.cfl = std::isfinite(limit) ? limit : kDefaultCfl;
   host::WindGrid wind(cc, setup);
   wind.set_turbulence_sigma(kBenchTurbulenceSigma);
   wind.initialise_ambient();
@@ -140,7 +139,7 @@ SchemeRun time_scheme(host::ComputeContext& cc, const std::array<int, 3>& grid, 
   run.advect_ms = wind.stage_ms().at("advect") / opt.steps;
   const auto& spec = wind.spec();
   const double faces = double(spec.u_count() + spec.v_count() + spec.w_count());
-  run.advect_gb_s = faces * advection_bytes_per_face(scheme) / (run.advect_ms * 1e-3) * 1e-9;
+  run.advect_gb_s = faces * host::advection_method(scheme).bytes_per_face / (run.advect_ms * 1e-3) * 1e-9;
   return run;
 }
 
@@ -177,8 +176,9 @@ double time_reference_step(const std::array<int, 3>& grid) {
 host::WindBlocks bench_blocks(const host::WindGridSetup& setup, const host::Communicator& world) {
   const double speed = std::hypot(setup.ambient[0], setup.ambient[1], setup.ambient[2]);
   const double courant = speed * setup.settings.dt / setup.spec.h;
-  return {&world, fluid::Decomposition::make(setup.spec, world.size(), std::nullopt,
-                                             fluid::halo_cells(setup.settings.advection, courant))};
+  return {&world,
+          fluid::Decomposition::make(setup.spec, world.size(), std::nullopt,
+                                     host::advection_method(setup.settings.advection).halo_cells(courant))};
 }
 
 }  // namespace
@@ -299,8 +299,7 @@ RanksBenchResult run_wind_bench_ranks(host::ComputeContext& cc, const WindBenchO
     // The one-rank baseline: every rank steps the whole grid at once, each on its own device, so that each
     // has the share of the machine it has in the run over ranks.
     double alone_ms = 0.0;
-    if (alone_run_fits(world, cc.device(),
-                       host::WindGrid::estimate_device_bytes(setup.spec, setup.settings, 1)))
+    if (alone_run_fits(world, cc.device(), host::WindGrid::estimate_device_bytes(setup)))
       alone_ms = time_solver(cc, grid, cg, opt, Turbulence::none, {&world, nullptr}).ms_per_step;
     const SolverRun split = time_solver(cc, grid, cg, opt, Turbulence::none, {&world, &blocks});
     result.cases.push_back(

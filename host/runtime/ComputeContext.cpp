@@ -136,6 +136,14 @@ ReductionRange ComputeContext::reduction_rows(int extent_x, int ny, int nz) cons
           (gx / group_x) * (gy / group_y) * r[2]};
 }
 
+std::size_t ComputeContext::reduction_groups_bound(int extent_x, int ny, int nz) {
+  const std::size_t rows_groups =
+      std::size_t(extent_x) * round_up(std::size_t(ny), kReductionRows) / kReductionRows * std::size_t(nz);
+  const std::size_t cells_groups =
+      round_up(std::size_t(extent_x), kReductionCells) / kReductionCells * std::size_t(ny) * std::size_t(nz);
+  return std::max(rows_groups, cells_groups);
+}
+
 std::size_t ComputeContext::flat_items(std::size_t n) const {
   // Rows mapping: a few contiguous blocks per core; cells: enough items to fill the device, each striding.
   const std::size_t items = mapping_ == WorkMapping::rows ? std::size_t(device_.compute_units) * 64

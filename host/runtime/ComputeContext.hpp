@@ -117,6 +117,10 @@ class ComputeContext {
   /// The same sweep for a reduction kernel (see above): items past the array do no work but take part in
   /// their group's reduction.
   ReductionRange reduction_rows(int extent_x, int ny, int nz) const;
+  /// The most groups reduction_rows() gives for these extents under any mapping and row chunk (a chunk of
+  /// one cell under the rows mapping's groups): a partials buffer of this size fits every device, so that
+  /// its bytes are known before a device is.
+  static std::size_t reduction_groups_bound(int extent_x, int ny, int nz);
 
   /// Number of work-items a flat (1D) kernel over n values uses (a whole number of flat_group()s; the items
   /// past n, or past what each needs, stay idle: FW_FLAT_FOR).

@@ -1,5 +1,7 @@
 #include "host/stages/BlockGrid.hpp"
 
+#include "host/runtime/Communicator.hpp"
+
 #include <fmt/format.h>
 
 #include <stdexcept>
@@ -53,6 +55,22 @@ fluid::GridSpec block_spec(const fluid::GridSpec& spec, const fluid::Decompositi
     }
   }
   return local;
+}
+
+BlockShare BlockShare::of(const WindBlocks* blocks) {
+  if (blocks == nullptr || blocks->world == nullptr) return {};
+  return {&blocks->decomposition, blocks->world->rank()};
+}
+
+BlockArray BlockShare::block(const fluid::GridSpec& whole) const {
+  if (splits()) return block_array(*decomposition, rank, 0, whole.nz, decomposition->halo());
+  BlockArray all;
+  all.extent = {whole.nx, whole.ny, whole.nz};
+  return all;
+}
+
+fluid::GridSpec BlockShare::local(const fluid::GridSpec& whole) const {
+  return splits() ? block_spec(whole, *decomposition, block(whole)) : whole;
 }
 
 }  // namespace fw::host

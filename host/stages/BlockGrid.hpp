@@ -82,4 +82,27 @@ std::vector<T> block_of(const std::vector<T>& whole, int nx, int ny, const Block
   return block;
 }
 
+/// Which block of a decomposition a rank holds, for what is known before any device or message: the
+/// estimates and the planner's report of each rank. A null decomposition, or one of a single block, is the
+/// whole grid.
+struct BlockShare {
+  const fluid::Decomposition* decomposition = nullptr;
+  int rank = 0;
+
+  /// This process's share under `blocks` (null: one process).
+  static BlockShare of(const WindBlocks* blocks);
+  bool splits() const { return decomposition != nullptr && decomposition->ranks() > 1; }
+  /// The rank's cells with the halo, and the grid they make.
+  BlockArray block(const fluid::GridSpec& whole) const;
+  fluid::GridSpec local(const fluid::GridSpec& whole) const;
+  /// The rank's block of a whole-grid array of cells (or of component c's faces), x fastest.
+  template <typename T>
+  std::vector<T> cut(std::vector<T> values, const fluid::GridSpec& whole, int component = -1) const {
+    if (!splits()) return values;
+    const BlockArray cells = block(whole);
+    const BlockArray a = component < 0 ? cells : face_array(cells, component);
+    return block_of(values, whole.nx + (component == 0), whole.ny + (component == 1), a);
+  }
+};
+
 }  // namespace fw::host

@@ -54,12 +54,55 @@ void set_step_turbulence(FwStep& step, const fluid::InflowState& inflow) {
   step.turbulence_spacing = inflow.turbulence ? static_cast<float>(inflow.turbulence->spacing()) : 1.0f;
 }
 
+std::size_t FluidStages::partial_bound(const fluid::GridSpec& spec) {
+  // max_divergence's partials over the cells, max_speed_components' over each component's faces.
+  std::size_t most = ComputeContext::reduction_groups_bound(spec.nx, spec.ny, spec.nz);
+  for (int c = 0; c < 3; ++c)
+    most = std::max(most, ComputeContext::reduction_groups_bound(spec.nx + (c == 0), spec.ny + (c == 1),
+                                                                 spec.nz + (c == 2)));
+  return most;
+}
+
+std::size_t FluidStages::estimate_device_bytes(const fluid::GridSpec& spec) {
+  // The partials, and the flat profile that stands in until set_profile.
+  return ComputeContext::allocation_bytes(partial_bound(spec) * sizeof(float)) +
+         ComputeContext::allocation_bytes(std::size_t(spec.nz) * sizeof(float));
+}
+
+std::size_t FluidStages::velocity_bytes(const fluid::GridSpec& spec) {
+  return ComputeContext::allocation_bytes(spec.u_count() * sizeof(float)) +
+         ComputeContext::allocation_bytes(spec.v_count() * sizeof(float)) +
+         ComputeContext::allocation_bytes(spec.w_count() * sizeof(float));
+}
+
+std::size_t FluidStages::padded_velocity_bytes(const fluid::GridSpec& spec) {
+  std::size_t bytes = 0;
+  for (int c = 0; c < 3; ++c) bytes += ComputeContext::allocation_bytes(padded_bytes(spec, c));
+  return bytes;
+}
+
+std::size_t FluidStages::padded_bytes(const fluid::GridSpec& spec, int c) {
+  // Advection reads the copies through windowed loads (kernels/lanes.cl), which run a little past the end.
+  const std::size_t values = std::size_t(spec.nx + (c == 0) + 2 * FW_PAD) *
+                             (spec.ny + (c == 1) + 2 * FW_PAD) * (spec.nz + (c == 2) + 2 * FW_PAD);
+  return (values + FW_WINDOW_SLACK) * sizeof(float);
+}
+
+std::size_t FluidStages::upwind_orders_bytes(const fluid::GridSpec& spec) {
+  return ComputeContext::allocation_bytes(spec.u_count() * sizeof(std::uint16_t)) +
+         ComputeContext::allocation_bytes(spec.v_count() * sizeof(std::uint16_t)) +
+         ComputeContext::allocation_bytes(spec.w_count() * sizeof(std::uint16_t));
+}
+
+std::size_t FluidStages::wall_faces_bytes(const WallFaces& list) {
+  if (list.size() == 0) return 0;
+  return ComputeContext::allocation_bytes(list.faces.size() * sizeof(std::int32_t)) +
+         2 * ComputeContext::allocation_bytes(list.weights.size() * sizeof(float));
+}
+
 FluidStages::FluidStages(ComputeContext& cc, const fluid::GridSpec& spec)
     : cc_(cc), spec_(spec), grid_(spec.to_device()) {
-  std::size_t most = cc_.reduction_rows(spec_.nx, spec_.ny, spec_.nz).groups;  // max_divergence's partials
-  for (int c = 0; c < 3; ++c)
-    most = std::max(most,
-                    cc_.reduction_rows(spec_.nx + (c == 0), spec_.ny + (c == 1), spec_.nz + (c == 2)).groups);
+  const std::size_t most = partial_bound(spec_);
   partial_host_.resize(most);
   partial_ = cc_.buffer(most * sizeof(float));
   std::vector<float> flat(static_cast<std::size_t>(spec.nz), 1.0f);
@@ -151,8 +194,7 @@ cl::NDRange FluidStages::advect_rows(int c) const {
 DeviceVelocity FluidStages::allocate_padded_velocity() {
   DeviceVelocity vel;
   for (int c = 0; c < 3; ++c) {
-    // Advection reads the copies through windowed loads (kernels/lanes.cl), which run a little past the end.
-    const std::size_t bytes = (padded_count(c) + FW_WINDOW_SLACK) * sizeof(float);
+    const std::size_t bytes = padded_bytes(spec_, c);
     vel.component(c) = cc_.buffer(bytes);
     cc_.queue().enqueueFillBuffer(vel.component(c), 0.0f, 0, bytes);
   }

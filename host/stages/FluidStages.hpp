@@ -57,6 +57,17 @@ class FluidStages {
  public:
   FluidStages(ComputeContext& cc, const fluid::GridSpec& spec);
 
+  /// Bytes the stages allocate for themselves on `spec` (the reductions' partials, a stand-in profile).
+  static std::size_t estimate_device_bytes(const fluid::GridSpec& spec);
+  /// Bytes allocate_velocity() allocates on `spec`; allocate_padded_velocity(); upload_upwind_orders();
+  /// upload_wall_faces(list).
+  static std::size_t velocity_bytes(const fluid::GridSpec& spec);
+  static std::size_t padded_velocity_bytes(const fluid::GridSpec& spec);
+  static std::size_t upwind_orders_bytes(const fluid::GridSpec& spec);
+  static std::size_t wall_faces_bytes(const WallFaces& list);
+  /// Bytes of one padded component c's buffer (the largest buffer a grid allocates is one of these).
+  static std::size_t padded_bytes(const fluid::GridSpec& spec, int c);
+
   /// What each step passes: dt, time, the ambient wind and the inflow turbulence (FwStep), and the inflow
   /// buffer (inflow_buffer_values: the profile's nz floats, then the turbulence box and the shell). While
   /// the turbulence is on, a new step's inflow or a new buffer re-samples the prescribed shell on the
@@ -145,6 +156,7 @@ class FluidStages {
   std::size_t partial_count() const { return partial_host_.size(); }
 
  private:
+  static std::size_t partial_bound(const fluid::GridSpec& spec);
   double max_partials(std::size_t count);
   void build_subgrid_kernels();  // on first use: a run without the subgrid or wall stage never builds them
   void build_upwind_kernels();   // on first use, likewise for upwind advection

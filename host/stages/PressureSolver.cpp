@@ -46,9 +46,9 @@ FwLevel level_dims(const fluid::PressureLevel& L, const fluid::GridSpec& spec) {
 
 // How many levels, from the fine one, the blocks split into whole cells: a level l is split while every cut
 // lies on a multiple of 2^l (and the level exists).
-int split_level_count(const fluid::Decomposition& d, const std::vector<fluid::PressureLevel>& levels) {
+int split_level_count(const fluid::Decomposition& d, int levels) {
   int count = 1;
-  while (count < int(levels.size())) {
+  while (count < levels) {
     const int scale = 1 << count;
     bool whole = true;
     for (int r = 0; r < d.ranks(); ++r)
@@ -61,14 +61,42 @@ int split_level_count(const fluid::Decomposition& d, const std::vector<fluid::Pr
   return count;
 }
 
+bool spans_ranks(const PressureBlocks* blocks) {
+  return blocks != nullptr && blocks->world != nullptr && blocks->world->size() > 1;
+}
+
+// Level l's array on a rank: its block with the halo on a split level, else the whole level.
+BlockArray level_array(const std::array<int, 3>& extent, int l, const BlockShare& share, int fine_halo,
+                       int split_levels) {
+  if (share.splits() && l < split_levels)
+    return block_array(*share.decomposition, share.rank, l, extent[2], l == 0 ? fine_halo : 1);
+  BlockArray whole;
+  whole.extent = extent;
+  return whole;
+}
+
 }  // namespace
 
-std::size_t PressureSolver::device_bytes(const std::vector<fluid::PressureLevel>& levels) {
-  std::size_t bytes = 0;
-  for (const auto& L : levels) bytes += L.cell_count() * (1 + 3 * sizeof(float));  // mask, b, phi, scratch
-  const auto& fine = levels.front();
-  bytes += fine.cell_count() * 5 * sizeof(float);                 // r, z, d, q, scratch
-  return bytes + std::size_t(fine.nx) * fine.ny * sizeof(float);  // the column sums
+std::size_t PressureSolver::estimate_device_bytes(const fluid::GridSpec& spec, const BlockShare& share) {
+  // As the constructor allocates: per level its mask (a byte a cell), b, phi and scratch; the gathered
+  // coarse residual over ranks; CG's five fine vectors and the fine level's column sums.
+  const auto bytes = [](std::size_t n) { return ComputeContext::allocation_bytes(n); };
+  const std::vector<std::array<int, 3>> extents = fluid::pressure_level_extents(spec);
+  const int levels = int(extents.size());
+  const int split_levels = share.splits() ? split_level_count(*share.decomposition, levels) : levels;
+  const int fine_halo = share.splits() ? share.decomposition->halo() : 0;
+  std::size_t total = 0;
+  for (int l = 0; l < levels; ++l) {
+    const std::size_t cells = level_array(extents[std::size_t(l)], l, share, fine_halo, split_levels).cells();
+    total += bytes(cells) + 3 * bytes(cells * sizeof(float));
+  }
+  if (share.splits() && split_levels < levels) {
+    const std::array<int, 3>& e = extents[std::size_t(split_levels - 1)];
+    total += bytes(std::size_t(e[0]) * e[1] * e[2] * sizeof(float));
+  }
+  const BlockArray fine = level_array(extents[0], 0, share, fine_halo, split_levels);
+  total += 5 * bytes(fine.cells() * sizeof(float));
+  return total + bytes(std::size_t(fine.extent[0]) * fine.extent[1] * sizeof(float));
 }
 
 PressureSolver::PressureSolver(ComputeContext& cc, const fluid::GridSpec& spec,
@@ -77,10 +105,10 @@ PressureSolver::PressureSolver(ComputeContext& cc, const fluid::GridSpec& spec,
     : cc_(cc), spec_(spec), settings_(settings), host_levels_(std::move(levels)) {
   if (host_levels_.empty()) throw std::invalid_argument("PressureSolver: no pressure levels");
   split_levels_ = int(host_levels_.size());
-  if (blocks && blocks->world && blocks->world->size() > 1) {
+  if (spans_ranks(blocks)) {
     world_ = blocks->world;
     decomposition_ = blocks->decomposition;
-    split_levels_ = split_level_count(decomposition_, host_levels_);
+    split_levels_ = split_level_count(decomposition_, int(host_levels_.size()));
   }
   for (int l = 0; l < int(host_levels_.size()); ++l) {
     const fluid::PressureLevel& L = host_levels_[l];
@@ -89,8 +117,8 @@ PressureSolver::PressureSolver(ComputeContext& cc, const fluid::GridSpec& spec,
     d.own = {0, L.nx, 0, L.ny};
     std::vector<std::uint8_t> mask;
     if (split(l)) {
-      const BlockArray a =
-          block_array(decomposition_, world_->rank(), l, L.nz, l == 0 ? blocks->fine_halo : 1);
+      const BlockArray a = level_array({L.nx, L.ny, L.nz}, l, BlockShare{&decomposition_, world_->rank()},
+                                       blocks->fine_halo, split_levels_);
       d.dims.nx = a.extent[0], d.dims.ny = a.extent[1];
       d.dims.ox = a.origin[0], d.dims.oy = a.origin[1];
       // A cut axis wraps through the halo, not inside the block.

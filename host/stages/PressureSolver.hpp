@@ -67,8 +67,10 @@ class PressureSolver {
   PressureSolver(ComputeContext& cc, const fluid::GridSpec& spec, std::vector<fluid::PressureLevel> levels,
                  const fluid::PressureSettings& settings, const PressureBlocks* blocks = nullptr);
 
-  /// Device bytes this solver allocates for `levels` (for the memory estimate made before allocating).
-  static std::size_t device_bytes(const std::vector<fluid::PressureLevel>& levels);
+  /// Device bytes a solver of `spec` allocates, over `blocks` or in one process: exactly, before allocating
+  /// (the hierarchy's shape depends on the grid alone, fluid::pressure_level_extents).
+  /// `share`: the rank's block of a decomposition whose halo is the fine level's (PressureBlocks::fine_halo).
+  static std::size_t estimate_device_bytes(const fluid::GridSpec& spec, const BlockShare& share = {});
 
   PressureSolveStatus solve();
 

@@ -108,11 +108,3 @@ TEST_CASE("Decomposition: splits that cannot work are refused with the reason", 
   CHECK(Decomposition::make(grid(18, 8, 4), 5, std::array<int, 2>{5, 1}, 3).alignment()[0] == 1);
   CHECK_THROWS_AS(Decomposition::make(spec, 0, std::nullopt, 3), DecompositionError);
 }
-
-TEST_CASE("Decomposition: the halo follows the advection scheme and the Courant number", "[fluid]") {
-  using fw::fluid::AdvectionScheme;
-  CHECK(fw::fluid::halo_cells(AdvectionScheme::upwind5, 1.2) == FW_PAD);
-  CHECK(fw::fluid::halo_cells(AdvectionScheme::semi_lagrangian, 0.8) == FW_PAD);
-  CHECK(fw::fluid::halo_cells(AdvectionScheme::maccormack, 2.5) == FW_PAD);  // corners within 3 cells
-  CHECK(fw::fluid::halo_cells(AdvectionScheme::semi_lagrangian, 4.5) == 5);  // corners within floor + 1
-}

@@ -541,8 +541,7 @@ TEST_CASE("subgrid and wall: switched off, the step is bit-identical and neither
   CHECK(stages.count("advect") == 1);
   CHECK(stages.count("subgrid") == 0);
   CHECK(stages.count("wall") == 0);
-  CHECK(host::WindGrid::estimate_device_bytes(zero.spec, zero.settings, cc->row_chunk()) ==
-        host::WindGrid::estimate_device_bytes(setup.spec, setup.settings, cc->row_chunk()));
+  CHECK(host::WindGrid::estimate_device_bytes(zero) == host::WindGrid::estimate_device_bytes(setup));
 
   // Switched on, both stages run, change the field, and keep it finite.
   auto on = setup;
@@ -554,10 +553,10 @@ TEST_CASE("subgrid and wall: switched off, the step is bit-identical and neither
   CHECK_FALSE(identical(turbulent, plain));
   for (int c = 0; c < 3; ++c)
     for (float x : turbulent.component(c)) REQUIRE(std::isfinite(x));
-  // nu_t is one float a cell more on the device.
-  CHECK(host::WindGrid::estimate_device_bytes(on.spec, on.settings, cc->row_chunk()) ==
-        host::WindGrid::estimate_device_bytes(setup.spec, setup.settings, cc->row_chunk()) +
-            on.spec.cell_count() * sizeof(float));
+  // nu_t is one float a cell more on the device, and the wall stress its face list.
+  CHECK(host::WindGrid::estimate_device_bytes(on) == host::WindGrid::estimate_device_bytes(setup) +
+                                                         on.spec.cell_count() * sizeof(float) +
+                                                         host::WallStress::estimate_device_bytes(on, {}));
 }
 
 TEST_CASE("wall: a roughness length of h/2 or more is refused before anything is allocated", "[wall]") {

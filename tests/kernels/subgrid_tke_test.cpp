@@ -259,10 +259,8 @@ TEST_CASE(
   CHECK_FALSE(identical(first, plain));
 
   // e and the advected e are two floats a cell more than nu_t alone.
-  const int chunk = cc->row_chunk();
-  CHECK(host::WindGrid::estimate_device_bytes(tke.spec, tke.settings, chunk) ==
-        host::WindGrid::estimate_device_bytes(smagorinsky.spec, smagorinsky.settings, chunk) +
-            2 * tke.spec.cell_count() * sizeof(float));
+  CHECK(host::WindGrid::estimate_device_bytes(tke) ==
+        host::WindGrid::estimate_device_bytes(smagorinsky) + 2 * tke.spec.cell_count() * sizeof(float));
 }
 
 TEST_CASE("subgrid tke: WindGrid refuses subgrid energy of a wrong size or value, and without the model",

@@ -47,7 +47,9 @@ Decay decay(host::ComputeContext& cc, fluid::AdvectionScheme scheme, double smag
   setup.settings.advection = scheme;
   setup.settings.smagorinsky_constant = smagorinsky;
   setup.settings.stage_projection = projection;
-  setup.settings.cfl = std::isfinite(fluid::courant_limit(scheme)) ? fluid::courant_limit(scheme) : 0.8;
+  setup.settings.cfl = std::isfinite(host::advection_method(scheme).courant_limit)
+                           ? host::advection_method(scheme).courant_limit
+                           : 0.8;
   setup.settings.pressure.tolerance = 1e-4;
   host::WindGrid wind(cc, setup);
   fluid::TurbulenceBoxSpec box_spec;

@@ -115,7 +115,7 @@ void plan_coupling(const io::Scenario& scenario, SimulationPlan& plan) {
   if (scenario.forest.two_way_coupling) {
     plan.two_way_coupling = true;
     if (plan.purpose == PlanFor::run) coupling.drag_density = canopy.drag_density();
-    plan.memory.add("canopy drag", WindGrid::estimate_canopy_bytes(plan.wind.spec));
+    plan.memory.add("canopy drag", CanopySink::estimate_device_bytes(plan.wind.spec));
   }
   if (coupling.unresolved.enabled)
     plan.memory.add("unresolved turbulence",

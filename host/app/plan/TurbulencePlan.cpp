@@ -47,7 +47,7 @@ void plan_turbulence(const io::WindSource& wind_source, SimulationPlan& plan) {
     const auto v = io::wind_vector(source, t);
     return turbulence.standard_deviations(std::hypot(v[0], v[1], v[2]))[0];
   };
-  plan.memory.add("inflow turbulence", WindGrid::estimate_turbulence_bytes(box));
+  plan.memory.add("inflow turbulence", WindBoundaries::turbulence_bytes(plan.wind.spec, box));
 
   if (!turbulence.unresolved) return;
   trees::UnresolvedTurbulenceSettings& unresolved = plan.coupling.unresolved;

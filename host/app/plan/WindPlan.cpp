@@ -88,7 +88,8 @@ void plan_wind(const io::WindScenario& scenario, int ranks, SimulationPlan& plan
   check_steps(scenario, plan, plan.spin_up, scenario.time.spin_up_line,
               io::schema::key(io::schema::kTimeKeys, "time.spin_up").path);
   // A fixed dt past the scheme's stability limit at the peak wind would blow up in the first gusty minute.
-  const double limit = fluid::courant_limit(wind.settings.advection);
+  const AdvectionMethod& advection = advection_method(wind.settings.advection);
+  const double limit = advection.courant_limit;
   if (!(wind.settings.cfl > 0.0) && std::isfinite(limit)) {
     const double peak = plan.peak_wind;
     if (peak * wind.settings.dt / wind.spec.h > limit)
@@ -99,8 +100,7 @@ void plan_wind(const io::WindScenario& scenario, int ranks, SimulationPlan& plan
               "a step <= {:.4g} s expected ({} is stable up to a Courant number (|u| + |v| + |w|) dt / "
               "h of {}; at the peak wind of {:.1f} m/s, ambient times the profile's top plus gusts, "
               "and h = {} m), got '{}'; lower time.dt or use dt: auto",
-              limit * wind.spec.h / peak, fluid::to_string(wind.settings.advection), limit, peak, wind.spec.h,
-              wind.settings.dt));
+              limit * wind.spec.h / peak, advection.name(), limit, peak, wind.spec.h, wind.settings.dt));
   }
   // In one process a scenario's decomposition is ignored, so that the same file runs alone and over ranks.
   const double courant =
@@ -108,13 +108,14 @@ void plan_wind(const io::WindScenario& scenario, int ranks, SimulationPlan& plan
   try {
     plan.decomposition =
         fluid::Decomposition::make(wind.spec, ranks, ranks > 1 ? scenario.domain.decomposition : std::nullopt,
-                                   fluid::halo_cells(wind.settings.advection, courant));
+                                   advection.halo_cells(courant));
   } catch (const fluid::DecompositionError& e) {
     throw std::invalid_argument(fmt::format("{}:{}: domain.decomposition: {}", scenario.file.string(),
                                             scenario.domain.decomposition_line, e.what()));
   }
   // The planner has no device: the rows mapping's chunk of 1 gives the largest estimate of the two.
-  plan.memory.add("wind grid", WindGrid::estimate_device_bytes(wind.spec, wind.settings, 1),
+  // This process's share: the whole grid alone; over ranks the largest rank's is PlanReport's to show.
+  plan.memory.add("wind grid", WindGrid::estimate_device_bytes(wind),
                   WindGrid::estimate_largest_buffer_bytes(wind.spec));
 }
 

@@ -68,9 +68,10 @@ void check_every_split_against_one_process(host::ComputeContext& cc, const test:
   for (const auto blocks : test::splits(world.size())) {
     INFO(blocks[0] << " x " << blocks[1] << " blocks on " << world.size() << " ranks");
     const host::WindBlocks split{
-        &world, fluid::Decomposition::make(
-                    setup.wind.spec, world.size(), blocks,
-                    fluid::halo_cells(setup.wind.settings.advection, setup.wind.settings.cfl))};
+        &world,
+        fluid::Decomposition::make(
+            setup.wind.spec, world.size(), blocks,
+            host::advection_method(setup.wind.settings.advection).halo_cells(setup.wind.settings.cfl))};
     host::CoupledStep coupled(cc, setup.wind, setup.forest, setup.coupling, inputs, &split);
     coupled.start();
     while (coupled.time() < kSeconds - 1e-9) coupled.step(kSeconds - coupled.time());
@@ -130,9 +131,9 @@ TEST_CASE("LeafStages over ranks: leaves crossing the cuts again and again reuse
   const std::array<int, 2> blocks{1, world.size()};  // cuts across the cross-wind only
   INFO(blocks[0] << " x " << blocks[1] << " blocks on " << world.size() << " ranks");
   const host::WindBlocks split{
-      &world,
-      fluid::Decomposition::make(setup.wind.spec, world.size(), blocks,
-                                 fluid::halo_cells(setup.wind.settings.advection, setup.wind.settings.cfl))};
+      &world, fluid::Decomposition::make(
+                  setup.wind.spec, world.size(), blocks,
+                  host::advection_method(setup.wind.settings.advection).halo_cells(setup.wind.settings.cfl))};
   host::CoupledStep coupled(*cc, setup.wind, setup.forest, setup.coupling,
                             host::TimeInputs::steady(setup.wind.ambient), &split);
   coupled.start();

@@ -79,8 +79,9 @@ TEST_CASE("CoupledStep over ranks: trees across the blocks' borders step to the 
   for (const auto blocks : test::splits(world.size())) {
     INFO(blocks[0] << " x " << blocks[1] << " blocks on " << world.size() << " ranks");
     const host::WindBlocks split{
-        &world, fluid::Decomposition::make(setup.spec, world.size(), blocks,
-                                           fluid::halo_cells(setup.settings.advection, setup.settings.cfl))};
+        &world, fluid::Decomposition::make(
+                    setup.spec, world.size(), blocks,
+                    host::advection_method(setup.settings.advection).halo_cells(setup.settings.cfl))};
     host::CoupledStep coupled(*cc, setup, forest, coupling(setup.spec), inputs, &split);
     coupled.start();
     for (int n = 0; n < kSteps; ++n) {
@@ -127,8 +128,9 @@ TEST_CASE("SampleExchange: each point is sampled by the rank that holds it, to t
   const std::vector<float> expected = whole.sample_flat(alone.velocity());
 
   const host::WindBlocks split{
-      &world, fluid::Decomposition::make(setup.spec, world.size(), std::nullopt,
-                                         fluid::halo_cells(setup.settings.advection, setup.settings.cfl))};
+      &world, fluid::Decomposition::make(
+                  setup.spec, world.size(), std::nullopt,
+                  host::advection_method(setup.settings.advection).halo_cells(setup.settings.cfl))};
   host::WindGrid wind(*cc, setup, &split);
   wind.set_turbulence_sigma(1.0);
   wind.initialise_ambient();
@@ -168,8 +170,9 @@ TEST_CASE("CoupledStep over ranks: a forest in one corner steps to the bits of o
   for (const auto blocks : test::splits(world.size())) {
     INFO(blocks[0] << " x " << blocks[1] << " blocks on " << world.size() << " ranks");
     const host::WindBlocks split{
-        &world, fluid::Decomposition::make(setup.spec, world.size(), blocks,
-                                           fluid::halo_cells(setup.settings.advection, setup.settings.cfl))};
+        &world, fluid::Decomposition::make(
+                    setup.spec, world.size(), blocks,
+                    host::advection_method(setup.settings.advection).halo_cells(setup.settings.cfl))};
     host::CoupledStep coupled(*cc, setup, forest, corner, inputs, &split);
     CHECK(coupled.wind().canopy_enabled());  // on every rank, with or without drag in its block
     coupled.start();

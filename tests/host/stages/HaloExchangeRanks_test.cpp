@@ -125,8 +125,9 @@ TEST_CASE("WindGrid: its halo traffic adds up its exchanges over ranks and is ze
   CHECK(alone.halo_traffic().seconds == 0.0);
 
   const host::WindBlocks blocks{
-      &world, fluid::Decomposition::make(setup.spec, world.size(), std::nullopt,
-                                         fluid::halo_cells(setup.settings.advection, setup.settings.cfl))};
+      &world, fluid::Decomposition::make(
+                  setup.spec, world.size(), std::nullopt,
+                  host::advection_method(setup.settings.advection).halo_cells(setup.settings.cfl))};
   host::WindGrid wind(*cc, setup, &blocks);
   wind.initialise_ambient();
   const host::HaloTraffic before = wind.halo_traffic();

@@ -61,8 +61,9 @@ void check_equal_to_one_process(const host::WindGridSetup& setup, bool with_cano
   for (const auto blocks : test::splits(world.size())) {
     INFO(blocks[0] << " x " << blocks[1] << " blocks on " << world.size() << " ranks");
     const host::WindBlocks split{
-        &world, fluid::Decomposition::make(setup.spec, world.size(), blocks,
-                                           fluid::halo_cells(setup.settings.advection, setup.settings.cfl))};
+        &world, fluid::Decomposition::make(
+                    setup.spec, world.size(), blocks,
+                    host::advection_method(setup.settings.advection).halo_cells(setup.settings.cfl))};
     host::WindGrid wind(*cc, setup, &split);
     if (setup.turbulence) wind.set_turbulence_sigma(1.0);
     if (with_canopy)
@@ -149,9 +150,9 @@ TEST_CASE("WindGrid over ranks: a step whose back-trace would outrun the halo st
   host::WindGridSetup setup = test::tunnel(fluid::AdvectionScheme::semi_lagrangian);
   setup.settings.cfl = 0.0;
   setup.settings.dt = 1.0;
-  const host::WindBlocks split{&world,
-                               fluid::Decomposition::make(setup.spec, world.size(), std::nullopt,
-                                                          fluid::halo_cells(setup.settings.advection, 0.8))};
+  const host::WindBlocks split{
+      &world, fluid::Decomposition::make(setup.spec, world.size(), std::nullopt,
+                                         host::advection_method(setup.settings.advection).halo_cells(0.8))};
   host::WindGrid wind(*cc, setup, &split);
   wind.initialise_ambient();
   if (world.size() == 1) {
