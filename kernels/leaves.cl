@@ -3,7 +3,7 @@
  * Reference: trees/LeafReference.cpp. Host: host/stages/LeafStages.
  *
  * Before a step, the host samples the wind at every site (the centre of a cell that holds the rest centre of
- * at least one leaf: host/stages/WindAtPoints). Attached leaves read their site's wind: one load a leaf
+ * at least one leaf: host/stages/PointWindOnDevice). Attached leaves read their site's wind: one load a leaf
  * instead of 24. A step then runs two kernels:
  *  - leaves_flying_step: one leaf at a time, over blocks of FW_LANES flat leaves (FW_FLAT_FOR); blocks
  *    without a flying leaf are skipped with one vector compare. It runs before the attached leaves, so that

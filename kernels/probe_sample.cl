@@ -16,8 +16,8 @@ __kernel void probe_sample(const FwGrid g, const int point_count, __global const
   }
 }
 
-/* Points that other ranks sampled (host/stages/WindAtPoints), written into their places: wind[3 slots[n] + a]
- * = values[3 n + a]. */
+/* Points that other ranks sampled (host/stages/PointWindOnDevice), written into their places: wind[3 slots[n]
+ * + a] = values[3 n + a]. */
 __kernel void probe_place(const int count, __global const int* slots, __global const float* values,
                           __global float* wind) {
   FW_FLAT_FOR(n, count) {

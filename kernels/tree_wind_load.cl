@@ -5,7 +5,7 @@
  * Three kernels: tree_sample_positions once, when the forest is uploaded (the sample points' world
  * positions as floats); then every step probe_sample (kernels/probe_sample.cl) over those positions, and
  * tree_wind_forces. Over MPI ranks the samples that lie in another rank's block come from that rank between
- * the two (host/stages/SampleExchange), which is why sampling and forces are apart.
+ * the two (host/stages/PointWindAcrossRanks), which is why sampling and forces are apart.
  *
  * Work mapping: one instance per loop iteration (FW_FLAT_FOR over instances). An instance's m dot products of
  * length 3S reuse one pass over its sampled wind. On a CPU each work-item takes a contiguous block of

@@ -28,7 +28,8 @@ trees::Forest rank_trees(const trees::Forest& forest, const WindGrid& wind, cons
   for (int k = 0; k < forest.instance_count(); ++k) {
     const Eigen::Vector3d& root = forest.instances()[std::size_t(k)].position;
     const float point[3] = {float(root.x()), float(root.y()), float(root.z())};
-    if (SampleExchange::holder(wind.local_spec(), blocks->decomposition, point) == blocks->world->rank())
+    if (PointWindAcrossRanks::holder(wind.local_spec(), blocks->decomposition, point) ==
+        blocks->world->rank())
       mine.push_back(k);
   }
   return forest.subset(mine);

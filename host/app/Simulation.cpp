@@ -16,7 +16,7 @@
 #include "host/app/CheckpointRedistribution.hpp"
 #include "host/app/FrameGather.hpp"
 #include "host/app/OutputWriters.hpp"
-#include "host/app/ProbeSampler.hpp"
+#include "host/app/ProbeRecorder.hpp"
 #include "host/runtime/Communicator.hpp"
 #include "io/PvdCollection.hpp"
 #include "io/writers/LeavesVtkWriter.hpp"
@@ -438,7 +438,7 @@ class RunLoop {
   const Communicator& world_;
   const std::optional<OutputShare> share_;  // over ranks
   const Clock::time_point wall_start_ = Clock::now();
-  ProbeSampler probes_;
+  ProbeRecorder probes_;
   io::OutputPipeline output_;
   RunSummary summary_;
   double output_ms_ = 0.0, probe_ms_ = 0.0;

@@ -20,8 +20,8 @@
 #include "fluid/DragLaw.hpp"
 #include "fluid/GridSpec.hpp"
 #include "host/runtime/ComputeContext.hpp"
+#include "host/stages/PointWindOnDevice.hpp"
 #include "host/stages/StageState.hpp"
-#include "host/stages/WindAtPoints.hpp"
 #include "kernels/shared_types.h"
 #include "trees/Forest.hpp"
 #include "trees/TreeDynamics.hpp"
@@ -105,7 +105,7 @@ class BranchStages {
   cl::Buffer instances_, species_, models_, branches_, trees_buffer_, rigid_trees_;
   cl::Buffer sample_world_, joints_, scratch_, pose_scratch_;
   cl::Buffer spring_blocks_;  // (tree, first entry) of each block of the springs' kernel
-  std::optional<WindAtPoints> samples_;
+  std::optional<PointWindOnDevice> samples_;
   std::size_t scratch_items_ = 0, pose_items_ = 0;
   Kernel spring_angles_, rigid_step_, rigid_equilibrium_, deform_;
 };

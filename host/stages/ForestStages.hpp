@@ -16,7 +16,7 @@
 //
 // Over MPI ranks (WindBlocks, docs/parallel.md) a rank holds the trees whose roots lie in its block (a
 // Forest::subset) and samples the wind on its block; the samples that lie in another rank's block come from
-// that rank (WindAtPoints), so enqueue_wind_load is collective.
+// that rank (PointWindOnDevice), so enqueue_wind_load is collective.
 //
 // Kernels: kernels/tree_wind_load.cl (the sample points' world positions once; then the wind at them through
 // kernels/probe_sample.cl, and the modal forces, one instance per iteration), kernels/tree_modal_step.cl and
@@ -35,8 +35,8 @@
 #include "host/stages/BranchStages.hpp"
 #include "host/stages/DamageStages.hpp"
 #include "host/stages/FluidStages.hpp"
+#include "host/stages/PointWindOnDevice.hpp"
 #include "host/stages/StageState.hpp"
-#include "host/stages/WindAtPoints.hpp"
 #include "kernels/shared_types.h"
 #include "trees/Forest.hpp"
 #include "trees/ModalIntegrator.hpp"
@@ -184,9 +184,10 @@ class ForestStages {
   cl::Buffer strong_amplitudes_buffer_;        // its q~ and q~^2 per instance-mode, on each output frame
   cl::Buffer walk_, rest_elements_;  // its length-restoring pass (ForestPacking::walk, rest_elements)
   cl::Buffer forces_, state_, displacements_;
-  cl::Buffer sample_world_;              // the sample points' world positions, 3 floats a flat sample
-  std::optional<WindAtPoints> samples_;  // the wind at sample_world_, each sampled by the rank holding it
-  std::vector<int> instance_ids_;        // Forest::id of each instance: what seeds its unresolved series
+  cl::Buffer sample_world_;  // the sample points' world positions, 3 floats a flat sample
+  std::optional<PointWindOnDevice>
+      samples_;                    // the wind at sample_world_, each sampled by the rank holding it
+  std::vector<int> instance_ids_;  // Forest::id of each instance: what seeds its unresolved series
   Kernel wind_forces_, step_exact_, step_semi_implicit_, deform_, deform_strong_;
   // Unresolved turbulence: wind samples per instance (for the offsets), the series' size, and its buffers:
   // series table (6 N floats), offsets (an int per flat sample), travel (whole points, fraction and last

@@ -104,7 +104,7 @@ std::size_t LeafStages::estimate_device_bytes(const trees::Forest& forest,
   // one a leaf): their centres and their wind.
   std::size_t total = bytes(padded, i) + bytes(padded, 1) + 3 * bytes(padded, f) + bytes(padded, i) +
                       6 * bytes(padded, float4) + bytes(3 * leaves, f) +
-                      WindAtPoints::estimate_device_bytes(leaves);
+                      PointWindOnDevice::estimate_device_bytes(leaves);
   // Per instance its first leaf and (one more) first block, the instances, the species and their rest table.
   total += bytes(instances, i) + bytes(instances + 1, i) + bytes(instances, sizeof(FwTreeInstance));
   total += bytes(species_leaves.size(), sizeof(FwLeafSpecies)) + bytes(FW_REST_FIELDS * (rest + FW_LANES), f);
@@ -358,7 +358,7 @@ void LeafStages::move_leaves() {
     for (std::size_t n = 0; n < slots.size(); ++n) {
       const float* values = &packed[n * FW_LEAF_PACKED_FLOATS];
       const int j = slots[n];
-      const int holder = SampleExchange::holder(spec_, blocks_->decomposition, values);
+      const int holder = PointWindAcrossRanks::holder(spec_, blocks_->decomposition, values);
       if (holder == world.rank()) {
         // The device's float and the host's double put the leaf on either side of a cut: it stays.
         const auto state = static_cast<std::uint8_t>(values[3]);

@@ -10,9 +10,10 @@
 //   trees::LeafCounts counts = leaves.counts();                   // reads 3 counters back
 //
 // Kernels: kernels/leaves.cl. A step samples the wind once per site (the centre of a cell that holds the rest
-// centre of a leaf: WindAtPoints), steps the flying leaves one at a time, then the attached ones FW_LANES at
-// a time. The CPU oracle is trees/LeafReference. Slot j < own_count(): leaf j of the own instances in order,
-// each instance's species leaves in order; the slots after them hold the leaves other ranks sent.
+// centre of a leaf: PointWindOnDevice), steps the flying leaves one at a time, then the attached ones
+// FW_LANES at a time. The CPU oracle is trees/LeafReference. Slot j < own_count(): leaf j of the own
+// instances in order, each instance's species leaves in order; the slots after them hold the leaves other
+// ranks sent.
 //
 // Over MPI ranks (WindBlocks, docs/parallel.md) a rank steps the leaves of its own trees (a Forest::subset)
 // and every flying or landed leaf in its block's own columns: after each step, a leaf outside them moves on
@@ -32,8 +33,8 @@
 #include "host/runtime/ComputeContext.hpp"
 #include "host/stages/BlockGrid.hpp"
 #include "host/stages/FluidStages.hpp"
+#include "host/stages/PointWindOnDevice.hpp"
 #include "host/stages/StageState.hpp"
-#include "host/stages/WindAtPoints.hpp"
 #include "kernels/shared_types.h"
 #include "trees/Forest.hpp"
 #include "trees/LeafState.hpp"
@@ -148,7 +149,7 @@ class LeafStages {
   std::vector<float> slot_side_;
   cl::Buffer first_leaf_, first_block_, instances_, leaf_species_, rest_, rest_nodes_, leaf_site_;
   cl::Buffer site_positions_;
-  std::optional<WindAtPoints> sites_;
+  std::optional<PointWindOnDevice> sites_;
   cl::Buffer theta_, theta_rate_, frame_position_, frame_normal_;                     // own leaves
   cl::Buffer state_, position_, velocity_, normal_, flight_, flight_drag_, leaving_;  // every slot
   cl::Buffer counters_, no_displacements_;

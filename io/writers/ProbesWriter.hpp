@@ -1,6 +1,6 @@
 // probes.csv: the wind at named points and the tip displacement of the first trees, one row per probe
 // sample (io/ProbesCsv.hpp has the columns). The samples are taken by the run loop at the probes' own
-// interval (host/app/ProbeSampler) and reach this writer in batches, with each frame. In runs with leaves
+// interval (host/app/ProbeRecorder) and reach this writer in batches, with each frame. In runs with leaves
 // each sample's leaf counts (ProbeSample::leaf_counts) follow as four more columns, in runs with storm damage
 // its tree counts (ProbeSample::damage_counts) as three more.
 //

@@ -5,7 +5,7 @@
 #include <vector>
 
 #include "host/app/plan/PlanBuilders.hpp"
-#include "host/stages/PointSampler.hpp"
+#include "host/stages/PointWindReadback.hpp"
 #include "io/Scenario.hpp"
 
 namespace fw::host {
@@ -21,7 +21,7 @@ void plan_outputs(const io::Scenario& scenario, SimulationPlan& plan) {
     fields.push_back("solid");
   plan.probe_interval = scenario.resolved_probe_interval().value_or(0.0);
   if (!plan.output.probes.empty())
-    plan.memory.add("probes", PointSampler::estimate_device_bytes(plan.output.probes.size()));
+    plan.memory.add("probes", PointWindReadback::estimate_device_bytes(plan.output.probes.size()));
 }
 
 }  // namespace fw::host

@@ -11,7 +11,7 @@
 #include "fluid/FlowStatistics.hpp"
 #include "fluid/TurbulenceBox.hpp"
 #include "host/app/CoupledStep.hpp"
-#include "host/app/ProbeSampler.hpp"
+#include "host/app/ProbeRecorder.hpp"
 #include "tests/support/TestDevice.hpp"
 #include "trees/Forest.hpp"
 #include "trees/SpeciesBasis.hpp"
@@ -161,7 +161,7 @@ TEST_CASE("CoupledForest: a tree in turbulent wind sways at its first modal freq
   inputs.turbulence_sigma = [](double) { return 0.2 * 8.0; };
   fw::host::CoupledStep coupled(*cc, setup, forest, {}, inputs);
   coupled.start();
-  fw::host::ProbeSampler tips(*cc, coupled, {}, forest.instance_count(), 1, true);
+  fw::host::ProbeRecorder tips(*cc, coupled, {}, forest.instance_count(), 1, true);
   // 2 s to set up, then one box period (128 s, 134 first-mode periods) for the spectrum's averages.
   while (coupled.time() < 2.0 - 1e-9) coupled.step();
   std::vector<double> along;

@@ -1,14 +1,14 @@
 // host/app/CoupledStep over MPI ranks (CTest runs this file at 1, 2, 3 and 4 ranks): trees whose crowns
 // straddle the blocks' borders get the modal state of one process, and points anywhere are sampled to the
-// bits of one process by the rank that holds them (host/stages/SampleExchange).
+// bits of one process by the rank that holds them (host/stages/PointWindAcrossRanks).
 #include <catch2/catch.hpp>
 
 #include <array>
 #include <vector>
 
 #include "host/app/CoupledStep.hpp"
-#include "host/stages/PointSampler.hpp"
-#include "host/stages/SampleExchange.hpp"
+#include "host/stages/PointWindAcrossRanks.hpp"
+#include "host/stages/PointWindReadback.hpp"
 #include "tests/support/SmallSpecies.hpp"
 #include "tests/support/TestDevice.hpp"
 #include "tests/support/TestWorld.hpp"
@@ -113,7 +113,7 @@ TEST_CASE("CoupledStep over ranks: trees across the blocks' borders step to the 
   }
 }
 
-TEST_CASE("SampleExchange: each point is sampled by the rank that holds it, to the bits of one process",
+TEST_CASE("PointWindAcrossRanks: each point is sampled by the rank that holds it, to the bits of one process",
           "[mpi]") {
   auto* cc = test::device_or_skip();
   if (!cc) return;
@@ -124,7 +124,7 @@ TEST_CASE("SampleExchange: each point is sampled by the rank that holds it, to t
   alone.initialise_ambient();
   for (int n = 0; n < kSteps; ++n) alone.step();
   const std::vector<float> points = points_of_rank(world.rank());
-  host::PointSampler whole(*cc, setup.spec, points);
+  host::PointWindReadback whole(*cc, setup.spec, points);
   const std::vector<float> expected = whole.sample_flat(alone.velocity());
 
   const host::WindBlocks split{
@@ -135,7 +135,7 @@ TEST_CASE("SampleExchange: each point is sampled by the rank that holds it, to t
   wind.set_turbulence_sigma(1.0);
   wind.initialise_ambient();
   for (int n = 0; n < kSteps; ++n) wind.step();
-  host::SampleExchange exchange(*cc, wind.local_spec(), &split, points);
+  host::PointWindAcrossRanks exchange(*cc, wind.local_spec(), &split, points);
   CHECK(exchange.point_count() == int(points.size() / 3));
   const std::vector<float> sampled = exchange.exchange(wind.velocity());
   REQUIRE(sampled.size() == expected.size());
@@ -165,7 +165,7 @@ TEST_CASE("CoupledStep over ranks: a forest in one corner steps to the bits of o
   const host::ModalState expected = alone.trees().download_modal_state();
   const std::vector<float> points = points_of_rank(world.rank());
   const std::vector<float> expected_wind =
-      host::PointSampler(*cc, setup.spec, points).sample_flat(alone.wind().velocity());
+      host::PointWindReadback(*cc, setup.spec, points).sample_flat(alone.wind().velocity());
 
   for (const auto blocks : test::splits(world.size())) {
     INFO(blocks[0] << " x " << blocks[1] << " blocks on " << world.size() << " ranks");
@@ -180,7 +180,7 @@ TEST_CASE("CoupledStep over ranks: a forest in one corner steps to the bits of o
     const trees::Forest& mine = coupled.own_forest();
     CHECK(world.sum(static_cast<long long>(mine.instance_count())) == forest.instance_count());
     // Wind everywhere, trees or not, is one process's.
-    host::SampleExchange exchange(*cc, coupled.wind().local_spec(), &split, points);
+    host::PointWindAcrossRanks exchange(*cc, coupled.wind().local_spec(), &split, points);
     const std::vector<float> wind = exchange.exchange(coupled.wind().velocity());
     REQUIRE(wind.size() == expected_wind.size());
     for (std::size_t n = 0; n < wind.size(); ++n) {

@@ -1,4 +1,4 @@
-#include "host/stages/WindAtPoints.hpp"
+#include "host/stages/PointWindOnDevice.hpp"
 
 #include <vector>
 
@@ -6,12 +6,12 @@
 
 namespace fw::host {
 
-std::size_t WindAtPoints::estimate_device_bytes(std::size_t count) {
+std::size_t PointWindOnDevice::estimate_device_bytes(std::size_t count) {
   return ComputeContext::allocation_bytes(3 * count * sizeof(float));
 }
 
-WindAtPoints::WindAtPoints(ComputeContext& cc, const fluid::GridSpec& spec, const WindBlocks* blocks,
-                           cl::Buffer positions, int count)
+PointWindOnDevice::PointWindOnDevice(ComputeContext& cc, const fluid::GridSpec& spec,
+                                     const WindBlocks* blocks, cl::Buffer positions, int count)
     : cc_(cc), grid_(spec.to_device()), count_(count), positions_(std::move(positions)) {
   wind_ = cc_.zero_floats(3 * std::size_t(count_));
   const cl::Program program = cc_.build("probe_sample.cl");
@@ -20,7 +20,7 @@ WindAtPoints::WindAtPoints(ComputeContext& cc, const fluid::GridSpec& spec, cons
   if (blocks != nullptr && blocks->world->size() > 1) share(spec, *blocks);
 }
 
-void WindAtPoints::share(const fluid::GridSpec& spec, const WindBlocks& blocks) {
+void PointWindOnDevice::share(const fluid::GridSpec& spec, const WindBlocks& blocks) {
   std::vector<float> world(3 * std::size_t(count_));
   if (count_ > 0)
     cc_.queue().enqueueReadBuffer(positions_, CL_TRUE, 0, world.size() * sizeof(float), world.data());
@@ -28,17 +28,17 @@ void WindAtPoints::share(const fluid::GridSpec& spec, const WindBlocks& blocks) 
   std::vector<float> needed;
   for (int n = 0; n < count_; ++n) {
     const float* point = &world[3 * std::size_t(n)];
-    if (SampleExchange::holder(spec, blocks.decomposition, point) == blocks.world->rank()) continue;
+    if (PointWindAcrossRanks::holder(spec, blocks.decomposition, point) == blocks.world->rank()) continue;
     slots.push_back(n);
     needed.insert(needed.end(), point, point + 3);
   }
-  exchange_ = std::make_unique<SampleExchange>(cc_, spec, &blocks, needed);
+  exchange_ = std::make_unique<PointWindAcrossRanks>(cc_, spec, &blocks, needed);
   if (slots.empty()) return;
   remote_slots_ = cc_.upload(slots, CL_MEM_READ_ONLY);
   remote_wind_ = cc_.zero_floats(needed.size());
 }
 
-void WindAtPoints::enqueue_sample(DeviceVelocity& velocity) {
+void PointWindOnDevice::enqueue_sample(DeviceVelocity& velocity) {
   if (count_ > 0)
     sample_.set_args(grid_, count_, positions_, velocity.u, velocity.v, velocity.w, wind_)
         .enqueue(cc_, cl::NDRange(cc_.flat_items(std::size_t(count_))));

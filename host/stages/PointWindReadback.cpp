@@ -1,4 +1,4 @@
-#include "host/stages/PointSampler.hpp"
+#include "host/stages/PointWindReadback.hpp"
 
 #include <fmt/format.h>
 
@@ -7,36 +7,36 @@
 
 namespace fw::host {
 
-std::size_t PointSampler::estimate_device_bytes(std::size_t point_count) {
+std::size_t PointWindReadback::estimate_device_bytes(std::size_t point_count) {
   if (point_count == 0) return 0;
   return 2 * ComputeContext::allocation_bytes(3 * point_count * sizeof(float));
 }
 
-std::vector<float> PointSampler::flat_positions(const std::vector<std::array<double, 3>>& points) {
+std::vector<float> PointWindReadback::flat_positions(const std::vector<std::array<double, 3>>& points) {
   std::vector<float> flat;
   for (const auto& p : points)
     for (double x : p) flat.push_back(static_cast<float>(x));
   return flat;
 }
 
-PointSampler::PointSampler(ComputeContext& cc, const fluid::GridSpec& spec,
-                           const std::vector<std::array<double, 3>>& points)
-    : PointSampler(cc, spec, flat_positions(points)) {}
+PointWindReadback::PointWindReadback(ComputeContext& cc, const fluid::GridSpec& spec,
+                                     const std::vector<std::array<double, 3>>& points)
+    : PointWindReadback(cc, spec, flat_positions(points)) {}
 
-PointSampler::PointSampler(ComputeContext& cc, const fluid::GridSpec& spec, std::vector<float> flat)
+PointWindReadback::PointWindReadback(ComputeContext& cc, const fluid::GridSpec& spec, std::vector<float> flat)
     : cc_(cc), count_(static_cast<int>(flat.size() / 3)) {
   try {
     spec.validate();
   } catch (const std::invalid_argument& e) {
-    throw std::invalid_argument(std::string("PointSampler: ") + e.what());
+    throw std::invalid_argument(std::string("PointWindReadback: ") + e.what());
   }
   grid_ = spec.to_device();
   if (flat.size() % 3 != 0)
     throw std::invalid_argument(
-        fmt::format("PointSampler: {} coordinates are not whole points", flat.size()));
+        fmt::format("PointWindReadback: {} coordinates are not whole points", flat.size()));
   for (float x : flat)
     if (!std::isfinite(x))
-      throw std::invalid_argument(fmt::format("PointSampler: position {} is not finite", x));
+      throw std::invalid_argument(fmt::format("PointWindReadback: position {} is not finite", x));
   if (count_ == 0) return;
   positions_ = cc_.buffer(flat.size() * sizeof(float), CL_MEM_READ_ONLY);
   cc_.queue().enqueueWriteBuffer(positions_, CL_TRUE, 0, flat.size() * sizeof(float), flat.data());
@@ -44,7 +44,7 @@ PointSampler::PointSampler(ComputeContext& cc, const fluid::GridSpec& spec, std:
   kernel_ = Kernel(cc_.build("probe_sample.cl"), "probe_sample");
 }
 
-std::vector<float> PointSampler::sample_flat(DeviceVelocity& velocity) {
+std::vector<float> PointWindReadback::sample_flat(DeviceVelocity& velocity) {
   std::vector<float> wind(3 * static_cast<std::size_t>(count_));
   if (count_ == 0) return wind;
   kernel_.set_args(grid_, count_, positions_, velocity.u, velocity.v, velocity.w, wind_)
@@ -53,7 +53,7 @@ std::vector<float> PointSampler::sample_flat(DeviceVelocity& velocity) {
   return wind;
 }
 
-std::vector<std::array<float, 3>> PointSampler::sample(DeviceVelocity& velocity) {
+std::vector<std::array<float, 3>> PointWindReadback::sample(DeviceVelocity& velocity) {
   const std::vector<float> flat = sample_flat(velocity);
   std::vector<std::array<float, 3>> wind(static_cast<std::size_t>(count_));
   for (std::size_t n = 0; n < wind.size(); ++n) wind[n] = {flat[3 * n], flat[3 * n + 1], flat[3 * n + 2]};

@@ -1,4 +1,4 @@
-#include "host/app/ProbeSampler.hpp"
+#include "host/app/ProbeRecorder.hpp"
 
 #include "trees/BranchPose.hpp"
 
@@ -21,7 +21,7 @@ namespace {
 
 // Rank 0 asks for every probe's wind, the other ranks for none.
 std::vector<float> asked_points(const std::vector<std::array<double, 3>>& points, const Communicator& world) {
-  return world.rank() == 0 ? PointSampler::flat_positions(points) : std::vector<float>{};
+  return world.rank() == 0 ? PointWindReadback::flat_positions(points) : std::vector<float>{};
 }
 
 const Communicator& world_of(const WindBlocks* blocks) {
@@ -30,9 +30,9 @@ const Communicator& world_of(const WindBlocks* blocks) {
 
 }  // namespace
 
-ProbeSampler::ProbeSampler(ComputeContext& cc, CoupledStep& coupled,
-                           const std::vector<std::array<double, 3>>& points, int all_trees, int tip_trees,
-                           bool strong_wind_correction)
+ProbeRecorder::ProbeRecorder(ComputeContext& cc, CoupledStep& coupled,
+                             const std::vector<std::array<double, 3>>& points, int all_trees, int tip_trees,
+                             bool strong_wind_correction)
     : cc_(cc),
       world_(&world_of(coupled.blocks())),
       point_count_(int(points.size())),
@@ -53,7 +53,7 @@ ProbeSampler::ProbeSampler(ComputeContext& cc, CoupledStep& coupled,
   }
 }
 
-std::vector<double> ProbeSampler::own_tips(CoupledStep& coupled) const {
+std::vector<double> ProbeRecorder::own_tips(CoupledStep& coupled) const {
   std::vector<double> tips;
   for (std::size_t t = 0; t < own_tips_.size(); ++t) {
     const int k = own_tips_[t];
@@ -86,7 +86,7 @@ std::vector<double> ProbeSampler::own_tips(CoupledStep& coupled) const {
   return tips;
 }
 
-io::ProbeSample ProbeSampler::sample(CoupledStep& coupled) {
+io::ProbeSample ProbeRecorder::sample(CoupledStep& coupled) {
   io::ProbeSample out;
   out.time = coupled.time();
   const std::vector<float> wind = points_.exchange(coupled.wind().velocity());

@@ -1,4 +1,4 @@
-#include "host/stages/SampleExchange.hpp"
+#include "host/stages/PointWindAcrossRanks.hpp"
 
 #include <algorithm>
 #include <array>
@@ -7,15 +7,15 @@
 
 namespace fw::host {
 
-int SampleExchange::holder(const fluid::GridSpec& spec, const fluid::Decomposition& decomposition,
-                           const float point[3]) {
+int PointWindAcrossRanks::holder(const fluid::GridSpec& spec, const fluid::Decomposition& decomposition,
+                                 const float point[3]) {
   // The domain's cell, not the block's: a block's grid keeps the domain's origin.
   const std::array<int, 3> cell = spec.domain_cell_holding({point[0], point[1], point[2]});
   return decomposition.rank_holding(cell[0], cell[1]);
 }
 
-SampleExchange::SampleExchange(ComputeContext& cc, const fluid::GridSpec& spec, const WindBlocks* blocks,
-                               const std::vector<float>& needed)
+PointWindAcrossRanks::PointWindAcrossRanks(ComputeContext& cc, const fluid::GridSpec& spec,
+                                           const WindBlocks* blocks, const std::vector<float>& needed)
     : world_(blocks != nullptr ? blocks->world : &Communicator::alone()) {
   const int ranks = world_->size();
   const std::size_t count = needed.size() / 3;
@@ -35,10 +35,10 @@ SampleExchange::SampleExchange(ComputeContext& cc, const fluid::GridSpec& spec, 
     request_counts_.push_back(int(list.size() / 3));
     flat.insert(flat.end(), list.begin(), list.end());
   }
-  requests_ = std::make_unique<PointSampler>(cc, spec, std::move(flat));
+  requests_ = std::make_unique<PointWindReadback>(cc, spec, std::move(flat));
 }
 
-std::vector<float> SampleExchange::exchange(DeviceVelocity& velocity) {
+std::vector<float> PointWindAcrossRanks::exchange(DeviceVelocity& velocity) {
   const std::vector<float> sampled = requests_->sample_flat(velocity);
   std::vector<std::vector<float>> answers(request_counts_.size());
   std::size_t at = 0;

@@ -1,8 +1,8 @@
 // The wind at points whose positions live on the device, sampled into a device buffer every step: the trees'
 // wind samples and the leaves' sites. Over MPI ranks each point is sampled by the rank whose block holds it
-// (host/stages/SampleExchange), and only those points travel through the host.
+// (host/stages/PointWindAcrossRanks), and only those points travel through the host.
 //
-//   fw::host::WindAtPoints samples(cc, spec, blocks, positions, count);   // positions: 3 floats a point
+//   fw::host::PointWindOnDevice samples(cc, spec, blocks, positions, count);   // positions: 3 floats a point
 //   samples.enqueue_sample(wind.velocity());    // collective over ranks
 //   kernel.set_args(..., samples.wind());       // 3 floats a point, m/s
 //
@@ -17,18 +17,18 @@
 #include "host/runtime/ComputeContext.hpp"
 #include "host/stages/BlockGrid.hpp"
 #include "host/stages/FluidStages.hpp"
-#include "host/stages/SampleExchange.hpp"
+#include "host/stages/PointWindAcrossRanks.hpp"
 #include "kernels/shared_types.h"
 
 namespace fw::host {
 
-class WindAtPoints {
+class PointWindOnDevice {
  public:
   /// positions: `count` points, 3 floats each (world frame, m), already on the device and fixed from here on.
   /// spec: this rank's grid (block_spec over ranks); blocks: null alone. Over ranks it reads the positions
   /// back once and is collective.
-  WindAtPoints(ComputeContext& cc, const fluid::GridSpec& spec, const WindBlocks* blocks,
-               cl::Buffer positions, int count);
+  PointWindOnDevice(ComputeContext& cc, const fluid::GridSpec& spec, const WindBlocks* blocks,
+                    cl::Buffer positions, int count);
 
   /// Bytes of device memory the wind of `count` points takes (what the constructor allocates alone).
   static std::size_t estimate_device_bytes(std::size_t count);
@@ -51,7 +51,7 @@ class WindAtPoints {
   int count_ = 0;
   cl::Buffer positions_, wind_;
   Kernel sample_, place_;
-  std::unique_ptr<SampleExchange> exchange_;
+  std::unique_ptr<PointWindAcrossRanks> exchange_;
   cl::Buffer remote_slots_, remote_wind_;  // the remote points' indices, and the wind they bring
 };
 

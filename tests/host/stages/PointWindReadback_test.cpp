@@ -1,5 +1,5 @@
-// host/stages/PointSampler: the wind at probe points, and the device memory the planner reports for it.
-#include "host/stages/PointSampler.hpp"
+// host/stages/PointWindReadback: the wind at probe points, and the device memory the planner reports for it.
+#include "host/stages/PointWindReadback.hpp"
 
 #include <catch2/catch.hpp>
 
@@ -12,8 +12,9 @@
 using namespace fw;
 using B = fluid::BoundaryType;
 
-TEST_CASE("PointSampler: a uniform wind reads the same everywhere, and its estimate is what it allocates",
-          "[probes]") {
+TEST_CASE(
+    "PointWindReadback: a uniform wind reads the same everywhere, and its estimate is what it allocates",
+    "[probes]") {
   auto* cc = test::device_or_skip();
   if (!cc) return;
   host::WindGridSetup setup;
@@ -29,9 +30,9 @@ TEST_CASE("PointSampler: a uniform wind reads the same everywhere, and its estim
   // Inside, on a face, and on the domain's corner (faces included).
   const std::vector<std::array<double, 3>> points = {{7.3, 5.1, 9.9}, {2.0, 8.0, 3.0}, {32.0, 16.0, 16.0}};
   const std::size_t before = cc->allocated_bytes();
-  host::PointSampler sampler(*cc, setup.spec, points);
-  CHECK(cc->allocated_bytes() - before == host::PointSampler::estimate_device_bytes(points.size()));
-  CHECK(host::PointSampler::estimate_device_bytes(0) == 0);
+  host::PointWindReadback sampler(*cc, setup.spec, points);
+  CHECK(cc->allocated_bytes() - before == host::PointWindReadback::estimate_device_bytes(points.size()));
+  CHECK(host::PointWindReadback::estimate_device_bytes(0) == 0);
 
   // The uniform inflow, projected: every face holds 5 m/s along x to float rounding (1e-5 of it).
   for (const auto& v : sampler.sample(wind.velocity())) {

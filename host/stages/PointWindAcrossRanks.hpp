@@ -2,7 +2,7 @@
 // rank whose block holds it, and its wind goes back to the rank that needs it (the trees' samples in a
 // neighbour's block, every probe for rank 0).
 //
-//   fw::host::SampleExchange remote(cc, local_spec, blocks, needed);   // needed: 3 floats a point, m
+//   fw::host::PointWindAcrossRanks remote(cc, local_spec, blocks, needed);   // needed: 3 floats a point, m
 //   std::vector<float> wind = remote.exchange(grid.velocity());         // 3 floats a point, m/s
 //
 // Collective: every rank constructs one and calls exchange() at the same steps, each with its own points
@@ -20,11 +20,11 @@
 #include "host/runtime/ComputeContext.hpp"
 #include "host/stages/BlockGrid.hpp"
 #include "host/stages/FluidStages.hpp"
-#include "host/stages/PointSampler.hpp"
+#include "host/stages/PointWindReadback.hpp"
 
 namespace fw::host {
 
-class SampleExchange {
+class PointWindAcrossRanks {
  public:
   /// The rank whose block holds the cell column of `point` (world, m; clamped into the domain). spec: a
   /// rank's grid (its block_domain the domain's cells) or the whole grid.
@@ -33,9 +33,9 @@ class SampleExchange {
 
   /// spec: this rank's grid (block_spec, or the whole grid alone); blocks: null alone; needed: 3 floats a
   /// point, world frame, m, as the device rounds them. Collective. Throws std::invalid_argument (from
-  /// PointSampler) for a position that is not finite.
-  SampleExchange(ComputeContext& cc, const fluid::GridSpec& spec, const WindBlocks* blocks,
-                 const std::vector<float>& needed);
+  /// PointWindReadback) for a position that is not finite.
+  PointWindAcrossRanks(ComputeContext& cc, const fluid::GridSpec& spec, const WindBlocks* blocks,
+                       const std::vector<float>& needed);
 
   int point_count() const { return int(order_.size()); }
   /// The points other ranks asked this one for (and its own that it holds).
@@ -48,7 +48,7 @@ class SampleExchange {
   std::vector<int> holder_of_;       // per needed point: the rank that samples it
   std::vector<int> order_;           // per needed point: its place in its holder's list
   std::vector<int> request_counts_;  // per rank: the points it asked this one for
-  std::unique_ptr<PointSampler> requests_;
+  std::unique_ptr<PointWindReadback> requests_;
 };
 
 }  // namespace fw::host

@@ -1,13 +1,13 @@
 // The wind at fixed world points on the device, read back as a few floats: what probes sample every probe
 // interval without copying the grid back (kernels/probe_sample.cl).
 //
-//   fw::host::PointSampler probes(cc, spec, {{40, 120, 10}, {160, 120, 10}});   // m, world frame
+//   fw::host::PointWindReadback probes(cc, spec, {{40, 120, 10}, {160, 120, 10}});   // m, world frame
 //   std::vector<std::array<float, 3>> wind = probes.sample(grid.velocity());      // m/s, blocks
 //
 // Each point is sampled like a tree's wind sample (trilinear on each component's staggered lattice, clamped
 // to it), so that a probe and a tree at the same place see the same wind. On a rank's block, only points
 // whose cell lies in the block's cells (or a cell or two into its halo) sample correctly; over ranks,
-// host/stages/SampleExchange sends each point to the rank that holds it.
+// host/stages/PointWindAcrossRanks sends each point to the rank that holds it.
 #pragma once
 
 #include <array>
@@ -19,14 +19,14 @@
 
 namespace fw::host {
 
-class PointSampler {
+class PointWindReadback {
  public:
-  /// points: world positions, m. Throws std::invalid_argument("PointSampler: ...") for an invalid spec or
-  /// a non-finite position.
-  PointSampler(ComputeContext& cc, const fluid::GridSpec& spec,
-               const std::vector<std::array<double, 3>>& points);
+  /// points: world positions, m. Throws std::invalid_argument("PointWindReadback: ...") for an invalid spec
+  /// or a non-finite position.
+  PointWindReadback(ComputeContext& cc, const fluid::GridSpec& spec,
+                    const std::vector<std::array<double, 3>>& points);
   /// positions: 3 floats a point, world frame, m, as the device rounds them.
-  PointSampler(ComputeContext& cc, const fluid::GridSpec& spec, std::vector<float> positions);
+  PointWindReadback(ComputeContext& cc, const fluid::GridSpec& spec, std::vector<float> positions);
 
   /// points as 3 floats a point, as the device rounds them (what the second constructor takes).
   static std::vector<float> flat_positions(const std::vector<std::array<double, 3>>& points);
