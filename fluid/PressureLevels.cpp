@@ -113,10 +113,11 @@ std::vector<std::array<int, 3>> pressure_level_extents(const GridSpec& spec, std
 
 std::vector<PressureLevel> build_pressure_levels(const GridSpec& spec, const std::vector<std::uint8_t>& solid,
                                                  std::size_t coarsest_cells) {
+  // The rule of how far to coarsen reads the extents only (pressure_level_extents).
+  const std::size_t count = pressure_level_extents(spec, coarsest_cells).size();
   std::vector<PressureLevel> levels;
   levels.push_back(build_fine_pressure_level(spec, solid));
-  while (levels.back().cell_count() > coarsest_cells && can_coarsen(levels.back(), spec))
-    levels.push_back(coarsen_pressure_level(levels.back(), spec));
+  while (levels.size() < count) levels.push_back(coarsen_pressure_level(levels.back(), spec));
   return levels;
 }
 

@@ -69,10 +69,14 @@ std::size_t FluidStages::estimate_device_bytes(const fluid::GridSpec& spec) {
          ComputeContext::allocation_bytes(std::size_t(spec.nz) * sizeof(float));
 }
 
+std::size_t FluidStages::face_arrays_bytes(const fluid::GridSpec& spec, std::size_t bytes_per_face) {
+  return ComputeContext::allocation_bytes(spec.u_count() * bytes_per_face) +
+         ComputeContext::allocation_bytes(spec.v_count() * bytes_per_face) +
+         ComputeContext::allocation_bytes(spec.w_count() * bytes_per_face);
+}
+
 std::size_t FluidStages::velocity_bytes(const fluid::GridSpec& spec) {
-  return ComputeContext::allocation_bytes(spec.u_count() * sizeof(float)) +
-         ComputeContext::allocation_bytes(spec.v_count() * sizeof(float)) +
-         ComputeContext::allocation_bytes(spec.w_count() * sizeof(float));
+  return face_arrays_bytes(spec, sizeof(float));
 }
 
 std::size_t FluidStages::padded_velocity_bytes(const fluid::GridSpec& spec) {
@@ -81,17 +85,18 @@ std::size_t FluidStages::padded_velocity_bytes(const fluid::GridSpec& spec) {
   return bytes;
 }
 
+std::size_t FluidStages::padded_values(const fluid::GridSpec& spec, int c) {
+  return std::size_t(spec.nx + (c == 0) + 2 * FW_PAD) * (spec.ny + (c == 1) + 2 * FW_PAD) *
+         (spec.nz + (c == 2) + 2 * FW_PAD);
+}
+
 std::size_t FluidStages::padded_bytes(const fluid::GridSpec& spec, int c) {
   // Advection reads the copies through windowed loads (kernels/lanes.cl), which run a little past the end.
-  const std::size_t values = std::size_t(spec.nx + (c == 0) + 2 * FW_PAD) *
-                             (spec.ny + (c == 1) + 2 * FW_PAD) * (spec.nz + (c == 2) + 2 * FW_PAD);
-  return (values + FW_WINDOW_SLACK) * sizeof(float);
+  return (padded_values(spec, c) + FW_WINDOW_SLACK) * sizeof(float);
 }
 
 std::size_t FluidStages::upwind_orders_bytes(const fluid::GridSpec& spec) {
-  return ComputeContext::allocation_bytes(spec.u_count() * sizeof(std::uint16_t)) +
-         ComputeContext::allocation_bytes(spec.v_count() * sizeof(std::uint16_t)) +
-         ComputeContext::allocation_bytes(spec.w_count() * sizeof(std::uint16_t));
+  return face_arrays_bytes(spec, sizeof(std::uint16_t));
 }
 
 std::size_t FluidStages::wall_faces_bytes(const WallFaces& list) {
@@ -181,8 +186,7 @@ cl::NDRange FluidStages::component_rows(int c) const {
 }
 
 std::size_t FluidStages::padded_count(int c) const {
-  return std::size_t(spec_.nx + (c == 0) + 2 * FW_PAD) * (spec_.ny + (c == 1) + 2 * FW_PAD) *
-         (spec_.nz + (c == 2) + 2 * FW_PAD);
+  return padded_values(spec_, c);
 }
 
 cl::NDRange FluidStages::advect_rows(int c) const {

@@ -157,6 +157,10 @@ class FluidStages {
 
  private:
   static std::size_t partial_bound(const fluid::GridSpec& spec);
+  /// Bytes of three face arrays (u, v, w) of bytes_per_face each.
+  static std::size_t face_arrays_bytes(const fluid::GridSpec& spec, std::size_t bytes_per_face);
+  /// Values of component c's padded copy (FW_PAD ghost layers on every side).
+  static std::size_t padded_values(const fluid::GridSpec& spec, int c);
   double max_partials(std::size_t count);
   void build_subgrid_kernels();  // on first use: a run without the subgrid or wall stage never builds them
   void build_upwind_kernels();   // on first use, likewise for upwind advection

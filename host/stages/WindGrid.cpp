@@ -136,7 +136,7 @@ void WindGrid::initialise_ambient() {
 }
 
 HaloTraffic WindGrid::halo_traffic() const {
-  HaloTraffic total = const_cast<WindGrid*>(this)->projection_.solver().halo_traffic();
+  HaloTraffic total = projection_.solver().halo_traffic();
   total += seam_.traffic();
   return total;
 }

@@ -9,16 +9,16 @@ namespace {
 
 constexpr int kVorticityFloats = 4;  // the vorticity and its magnitude, a cell
 
-std::size_t gust_bytes(const WindGridSetup& setup) {
-  // A kernel argument needs a buffer even without gusts.
-  return ComputeContext::allocation_bytes(std::max<std::size_t>(setup.gusts.size(), 1) * sizeof(FwGust));
+// The gusts' buffer: a kernel argument needs a buffer even without gusts.
+std::size_t gust_buffer_bytes(const WindGridSetup& setup) {
+  return std::max<std::size_t>(setup.gusts.size(), 1) * sizeof(FwGust);
 }
 
 }  // namespace
 
 BodyForces::BodyForces(const WindPartContext& context) : context_(context) {
   const std::vector<FwGust>& gusts = context.setup.gusts;
-  gusts_ = context.cc.buffer(std::max<std::size_t>(gusts.size(), 1) * sizeof(FwGust));
+  gusts_ = context.cc.buffer(gust_buffer_bytes(context.setup));
   if (!gusts.empty())
     context.cc.queue().enqueueWriteBuffer(gusts_, CL_TRUE, 0, gusts.size() * sizeof(FwGust), gusts.data());
   if (confines())
@@ -26,7 +26,7 @@ BodyForces::BodyForces(const WindPartContext& context) : context_(context) {
 }
 
 std::size_t BodyForces::estimate_device_bytes(const fluid::GridSpec& grid, const WindGridSetup& setup) {
-  std::size_t bytes = gust_bytes(setup);
+  std::size_t bytes = ComputeContext::allocation_bytes(gust_buffer_bytes(setup));
   if (setup.settings.vorticity_confinement > 0.0)
     bytes += ComputeContext::allocation_bytes(grid.cell_count() * kVorticityFloats * sizeof(float));
   return bytes;

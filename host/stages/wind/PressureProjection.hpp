@@ -30,6 +30,7 @@ class PressureProjection : public WindPart {
   /// The pressure mask of the rank's block (a byte a cell: FW_MASK_FLUID and the open faces).
   cl::Buffer& mask() { return solver_.mask(); }
   PressureSolver& solver() { return solver_; }
+  const PressureSolver& solver() const { return solver_; }
 
   const char* stage() const override { return "pressure"; }
   std::size_t device_bytes() const override;

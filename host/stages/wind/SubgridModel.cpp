@@ -59,16 +59,39 @@ void SubgridModel::restore_state(const StageState& state) {
   state.restore(context_.cc, kWindGridState, saved::kEddyViscosity, eddy_viscosity_);
 }
 
+namespace {
+
+enum class Chosen { none, smagorinsky, tke };
+
+// The one rule: solver.subgrid tke, else Smagorinsky's while its constant is > 0.
+Chosen chosen_model(const fluid::WindSettings& settings) {
+  if (settings.subgrid == fluid::SubgridModel::tke) return Chosen::tke;
+  return settings.smagorinsky_constant > 0.0 ? Chosen::smagorinsky : Chosen::none;
+}
+
+}  // namespace
+
 std::unique_ptr<SubgridModel> make_subgrid_model(const WindPartContext& context, cl::Buffer& mask) {
-  const fluid::WindSettings& settings = context.setup.settings;
-  if (settings.subgrid == fluid::SubgridModel::tke) return std::make_unique<TkeSubgrid>(context, mask);
-  if (settings.smagorinsky_constant > 0.0) return std::make_unique<SmagorinskySubgrid>(context, mask);
+  switch (chosen_model(context.setup.settings)) {
+    case Chosen::tke:
+      return std::make_unique<TkeSubgrid>(context, mask);
+    case Chosen::smagorinsky:
+      return std::make_unique<SmagorinskySubgrid>(context, mask);
+    case Chosen::none:
+      break;
+  }
   return nullptr;
 }
 
 std::size_t subgrid_model_bytes(const fluid::WindSettings& settings, const fluid::GridSpec& grid) {
-  if (settings.subgrid == fluid::SubgridModel::tke) return TkeSubgrid::estimate_device_bytes(grid);
-  if (settings.smagorinsky_constant > 0.0) return SmagorinskySubgrid::estimate_device_bytes(grid);
+  switch (chosen_model(settings)) {
+    case Chosen::tke:
+      return TkeSubgrid::estimate_device_bytes(grid);
+    case Chosen::smagorinsky:
+      return SmagorinskySubgrid::estimate_device_bytes(grid);
+    case Chosen::none:
+      break;
+  }
   return 0;
 }
 
