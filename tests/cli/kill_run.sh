@@ -18,6 +18,17 @@ max_delay_ms=2500 # the delays span the start (planning, device, kernels from Po
 max_frame=8       # the mid-frame kills wait for a frame up to this one (a frame every 5 steps)
 poll_s=0.002      # a frame's temporaries live a few ms on this grid: poll faster than that
 
+# True once every thread of process $1 has stopped (state T in /proc), or the process is gone.
+all_stopped() {
+  local stat
+  for stat in /proc/"$1"/task/*/stat; do
+    [ -r "$stat" ] || continue
+    # The state follows the command name's closing parenthesis.
+    [[ $(sed 's/.*) //' "$stat" 2>/dev/null | cut -c1) == [Tt] ]] || return 1
+  done
+  return 0
+}
+
 # One short run first: kernels into PoCL's cache and the palm's basis into the basis cache, so that every
 # trial starts alike.
 "$forestwind" run "$scenario" -o "$work/warm" --end 0.5 --quiet >"$work/warm.out" 2>&1 ||
@@ -35,11 +46,12 @@ for trial in $(seq 1 $trials); do
     frame=$((RANDOM % max_frame + 1))
     file=$(printf 'wind_%06d.vti' "$frame")
     # Until frame `frame`'s wind file is listed and a temporary of a later file exists. A temporary lives a
-    # few ms, so seeing it and killing would race it: stop the run first (SIGSTOP takes effect at once), look
-    # again, and kill only a run stopped with a temporary on disk; otherwise let it go on.
+    # few ms, so seeing it and killing would race it: stop the run first, wait until every thread of it has
+    # stopped, look again, and kill only a run stopped with a temporary on disk; otherwise let it go on.
     while kill -0 "$pid" 2>/dev/null; do
       if grep -q "$file" "$out/wind.pvd" 2>/dev/null && [ -n "$(temporaries "$out")" ]; then
         kill -STOP "$pid" 2>/dev/null
+        until all_stopped "$pid"; do sleep "$poll_s"; done
         [ -n "$(temporaries "$out")" ] && break
         kill -CONT "$pid" 2>/dev/null
       fi
