@@ -371,8 +371,11 @@ MacVelocity canopy_drag(const GridSpec& spec, const MacVelocity& vel, const std:
   for (int c = 0; c < 3; ++c)
     for_each_face(spec, c, [&](int i, int j, int k, std::size_t id) {
       int lo[3] = {i, j, k}, hi[3] = {i, j, k};
-      lo[c] = std::max(lo[c] - 1, 0);
-      hi[c] = std::min(hi[c], dims(spec, c) - 1);
+      // Across a periodic seam the cell on the other side, as the kernel does (fluid_forces.cl).
+      const int n = dims(spec, c);
+      const bool wrap = spec.periodic(c);
+      lo[c] = lo[c] > 0 ? lo[c] - 1 : (wrap ? n - 1 : 0);
+      hi[c] = hi[c] < n ? hi[c] : (wrap ? 0 : n - 1);
       const double kf = 0.5 * (double(drag_density[cell_index(spec.nx, spec.ny, lo[0], lo[1], lo[2])]) +
                                drag_density[cell_index(spec.nx, spec.ny, hi[0], hi[1], hi[2])]);
       const double q = vel.component(c)[id];

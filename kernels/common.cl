@@ -75,6 +75,11 @@ FW_INLINE int axis_cells(const FwGrid* g, int a) {
   return a == 0 ? g->nx : (a == 1 ? g->ny : g->nz);
 }
 
+/* 1 where axis a wraps: its cell n - 1 and cell 0 are neighbours across the seam. */
+FW_INLINE int axis_periodic(const FwGrid* g, int a) {
+  return g->bc[2 * a] == FW_BC_PERIODIC;
+}
+
 FW_INLINE int face_extent(const FwGrid* g, int c, int a) {
   return axis_cells(g, a) + (c == a ? 1 : 0);
 }

@@ -141,11 +141,12 @@ __kernel void diffuse(const FwGrid g, const FwStep s, __global const float* prof
 /* Implicit canopy drag, F = -k f(|u|) |u| u with k = Cd a the drag density (1/m, one float a cell) and f
  * the drag law's factor (fluid/DragLaw.hpp: (max(|u|, floor) / U_ref)^exponent, 1 for exponent 0):
  * out = q / (1 + dt k_face f |u|_face), which never reverses or amplifies the flow for any dt.
- * k_face is the mean of the two cells beside the face (the one inside at the domain's edge); |u|_face takes
- * the face's own component and the other two averaged from the four faces of those two cells. Reads the
- * old u, v, w and writes component c to `out`, on the faces first .. first + count - 1 of component c only:
- * the host passes the box of faces next to a cell of non-zero drag (a forest covers a small part of the
- * domain), and copies them back with copy_face_box. Global range: (ceil(count.x / FW_ROW_CHUNK), count.y,
+ * k_face is the mean of the two cells beside the face (at a domain face that does not wrap, the one inside);
+ * |u|_face takes the face's own component and the other two averaged from the four faces of those two cells.
+ * Reads the old u, v, w and writes component c to `out`, on the faces first .. first + count - 1 of
+ * component c only: the host passes the box of faces next to a cell of non-zero drag (a forest covers a
+ * small part of the domain; a box at a periodic seam holds the faces on both sides of it), and copies them
+ * back with copy_face_box. Global range: (ceil(count.x / FW_ROW_CHUNK), count.y,
  * count.z). Reference: fluid/ReferenceStages.cpp canopy_drag. */
 FW_INLINE void canopy_drag_box(const FwGrid* g, const float dt, const int c, const int4 first,
                                const int4 count, const FwDragLaw law, __global const float* drag,
@@ -162,8 +163,12 @@ FW_INLINE void canopy_drag_box(const FwGrid* g, const float dt, const int c, con
   for (int r = FW_ROW_BEGIN; r < FW_ROW_END(count.x); ++r) {
     const int i = first.x + r;
     int lo[3] = {i, j, k}, hi[3] = {i, j, k};
-    lo[c] = max(lo[c] - 1, 0);
-    hi[c] = min(hi[c], n - 1);
+    /* At the domain's edge the one cell inside, but across a periodic seam the cell on the other side: the
+     * seam's face is the domain's face 0 and its face n at once, and a block cut there reads it from its
+     * halo. */
+    const int wrap = axis_periodic(g, c);
+    lo[c] = lo[c] > 0 ? lo[c] - 1 : (wrap ? n - 1 : 0);
+    hi[c] = hi[c] < n ? hi[c] : (wrap ? 0 : n - 1);
     const float kf =
         0.5f * (drag[cell_index(g, lo[0], lo[1], lo[2])] + drag[cell_index(g, hi[0], hi[1], hi[2])]);
     const int face = face_index(g, c, i, j, k);

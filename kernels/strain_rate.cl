@@ -6,10 +6,6 @@
  * StrainRows once (strain_rows, with difference_offsets along y and z) and then asks per cell. */
 #include "common.cl"
 
-FW_INLINE int axis_periodic(const FwGrid* g, int a) {
-  return g->bc[2 * a] == FW_BC_PERIODIC;
-}
-
 /* Where a derivative along an axis of n cells looks at index x: one cell up (*plus = 1) and down
  * (*minus = 1), or the cell itself (0) at a non-periodic edge, where the difference turns one-sided; across a
  * periodic seam the face indices wrap. *inverse = 1 / (span h), 0 for a single cell along a non-periodic

@@ -278,12 +278,19 @@ void FluidStages::enqueue_diffuse(int c, float nu_dt_over_h2, cl::Buffer& q, cl:
 void FluidStages::enqueue_canopy_drag(cl::Buffer& drag_density, const CellBox& box, DeviceVelocity& vel,
                                       DeviceVelocity& scratch, const fluid::DragLaw& law) {
   if (box.empty()) return;
-  // Faces of component c next to the box's cells: one more along c (the far face of the last cell).
+  // Faces of component c next to the box's cells: one more along c (the far face of the last cell). A box
+  // that reaches a periodic seam along c drags the seam's face, which is face 0 and face n at once: then
+  // every face along c, so that both copies are dragged alike, as a block cut there drags its own.
   auto face_box = [&](int c) {
     cl_int4 first{}, count{};
     for (int a = 0; a < 3; ++a) {
       first.s[a] = box.first[a];
       count.s[a] = box.count[a] + (a == c ? 1 : 0);
+    }
+    const int n = c == 0 ? spec_.nx : (c == 1 ? spec_.ny : spec_.nz);
+    if (spec_.periodic(c) && (box.first[c] == 0 || box.first[c] + box.count[c] == n)) {
+      first.s[c] = 0;
+      count.s[c] = n + 1;
     }
     return std::pair{first, count};
   };

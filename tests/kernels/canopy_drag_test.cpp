@@ -36,6 +36,18 @@ std::vector<float> random_drag(std::size_t n, std::uint32_t seed) {
   return out;
 }
 
+// The kernels' drag of `vel` by the density `drag` on the faces next to its non-zero cells, read back.
+fluid::MacVelocity drag_on_device(host::ComputeContext& cc, host::FluidStages& stages,
+                                  const fluid::GridSpec& spec, const fluid::MacVelocity& vel,
+                                  const std::vector<float>& drag, const fluid::DragLaw& law = {}) {
+  auto dvel = stages.allocate_velocity(), scratch = stages.allocate_velocity();
+  test::upload(cc, vel, dvel);
+  cl::Buffer ddrag = cc.buffer(drag.size() * sizeof(float));
+  test::upload(cc, drag, ddrag);
+  stages.enqueue_canopy_drag(ddrag, host::nonzero_cell_box(spec, drag), dvel, scratch, law);
+  return test::download(cc, dvel, spec);
+}
+
 // Largest |a - b| / |b| over faces (faces with b = 0 compared absolutely).
 double face_relative_error(const std::vector<float>& a, const std::vector<float>& b) {
   double worst = 0.0;
@@ -58,13 +70,8 @@ TEST_CASE(
   stages.set_step(s);
   const fluid::DragLaw law{-0.8, 3.0};
   const auto drag = random_drag(spec.cell_count(), 7);
-  cl::Buffer ddrag = cc->buffer(drag.size() * sizeof(float));
-  test::upload(*cc, drag, ddrag);
   auto run = [&](const fluid::MacVelocity& vel, const fluid::DragLaw& l) {
-    auto dvel = stages.allocate_velocity(), scratch = stages.allocate_velocity();
-    test::upload(*cc, vel, dvel);
-    stages.enqueue_canopy_drag(ddrag, host::nonzero_cell_box(spec, drag), dvel, scratch, l);
-    return test::download(*cc, dvel, spec);
+    return drag_on_device(*cc, stages, spec, vel, drag, l);
   };
   const auto random = test::random_velocity(spec, 8.0, 31);
   const auto device = run(random, law);
@@ -97,12 +104,7 @@ TEST_CASE("canopy drag: the kernel matches the CPU reference on a random field",
   stages.set_step(s);
   const auto vel = test::random_velocity(spec, 8.0, 31);
   const auto drag = random_drag(spec.cell_count(), 7);
-  auto dvel = stages.allocate_velocity(), scratch = stages.allocate_velocity();
-  test::upload(*cc, vel, dvel);
-  cl::Buffer ddrag = cc->buffer(drag.size() * sizeof(float));
-  test::upload(*cc, drag, ddrag);
-  stages.enqueue_canopy_drag(ddrag, host::nonzero_cell_box(spec, drag), dvel, scratch);
-  const auto device = test::download(*cc, dvel, spec);
+  const auto device = drag_on_device(*cc, stages, spec, vel, drag);
   const auto expected = ref::canopy_drag(spec, vel, drag, 0.4);
   for (int c = 0; c < 3; ++c) {
     INFO("component " << c);
@@ -144,12 +146,7 @@ TEST_CASE("canopy drag: only the faces of the drag's box change, and they match 
   CHECK(box.count == std::array<int, 3>{spec.nx - 1, spec.ny - 2, spec.nz - 1});
   CHECK(host::nonzero_cell_box(spec, std::vector<float>(spec.cell_count(), 0.0f)).empty());
 
-  auto dvel = stages.allocate_velocity(), scratch = stages.allocate_velocity();
-  test::upload(*cc, vel, dvel);
-  cl::Buffer ddrag = cc->buffer(drag.size() * sizeof(float));
-  test::upload(*cc, drag, ddrag);
-  stages.enqueue_canopy_drag(ddrag, box, dvel, scratch);
-  const auto device = test::download(*cc, dvel, spec);
+  const auto device = drag_on_device(*cc, stages, spec, vel, drag);  // over `box`
   const auto expected = ref::canopy_drag(spec, vel, drag, 0.3);
   std::size_t changed = 0;
   for (int c = 0; c < 3; ++c) {
@@ -158,9 +155,47 @@ TEST_CASE("canopy drag: only the faces of the drag's box change, and they match 
     for (std::size_t f = 0; f < vel.component(c).size(); ++f)
       changed += device.component(c)[f] != vel.component(c)[f];
   }
-  // The block's 8 cells touch 3 x 12 faces, the corner cell 3 x 2 more (some of them are wall faces).
+  // The block's 8 cells touch 3 x 12 faces, the corner cell 3 x 2 more (some of them are wall faces), and
+  // the corner's north v face is the periodic seam's, which is the v face 0 below it too.
   CHECK(changed >= 30);
-  CHECK(changed <= 42);
+  CHECK(changed <= 43);
+}
+
+TEST_CASE(
+    "canopy drag: a periodic seam's face takes the cells on both sides, as face 0 and as face n, on the "
+    "device too",
+    "[canopy]") {
+  auto* cc = test::device_or_skip();
+  if (!cc) return;
+  // Periodic along x and y; drag 0.4 / m in the last column of cells along x only. Uniform wind (3, 0, 0)
+  // m/s, dt = 0.5 s: the seam's u faces (face 0 and face nx, the same face) see k = (0 + 0.4) / 2, as the
+  // column's west face does, so u = 3 / (1 + 0.5 * 0.2 * 3) on both sides of the column.
+  fluid::GridSpec spec = test::mixed_boundary_spec();
+  spec.boundary[FW_FACE_WEST] = B::periodic;
+  spec.boundary[FW_FACE_EAST] = B::periodic;
+  host::FluidStages stages(*cc, spec);
+  FwStep s{};
+  s.dt = 0.5f;
+  stages.set_step(s);
+  fluid::MacVelocity vel(spec);
+  std::fill(vel.u.begin(), vel.u.end(), 3.0f);
+  std::vector<float> drag(spec.cell_count(), 0.0f);
+  for (int k = 0; k < spec.nz; ++k)
+    for (int j = 0; j < spec.ny; ++j) drag[std::size_t(spec.nx - 1 + spec.nx * (j + spec.ny * k))] = 0.4f;
+  const auto device = drag_on_device(*cc, stages, spec, vel, drag);
+  const auto expected = ref::canopy_drag(spec, vel, drag, 0.5);
+  const double seam = 3.0 / (1.0 + 0.5 * 0.2 * 3.0);
+  const std::size_t ex = std::size_t(spec.nx) + 1;
+  for (int k = 0; k < spec.nz; ++k)
+    for (int j = 0; j < spec.ny; ++j) {
+      const std::size_t row = ex * (j + std::size_t(spec.ny) * k);
+      CHECK(expected.u[row] == Approx(seam).epsilon(1e-7));                // face 0
+      CHECK(expected.u[row + spec.nx] == Approx(seam).epsilon(1e-7));      // face n, the same face
+      CHECK(expected.u[row + spec.nx - 1] == Approx(seam).epsilon(1e-7));  // the column's west face
+      CHECK(device.u[row] == Approx(seam).epsilon(kDragTolerance));
+      CHECK(device.u[row + spec.nx] == device.u[row]);
+    }
+  CHECK(face_relative_error(device.u, expected.u) < kDragTolerance);
 }
 
 TEST_CASE("canopy drag: the reference is u / (1 + dt k |u|) in a uniform field", "[canopy]") {

@@ -33,6 +33,8 @@ void TkeSubgrid::update_eddy_viscosity(WindFields& fields, float cap, cl::Buffer
   stages.enqueue_tke_viscosity(cap, mask_, energy_, eddy_viscosity_);
   context_.seam.exchange_cells(eddy_viscosity_);
   stages.enqueue_tke_advect(mask_, fields.vel, energy_, advected_energy_);
+  // The update's diffusion reads the advected e of the cells beside each one: across a cut, the halo's.
+  context_.seam.exchange_cells(advected_energy_);
   stages.enqueue_tke_update(cap, mask_, fields.vel, eddy_viscosity_, drag_density, advected_energy_, energy_);
   context_.seam.exchange_cells(energy_);
 }
