@@ -61,6 +61,8 @@ class Decomposition {
 
   std::array<int, 2> blocks() const { return blocks_; }
   int ranks() const { return blocks_[0] * blocks_[1]; }
+  /// More than one block: the grid is split over ranks, and its stages exchange halos.
+  bool splits() const { return ranks() > 1; }
   int halo() const { return halo_; }
   /// Cells along x and y: the cuts lie on multiples of it (1 along an axis that is not cut).
   std::array<int, 2> alignment() const { return alignment_; }

@@ -17,20 +17,20 @@ struct Elements {
   double woody_area = 0.0;  // sum of D_e L_e, m^2
 };
 
-Elements elements_of(const Skeleton& world, const WindBasisSettings& settings) {
+Elements elements_of(const Skeleton& placed, const WindBasisSettings& settings) {
   ElementDrag drag;
   try {
-    drag = ElementDrag::of(world, settings);  // the same widths the wind basis integrates
+    drag = ElementDrag::of(placed, settings);  // the same widths the wind basis integrates
   } catch (const std::invalid_argument& e) {
     throw std::invalid_argument(fmt::format("CanopyDrag: {}", e.what()));
   }
-  if (world.size() < 2) throw std::invalid_argument("CanopyDrag: the skeleton has no elements");
+  if (placed.size() < 2) throw std::invalid_argument("CanopyDrag: the skeleton has no elements");
   Elements out;
-  const auto& pairs = world.elements();
+  const auto& pairs = placed.elements();
   out.elements.reserve(pairs.size());
   for (std::size_t e = 0; e < pairs.size(); ++e) {
-    const SkeletonNode& a = world.node(pairs[e].first);
-    const SkeletonNode& b = world.node(pairs[e].second);
+    const SkeletonNode& a = placed.node(pairs[e].first);
+    const SkeletonNode& b = placed.node(pairs[e].second);
     fluid::CanopyElement c;
     c.start = {a.position.x(), a.position.y(), a.position.z()};
     c.end = {b.position.x(), b.position.y(), b.position.z()};

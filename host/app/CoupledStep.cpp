@@ -35,21 +35,17 @@ trees::Forest rank_trees(const trees::Forest& forest, const WindGrid& wind, cons
   return forest.subset(mine);
 }
 
-// The plan's decomposition over `world`'s ranks; null alone. The stages copy what they keep of it.
-std::unique_ptr<WindBlocks> blocks_of(const SimulationPlan& plan, const Communicator* world) {
-  if (world == nullptr || world->size() == 1) return nullptr;
-  return std::make_unique<WindBlocks>(WindBlocks{world, plan.decomposition});
-}
-
+// A copy of `blocks` where they split the grid, for the stages to keep.
 std::optional<WindBlocks> over_ranks(const WindBlocks* blocks) {
-  if (blocks == nullptr || blocks->world->size() == 1) return std::nullopt;
-  return *blocks;
+  if (const WindBlocks* split = splitting(blocks)) return *split;
+  return std::nullopt;
 }
 
 }  // namespace
 
 CoupledStep::CoupledStep(ComputeContext& cc, const SimulationPlan& plan, const Communicator* world)
-    : CoupledStep(cc, plan.wind, plan.forest, plan.coupling, plan.inputs, blocks_of(plan, world).get()) {}
+    : CoupledStep(cc, plan.wind, plan.forest, plan.coupling, plan.inputs,
+                  blocks_over(world, plan.decomposition).get()) {}
 
 CoupledStep::CoupledStep(ComputeContext& cc, WindGridSetup wind, const trees::Forest& forest,
                          CouplingSettings coupling, TimeInputs inputs, const WindBlocks* blocks)

@@ -53,7 +53,7 @@ std::string holder_note() {
 void require_writable_output(const std::filesystem::path& directory, const Communicator& world) {
   std::string reason = world.rank() == 0 ? unwritable_reason(directory) : "";
   // Rank 0 decides; the others learn that it refused and say why in rank 0's words when they are rank 0's.
-  const bool refused = world.size() > 1 ? world.max(reason.empty() ? 0.0 : 1.0) > 0.0 : !reason.empty();
+  const bool refused = world.max(reason.empty() ? 0.0 : 1.0) > 0.0;
   if (!refused) return;
   if (reason.empty())
     reason = fmt::format("{}: the output folder cannot be written (rank 0 says why)", directory.string());
@@ -74,7 +74,7 @@ std::unique_ptr<base::FileLock> lock_output_folder(const std::filesystem::path& 
       holder = base::FileLock::holder(file);
     }
   }
-  if (world.size() > 1) held_elsewhere = world.max(held_elsewhere ? 1.0 : 0.0) > 0.0;
+  held_elsewhere = world.max(held_elsewhere ? 1.0 : 0.0) > 0.0;
   if (!held_elsewhere) return lock;
   throw std::invalid_argument(fmt::format(
       "{}: another run is writing into this output folder ({}; its lock is {}); wait for it to end, or "

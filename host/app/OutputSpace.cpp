@@ -38,7 +38,7 @@ void require_output_space(const SimulationPlan& plan, const std::filesystem::pat
       measured = error ? std::numeric_limits<double>::infinity() : double(space.available);
     }
   }
-  const double available = world.size() > 1 ? world.max(measured) : measured;
+  const double available = world.max(measured);
   const OutputSize size = predict_output_size(plan, end_time);
   // With every leaf shed: the bound, not the estimate; after a checkpoint, what the run adds to the folder.
   const std::uint64_t before = resumed_at > 0.0 ? predict_output_size(plan, resumed_at).most() : 0;

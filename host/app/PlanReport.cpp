@@ -169,7 +169,7 @@ void print_plan(const SimulationPlan& plan, std::ostream& out) {
   for (const auto& part : plan.memory.parts())
     parts += fmt::format("{}{} {}", parts.empty() ? "" : ", ", part.name, megabytes(part.bytes));
   out << fmt::format("estimated device memory: {} ({})\n", megabytes(plan.memory.total()), parts);
-  if (plan.decomposition.ranks() > 1) print_decomposition(plan, out);
+  if (plan.decomposition.splits()) print_decomposition(plan, out);
   const fluid::WindSettings& settings = plan.wind.settings;
   if (!(settings.cfl > 0.0)) {
     out << fmt::format("steps: {} (dt {} s to t = {} s)\n", long(std::ceil(plan.end_time / settings.dt)),

@@ -200,15 +200,14 @@ class RunLoop {
  private:
   static std::optional<OutputShare> output_share(const SimulationPlan& plan, CoupledStep& coupled,
                                                  const Communicator& world) {
-    if (world.size() == 1) return std::nullopt;
-    return OutputShare{world.rank(),           world.size(),       coupled.wind().local_spec(),
-                       coupled.wind().block(), plan.decomposition, &coupled.own_forest()};
+    if (!plan.decomposition.splits()) return std::nullopt;
+    return OutputShare{world.rank(),           plan.decomposition.ranks(), coupled.wind().local_spec(),
+                       coupled.wind().block(), plan.decomposition,         &coupled.own_forest()};
   }
 
   // Over ranks every rank copies back what any rank's writers need on a frame: the copies of the leaves and
   // the frame's gathering are collective. Collective.
   static io::FrameNeeds agreed_needs(io::FrameNeeds needs, const Communicator& world) {
-    if (world.size() == 1) return needs;
     for (bool* flag : {&needs.velocity, &needs.pressure, &needs.displacement, &needs.probe_samples,
                        &needs.leaves, &needs.leaf_counts, &needs.damage, &needs.utilisation})
       *flag = world.max(*flag ? 1.0 : 0.0) > 0.0;
@@ -236,7 +235,7 @@ class RunLoop {
   // A stop request (a signal on any rank) stops every rank at the same step: the signal's number, else 0.
   int stop_requested() const {
     const int local = options_.stop ? options_.stop->load() : 0;
-    return world_.size() > 1 ? int(world_.max(double(local))) : local;
+    return int(world_.max(double(local)));
   }
 
   bool checkpoints_on() const { return plan_.output.checkpoint_interval > 0.0; }
@@ -303,7 +302,7 @@ class RunLoop {
         earlier_segments_, reached_end};
     snapshot.progress.segments.push_back(segment(kStoppedSegment));
     snapshot.state_keys = state_keys_;
-    snapshot.ranks = world_.size();
+    snapshot.ranks = plan_.decomposition.ranks();
     snapshot.decomposition = plan_.decomposition.describe();
     snapshot.block = coupled_.wind().block();
     const trees::Forest& own = coupled_.own_forest();

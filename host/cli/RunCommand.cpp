@@ -149,15 +149,16 @@ int run_scenario(const RunCommandOptions& options, const GlobalOptions& global,
       global.profile);
   // A run the device cannot hold is refused before the folder exists (over ranks, each rank's block is
   // checked where the grid is allocated, also before the folder exists).
-  if (world.size() == 1) host::require_fits(plan.memory, cc.device(), scenario.file.string());
+  if (!plan.decomposition.splits()) host::require_fits(plan.memory, cc.device(), scenario.file.string());
   // One run at a time in a folder: held until this function returns, however it returns.
   const std::unique_ptr<base::FileLock> lock = host::lock_output_folder(directory, world);
   if (log) {
     *log << fmt::format("{}: {} x {} x {} cells, {} trees, device {} ({})\n", scenario.name,
                         plan.wind.spec.nx, plan.wind.spec.ny, plan.wind.spec.nz, plan.forest.instance_count(),
                         cc.device().device_name, cc.device().platform_name);
-    if (world.size() > 1)
-      *log << fmt::format("{} ranks: {}, a device each\n", world.size(), plan.decomposition.describe());
+    if (plan.decomposition.splits())
+      *log << fmt::format("{} ranks: {}, a device each\n", plan.decomposition.ranks(),
+                          plan.decomposition.describe());
     if (from) *log << fmt::format("resuming {}\n", resume_summary(*from));
   }
   host::Simulation simulation(cc, std::move(plan), directory, &world);

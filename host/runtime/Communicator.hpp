@@ -58,6 +58,11 @@ class Communicator {
   long long min(long long local) const;
   /// Returns once every rank has called it (benchmarks start their clocks together). Collective.
   void barrier() const;
+  /// An empty list for each rank, by rank: what exchange() sends, to fill.
+  template <typename T>
+  std::vector<std::vector<T>> lists() const {
+    return std::vector<std::vector<T>>(static_cast<std::size_t>(size_));
+  }
   /// Sends to_each[r] to rank r (to_each has size() lists; this rank's own list comes back to it) and
   /// returns what each rank sent this one, by rank. Collective.
   template <typename T>
@@ -65,7 +70,7 @@ class Communicator {
   /// Every rank's `mine` on rank 0, by rank; on the other ranks empty lists. Collective (an exchange).
   template <typename T>
   std::vector<std::vector<T>> gather(const std::vector<T>& mine) const {
-    std::vector<std::vector<T>> to_each(static_cast<std::size_t>(size_));
+    std::vector<std::vector<T>> to_each = lists<T>();
     to_each[0] = mine;
     return exchange(to_each);
   }

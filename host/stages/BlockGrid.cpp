@@ -57,6 +57,16 @@ fluid::GridSpec block_spec(const fluid::GridSpec& spec, const fluid::Decompositi
   return local;
 }
 
+std::unique_ptr<WindBlocks> blocks_over(const Communicator* world,
+                                        const fluid::Decomposition& decomposition) {
+  if (world == nullptr || world->size() == 1) return nullptr;
+  return std::make_unique<WindBlocks>(WindBlocks{world, decomposition});
+}
+
+const WindBlocks* splitting(const WindBlocks* blocks) {
+  return blocks != nullptr && blocks->world != nullptr && blocks->decomposition.splits() ? blocks : nullptr;
+}
+
 BlockShare BlockShare::of(const WindBlocks* blocks) {
   if (blocks == nullptr || blocks->world == nullptr) return {};
   return {&blocks->decomposition, blocks->world->rank()};

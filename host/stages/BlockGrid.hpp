@@ -13,6 +13,7 @@
 
 #include <array>
 #include <cstddef>
+#include <memory>
 #include <vector>
 
 #include "fluid/Decomposition.hpp"
@@ -28,6 +29,13 @@ struct WindBlocks {
   const Communicator* world = nullptr;
   fluid::Decomposition decomposition;
 };
+
+/// The ranks of `world` over `decomposition`, or null where they are one: a process alone runs its stages
+/// as a whole grid. The one place outside the runtime that asks how many ranks there are
+/// (tests/cli/rank_queries.sh).
+std::unique_ptr<WindBlocks> blocks_over(const Communicator* world, const fluid::Decomposition& decomposition);
+/// `blocks` where they split the grid over ranks, else null (no blocks, or a single rank's).
+const WindBlocks* splitting(const WindBlocks* blocks);
 
 /// The layout of a rank's array: its block's cells plus the halo, x fastest, then y, then z; or the faces
 /// of a velocity component across one axis (staggered), one more along that axis.
@@ -91,7 +99,7 @@ struct BlockShare {
 
   /// This process's share under `blocks` (null: one process).
   static BlockShare of(const WindBlocks* blocks);
-  bool splits() const { return decomposition != nullptr && decomposition->ranks() > 1; }
+  bool splits() const { return decomposition != nullptr && decomposition->splits(); }
   /// The rank's cells with the halo, and the grid they make.
   BlockArray block(const fluid::GridSpec& whole) const;
   fluid::GridSpec local(const fluid::GridSpec& whole) const;

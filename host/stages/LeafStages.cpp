@@ -115,7 +115,7 @@ std::size_t LeafStages::estimate_device_bytes(const trees::Forest& forest,
 LeafStages::LeafStages(ComputeContext& cc, const fluid::GridSpec& spec, const trees::Forest& forest,
                        const std::vector<trees::SpeciesLeaves>& species_leaves, const WindBlocks* blocks)
     : cc_(cc),
-      blocks_(blocks != nullptr && blocks->world->size() > 1 ? blocks : nullptr),
+      blocks_(splitting(blocks)),
       world_(blocks_ != nullptr ? blocks_->world : &Communicator::alone()),
       spec_(spec) {
   try {
@@ -340,7 +340,7 @@ void LeafStages::move_leaves() {
                     "moved faster than the wind's Courant number, which sizes the halo, allows for",
                     world.rank()));
   const int leaving = c[FW_LEAF_COUNT_LEAVING];
-  std::vector<std::vector<MovingLeaf>> to_each(std::size_t(world.size()));
+  std::vector<std::vector<MovingLeaf>> to_each = world.lists<MovingLeaf>();
   if (leaving > 0) {
     const std::int32_t reset = 0;
     cc_.queue().enqueueWriteBuffer(counters_, CL_TRUE, FW_LEAF_COUNT_LEAVING * sizeof(std::int32_t),

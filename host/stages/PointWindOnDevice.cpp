@@ -17,17 +17,17 @@ PointWindOnDevice::PointWindOnDevice(ComputeContext& cc, const fluid::GridSpec& 
   const cl::Program program = cc_.build("probe_sample.cl");
   sample_ = Kernel(program, "probe_sample");
   place_ = Kernel(program, "probe_place");
-  if (blocks != nullptr && blocks->world->size() > 1) share(spec, *blocks);
+  if (const WindBlocks* split = splitting(blocks)) share(spec, *split);
 }
 
 void PointWindOnDevice::share(const fluid::GridSpec& spec, const WindBlocks& blocks) {
-  std::vector<float> world(3 * std::size_t(count_));
+  std::vector<float> points(3 * std::size_t(count_));
   if (count_ > 0)
-    cc_.queue().enqueueReadBuffer(positions_, CL_TRUE, 0, world.size() * sizeof(float), world.data());
+    cc_.queue().enqueueReadBuffer(positions_, CL_TRUE, 0, points.size() * sizeof(float), points.data());
   std::vector<int> slots;
   std::vector<float> needed;
   for (int n = 0; n < count_; ++n) {
-    const float* point = &world[3 * std::size_t(n)];
+    const float* point = &points[3 * std::size_t(n)];
     if (PointWindAcrossRanks::holder(spec, blocks.decomposition, point) == blocks.world->rank()) continue;
     slots.push_back(n);
     needed.insert(needed.end(), point, point + 3);

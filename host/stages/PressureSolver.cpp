@@ -62,7 +62,7 @@ int split_level_count(const fluid::Decomposition& d, int levels) {
 }
 
 bool spans_ranks(const PressureBlocks* blocks) {
-  return blocks != nullptr && blocks->world != nullptr && blocks->world->size() > 1;
+  return blocks != nullptr && blocks->world != nullptr && blocks->decomposition.splits();
 }
 
 // Level l's array on a rank: its block with the halo on a split level, else the whole level.
@@ -136,7 +136,7 @@ PressureSolver::PressureSolver(ComputeContext& cc, const fluid::GridSpec& spec,
     d.scratch = cc_.buffer(d.cells * sizeof(float));
     levels_.push_back(std::move(d));
   }
-  if (split_levels_ < int(host_levels_.size()) && world_->size() > 1) {
+  if (split_levels_ < int(host_levels_.size()) && decomposition_.splits()) {
     gathered_dims_ = level_dims(host_levels_[split_levels_ - 1], spec_);
     gathered_ = cc_.buffer(host_levels_[split_levels_ - 1].cell_count() * sizeof(float));
   }
@@ -325,7 +325,7 @@ void PressureSolver::gather_residual(int l) {
   const DeviceLevel& F = levels_[l];
   const fluid::PressureLevel& whole = host_levels_[l];
   const int scale = 1 << l;
-  const auto ranks = static_cast<std::size_t>(world_->size());
+  const auto ranks = static_cast<std::size_t>(decomposition_.ranks());  // a block each
   // Every rank's own cells at level l, in global indices: first x, first y, count x, count y.
   std::vector<std::array<int, 4>> boxes(ranks);
   std::vector<int> counts(ranks), offsets(ranks);

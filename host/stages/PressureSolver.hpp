@@ -149,7 +149,7 @@ class PressureSolver {
   /// Fills the halo of `field` on level l (nothing on a whole level or in one process).
   void exchange(int l, cl::Buffer& field);
   /// The levels held as blocks over ranks (the rest are whole on every rank); all of them in one process.
-  bool split(int l) const { return l < split_levels_ && world_->size() > 1; }
+  bool split(int l) const { return l < split_levels_ && decomposition_.splits(); }
   /// Level fine_level's residual (in its scratch) gathered from every rank's block into gathered_, whole.
   void gather_residual(int fine_level);
 

@@ -10,14 +10,14 @@ std::vector<TreesFrame::Tree> forest_at_rest(const trees::Forest& forest) {
   std::vector<TreesFrame::Tree> rest;
   for (int k = 0; k < forest.instance_count(); ++k) {
     const trees::TreeInstance& instance = forest.instances()[std::size_t(k)];
-    const trees::Skeleton world =
+    const trees::Skeleton placed =
         forest.species_of(k).skeleton().transformed(forest.rotation(k), instance.position, instance.scale);
     TreesFrame::Tree tree;
     tree.tree_id = forest.id(k);
     tree.species = instance.species;
-    tree.rest.resize(world.size(), 3);
-    for (int n = 0; n < world.size(); ++n) {
-      const trees::SkeletonNode& node = world.node(n);
+    tree.rest.resize(placed.size(), 3);
+    for (int n = 0; n < placed.size(); ++n) {
+      const trees::SkeletonNode& node = placed.node(n);
       tree.rest.row(n) = node.position.transpose();
       tree.radius.push_back(node.radius);
       tree.parent.push_back(node.parent);
