@@ -8,15 +8,12 @@
 //       read.own ? read.parts.front() : fw::host::redistribute_checkpoint(read.parts, coupled, plan);
 //   coupled.restore_state(mine.stages);
 //
-// The wind's arrays (velocity, pressure solution, eddy viscosity, subgrid energy) are put together over the
-// whole domain from each part's own cells (a halo is a copy of its neighbour's) and cut to this rank's block
-// with its halo, as the run cuts the solids (block_of). A tree's modal state and travelled distance go to the
-// rank that holds its root. A leaf's flutter angle and rate stay with its tree. Where a leaf is (its slot:
-// state, position, velocity, normal, flight and drag) goes to its tree's rank while it is attached, has left
-// the domain or lies in that rank's own columns; a flying or landed leaf elsewhere goes to the rank whose own
-// columns hold it, after that rank's own leaves in (tree, leaf) order, as leaves that arrive in a step are,
-// and its tree's slot is marked moved. The leaf counters' totals go to rank 0, whose counts are summed
-// anyway. Each rank reads every part: for a resume, this rank holds the whole state once.
+// The redistribution hands each stage every part's saved state, with the part's block and trees
+// (SavedShare), and the stage takes this rank's share: the wind grid the arrays its parts declare
+// (WindGrid::share_of), put together over the domain from each part's own cells and cut to this rank's block
+// with its halo; the trees each tree's slices (ForestStages::share_of), for the trees whose roots this rank
+// holds; the leaves each leaf's slot and flutter (LeafStages::share_of). Each rank reads every part: for a
+// resume, this rank holds the whole state once.
 #pragma once
 
 #include <vector>

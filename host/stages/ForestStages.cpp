@@ -7,7 +7,9 @@
 #include <fmt/format.h>
 
 #include <cmath>
+#include <map>
 #include <stdexcept>
+#include <string>
 
 namespace fw::host {
 namespace {
@@ -305,6 +307,65 @@ std::vector<double> ForestStages::download_travelled() {
   for (std::size_t k = 0; k < metres.size(); ++k)
     metres[k] = (double(travel[kTravelFloats * k]) + double(travel[kTravelFloats * k + 1])) * series_spacing_;
   return metres;
+}
+
+namespace {
+
+// Per tree (Forest::id) of every part, its slice of a per-instance array of `per_tree(id)` floats.
+template <typename PerTree>
+std::map<int, std::vector<float>> tree_slices(const std::vector<SavedShare>& parts, const std::string& name,
+                                              PerTree per_tree) {
+  std::map<int, std::vector<float>> slices;
+  for (const SavedShare& part : parts) {
+    std::size_t count = 0;
+    for (const int id : part.tree_ids) count += per_tree(id);
+    const std::vector<float> values = saved_values<float>(part.state->bytes("trees", name), count, name);
+    std::size_t at = 0;
+    for (const int id : part.tree_ids) {
+      slices[id].assign(values.begin() + long(at), values.begin() + long(at + per_tree(id)));
+      at += per_tree(id);
+    }
+  }
+  return slices;
+}
+
+}  // namespace
+
+StageState ForestStages::share_of(const std::vector<SavedShare>& parts, const trees::Forest& forest,
+                                  const std::vector<trees::SpeciesDynamics>& dynamics,
+                                  const trees::Forest& own) {
+  if (parts.empty()) throw std::invalid_argument("checkpoint: no parts of the trees to take a share of");
+  const StageState& first = *parts.front().state;
+  StageState mine;
+  const auto take = [&](const std::string& name, auto per_tree) {
+    const std::map<int, std::vector<float>> slices = tree_slices(parts, name, per_tree);
+    std::vector<float> values;
+    for (int k = 0; k < own.instance_count(); ++k) {
+      const auto at = slices.find(own.id(k));
+      if (at == slices.end())
+        throw std::invalid_argument(
+            fmt::format("checkpoint: no part holds tree {}: it is another run's", own.id(k)));
+      values.insert(values.end(), at->second.begin(), at->second.end());
+    }
+    mine.buffers[name] = saved_bytes(values);
+  };
+  const auto modal = [&](int id) {
+    return 2 * std::size_t(forest.mode_offset(id + 1) - forest.mode_offset(id));
+  };
+  take(saved::kModalState, modal);
+  if (first.buffers.count(saved::kTravelled) > 0) take(saved::kTravelled, [](int) { return kTravelFloats; });
+  // Storm damage: each tree's record, moved as its bytes (the ints among them too).
+  if (first.buffers.count(saved::kDamage) > 0)
+    take(saved::kDamage, [](int) { return sizeof(FwTreeDamage) / sizeof(float); });
+  if (first.buffers.count(saved::kJointState) > 0) {
+    // An element model's tree: its joints, one entry a node; a modal tree has none.
+    take(saved::kJointState, [&](int id) {
+      return FW_JOINT_FLOATS * std::size_t(BranchStages::entries_of(forest, dynamics, id));
+    });
+    // The springs' clock is the run's time, the same on every rank.
+    mine.numbers[saved::kBranchClock] = first.number("trees", saved::kBranchClock, 1);
+  }
+  return mine;
 }
 
 }  // namespace fw::host

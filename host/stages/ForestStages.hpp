@@ -36,6 +36,7 @@
 #include "host/stages/DamageStages.hpp"
 #include "host/stages/FluidStages.hpp"
 #include "host/stages/PointWindOnDevice.hpp"
+#include "host/stages/SavedShare.hpp"
 #include "host/stages/StageState.hpp"
 #include "kernels/shared_types.h"
 #include "trees/Forest.hpp"
@@ -143,6 +144,12 @@ class ForestStages {
   StageState save_state();
   /// Sets what save_state() saved from the same forest and settings; std::invalid_argument otherwise.
   void restore_state(const StageState& state);
+  /// This rank's state from a checkpoint saved over other blocks (`parts`: every saved rank's trees stage
+  /// and the trees it held): each tree's slices of the saved arrays, for the trees of `own` (this rank's) in
+  /// its order. `forest` and `dynamics`: the whole forest and its species' models, which size the slices.
+  /// What restore_state then reads; throws std::invalid_argument naming a tree no part holds.
+  static StageState share_of(const std::vector<SavedShare>& parts, const trees::Forest& forest,
+                             const std::vector<trees::SpeciesDynamics>& dynamics, const trees::Forest& own);
 
   /// Per-tree stochastic forcing of the unresolved turbulence (trees/UnresolvedTurbulence.hpp), off by
   /// default (and then nothing of it runs: the results are bit for bit those without it). Uploads the series

@@ -24,6 +24,7 @@
 
 #include <array>
 #include <cstdint>
+#include <functional>
 #include <limits>
 #include <optional>
 #include <unordered_map>
@@ -34,6 +35,7 @@
 #include "host/stages/BlockGrid.hpp"
 #include "host/stages/FluidStages.hpp"
 #include "host/stages/PointWindOnDevice.hpp"
+#include "host/stages/SavedShare.hpp"
 #include "host/stages/StageState.hpp"
 #include "kernels/shared_types.h"
 #include "trees/Forest.hpp"
@@ -98,6 +100,18 @@ class LeafStages {
   StageState save_state();
   /// Sets what save_state() saved on the same rank of the same forest; std::invalid_argument otherwise.
   void restore_state(const StageState& state);
+  /// This rank's state from a checkpoint saved over other blocks (`parts`: every saved rank's leaves stage
+  /// and the trees it held; host/stages/LeafShare.cpp). A leaf's flutter stays with its tree, `own` (this
+  /// rank's trees, of `tree_count` in the forest). Where it is (its slot) goes to its tree's rank while
+  /// attached or gone from the domain, or while it lies in that rank's own columns of `block` (this rank's
+  /// block of `spec`); a flying or landed leaf elsewhere goes to the rank whose own columns hold it, after
+  /// that rank's own leaves in (tree, leaf) order, as leaves that arrive in a step are, and its tree's slot
+  /// is marked moved. `leaves_of(id)`: tree id's leaves. `takes_counters`: this rank takes the counters'
+  /// totals (one rank does: the counts are summed over ranks). Throws std::invalid_argument naming a leaf no
+  /// part holds.
+  static StageState share_of(const std::vector<SavedShare>& parts, const fluid::GridSpec& spec,
+                             const BlockArray& block, const trees::Forest& own, int tree_count,
+                             const std::function<std::size_t(int)>& leaves_of, bool takes_counters);
   /// Blocks: shed, landed and exited from the device counters, summed over ranks (collective); flying and
   /// attached follow.
   trees::LeafCounts counts();

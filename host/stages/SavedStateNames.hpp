@@ -1,6 +1,6 @@
 // The names under which the stages save what they carry from step to step (StageState), and the stages'
-// own names in a checkpoint: one list for the stages that save and restore it and for the redistribution of
-// a checkpoint over other ranks (host/app/CheckpointRedistribution), which takes the arrays apart.
+// own names in a checkpoint: one list for the stages that save, restore and take their share of it over
+// other ranks (WindGrid::share_of, ForestStages::share_of, LeafStages::share_of).
 //
 //   state.save(cc, fw::host::saved::kModalState, state_);      // ForestStages::save_state
 #pragma once
@@ -12,12 +12,11 @@ inline constexpr const char* kWindStage = "wind";
 inline constexpr const char* kTreesStage = "trees";
 inline constexpr const char* kLeavesStage = "leaves";
 
-// WindGrid: the velocity's face arrays, one a component; cell arrays.
+// WindGrid: the velocity's face arrays, one a component; its parts' cell arrays (WindPart::saved_arrays).
 inline constexpr const char* kVelocity[] = {"u", "v", "w"};
 inline constexpr const char* kPressureSolution = "phi";
 inline constexpr const char* kEddyViscosity = "eddy_viscosity";
 inline constexpr const char* kSubgridEnergy = "subgrid_energy";
-inline constexpr const char* kWindCellArrays[] = {kPressureSolution, kEddyViscosity, kSubgridEnergy};
 
 // ForestStages: 2 floats (q, qdot) an instance-mode; ForestStages::kTravelFloats an instance.
 inline constexpr const char* kModalState = "modal_state";

@@ -22,6 +22,33 @@ WindGridSetup validated(ComputeContext& cc, WindGridSetup setup, const WindBlock
   return setup;
 }
 
+// The whole domain's `array` from every part's own cells or faces: a halo is a copy of its neighbour's, and
+// along a staggered axis the face after a block's last cell is the next block's (or the domain's last).
+std::vector<float> whole_grid_array(const std::vector<SavedShare>& parts, const fluid::GridSpec& spec,
+                                    const GridArray& array) {
+  const int c = array.component;
+  const int nx = spec.nx + (c == 0 ? 1 : 0), ny = spec.ny + (c == 1 ? 1 : 0), nz = spec.nz + (c == 2 ? 1 : 0);
+  std::vector<float> whole(std::size_t(nx) * std::size_t(ny) * std::size_t(nz), 0.0f);
+  for (const SavedShare& part : parts) {
+    const BlockArray& cells = part.block;
+    const BlockArray a = c >= 0 ? face_array(cells, c) : cells;
+    const std::vector<float> values =
+        saved_values<float>(part.state->bytes(kWindGridState, array.name), a.cells(), array.name);
+    OwnColumns own = own_columns(cells);
+    if (c == 0 || c == 1) own.hi[std::size_t(c)] += 1;
+    const int ex = a.values(0), ey = a.values(1);
+    for (int k = 0; k < nz; ++k)
+      for (int j = 0; j < ey; ++j)
+        for (int i = 0; i < ex; ++i) {
+          const int gi = cells.origin[0] + i, gj = cells.origin[1] + j;
+          if (!own.holds(gi, gj)) continue;
+          whole[std::size_t(gi) + std::size_t(nx) * (std::size_t(gj) + std::size_t(ny) * k)] =
+              values[std::size_t(i) + std::size_t(ex) * (std::size_t(j) + std::size_t(ey) * k)];
+        }
+  }
+  return whole;
+}
+
 }  // namespace
 
 void WindGrid::validate(const WindGridSetup& setup) {
@@ -263,6 +290,27 @@ void WindGrid::restore_state(const StageState& state) {
   s.dt = static_cast<float>(start[1]);
   stages_.set_step(s);
   boundaries_.upload_step_inflow();
+}
+
+StageState WindGrid::share_of(const std::vector<SavedShare>& parts) const {
+  if (parts.empty()) throw std::invalid_argument("checkpoint: no parts of the wind grid to take a share of");
+  const StageState& first = *parts.front().state;
+  std::vector<GridArray> arrays;
+  for (int c = 0; c < 3; ++c) arrays.push_back({saved::kVelocity[c], c});
+  for (const WindPart* part : this->parts())
+    for (const GridArray& array : part->saved_arrays()) arrays.push_back(array);
+  StageState mine;
+  mine.numbers = first.numbers;
+  const fluid::GridSpec& spec = setup_.spec;
+  const BlockArray& cells = seam_.block();
+  for (const GridArray& array : arrays) {
+    if (first.buffers.count(array.name) == 0) continue;  // a subgrid energy not yet started
+    const int c = array.component;
+    mine.buffers[array.name] =
+        saved_bytes(block_of(whole_grid_array(parts, spec, array), spec.nx + (c == 0), spec.ny + (c == 1),
+                             c >= 0 ? face_array(cells, c) : cells));
+  }
+  return mine;
 }
 
 fluid::MacVelocity WindGrid::download_velocity() {

@@ -158,6 +158,11 @@ class WindGrid {
   /// Sets what save_state() saved from a grid of the same setup; throws std::invalid_argument naming what
   /// does not fit.
   void restore_state(const StageState& state);
+  /// This rank's state from a checkpoint saved over other blocks (`parts`: every saved rank's wind stage,
+  /// block and trees, SavedShare): the velocity and each part's saved arrays (WindPart::saved_arrays) put
+  /// together over the domain from every block's own values and cut to this rank's block with its halo; the
+  /// numbers as saved (the same on every rank). What restore_state then reads.
+  StageState share_of(const std::vector<SavedShare>& parts) const;
 
   /// Canopy drag F = -k |u| u from the drag density k = sum Cd a (1/m, one float a cell, x-fastest; see
   /// fluid/CanopyField), applied implicitly right after the body forces (stage "canopy"). Uploaded once; an

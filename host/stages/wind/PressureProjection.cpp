@@ -49,4 +49,8 @@ void PressureProjection::restore_state(const StageState& state) {
   state.restore(context_.cc, kWindGridState, saved::kPressureSolution, solver_.solution());
 }
 
+std::vector<GridArray> PressureProjection::saved_arrays() const {
+  return {{saved::kPressureSolution, -1}};
+}
+
 }  // namespace fw::host

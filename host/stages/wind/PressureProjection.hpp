@@ -38,6 +38,7 @@ class PressureProjection : public WindPart {
   /// The last solution, which warm-starts the next solve.
   void save_state(StageState& state) override;
   void restore_state(const StageState& state) override;
+  std::vector<GridArray> saved_arrays() const override;
 
  private:
   WindPartContext context_;

@@ -59,6 +59,10 @@ void SubgridModel::restore_state(const StageState& state) {
   state.restore(context_.cc, kWindGridState, saved::kEddyViscosity, eddy_viscosity_);
 }
 
+std::vector<GridArray> SubgridModel::saved_arrays() const {
+  return {{saved::kEddyViscosity, -1}};
+}
+
 namespace {
 
 enum class Chosen { none, smagorinsky, tke };

@@ -34,6 +34,7 @@ class SubgridModel : public WindPart {
   std::vector<HaloNeed> halo_needs() const override { return {{HaloField::faces, 1}, {HaloField::cells, 1}}; }
   void save_state(StageState& state) override;
   void restore_state(const StageState& state) override;
+  std::vector<GridArray> saved_arrays() const override;
 
   /// Bytes of the one field every model keeps: nu_t.
   static std::size_t eddy_viscosity_bytes(const fluid::GridSpec& grid);

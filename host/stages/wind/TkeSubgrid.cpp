@@ -70,4 +70,10 @@ void TkeSubgrid::restore_state(const StageState& state) {
   if (energy_set_) state.restore(context_.cc, kWindGridState, saved::kSubgridEnergy, energy_);
 }
 
+std::vector<GridArray> TkeSubgrid::saved_arrays() const {
+  std::vector<GridArray> arrays = SubgridModel::saved_arrays();
+  arrays.push_back({saved::kSubgridEnergy, -1});
+  return arrays;
+}
+
 }  // namespace fw::host

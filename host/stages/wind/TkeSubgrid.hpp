@@ -25,6 +25,7 @@ class TkeSubgrid : public SubgridModel {
   void restart() override { energy_set_ = false; }
   void save_state(StageState& state) override;
   void restore_state(const StageState& state) override;
+  std::vector<GridArray> saved_arrays() const override;
 
  private:
   void update_eddy_viscosity(WindFields& fields, float cap, cl::Buffer* drag_density) override;

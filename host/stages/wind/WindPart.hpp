@@ -11,7 +11,8 @@
 //   allocated (the planner and the device-fit check add the parts up);
 // - declares the fields it exchanges with the neighbouring ranks, and how wide (RankSeam refuses an exchange
 //   nobody declared);
-// - saves what it carries from step to step into the grid's StageState under its own names, and restores it;
+// - saves what it carries from step to step into the grid's StageState under its own names, restores it, and
+//   names the arrays over the grid among them, which a resume over another split redistributes;
 // - names the stage its work is timed under.
 // A part never asks which kind another part is: what it needs of another comes in as a buffer or a setting.
 #pragma once
@@ -22,6 +23,7 @@
 #include "host/runtime/ComputeContext.hpp"
 #include "host/stages/FluidStages.hpp"
 #include "host/stages/RankSeam.hpp"
+#include "host/stages/SavedShare.hpp"
 #include "host/stages/StageState.hpp"
 #include "host/stages/wind/StageClock.hpp"
 #include "host/stages/wind/WindGridSetup.hpp"
@@ -60,6 +62,10 @@ class WindPart {
   virtual void save_state(StageState& state) { (void)state; }
   /// Sets what save_state saved; throws std::invalid_argument naming what does not fit.
   virtual void restore_state(const StageState& state) { (void)state; }
+  /// The arrays over the grid that save_state writes: a checkpoint saved over other blocks puts each
+  /// together from every block's own values and cuts it to this rank's (WindGrid::share_of). None by
+  /// default; numbers (a time, an offset, an integral) are the same on every rank and carry over as saved.
+  virtual std::vector<GridArray> saved_arrays() const { return {}; }
 };
 
 }  // namespace fw::host

@@ -166,6 +166,30 @@ TEST_CASE("WindGrid: the device memory estimate is what the grid allocates, for 
   }
 }
 
+TEST_CASE(
+    "WindGrid: its share of its own checkpoint is the checkpoint, so every array a part saves is one it "
+    "declares") {
+  auto* cc = test::device_or_skip();
+  if (!cc) return;
+  // In one process the share of the one part is the whole grid: a resume over another split moves each
+  // array a part declares (WindPart::saved_arrays), so an array saved but not declared would go missing here.
+  for (const fluid::SubgridModel subgrid : {fluid::SubgridModel::smagorinsky, fluid::SubgridModel::tke}) {
+    INFO("subgrid " << fluid::to_string(subgrid));
+    host::WindGrid wind(*cc, full_setup(fluid::AdvectionScheme::upwind5, subgrid));
+    wind.initialise_ambient();
+    wind.step();
+    const host::StageState saved = wind.save_state();
+    const host::StageState share = wind.share_of({host::SavedShare{&saved, wind.block(), {}}});
+    CHECK(share.numbers == saved.numbers);
+    REQUIRE(share.buffers.size() == saved.buffers.size());
+    for (const auto& [name, bytes] : saved.buffers) {
+      INFO("array " << name);
+      REQUIRE(share.buffers.count(name) == 1);
+      CHECK(share.buffers.at(name) == bytes);
+    }
+  }
+}
+
 TEST_CASE("advection: each scheme's method answers for its class, picked once by the setting") {
   using fluid::AdvectionScheme;
   const host::AdvectionMethod& semi = host::advection_method(AdvectionScheme::semi_lagrangian);
