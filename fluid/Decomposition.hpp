@@ -19,7 +19,7 @@
 //   - a periodic axis would get a block of an odd cell count (red-black colouring and the pressure
 //     hierarchy pair cells across the periodic wrap).
 // Without blocks asked for, it takes the valid split that exchanges the fewest halo cells (ties: more
-// blocks along x), and throws only when no split of the ranks is valid.
+// blocks along y, whose halos are whole rows), and throws only when no split of the ranks is valid.
 #pragma once
 
 #include <array>

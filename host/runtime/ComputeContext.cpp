@@ -222,22 +222,27 @@ cl::NDRange Kernel::group_shape(const ComputeContext& cc, cl_uint dims) {
 }
 
 void Kernel::enqueue(ComputeContext& cc, const cl::NDRange& items) {
+  enqueue_from(cc, cl::NullRange, items);
+}
+
+void Kernel::enqueue_from(ComputeContext& cc, const cl::NDRange& first, const cl::NDRange& items) {
   const cl::NDRange local = group_shape(cc, items.dimensions());
   std::array<std::size_t, 3> global{};
   for (cl_uint a = 0; a < items.dimensions(); ++a) global[a] = round_up(items[a], local[a]);
-  if (items.dimensions() == 1) return enqueue(cc, cl::NDRange(global[0]), local);
-  if (items.dimensions() == 2) return enqueue(cc, cl::NDRange(global[0], global[1]), local);
-  enqueue(cc, cl::NDRange(global[0], global[1], global[2]), local);
+  if (items.dimensions() == 1) return enqueue(cc, cl::NDRange(global[0]), local, first);
+  if (items.dimensions() == 2) return enqueue(cc, cl::NDRange(global[0], global[1]), local, first);
+  enqueue(cc, cl::NDRange(global[0], global[1], global[2]), local, first);
 }
 
-void Kernel::enqueue(ComputeContext& cc, const cl::NDRange& global, const cl::NDRange& local) {
+void Kernel::enqueue(ComputeContext& cc, const cl::NDRange& global, const cl::NDRange& local,
+                     const cl::NDRange& first) {
   try {
     if (cc.profiling()) {
       cl::Event event;
-      cc.queue().enqueueNDRangeKernel(kernel_, cl::NullRange, global, local, nullptr, &event);
+      cc.queue().enqueueNDRangeKernel(kernel_, first, global, local, nullptr, &event);
       cc.profiler()->record(name_, event);
     } else {
-      cc.queue().enqueueNDRangeKernel(kernel_, cl::NullRange, global, local);
+      cc.queue().enqueueNDRangeKernel(kernel_, first, global, local);
     }
   } catch (const cl::Error& e) {
     throw ClError(fmt::format("enqueue kernel {}", name_), e.err());

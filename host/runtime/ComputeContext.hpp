@@ -206,9 +206,13 @@ class Kernel {
   /// Launches the kernel over `items`, rounded up to whole work-groups of its group_shape(); the kernel
   /// leaves the items past `items` idle.
   void enqueue(ComputeContext& cc, const cl::NDRange& items);
+  /// The same over `items` starting at item `first` (OpenCL's global offset: get_global_id counts from it),
+  /// so that a kernel skips the rows before it.
+  void enqueue_from(ComputeContext& cc, const cl::NDRange& first, const cl::NDRange& items);
   /// Launches it with the work-group `local` (a reduction's, a one-group kernel's); `global` must be a whole
   /// number of them.
-  void enqueue(ComputeContext& cc, const cl::NDRange& global, const cl::NDRange& local);
+  void enqueue(ComputeContext& cc, const cl::NDRange& global, const cl::NDRange& local,
+               const cl::NDRange& first = cl::NullRange);
 
   /// This kernel's work-group for a range of `dims` dimensions on cc's device: work_group_shape of its items,
   /// its preferred multiple and its largest group, queried on the first call and kept.

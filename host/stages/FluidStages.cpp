@@ -106,7 +106,7 @@ std::size_t FluidStages::wall_faces_bytes(const WallFaces& list) {
 }
 
 FluidStages::FluidStages(ComputeContext& cc, const fluid::GridSpec& spec)
-    : cc_(cc), spec_(spec), grid_(spec.to_device()) {
+    : cc_(cc), spec_(spec), grid_(spec.to_device()), own_rows_{0, spec.ny} {
   const std::size_t most = partial_bound(spec_);
   partial_host_.resize(most);
   partial_ = cc_.buffer(most * sizeof(float));
@@ -215,8 +215,21 @@ void FluidStages::enqueue_pad(DeviceVelocity& vel, DeviceVelocity& padded) {
   for (int c = 0; c < 3; ++c) enqueue_pad(c, vel.component(c), padded.component(c));
 }
 
+void FluidStages::set_own_rows(int first, int count) {
+  if (first < 0 || count < 1 || first + count > spec_.ny)
+    throw std::invalid_argument(fmt::format("FluidStages: own rows {} .. {} outside the grid's {}", first,
+                                            first + count - 1, spec_.ny));
+  own_rows_ = {first, count};
+}
+
 void FluidStages::enqueue_advect(int c, float dt, DeviceVelocity& pv, cl::Buffer& pq, cl::Buffer& out) {
-  advect_[c].set_args(grid_, dt, pv.u, pv.v, pv.w, pq, out).enqueue(cc_, advect_rows(c));
+  // The own rows only: their halo rows, a sixth of a block cut across y 3 cells deep each side, would be
+  // traced only to be replaced by the neighbours'. The v faces between blocks are computed by both.
+  cl::NDRange rows = advect_rows(c);
+  const std::size_t count = std::size_t(own_rows_[1] + (c == 1));
+  advect_[c]
+      .set_args(grid_, dt, pv.u, pv.v, pv.w, pq, out)
+      .enqueue_from(cc_, cl::NDRange(0, std::size_t(own_rows_[0]), 0), cl::NDRange(rows[0], count, rows[2]));
 }
 
 void FluidStages::enqueue_maccormack_correct(int c, DeviceVelocity& pv, cl::Buffer& pq, cl::Buffer& forward,

@@ -81,6 +81,10 @@ class FluidStages {
   cl::NDRange component_rows(int c) const;
   std::size_t padded_count(int c) const;
   cl::NDRange advect_rows(int c) const;
+  /// The rows along y whose values outlive a stage that the seam exchanges right after it: a block's own
+  /// rows, `count` of them from `first` (its halo rows come from the neighbours). All of them by default; the
+  /// advection's back-traces (enqueue_advect) skip the others.
+  void set_own_rows(int first, int count);
 
   /// Padded copies (FW_PAD ghost layers, filled by the boundary rules) are what advection reads.
   DeviceVelocity allocate_padded_velocity();
@@ -171,6 +175,7 @@ class FluidStages {
   fluid::GridSpec spec_;
   FwGrid grid_;
   FwStep step_{};
+  std::array<int, 2> own_rows_{0, 0};  // first, count (set_own_rows)
   cl::Buffer profile_, partial_;
   std::vector<float> partial_host_;
   Kernel pad_, advect_[3], maccormack_[3], forces_, vorticity_, confinement_, diffuse_, boundaries_,

@@ -1,5 +1,6 @@
 #include "host/stages/HaloExchange.hpp"
 
+#include <algorithm>
 #include <chrono>
 
 namespace fw::host {
@@ -78,14 +79,14 @@ void HaloExchange::send(const std::vector<float>& values, int peer, int message_
   traffic_.bytes += static_cast<long long>(values.size() * sizeof(float));
 }
 
-void HaloExchange::exchange(cl::Buffer& field) {
+void HaloExchange::exchange(cl::Buffer& field, int depth) {
   if (!world_.uses_mpi() || world_.size() == 1) return;
   // The first halo read would wait for the kernels queued before it: they are the step's work, not the
   // exchange's, so they finish before the clock starts.
   cc_.finish();
   const auto start = Clock::now();
-  exchange_axis(field, 0);
-  exchange_axis(field, 1);
+  exchange_axis(field, 0, depth);
+  exchange_axis(field, 1, depth);
   traffic_.seconds += seconds_since(start);
 }
 
@@ -120,16 +121,20 @@ void HaloExchange::copy_seam(cl::Buffer& field) {
   traffic_.seconds += seconds_since(start);
 }
 
-void HaloExchange::exchange_axis(cl::Buffer& field, int axis) {
+void HaloExchange::exchange_axis(cl::Buffer& field, int axis, int depth) {
   const BlockArray& a = layout_;
   const int low_rank = a.neighbour_low[axis], high_rank = a.neighbour_high[axis];
   if (low_rank < 0 && high_rank < 0) return;
-  // What each neighbour's halo holds: the own values next to the border, as deep as that halo. Across a
-  // staggered axis the face on the border is both blocks' own: the strips start one face further out.
+  // What each neighbour's halo holds: the own values next to the border, as deep as that halo (or `depth`).
+  // Across a staggered axis the face on the border is both blocks' own: the strips start one face further
+  // out.
   const int n = a.values(axis), face = a.staggered == axis ? 1 : 0;
   const int low = a.halo_low[axis], high = a.halo_high[axis];
-  const Box send_low = strip(axis, low + face, low), send_high = strip(axis, n - face - 2 * high, high);
-  const Box receive_low = strip(axis, 0, low), receive_high = strip(axis, n - high, high);
+  const int deep_low = std::min(low, depth), deep_high = std::min(high, depth);
+  const Box send_low = strip(axis, low + face, deep_low),
+            send_high = strip(axis, n - face - high - deep_high, deep_high);
+  const Box receive_low = strip(axis, low - deep_low, deep_low),
+            receive_high = strip(axis, n - high, deep_high);
 
   std::vector<MPI_Request> requests;
   requests.reserve(4);

@@ -23,6 +23,7 @@
 
 #include <array>
 #include <cstddef>
+#include <limits>
 #include <vector>
 
 #include "host/runtime/Communicator.hpp"
@@ -47,9 +48,11 @@ class HaloExchange {
  public:
   HaloExchange(ComputeContext& cc, const Communicator& world, const BlockArray& layout);
 
-  /// Fills the halo of `field` (layout.cells() floats) from the neighbours' own cells. Collective with the
-  /// neighbours: every rank of the decomposition calls it for the same field. Blocks until done.
-  void exchange(cl::Buffer& field);
+  /// Fills the halo of `field` (layout.cells() floats) from the neighbours' own cells, or its `depth` cells
+  /// next to the block when a stencil reads no further (the rest keep what they held). Collective with the
+  /// neighbours: every rank of the decomposition calls it for the same field and depth. Blocks until done.
+  void exchange(cl::Buffer& field, int depth = kWholeHalo);
+  static constexpr int kWholeHalo = std::numeric_limits<int>::max();
   /// On a face array across a cut periodic axis: the domain's face n (the last block's) becomes a copy of
   /// face 0 (block 0's), as a whole grid's boundary pass makes it. Nothing elsewhere. Collective with the
   /// seam's two blocks.
@@ -64,7 +67,7 @@ class HaloExchange {
   };
 
  private:
-  void exchange_axis(cl::Buffer& field, int axis);
+  void exchange_axis(cl::Buffer& field, int axis, int depth);
   /// The strip along `axis` from `at`, `width` values wide, over the whole of the other axes.
   Box strip(int axis, int at, int width) const;
   /// A box as the rectangle calls take it: device origin and region (x in bytes), the layout's pitches and

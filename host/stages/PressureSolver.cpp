@@ -208,7 +208,8 @@ cl::NDRange PressureSolver::column_rows(int level) const {
 }
 
 void PressureSolver::exchange(int l, cl::Buffer& field) {
-  if (split(l)) levels_[l].halo->exchange(field);
+  // The solver's stencils (the smoothers, the residual, the prolongation, A d) read one cell past the block.
+  if (split(l)) levels_[l].halo->exchange(field, kStencilReach);
 }
 
 HaloTraffic PressureSolver::halo_traffic() const {
@@ -236,26 +237,31 @@ double PressureSolver::sum_columns(int level) {
   return split(level) ? world_->sum(sum) : sum.value();
 }
 
+void PressureSolver::enqueue_own_rows(Kernel& kernel, int level) {
+  const auto& L = levels_[level];
+  const cl::NDRange all = cc_.rows(L.dims.nx, L.dims.ny, L.dims.nz);
+  if (!split(level)) return kernel.enqueue(cc_, all);
+  kernel.enqueue_from(cc_, cl::NDRange(0, std::size_t(L.own[2]), 0),
+                      cl::NDRange(all[0], std::size_t(L.own[3] - L.own[2]), all[2]));
+}
+
 void PressureSolver::enqueue_jacobi_sweep(int level, cl::Buffer& b, cl::Buffer& phi, cl::Buffer& phi_out,
                                           float relaxation_weight) {
   auto& L = levels_[level];
-  jacobi_.set_args(L.dims, L.mask, b, phi, phi_out, relaxation_weight)
-      .enqueue(cc_, cc_.rows(L.dims.nx, L.dims.ny, L.dims.nz));
+  enqueue_own_rows(jacobi_.set_args(L.dims, L.mask, b, phi, phi_out, relaxation_weight), level);
   count_traffic(level, traffic::kSmoothPass);
 }
 
 void PressureSolver::enqueue_red_black_pass(int level, cl::Buffer& b, cl::Buffer& phi, cl::Buffer& phi_out,
                                             int colour) {
   auto& L = levels_[level];
-  red_black_.set_args(L.dims, L.mask, b, phi, phi_out, colour)
-      .enqueue(cc_, cc_.rows(L.dims.nx, L.dims.ny, L.dims.nz));
+  enqueue_own_rows(red_black_.set_args(L.dims, L.mask, b, phi, phi_out, colour), level);
   count_traffic(level, traffic::kSmoothPass);
 }
 
 void PressureSolver::enqueue_red_black_update(int level, cl::Buffer& b, cl::Buffer& phi, int colour) {
   auto& L = levels_[level];
-  red_black_update_.set_args(L.dims, L.mask, b, phi, colour)
-      .enqueue(cc_, cc_.rows(L.dims.nx, L.dims.ny, L.dims.nz));
+  enqueue_own_rows(red_black_update_.set_args(L.dims, L.mask, b, phi, colour), level);
   count_traffic(level, traffic::kSmoothPass);
 }
 
@@ -286,14 +292,14 @@ int PressureSolver::start_colour() const {
 
 void PressureSolver::enqueue_smoothing_start(int level, cl::Buffer& b, cl::Buffer& out) {
   auto& L = levels_[level];
-  smoothing_start_.set_args(L.dims, L.mask, b, out, start_relaxation_weight(), start_colour())
-      .enqueue(cc_, cc_.rows(L.dims.nx, L.dims.ny, L.dims.nz));
+  enqueue_own_rows(
+      smoothing_start_.set_args(L.dims, L.mask, b, out, start_relaxation_weight(), start_colour()), level);
   count_traffic(level, traffic::kSmoothingStart);
 }
 
 void PressureSolver::enqueue_residual(int level, cl::Buffer& b, cl::Buffer& phi, cl::Buffer& r) {
   auto& L = levels_[level];
-  residual_.set_args(L.dims, L.mask, b, phi, r).enqueue(cc_, cc_.rows(L.dims.nx, L.dims.ny, L.dims.nz));
+  enqueue_own_rows(residual_.set_args(L.dims, L.mask, b, phi, r), level);
   count_traffic(level, traffic::kResidual);
 }
 
@@ -363,8 +369,8 @@ void PressureSolver::gather_residual(int l) {
 void PressureSolver::enqueue_prolong_add(int fine_level, cl::Buffer& phi) {
   auto& F = levels_[fine_level];
   auto& C = levels_[fine_level + 1];
-  prolong_.set_args(F.dims, C.dims, F.mask, C.mask, C.phi, phi, prolongation_slope())
-      .enqueue(cc_, cc_.rows(F.dims.nx, F.dims.ny, F.dims.nz));
+  enqueue_own_rows(prolong_.set_args(F.dims, C.dims, F.mask, C.mask, C.phi, phi, prolongation_slope()),
+                   fine_level);
   count_traffic(fine_level, traffic::kProlongFine);
   count_traffic(fine_level + 1, traffic::kProlongCoarse);
   exchange(fine_level, phi);
@@ -447,7 +453,15 @@ void PressureSolver::remove_mean(cl::Buffer& b) {
 PressureSolveStatus PressureSolver::solve() {
   if (!spec_.has_dirichlet_pressure()) remove_mean(levels_[0].b);
   exchange(0, levels_[0].phi);  // the warm start's halo: the last solve's, or an upload's
-  switch (settings_.solver) {
+  const PressureSolveStatus status = solve_with(settings_.solver);
+  // The solve filled one cell of the halo; the whole of it once now, for what reads further (a frame writes
+  // a rank's block with its halo).
+  if (split(0)) levels_[0].halo->exchange(levels_[0].phi);
+  return status;
+}
+
+PressureSolveStatus PressureSolver::solve_with(fluid::PressureSolverType solver) {
+  switch (solver) {
     case fluid::PressureSolverType::jacobi:
       return solve_jacobi();
     case fluid::PressureSolverType::multigrid:

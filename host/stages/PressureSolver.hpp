@@ -148,6 +148,12 @@ class PressureSolver {
 
   /// Fills the halo of `field` on level l (nothing on a whole level or in one process).
   void exchange(int l, cl::Buffer& field);
+  /// How far past a cell the solver's stencils read: the halo its exchanges fill during a solve.
+  static constexpr int kStencilReach = 1;
+  PressureSolveStatus solve_with(fluid::PressureSolverType solver);
+  /// Launches `kernel` over level l's own rows when the level is split (what an exchange, a dot over the own
+  /// columns or a restriction then reads: the halo rows are the neighbours' to fill), else over every row.
+  void enqueue_own_rows(Kernel& kernel, int level);
   /// The levels held as blocks over ranks (the rest are whole on every rank); all of them in one process.
   bool split(int l) const { return l < split_levels_ && decomposition_.splits(); }
   /// Level fine_level's residual (in its scratch) gathered from every rank's block into gathered_, whole.

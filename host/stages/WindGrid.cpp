@@ -128,6 +128,9 @@ WindGrid::WindGrid(ComputeContext& cc, WindGridSetup setup, const WindBlocks* bl
       viscosity_(context_) {
   for (WindPart* part : all_parts())
     for (const HaloNeed& need : part->halo_needs()) seam_.declare(need);
+  // Across a cut along y the back-traces skip the halo rows, which the exchange after them replaces.
+  const BlockArray& cells = seam_.block();
+  stages_.set_own_rows(cells.halo_low[1], cells.extent[1] - cells.halo_low[1] - cells.halo_high[1]);
   set_ambient(setup_.ambient);
 }
 

@@ -120,7 +120,7 @@ else
   cmp -s leafy_one/damage.csv leafy_ranks/damage.csv || fail "damage.csv over 2 x 2 ranks differs from one process's"
   grep -q ",overturned," leafy_one/damage.csv || fail "no tree failed: damage.csv has nothing to compare"
   # Resumed over the same 2 x 2 ranks from the checkpoint at 1 s (every rank its own part): the same bytes.
-  # In one process and over 2 ranks (2 x 1 blocks) the 4 parts are redistributed: the same probes.csv
+  # In one process and over 2 ranks (2 blocks) the 4 parts are redistributed: the same probes.csv
   # and frames as one process's, leaves in flight included.
   cp -r leafy_ranks leafy_resumed
   first=$(ls leafy_resumed/checkpoints | head -n 1)

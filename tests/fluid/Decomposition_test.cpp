@@ -73,6 +73,8 @@ TEST_CASE("Decomposition: the automatic split exchanges the fewest halo cells", 
     CHECK(Decomposition::make(spec, 4, blocks, 3).halo_cells() > d.halo_cells());
   // A square grid: 2 x 2.
   CHECK(Decomposition::make(grid(64, 64, 8), 4, std::nullopt, 3).blocks() == std::array<int, 2>{2, 2});
+  // A tie goes to cuts across y, whose halos are whole rows of x: 1 x 2 on a square grid.
+  CHECK(Decomposition::make(grid(64, 64, 8), 2, std::nullopt, 3).blocks() == std::array<int, 2>{1, 2});
 }
 
 TEST_CASE("Decomposition: neighbours wrap on periodic axes only", "[fluid]") {

@@ -461,8 +461,8 @@ TEST_CASE("SimulationPlan: the grid's blocks over the ranks, given or chosen, an
     return fw::host::plan_simulation(fw::io::load_scenario(dir.write(name + ".yaml", text)), nullptr, nullptr,
                                      ranks);
   };
-  // 8 x 8 cells: 2 ranks take 2 x 1 blocks of 4 cells (1 x 2 exchanges as much; x first).
-  CHECK(plan_with("chosen", "", 2).decomposition.describe() == "2 x 1 blocks of 4 x 8 x 4 cells");
+  // 8 x 8 cells: 2 ranks take 1 x 2 blocks of 4 cells (2 x 1 exchanges as much; whole rows first).
+  CHECK(plan_with("chosen", "", 2).decomposition.describe() == "1 x 2 blocks of 8 x 4 x 4 cells");
   CHECK(plan_with("given", ", decomposition: [1, 2]", 2).decomposition.blocks() == std::array<int, 2>{1, 2});
   // One process ignores the file's blocks, so that the same scenario runs alone.
   CHECK(plan_with("alone", ", decomposition: [1, 2]", 1).decomposition.ranks() == 1);

@@ -3,13 +3,17 @@
 // process; the wind grid adds up its exchanges. Behaviour only: no time is asserted beyond its sign.
 #include <catch2/catch.hpp>
 
+#include <algorithm>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "fluid/Decomposition.hpp"
 #include "host/stages/BlockGrid.hpp"
 #include "host/stages/HaloExchange.hpp"
+#include "host/stages/SavedShare.hpp"
 #include "host/stages/WindGrid.hpp"
+#include "tests/support/Fields.hpp"
 #include "tests/support/TestDevice.hpp"
 #include "tests/support/TestWorld.hpp"
 #include "tests/support/Tunnels.hpp"
@@ -109,6 +113,55 @@ TEST_CASE(
         (long long)(b.halo_low[0] + b.halo_high[0]) * (b.halo_low[1] + b.halo_high[1]) * spec.nz;
     CHECK(world.sum(halo.traffic().bytes) == (d.halo_cells() + world.sum(corners)) * kFloatBytes);
     if (world.size() == 1) CHECK(halo.traffic().bytes == 0);
+  }
+}
+
+TEST_CASE(
+    "HaloExchange: one cell deep it fills the halo cells next to the block from their owners and leaves the "
+    "rest",
+    "[mpi]") {
+  auto* cc = test::device_or_skip();
+  if (!cc) return;
+  const host::Communicator& world = test::world();
+  const fluid::GridSpec spec = channel_spec();
+  constexpr float kUntouched = -1.0f;
+  // A cell's value names it: 1 + its domain index (y wrapped, the axis being periodic); the halo starts
+  // untouched.
+  const auto value_of = [&](int gi, int gj, int k) {
+    gj = (gj % spec.ny + spec.ny) % spec.ny;
+    return float(1 + gi + spec.nx * (gj + spec.ny * k));
+  };
+  for (const auto blocks : test::splits(world.size())) {
+    INFO(blocks[0] << " x " << blocks[1] << " blocks on " << world.size() << " ranks");
+    const fluid::Decomposition d = fluid::Decomposition::make(spec, world.size(), blocks, kHalo);
+    const host::BlockArray a = host::block_array(d, world.rank(), 0, spec.nz, kHalo);
+    const host::OwnColumns own = host::own_columns(a);
+    // How far outside the own columns cell (i, j) of the block lies, along the axis it lies furthest.
+    const auto depth = [&](int i, int j) {
+      const int gi = a.origin[0] + i, gj = a.origin[1] + j;
+      const int dx = std::max({own.lo[0] - gi, gi - (own.hi[0] - 1), 0});
+      const int dy = std::max({own.lo[1] - gj, gj - (own.hi[1] - 1), 0});
+      return std::max(dx, dy);
+    };
+    std::vector<float> values(a.cells());
+    for (int k = 0; k < spec.nz; ++k)
+      for (int j = 0; j < a.extent[1]; ++j)
+        for (int i = 0; i < a.extent[0]; ++i)
+          values[std::size_t(i + a.extent[0] * (j + a.extent[1] * k))] =
+              depth(i, j) == 0 ? value_of(a.origin[0] + i, a.origin[1] + j, k) : kUntouched;
+    cl::Buffer field = cc->upload(values);
+    host::HaloExchange halo(*cc, world, a);
+    halo.exchange(field, 1);
+    const std::vector<float> after = test::download(*cc, field, values.size());
+    long long wrong = 0;
+    for (int k = 0; k < spec.nz; ++k)
+      for (int j = 0; j < a.extent[1]; ++j)
+        for (int i = 0; i < a.extent[0]; ++i) {
+          const float expected =
+              depth(i, j) <= 1 ? value_of(a.origin[0] + i, a.origin[1] + j, k) : kUntouched;
+          wrong += after[std::size_t(i + a.extent[0] * (j + a.extent[1] * k))] != expected;
+        }
+    CHECK(wrong == 0);
   }
 }
 
