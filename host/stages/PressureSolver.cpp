@@ -44,17 +44,31 @@ FwLevel level_dims(const fluid::PressureLevel& L, const fluid::GridSpec& spec) {
   return d;
 }
 
-// How many levels, from the fine one, the blocks split into whole cells: a level l is split while every cut
-// lies on a multiple of 2^l (and the level exists).
-int split_level_count(const fluid::Decomposition& d, int levels) {
+// How many levels, from the fine one, the blocks split (extents: every level's cells along x, y, z): a level
+// l is split while every cut lies on a multiple of 2^l and every block holds at least min_split_cells of its
+// cells (kSplitLevelCells). The coarser levels are whole on every rank, their residual gathered once a
+// V-cycle: a small level's smoothing passes would each cost an exchange, worth more than its cells' work.
+int split_level_count(const fluid::Decomposition& d, const std::vector<std::array<int, 3>>& extents,
+                      long long min_split_cells) {
+  const int levels = int(extents.size());
   int count = 1;
   while (count < levels) {
     const int scale = 1 << count;
+    const std::array<int, 3>& e = extents[std::size_t(count)];
     bool whole = true;
-    for (int r = 0; r < d.ranks(); ++r)
-      for (int axis = 0; axis < 2; ++axis)
-        if (d.blocks()[axis] > 1)
-          whole = whole && d.block(r).first[axis] % scale == 0 && d.block(r).count[axis] % scale == 0;
+    for (int r = 0; r < d.ranks(); ++r) {
+      long long cells = e[2];
+      for (int axis = 0; axis < 2; ++axis) {
+        const fluid::Block b = d.block(r);
+        if (d.blocks()[axis] > 1) {
+          whole = whole && b.first[axis] % scale == 0 && b.count[axis] % scale == 0;
+          cells *= b.count[axis] / scale;
+        } else {
+          cells *= e[std::size_t(axis)];
+        }
+      }
+      whole = whole && cells >= min_split_cells;
+    }
     if (!whole) break;
     ++count;
   }
@@ -83,7 +97,8 @@ std::size_t PressureSolver::estimate_device_bytes(const fluid::GridSpec& spec, c
   const auto bytes = [](std::size_t n) { return ComputeContext::allocation_bytes(n); };
   const std::vector<std::array<int, 3>> extents = fluid::pressure_level_extents(spec);
   const int levels = int(extents.size());
-  const int split_levels = share.splits() ? split_level_count(*share.decomposition, levels) : levels;
+  const int split_levels =
+      share.splits() ? split_level_count(*share.decomposition, extents, kSplitLevelCells) : levels;
   const int fine_halo = share.splits() ? share.decomposition->halo() : 0;
   std::size_t total = 0;
   for (int l = 0; l < levels; ++l) {
@@ -108,7 +123,9 @@ PressureSolver::PressureSolver(ComputeContext& cc, const fluid::GridSpec& spec,
   if (spans_ranks(blocks)) {
     world_ = blocks->world;
     decomposition_ = blocks->decomposition;
-    split_levels_ = split_level_count(decomposition_, int(host_levels_.size()));
+    std::vector<std::array<int, 3>> extents;
+    for (const fluid::PressureLevel& L : host_levels_) extents.push_back({L.nx, L.ny, L.nz});
+    split_levels_ = split_level_count(decomposition_, extents, blocks->min_split_cells);
   }
   for (int l = 0; l < int(host_levels_.size()); ++l) {
     const fluid::PressureLevel& L = host_levels_[l];

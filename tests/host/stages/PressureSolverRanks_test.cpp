@@ -50,31 +50,36 @@ TEST_CASE("PressureSolver over ranks: every split solves to the bits of one proc
     const host::PressureSolveStatus expected = alone.solve();
     const auto phi = test::download(*cc, alone.solution(), spec.cell_count());
 
-    for (const auto blocks : test::splits(world.size())) {
-      INFO(c.name << ", " << blocks[0] << " x " << blocks[1] << " blocks on " << world.size() << " ranks");
-      const host::PressureBlocks split{
-          &world, fluid::Decomposition::make(spec, world.size(), blocks, kFineHalo), kFineHalo};
-      const host::BlockArray a = host::block_array(split.decomposition, world.rank(), 0, spec.nz, kFineHalo);
-      host::PressureSolver solver(*cc, spec, levels, settings, &split);
-      test::upload(*cc, host::block_of(b, spec.nx, spec.ny, a), solver.rhs());
-      const host::PressureSolveStatus status = solver.solve();
-      CHECK(status.iterations == expected.iterations);
-      CHECK(status.relative_residual == expected.relative_residual);
-      // The block's own cells, bit for bit (the halo is the neighbours' to own).
-      const auto mine = test::download(*cc, solver.solution(), a.cells());
-      const auto reference = host::block_of(phi, spec.nx, spec.ny, a);
-      long differing = 0;
-      for (int k = 0; k < a.extent[2]; ++k)
-        for (int j = a.halo_low[1]; j < a.extent[1] - a.halo_high[1]; ++j)
-          for (int i = a.halo_low[0]; i < a.extent[0] - a.halo_high[0]; ++i) {
-            const std::size_t at = i + std::size_t(a.extent[0]) * (j + std::size_t(a.extent[1]) * k);
-            differing += mine[at] != reference[at];
-          }
-      CHECK(differing == 0);
-      // And the halo holds the neighbours' values after the solve, as the gradient will read them.
-      long stale = 0;
-      for (std::size_t at = 0; at < a.cells(); ++at) stale += mine[at] != reference[at];
-      CHECK(stale == 0);
-    }
+    // The default keeps small levels whole on every rank; 0 splits every level the cuts divide.
+    for (const auto blocks : test::splits(world.size()))
+      for (const long long min_split_cells : {host::kSplitLevelCells, 0LL}) {
+        INFO(c.name << ", " << blocks[0] << " x " << blocks[1] << " blocks on " << world.size() << " ranks, "
+                    << "levels split down to " << min_split_cells << " cells a block");
+        const host::PressureBlocks split{&world,
+                                         fluid::Decomposition::make(spec, world.size(), blocks, kFineHalo),
+                                         kFineHalo, min_split_cells};
+        const host::BlockArray a =
+            host::block_array(split.decomposition, world.rank(), 0, spec.nz, kFineHalo);
+        host::PressureSolver solver(*cc, spec, levels, settings, &split);
+        test::upload(*cc, host::block_of(b, spec.nx, spec.ny, a), solver.rhs());
+        const host::PressureSolveStatus status = solver.solve();
+        CHECK(status.iterations == expected.iterations);
+        CHECK(status.relative_residual == expected.relative_residual);
+        // The block's own cells, bit for bit (the halo is the neighbours' to own).
+        const auto mine = test::download(*cc, solver.solution(), a.cells());
+        const auto reference = host::block_of(phi, spec.nx, spec.ny, a);
+        long differing = 0;
+        for (int k = 0; k < a.extent[2]; ++k)
+          for (int j = a.halo_low[1]; j < a.extent[1] - a.halo_high[1]; ++j)
+            for (int i = a.halo_low[0]; i < a.extent[0] - a.halo_high[0]; ++i) {
+              const std::size_t at = i + std::size_t(a.extent[0]) * (j + std::size_t(a.extent[1]) * k);
+              differing += mine[at] != reference[at];
+            }
+        CHECK(differing == 0);
+        // And the halo holds the neighbours' values after the solve, as the gradient will read them.
+        long stale = 0;
+        for (std::size_t at = 0; at < a.cells(); ++at) stale += mine[at] != reference[at];
+        CHECK(stale == 0);
+      }
   }
 }
