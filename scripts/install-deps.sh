@@ -51,6 +51,9 @@ packages=(
   libvtk9-dev libopenvdb-dev libboost-iostreams-dev
   # GIS (io/gis): terrain from any raster GDAL reads (GeoTIFF, ESRI ASCII), with its CRS
   libgdal-dev
+  # statistics (io/StatsNetcdf): stats.nc as NetCDF-4; ncdump to look into it, and xarray, what LES users
+  # open it with (the tests open it so)
+  libnetcdf-dev netcdf-bin python3-xarray python3-netcdf4
   # pictures (viz/): cairo draws without an X server or GL; DejaVu is the face of their text
   libcairo2-dev fonts-dejavu-core
   # render decodes a frame's cell offsets (LZ4 or zlib, as VTK stores them) before VTK reads the file

@@ -1,0 +1,230 @@
+#include "io/StatsNetcdf.hpp"
+
+#include <fmt/format.h>
+#include <netcdf.h>
+
+#include <stdexcept>
+#include <utility>
+
+#include "base/AtomicFile.hpp"
+#include "fluid/PlaneProfiles.hpp"
+
+namespace fw::io {
+
+namespace {
+
+constexpr const char* kSeriesGroup = "timeseries";
+
+// NetCDF's status, as an exception naming the file and what was being done.
+void check(int status, const std::filesystem::path& path, const std::string& doing) {
+  if (status != NC_NOERR)
+    throw std::runtime_error(fmt::format("{}: NetCDF: {}: {}", path.string(), doing, nc_strerror(status)));
+}
+
+void put_text(int group, int variable, const char* name, const std::string& value,
+              const std::filesystem::path& path) {
+  if (value.empty()) return;
+  check(nc_put_att_text(group, variable, name, value.size(), value.c_str()), path,
+        fmt::format("writing the attribute {}", name));
+}
+
+std::string get_text(int group, int variable, const char* name, const std::filesystem::path& path) {
+  std::size_t length = 0;
+  if (nc_inq_attlen(group, variable, name, &length) != NC_NOERR) return "";
+  std::string value(length, '\0');
+  check(nc_get_att_text(group, variable, name, value.data()), path,
+        fmt::format("reading the attribute {}", name));
+  return value;
+}
+
+// A coordinate variable `name` over its own dimension of `values`, with CF's attributes.
+int define_coordinate(int group, const char* name, std::size_t length, const StatsVariable& about,
+                      const char* axis, const std::filesystem::path& path, int* dimension) {
+  check(nc_def_dim(group, name, length, dimension), path, fmt::format("defining the dimension {}", name));
+  int variable = 0;
+  check(nc_def_var(group, name, NC_DOUBLE, 1, dimension, &variable), path,
+        fmt::format("defining the coordinate {}", name));
+  put_text(group, variable, "units", about.units, path);
+  put_text(group, variable, "long_name", about.long_name, path);
+  put_text(group, variable, "standard_name", about.standard_name, path);
+  put_text(group, variable, "axis", axis, path);
+  return variable;
+}
+
+int define_variable(int group, const StatsVariable& about, const std::vector<int>& dimensions,
+                    const std::filesystem::path& path) {
+  int variable = 0;
+  check(
+      nc_def_var(group, about.name.c_str(), NC_DOUBLE, int(dimensions.size()), dimensions.data(), &variable),
+      path, fmt::format("defining {}", about.name));
+  put_text(group, variable, "units", about.units, path);
+  put_text(group, variable, "long_name", about.long_name, path);
+  put_text(group, variable, "standard_name", about.standard_name, path);
+  return variable;
+}
+
+// Simulated seconds from the run's start: CF's standard name time would need a calendar date as reference.
+const StatsVariable kTime{"time", "s", "time since the run started", ""};
+const StatsVariable kHeight{"z", "m", "height of the cell centres above the domain origin", "height"};
+
+void require_shapes(const StatsFile& f) {
+  const StatsProfiles& p = f.profiles;
+  if (p.values.size() != p.time.size())
+    throw std::invalid_argument(
+        fmt::format("stats.nc: {} profile records for {} times", p.values.size(), p.time.size()));
+  for (const auto& record : p.values) {
+    if (record.size() != p.variables.size())
+      throw std::invalid_argument(fmt::format("stats.nc: a profile record holds {} variables, the file {}",
+                                              record.size(), p.variables.size()));
+    for (const auto& profile : record)
+      if (profile.size() != f.z.size())
+        throw std::invalid_argument(
+            fmt::format("stats.nc: a profile holds {} heights, the file {}", profile.size(), f.z.size()));
+  }
+  const StatsSeries& s = f.series;
+  if (s.values.size() != s.time.size())
+    throw std::invalid_argument(
+        fmt::format("stats.nc: {} time-series records for {} times", s.values.size(), s.time.size()));
+  for (const auto& record : s.values)
+    if (record.size() != s.variables.size())
+      throw std::invalid_argument(fmt::format("stats.nc: a time-series record holds {} values, the file {}",
+                                              record.size(), s.variables.size()));
+}
+
+void write_file(const std::filesystem::path& path, const std::filesystem::path& target, const StatsFile& f) {
+  int root = 0;
+  check(nc_create(path.c_str(), NC_NETCDF4 | NC_CLOBBER, &root), target, "creating the file");
+  try {
+    put_text(root, NC_GLOBAL, "Conventions", "CF-1.8", target);
+    put_text(root, NC_GLOBAL, "title", f.title, target);
+    put_text(root, NC_GLOBAL, "source", "forestwind", target);
+    put_text(root, NC_GLOBAL, "history", f.history, target);
+    // The profiles: (time, z), time unlimited so that a later writer may append.
+    int time_dim = 0, z_dim = 0;
+    const int time_var = define_coordinate(root, "time", NC_UNLIMITED, kTime, "T", target, &time_dim);
+    const int z_var = define_coordinate(root, "z", f.z.size(), kHeight, "Z", target, &z_dim);
+    put_text(root, z_var, "positive", "up", target);
+    std::vector<int> profile_vars;
+    for (const StatsVariable& v : f.profiles.variables)
+      profile_vars.push_back(define_variable(root, v, {time_dim, z_dim}, target));
+    // The time series, in a group of their own with their own times.
+    int series = 0, series_time_dim = 0;
+    check(nc_def_grp(root, kSeriesGroup, &series), target, "defining the group timeseries");
+    const int series_time_var =
+        define_coordinate(series, "time", NC_UNLIMITED, kTime, "T", target, &series_time_dim);
+    std::vector<int> series_vars;
+    for (const StatsVariable& v : f.series.variables)
+      series_vars.push_back(define_variable(series, v, {series_time_dim}, target));
+    check(nc_enddef(root), target, "ending the definitions");
+
+    if (!f.z.empty()) check(nc_put_var_double(root, z_var, f.z.data()), target, "writing z");
+    for (std::size_t r = 0; r < f.profiles.time.size(); ++r) {
+      const std::size_t at[1] = {r}, one[1] = {1};
+      check(nc_put_vara_double(root, time_var, at, one, &f.profiles.time[r]), target, "writing time");
+      for (std::size_t n = 0; n < profile_vars.size(); ++n) {
+        const std::size_t start[2] = {r, 0}, count[2] = {1, f.z.size()};
+        check(nc_put_vara_double(root, profile_vars[n], start, count, f.profiles.values[r][n].data()), target,
+              fmt::format("writing {}", f.profiles.variables[n].name));
+      }
+    }
+    for (std::size_t r = 0; r < f.series.time.size(); ++r) {
+      const std::size_t at[1] = {r}, one[1] = {1};
+      check(nc_put_vara_double(series, series_time_var, at, one, &f.series.time[r]), target,
+            "writing the time series' time");
+      for (std::size_t n = 0; n < series_vars.size(); ++n)
+        check(nc_put_vara_double(series, series_vars[n], at, one, &f.series.values[r][n]), target,
+              fmt::format("writing {}", f.series.variables[n].name));
+    }
+  } catch (...) {
+    nc_close(root);
+    throw;
+  }
+  check(nc_close(root), target, "closing the file");
+}
+
+// The variables of `group` other than its coordinates, in the order they were defined, with their values:
+// per variable, every value in the file's order (record-major).
+std::vector<std::pair<StatsVariable, std::vector<double>>> read_variables(int group,
+                                                                          const std::filesystem::path& path) {
+  int count = 0;
+  check(nc_inq_varids(group, &count, nullptr), path, "listing the variables");
+  std::vector<int> ids(std::size_t(count), 0);
+  check(nc_inq_varids(group, &count, ids.data()), path, "listing the variables");
+  std::vector<std::pair<StatsVariable, std::vector<double>>> out;
+  for (const int id : ids) {
+    char name[NC_MAX_NAME + 1] = {};
+    int dims = 0;
+    check(nc_inq_var(group, id, name, nullptr, &dims, nullptr, nullptr), path, "reading a variable");
+    std::vector<int> dim_ids(std::size_t(dims), 0);
+    check(nc_inq_vardimid(group, id, dim_ids.data()), path, fmt::format("reading {}'s dimensions", name));
+    std::size_t values = 1;
+    for (const int d : dim_ids) {
+      std::size_t length = 0;
+      check(nc_inq_dimlen(group, d, &length), path, fmt::format("reading {}'s dimensions", name));
+      values *= length;
+    }
+    std::vector<double> data(values, 0.0);
+    if (values > 0) check(nc_get_var_double(group, id, data.data()), path, fmt::format("reading {}", name));
+    out.push_back({{name, get_text(group, id, "units", path), get_text(group, id, "long_name", path),
+                    get_text(group, id, "standard_name", path)},
+                   std::move(data)});
+  }
+  return out;
+}
+
+}  // namespace
+
+StatsFile read_stats_netcdf(const std::filesystem::path& path) {
+  int root = 0;
+  check(nc_open(path.c_str(), NC_NOWRITE, &root), path, "opening the file");
+  StatsFile f;
+  try {
+    f.title = get_text(root, NC_GLOBAL, "title", path);
+    f.history = get_text(root, NC_GLOBAL, "history", path);
+    for (auto& [about, data] : read_variables(root, path)) {
+      if (about.name == "time") {
+        f.profiles.time = data;
+      } else if (about.name == "z") {
+        f.z = data;
+      } else {
+        f.profiles.variables.push_back(about);
+        f.profiles.values.resize(f.profiles.time.size(), {});
+        for (std::size_t r = 0; r < f.profiles.time.size(); ++r)
+          f.profiles.values[r].emplace_back(data.begin() + long(r * f.z.size()),
+                                            data.begin() + long((r + 1) * f.z.size()));
+      }
+    }
+    int series = 0;
+    check(nc_inq_ncid(root, kSeriesGroup, &series), path, "finding the group timeseries");
+    for (auto& [about, data] : read_variables(series, path)) {
+      if (about.name == "time") {
+        f.series.time = data;
+        continue;
+      }
+      f.series.variables.push_back(about);
+      f.series.values.resize(f.series.time.size(), {});
+      for (std::size_t r = 0; r < f.series.time.size(); ++r) f.series.values[r].push_back(data[r]);
+    }
+  } catch (...) {
+    nc_close(root);
+    throw;
+  }
+  check(nc_close(root), path, "closing the file");
+  return f;
+}
+
+std::vector<StatsVariable> profile_columns() {
+  std::vector<StatsVariable> columns;
+  for (const fluid::ProfileVariable& v : fluid::profile_variables())
+    columns.push_back({v.name, v.units, v.long_name, v.standard_name});
+  return columns;
+}
+
+void write_stats_netcdf(const std::filesystem::path& path, const StatsFile& file) {
+  require_shapes(file);
+  base::AtomicFile atomic(path);
+  write_file(atomic.temporary_path(), path, file);
+  atomic.commit();
+}
+
+}  // namespace fw::io

@@ -1,0 +1,131 @@
+// io/StatsNetcdf: stats.nc written and read back, its CF attributes, ncdump's view of it, and bad shapes.
+#include <catch2/catch.hpp>
+
+#include <cstdio>
+#include <filesystem>
+#include <memory>
+#include <string>
+
+#include "fluid/PlaneProfiles.hpp"
+#include "io/StatsNetcdf.hpp"
+
+using namespace fw;
+
+namespace {
+
+std::filesystem::path fresh_folder(const std::string& name) {
+  const auto folder = std::filesystem::temp_directory_path() / ("fw_stats_" + name);
+  std::filesystem::remove_all(folder);
+  std::filesystem::create_directories(folder);
+  return folder;
+}
+
+// Two profile records of every profile variable on three heights, and three time-series records.
+io::StatsFile two_records() {
+  io::StatsFile f;
+  f.title = "periodic_canopy";
+  f.history = "forestwind run canopy.yaml";
+  f.z = {1.0, 3.0, 5.0};
+  f.profiles.variables = io::profile_columns();
+  f.profiles.time = {60.0, 120.0};
+  for (std::size_t r = 0; r < 2; ++r) {
+    std::vector<std::vector<double>> record;
+    for (std::size_t n = 0; n < f.profiles.variables.size(); ++n)
+      record.push_back({100.0 * r + n, 100.0 * r + n + 0.25, 100.0 * r + n + 0.5});
+    f.profiles.values.push_back(record);
+  }
+  f.series.variables = {{"ustar", "m s-1", "friction velocity at the ground", ""},
+                        {"dt", "s", "time step", ""}};
+  f.series.time = {0.5, 1.0, 1.5};
+  f.series.values = {{0.31, 0.5}, {0.32, 0.5}, {0.33, 0.5}};
+  return f;
+}
+
+// What a shell command prints on stdout.
+std::string output_of(const std::string& command) {
+  std::unique_ptr<FILE, int (*)(FILE*)> pipe(popen(command.c_str(), "r"), pclose);
+  REQUIRE(pipe);
+  std::string out;
+  char buffer[4096];
+  while (std::size_t n = std::fread(buffer, 1, sizeof(buffer), pipe.get())) out.append(buffer, n);
+  return out;
+}
+
+}  // namespace
+
+TEST_CASE("stats.nc: profiles and time series read back as written, with their units and names", "[stats]") {
+  const auto path = fresh_folder("round_trip") / "stats.nc";
+  const io::StatsFile written = two_records();
+  io::write_stats_netcdf(path, written);
+  const io::StatsFile read = io::read_stats_netcdf(path);
+  CHECK(read.title == written.title);
+  CHECK(read.history == written.history);
+  CHECK(read.z == written.z);
+  CHECK(read.profiles.time == written.profiles.time);
+  REQUIRE(read.profiles.variables.size() == written.profiles.variables.size());
+  for (std::size_t n = 0; n < written.profiles.variables.size(); ++n) {
+    INFO(written.profiles.variables[n].name);
+    CHECK(read.profiles.variables[n].name == written.profiles.variables[n].name);
+    CHECK(read.profiles.variables[n].units == written.profiles.variables[n].units);
+    CHECK(read.profiles.variables[n].long_name == written.profiles.variables[n].long_name);
+    CHECK(read.profiles.variables[n].standard_name == written.profiles.variables[n].standard_name);
+  }
+  CHECK(read.profiles.values == written.profiles.values);  // doubles, stored as doubles: bit for bit
+  CHECK(read.series.time == written.series.time);
+  CHECK(read.series.values == written.series.values);
+  REQUIRE(read.series.variables.size() == 2);
+  CHECK(read.series.variables[0].name == "ustar");
+  CHECK(read.series.variables[0].units == "m s-1");
+  // No temporary is left beside it.
+  for (const auto& entry : std::filesystem::directory_iterator(path.parent_path()))
+    CHECK(entry.path().filename() == "stats.nc");
+}
+
+TEST_CASE("stats.nc: ncdump -h shows CF-1.8, the dimensions time and z, and each variable's attributes",
+          "[stats]") {
+  const auto path = fresh_folder("ncdump") / "stats.nc";
+  io::write_stats_netcdf(path, two_records());
+  const std::string header = output_of("ncdump -h " + path.string() + " 2>&1");
+  INFO(header);
+  for (const char* text :
+       {"netcdf stats {", "time = UNLIMITED ; // (2 currently)", "z = 3 ;", ":Conventions = \"CF-1.8\" ;",
+        "double u_w(time, z) ;", "u_w:units = \"m2 s-2\" ;", "u:standard_name = \"eastward_wind\" ;",
+        "z:positive = \"up\" ;", "z:axis = \"Z\" ;", "group: timeseries {", "double ustar(time) ;"})
+    CHECK(header.find(text) != std::string::npos);
+}
+
+TEST_CASE("stats.nc: xarray opens it, the profiles on (time, z) and the time series in their group",
+          "[stats]") {
+  // Debian's Python, where python3-xarray and python3-netcdf4 install (scripts/install-deps.sh), whatever
+  // python3 comes first on the PATH.
+  const auto path = fresh_folder("xarray") / "stats.nc";
+  io::write_stats_netcdf(path, two_records());
+  const std::string script =
+      "import xarray as xr\n"
+      "ds = xr.open_dataset('" +
+      path.string() +
+      "')\n"
+      "ts = xr.open_dataset('" +
+      path.string() +
+      "', group='timeseries')\n"
+      "print(ds['u_w'].dims, float(ds['u_w'][1, 2]), ds['u'].attrs['standard_name'], "
+      "list(ds['time'].values))\n"
+      "print(ts['ustar'].dims, float(ts['ustar'][2]))\n";
+  const std::string out = output_of("/usr/bin/python3 -c \"" + script + "\" 2>&1");
+  INFO(out);
+  // u_w is variable 9: its record 1 at height 2 holds 100 + 9 + 0.5.
+  CHECK(out.find("('time', 'z') 109.5 eastward_wind [60.0, 120.0]") != std::string::npos);
+  CHECK(out.find("('time',) 0.33") != std::string::npos);
+}
+
+TEST_CASE("stats.nc: a record of the wrong shape is refused and nothing is written", "[stats]") {
+  const auto folder = fresh_folder("bad_shape");
+  io::StatsFile f = two_records();
+  f.profiles.values[1][3].pop_back();  // one height short
+  CHECK_THROWS_AS(io::write_stats_netcdf(folder / "stats.nc", f), std::invalid_argument);
+  f = two_records();
+  f.series.time.push_back(2.0);  // a time without its record
+  CHECK_THROWS_AS(io::write_stats_netcdf(folder / "stats.nc", f), std::invalid_argument);
+  CHECK(std::filesystem::is_empty(folder));
+  CHECK_THROWS_AS(io::read_stats_netcdf(folder / "missing.nc"), std::runtime_error);
+}
