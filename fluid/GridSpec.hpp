@@ -59,6 +59,8 @@ struct GridSpec {
   void validate() const;
 
   std::size_t cell_count() const { return std::size_t(nx) * ny * nz; }
+  /// Cells along axis 0 (x), 1 (y) or 2 (z).
+  int cells_along(int axis) const { return axis == 0 ? nx : (axis == 1 ? ny : nz); }
   std::size_t u_count() const { return std::size_t(nx + 1) * ny * nz; }
   std::size_t v_count() const { return std::size_t(nx) * (ny + 1) * nz; }
   std::size_t w_count() const { return std::size_t(nx) * ny * (nz + 1); }

@@ -40,10 +40,6 @@ std::size_t cell(const GridSpec& s, int i, int j, int k) {
   return std::size_t(i) + std::size_t(s.nx) * (std::size_t(j) + std::size_t(s.ny) * std::size_t(k));
 }
 
-int extent(const GridSpec& s, int a) {
-  return a == 0 ? s.nx : (a == 1 ? s.ny : s.nz);
-}
-
 // The cell-centred velocity of every cell, component by component: the mean of the cell's two faces.
 std::array<std::vector<double>, 3> centred(const GridSpec& s, const MacVelocity& vel) {
   std::array<std::vector<double>, 3> out;
@@ -66,7 +62,7 @@ std::array<std::vector<double>, 3> centred(const GridSpec& s, const MacVelocity&
 // d q / d x_a at cell (i, j, k) of a cell-centred field: central over 2h, one-sided over h at a non-periodic
 // edge, wrapped across a periodic one; 0 along an axis of one cell.
 double derivative(const GridSpec& s, const std::vector<double>& q, int a, int i, int j, int k) {
-  const int n = extent(s, a);
+  const int n = s.cells_along(a);
   std::array<int, 3> at{i, j, k}, plus = at, minus = at;
   const int x = at[std::size_t(a)];
   int up = x + 1, down = x - 1;

@@ -300,7 +300,7 @@ void FluidStages::enqueue_canopy_drag(cl::Buffer& drag_density, const CellBox& b
       first.s[a] = box.first[a];
       count.s[a] = box.count[a] + (a == c ? 1 : 0);
     }
-    const int n = c == 0 ? spec_.nx : (c == 1 ? spec_.ny : spec_.nz);
+    const int n = spec_.cells_along(c);
     if (spec_.periodic(c) && (box.first[c] == 0 || box.first[c] + box.count[c] == n)) {
       first.s[c] = 0;
       count.s[c] = n + 1;

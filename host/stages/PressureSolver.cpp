@@ -57,9 +57,9 @@ int split_level_count(const fluid::Decomposition& d, const std::vector<std::arra
     const std::array<int, 3>& e = extents[std::size_t(count)];
     bool whole = true;
     for (int r = 0; r < d.ranks(); ++r) {
+      const fluid::Block b = d.block(r);
       long long cells = e[2];
       for (int axis = 0; axis < 2; ++axis) {
-        const fluid::Block b = d.block(r);
         if (d.blocks()[axis] > 1) {
           whole = whole && b.first[axis] % scale == 0 && b.count[axis] % scale == 0;
           cells *= b.count[axis] / scale;

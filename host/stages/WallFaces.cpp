@@ -10,10 +10,6 @@ namespace fw::host {
 
 namespace {
 
-int cells_along(const fluid::GridSpec& spec, int a) {
-  return a == 0 ? spec.nx : (a == 1 ? spec.ny : spec.nz);
-}
-
 std::int32_t face_index(const fluid::GridSpec& spec, int c, const std::array<int, 3>& at) {
   const int ex = spec.nx + (c == 0 ? 1 : 0), ey = spec.ny + (c == 1 ? 1 : 0);
   return static_cast<std::int32_t>(at[0] + ex * (at[1] + ey * at[2]));
@@ -37,7 +33,7 @@ WallFaces list_wall_faces(const fluid::GridSpec& spec, const std::vector<float>&
   WallFaces list;
   for (int c = 0; c < 2; ++c) {
     const int d = 1 - c;  // the other horizontal component
-    const int n = cells_along(spec, c);
+    const int n = spec.cells_along(c);
     const bool periodic = spec.periodic(c);
     const std::array<int, 3> extent{spec.nx + (c == 0), spec.ny + (c == 1), spec.nz};
     for (int k = 0; k < extent[2]; ++k)

@@ -304,14 +304,10 @@ StageState WindGrid::share_of(const std::vector<SavedShare>& parts) const {
     for (const GridArray& array : part->saved_arrays()) arrays.push_back(array);
   StageState mine;
   mine.numbers = first.numbers;
-  const fluid::GridSpec& spec = setup_.spec;
-  const BlockArray& cells = seam_.block();
   for (const GridArray& array : arrays) {
     if (first.buffers.count(array.name) == 0) continue;  // a subgrid energy not yet started
-    const int c = array.component;
     mine.buffers[array.name] =
-        saved_bytes(block_of(whole_grid_array(parts, spec, array), spec.nx + (c == 0), spec.ny + (c == 1),
-                             c >= 0 ? face_array(cells, c) : cells));
+        saved_bytes(seam_.cut(whole_grid_array(parts, setup_.spec, array), array.component));
   }
   return mine;
 }
