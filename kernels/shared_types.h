@@ -50,6 +50,26 @@ typedef std::uint32_t fw_uint;
  * smoother, whose sweep updates every cell (a red-black pass passes its colour, 0 or 1). */
 #define FW_SMOOTH_ALL_CELLS (-1)
 
+/* The plane statistics' terms (kernels/plane_statistics.cl, host/stages/PlaneStatistics.hpp): what each row
+ * of cells sums, one 64-bit fixed-point partial each. u, v, w are a cell's centred velocity, S its strain
+ * rate, nu_t its eddy viscosity, e its subgrid energy and a its drag density. */
+#define FW_TERM_CELLS 0 /* fluid cells (1 each, unscaled) */
+#define FW_TERM_U 1
+#define FW_TERM_V 2
+#define FW_TERM_W 3
+#define FW_TERM_UU 4
+#define FW_TERM_VV 5
+#define FW_TERM_WW 6
+#define FW_TERM_UUU 7
+#define FW_TERM_WWW 8
+#define FW_TERM_UW 9
+#define FW_TERM_VW 10
+#define FW_TERM_U_DIFF 11 /* -2 nu_t S_xz */
+#define FW_TERM_V_DIFF 12 /* -2 nu_t S_yz */
+#define FW_TERM_E 13
+#define FW_TERM_LAD 14
+#define FW_PLANE_TERMS 15
+
 /* The wind grid: a MAC grid of nx*ny*nz cubic cells of size h.
  * Storage is x-fastest. u lives on x-faces ((nx+1)*ny*nz values), v on y-faces (nx*(ny+1)*nz),
  * w on z-faces (nx*ny*(nz+1)); pressure and masks at cell centres (nx*ny*nz). */

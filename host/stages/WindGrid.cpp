@@ -344,6 +344,18 @@ void WindGrid::upload_subgrid_energy(const std::vector<float>& energy) {
   subgrid_->upload_subgrid_energy(energy);
 }
 
+WindStatisticsFields WindGrid::statistics_fields() {
+  WindStatisticsFields f;
+  f.velocity = &fields_.vel;
+  f.mask = &projection_.mask();
+  if (subgrid_) {
+    f.eddy_viscosity = &subgrid_->eddy_viscosity();
+    f.subgrid_energy = subgrid_->subgrid_energy();
+  }
+  f.drag_density = canopy_.drag_density();
+  return f;
+}
+
 std::vector<float> WindGrid::download_eddy_viscosity() {
   if (!subgrid_)
     throw std::logic_error(

@@ -60,6 +60,17 @@
 
 namespace fw::host {
 
+/// The device arrays the wind's statistics read in place (host/stages/PlaneStatistics): the velocity, the
+/// cells' mask (FW_MASK_FLUID), and where the grid keeps them the eddy viscosity, the subgrid energy and the
+/// canopy's drag density (else null). All over the rank's block with its halo.
+struct WindStatisticsFields {
+  DeviceVelocity* velocity = nullptr;
+  cl::Buffer* mask = nullptr;
+  cl::Buffer* eddy_viscosity = nullptr;
+  cl::Buffer* subgrid_energy = nullptr;
+  cl::Buffer* drag_density = nullptr;
+};
+
 struct WindStepReport {
   long step = 0;      // index of the step just taken (1-based)
   double time = 0.0;  // simulated time after the step, s
@@ -195,6 +206,8 @@ class WindGrid {
   /// the turbulent stress the grid does not resolve. Throws std::logic_error without a subgrid stage.
   std::vector<float> download_eddy_viscosity();
   bool wall_stress_enabled() const { return wall_ != nullptr; }
+  /// What the wind's statistics read, in place.
+  WindStatisticsFields statistics_fields();
 
   /// When on, each stage ends with a queue finish and its wall time is added to stage_ms() (for benchmarks).
   void set_stage_timing(bool on) { clock_.set_on(on); }

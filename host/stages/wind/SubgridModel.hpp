@@ -27,6 +27,10 @@ class SubgridModel : public WindPart {
   /// The model's subgrid energy, m^2/s^2 a cell: only the tke model keeps one (std::logic_error here).
   virtual std::vector<float> download_subgrid_energy(WindFields& fields);
   virtual void upload_subgrid_energy(const std::vector<float>& energy);
+  /// The device's nu_t of the last apply() (the wind's statistics read it in place).
+  cl::Buffer& eddy_viscosity() { return eddy_viscosity_; }
+  /// The device's subgrid energy, where the model keeps one and it holds a state; else null.
+  virtual cl::Buffer* subgrid_energy() { return nullptr; }
   /// A new velocity field: what the model carries starts again from it.
   virtual void restart() {}
 

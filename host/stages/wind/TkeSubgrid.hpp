@@ -23,6 +23,7 @@ class TkeSubgrid : public SubgridModel {
   /// Sets e (finite, >= 0, a float a cell) for the next step; std::invalid_argument otherwise.
   void upload_subgrid_energy(const std::vector<float>& energy) override;
   void restart() override { energy_set_ = false; }
+  cl::Buffer* subgrid_energy() override { return energy_set_ ? &energy_ : nullptr; }
   void save_state(StageState& state) override;
   void restore_state(const StageState& state) override;
   std::vector<GridArray> saved_arrays() const override;

@@ -1,0 +1,85 @@
+// The wind's profiles against height (fluid/PlaneProfiles: the definitions and the CPU reference), taken on
+// the device from the fields in place, the same on every rank and, to the bit, whatever the split.
+//
+//   fw::host::PlaneStatistics statistics(cc, wind.spec(), wind.local_spec(), wind.block(), world);
+//   fw::fluid::PlaneProfiles p = statistics.sample(wind.statistics_fields(), max_speed_component);
+//   double uw = p.at(fw::fluid::Profile::u_w, k);                  // m^2/s^2, plane k's resolved flux
+//
+// One kernel pass (kernels/plane_statistics.cl) sums, for every row of the block's own cells, the raw
+// moments of each cell's centred velocity (u, u^2, u^3, u w, ...), the subgrid terms -2 nu_t S_xz and
+// -2 nu_t S_yz, the subgrid energy and the drag density, each cell's term rounded to a multiple of 2^-s
+// (a 64-bit fixed point, s per term). Integers add exactly in any order, so the plane sums, added over the
+// rows on the host and over the ranks by an exchange, are the same for every split. The host then forms
+// the central moments in double: u_2 = <u^2> - <u>^2, u_3 = <u^3> - 3 <u> <u^2> + 2 <u>^3, u_w = <u w> -
+// <u> <w>. Their error is the float rounding of each cell's product (a relative 2^-24 of u^3, not of the
+// moment: docs/statistics.md).
+//
+// The scales: s is the largest exponent for which the plane's cells times a bound on |term| times 2^s stay
+// below 2^61, from a bound of the velocity (twice the step's largest speed component, a power of two). The
+// pass also returns each term's largest |value|, over every rank; a term that passed its bound is summed
+// again at the scale of that value. So no sum overflows, and the scales, and so the bits, depend only on
+// the fields and the speed bound.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <vector>
+
+#include "fluid/GridSpec.hpp"
+#include "fluid/PlaneProfiles.hpp"
+#include "host/runtime/Communicator.hpp"
+#include "host/runtime/ComputeContext.hpp"
+#include "host/stages/BlockGrid.hpp"
+#include "host/stages/WindGrid.hpp"
+#include "kernels/shared_types.h"
+
+namespace fw::host {
+
+/// A horizontal part of the domain the planes are averaged over: cells first .. end - 1 along x and y,
+/// global indices. The default, or an end of 0, is the whole plane.
+struct PlaneRegion {
+  std::array<int, 2> first{0, 0};
+  std::array<int, 2> end{0, 0};
+};
+
+class PlaneStatistics {
+ public:
+  /// spec: the whole grid; local: this rank's block with its halo (spec in one process); block: its cells.
+  PlaneStatistics(ComputeContext& cc, const fluid::GridSpec& spec, const fluid::GridSpec& local,
+                  const BlockArray& block, const Communicator& world);
+
+  /// Bytes the statistics allocate on a block of `local` (a row's partials and maxima, the scales).
+  static std::size_t estimate_device_bytes(const fluid::GridSpec& local);
+
+  /// The profiles of `fields` over `region` now: the same on every rank (collective over ranks). speed_bound:
+  /// the largest |u|, |v| or |w| of the field, m/s, or any estimate of it (a wrong one costs a second pass,
+  /// never a wrong sum). Blocks until the device is done.
+  fluid::PlaneProfiles sample(const WindStatisticsFields& fields, double speed_bound,
+                              const PlaneRegion& region = {});
+
+  /// How many passes the samples so far took beyond one each (a bound passed): for tests and benchmarks.
+  long extra_passes() const { return extra_passes_; }
+
+  /// The largest s with cells * bound * 2^s <= 2^61 (kept within the float's exponents): a term's scale.
+  static int scale_exponent(double bound, double cells);
+
+ private:
+  /// Runs the pass at `exponents` over this rank's part of `region`; fills sums_ (added over rows and ranks,
+  /// per term and height) and largest_ (per term, over every rank).
+  void run_pass(const WindStatisticsFields& fields, const std::array<int, FW_PLANE_TERMS>& exponents,
+                const PlaneRegion& region);
+  /// The profiles from sums_ at `exponents`.
+  fluid::PlaneProfiles profiles(const std::array<int, FW_PLANE_TERMS>& exponents, double plane_cells) const;
+
+  ComputeContext& cc_;
+  fluid::GridSpec spec_, local_;
+  BlockArray block_;
+  const Communicator& world_;
+  Kernel kernel_;
+  cl::Buffer sums_device_, largest_device_, scales_device_;
+  std::vector<std::int64_t> sums_;               // [k][term], over the region's planes
+  std::array<float, FW_PLANE_TERMS> largest_{};  // |term|, over every rank
+  long extra_passes_ = 0;
+};
+
+}  // namespace fw::host
