@@ -14,6 +14,7 @@ namespace fw::io {
 namespace {
 
 constexpr const char* kSeriesGroup = "timeseries";
+constexpr const char* kRegionsGroup = "regions";
 
 // NetCDF's status, as an exception naming the file and what was being done.
 void check(int status, const std::filesystem::path& path, const std::string& doing) {
@@ -81,6 +82,22 @@ void require_shapes(const StatsFile& f) {
         throw std::invalid_argument(
             fmt::format("stats.nc: a profile holds {} heights, the file {}", profile.size(), f.z.size()));
   }
+  for (const StatsRegion& region : f.regions) {
+    if (region.values.size() != p.time.size())
+      throw std::invalid_argument(fmt::format("stats.nc: region {} has {} records for {} times", region.name,
+                                              region.values.size(), p.time.size()));
+    for (const auto& record : region.values) {
+      if (record.size() != p.variables.size())
+        throw std::invalid_argument(
+            fmt::format("stats.nc: a record of region {} holds {} variables, the file {}", region.name,
+                        record.size(), p.variables.size()));
+      for (const auto& profile : record)
+        if (profile.size() != f.z.size())
+          throw std::invalid_argument(
+              fmt::format("stats.nc: a profile of region {} holds {} heights, the file {}", region.name,
+                          profile.size(), f.z.size()));
+    }
+  }
   const StatsSeries& s = f.series;
   if (s.values.size() != s.time.size())
     throw std::invalid_argument(
@@ -91,6 +108,41 @@ void require_shapes(const StatsFile& f) {
                                               record.size(), s.variables.size()));
 }
 
+// A group's profiles: its time and z coordinates and a variable of each profile, defined.
+struct ProfileGroup {
+  int group = 0, time_var = 0, z_var = 0;
+  std::vector<int> variables;
+};
+
+// Defines the profiles on (time, z) in `group`, time unlimited so that a later writer may append.
+ProfileGroup define_profiles(int group, const StatsFile& f, const std::filesystem::path& target) {
+  ProfileGroup g;
+  g.group = group;
+  int time_dim = 0, z_dim = 0;
+  g.time_var = define_coordinate(group, "time", NC_UNLIMITED, kTime, "T", target, &time_dim);
+  g.z_var = define_coordinate(group, "z", f.z.size(), kHeight, "Z", target, &z_dim);
+  put_text(group, g.z_var, "positive", "up", target);
+  for (const StatsVariable& v : f.profiles.variables)
+    g.variables.push_back(define_variable(group, v, {time_dim, z_dim}, target));
+  return g;
+}
+
+// Writes the profiles `values` ([record][variable][k]) on the file's times and heights into `g`.
+void write_profiles(const ProfileGroup& g, const StatsFile& f,
+                    const std::vector<std::vector<std::vector<double>>>& values,
+                    const std::filesystem::path& target) {
+  if (!f.z.empty()) check(nc_put_var_double(g.group, g.z_var, f.z.data()), target, "writing z");
+  for (std::size_t r = 0; r < f.profiles.time.size(); ++r) {
+    const std::size_t at[1] = {r}, one[1] = {1};
+    check(nc_put_vara_double(g.group, g.time_var, at, one, &f.profiles.time[r]), target, "writing time");
+    for (std::size_t n = 0; n < g.variables.size(); ++n) {
+      const std::size_t start[2] = {r, 0}, count[2] = {1, f.z.size()};
+      check(nc_put_vara_double(g.group, g.variables[n], start, count, values[r][n].data()), target,
+            fmt::format("writing {}", f.profiles.variables[n].name));
+    }
+  }
+}
+
 void write_file(const std::filesystem::path& path, const std::filesystem::path& target, const StatsFile& f) {
   int root = 0;
   check(nc_create(path.c_str(), NC_NETCDF4 | NC_CLOBBER, &root), target, "creating the file");
@@ -99,14 +151,7 @@ void write_file(const std::filesystem::path& path, const std::filesystem::path& 
     put_text(root, NC_GLOBAL, "title", f.title, target);
     put_text(root, NC_GLOBAL, "source", "forestwind", target);
     put_text(root, NC_GLOBAL, "history", f.history, target);
-    // The profiles: (time, z), time unlimited so that a later writer may append.
-    int time_dim = 0, z_dim = 0;
-    const int time_var = define_coordinate(root, "time", NC_UNLIMITED, kTime, "T", target, &time_dim);
-    const int z_var = define_coordinate(root, "z", f.z.size(), kHeight, "Z", target, &z_dim);
-    put_text(root, z_var, "positive", "up", target);
-    std::vector<int> profile_vars;
-    for (const StatsVariable& v : f.profiles.variables)
-      profile_vars.push_back(define_variable(root, v, {time_dim, z_dim}, target));
+    const ProfileGroup domain = define_profiles(root, f, target);
     // The time series, in a group of their own with their own times.
     int series = 0, series_time_dim = 0;
     check(nc_def_grp(root, kSeriesGroup, &series), target, "defining the group timeseries");
@@ -115,18 +160,27 @@ void write_file(const std::filesystem::path& path, const std::filesystem::path& 
     std::vector<int> series_vars;
     for (const StatsVariable& v : f.series.variables)
       series_vars.push_back(define_variable(series, v, {series_time_dim}, target));
-    check(nc_enddef(root), target, "ending the definitions");
-
-    if (!f.z.empty()) check(nc_put_var_double(root, z_var, f.z.data()), target, "writing z");
-    for (std::size_t r = 0; r < f.profiles.time.size(); ++r) {
-      const std::size_t at[1] = {r}, one[1] = {1};
-      check(nc_put_vara_double(root, time_var, at, one, &f.profiles.time[r]), target, "writing time");
-      for (std::size_t n = 0; n < profile_vars.size(); ++n) {
-        const std::size_t start[2] = {r, 0}, count[2] = {1, f.z.size()};
-        check(nc_put_vara_double(root, profile_vars[n], start, count, f.profiles.values[r][n].data()), target,
-              fmt::format("writing {}", f.profiles.variables[n].name));
+    // The regions, a group each below regions/.
+    std::vector<ProfileGroup> regions;
+    if (!f.regions.empty()) {
+      int parent = 0;
+      check(nc_def_grp(root, kRegionsGroup, &parent), target, "defining the group regions");
+      for (const StatsRegion& region : f.regions) {
+        int group = 0;
+        check(nc_def_grp(parent, region.name.c_str(), &group), target,
+              fmt::format("defining the group regions/{}", region.name));
+        check(nc_put_att_double(group, NC_GLOBAL, "region_min", NC_DOUBLE, 2, region.min.data()), target,
+              "writing region_min");
+        check(nc_put_att_double(group, NC_GLOBAL, "region_max", NC_DOUBLE, 2, region.max.data()), target,
+              "writing region_max");
+        regions.push_back(define_profiles(group, f, target));
       }
     }
+    check(nc_enddef(root), target, "ending the definitions");
+
+    write_profiles(domain, f, f.profiles.values, target);
+    for (std::size_t n = 0; n < regions.size(); ++n)
+      write_profiles(regions[n], f, f.regions[n].values, target);
     for (std::size_t r = 0; r < f.series.time.size(); ++r) {
       const std::size_t at[1] = {r}, one[1] = {1};
       check(nc_put_vara_double(series, series_time_var, at, one, &f.series.time[r]), target,
@@ -172,6 +226,26 @@ std::vector<std::pair<StatsVariable, std::vector<double>>> read_variables(int gr
   return out;
 }
 
+// A group's profiles ([record][variable][k]), with its times, heights and variables.
+std::vector<std::vector<std::vector<double>>> read_profiles(int group, const std::filesystem::path& path,
+                                                            std::vector<double>* time, std::vector<double>* z,
+                                                            std::vector<StatsVariable>* variables) {
+  std::vector<std::vector<std::vector<double>>> values;
+  for (auto& [about, data] : read_variables(group, path)) {
+    if (about.name == "time") {
+      *time = data;
+    } else if (about.name == "z") {
+      *z = data;
+    } else {
+      variables->push_back(about);
+      values.resize(time->size(), {});
+      for (std::size_t r = 0; r < time->size(); ++r)
+        values[r].emplace_back(data.begin() + long(r * z->size()), data.begin() + long((r + 1) * z->size()));
+    }
+  }
+  return values;
+}
+
 }  // namespace
 
 StatsFile read_stats_netcdf(const std::filesystem::path& path) {
@@ -181,17 +255,31 @@ StatsFile read_stats_netcdf(const std::filesystem::path& path) {
   try {
     f.title = get_text(root, NC_GLOBAL, "title", path);
     f.history = get_text(root, NC_GLOBAL, "history", path);
-    for (auto& [about, data] : read_variables(root, path)) {
-      if (about.name == "time") {
-        f.profiles.time = data;
-      } else if (about.name == "z") {
-        f.z = data;
-      } else {
-        f.profiles.variables.push_back(about);
-        f.profiles.values.resize(f.profiles.time.size(), {});
-        for (std::size_t r = 0; r < f.profiles.time.size(); ++r)
-          f.profiles.values[r].emplace_back(data.begin() + long(r * f.z.size()),
-                                            data.begin() + long((r + 1) * f.z.size()));
+    f.profiles.values = read_profiles(root, path, &f.profiles.time, &f.z, &f.profiles.variables);
+    int regions = 0;
+    if (nc_inq_ncid(root, kRegionsGroup, &regions) == NC_NOERR) {
+      int count = 0;
+      check(nc_inq_grps(regions, &count, nullptr), path, "listing the regions");
+      std::vector<int> groups(std::size_t(count), 0);
+      check(nc_inq_grps(regions, &count, groups.data()), path, "listing the regions");
+      for (const int group : groups) {
+        StatsRegion region;
+        char name[NC_MAX_NAME + 1] = {};
+        check(nc_inq_grpname(group, name), path, "reading a region's name");
+        region.name = name;
+        check(nc_get_att_double(group, NC_GLOBAL, "region_min", region.min.data()), path,
+              fmt::format("reading region {}'s region_min", region.name));
+        check(nc_get_att_double(group, NC_GLOBAL, "region_max", region.max.data()), path,
+              fmt::format("reading region {}'s region_max", region.name));
+        std::vector<double> time, z;
+        std::vector<StatsVariable> variables;
+        region.values = read_profiles(group, path, &time, &z, &variables);
+        if (time != f.profiles.time || z != f.z || variables.size() != f.profiles.variables.size())
+          throw std::runtime_error(
+              fmt::format("{}: region {} has other times, heights or variables than the "
+                          "domain's",
+                          path.string(), region.name));
+        f.regions.push_back(std::move(region));
       }
     }
     int series = 0;

@@ -9,12 +9,15 @@
 //   file.profiles.values = {{{...nz values...}, ...}};         // [record][variable][k]
 //   fw::io::write_stats_netcdf("out/storm/stats.nc", file);   // the whole file, under a temporary name
 //
-// The root group holds the profiles on the dimensions (time, z); the group "timeseries" holds the time
-// series on its own dimension time. Every variable carries units and long_name, and standard_name where CF
-// has one; the coordinates carry axis, positive and standard_name. The file is written whole under a
-// temporary name and renamed (base/AtomicFile): a run killed while writing it leaves the last complete file.
+// The root group holds the whole domain's profiles on the dimensions (time, z); the group "timeseries" holds
+// the time series on its own dimension time; the group "regions/NAME" holds a region's profiles, with copies
+// of time and z so that xarray opens it alone, and the box in the attributes region_min and region_max. Every
+// variable carries units and long_name, and standard_name where CF has one; the coordinates carry axis,
+// positive and standard_name. The file is written whole under a temporary name and renamed (base/AtomicFile):
+// a run killed while writing it leaves the last complete file.
 #pragma once
 
+#include <array>
 #include <filesystem>
 #include <string>
 #include <vector>
@@ -40,12 +43,20 @@ struct StatsSeries {
   std::vector<std::vector<double>> values;  // [record][variable]
 };
 
+/// The profiles of a horizontal part of the domain, on the whole domain's times, heights and variables.
+struct StatsRegion {
+  std::string name;                                      // the group's: regions/NAME
+  std::array<double, 2> min{}, max{};                    // m: the box the averaged cells fill (x, y)
+  std::vector<std::vector<std::vector<double>>> values;  // [record][variable][k]
+};
+
 struct StatsFile {
   std::string title;      // the scenario's name
   std::string history;    // what wrote it: "forestwind run SCENARIO"
   std::vector<double> z;  // m, the heights of the profiles
   StatsProfiles profiles;
   StatsSeries series;
+  std::vector<StatsRegion> regions;  // each in the group regions/NAME, with its own copies of time and z
 };
 
 /// The profile variables of fluid/PlaneProfiles, in its order.

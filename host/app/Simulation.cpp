@@ -89,26 +89,6 @@ io::OutputFrame capture_frame(CoupledStep& coupled, const io::FrameNeeds& needs,
   return frame;
 }
 
-// Something due at a fixed interval of simulated time: at the first step that reaches each multiple of it
-// (0: every step). Like frames, a probe sample is due once the simulated time reaches its time.
-class Schedule {
- public:
-  explicit Schedule(double interval) : interval_(interval), next_(interval) {}
-  /// The next due time, s (what a checkpoint keeps), and going on from one.
-  double next() const { return next_; }
-  void resume(double next) { next_ = next; }
-  /// Whether time t (s) has reached the next due time; if so, the next one moves past t.
-  bool due(double t) {
-    if (!(interval_ > 0.0)) return true;
-    if (t < next_ - kScheduleTolerance * interval_) return false;
-    while (next_ <= t + kScheduleTolerance * interval_) next_ += interval_;
-    return true;
-  }
-
- private:
-  double interval_, next_;
-};
-
 // One self-overwriting line on stderr: the step, the simulated time, the wall time per step and the ETA.
 void print_progress(const WindStepReport& step, double end, double wall_seconds) {
   const double rate = step.time / std::max(wall_seconds, 1e-9);  // simulated seconds per wall second

@@ -48,14 +48,11 @@
 
 #include "host/app/CoupledStep.hpp"
 #include "host/app/RunCheckpoint.hpp"
+#include "host/app/Schedule.hpp"
 #include "host/app/SimulationPlan.hpp"
 #include "host/runtime/ComputeContext.hpp"
 
 namespace fw::host {
-
-/// Simulated times closer than this fraction of an interval are the same time (sums of float dt): the run
-/// loop's schedules of frames, probe samples and checkpoints, and the output size that counts them.
-inline constexpr double kScheduleTolerance = 1e-9;
 
 struct RunOptions {
   double end_time = 0.0;  ///< s; > 0 overrides the plan's end time

@@ -11,7 +11,7 @@ namespace fw::io::reader {
 
 namespace {
 
-bool probe_name(const std::string& name) {
+bool plain_name(const std::string& name) {
   return !name.empty() && std::all_of(name.begin(), name.end(), [](unsigned char c) {
     return (c >= 'A' && c <= 'Z') || (c >= 'a' && c <= 'z') || (c >= '0' && c <= '9') || c == '_';
   });
@@ -66,7 +66,7 @@ Probe read_probe(const Loader& loader, const Field& item, const std::vector<Prob
   const Field name = map.require<"name">();
   probe.name = loader.text(name);
   const std::string what = schema::expected(key_of(name));
-  if (!probe_name(probe.name)) loader.expected(name, what + " of letters, digits and _");
+  if (!plain_name(probe.name)) loader.expected(name, what + " of letters, digits and _");
   for (const Probe& other : earlier)
     if (other.name == probe.name) loader.expected(name, what + " not used before");
   const Field position = map.require<"position">();
@@ -80,6 +80,46 @@ Probe read_probe(const Loader& loader, const Field& item, const std::vector<Prob
     }
   }
   return probe;
+}
+
+/// One item of output.statistics.regions, after the regions `earlier`: a box holding at least one cell
+/// centre of the domain.
+StatisticsRegion read_region(const Loader& loader, const Field& item,
+                             const std::vector<StatisticsRegion>& earlier, const DomainSettings& domain) {
+  const Section<schema::kOutputKeys, "output.statistics.regions[]"> map(loader, item);
+  StatisticsRegion region;
+  const Field name = map.require<"name">();
+  region.name = loader.text(name);
+  const std::string what = schema::expected(key_of(name));
+  if (!plain_name(region.name)) loader.expected(name, what + " of letters, digits and _");
+  if (region.name.starts_with(kStandRegionPrefix))
+    loader.expected(name, what + " not starting with " + std::string(kStandRegionPrefix) +
+                              " (the stands' regions are named so)");
+  for (const StatisticsRegion& other : earlier)
+    if (other.name == region.name) loader.expected(name, what + " not used before");
+  const Field min = map.require<"min">(), max = map.require<"max">();
+  region.min = loader.vector<2>(min);
+  region.max = loader.vector<2>(max);
+  const Vec3 top = domain.max_corner();
+  for (int axis = 0; axis < 2; ++axis)
+    if (!inside(region.min[axis], domain.origin[axis], top[axis]))
+      loader.expected(min, fmt::format("a corner inside the domain [{}, {}] x [{}, {}] m", domain.origin[0],
+                                       top[0], domain.origin[1], top[1]));
+  for (int axis = 0; axis < 2; ++axis)
+    if (!inside(region.max[axis], domain.origin[axis], top[axis]) || !(region.max[axis] > region.min[axis]))
+      loader.expected(
+          max, fmt::format("a corner inside the domain [{}, {}] x [{}, {}] m, east and north of "
+                           "min [{}, {}]",
+                           domain.origin[0], top[0], domain.origin[1], top[1], region.min[0], region.min[1]));
+  if (domain.cell_size > 0.0)
+    for (int axis = 0; axis < 2; ++axis) {
+      const auto [first, end] = statistics_cells(region.min[axis], region.max[axis], domain.origin[axis],
+                                                 domain.cell_size, domain.cells[axis]);
+      if (end <= first)
+        loader.expected(
+            max, fmt::format("a box holding at least one cell centre (cells are {} m)", domain.cell_size));
+    }
+  return region;
 }
 
 /// The interval of a key that a run writes something at (frames, probe rows, checkpoints), in its range, and
@@ -119,6 +159,26 @@ OutputSettings read_output(const Loader& loader, const Field& field, const std::
   if (const auto probes = map.get<"probes">())
     for (const Field& item : loader.items(*probes))
       output.probes.push_back(read_probe(loader, item, output.probes, domain));
+  if (const auto statistics = map.get<"statistics">()) {
+    const Section<schema::kOutputKeys, "output.statistics"> settings(loader, *statistics);
+    StatisticsSettings& s = output.statistics.emplace();
+    s.interval = run_interval(loader, settings.require<"interval">(), end);
+    s.averaging = s.interval;
+    if (const auto averaging = settings.get<"averaging">()) {
+      if (const auto seconds = loader.number_or_word(*averaging)) {
+        if (!(*seconds <= s.interval))
+          loader.expected(*averaging, fmt::format("{} and at most interval ({} s)",
+                                                  schema::expected(key_of(*averaging)), s.interval));
+        s.averaging = *seconds;
+      }
+    }
+    if (const auto every = settings.get<"sample_every">()) s.sample_every = loader.integer(*every);
+    if (const auto every = settings.get<"series_every">()) s.series_every = loader.integer(*every);
+    if (const auto stands = settings.get<"stands">()) s.stands = loader.boolean(*stands);
+    if (const auto regions = settings.get<"regions">())
+      for (const Field& item : loader.items(*regions))
+        s.regions.push_back(read_region(loader, item, s.regions, domain));
+  }
   if (const auto checkpoint = map.get<"checkpoint">()) {
     const Section<schema::kOutputKeys, "output.checkpoint"> settings(loader, *checkpoint);
     output.checkpoint_interval = run_interval(loader, settings.require<"interval">(), end);

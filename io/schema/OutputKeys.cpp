@@ -78,6 +78,46 @@ constexpr KeyDocs kDocs[] = {
      .allowed = "inside the domain, faces included",
      .bounds_why = why::kEarth,
      .description = "Probe location. The velocity there is interpolated trilinearly."},
+    {.path = "output.statistics",
+     .description =
+         "`stats.nc`: profiles against height averaged over each horizontal plane's fluid cells and "
+         "over time, and time series, as NetCDF-4 with CF-1.8 attributes (docs/statistics.md)."},
+    {.path = "output.statistics.interval",
+     .constraint = "`time.end` / `interval` at most {0}",
+     .limits = {bounds::kMaxRunSteps},
+     .bounds_why = why::kIntervals,
+     .description = "Simulated time between the profiles' records: a record at each multiple of it."},
+    {.path = "output.statistics.averaging",
+     .default_note = "`auto`: `interval`, so that the records cover the run without a gap",
+     .constraint = "at most `interval`",
+     .bounds_why = why::kIntervals,
+     .description = "Simulated time each record averages over: the samples taken in the `averaging` seconds "
+                    "up to the record's time. 0: the one sample at the record's time."},
+    {.path = "output.statistics.sample_every",
+     .bounds_why = why::kEvery,
+     .description = "Solver steps between the profiles' samples within an averaging window (1: every "
+                    "step)."},
+    {.path = "output.statistics.series_every",
+     .bounds_why = why::kEvery,
+     .description = "Solver steps between the time series' rows (1: every step)."},
+    {.path = "output.statistics.stands",
+     .description = "Also average over each stand's region (`forest.stands`), in the group "
+                    "`regions/stand_N` (N from 1 in the file's order)."},
+    {.path = "output.statistics.regions",
+     .description = "Horizontal boxes averaged on their own, each in the group `regions/<name>` of "
+                    "`stats.nc`, besides the whole domain in the root group. A box takes the cells whose "
+                    "centres lie in it."},
+    {.path = "output.statistics.regions[].name",
+     .allowed = "letters, digits and `_`; unique, not `stand_N`",
+     .description = "The region's group name."},
+    {.path = "output.statistics.regions[].min",
+     .allowed = "inside the domain, with at least one cell centre between `min` and `max`",
+     .bounds_why = why::kEarth,
+     .description = "South-west corner [x, y] of the box."},
+    {.path = "output.statistics.regions[].max",
+     .allowed = "east and north of `min`",
+     .bounds_why = why::kEarth,
+     .description = "North-east corner [x, y] of the box."},
     {.path = "output.checkpoint",
      .description = "Checkpoints of the whole state in `checkpoints/`, from which `forestwind run --resume` "
                     "continues bit for bit. Without this key a run still writes one when a signal stops it "

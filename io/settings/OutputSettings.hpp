@@ -5,7 +5,9 @@
 //   fw::io::OutputSettings output;   // a frame a second, every VTK field
 #pragma once
 
+#include <algorithm>
 #include <array>
+#include <cmath>
 #include <filesystem>
 #include <optional>
 #include <string>
@@ -18,6 +20,34 @@ namespace fw::io {
 struct Probe {
   std::string name;                  ///< [A-Za-z0-9_]+, unique
   std::array<double, 3> position{};  ///< m, inside the domain (faces included)
+};
+
+/// The group name of the statistics' region of stand N (from 1): stand_N.
+inline constexpr std::string_view kStandRegionPrefix = "stand_";
+
+/// The cells along one axis whose centres lie in [min, max] (m) on a grid from `origin` of `cells` cells of
+/// `h`: [first, end), empty when none does.
+inline std::array<int, 2> statistics_cells(double min, double max, double origin, double h, int cells) {
+  const auto first = static_cast<int>(std::ceil((min - origin) / h - 0.5));
+  const auto last = static_cast<int>(std::floor((max - origin) / h - 0.5));
+  return {std::max(first, 0), std::min(last + 1, cells)};
+}
+
+/// A horizontal box the statistics average over on their own (output.statistics.regions[]).
+struct StatisticsRegion {
+  std::string name;             ///< [A-Za-z0-9_]+, unique
+  std::array<double, 2> min{};  ///< m, south-west corner
+  std::array<double, 2> max{};  ///< m, north-east corner
+};
+
+/// output.statistics: stats.nc's records (docs/statistics.md).
+struct StatisticsSettings {
+  double interval = 0.0;   ///< s between profile records, > 0
+  double averaging = 0.0;  ///< s each record averages over, in [0, interval]
+  int sample_every = int(schema::key(schema::kOutputKeys, "output.statistics.sample_every").number);
+  int series_every = int(schema::key(schema::kOutputKeys, "output.statistics.series_every").number);
+  bool stands = schema::key(schema::kOutputKeys, "output.statistics.stands").flag;
+  std::vector<StatisticsRegion> regions;
 };
 
 struct OutputSettings {
@@ -50,6 +80,8 @@ struct OutputSettings {
       schema::value_of(schema::kLeafStrideWords, schema::kLeafStrides,
                        schema::key(schema::kOutputKeys, "output.leaves.attached").word);
   std::vector<Probe> probes;
+  /// output.statistics; nullopt without the key (no stats.nc).
+  std::optional<StatisticsSettings> statistics;
   /// output.checkpoint.interval, s; 0 without the key (checkpoints only when a signal stops the run).
   double checkpoint_interval = 0.0;
   /// the newest ones kept

@@ -38,6 +38,12 @@ io::StatsFile two_records() {
                         {"dt", "s", "time step", ""}};
   f.series.time = {0.5, 1.0, 1.5};
   f.series.values = {{0.31, 0.5}, {0.32, 0.5}, {0.33, 0.5}};
+  // A region: the domain's values plus 1000.
+  io::StatsRegion gap{"gap", {10.0, 20.0}, {30.0, 44.0}, f.profiles.values};
+  for (auto& record : gap.values)
+    for (auto& profile : record)
+      for (double& value : profile) value += 1000.0;
+  f.regions = {gap};
   return f;
 }
 
@@ -73,6 +79,11 @@ TEST_CASE("stats.nc: profiles and time series read back as written, with their u
   CHECK(read.profiles.values == written.profiles.values);  // doubles, stored as doubles: bit for bit
   CHECK(read.series.time == written.series.time);
   CHECK(read.series.values == written.series.values);
+  REQUIRE(read.regions.size() == 1);
+  CHECK(read.regions[0].name == "gap");
+  CHECK(read.regions[0].min == written.regions[0].min);
+  CHECK(read.regions[0].max == written.regions[0].max);
+  CHECK(read.regions[0].values == written.regions[0].values);
   REQUIRE(read.series.variables.size() == 2);
   CHECK(read.series.variables[0].name == "ustar");
   CHECK(read.series.variables[0].units == "m s-1");
@@ -90,7 +101,8 @@ TEST_CASE("stats.nc: ncdump -h shows CF-1.8, the dimensions time and z, and each
   for (const char* text :
        {"netcdf stats {", "time = UNLIMITED ; // (2 currently)", "z = 3 ;", ":Conventions = \"CF-1.8\" ;",
         "double u_w(time, z) ;", "u_w:units = \"m2 s-2\" ;", "u:standard_name = \"eastward_wind\" ;",
-        "z:positive = \"up\" ;", "z:axis = \"Z\" ;", "group: timeseries {", "double ustar(time) ;"})
+        "z:positive = \"up\" ;", "z:axis = \"Z\" ;", "group: timeseries {", "double ustar(time) ;",
+        "group: regions {", "group: gap {", ":region_min = 10., 20. ;"})
     CHECK(header.find(text) != std::string::npos);
 }
 
@@ -110,12 +122,17 @@ TEST_CASE("stats.nc: xarray opens it, the profiles on (time, z) and the time ser
       "', group='timeseries')\n"
       "print(ds['u_w'].dims, float(ds['u_w'][1, 2]), ds['u'].attrs['standard_name'], "
       "list(ds['time'].values))\n"
-      "print(ts['ustar'].dims, float(ts['ustar'][2]))\n";
+      "print(ts['ustar'].dims, float(ts['ustar'][2]))\n"
+      "gap = xr.open_dataset('" +
+      path.string() +
+      "', group='regions/gap')\n"
+      "print('gap', float(gap['u_w'][1, 2]), list(gap['z'].values))\n";
   const std::string out = output_of("/usr/bin/python3 -c \"" + script + "\" 2>&1");
   INFO(out);
   // u_w is variable 9: its record 1 at height 2 holds 100 + 9 + 0.5.
   CHECK(out.find("('time', 'z') 109.5 eastward_wind [60.0, 120.0]") != std::string::npos);
   CHECK(out.find("('time',) 0.33") != std::string::npos);
+  CHECK(out.find("gap 1109.5 [1.0, 3.0, 5.0]") != std::string::npos);
 }
 
 TEST_CASE("stats.nc: a record of the wrong shape is refused and nothing is written", "[stats]") {
@@ -125,6 +142,9 @@ TEST_CASE("stats.nc: a record of the wrong shape is refused and nothing is writt
   CHECK_THROWS_AS(io::write_stats_netcdf(folder / "stats.nc", f), std::invalid_argument);
   f = two_records();
   f.series.time.push_back(2.0);  // a time without its record
+  CHECK_THROWS_AS(io::write_stats_netcdf(folder / "stats.nc", f), std::invalid_argument);
+  f = two_records();
+  f.regions[0].values.pop_back();  // a region a record short
   CHECK_THROWS_AS(io::write_stats_netcdf(folder / "stats.nc", f), std::invalid_argument);
   CHECK(std::filesystem::is_empty(folder));
   CHECK_THROWS_AS(io::read_stats_netcdf(folder / "missing.nc"), std::runtime_error);
