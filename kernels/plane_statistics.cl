@@ -74,8 +74,10 @@ __kernel void plane_statistics(const FwGrid g, const int first_x, const int end_
     }
     if (has_energy) add_term(&sum[FW_TERM_E], &most[FW_TERM_E], energy[id], s[FW_TERM_E]);
     if (has_lad) add_term(&sum[FW_TERM_LAD], &most[FW_TERM_LAD], lad[id], s[FW_TERM_LAD]);
+    most[FW_TERM_SPEED] = fmax(most[FW_TERM_SPEED], uc * uc + vc * vc + wc * wc);
   }
   const int out = FW_PLANE_TERMS * ((j - first_row) + own_rows * k);
+  most[FW_TERM_SPEED] = sqrt(most[FW_TERM_SPEED]);
   for (int t = 0; t < FW_PLANE_TERMS; ++t) {
     sums[out + t] = sum[t];
     largest[out + t] = most[t];

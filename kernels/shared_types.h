@@ -68,7 +68,8 @@ typedef std::uint32_t fw_uint;
 #define FW_TERM_V_DIFF 12 /* -2 nu_t S_yz */
 #define FW_TERM_E 13
 #define FW_TERM_LAD 14
-#define FW_PLANE_TERMS 15
+#define FW_TERM_SPEED 15 /* |(u, v, w)|: its largest value only, no sum */
+#define FW_PLANE_TERMS 16
 
 /* The wind grid: a MAC grid of nx*ny*nz cubic cells of size h.
  * Storage is x-fastest. u lives on x-faces ((nx+1)*ny*nz values), v on y-faces (nx*(ny+1)*nz),

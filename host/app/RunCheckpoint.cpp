@@ -25,6 +25,8 @@ constexpr std::size_t kSegmentValues = 5;
 constexpr std::size_t kBlockValues = 9;
 // Only in the checkpoint a run writes at its end (RunProgress::reached_end).
 constexpr const char* kReachedEnd = "run.reached_end";
+// Only with output.statistics (RunProgress::statistics).
+constexpr const char* kStatistics = "run.statistics";
 
 std::string rank_file(int rank) {
   return fmt::format("rank_{:04d}.fwcheck", rank);
@@ -57,6 +59,7 @@ io::Checkpoint to_checkpoint(const RunSnapshot& snapshot) {
                     {s.start_time, s.end_time, double(s.start_step), double(s.end_step), s.wall_seconds});
   c.put("run.segments", segments);
   if (p.reached_end) c.put(kReachedEnd, std::vector<double>{*p.reached_end});
+  if (!p.statistics.empty()) c.put(kStatistics, p.statistics);
   c.put("run.ranks", std::vector<std::int64_t>{snapshot.ranks});
   c.put("run.decomposition", text_bytes(snapshot.decomposition));
   std::string keys;
@@ -112,6 +115,7 @@ RunSnapshot from_checkpoint(const io::Checkpoint& c) {
       throw io::CheckpointError(fmt::format("the section \"{}\" has the wrong size", kReachedEnd));
     snapshot.progress.reached_end = end[0];
   }
+  if (c.has(kStatistics)) snapshot.progress.statistics = c.get<double>(kStatistics);
   const std::vector<std::int64_t>& ranks = c.get<std::int64_t>("run.ranks");
   if (ranks.size() != 1) throw io::CheckpointError("the section \"run.ranks\" has the wrong size");
   snapshot.ranks = int(ranks[0]);

@@ -49,6 +49,8 @@ struct RunProgress {
   /// which was cut short to land on the end time: an extension goes on from the last whole step and takes
   /// the step the longer run took, bit for bit; a resume to the same end takes the cut step again.
   std::optional<double> reached_end;
+  /// The statistics' averaging window (StatisticsRecorder::saved); empty without statistics.
+  std::vector<double> statistics;
 };
 
 /// One rank's part of a checkpoint.

@@ -17,6 +17,7 @@
 #include "host/app/FrameGather.hpp"
 #include "host/app/OutputWriters.hpp"
 #include "host/app/ProbeRecorder.hpp"
+#include "host/app/StatisticsRecorder.hpp"
 #include "host/runtime/Communicator.hpp"
 #include "io/PvdCollection.hpp"
 #include "io/writers/LeavesVtkWriter.hpp"
@@ -115,6 +116,7 @@ class RunLoop {
         probes_(cc, coupled, probe_points(plan), plan.forest.instance_count(), options.tip_trees,
                 plan.coupling.strong_wind_correction),
         output_(make_writers(plan, directory, cc.device(), probes_.tip_trees(), share_ ? &*share_ : nullptr)),
+        statistics_(cc, plan, coupled, world, directory / kStatisticsFile),
         checkpoints_(directory / "checkpoints", world),
         state_keys_(io::state_keys(plan.scenario.text)),
         frames_due_(plan.output.interval),
@@ -143,6 +145,7 @@ class RunLoop {
       }
       coupled_.restore_state(from->stages);
       output_.check_resume(resume_point(*from));  // a probes.csv of other columns: refused, nothing touched
+      statistics_.resume(from->time, from->progress.statistics);  // reads stats.nc; refuses another run's
     }
     try {
       std::filesystem::create_directories(directory_);
@@ -151,6 +154,8 @@ class RunLoop {
         resume(*from);
       } else {
         output_.begin();
+        // A stats.nc of an earlier run in this folder is not this run's.
+        if (world_.rank() == 0) std::filesystem::remove(directory_ / kStatisticsFile);
         start_with_spin_up();
         sample_probes();
         hand_over_frame();
@@ -273,13 +278,14 @@ class RunLoop {
     push_pending_samples();
     output_.drain();
     list_complete_frames();
+    statistics_.write();
     RunSnapshot snapshot;
     snapshot.time = coupled_.time();
     snapshot.step = coupled_.steps();
     snapshot.stages = coupled_.save_state();
     snapshot.progress = {
         frames_,           samples_taken_, frames_due_.next(), samples_due_.next(), checkpoints_due_.next(),
-        earlier_segments_, reached_end};
+        earlier_segments_, reached_end,    statistics_.saved()};
     snapshot.progress.segments.push_back(segment(kStoppedSegment));
     snapshot.state_keys = state_keys_;
     snapshot.ranks = plan_.decomposition.ranks();
@@ -327,6 +333,7 @@ class RunLoop {
         end_checkpointed_ = true;
       }
       const CoupledStepReport report = coupled_.step(next);
+      statistics_.after_step(report);
       if (samples_due_.due(report.wind.time)) sample_probes();
       if (frames_due_.due(report.wind.time)) hand_over_frame();
       // After the cut step none: the end's is the one before it.
@@ -376,6 +383,7 @@ class RunLoop {
     try {
       push_pending_samples();
       output_.drain();
+      statistics_.write();
     } catch (const std::exception& e) {
       write_error = std::current_exception();
       if (outcome.status != "failed") {
@@ -391,6 +399,7 @@ class RunLoop {
     summary_.stage_ms = coupled_.stage_ms();
     summary_.stage_ms["output"] = output_ms_;
     summary_.stage_ms["probes"] = probe_ms_;
+    if (statistics_.on()) summary_.stage_ms["statistics"] = statistics_.ms();
     summary_.stage_ms["output_write"] = output_.write_ms();
     if (checkpoint_ms_ > 0.0) summary_.stage_ms["checkpoint"] = checkpoint_ms_;
     outcome.frames = summary_.frames = first_frame_ + output_.frames_written();
@@ -419,6 +428,7 @@ class RunLoop {
   const Clock::time_point wall_start_ = Clock::now();
   ProbeRecorder probes_;
   io::OutputPipeline output_;
+  StatisticsRecorder statistics_;
   RunSummary summary_;
   double output_ms_ = 0.0, probe_ms_ = 0.0;
   int frames_ = 0;

@@ -195,6 +195,11 @@ int run_scenario(const RunCommandOptions& options, const GlobalOptions& global,
                                grids);
     }
     std::cout << fmt::format("  probes: {0}/probes.csv   timings: {0}/run.json\n", directory.string());
+    if (scenario.output.statistics)
+      std::cout << fmt::format(
+          "  statistics: {0}/stats.nc (xarray; docs/statistics.md)   forestwind plot {0} "
+          "--profiles -o {0}/profiles.png\n",
+          directory.string());
     if (!summary.checkpoint.empty())
       std::cout << fmt::format("  checkpoint: {}   go on: forestwind run {} -o {} --resume {}\n",
                                summary.checkpoint.string(), options.scenario, directory.string(),

@@ -30,6 +30,7 @@ std::array<double, FW_PLANE_TERMS> default_bounds(double u) {
   b[FW_TERM_U_DIFF] = b[FW_TERM_V_DIFF] = kSubgridFluxFactor * u * u;
   b[FW_TERM_E] = u * u;
   b[FW_TERM_LAD] = kDragDensityBound;
+  b[FW_TERM_SPEED] = 0.0;  // no sum
   return b;
 }
 
@@ -94,10 +95,11 @@ int PlaneStatistics::scale_exponent(double bound, double cells) {
 void PlaneStatistics::run_pass(const WindStatisticsFields& fields,
                                const std::array<int, FW_PLANE_TERMS>& exponents, const PlaneRegion& region) {
   const std::array<int, 2> x = own_span(block_, spec_, region, 0), y = own_span(block_, spec_, region, 1);
-  const int rows = y[1] - y[0], nz = local_.nz;
+  // No own cell of the region: no rows (the rank still takes part in the sums over ranks).
+  const int rows = x[1] > x[0] ? y[1] - y[0] : 0, nz = local_.nz;
   std::vector<cl_long> row_sums;
   std::vector<float> row_largest;
-  if (rows > 0 && x[1] > x[0]) {
+  if (rows > 0) {
     std::array<float, FW_PLANE_TERMS> scales{};
     for (int t = 0; t < FW_PLANE_TERMS; ++t)
       scales[std::size_t(t)] = std::ldexp(1.0f, exponents[std::size_t(t)]);
@@ -146,14 +148,15 @@ fluid::PlaneProfiles PlaneStatistics::sample(const WindStatisticsFields& fields,
   const std::array<double, FW_PLANE_TERMS> bounds = default_bounds(velocity_bound(speed_bound));
   std::array<int, FW_PLANE_TERMS> exponents{};
   for (int t = 0; t < FW_PLANE_TERMS; ++t)
-    exponents[std::size_t(t)] = t == FW_TERM_CELLS ? 0 : scale_exponent(bounds[std::size_t(t)], cells);
+    exponents[std::size_t(t)] =
+        (t == FW_TERM_CELLS || t == FW_TERM_SPEED) ? 0 : scale_exponent(bounds[std::size_t(t)], cells);
   run_pass(fields, exponents, region);
   // A term whose largest value passed its bound is summed again at that value's scale (every rank sees the
   // same maxima, so all take the second pass or none). A non-finite one stays: its profile reads NaN.
   bool again = false;
   for (int t = 0; t < FW_PLANE_TERMS; ++t) {
     const double most = largest_[std::size_t(t)];
-    if (t == FW_TERM_CELLS || !std::isfinite(most)) continue;
+    if (t == FW_TERM_CELLS || t == FW_TERM_SPEED || !std::isfinite(most)) continue;
     const int fits = scale_exponent(most, cells);
     if (fits < exponents[std::size_t(t)]) {
       exponents[std::size_t(t)] = fits;

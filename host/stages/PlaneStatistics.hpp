@@ -57,6 +57,8 @@ class PlaneStatistics {
   fluid::PlaneProfiles sample(const WindStatisticsFields& fields, double speed_bound,
                               const PlaneRegion& region = {});
 
+  /// The largest speed |(u, v, w)| at a cell centre of the last sample's region, m/s (over every rank).
+  double largest_speed() const { return largest_[FW_TERM_SPEED]; }
   /// How many passes the samples so far took beyond one each (a bound passed): for tests and benchmarks.
   long extra_passes() const { return extra_passes_; }
 

@@ -1,5 +1,5 @@
 // host/stages/PlaneStatistics over MPI ranks (CTest runs this binary at 1, 2 and 4 ranks): every split gives
-// one process's profiles, bit for bit, for the whole plane and for a region across the cuts.
+// one process's profiles, bit for bit, for the whole plane and for regions across the cuts and beside them.
 #include <catch2/catch.hpp>
 
 #include <vector>
@@ -55,8 +55,10 @@ void check_equal_to_one_process(const host::WindGridSetup& setup, const std::vec
   auto* cc = test::device_or_skip();
   if (!cc) return;
   const host::Communicator& world = test::world();
-  // The whole plane, and a region whose edges fall inside the blocks of every split.
-  for (const host::PlaneRegion region : {host::PlaneRegion{}, host::PlaneRegion{{5, 3}, {27, 11}}}) {
+  // The whole plane, a region whose edges fall inside the blocks of every split, and a corner that most
+  // blocks do not reach (their ranks add nothing, and still take part).
+  for (const host::PlaneRegion region :
+       {host::PlaneRegion{}, host::PlaneRegion{{5, 3}, {27, 11}}, host::PlaneRegion{{1, 1}, {6, 5}}}) {
     INFO("region x " << region.first[0] << ".." << region.end[0] << ", y " << region.first[1] << ".."
                      << region.end[1]);
     const fluid::PlaneProfiles alone = profiles_after_steps(*cc, setup, canopy, region, nullptr);

@@ -1,0 +1,279 @@
+#include "host/app/StatisticsRecorder.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+#include <utility>
+
+#include "fluid/SubgridStress.hpp"
+
+namespace fw::host {
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double ms_since(Clock::time_point start) {
+  return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
+}
+
+// The time series' columns, in series_columns()'s order.
+enum Series {
+  u_star,
+  kinetic_energy,
+  max_speed,
+  dt,
+  cfl,
+  pressure_iterations,
+  leaves_shed,
+  leaves_landed,
+  trees_broken,
+  trees_overturned,
+  series_count
+};
+
+// A checkpoint's numbers: the next record's time and the window's samples, then the window's sums.
+constexpr std::size_t kSavedHead = 2;
+
+// An area's box of whole cells along axis a (x 0, y 1) of `spec`, m.
+std::array<double, 2> cell_faces(const fluid::GridSpec& spec, const PlaneRegion& region, int a) {
+  const int end = region.end[std::size_t(a)] > 0 ? region.end[std::size_t(a)] : spec.cells_along(a);
+  return {spec.origin[std::size_t(a)] + region.first[std::size_t(a)] * spec.h,
+          spec.origin[std::size_t(a)] + end * spec.h};
+}
+
+StatisticsArea area_of(const fluid::GridSpec& spec, std::string name, const std::array<double, 2>& min,
+                       const std::array<double, 2>& max) {
+  StatisticsArea area;
+  area.name = std::move(name);
+  for (int a = 0; a < 2; ++a) {
+    const std::array<int, 2> cells = io::statistics_cells(
+        min[std::size_t(a)], max[std::size_t(a)], spec.origin[std::size_t(a)], spec.h, spec.cells_along(a));
+    area.cells.first[std::size_t(a)] = cells[0];
+    area.cells.end[std::size_t(a)] = cells[1];
+  }
+  for (int a = 0; a < 2; ++a) {
+    const std::array<double, 2> faces = cell_faces(spec, area.cells, a);
+    area.min[std::size_t(a)] = faces[0];
+    area.max[std::size_t(a)] = faces[1];
+  }
+  return area;
+}
+
+}  // namespace
+
+std::vector<io::StatsVariable> series_columns() {
+  return {
+      {"u_star", "m s-1", "friction velocity at the ground", ""},
+      {"ke", "m2 s-2", "resolved kinetic energy per unit mass, mean over the fluid cells", ""},
+      {"max_speed", "m s-1", "largest wind speed at a cell centre", ""},
+      {"dt", "s", "time step", ""},
+      {"cfl", "1", "Courant number of the step", ""},
+      {"pressure_iterations", "1", "iterations of the step's pressure solve", ""},
+      {"leaves_shed", "1", "leaves shed so far", ""},
+      {"leaves_landed", "1", "leaves landed so far", ""},
+      {"trees_broken", "1", "trees broken so far", ""},
+      {"trees_overturned", "1", "trees overturned so far", ""},
+  };
+}
+
+std::vector<StatisticsArea> statistics_areas(const SimulationPlan& plan) {
+  const fluid::GridSpec& spec = plan.wind.spec;
+  std::vector<StatisticsArea> areas;
+  StatisticsArea domain;
+  for (int a = 0; a < 2; ++a) {
+    const std::array<double, 2> faces = cell_faces(spec, domain.cells, a);
+    domain.min[std::size_t(a)] = faces[0];
+    domain.max[std::size_t(a)] = faces[1];
+  }
+  areas.push_back(domain);
+  if (!plan.output.statistics) return areas;
+  for (const io::StatisticsRegion& region : plan.output.statistics->regions)
+    areas.push_back(area_of(spec, region.name, region.min, region.max));
+  if (plan.output.statistics->stands)
+    for (std::size_t n = 0; n < plan.stands.size(); ++n) {
+      const StandPlan& stand = plan.stands[n];
+      StatisticsArea area = area_of(spec, fmt::format("{}{}", io::kStandRegionPrefix, n + 1),
+                                    {stand.min.x(), stand.min.y()}, {stand.max.x(), stand.max.y()});
+      // A stand outside the domain, or narrower than a cell, averages nothing: left out.
+      if (area.cells.end[0] > area.cells.first[0] && area.cells.end[1] > area.cells.first[1])
+        areas.push_back(std::move(area));
+    }
+  return areas;
+}
+
+StatisticsRecorder::StatisticsRecorder(ComputeContext& cc, const SimulationPlan& plan, CoupledStep& coupled,
+                                       const Communicator& world, std::filesystem::path file)
+    : plan_(plan), coupled_(coupled), world_(world), file_(std::move(file)) {
+  if (!plan.output.statistics) return;
+  const WindGrid& wind = coupled.wind();
+  statistics_.emplace(cc, wind.spec(), wind.local_spec(), wind.block(), world);
+  areas_ = statistics_areas(plan);
+  records_ = Schedule(plan.output.statistics->interval);
+  const fluid::GridSpec& spec = plan.wind.spec;
+  window_.assign(areas_.size() * fluid::kProfileCount * std::size_t(spec.nz), 0.0);
+  out_.title = plan.scenario.name;
+  out_.history = "forestwind run " + plan.scenario.file_name;
+  for (int k = 0; k < spec.nz; ++k) out_.z.push_back(spec.origin[2] + (k + 0.5) * spec.h);
+  out_.profiles.variables = io::profile_columns();
+  out_.series.variables = series_columns();
+  for (std::size_t n = 1; n < areas_.size(); ++n)
+    out_.regions.push_back({areas_[n].name, areas_[n].min, areas_[n].max, {}});
+}
+
+fluid::PlaneProfiles StatisticsRecorder::sample_window(double speed_bound) {
+  const WindStatisticsFields fields = coupled_.wind().statistics_fields();
+  const std::size_t nz = out_.z.size();
+  fluid::PlaneProfiles domain;
+  for (std::size_t a = 0; a < areas_.size(); ++a) {
+    const fluid::PlaneProfiles p = statistics_->sample(fields, speed_bound, areas_[a].cells);
+    for (std::size_t v = 0; v < fluid::kProfileCount; ++v)
+      for (std::size_t k = 0; k < nz; ++k) window_[(a * fluid::kProfileCount + v) * nz + k] += p.values[v][k];
+    if (a == 0) domain = p;
+  }
+  ++samples_;
+  return domain;
+}
+
+double StatisticsRecorder::ground_friction_velocity(const fluid::PlaneProfiles& p, int k) const {
+  using fluid::Profile;
+  const double z0 = plan_.wind.settings.wall_roughness_length;
+  if (z0 > 0.0) {
+    // The log law the wall stage imposes (fluid/SubgridStress.hpp), on the plane's mean wind.
+    const double c_w = fluid::wall_drag_coefficient(plan_.wind.spec.h, z0);
+    return std::sqrt(c_w) * std::hypot(p.at(Profile::u, k), p.at(Profile::v, k));
+  }
+  return std::sqrt(std::hypot(p.at(Profile::u_flux, k), p.at(Profile::v_flux, k)));
+}
+
+std::vector<double> StatisticsRecorder::series_row(const fluid::PlaneProfiles& p,
+                                                   const CoupledStepReport& report) {
+  using fluid::Profile;
+  std::vector<double> row(series_count, 0.0);
+  // u*: the total flux at the lowest height with fluid; the kinetic energy: the planes' means of |u|^2 / 2
+  // (mean flow and resolved fluctuation), weighted by their fluid cells.
+  double weight = 0.0, energy = 0.0;
+  bool lowest = true;
+  for (int k = 0; k < p.nz; ++k) {
+    const double area = p.at(Profile::area, k);
+    if (!(area > 0.0)) continue;
+    if (lowest) {
+      row[u_star] = ground_friction_velocity(p, k);
+      lowest = false;
+    }
+    const double u = p.at(Profile::u, k), v = p.at(Profile::v, k), w = p.at(Profile::w, k);
+    energy += area * (0.5 * (u * u + v * v + w * w) + p.at(Profile::tke, k));
+    weight += area;
+  }
+  row[kinetic_energy] = weight > 0.0 ? energy / weight : 0.0;
+  row[max_speed] = statistics_->largest_speed();
+  row[dt] = report.wind.dt;
+  row[cfl] = report.cfl;
+  row[pressure_iterations] = report.wind.pressure.iterations;
+  if (coupled_.has_leaves()) {
+    const trees::LeafCounts leaves = coupled_.leaves().counts();  // collective
+    row[leaves_shed] = double(leaves.shed);
+    row[leaves_landed] = double(leaves.landed);
+  }
+  const trees::DamageCounts damage = coupled_.damage_counts();  // collective; zero without damage
+  row[trees_broken] = double(damage.broken);
+  row[trees_overturned] = double(damage.overturned);
+  return row;
+}
+
+void StatisticsRecorder::close_record(double time) {
+  const std::size_t nz = out_.z.size();
+  const auto record = [&](std::size_t a) {
+    std::vector<std::vector<double>> values(fluid::kProfileCount, std::vector<double>(nz, 0.0));
+    for (std::size_t v = 0; v < fluid::kProfileCount; ++v)
+      for (std::size_t k = 0; k < nz; ++k)
+        values[v][k] = window_[(a * fluid::kProfileCount + v) * nz + k] / double(samples_);
+    return values;
+  };
+  out_.profiles.time.push_back(time);
+  out_.profiles.values.push_back(record(0));
+  for (std::size_t a = 1; a < areas_.size(); ++a) out_.regions[a - 1].values.push_back(record(a));
+  std::fill(window_.begin(), window_.end(), 0.0);
+  samples_ = 0;
+}
+
+void StatisticsRecorder::after_step(const CoupledStepReport& report) {
+  if (!on()) return;
+  const auto start = Clock::now();
+  const io::StatisticsSettings& s = *plan_.output.statistics;
+  const double t = report.wind.time;
+  const long step = report.wind.step;
+  const bool record = records_.reached(t);
+  const bool in_window =
+      s.averaging > 0.0 && t > records_.next() - s.averaging + kScheduleTolerance * s.interval;
+  const bool series = step % s.series_every == 0;
+  std::optional<fluid::PlaneProfiles> domain;
+  if (record || (in_window && step % s.sample_every == 0)) domain = sample_window(report.max_speed_component);
+  if (series) {
+    if (!domain)
+      domain = statistics_->sample(coupled_.wind().statistics_fields(), report.max_speed_component);
+    out_.series.time.push_back(t);
+    out_.series.values.push_back(series_row(*domain, report));
+  }
+  if (record) {
+    records_.due(t);
+    close_record(t);
+    write();
+  }
+  ms_ += ms_since(start);
+}
+
+void StatisticsRecorder::write() {
+  if (!on() || world_.rank() != 0) return;
+  const auto start = Clock::now();
+  io::write_stats_netcdf(file_, out_);
+  ms_ += ms_since(start);
+}
+
+std::vector<double> StatisticsRecorder::saved() const {
+  if (!on()) return {};
+  std::vector<double> numbers{records_.next(), double(samples_)};
+  numbers.insert(numbers.end(), window_.begin(), window_.end());
+  return numbers;
+}
+
+void StatisticsRecorder::resume(double time, const std::vector<double>& saved) {
+  if (!on()) return;
+  if (!saved.empty()) {
+    if (saved.size() != kSavedHead + window_.size())
+      throw std::invalid_argument(
+          fmt::format("the checkpoint's statistics hold {} numbers; this run's regions and heights take {}",
+                      saved.size(), kSavedHead + window_.size()));
+    records_.resume(saved[0]);
+    samples_ = long(saved[1]);
+    std::copy(saved.begin() + kSavedHead, saved.end(), window_.begin());
+  } else {
+    records_.resume(plan_.output.statistics->interval *
+                    (std::floor(time / plan_.output.statistics->interval + kScheduleTolerance) + 1.0));
+  }
+  if (!std::filesystem::exists(file_)) return;
+  // What the file holds up to the checkpoint: a run killed after it wrote more, which the resumed run writes
+  // again. Every rank reads it, so that every rank's copy is rank 0's.
+  const io::StatsFile read = io::read_stats_netcdf(file_);
+  const double tolerance = kScheduleTolerance * plan_.output.statistics->interval;
+  const auto kept = [&](const std::vector<double>& times) {
+    return std::size_t(std::upper_bound(times.begin(), times.end(), time + tolerance) - times.begin());
+  };
+  if (read.z != out_.z || read.regions.size() != out_.regions.size() ||
+      read.profiles.variables.size() != out_.profiles.variables.size() ||
+      read.series.variables.size() != out_.series.variables.size())
+    throw std::invalid_argument(file_.string() +
+                                ": not this run's statistics (other heights, regions or variables)");
+  const std::size_t records = kept(read.profiles.time), rows = kept(read.series.time);
+  out_.profiles.time.assign(read.profiles.time.begin(), read.profiles.time.begin() + long(records));
+  out_.profiles.values.assign(read.profiles.values.begin(), read.profiles.values.begin() + long(records));
+  for (std::size_t n = 0; n < out_.regions.size(); ++n)
+    out_.regions[n].values.assign(read.regions[n].values.begin(),
+                                  read.regions[n].values.begin() + long(records));
+  out_.series.time.assign(read.series.time.begin(), read.series.time.begin() + long(rows));
+  out_.series.values.assign(read.series.values.begin(), read.series.values.begin() + long(rows));
+}
+
+}  // namespace fw::host
