@@ -20,10 +20,13 @@ here=$(cd "$(dirname "$0")" && pwd)
 cd "$work"
 
 sed -e 's/^time: .*/time: {end: 20.0, dt: 0.05}/' \
-  -e 's/^output:/output:\n  checkpoint: {interval: 4.0, keep: 3}/' "$here/palm_run.yaml" >palm.yaml
-grep -q "checkpoint: {interval: 4.0" palm.yaml || fail "could not make the scenario"
+  -e 's/^output:/output:\n  checkpoint: {interval: 4.0, keep: 3}\n  statistics: {interval: 3.0, averaging: 2.0, sample_every: 2}/' \
+  "$here/palm_run.yaml" >palm.yaml
+grep -q "checkpoint: {interval: 4.0" palm.yaml && grep -q "statistics: {interval: 3.0" palm.yaml ||
+  fail "could not make the scenario"
 
-# The same bytes as the reference run: probes.csv, the collections and every frame (run.json and the
+# The same bytes as the reference run: probes.csv, stats.nc (whose records straddle the checkpoints), the
+# collections and every frame (run.json and the
 # checkpoints hold wall times); with a second argument, not the scenario's copy (its output settings differ).
 same_as_reference() {
   local folder=$1 skip=${2:-} file
@@ -38,6 +41,7 @@ same_as_reference() {
 
 "$forestwind" run palm.yaml -o ref --quiet >/dev/null 2>ref_err || fail "the reference run failed: $(cat ref_err)"
 [ "$(ls ref/checkpoints | wc -l)" -eq 3 ] || fail "keep: 3 kept $(ls ref/checkpoints)"
+[ -f ref/stats.nc ] || fail "the reference run wrote no stats.nc"
 ls ref/checkpoints | grep -q "step_0000000400" || fail "no checkpoint at the end (step 400): $(ls ref/checkpoints)"
 
 # Waits until the run in $1 (pid $2) has listed $3 wind frames; returns 1 when it ended first.

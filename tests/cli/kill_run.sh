@@ -4,7 +4,7 @@
 # kill -9 at pseudo-random points of a run, 20 trials (docs/faults.md): every frame the .pvd files list reads
 # back (tests/tools/check_frames: VTK's XML readers and OpenVDB, not a grep), and run.json is either absent
 # (killed before the output began: then no collection exists either) or says "running", the run not
-# finished. Odd trials wait for a frame's temporary file to exist and kill then, mid-frame; even trials
+# finished; stats.nc reads back with every record up to the last listed frame. Odd trials wait for a frame's temporary file to exist and kill then, mid-frame; even trials
 # kill after a pseudo-random delay. The points come from bash's RANDOM seeded with SEED (default below):
 # a failure names the seed and the trial, and the same seed repeats the same points.
 forestwind=$1
@@ -17,6 +17,7 @@ trials=20
 max_delay_ms=2500 # the delays span the start (planning, device, kernels from PoCL's cache) and ~2 s of steps
 max_frame=8       # the mid-frame kills wait for a frame up to this one (a frame every 5 steps)
 poll_s=0.002      # a frame's temporaries live a few ms on this grid: poll faster than that
+statistics_interval=0.5 # faults_run.yaml's output.statistics.interval: stats.nc's records up to the frames
 
 # True once every thread of process $1 has stopped (state T in /proc), or the process is gone.
 all_stopped() {
@@ -78,7 +79,7 @@ for trial in $(seq 1 $trials); do
       [ ! -e "$out/$pvd" ] || fail "$where: $pvd exists but run.json does not ($point)"
     done
   fi
-  read=$("$check_frames" "$out" 2>&1) || fail "$where ($point): a listed frame does not read: $read"
+  read=$("$check_frames" "$out" "$statistics_interval" 2>&1) || fail "$where ($point): a listed frame does not read: $read"
   echo "$where: killed $point: $read${left:+, a temporary left: ${left#"$out/"}}"
   rm -rf "$out"
 done

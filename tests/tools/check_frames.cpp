@@ -1,6 +1,9 @@
-// check_frames DIR: whether every frame a run folder lists opens (tests/cli/kill_run.sh, disk_full.sh). Each
-// file that wind.pvd, trees.pvd and leaves.pvd list is read back through VTK's XML readers (viz/RunFolder),
-// and each VDB frame under vdb/ through OpenVDB, every grid with its voxels: not merely present, whole.
+// check_frames DIR [STATS_INTERVAL]: whether every frame a run folder lists opens (tests/cli/kill_run.sh,
+// disk_full.sh). Each file that wind.pvd, trees.pvd and leaves.pvd list is read back through VTK's XML
+// readers (viz/RunFolder), and each VDB frame under vdb/ through OpenVDB, every grid with its voxels: not
+// merely present, whole. With STATS_INTERVAL (s, output.statistics.interval), stats.nc must read back
+// (io/StatsNetcdf) and hold a record at each multiple of it up to the last frame wind.pvd lists: stats.nc
+// is written at each record, before the frames of that time are listed, so a kill loses none of those.
 // Prints "N files read" and exits 0; exits 1 naming the first file that does not read. A folder whose
 // collections are missing or list no frame (a run killed before its first frame) reads as 0 files.
 #include <fmt/format.h>
@@ -8,6 +11,7 @@
 #include <openvdb/io/File.h>
 #include <openvdb/openvdb.h>
 
+#include <cmath>
 #include <exception>
 #include <filesystem>
 #include <iostream>
@@ -15,6 +19,7 @@
 #include <string>
 
 #include "io/PvdCollection.hpp"
+#include "io/StatsNetcdf.hpp"
 #include "viz/RunFolder.hpp"
 
 namespace {
@@ -70,15 +75,46 @@ int read_vdb(const fs::path& folder) {
   return files;
 }
 
+// Checks stats.nc against the frames wind.pvd lists (see above); returns its records.
+std::size_t read_statistics(const fs::path& folder, double interval) {
+  // Sums of float dt land within this fraction of an interval of its multiples (host/app/Schedule.hpp).
+  constexpr double kTolerance = 1e-6;
+  const double last_frame = fs::exists(folder / "wind.pvd") && !fw::io::read_pvd(folder / "wind.pvd").empty()
+                                ? fw::io::read_pvd(folder / "wind.pvd").back().time
+                                : 0.0;
+  const auto due = std::size_t(std::floor(last_frame / interval + kTolerance));
+  if (!fs::exists(folder / "stats.nc")) {
+    if (due > 0)
+      throw std::runtime_error(fmt::format("no stats.nc, but a frame at {} s is listed", last_frame));
+    return 0;
+  }
+  const fw::io::StatsFile stats = fw::io::read_stats_netcdf(folder / "stats.nc");
+  const std::vector<double>& times = stats.profiles.time;
+  for (std::size_t n = 0; n < times.size(); ++n)
+    if (std::abs(times[n] - double(n + 1) * interval) > kTolerance * interval + 0.5 * interval)
+      throw std::runtime_error(
+          fmt::format("stats.nc: record {} at {} s, not near {} s", n, times[n], double(n + 1) * interval));
+  if (times.size() < due)
+    throw std::runtime_error(
+        fmt::format("stats.nc holds {} records, but a frame at {} s is listed: {} are due", times.size(),
+                    last_frame, due));
+  return times.size();
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
-  if (argc != 2) {
-    std::cerr << "usage: check_frames DIR\n";
+  if (argc != 2 && argc != 3) {
+    std::cerr << "usage: check_frames DIR [STATS_INTERVAL]\n";
     return 2;
   }
   try {
     const int files = read_listed(argv[1]) + read_vdb(argv[1]);
+    if (argc == 3) {
+      const std::size_t records = read_statistics(argv[1], std::stod(argv[2]));
+      std::cout << fmt::format("{} files read, {} statistics records\n", files, records);
+      return 0;
+    }
     std::cout << fmt::format("{} files read\n", files);
     return 0;
   } catch (const std::exception& e) {
