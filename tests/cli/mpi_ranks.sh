@@ -4,10 +4,11 @@
 # Two parts, a CTest test each (about half a minute each on 2 cores):
 # forest: under mpirun, `check` prints the blocks and each rank's wind grid; a split that cannot work exits 2
 # naming file, line and key on every rank and leaves no rank behind. A forest in turbulent wind with a gust,
-# run in one process and over 2 and 4 ranks, writes the same probes.csv, byte for byte, and the same frames,
+# run in one process and over 2 and 4 ranks, writes the same probes.csv and stats.nc (its profiles over the
+# domain, the stand and a region), byte for byte, and the same frames,
 # value for value (compare_runs reads the .pvti and .pvtp pieces as ParaView does).
 # leaves: the same forest with leaves that shed and fly across the cuts, and VDB frames, over 2 x 2 ranks:
-# the same probes.csv (leaf counts included), frames (the leaves as sets) and VDB frames (gathered on rank 0)
+# the same probes.csv and stats.nc (leaf and tree counts included), frames (the leaves as sets) and VDB frames (gathered on rank 0)
 # as one process; and resumed from its checkpoint over 2 x 2 ranks, 2 ranks and one process, the same again.
 forestwind=$1
 mpiexec=$2
@@ -37,6 +38,13 @@ YAML
 sed 's/  cell_size: 2.0/  cell_size: 2.0\n  decomposition: [3, 1]/' "$work/blocks.yaml" >"$work/bad_blocks.yaml"
 
 cd "$work"
+# Whether two run folders' stats.nc hold the same values, every digit of each double (ncdump -p), and the same
+# attributes but history, which names the scenario file a run read.
+same_stats() {
+  [ -f "$1/stats.nc" ] && [ -f "$2/stats.nc" ] &&
+    cmp -s <(ncdump -p 9,17 "$1/stats.nc" | grep -v ':history = ') <(ncdump -p 9,17 "$2/stats.nc" | grep -v ':history = ')
+}
+
 # 25 trees across the cuts of 2 x 1 and 2 x 2 blocks, turbulent inflow across periodic sides (cut by 2 x 2:
 # the frames' vorticity wraps there as in one process), a gust, two-way drag, probes inside
 # and outside the stand; 64 x 32 x 16 cells of 2 m for 2 s.
@@ -71,6 +79,11 @@ output:
     - {name: upwind, position: [20, 32, 12]}
     - {name: stand, position: [64.3, 32.1, 10]}
     - {name: lee, position: [110, 30, 12]}
+  statistics:
+    interval: 0.5
+    stands: true
+    regions:
+      - {name: lee, min: [100, 0], max: [128, 64]}
 YAML
 # Weak petioles (0.05 N median): thousands of leaves are shed at once and fly downwind across the cuts.
 # Storm damage with consequences: with birch's anchorage at 100 N m/kg, 8 of the 25 trees overturn in the
@@ -106,6 +119,7 @@ if [ "$part" = forest ]; then
     fi
     [ "$(grep -c "steps to t" <<<"$out")" -eq 1 ] || fail "more than rank 0 reported over $n ranks: $out"
     cmp -s one/probes.csv ranks$n/probes.csv || fail "probes.csv over $n ranks differs from one process's"
+    same_stats one ranks$n || fail "stats.nc over $n ranks differs from one process's"
     grep -q 'file="wind/wind_000002.pvti"' ranks$n/wind.pvd || fail "wind.pvd over $n ranks lists no .pvti"
     grep -q 'file="trees/trees_000002.pvtp"' ranks$n/trees.pvd || fail "trees.pvd over $n ranks lists no .pvtp"
     [ "$(ls ranks$n/wind/wind_000002_*.vti | wc -l)" -eq "${n/2x2/4}" ] || fail "not one wind piece per rank over $n ranks"
@@ -118,6 +132,7 @@ else
   out=$(ranks 4 "$forestwind" run leaves.yaml -o leafy_ranks 2>&1) || fail "the run with leaves over 2 x 2 ranks exited $?: $out"
   cmp -s leafy_one/probes.csv leafy_ranks/probes.csv || fail "probes.csv with leaves over 2 x 2 ranks differs from one process's"
   cmp -s leafy_one/damage.csv leafy_ranks/damage.csv || fail "damage.csv over 2 x 2 ranks differs from one process's"
+  same_stats leafy_one leafy_ranks || fail "stats.nc over 2 x 2 ranks differs from one process's"
   grep -q ",overturned," leafy_one/damage.csv || fail "no tree failed: damage.csv has nothing to compare"
   # Resumed over the same 2 x 2 ranks from the checkpoint at 1 s (every rank its own part): the same bytes.
   # In one process and over 2 ranks (2 blocks) the 4 parts are redistributed: the same probes.csv
@@ -129,6 +144,7 @@ else
     fail "the resume over 2 x 2 ranks exited $?: $out"
   cmp -s leafy_ranks/probes.csv leafy_resumed/probes.csv || fail "probes.csv resumed over 2 x 2 ranks differs"
   cmp -s leafy_ranks/damage.csv leafy_resumed/damage.csv || fail "damage.csv resumed over 2 x 2 ranks differs"
+  same_stats leafy_ranks leafy_resumed || fail "stats.nc resumed over 2 x 2 ranks differs"
   out=$("$compare_runs" leafy_ranks leafy_resumed) || fail "the frames resumed over 2 x 2 ranks differ: $out"
   for n in 1 2; do
     cp -r leafy_ranks "leafy_on$n"
@@ -138,6 +154,7 @@ else
     grep -q "written by 4 ranks (2 x 2 blocks.*redistributed" <<<"$out" || fail "no redistribution over $n ranks: $out"
     cmp -s leafy_one/probes.csv "leafy_on$n/probes.csv" || fail "probes.csv of the 2 x 2 checkpoint resumed over $n ranks differs"
     cmp -s leafy_one/damage.csv "leafy_on$n/damage.csv" || fail "damage.csv of the 2 x 2 checkpoint resumed over $n ranks differs"
+    same_stats leafy_one "leafy_on$n" || fail "stats.nc of the 2 x 2 checkpoint resumed over $n ranks differs"
     out=$("$compare_runs" leafy_one "leafy_on$n") || fail "the frames of the 2 x 2 checkpoint resumed over $n ranks differ: $out"
   done
   grep -q 'file="leaves/leaves_000002.pvtp"' leafy_ranks/leaves.pvd || fail "leaves.pvd over ranks lists no .pvtp"
