@@ -27,6 +27,7 @@ namespace fw::io {
 /// A variable of stats.nc: its name, units (UDUNITS), long name and CF standard name ("" where none).
 struct StatsVariable {
   std::string name, units, long_name, standard_name;
+  bool operator==(const StatsVariable&) const = default;
 };
 
 /// Profiles against height: values[record][variable][k], one record per time.
