@@ -15,6 +15,10 @@ namespace {
 
 constexpr const char* kSeriesGroup = "timeseries";
 constexpr const char* kRegionsGroup = "regions";
+constexpr const char* kIntervalAttribute = "interval_seconds";
+constexpr const char* kAveragingAttribute = "averaging_seconds";
+// The profiles: means over the plane's fluid cells and over each record's window.
+constexpr const char* kProfileCellMethods = "area: mean time: mean";
 
 // NetCDF's status, as an exception naming the file and what was being done.
 void check(int status, const std::filesystem::path& path, const std::string& doing) {
@@ -122,8 +126,10 @@ ProfileGroup define_profiles(int group, const StatsFile& f, const std::filesyste
   g.time_var = define_coordinate(group, "time", NC_UNLIMITED, kTime, "T", target, &time_dim);
   g.z_var = define_coordinate(group, "z", f.z.size(), kHeight, "Z", target, &z_dim);
   put_text(group, g.z_var, "positive", "up", target);
-  for (const StatsVariable& v : f.profiles.variables)
+  for (const StatsVariable& v : f.profiles.variables) {
     g.variables.push_back(define_variable(group, v, {time_dim, z_dim}, target));
+    put_text(group, g.variables.back(), "cell_methods", kProfileCellMethods, target);
+  }
   return g;
 }
 
@@ -151,6 +157,10 @@ void write_file(const std::filesystem::path& path, const std::filesystem::path& 
     put_text(root, NC_GLOBAL, "title", f.title, target);
     put_text(root, NC_GLOBAL, "source", "forestwind", target);
     put_text(root, NC_GLOBAL, "history", f.history, target);
+    check(nc_put_att_double(root, NC_GLOBAL, kIntervalAttribute, NC_DOUBLE, 1, &f.interval), target,
+          "writing interval_seconds");
+    check(nc_put_att_double(root, NC_GLOBAL, kAveragingAttribute, NC_DOUBLE, 1, &f.averaging), target,
+          "writing averaging_seconds");
     const ProfileGroup domain = define_profiles(root, f, target);
     // The time series, in a group of their own with their own times.
     int series = 0, series_time_dim = 0;
@@ -255,6 +265,9 @@ StatsFile read_stats_netcdf(const std::filesystem::path& path) {
   try {
     f.title = get_text(root, NC_GLOBAL, "title", path);
     f.history = get_text(root, NC_GLOBAL, "history", path);
+    // A file without them reads as 0: not given.
+    nc_get_att_double(root, NC_GLOBAL, kIntervalAttribute, &f.interval);
+    nc_get_att_double(root, NC_GLOBAL, kAveragingAttribute, &f.averaging);
     f.profiles.values = read_profiles(root, path, &f.profiles.time, &f.z, &f.profiles.variables);
     int regions = 0;
     if (nc_inq_ncid(root, kRegionsGroup, &regions) == NC_NOERR) {

@@ -14,7 +14,9 @@
 // of time and z so that xarray opens it alone, and the box in the attributes region_min and region_max. Every
 // variable carries units and long_name, and standard_name where CF has one; the coordinates carry axis,
 // positive and standard_name. The file is written whole under a temporary name and renamed (base/AtomicFile):
-// a run killed while writing it leaves the last complete file.
+// a run killed while writing it leaves the last complete file. The profiles carry CF's cell_methods "area:
+// mean time: mean", and the root the records' interval and averaging time in seconds (the attributes
+// interval_seconds and averaging_seconds).
 #pragma once
 
 #include <array>
@@ -52,9 +54,11 @@ struct StatsRegion {
 };
 
 struct StatsFile {
-  std::string title;      // the scenario's name
-  std::string history;    // what wrote it: "forestwind run SCENARIO"
-  std::vector<double> z;  // m, the heights of the profiles
+  std::string title;       // the scenario's name
+  std::string history;     // what wrote it: "forestwind run SCENARIO"
+  std::vector<double> z;   // m, the heights of the profiles
+  double interval = 0.0;   // s between profile records (attribute interval_seconds; 0: not given)
+  double averaging = 0.0;  // s each record averages over, up to its time (attribute averaging_seconds)
   StatsProfiles profiles;
   StatsSeries series;
   std::vector<StatsRegion> regions;  // each in the group regions/NAME, with its own copies of time and z

@@ -116,6 +116,8 @@ StatisticsRecorder::StatisticsRecorder(ComputeContext& cc, const SimulationPlan&
   window_.assign(areas_.size() * fluid::kProfileCount * std::size_t(spec.nz), 0.0);
   out_.title = plan.scenario.name;
   out_.history = "forestwind run " + plan.scenario.file_name;
+  out_.interval = plan.output.statistics->interval;
+  out_.averaging = plan.output.statistics->averaging;
   for (int k = 0; k < spec.nz; ++k) out_.z.push_back(spec.origin[2] + (k + 0.5) * spec.h);
   out_.profiles.variables = io::profile_columns();
   out_.series.variables = series_columns();

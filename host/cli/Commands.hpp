@@ -117,11 +117,14 @@ int run_export(const ExportOptions& options);
 struct PlotOptions {
   std::string folder;     // DIR: a run's output folder
   bool spectrum = false;  // --spectrum: add the probes' power spectra
+  bool profiles = false;  // --profiles: stats.nc's profiles instead of the probes
+  std::string region;     // --region NAME: a region's profiles (with --profiles); default the domain's
   std::string output;     // -o FILE.png
   bool quiet = false;
 };
 
-/// `forestwind plot`: 0 written, 2 bad input (no probes.csv, too few samples for spectra).
+/// `forestwind plot`: 0 written, 2 bad input (no probes.csv, too few samples for spectra; with --profiles no
+/// stats.nc, no record yet, no such region).
 int run_plot(const PlotOptions& options);
 
 /// Parses "WxH" (e.g. "1280x800"), px. Throws std::invalid_argument naming the text.

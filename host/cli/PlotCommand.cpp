@@ -1,5 +1,5 @@
 // `forestwind plot`: a run's probes over time, and their spectra (docs/design.md, "Command line";
-// viz/ProbePlots.hpp).
+// viz/ProbePlots.hpp); with --profiles, its stats.nc (viz/ProfilePlots.hpp).
 #include <fmt/format.h>
 
 #include <filesystem>
@@ -9,18 +9,54 @@
 #include <vector>
 
 #include "host/cli/Commands.hpp"
+#include "io/StatsNetcdf.hpp"
 #include "viz/DamageTable.hpp"
 #include "viz/ProbePlots.hpp"
 #include "viz/ProbeTable.hpp"
+#include "viz/ProfilePlots.hpp"
 #include "viz/RunFolder.hpp"
 
 namespace fw::cli {
+
+namespace {
+
+// `plot --profiles`: stats.nc's profiles (viz/ProfilePlots.hpp).
+int plot_profiles(const PlotOptions& options) {
+  namespace fs = std::filesystem;
+  const fs::path file = fs::path(options.folder) / "stats.nc";
+  if (!fs::is_regular_file(file))
+    throw std::invalid_argument(
+        fmt::format("plot: {}: no stats.nc: the scenario has no output.statistics, or no record is due yet",
+                    options.folder));
+  io::StatsFile stats;
+  try {
+    stats = io::read_stats_netcdf(file);
+  } catch (const std::runtime_error& e) {
+    throw std::invalid_argument(fmt::format("plot: {}", e.what()));
+  }
+  const viz::ProfilePlot plot = viz::plot_profiles(stats, options.region);
+  plot.canvas.write_png(options.output);
+  if (!options.quiet)
+    std::cout << fmt::format("wrote {} ({} x {} px: {} records, {} heights{})\n", options.output,
+                             plot.canvas.width(), plot.canvas.height(), stats.profiles.time.size(),
+                             stats.z.size(), options.region.empty() ? "" : ", region " + options.region);
+  return 0;
+}
+
+}  // namespace
 
 int run_plot(const PlotOptions& options) {
   namespace fs = std::filesystem;
   const fs::path folder = options.folder;
   if (!fs::is_directory(folder))
     throw std::invalid_argument(fmt::format("plot: {}: expected a run's output folder", folder.string()));
+  if (!options.region.empty() && !options.profiles)
+    throw std::invalid_argument("plot: --region goes with --profiles");
+  if (options.profiles) {
+    if (options.spectrum)
+      throw std::invalid_argument("plot: --spectrum goes with the probes, not --profiles");
+    return plot_profiles(options);
+  }
   const fs::path csv = folder / "probes.csv";
   if (!fs::is_regular_file(csv))
     throw std::invalid_argument(fmt::format(

@@ -179,10 +179,13 @@ int main(int argc, char** argv) {
   export_cmd->add_flag("--quiet", export_options.quiet, "no summary line");
 
   cli::PlotOptions plot;
-  auto* plot_cmd =
-      app.add_subcommand("plot", "a run's probes and tracked tree tips over time, and spectra (PNG)");
+  auto* plot_cmd = app.add_subcommand(
+      "plot", "a run's probes and tracked tree tips over time, and spectra, or its profiles (PNG)");
   plot_cmd->add_option("folder", plot.folder, "DIR: the run's output folder")->required();
   plot_cmd->add_flag("--spectrum", plot.spectrum, "add the power spectrum of each probe's wind speed");
+  plot_cmd->add_flag("--profiles", plot.profiles,
+                     "stats.nc's profiles against height instead: mean, fluxes, variances, skewness");
+  plot_cmd->add_option("--region", plot.region, "NAME: a region's profiles (with --profiles)");
   plot_cmd->add_option("-o,--output", plot.output, "FILE.png")->required();
   plot_cmd->add_flag("--quiet", plot.quiet, "no summary line");
 

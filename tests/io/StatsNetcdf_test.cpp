@@ -26,6 +26,8 @@ io::StatsFile two_records() {
   f.title = "periodic_canopy";
   f.history = "forestwind run canopy.yaml";
   f.z = {1.0, 3.0, 5.0};
+  f.interval = 60.0;
+  f.averaging = 30.0;
   f.profiles.variables = io::profile_columns();
   f.profiles.time = {60.0, 120.0};
   for (std::size_t r = 0; r < 2; ++r) {
@@ -67,6 +69,8 @@ TEST_CASE("stats.nc: profiles and time series read back as written, with their u
   CHECK(read.title == written.title);
   CHECK(read.history == written.history);
   CHECK(read.z == written.z);
+  CHECK(read.interval == 60.0);
+  CHECK(read.averaging == 30.0);
   CHECK(read.profiles.time == written.profiles.time);
   REQUIRE(read.profiles.variables.size() == written.profiles.variables.size());
   for (std::size_t n = 0; n < written.profiles.variables.size(); ++n) {
@@ -102,7 +106,8 @@ TEST_CASE("stats.nc: ncdump -h shows CF-1.8, the dimensions time and z, and each
        {"netcdf stats {", "time = UNLIMITED ; // (2 currently)", "z = 3 ;", ":Conventions = \"CF-1.8\" ;",
         "double u_w(time, z) ;", "u_w:units = \"m2 s-2\" ;", "u:standard_name = \"eastward_wind\" ;",
         "z:positive = \"up\" ;", "z:axis = \"Z\" ;", "group: timeseries {", "double ustar(time) ;",
-        "group: regions {", "group: gap {", ":region_min = 10., 20. ;"})
+        "group: regions {", "group: gap {", ":region_min = 10., 20. ;",
+        "u:cell_methods = \"area: mean time: mean\" ;", ":averaging_seconds = 30. ;"})
     CHECK(header.find(text) != std::string::npos);
 }
 
