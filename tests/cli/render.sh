@@ -34,6 +34,14 @@ else
 fi
 expect 0 "1 probes, 1 trees, 5 samples" plot "$work/out" -o "$work/probes.png"
 [ -s "$work/probes.png" ] || fail "plot wrote no picture"
+# The same run with statistics: plot --profiles draws stats.nc, the domain's and a region's.
+sed 's/^output:/output:\n  statistics: {interval: 0.5, regions: [{name: lee, min: [20, 0], max: [32, 16]}]}/' \
+  "$(dirname "$0")/palm_run.yaml" >"$work/stats.yaml"
+"$forestwind" run "$work/stats.yaml" --end 1.0 -o "$work/stats" --quiet || fail "the run with statistics failed"
+expect 0 "2 records, 8 heights" plot "$work/stats" --profiles -o "$work/profiles.png"
+[ -s "$work/profiles.png" ] || fail "plot --profiles wrote no picture"
+expect 0 "region lee" plot "$work/stats" --profiles --region lee -o "$work/lee.png"
+expect 2 "no such region (it has lee)" plot "$work/stats" --profiles --region gap -o "$work/bad.png"
 
 # A GeoTIFF of the wind at 10 m above the ground (the palm run has no site: local coordinates, no CRS),
 # and of another field, height and frame; its values are read back in tests/viz/GroundSlice_test.cpp.
@@ -52,6 +60,8 @@ expect 2 "choose one of velocity, velocity_x" render "$work/out" --field tempera
 expect 2 "choose one of top, side, perspective" render "$work/out" --view diagonal -o "$work/bad.png"
 expect 2 "expected a run's output folder" render "$work/nowhere" -o "$work/bad.png"
 expect 2 "a spectrum needs at least 256" plot "$work/out" --spectrum -o "$work/bad.png"
+expect 2 "no stats.nc: the scenario has no output.statistics" plot "$work/out" --profiles -o "$work/bad.png"
+expect 2 "--region goes with --profiles" plot "$work/out" --region gap -o "$work/bad.png"
 # Storm damage: --field damage needs the folder's damage.csv; with one (written here by hand: the palm breaks
 # at 0.6 s) the trees are drawn over the wind, standing in the frames before the failure, and plot adds the
 # damage panel from it.
