@@ -20,9 +20,24 @@ FW_INLINE int max_of_eight(int8 v) {
 }
 
 /* The lane types and their vector built-ins for FW_LANES (kernels/shared_types.h) values. */
+/* The sum of eight longs and the largest of eight floats, by halves. */
+FW_INLINE long sum_of_eight(long8 v) {
+  const long4 a = v.lo + v.hi;
+  const long2 b = a.lo + a.hi;
+  return b.x + b.y;
+}
+FW_INLINE float max_of_eight_floats(float8 v) {
+  const float4 a = fmax(v.lo, v.hi);
+  const float2 b = fmax(a.lo, a.hi);
+  return fmax(b.x, b.y);
+}
+
 #if FW_LANES == 8
 typedef float8 lanef;
 typedef int8 lanei;
+typedef long8 lanel;
+#define convert_lanel convert_long8
+#define lane_load_bytes vload8
 #define lane_load vload8
 #define lane_store vstore8
 #define convert_lanef convert_float8
@@ -40,9 +55,19 @@ FW_INLINE int lane_min(lanei v) {
 FW_INLINE int lane_max(lanei v) {
   return max_of_eight(v);
 }
+/* The sum of the lanes; the largest lane. */
+FW_INLINE long lane_sum_long(lanel v) {
+  return sum_of_eight(v);
+}
+FW_INLINE float lane_max_float(lanef v) {
+  return max_of_eight_floats(v);
+}
 #elif FW_LANES == 16
 typedef float16 lanef;
 typedef int16 lanei;
+typedef long16 lanel;
+#define convert_lanel convert_long16
+#define lane_load_bytes vload16
 #define lane_load vload16
 #define lane_store vstore16
 #define convert_lanef convert_float16
@@ -55,6 +80,12 @@ FW_INLINE lanef gather(__global const float* q, lanei at) {
 }
 FW_INLINE int lane_min(lanei v) {
   return min_of_eight(min(v.lo, v.hi));
+}
+FW_INLINE long lane_sum_long(lanel v) {
+  return sum_of_eight(v.lo + v.hi);
+}
+FW_INLINE float lane_max_float(lanef v) {
+  return max_of_eight_floats(fmax(v.lo, v.hi));
 }
 FW_INLINE int lane_max(lanei v) {
   return max_of_eight(max(v.lo, v.hi));

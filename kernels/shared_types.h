@@ -70,6 +70,10 @@ typedef std::uint32_t fw_uint;
 #define FW_TERM_LAD 14
 #define FW_TERM_SPEED 15 /* |(u, v, w)|: its largest value only, no sum */
 #define FW_PLANE_TERMS 16
+/* A cell's scaled term stays within 2^FW_PLANE_CELL_BITS, so that FW_PLANE_FLUSH_CHUNKS of them add in a
+ * 32-bit lane before it is widened to 64 bits. */
+#define FW_PLANE_CELL_BITS 27
+#define FW_PLANE_FLUSH_CHUNKS ((1 << (31 - FW_PLANE_CELL_BITS)) - 1)
 
 /* The wind grid: a MAC grid of nx*ny*nz cubic cells of size h.
  * Storage is x-fastest. u lives on x-faces ((nx+1)*ny*nz values), v on y-faces (nx*(ny+1)*nz),

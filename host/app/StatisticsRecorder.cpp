@@ -34,8 +34,10 @@ enum Series {
   series_count
 };
 
-// A checkpoint's numbers: the next record's time and the window's samples, then the window's sums.
+// A checkpoint's numbers: the next record's time and the window's samples, then the window's sums, then
+// each area's scales (whether known, and an exponent a term).
 constexpr std::size_t kSavedHead = 2;
+constexpr std::size_t kSavedScales = 1 + FW_PLANE_TERMS;
 
 // An area's box of whole cells along axis a (x 0, y 1) of `spec`, m.
 std::array<double, 2> cell_faces(const fluid::GridSpec& spec, const PlaneRegion& region, int a) {
@@ -111,6 +113,7 @@ StatisticsRecorder::StatisticsRecorder(ComputeContext& cc, const SimulationPlan&
   const WindGrid& wind = coupled.wind();
   statistics_.emplace(cc, wind.spec(), wind.local_spec(), wind.block(), world);
   areas_ = statistics_areas(plan);
+  scales_.assign(areas_.size(), PlaneScales{});
   records_ = Schedule(plan.output.statistics->interval);
   const fluid::GridSpec& spec = plan.wind.spec;
   window_.assign(areas_.size() * fluid::kProfileCount * std::size_t(spec.nz), 0.0);
@@ -130,7 +133,7 @@ fluid::PlaneProfiles StatisticsRecorder::sample_window(double speed_bound) {
   const std::size_t nz = out_.z.size();
   fluid::PlaneProfiles domain;
   for (std::size_t a = 0; a < areas_.size(); ++a) {
-    const fluid::PlaneProfiles p = statistics_->sample(fields, speed_bound, areas_[a].cells);
+    const fluid::PlaneProfiles p = statistics_->sample(fields, speed_bound, areas_[a].cells, &scales_[a]);
     for (std::size_t v = 0; v < fluid::kProfileCount; ++v)
       for (std::size_t k = 0; k < nz; ++k) window_[(a * fluid::kProfileCount + v) * nz + k] += p.values[v][k];
     if (a == 0) domain = p;
@@ -215,7 +218,8 @@ void StatisticsRecorder::after_step(const CoupledStepReport& report) {
   if (record || (in_window && step % s.sample_every == 0)) domain = sample_window(report.max_speed_component);
   if (series) {
     if (!domain)
-      domain = statistics_->sample(coupled_.wind().statistics_fields(), report.max_speed_component);
+      domain = statistics_->sample(coupled_.wind().statistics_fields(), report.max_speed_component,
+                                   areas_[0].cells, &scales_[0]);
     out_.series.time.push_back(t);
     out_.series.values.push_back(series_row(*domain, report));
   }
@@ -238,19 +242,30 @@ std::vector<double> StatisticsRecorder::saved() const {
   if (!on()) return {};
   std::vector<double> numbers{records_.next(), double(samples_)};
   numbers.insert(numbers.end(), window_.begin(), window_.end());
+  for (const PlaneScales& s : scales_) {
+    numbers.push_back(s.known ? 1.0 : 0.0);
+    numbers.insert(numbers.end(), s.exponents.begin(), s.exponents.end());
+  }
   return numbers;
 }
 
 void StatisticsRecorder::resume(double time, const std::vector<double>& saved) {
   if (!on()) return;
   if (!saved.empty()) {
-    if (saved.size() != kSavedHead + window_.size())
+    const std::size_t expected = kSavedHead + window_.size() + kSavedScales * scales_.size();
+    if (saved.size() != expected)
       throw std::invalid_argument(
           fmt::format("the checkpoint's statistics hold {} numbers; this run's regions and heights take {}",
-                      saved.size(), kSavedHead + window_.size()));
+                      saved.size(), expected));
     records_.resume(saved[0]);
     samples_ = long(saved[1]);
-    std::copy(saved.begin() + kSavedHead, saved.end(), window_.begin());
+    const auto window_end = saved.begin() + long(kSavedHead + window_.size());
+    std::copy(saved.begin() + kSavedHead, window_end, window_.begin());
+    for (std::size_t a = 0; a < scales_.size(); ++a) {
+      const auto at = window_end + long(kSavedScales * a);
+      scales_[a].known = at[0] != 0.0;
+      for (std::size_t t = 0; t < FW_PLANE_TERMS; ++t) scales_[a].exponents[t] = int(at[long(1 + t)]);
+    }
   } else {
     records_.resume(plan_.output.statistics->interval *
                     (std::floor(time / plan_.output.statistics->interval + kScheduleTolerance) + 1.0));

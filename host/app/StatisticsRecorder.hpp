@@ -60,7 +60,8 @@ class StatisticsRecorder {
   void after_step(const CoupledStepReport& report);
   /// Writes stats.nc with every record and row so far (rank 0; the others wait for nothing).
   void write();
-  /// The averaging window so far, as a checkpoint keeps it (numbers the same on every rank).
+  /// The averaging window so far and each area's scales, as a checkpoint keeps them (numbers the same on
+  /// every rank).
   std::vector<double> saved() const;
   /// Goes on from a checkpoint at `time` (s) that saved `saved`: reads stats.nc back and keeps its records
   /// and rows up to `time`. Empty `saved` (a checkpoint of a run without statistics) starts afresh.
@@ -86,6 +87,7 @@ class StatisticsRecorder {
   std::filesystem::path file_;
   std::optional<PlaneStatistics> statistics_;
   std::vector<StatisticsArea> areas_;
+  std::vector<PlaneScales> scales_;  // per area, its last sample's (PlaneStatistics::sample)
   Schedule records_{0.0};
   // The window: per area, per profile, per height, the sum of its samples' values.
   std::vector<double> window_;

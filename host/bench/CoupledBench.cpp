@@ -16,7 +16,9 @@
 #include "host/app/SimulationPlan.hpp"
 #include "host/bench/BenchTurbulence.hpp"
 #include "host/bench/FmaPeak.hpp"
+#include "host/bench/StreamTriad.hpp"
 #include "host/stages/DamageStages.hpp"
+#include "host/stages/PlaneStatistics.hpp"
 #include "io/JsonWriter.hpp"
 #include "io/Scenario.hpp"
 #include "trees/Foliage.hpp"
@@ -208,6 +210,24 @@ void time_steps(host::ComputeContext& cc, host::CoupledStep& coupled, const Coup
   c.damage_ms = c.stages_ms["damage"];
 }
 
+// Times options.steps samples of the whole domain's profiles on the coupled step as it stands, after one
+// untimed sample (the kernel's build and first launch, and the scales a run keeps from sample to sample).
+void time_statistics(host::ComputeContext& cc, host::CoupledStep& coupled, const CoupledBenchOptions& options,
+                     CoupledBenchCase& c) {
+  host::WindGrid& wind = coupled.wind();
+  host::PlaneStatistics statistics(cc, wind.spec(), wind.local_spec(), wind.block(),
+                                   host::Communicator::alone());
+  const host::WindStatisticsFields fields = wind.statistics_fields();
+  const double speed = wind.max_speed_component();
+  host::PlaneScales scales;  // kept from sample to sample, as a run keeps them
+  statistics.sample(fields, speed, {}, &scales);
+  const auto start = Clock::now();
+  for (int s = 0; s < options.steps; ++s) statistics.sample(fields, speed, {}, &scales);
+  c.statistics_ms = ms_since(start) / options.steps;
+  c.statistics_gb_s =
+      double(host::PlaneStatistics::bytes_read(wind.local_spec(), fields)) / (c.statistics_ms * 1e6);
+}
+
 }  // namespace
 
 CoupledBenchResult run_coupled_bench(host::ComputeContext& cc, const CoupledBenchOptions& options) {
@@ -248,6 +268,8 @@ CoupledBenchResult run_coupled_bench(host::ComputeContext& cc, const CoupledBenc
       host::CoupledStep coupled(cc, plan);
       if (variant.leaves) c.leaves = coupled.leaves().own_count();
       time_steps(cc, coupled, options, host::Communicator::alone(), c);
+      if (variant.jacobi == 0 && !variant.turbulent && !variant.leaves)
+        time_statistics(cc, coupled, options, c);
       result.cases.push_back(c);
 
       // Once, on the first case (neither depends on the grid): the deformation of every node, as on an
@@ -287,6 +309,7 @@ CoupledBenchResult run_coupled_bench(host::ComputeContext& cc, const CoupledBenc
     }
   }
   result.fma_peak_gfma_s = measure_fma_peak(cc, 5);
+  result.stream_gb_s = measure_stream_triad(cc, kRooflineElements, kRooflineRepetitions);
   // 3 FMAs (x, y, z) per node and mode in the linear sum; the corrected one has 6 (q~ v and q~^2 w).
   constexpr double kLinearFmas = 3.0, kStrongFmas = 6.0;
   const double peak = result.fma_peak_gfma_s * 1e9;
@@ -382,6 +405,13 @@ void print_coupled_bench_table(const CoupledBenchResult& r, std::ostream& out) {
       "storm damage (every tree's stem loads and failure check) {:.2f} ms = {:.1f}% of the trees' step; "
       "its maps' FMAs reach {:.0f}% of the FMA peak\n",
       head.damage_ms, 100.0 * head.damage_ms / head.trees_ms, 100.0 * r.damage_fraction_of_peak);
+  for (const CoupledBenchCase& c : r.cases)
+    if (c.statistics_ms > 0.0)
+      out << fmt::format(
+          "statistics on {}x{}x{} (stats.nc's profiles, one sample a step): {:.2f} ms = {:.1f}% of the step "
+          "(limit 5%); {:.1f} GB/s = {:.0f}% of the STREAM triad ({:.1f} GB/s)\n",
+          c.grid[0], c.grid[1], c.grid[2], c.statistics_ms, 100.0 * c.statistics_ms / c.ms_per_step,
+          c.statistics_gb_s, 100.0 * c.statistics_gb_s / r.stream_gb_s, r.stream_gb_s);
   out << fmt::format(
       "\ndeformation of all {} nodes (output frames): {:.2f} ms = {:.1f} frames/s, {:.3g} node*modes/s\n",
       r.trees * r.nodes_per_tree, r.deform_ms, r.deform_frames_per_s, r.node_modes_per_s);
@@ -423,6 +453,7 @@ std::string coupled_bench_json(const CoupledBenchResult& r) {
   json.key("species_seconds").value(r.species_seconds);
   json.key("trees_reference_ms").value(r.trees_reference_ms);
   json.key("deform_reference_ms").value(r.deform_reference_ms);
+  json.key("stream_gb_s").value(r.stream_gb_s);
   json.key("cases").begin_array();
   for (const auto& c : r.cases) {
     json.begin_object();
@@ -436,6 +467,11 @@ std::string coupled_bench_json(const CoupledBenchResult& r) {
     json.key("damage_ms").value(c.damage_ms);
     json.key("pressure_iterations").value(c.pressure_iterations);
     json.key("stages_ms").object(c.stages_ms);
+    if (c.statistics_ms > 0.0) {
+      json.key("statistics_ms").value(c.statistics_ms);
+      json.key("statistics_fraction_of_step").value(c.statistics_ms / c.ms_per_step);
+      json.key("statistics_gb_s").value(c.statistics_gb_s);
+    }
     json.end_object();
   }
   json.end_array();

@@ -16,6 +16,9 @@
 // `leaves_per_tree`, each grid runs once more with the forest in full leaf (docs/leaves.md), a sample of that
 // many leaves simulated per tree: the leaves' stage is timed on its own.
 //
+// The converged case also times the sample that a run with output.statistics takes every step (the profiles
+// of the whole domain, docs/statistics.md), against the step and against the STREAM triad's bandwidth.
+//
 // Baselines run in the same process: each grid again with Oliapuram's pressure solve (a fixed
 // `baseline_jacobi_iterations` Jacobi sweeps, 4 in the paper, not converged), and the trees' step and the
 // deformation by the double-precision CPU reference (trees/ForestReference, one host thread).
@@ -75,6 +78,10 @@ struct CoupledBenchCase {
       0.0;  // every tree's stem loads and failure check (docs/damage.md), after the trees' step
   double pressure_iterations = 0.0;
   host::HaloTraffic halo;  // this rank's halo exchanges over the timed steps (none in one process)
+  // The converged case's: one sample of stats.nc's profiles (host/stages/PlaneStatistics) of the whole
+  // domain after the timed steps, as a run with output.statistics takes every step; 0 for the other cases.
+  double statistics_ms = 0.0;
+  double statistics_gb_s = 0.0;  // the bytes it reads at least once, per second
 };
 
 struct CoupledBenchResult {
@@ -94,6 +101,7 @@ struct CoupledBenchResult {
   double deform_linear_fraction_of_peak = 0.0;  // 3 FMAs a node-mode at the linear frames' rate
   double deform_strong_fraction_of_peak = 0.0;  // the corrected kernel's own 6 (v and w) at its rate
   double damage_fraction_of_peak = 0.0;         // the first case's damage stage: its maps' FMAs at its rate
+  double stream_gb_s = 0.0;                     // STREAM triad, same process: the statistics' bandwidth limit
   double trees_reference_ms = 0.0;   // CPU reference: sampling + modal forces + modal step, per step
   double deform_reference_ms = 0.0;  // CPU reference: one frame's deformation
   std::vector<CoupledBenchCase> cases;

@@ -248,7 +248,7 @@ WindBenchResult run_wind_bench(host::ComputeContext& cc, const WindBenchOptions&
   WindBenchResult result;
   result.device = cc.device().device_name;
   result.steps = opt.steps;
-  result.triad_gb_s = measure_stream_triad(cc, std::size_t(32) << 20, 10);
+  result.triad_gb_s = measure_stream_triad(cc, kRooflineElements, kRooflineRepetitions);
   result.corner_loads = measure_corner_load_rates(cc, opt.roofline_grid, 10);
   result.roofline_grid = opt.roofline_grid;
   result.roofline_smoother_gb_s =

@@ -2,14 +2,20 @@
 
 #include <algorithm>
 #include <cmath>
+#include <initializer_list>
 #include <limits>
 
 namespace fw::host {
 
 namespace {
 
-// Sums stay below 2^(kSumBits + 1): one bit to spare under the 64-bit integer's 2^63.
-constexpr int kSumBits = 61;
+// A cell's scaled term stays within 2^FW_PLANE_CELL_BITS (kernels/shared_types.h): the kernel adds a few in
+// 32-bit lanes before widening them, and a plane of up to 2^35 cells sums below 2^62.
+constexpr int kCellBits = FW_PLANE_CELL_BITS;
+// A term whose largest value uses less than 2^-kLooseBits of its scale's range is summed again at its own
+// scale: a coarse scale cuts a field of values all much smaller than its step to 0, a bias. So each
+// term is resolved to at least 2^-(FW_PLANE_CELL_BITS - kLooseBits) of its largest value.
+constexpr int kLooseBits = 4;
 // A float scales by 2^s exactly while s stays well inside its exponent range.
 constexpr int kLowestExponent = -120, kHighestExponent = 120;
 // Bounds below this are taken as it: a term that small everywhere sums to 0 at any scale that matters.
@@ -86,9 +92,16 @@ std::size_t PlaneStatistics::estimate_device_bytes(const fluid::GridSpec& local)
          ComputeContext::allocation_bytes(FW_PLANE_TERMS * sizeof(float));
 }
 
-int PlaneStatistics::scale_exponent(double bound, double cells) {
-  const double b = std::max(bound, kSmallestBound), n = std::max(cells, 1.0);
-  const int s = kSumBits - int(std::ceil(std::log2(n))) - int(std::ceil(std::log2(b)));
+std::size_t PlaneStatistics::bytes_read(const fluid::GridSpec& local, const WindStatisticsFields& fields) {
+  std::size_t per_cell = sizeof(cl_uchar);  // the mask
+  for (const cl::Buffer* field : {fields.eddy_viscosity, fields.subgrid_energy, fields.drag_density})
+    if (field) per_cell += sizeof(float);
+  return (local.u_count() + local.v_count() + local.w_count()) * sizeof(float) +
+         local.cell_count() * per_cell;
+}
+
+int PlaneStatistics::scale_exponent(double bound) {
+  const int s = kCellBits - int(std::ceil(std::log2(std::max(bound, kSmallestBound))));
   return std::clamp(s, kLowestExponent, kHighestExponent);
 }
 
@@ -140,25 +153,51 @@ void PlaneStatistics::run_pass(const WindStatisticsFields& fields,
     for (int t = 0; t < FW_PLANE_TERMS; ++t)
       if (!(theirs[std::size_t(t)] <= largest_[std::size_t(t)]))
         largest_[std::size_t(t)] = theirs[std::size_t(t)];
+  bound_products();
+}
+
+void PlaneStatistics::bound_products() {
+  // A float product's magnitude grows with its factors', so the largest factors' product, rounded up by an
+  // ulp for the float's own rounding, bounds it (NaN stays NaN).
+  constexpr double kRoundedUp = 1.0 + 0x1p-22;
+  const auto product = [&](std::initializer_list<int> factors) {
+    double p = kRoundedUp;
+    for (const int f : factors) p *= largest_[std::size_t(f)];
+    return float(p * kRoundedUp);
+  };
+  largest_[FW_TERM_UU] = product({FW_TERM_U, FW_TERM_U});
+  largest_[FW_TERM_VV] = product({FW_TERM_V, FW_TERM_V});
+  largest_[FW_TERM_WW] = product({FW_TERM_W, FW_TERM_W});
+  largest_[FW_TERM_UUU] = product({FW_TERM_U, FW_TERM_U, FW_TERM_U});
+  largest_[FW_TERM_WWW] = product({FW_TERM_W, FW_TERM_W, FW_TERM_W});
+  largest_[FW_TERM_UW] = product({FW_TERM_U, FW_TERM_W});
+  largest_[FW_TERM_VW] = product({FW_TERM_V, FW_TERM_W});
 }
 
 fluid::PlaneProfiles PlaneStatistics::sample(const WindStatisticsFields& fields, double speed_bound,
-                                             const PlaneRegion& region) {
+                                             const PlaneRegion& region, PlaneScales* scales) {
   const double cells = region_cells(spec_, region);
-  const std::array<double, FW_PLANE_TERMS> bounds = default_bounds(velocity_bound(speed_bound));
   std::array<int, FW_PLANE_TERMS> exponents{};
-  for (int t = 0; t < FW_PLANE_TERMS; ++t)
-    exponents[std::size_t(t)] =
-        (t == FW_TERM_CELLS || t == FW_TERM_SPEED) ? 0 : scale_exponent(bounds[std::size_t(t)], cells);
+  if (scales && scales->known) {
+    exponents = scales->exponents;
+    // The count and the speed are not scaled, whatever a scale says.
+    exponents[FW_TERM_CELLS] = exponents[FW_TERM_SPEED] = 0;
+  } else {
+    const std::array<double, FW_PLANE_TERMS> bounds = default_bounds(velocity_bound(speed_bound));
+    for (int t = 0; t < FW_PLANE_TERMS; ++t)
+      if (t != FW_TERM_CELLS && t != FW_TERM_SPEED)
+        exponents[std::size_t(t)] = scale_exponent(bounds[std::size_t(t)]);
+  }
   run_pass(fields, exponents, region);
-  // A term whose largest value passed its bound is summed again at that value's scale (every rank sees the
-  // same maxima, so all take the second pass or none). A non-finite one stays: its profile reads NaN.
+  // A term whose largest value passed its scale's range, or used less than 2^-kLooseBits of it, is summed
+  // again at that value's own scale (every rank sees the same maxima, so all take the second pass or none).
+  // A term of zeros is exact at any scale; a non-finite one stays: its profile reads NaN.
   bool again = false;
   for (int t = 0; t < FW_PLANE_TERMS; ++t) {
     const double most = largest_[std::size_t(t)];
-    if (t == FW_TERM_CELLS || t == FW_TERM_SPEED || !std::isfinite(most)) continue;
-    const int fits = scale_exponent(most, cells);
-    if (fits < exponents[std::size_t(t)]) {
+    if (t == FW_TERM_CELLS || t == FW_TERM_SPEED || !std::isfinite(most) || most == 0.0) continue;
+    const int fits = scale_exponent(most);
+    if (fits < exponents[std::size_t(t)] || fits - exponents[std::size_t(t)] > kLooseBits) {
       exponents[std::size_t(t)] = fits;
       again = true;
     }
@@ -166,6 +205,15 @@ fluid::PlaneProfiles PlaneStatistics::sample(const WindStatisticsFields& fields,
   if (again) {
     run_pass(fields, exponents, region);
     ++extra_passes_;
+  }
+  if (scales) {
+    // The next sample's scales: these maxima with room to double.
+    for (int t = 0; t < FW_PLANE_TERMS; ++t) {
+      const double most = largest_[std::size_t(t)];
+      if (t == FW_TERM_CELLS || t == FW_TERM_SPEED || !std::isfinite(most)) continue;
+      if (most > 0.0 || !scales->known) scales->exponents[std::size_t(t)] = scale_exponent(2.0 * most);
+    }
+    scales->known = true;
   }
   return profiles(exponents, cells);
 }

@@ -3,7 +3,7 @@
 #
 # `forestwind bench coupled` plans its forest through the run's planner: on a small grid with a few trees it
 # runs its four cases (converged, turbulent, in leaf, the Jacobi baseline), each with the forest it asked
-# for, and its JSON says so. No timing is asserted: only that every case ran and counted what it was given.
+# for, and the converged case's statistics sample, and its JSON says so. No timing is asserted: only that every case ran and counted what it was given.
 forestwind=$1
 work=$2
 . "$(dirname "$0")/common.sh"
@@ -24,5 +24,9 @@ assert leaves[0] == leaves[1] == leaves[3] == 0 and leaves[2] > 0 and leaves[2] 
 # The converged cases solve the pressure; the baseline sweeps exactly 4 times.
 assert all(c["pressure_iterations"] >= 0 for c in cases[:3]) and cases[3]["pressure_iterations"] == 4, cases
 assert r["nodes_per_tree"] > 1000 and r["species_seconds"] > 0, r
+# The converged case alone times the statistics' sample, and the triad it is held against ran.
+assert cases[0]["statistics_ms"] > 0 and cases[0]["statistics_gb_s"] > 0, cases[0]
+assert all("statistics_ms" not in c for c in cases[1:]), cases
+assert r["stream_gb_s"] > 0, r
 PY
 echo "bench coupled: 4 cases on the planner's forest"

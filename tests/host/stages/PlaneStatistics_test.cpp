@@ -111,7 +111,6 @@ TEST_CASE(
   wind.upload_velocity(analytic(setup.spec));
   host::PlaneStatistics statistics = statistics_of(*cc, wind);
   const fluid::PlaneProfiles p = statistics.sample(wind.statistics_fields(), wind.max_speed_component());
-  CHECK(statistics.extra_passes() == 0);  // the speed bounds every term here
   const double speed = U0 + G * setup.spec.nz * setup.spec.h + C;
   for (int k = 0; k < setup.spec.nz; ++k) {
     INFO("height " << k);
@@ -192,8 +191,8 @@ TEST_CASE(
 }
 
 TEST_CASE(
-    "PlaneStatistics: a speed bound far too small costs a second pass at the terms' own scale, and the same "
-    "profiles",
+    "PlaneStatistics: scales kept from the last sample take one pass, and a scale too fine or too coarse "
+    "costs a second pass at the terms' own, never a wrong sum",
     "[statistics]") {
   auto* cc = test::device_or_skip();
   if (!cc) return;
@@ -201,11 +200,29 @@ TEST_CASE(
   host::WindGrid wind(*cc, setup);
   wind.upload_velocity(analytic(setup.spec));
   host::PlaneStatistics statistics = statistics_of(*cc, wind);
-  const fluid::PlaneProfiles right = statistics.sample(wind.statistics_fields(), wind.max_speed_component());
+  const double speed = wind.max_speed_component();
+  host::PlaneScales scales;
+  const fluid::PlaneProfiles first = statistics.sample(wind.statistics_fields(), speed, {}, &scales);
+  REQUIRE(scales.known);
+  const long passes = statistics.extra_passes();
+  CHECK(passes <= 1);  // the speed's bounds are loose for v and w's moments here
+  // The same field at the kept scales: one pass.
+  const fluid::PlaneProfiles kept = statistics.sample(wind.statistics_fields(), speed, {}, &scales);
+  CHECK(statistics.extra_passes() == passes);
+  // Scales far too fine (every term would pass 2^27) and far too coarse (every term rounded to 0): one more
+  // pass each. A speed bound far too small likewise.
+  host::PlaneScales fine = scales, coarse = scales;
+  fine.exponents.fill(100);
+  coarse.exponents.fill(-20);
+  const fluid::PlaneProfiles from_fine = statistics.sample(wind.statistics_fields(), speed, {}, &fine);
+  CHECK(statistics.extra_passes() == passes + 1);
+  const fluid::PlaneProfiles from_coarse = statistics.sample(wind.statistics_fields(), speed, {}, &coarse);
+  CHECK(statistics.extra_passes() == passes + 2);
   const fluid::PlaneProfiles low = statistics.sample(wind.statistics_fields(), 1e-3);
-  CHECK(statistics.extra_passes() == 1);
-  // Scales differ by powers of two: the sums round each cell at another multiple, far below float rounding.
-  check_close(low, right, wind.max_speed_component(), 0.0);
+  CHECK(statistics.extra_passes() == passes + 3);
+  // Scales differ by powers of two: the sums round each cell at another multiple, below float rounding.
+  for (const fluid::PlaneProfiles* other : {&kept, &from_fine, &from_coarse, &low})
+    check_close(*other, first, speed, 0.0);
 }
 
 TEST_CASE("PlaneStatistics: a region averages its own cells alone", "[statistics]") {
