@@ -10,6 +10,7 @@
 
 #include "host/app/OutputWriters.hpp"
 #include "host/app/Simulation.hpp"
+#include "host/app/StatisticsRecorder.hpp"
 #include "host/stages/BranchStages.hpp"
 #include "host/stages/ForestStages.hpp"
 #include "viz/ViewScript.hpp"
@@ -257,6 +258,28 @@ int frame_count(const SimulationPlan& plan, double end_time) {
   return 1 + int(std::floor(end_time / plan.output.interval + kScheduleTolerance));
 }
 
+namespace {
+
+// stats.nc (io/StatsNetcdf): doubles, plus NetCDF-4's own bytes, measured: about 96 kB a group of profiles
+// (20 variables whose chunks of time hold 512 values) and 48 kB for the time series' group.
+constexpr Bytes kProfileGroupBytes = 96 * 1024, kSeriesGroupBytes = 48 * 1024;
+
+OutputSizeRow statistics_row(const SimulationPlan& plan, double end_time) {
+  const io::StatisticsSettings& s = *plan.output.statistics;
+  const double records = std::floor(end_time / s.interval + kScheduleTolerance);
+  const double steps = std::ceil(end_time / planned_dt(plan));
+  const double rows = std::floor(steps / s.series_every);
+  const double areas = double(statistics_areas(plan).size());
+  const double heights = plan.wind.spec.nz;
+  const double values = areas * (records * (fluid::kProfileCount * heights + 1.0) + heights) +
+                        rows * double(series_columns().size() + 1);
+  const Bytes bytes =
+      Bytes(std::llround(values * sizeof(double))) + Bytes(areas) * kProfileGroupBytes + kSeriesGroupBytes;
+  return {"stats.nc", "stats.nc", 0, 1, bytes, bytes, {}};
+}
+
+}  // namespace
+
 OutputSize predict_output_size(const SimulationPlan& plan, double end_time) {
   const io::OutputSettings& out = plan.output;
   OutputSize size;
@@ -307,6 +330,7 @@ OutputSize predict_output_size(const SimulationPlan& plan, double end_time) {
     const Bytes bytes = header.size() + 1 + Bytes(std::llround(samples * row));
     size.rows.push_back({"probes.csv", "probes.csv", 0, 1, bytes, bytes, {}});
   }
+  if (out.statistics) size.rows.push_back(statistics_row(plan, end_time));
   // Checkpoints: one at each multiple of the interval and one at the end, of which the newest `keep` stay,
   // with one more while the next is written. Without output.checkpoint, one when a signal stops the run:
   // not part of the run's total, but of the bound the disk check holds free.

@@ -6,15 +6,16 @@
 // Two lengths of the same run: CI runs a short one (FORESTWIND_VALIDATION unset) whose looser ranges can
 // still fail; `make validate` runs the long one (FORESTWIND_VALIDATION=full) and checks the field ranges.
 //
-// Measured (horizontal averages over the whole periodic plane, every sample after the spin-up):
-//   - the mean streamwise profile U(z) and its inflection, the height of the largest dU/dz;
-//   - at the canopy top h: r_uw = <u'w'> / (sigma_u sigma_w), sigma_w / sigma_u and the skewness of u and w.
-//     A sonic anemometer sees every eddy down to its path (0.1-0.2 m), the grid only those of a few cells, so
-//     the second moments compared with the field are the total ones: resolved plus subgrid. The subgrid
-//     stress is -2 nu_t S_ij with the eddy viscosity the subgrid stage used, the subgrid energy e the tke
-//     model's own (Smagorinsky: e = (nu_t / (C_m h))^2, the tke model's nu_t = C_m h sqrt(e) read backwards),
-//     split equally among the three components (2e/3 each, isotropic). The resolved ones are printed beside
-//     them. Skewness is a resolved figure only: the subgrid model carries no third moments.
+// Measured from the run's own statistics (stats.nc, host/app/StatisticsRecorder, docs/statistics.md): one
+// record averaged over every step after the spin-up, of the profiles over the whole periodic plane:
+//   - the mean streamwise profile U(z) (`u`) and its inflection, the height of the largest dU/dz;
+//   - at the canopy top h (a face layer: the mean of the two cell heights beside it): r_uw = <u'w'> /
+//     (sigma_u sigma_w), sigma_w / sigma_u and the skewness of u and w. A sonic anemometer sees every eddy
+//     down to its path (0.1-0.2 m), the grid only those of a few cells, so the second moments compared with
+//     the field are the total ones: resolved plus subgrid. The subgrid stress is `u_diff` = -2 nu_t S_xz, the
+//     subgrid energy `sgs_tke` the tke model's e, split equally among the three components (2e/3 each,
+//     isotropic). The resolved ones are printed beside them. Skewness is a resolved figure only
+//     (`u_3` / `u_2`^1.5): the subgrid model carries no third moments.
 //   - the streamwise spacing of the dominant eddies, Lambda_x = U_c / f_peak: f_peak is the peak of the
 //     premultiplied spectrum f S_w(f) of w at h (time series at a grid of points, the mean spectrum's peak
 //     fitted in log f: fluid::premultiplied_peak_frequency), as a tower measures it,
@@ -39,11 +40,12 @@
 
 #include "fluid/FlowStatistics.hpp"
 #include "fluid/ReferenceStages.hpp"
-#include "fluid/SubgridTke.hpp"
 #include "host/app/CoupledStep.hpp"
 #include "host/app/SimulationPlan.hpp"
+#include "host/app/StatisticsRecorder.hpp"
 #include "io/Scenario.hpp"
-#include "tests/support/Fields.hpp"
+#include "io/StatsNetcdf.hpp"
+#include "tests/support/TempDir.hpp"
 #include "tests/support/TestDevice.hpp"
 #include "trees/Forest.hpp"
 
@@ -82,70 +84,55 @@ ValidationLength validation_length() {
   return {150.0, 120.0, false};
 }
 
+// Steps between the time series' rows: more than the run takes (the validation reads the profiles alone).
+constexpr int kNoSeries = 1000000000;
+
 // The smallest eddy upwind5 resolves, in cells: its decaying spectrum holds within 2x of -5/3 down to 8
 // cells and falls away below 6 (docs/numerics.md, "Decaying turbulence").
 constexpr double kFinestResolvedEddyCells = 6.0;
 
-// Moments of u and w at one height over every column and sample (the plane is homogeneous, so one mean over
-// space and time): correlation, standard deviations, skewness; with the subgrid parts when added.
-struct PointMoments {
-  double uu = 0, ww = 0, uw = 0, u = 0, w = 0, uuu = 0, www = 0;
-  double subgrid_uw = 0, subgrid_energy = 0;  // sums of the subgrid stress tau_uw and of e
-  long n = 0;
-  void add(double a, double b) {
-    uu += a * a, ww += b * b, uw += a * b, u += a, w += b, uuu += a * a * a, www += b * b * b;
-    ++n;
-  }
-  void add_subgrid(double tau_uw, double e) { subgrid_uw += tau_uw, subgrid_energy += e; }
-  double mean_u() const { return u / n; }
-  double mean_w() const { return w / n; }
-  double var_u() const { return uu / n - mean_u() * mean_u(); }
-  double var_w() const { return ww / n - mean_w() * mean_w(); }
-  double cov_uw() const { return uw / n - mean_u() * mean_w(); }
-  double sigma_u() const { return std::sqrt(var_u()); }
-  double sigma_w() const { return std::sqrt(var_w()); }
-  double r_uw() const { return cov_uw() / (sigma_u() * sigma_w()); }
+// The moments of u and w at a height, from one record of stats.nc's profiles: resolved, and resolved plus
+// subgrid.
+struct HeightMoments {
+  double u_2 = 0, w_2 = 0, u_w = 0, u_3 = 0, w_3 = 0, u_diff = 0, sgs_tke = 0;
+  double r_uw() const { return u_w / std::sqrt(u_2 * w_2); }
+  double sigma_ratio() const { return std::sqrt(w_2 / u_2); }
   // Resolved plus subgrid: each component gets 2e/3 of the subgrid energy.
-  double total_var(double resolved) const { return resolved + 2.0 / 3.0 * subgrid_energy / n; }
-  double total_r_uw() const {
-    return (cov_uw() + subgrid_uw / n) / std::sqrt(total_var(var_u()) * total_var(var_w()));
-  }
-  double total_sigma_ratio() const { return std::sqrt(total_var(var_w()) / total_var(var_u())); }
-  // From the raw moments: <x'^3> = <x^3> - 3 <x> <x^2> + 2 <x>^3.
-  static double skewness(double cubes, double squares, double mean, double sigma, long n) {
-    return (cubes / n - 3.0 * mean * squares / n + 2.0 * mean * mean * mean) / (sigma * sigma * sigma);
-  }
-  double skew_u() const { return skewness(uuu, uu, mean_u(), sigma_u(), n); }
-  double skew_w() const { return skewness(www, ww, mean_w(), sigma_w(), n); }
+  double total_var(double resolved) const { return resolved + 2.0 / 3.0 * sgs_tke; }
+  double total_r_uw() const { return (u_w + u_diff) / std::sqrt(total_var(u_2) * total_var(w_2)); }
+  double total_sigma_ratio() const { return std::sqrt(total_var(w_2) / total_var(u_2)); }
+  double skew_u() const { return u_3 / std::pow(u_2, 1.5); }
+  double skew_w() const { return w_3 / std::pow(w_2, 1.5); }
 };
 
-// Cell-column averages at the point (i + 1/2, j + 1/2) of w at height z (m): w faces sit on whole cells
-// (u: test::u_at, at half cells), so both are interpolated linearly in z.
+// One record's profile `name` (stats.nc's root group).
+const std::vector<double>& profile_of(const io::StatsFile& stats, const std::string& name,
+                                      std::size_t record) {
+  for (std::size_t n = 0; n < stats.profiles.variables.size(); ++n)
+    if (stats.profiles.variables[n].name == name) return stats.profiles.values[record][n];
+  throw std::invalid_argument("stats.nc has no profile " + name);
+}
+
+// The moments at height z (m, as stats.nc's z), linear between the cell heights around it.
+HeightMoments moments_at(const io::StatsFile& stats, std::size_t record, double z) {
+  const double level =
+      std::clamp(z - stats.z.front(), 0.0, stats.z.back() - stats.z.front()) / (stats.z[1] - stats.z[0]);
+  const auto k0 = std::min(std::size_t(level), stats.z.size() - 2);
+  const double t = level - double(k0);
+  const auto at = [&](const char* name) {
+    const std::vector<double>& p = profile_of(stats, name, record);
+    return (1.0 - t) * p[k0] + t * p[k0 + 1];
+  };
+  return {at("u_2"), at("w_2"), at("u_w"), at("u_3"), at("w_3"), at("u_diff"), at("sgs_tke")};
+}
+
+// w at the point (i + 1/2, j + 1/2) at height z (m above the floor): w faces sit on whole cells, so it is
+// interpolated linearly in z.
 double w_at(const fluid::GridSpec& spec, const fluid::MacVelocity& vel, int i, int j, double z) {
   const double level = std::clamp(z / spec.h, 0.0, double(spec.nz));
   const int k0 = std::min(int(level), spec.nz), k1 = std::min(k0 + 1, spec.nz);
   const double t = level - k0;
   return (1 - t) * vel.w[ref::face_index(spec, 2, i, j, k0)] + t * vel.w[ref::face_index(spec, 2, i, j, k1)];
-}
-
-// The subgrid stress tau_uw = -nu_t (du/dz + dw/dx) and energy e at the point (i + 1/2, j + 1/2) of the
-// horizontal face layer `top` (between cells top - 1 and top), from the cell-centred nu_t and e of the two
-// cells it divides. x is periodic (the validation's domains are).
-std::pair<double, double> subgrid_at_face_layer(const fluid::GridSpec& spec, const fluid::MacVelocity& vel,
-                                                const std::vector<float>& viscosity,
-                                                const std::vector<float>* energy, int i, int j, int top) {
-  const auto cell = [&](int k) { return (std::size_t(k) * spec.ny + j) * spec.nx + i; };
-  const double nu = 0.5 * (viscosity[cell(top - 1)] + viscosity[cell(top)]);
-  const double du_dz =
-      (test::u_centre(spec, vel, i, j, top) - test::u_centre(spec, vel, i, j, top - 1)) / spec.h;
-  const int east = (i + 1) % spec.nx, west = (i + spec.nx - 1) % spec.nx;
-  const double dw_dx =
-      (vel.w[ref::face_index(spec, 2, east, j, top)] - vel.w[ref::face_index(spec, 2, west, j, top)]) /
-      (2.0 * spec.h);
-  // Smagorinsky has no e of its own: the one whose nu_t = C_m h sqrt(e) is the nu_t used.
-  const double e = energy ? 0.5 * ((*energy)[cell(top - 1)] + (*energy)[cell(top)])
-                          : std::pow(nu / (fluid::kTkeViscosityConstant * spec.h), 2);
-  return {-nu * (du_dz + dw_dx), e};
 }
 
 // w on a horizontal plane at every sample: planes[t][j * nx + i].
@@ -206,59 +193,45 @@ void check_canopy(host::ComputeContext& cc, const std::filesystem::path& file,
                   const ValidationLength& length = validation_length()) {
   const io::Scenario scenario = io::load_scenario(file);
   host::SimulationPlan plan = host::plan_simulation(scenario, nullptr, nullptr);
+  // The run's statistics: one record at the end, averaged over every step after the spin-up.
+  io::StatisticsSettings statistics;
+  statistics.interval = length.spin_up + length.average;
+  statistics.averaging = length.average;
+  statistics.series_every = kNoSeries;
+  plan.output.statistics = statistics;
+  const test::TempDir folder("fw_canopy_validation");
+  const std::filesystem::path stats_file = std::filesystem::path(folder.path()) / "stats.nc";
   host::CoupledStep coupled(cc, plan);
+  host::StatisticsRecorder recorder(cc, plan, coupled, host::Communicator::alone(), stats_file);
   coupled.start();
   auto& wind = coupled.wind();
   const auto& spec = wind.spec();
   const double canopy_height = canopy_top(spec, plan.forest);
   const int top_layer = int(std::lround(canopy_height / spec.h));  // the face layer at h
 
-  // Heights of the mean profile: every cell centre.
-  std::vector<double> heights;
-  for (int k = 0; k < spec.nz; ++k) heights.push_back((k + 0.5) * spec.h);
-  std::vector<double> profile(heights.size(), 0.0);
-  PointMoments top;  // at the canopy top
-  // And around it, as field data are often taken above the top: z / h = 0.75, 1.25, 1.5, 2.
-  const double around[] = {0.75, 1.25, 1.5, 2.0};
-  std::vector<PointMoments> near(std::size(around));
-  long samples = 0;
+  // w on the canopy top's face layer for the spectra and the correlations, which stats.nc does not hold.
   PlaneSeries w_top{spec.nx, spec.ny, spec.h, 0.5, {}};  // 0.5 s resolves f up to 1 Hz, 10x the peak
   double next_sample = length.spin_up;
   const double end = length.spin_up + length.average;
   while (coupled.time() < end - 1e-9) {
-    coupled.step(end - coupled.time());
+    recorder.after_step(coupled.step(end - coupled.time()));
     if (coupled.time() < next_sample - 1e-9) continue;
     next_sample += w_top.interval;
     const auto vel = wind.download_velocity();
-    const auto viscosity = wind.subgrid_enabled() ? wind.download_eddy_viscosity() : std::vector<float>{};
-    const auto energy = wind.subgrid_tke_enabled() ? wind.download_subgrid_energy() : std::vector<float>{};
-    ++samples;
-    for (std::size_t n = 0; n < heights.size(); ++n) {
-      double sum = 0;
-      for (int j = 0; j < spec.ny; ++j)
-        for (int i = 0; i < spec.nx; ++i) sum += test::u_at(spec, vel, i, j, heights[n]);
-      profile[n] += sum / (spec.nx * spec.ny);
-    }
     auto& plane = w_top.planes.emplace_back(std::size_t(spec.nx) * spec.ny);
     for (int j = 0; j < spec.ny; ++j)
-      for (int i = 0; i < spec.nx; ++i) {
-        const double u = test::u_at(spec, vel, i, j, canopy_height), w = w_at(spec, vel, i, j, canopy_height);
-        top.add(u, w);
-        if (!viscosity.empty()) {
-          const auto [tau_uw, e] = subgrid_at_face_layer(spec, vel, viscosity,
-                                                         energy.empty() ? nullptr : &energy, i, j, top_layer);
-          top.add_subgrid(tau_uw, e);
-        }
-        plane[std::size_t(j) * spec.nx + i] = float(w);
-        for (std::size_t n = 0; n < near.size(); ++n) {
-          const double z = around[n] * canopy_height;
-          if (z < spec.nz * spec.h) near[n].add(test::u_at(spec, vel, i, j, z), w_at(spec, vel, i, j, z));
-        }
-      }
+      for (int i = 0; i < spec.nx; ++i)
+        plane[std::size_t(j) * spec.nx + i] = float(w_at(spec, vel, i, j, canopy_height));
   }
-  for (double& p : profile) p /= double(samples);
+  const io::StatsFile stats = io::read_stats_netcdf(stats_file);
+  REQUIRE(stats.profiles.time.size() == 1);
+  const std::vector<double>& heights = stats.z;  // the cell centres, m above the floor (origin 0)
+  const std::vector<double>& profile = profile_of(stats, "u", 0);
+  const HeightMoments top = moments_at(stats, 0, spec.origin[2] + canopy_height);
   const double r_uw = top.total_r_uw(), sigma_ratio = top.total_sigma_ratio();
   const double skew_u = top.skew_u(), skew_w = top.skew_w();
+  // And around it, as field data are often taken above the top: z / h = 0.75, 1.25, 1.5, 2.
+  const double around[] = {0.75, 1.25, 1.5, 2.0};
 
   // The inflection: the largest dU/dz between cell centres.
   std::size_t steepest = 0;
@@ -304,11 +277,12 @@ void check_canopy(host::ComputeContext& cc, const std::filesystem::path& file,
             << "  U(h) " << U_h << " m/s, U(2h) " << 0.5 * (profile[2 * below + 1] + profile[2 * below + 2])
             << " m/s, L_s " << shear_length << " m (" << shear_length / canopy_height << " h)\n"
             << "  total (resolved + subgrid): r_uw " << r_uw << ", sigma_w/sigma_u " << sigma_ratio << "\n"
-            << "  resolved: r_uw " << top.r_uw() << ", sigma_w/sigma_u " << top.sigma_w() / top.sigma_u()
-            << ", sigma_u/U(h) " << top.sigma_u() / U_h << ", Sk_u " << skew_u << ", Sk_w " << skew_w << "\n"
-            << "  subgrid: <tau_uw> " << top.subgrid_uw / top.n << " m^2/s^2 (resolved <u'w'> "
-            << top.cov_uw() << "), e " << top.subgrid_energy / top.n
-            << " m^2/s^2 (resolved (sigma_u^2 + sigma_w^2) / 2 " << 0.5 * (top.var_u() + top.var_w()) << ")\n"
+            << "  resolved: r_uw " << top.r_uw() << ", sigma_w/sigma_u " << top.sigma_ratio()
+            << ", sigma_u/U(h) " << std::sqrt(top.u_2) / U_h << ", Sk_u " << skew_u << ", Sk_w " << skew_w
+            << "\n"
+            << "  subgrid: <tau_uw> " << top.u_diff << " m^2/s^2 (resolved <u'w'> " << top.u_w << "), e "
+            << top.sgs_tke << " m^2/s^2 (resolved (sigma_u^2 + sigma_w^2) / 2 " << 0.5 * (top.u_2 + top.w_2)
+            << ")\n"
             << "  f_peak " << f_peak << " Hz, U_c " << convection << " m/s = " << convection / U_h
             << " U(h), Lambda_x = U_c / f_peak " << eddy_spacing << " m = " << eddy_spacing / shear_length
             << " L_s (" << eddy_spacing / canopy_height << " h)\n"
@@ -317,11 +291,12 @@ void check_canopy(host::ComputeContext& cc, const std::filesystem::path& file,
             << convection / largest_density_peak / shear_length
             << " L_s; twice the first minimum of w's streamwise correlation " << correlation_eddy_spacing
             << " m = " << correlation_eddy_spacing / shear_length << " L_s\n";
-  for (std::size_t n = 0; n < near.size(); ++n)
-    if (near[n].n > 0)
-      std::cout << "  at " << around[n] << " h (resolved): r_uw " << near[n].r_uw() << ", sigma_w/sigma_u "
-                << near[n].sigma_w() / near[n].sigma_u() << ", Sk_u " << near[n].skew_u() << ", Sk_w "
-                << near[n].skew_w() << "\n";
+  for (const double ratio : around)
+    if (spec.origin[2] + ratio * canopy_height <= heights.back()) {
+      const HeightMoments m = moments_at(stats, 0, spec.origin[2] + ratio * canopy_height);
+      std::cout << "  at " << ratio << " h (resolved): r_uw " << m.r_uw() << ", sigma_w/sigma_u "
+                << m.sigma_ratio() << ", Sk_u " << m.skew_u() << ", Sk_w " << m.skew_w() << "\n";
+    }
   std::cout << "  U(z):";
   for (std::size_t n = 0; n < profile.size(); ++n) std::cout << " " << heights[n] << ":" << profile[n];
   std::cout << std::endl;
