@@ -10,8 +10,10 @@
 #include <vector>
 
 #include "fluid/PlaneProfiles.hpp"
+#include "tests/support/Fields.hpp"
 
 using namespace fw::fluid;
+namespace test = fw::test;
 using B = BoundaryType;
 
 namespace {
@@ -27,30 +29,12 @@ GridSpec periodic_box() {
   return spec;
 }
 
-// u = U0 + G z + C sin(2 pi y / Ly), v = A sin(2 pi x / Lx), w = B sin(2 pi x / Lx), each set on its faces,
-// which lie at the cell centres along the axes it varies in, so that the cell-centred values are exact:
-// <u> = U0 + G z, u_2 = C^2 / 2, v_2 = A^2 / 2, w_2 = B^2 / 2, v_w = A B / 2, u_w = 0 (the sines in x and y
-// average out together), u_3 = w_3 = 0 (a sine's odd moments over whole periods).
-constexpr double U0 = 3.0, G = 0.25, C = 0.8, A = 1.5, Bw = 0.6;
+// The field of known moments (tests/support/Fields.hpp).
+constexpr double U0 = test::SineShear::U0, G = test::SineShear::G, C = test::SineShear::C,
+                 A = test::SineShear::A, Bw = test::SineShear::B;
 
 MacVelocity analytic(const GridSpec& s) {
-  MacVelocity vel(s);
-  const double kx = 2.0 * std::numbers::pi / (s.nx * s.h), ky = 2.0 * std::numbers::pi / (s.ny * s.h);
-  for (int k = 0; k < s.nz; ++k)
-    for (int j = 0; j < s.ny; ++j)
-      for (int i = 0; i <= s.nx; ++i) {
-        const double y = (j + 0.5) * s.h, z = (k + 0.5) * s.h;
-        vel.u[std::size_t(i + (s.nx + 1) * (j + s.ny * k))] = float(U0 + G * z + C * std::sin(ky * y));
-      }
-  for (int k = 0; k < s.nz; ++k)
-    for (int j = 0; j <= s.ny; ++j)
-      for (int i = 0; i < s.nx; ++i)
-        vel.v[std::size_t(i + s.nx * (j + (s.ny + 1) * k))] = float(A * std::sin(kx * (i + 0.5) * s.h));
-  for (int k = 0; k <= s.nz; ++k)
-    for (int j = 0; j < s.ny; ++j)
-      for (int i = 0; i < s.nx; ++i)
-        vel.w[std::size_t(i + s.nx * (j + s.ny * k))] = float(Bw * std::sin(kx * (i + 0.5) * s.h));
-  return vel;
+  return test::sine_shear_velocity(s);
 }
 
 }  // namespace

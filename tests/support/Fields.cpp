@@ -194,4 +194,24 @@ double mismatch_fraction(const std::vector<float>& a, const std::vector<float>& 
   return double(bad) / double(b.size());
 }
 
+fluid::MacVelocity sine_shear_velocity(const fluid::GridSpec& s) {
+  fluid::MacVelocity vel(s);
+  const double kx = 2.0 * std::numbers::pi / (s.nx * s.h), ky = 2.0 * std::numbers::pi / (s.ny * s.h);
+  for (int k = 0; k < s.nz; ++k)
+    for (int j = 0; j < s.ny; ++j)
+      for (int i = 0; i <= s.nx; ++i)
+        vel.u[std::size_t(i + (s.nx + 1) * (j + s.ny * k))] = float(
+            SineShear::U0 + SineShear::G * (k + 0.5) * s.h + SineShear::C * std::sin(ky * (j + 0.5) * s.h));
+  for (int k = 0; k < s.nz; ++k)
+    for (int j = 0; j <= s.ny; ++j)
+      for (int i = 0; i < s.nx; ++i)
+        vel.v[std::size_t(i + s.nx * (j + (s.ny + 1) * k))] =
+            float(SineShear::A * std::sin(kx * (i + 0.5) * s.h));
+  for (int k = 0; k <= s.nz; ++k)
+    for (int j = 0; j < s.ny; ++j)
+      for (int i = 0; i < s.nx; ++i)
+        vel.w[std::size_t(i + s.nx * (j + s.ny * k))] = float(SineShear::B * std::sin(kx * (i + 0.5) * s.h));
+  return vel;
+}
+
 }  // namespace fw::test

@@ -35,6 +35,16 @@ fluid::MacVelocity random_velocity(const fluid::GridSpec& spec, double amplitude
 /// sines of the face's position, one wavelength across the grid along each axis).
 fluid::MacVelocity smooth_velocity(const fluid::GridSpec& spec, const std::array<double, 3>& mean,
                                    const std::array<double, 3>& ripple);
+/// The field of known plane moments that the statistics' tests use (fluid/PlaneProfiles, host/stages/
+/// PlaneStatistics): u = U0 + G z + C sin(2 pi y / Ly), v = A sin(2 pi x / Lx), w = B sin(2 pi x / Lx), each
+/// set on its faces, which lie at the cell centres along the axes it varies in, so that the cell-centred
+/// values are exact: <u> = U0 + G z, u_2 = C^2 / 2, v_2 = A^2 / 2, w_2 = B^2 / 2, v_w = A B / 2, u_w = 0 (the
+/// sines in x and y average out together), u_3 = w_3 = 0 (a sine's odd moments over whole periods).
+struct SineShear {
+  static constexpr double U0 = 3.0, G = 0.25, C = 0.8, A = 1.5, B = 0.6;
+};
+/// That field on `spec` (whole sine periods need an even number of cells along x and y).
+fluid::MacVelocity sine_shear_velocity(const fluid::GridSpec& spec);
 /// Copies the low face of every periodic axis onto its high twin (the solver keeps them equal; advection's
 /// first RK2 stage reads the high face directly while interpolation wraps to the low one).
 void match_periodic_faces(const fluid::GridSpec& spec, fluid::MacVelocity& vel);

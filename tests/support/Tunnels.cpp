@@ -27,6 +27,32 @@ host::WindGridSetup tunnel(fluid::AdvectionScheme scheme) {
   return setup;
 }
 
+host::WindGridSetup periodic_channel() {
+  host::WindGridSetup setup;
+  auto& spec = setup.spec;
+  spec.nx = 32, spec.ny = 16, spec.nz = 8, spec.h = 1.0;
+  spec.boundary = {B::periodic, B::periodic, B::periodic, B::periodic, B::no_slip, B::slip};
+  setup.settings.advection = fluid::AdvectionScheme::maccormack;
+  setup.settings.smagorinsky_constant = 0.16;
+  setup.settings.vorticity_confinement = 0.2;
+  setup.settings.dt = 0.2;
+  setup.forcing.relaxation_time = 5.0;
+  setup.ambient = {4.0, 0.0, 0.0};
+  FwGust gust{};
+  gust.start = 0.0f, gust.duration = 2.0f, gust.peak_speed = 3.0f, gust.radius = 4.0f;
+  gust.center[0] = 8.0f, gust.center[1] = 8.0f, gust.center[2] = 4.0f;
+  gust.travel[0] = 4.0f, gust.direction[0] = 1.0f;
+  setup.gusts = {gust};
+  return setup;
+}
+
+host::WindBlocks blocks_of(const host::WindGridSetup& setup, std::array<int, 2> blocks,
+                           const host::Communicator& world) {
+  return {&world, fluid::Decomposition::make(
+                      setup.spec, world.size(), blocks,
+                      host::advection_method(setup.settings.advection).halo_cells(setup.settings.cfl))};
+}
+
 host::WindGridSetup turbulent_tunnel() {
   host::WindGridSetup setup = tunnel(fluid::AdvectionScheme::upwind5);
   setup.spec.boundary[FW_FACE_GROUND] = B::slip;  // the rough floor's stress is the wall stage's

@@ -20,6 +20,16 @@ host::WindGridSetup tunnel(fluid::AdvectionScheme scheme);
 /// seed 5), the tke model, a rough floor (z0 0.1 m, wall stress on a slip floor) and vorticity confinement.
 host::WindGridSetup turbulent_tunnel();
 
+/// A channel of 32 x 16 x 8 cells of 1 m, periodic in x and y over a no-slip floor under a slip lid,
+/// MacCormack, held at the ambient wind (4, 0, 0) m/s by the mean forcing (the layer mean is a sum over every
+/// rank's faces), with a gust travelling through it, Smagorinsky and vorticity confinement (whose cell fields
+/// a halo cell across the periodic seam must take from their owner); dt 0.2 s.
+host::WindGridSetup periodic_channel();
+
+/// `setup`'s grid cut into `blocks` over `world`, with the halo its advection scheme needs at its CFL number.
+host::WindBlocks blocks_of(const host::WindGridSetup& setup, std::array<int, 2> blocks,
+                           const host::Communicator& world);
+
 /// A canopy's drag density (1/m, one float a cell): `density` in the cells first .. end - 1, zero elsewhere.
 std::vector<float> canopy_in_cells(const fluid::GridSpec& spec, std::array<int, 3> first,
                                    std::array<int, 3> end, float density);

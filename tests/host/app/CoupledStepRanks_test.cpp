@@ -78,10 +78,7 @@ TEST_CASE("CoupledStep over ranks: trees across the blocks' borders step to the 
 
   for (const auto blocks : test::splits(world.size())) {
     INFO(blocks[0] << " x " << blocks[1] << " blocks on " << world.size() << " ranks");
-    const host::WindBlocks split{
-        &world, fluid::Decomposition::make(
-                    setup.spec, world.size(), blocks,
-                    host::advection_method(setup.settings.advection).halo_cells(setup.settings.cfl))};
+    const host::WindBlocks split = test::blocks_of(setup, blocks, world);
     host::CoupledStep coupled(*cc, setup, forest, coupling(setup.spec), inputs, &split);
     coupled.start();
     for (int n = 0; n < kSteps; ++n) {
@@ -169,10 +166,7 @@ TEST_CASE("CoupledStep over ranks: a forest in one corner steps to the bits of o
 
   for (const auto blocks : test::splits(world.size())) {
     INFO(blocks[0] << " x " << blocks[1] << " blocks on " << world.size() << " ranks");
-    const host::WindBlocks split{
-        &world, fluid::Decomposition::make(
-                    setup.spec, world.size(), blocks,
-                    host::advection_method(setup.settings.advection).halo_cells(setup.settings.cfl))};
+    const host::WindBlocks split = test::blocks_of(setup, blocks, world);
     host::CoupledStep coupled(*cc, setup, forest, corner, inputs, &split);
     CHECK(coupled.wind().canopy_enabled());  // on every rank, with or without drag in its block
     coupled.start();

@@ -11,29 +11,16 @@
 #include "tests/support/Tunnels.hpp"
 
 using namespace fw;
-using B = fluid::BoundaryType;
 
 namespace {
 
 constexpr int kSteps = 4;
 
-// A periodic channel over a no-slip floor under Smagorinsky's model, held by the mean forcing, with a gust
-// that makes every plane uneven: the strain's differences wrap across both seams.
+// The ranks tests' periodic channel (Smagorinsky, a gust) with the gust on the corner of both seams: every
+// plane is uneven there, and the strain's differences wrap across them.
 host::WindGridSetup periodic_channel() {
-  host::WindGridSetup setup;
-  auto& spec = setup.spec;
-  spec.nx = 32, spec.ny = 16, spec.nz = 8, spec.h = 1.0;
-  spec.boundary = {B::periodic, B::periodic, B::periodic, B::periodic, B::no_slip, B::slip};
-  setup.settings.advection = fluid::AdvectionScheme::maccormack;
-  setup.settings.smagorinsky_constant = 0.16;
-  setup.settings.dt = 0.2;
-  setup.forcing.relaxation_time = 5.0;
-  setup.ambient = {4.0, 0.0, 0.0};
-  FwGust gust{};
-  gust.start = 0.0f, gust.duration = 2.0f, gust.peak_speed = 3.0f, gust.radius = 4.0f;
-  gust.center[0] = 1.0f, gust.center[1] = 15.0f, gust.center[2] = 4.0f;
-  gust.travel[0] = 4.0f, gust.direction[0] = 1.0f;
-  setup.gusts = {gust};
+  host::WindGridSetup setup = test::periodic_channel();
+  setup.gusts[0].center[0] = 1.0f, setup.gusts[0].center[1] = 15.0f;
   return setup;
 }
 
@@ -64,10 +51,7 @@ void check_equal_to_one_process(const host::WindGridSetup& setup, const std::vec
     const fluid::PlaneProfiles alone = profiles_after_steps(*cc, setup, canopy, region, nullptr);
     for (const auto blocks : test::splits(world.size())) {
       INFO(blocks[0] << " x " << blocks[1] << " blocks on " << world.size() << " ranks");
-      const host::WindBlocks split{
-          &world, fluid::Decomposition::make(
-                      setup.spec, world.size(), blocks,
-                      host::advection_method(setup.settings.advection).halo_cells(setup.settings.cfl))};
+      const host::WindBlocks split = test::blocks_of(setup, blocks, world);
       const fluid::PlaneProfiles mine = profiles_after_steps(*cc, setup, canopy, region, &split);
       for (int p = 0; p < fluid::kProfileCount; ++p)
         for (int k = 0; k < alone.nz; ++k) {

@@ -4,12 +4,13 @@
 
 #include <algorithm>
 #include <cmath>
-#include <numbers>
+#include <memory>
 #include <vector>
 
 #include "fluid/PlaneProfiles.hpp"
 #include "host/stages/PlaneStatistics.hpp"
 #include "host/stages/WindGrid.hpp"
+#include "tests/support/Fields.hpp"
 #include "tests/support/TestDevice.hpp"
 #include "tests/support/Tunnels.hpp"
 
@@ -65,10 +66,9 @@ host::PlaneStatistics statistics_of(host::ComputeContext& cc, const host::WindGr
   return host::PlaneStatistics(cc, wind.spec(), wind.local_spec(), wind.block(), host::Communicator::alone());
 }
 
-// u = U0 + G z + C sin(2 pi y / Ly), v = A sin(2 pi x / Lx), w = B sin(2 pi x / Lx) on 24 x 16 x 8 cells of
-// 2 m, periodic in x and y, each set on its faces, which lie at the cell centres along the axes it varies
-// in: <u> = U0 + G z, u_2 = C^2 / 2, v_2 = A^2 / 2, w_2 = B^2 / 2, v_w = A B / 2, and u_w = u_3 = w_3 = 0.
-constexpr double U0 = 3.0, G = 0.25, C = 0.8, A = 1.5, Bw = 0.6;
+// The field of known moments (tests/support/Fields.hpp) on 24 x 16 x 8 cells of 2 m, periodic in x and y.
+constexpr double U0 = test::SineShear::U0, G = test::SineShear::G, C = test::SineShear::C,
+                 A = test::SineShear::A, Bw = test::SineShear::B;
 
 host::WindGridSetup periodic_box() {
   host::WindGridSetup setup;
@@ -80,22 +80,15 @@ host::WindGridSetup periodic_box() {
 }
 
 fluid::MacVelocity analytic(const fluid::GridSpec& s) {
-  fluid::MacVelocity vel(s);
-  const double kx = 2.0 * std::numbers::pi / (s.nx * s.h), ky = 2.0 * std::numbers::pi / (s.ny * s.h);
-  for (int k = 0; k < s.nz; ++k)
-    for (int j = 0; j < s.ny; ++j)
-      for (int i = 0; i <= s.nx; ++i)
-        vel.u[std::size_t(i + (s.nx + 1) * (j + s.ny * k))] =
-            float(U0 + G * (k + 0.5) * s.h + C * std::sin(ky * (j + 0.5) * s.h));
-  for (int k = 0; k < s.nz; ++k)
-    for (int j = 0; j <= s.ny; ++j)
-      for (int i = 0; i < s.nx; ++i)
-        vel.v[std::size_t(i + s.nx * (j + (s.ny + 1) * k))] = float(A * std::sin(kx * (i + 0.5) * s.h));
-  for (int k = 0; k <= s.nz; ++k)
-    for (int j = 0; j < s.ny; ++j)
-      for (int i = 0; i < s.nx; ++i)
-        vel.w[std::size_t(i + s.nx * (j + s.ny * k))] = float(Bw * std::sin(kx * (i + 0.5) * s.h));
-  return vel;
+  return test::sine_shear_velocity(s);
+}
+
+// A wind grid of periodic_box() holding the analytic field.
+std::unique_ptr<host::WindGrid> analytic_grid(host::ComputeContext& cc) {
+  const host::WindGridSetup setup = periodic_box();
+  auto wind = std::make_unique<host::WindGrid>(cc, setup);
+  wind->upload_velocity(analytic(setup.spec));
+  return wind;
 }
 
 }  // namespace
@@ -107,8 +100,8 @@ TEST_CASE(
   auto* cc = test::device_or_skip();
   if (!cc) return;
   const host::WindGridSetup setup = periodic_box();
-  host::WindGrid wind(*cc, setup);
-  wind.upload_velocity(analytic(setup.spec));
+  const auto grid = analytic_grid(*cc);
+  host::WindGrid& wind = *grid;
   host::PlaneStatistics statistics = statistics_of(*cc, wind);
   const fluid::PlaneProfiles p = statistics.sample(wind.statistics_fields(), wind.max_speed_component());
   const double speed = U0 + G * setup.spec.nz * setup.spec.h + C;
@@ -196,9 +189,8 @@ TEST_CASE(
     "[statistics]") {
   auto* cc = test::device_or_skip();
   if (!cc) return;
-  const host::WindGridSetup setup = periodic_box();
-  host::WindGrid wind(*cc, setup);
-  wind.upload_velocity(analytic(setup.spec));
+  const auto grid = analytic_grid(*cc);
+  host::WindGrid& wind = *grid;
   host::PlaneStatistics statistics = statistics_of(*cc, wind);
   const double speed = wind.max_speed_component();
   host::PlaneScales scales;
@@ -229,9 +221,9 @@ TEST_CASE("PlaneStatistics: a region averages its own cells alone", "[statistics
   auto* cc = test::device_or_skip();
   if (!cc) return;
   const host::WindGridSetup setup = periodic_box();
-  host::WindGrid wind(*cc, setup);
+  const auto grid = analytic_grid(*cc);
+  host::WindGrid& wind = *grid;
   const fluid::MacVelocity vel = analytic(setup.spec);
-  wind.upload_velocity(vel);
   host::PlaneStatistics statistics = statistics_of(*cc, wind);
   // x cells 0 .. 11 of 24: half of v's sine period in x, whose mean is 2 A / pi (sampled at the centres,
   // exactly the sum below); all of y.

@@ -20,28 +20,6 @@ using B = fluid::BoundaryType;
 
 namespace {
 
-// A periodic channel over a no-slip floor, held at the ambient wind by the mean forcing (the layer mean is a
-// sum over every rank's faces), with a gust travelling through it, Smagorinsky and vorticity confinement
-// (whose cell fields a halo cell across the periodic seam must take from their owner).
-host::WindGridSetup channel() {
-  host::WindGridSetup setup;
-  auto& spec = setup.spec;
-  spec.nx = 32, spec.ny = 16, spec.nz = 8, spec.h = 1.0;
-  spec.boundary = {B::periodic, B::periodic, B::periodic, B::periodic, B::no_slip, B::slip};
-  setup.settings.advection = fluid::AdvectionScheme::maccormack;
-  setup.settings.smagorinsky_constant = 0.16;
-  setup.settings.vorticity_confinement = 0.2;
-  setup.settings.dt = 0.2;
-  setup.forcing.relaxation_time = 5.0;
-  setup.ambient = {4.0, 0.0, 0.0};
-  FwGust gust{};
-  gust.start = 0.0f, gust.duration = 2.0f, gust.peak_speed = 3.0f, gust.radius = 4.0f;
-  gust.center[0] = 8.0f, gust.center[1] = 8.0f, gust.center[2] = 4.0f;
-  gust.travel[0] = 4.0f, gust.direction[0] = 1.0f;
-  setup.gusts = {gust};
-  return setup;
-}
-
 constexpr int kSteps = 8;
 
 // Steps `setup` alone and over the ranks in every split (with `canopy`, a whole grid's drag density, unless
@@ -61,10 +39,7 @@ void check_equal_to_one_process(const host::WindGridSetup& setup, const std::vec
 
   for (const auto blocks : test::splits(world.size())) {
     INFO(blocks[0] << " x " << blocks[1] << " blocks on " << world.size() << " ranks");
-    const host::WindBlocks split{
-        &world, fluid::Decomposition::make(
-                    setup.spec, world.size(), blocks,
-                    host::advection_method(setup.settings.advection).halo_cells(setup.settings.cfl))};
+    const host::WindBlocks split = test::blocks_of(setup, blocks, world);
     host::WindGrid wind(*cc, setup, &split);
     if (setup.turbulence) wind.set_turbulence_sigma(1.0);
     if (!canopy.empty()) wind.set_canopy(canopy);  // the whole grid's; each rank takes its block
@@ -119,7 +94,7 @@ TEST_CASE(
     "WindGrid over ranks: a periodic channel with mean forcing, a gust, Smagorinsky and vorticity "
     "confinement, bit for bit",
     "[mpi]") {
-  check_equal_to_one_process(channel());
+  check_equal_to_one_process(test::periodic_channel());
 }
 
 TEST_CASE(
@@ -145,7 +120,7 @@ TEST_CASE("WindGrid over ranks: a patchy canopy across both periodic seams, unde
           "[mpi]") {
   // The seam's face is face 0 and face n at once: its drag takes the cells on both sides of it, and the
   // subgrid energy diffuses across it, in one process as in a block cut there.
-  host::WindGridSetup setup = channel();
+  host::WindGridSetup setup = test::periodic_channel();
   setup.settings.subgrid = fluid::SubgridModel::tke;
   setup.settings.smagorinsky_constant = 0.0;  // the Smagorinsky model's alone
   setup.gusts.clear();
