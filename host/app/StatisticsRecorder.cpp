@@ -254,9 +254,10 @@ void StatisticsRecorder::resume(double time, const std::vector<double>& saved) {
   if (!saved.empty()) {
     const std::size_t expected = kSavedHead + window_.size() + kSavedScales * scales_.size();
     if (saved.size() != expected)
-      throw std::invalid_argument(
-          fmt::format("the checkpoint's statistics hold {} numbers; this run's regions and heights take {}",
-                      saved.size(), expected));
+      throw std::invalid_argument(fmt::format(
+          "output.statistics: the checkpoint's averaging window holds {} numbers, this run's regions and "
+          "heights take {}: a resume keeps output.statistics as it was",
+          saved.size(), expected));
     records_.resume(saved[0]);
     samples_ = long(saved[1]);
     const auto window_end = saved.begin() + long(kSavedHead + window_.size());
@@ -281,8 +282,10 @@ void StatisticsRecorder::resume(double time, const std::vector<double>& saved) {
   if (read.z != out_.z || read.regions.size() != out_.regions.size() ||
       read.profiles.variables.size() != out_.profiles.variables.size() ||
       read.series.variables.size() != out_.series.variables.size())
-    throw std::invalid_argument(file_.string() +
-                                ": not this run's statistics (other heights, regions or variables)");
+    throw std::invalid_argument(
+        file_.string() +
+        ": not this run's statistics (other heights, regions or variables): a resume keeps "
+        "output.statistics as it was");
   const std::size_t records = kept(read.profiles.time), rows = kept(read.series.time);
   out_.profiles.time.assign(read.profiles.time.begin(), read.profiles.time.begin() + long(records));
   out_.profiles.values.assign(read.profiles.values.begin(), read.profiles.values.begin() + long(records));
