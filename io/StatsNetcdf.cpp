@@ -2,8 +2,13 @@
 
 #include <fmt/format.h>
 #include <netcdf.h>
+#include <netcdf_mem.h>
 
+#include <algorithm>
+#include <cstdlib>
+#include <memory>
 #include <stdexcept>
+#include <string>
 #include <utility>
 
 #include "base/AtomicFile.hpp"
@@ -14,6 +19,8 @@ namespace fw::io {
 namespace {
 
 constexpr const char* kSeriesGroup = "timeseries";
+// The in-memory file's first allocation; it grows as needed.
+constexpr std::size_t kInitialBytes = 1 << 16;
 constexpr const char* kRegionsGroup = "regions";
 constexpr const char* kIntervalAttribute = "interval_seconds";
 constexpr const char* kAveragingAttribute = "averaging_seconds";
@@ -149,9 +156,13 @@ void write_profiles(const ProfileGroup& g, const StatsFile& f,
   }
 }
 
-void write_file(const std::filesystem::path& path, const std::filesystem::path& target, const StatsFile& f) {
+// The whole file, built in memory (NetCDF's in-memory files): the disk sees only write_text_atomically's own
+// writes, whose errors say what failed (a full disk: "No space left on device"). On disk, HDF5 met a full
+// disk as a generic error and kept the half-written file open, and its clean-up at exit then crashed.
+std::string file_bytes(const std::filesystem::path& target, const StatsFile& f) {
   int root = 0;
-  check(nc_create(path.c_str(), NC_NETCDF4 | NC_CLOBBER, &root), target, "creating the file");
+  check(nc_create_mem(target.filename().c_str(), NC_NETCDF4, kInitialBytes, &root), target,
+        "creating the file");
   try {
     put_text(root, NC_GLOBAL, "Conventions", "CF-1.8", target);
     put_text(root, NC_GLOBAL, "title", f.title, target);
@@ -200,10 +211,13 @@ void write_file(const std::filesystem::path& path, const std::filesystem::path& 
               fmt::format("writing {}", f.series.variables[n].name));
     }
   } catch (...) {
-    nc_close(root);
+    nc_abort(root);
     throw;
   }
-  check(nc_close(root), target, "closing the file");
+  NC_memio memory{};
+  check(nc_close_memio(root, &memory), target, "closing the file");
+  const std::unique_ptr<void, decltype(&std::free)> owned(memory.memory, &std::free);
+  return {static_cast<const char*>(memory.memory), memory.size};
 }
 
 // The variables of `group` other than its coordinates, in the order they were defined, with their values:
@@ -241,17 +255,17 @@ std::vector<std::vector<std::vector<double>>> read_profiles(int group, const std
                                                             std::vector<double>* time, std::vector<double>* z,
                                                             std::vector<StatsVariable>* variables) {
   std::vector<std::vector<std::vector<double>>> values;
-  for (auto& [about, data] : read_variables(group, path)) {
-    if (about.name == "time") {
-      *time = data;
-    } else if (about.name == "z") {
-      *z = data;
-    } else {
-      variables->push_back(about);
-      values.resize(time->size(), {});
-      for (std::size_t r = 0; r < time->size(); ++r)
-        values[r].emplace_back(data.begin() + long(r * z->size()), data.begin() + long((r + 1) * z->size()));
-    }
+  const auto read = read_variables(group, path);
+  for (const auto& [about, data] : read) {
+    if (about.name == "time") *time = data;
+    if (about.name == "z") *z = data;
+  }
+  values.resize(time->size(), {});
+  for (const auto& [about, data] : read) {
+    if (about.name == "time" || about.name == "z") continue;
+    variables->push_back(about);
+    for (std::size_t r = 0; r < time->size(); ++r)
+      values[r].emplace_back(data.begin() + long(r * z->size()), data.begin() + long((r + 1) * z->size()));
   }
   return values;
 }
@@ -286,24 +300,36 @@ StatsFile read_stats_netcdf(const std::filesystem::path& path) {
               fmt::format("reading region {}'s region_max", region.name));
         std::vector<double> time, z;
         std::vector<StatsVariable> variables;
-        region.values = read_profiles(group, path, &time, &z, &variables);
-        if (time != f.profiles.time || z != f.z || variables.size() != f.profiles.variables.size())
+        const auto values = read_profiles(group, path, &time, &z, &variables);
+        // Its variables in the domain's order, by name (the root group lists them by name, a group in the
+        // order they were made).
+        std::vector<std::size_t> at;
+        for (const StatsVariable& v : f.profiles.variables)
+          at.push_back(std::size_t(std::find(variables.begin(), variables.end(), v) - variables.begin()));
+        const bool same =
+            time == f.profiles.time && z == f.z && variables.size() == at.size() &&
+            std::all_of(at.begin(), at.end(), [&](std::size_t n) { return n < variables.size(); });
+        if (!same)
           throw std::runtime_error(
-              fmt::format("{}: region {} has other times, heights or variables than the "
-                          "domain's",
+              fmt::format("{}: region {} has other times, heights or variables than the domain's",
                           path.string(), region.name));
+        for (const auto& record : values) {
+          std::vector<std::vector<double>> ours;
+          for (const std::size_t n : at) ours.push_back(record[n]);
+          region.values.push_back(std::move(ours));
+        }
         f.regions.push_back(std::move(region));
       }
     }
     int series = 0;
     check(nc_inq_ncid(root, kSeriesGroup, &series), path, "finding the group timeseries");
-    for (auto& [about, data] : read_variables(series, path)) {
-      if (about.name == "time") {
-        f.series.time = data;
-        continue;
-      }
+    const auto read = read_variables(series, path);
+    for (const auto& [about, data] : read)
+      if (about.name == "time") f.series.time = data;
+    f.series.values.resize(f.series.time.size(), {});
+    for (const auto& [about, data] : read) {
+      if (about.name == "time") continue;
       f.series.variables.push_back(about);
-      f.series.values.resize(f.series.time.size(), {});
       for (std::size_t r = 0; r < f.series.time.size(); ++r) f.series.values[r].push_back(data[r]);
     }
   } catch (...) {
@@ -323,9 +349,7 @@ std::vector<StatsVariable> profile_columns() {
 
 void write_stats_netcdf(const std::filesystem::path& path, const StatsFile& file) {
   require_shapes(file);
-  base::AtomicFile atomic(path);
-  write_file(atomic.temporary_path(), path, file);
-  atomic.commit();
+  base::write_text_atomically("write_stats_netcdf", path, file_bytes(path, file));
 }
 
 }  // namespace fw::io

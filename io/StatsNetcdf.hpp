@@ -14,9 +14,11 @@
 // of time and z so that xarray opens it alone, and the box in the attributes region_min and region_max. Every
 // variable carries units and long_name, and standard_name where CF has one; the coordinates carry axis,
 // positive and standard_name. The file is written whole under a temporary name and renamed (base/AtomicFile):
-// a run killed while writing it leaves the last complete file. The profiles carry CF's cell_methods "area:
-// mean time: mean", and the root the records' interval and averaging time in seconds (the attributes
-// interval_seconds and averaging_seconds).
+// a run killed while writing it leaves the last complete file. It is built in memory and written with POSIX
+// writes, so a full disk reads "No space left on device" and leaves nothing behind. The root group lists
+// its variables by name (an in-memory file keeps no order of creation there), so a reader finds them by name.
+// The profiles carry CF's cell_methods "area: mean time: mean", and the root the records' interval and
+// averaging time in seconds (the attributes interval_seconds and averaging_seconds).
 #pragma once
 
 #include <array>
@@ -67,7 +69,9 @@ struct StatsFile {
 /// The profile variables of fluid/PlaneProfiles, in its order.
 std::vector<StatsVariable> profile_columns();
 
-/// Reads a stats.nc that write_stats_netcdf wrote (a resumed run goes on from its records). Throws
+/// Reads a stats.nc that write_stats_netcdf wrote (a resumed run goes on from its records). Its variables
+/// come in the root group's order, which is by name (the in-memory file the writer builds keeps no order
+/// of creation there): find them by name. A region's come in the same order. Throws
 /// std::runtime_error naming the path and NetCDF's message when it does not read as one.
 StatsFile read_stats_netcdf(const std::filesystem::path& path);
 

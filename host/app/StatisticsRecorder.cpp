@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
+#include <type_traits>
 #include <utility>
 
 #include "fluid/SubgridStress.hpp"
@@ -279,21 +280,50 @@ void StatisticsRecorder::resume(double time, const std::vector<double>& saved) {
   const auto kept = [&](const std::vector<double>& times) {
     return std::size_t(std::upper_bound(times.begin(), times.end(), time + tolerance) - times.begin());
   };
-  if (read.z != out_.z || read.regions.size() != out_.regions.size() ||
-      read.profiles.variables.size() != out_.profiles.variables.size() ||
-      read.series.variables.size() != out_.series.variables.size())
+  const auto refuse = [&](const std::string& what) {
     throw std::invalid_argument(
-        file_.string() +
-        ": not this run's statistics (other heights, regions or variables): a resume keeps "
-        "output.statistics as it was");
+        fmt::format("{}: not this run's statistics ({}): a resume keeps output.statistics "
+                    "as it was",
+                    file_.string(), what));
+  };
+  if (read.z != out_.z) refuse("other heights");
+  if (read.regions.size() != out_.regions.size()) refuse("other regions");
+  // The file lists its variables by name (io/StatsNetcdf): each of this run's, found by its name there.
+  const auto positions = [&](const std::vector<io::StatsVariable>& theirs,
+                             const std::vector<io::StatsVariable>& ours) {
+    std::vector<std::size_t> at;
+    for (const io::StatsVariable& v : ours) {
+      const auto found = std::find(theirs.begin(), theirs.end(), v);
+      if (found == theirs.end()) refuse("no variable " + v.name);
+      at.push_back(std::size_t(found - theirs.begin()));
+    }
+    if (theirs.size() != ours.size()) refuse("other variables");
+    return at;
+  };
+  const std::vector<std::size_t> profile_at = positions(read.profiles.variables, out_.profiles.variables);
+  const std::vector<std::size_t> series_at = positions(read.series.variables, out_.series.variables);
+  const auto in_our_order = [](const auto& record, const std::vector<std::size_t>& at) {
+    std::decay_t<decltype(record)> ours;
+    for (const std::size_t n : at) ours.push_back(record[n]);
+    return ours;
+  };
   const std::size_t records = kept(read.profiles.time), rows = kept(read.series.time);
   out_.profiles.time.assign(read.profiles.time.begin(), read.profiles.time.begin() + long(records));
-  out_.profiles.values.assign(read.profiles.values.begin(), read.profiles.values.begin() + long(records));
-  for (std::size_t n = 0; n < out_.regions.size(); ++n)
-    out_.regions[n].values.assign(read.regions[n].values.begin(),
-                                  read.regions[n].values.begin() + long(records));
+  out_.profiles.values.clear();
+  for (std::size_t r = 0; r < records; ++r)
+    out_.profiles.values.push_back(in_our_order(read.profiles.values[r], profile_at));
+  for (io::StatsRegion& region : out_.regions) {
+    const auto theirs = std::find_if(read.regions.begin(), read.regions.end(),
+                                     [&](const io::StatsRegion& r) { return r.name == region.name; });
+    if (theirs == read.regions.end()) refuse("no region " + region.name);
+    region.values.clear();
+    for (std::size_t r = 0; r < records; ++r)
+      region.values.push_back(in_our_order(theirs->values[r], profile_at));
+  }
   out_.series.time.assign(read.series.time.begin(), read.series.time.begin() + long(rows));
-  out_.series.values.assign(read.series.values.begin(), read.series.values.begin() + long(rows));
+  out_.series.values.clear();
+  for (std::size_t r = 0; r < rows; ++r)
+    out_.series.values.push_back(in_our_order(read.series.values[r], series_at));
 }
 
 }  // namespace fw::host

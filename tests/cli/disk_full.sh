@@ -2,7 +2,7 @@
 # bash disk_full.sh FORESTWIND WORK CHECK_FRAMES ENOSPC_SHIM
 #
 # A disk that fills at each writer of a run (docs/faults.md): the wind, trees and leaves VTK files, the VDB
-# frames, probes.csv, the .pvd collections, run.json, the scenario's copy, view.py and the checkpoints. Writes
+# frames, probes.csv, stats.nc, the .pvd collections, run.json, the scenario's copy, view.py and the checkpoints. Writes
 # fail with ENOSPC through an LD_PRELOAD shim (tests/tools/enospc_shim.cpp; a tmpfs would need mount
 # rights a CI container may lack), on files whose path holds a pattern, after a given number of bytes. Each
 # run exits 1 naming the file and "No space left on device"; every frame the collections list reads back
@@ -55,6 +55,10 @@ for spec in wind/wind_000003.vti trees/trees_000003.vtp leaves/leaves_000003.vtp
 done
 # probes.csv: rewritten whole while small; a later rewrite fails.
 full_disk probes probes.csv $(($(size "$work/full/probes.csv") / 2)) probes.csv 1
+# stats.nc: rewritten whole at each record (0.5 s) and checkpoint; its first write fails, and a later one
+# part-way through.
+full_disk stats_first stats.nc 0 stats.nc 1
+full_disk stats_later stats.nc $(($(size "$work/full/stats.nc") * 2)) stats.nc 2
 # The collections: a rewrite after some frames fails.
 full_disk wind_pvd wind.pvd $(($(size "$work/full/wind.pvd") * 2)) wind.pvd 1
 full_disk trees_pvd trees.pvd $(($(size "$work/full/trees.pvd") * 2)) trees.pvd 1
