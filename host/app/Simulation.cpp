@@ -4,7 +4,6 @@
 
 #include <algorithm>
 #include <array>
-#include <chrono>
 #include <cmath>
 #include <exception>
 #include <iostream>
@@ -13,6 +12,7 @@
 #include <vector>
 
 #include "base/AtomicFile.hpp"
+#include "base/WallClock.hpp"
 #include "host/app/CheckpointRedistribution.hpp"
 #include "host/app/FrameGather.hpp"
 #include "host/app/OutputWriters.hpp"
@@ -29,11 +29,8 @@ namespace fw::host {
 
 namespace {
 
-using Clock = std::chrono::steady_clock;
-
-double ms_since(Clock::time_point start) {
-  return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
-}
+using Clock = base::WallClock;
+using base::ms_since;
 
 std::string format_duration(double seconds) {
   if (!std::isfinite(seconds) || seconds < 0) return "?";

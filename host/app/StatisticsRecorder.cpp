@@ -8,17 +8,15 @@
 #include <type_traits>
 #include <utility>
 
+#include "base/WallClock.hpp"
 #include "fluid/SubgridStress.hpp"
 
 namespace fw::host {
 
 namespace {
 
-using Clock = std::chrono::steady_clock;
-
-double ms_since(Clock::time_point start) {
-  return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
-}
+using Clock = base::WallClock;
+using base::ms_since;
 
 // The time series' columns, in series_columns()'s order.
 enum Series {
@@ -40,29 +38,28 @@ enum Series {
 constexpr std::size_t kSavedHead = 2;
 constexpr std::size_t kSavedScales = 1 + FW_PLANE_TERMS;
 
-// An area's box of whole cells along axis a (x 0, y 1) of `spec`, m.
-std::array<double, 2> cell_faces(const fluid::GridSpec& spec, const PlaneRegion& region, int a) {
-  const int end = region.end[std::size_t(a)] > 0 ? region.end[std::size_t(a)] : spec.cells_along(a);
-  return {spec.origin[std::size_t(a)] + region.first[std::size_t(a)] * spec.h,
-          spec.origin[std::size_t(a)] + end * spec.h};
-}
-
-StatisticsArea area_of(const fluid::GridSpec& spec, std::string name, const std::array<double, 2>& min,
-                       const std::array<double, 2>& max) {
-  StatisticsArea area;
-  area.name = std::move(name);
-  for (int a = 0; a < 2; ++a) {
-    const std::array<int, 2> cells = io::statistics_cells(
-        min[std::size_t(a)], max[std::size_t(a)], spec.origin[std::size_t(a)], spec.h, spec.cells_along(a));
-    area.cells.first[std::size_t(a)] = cells[0];
-    area.cells.end[std::size_t(a)] = cells[1];
-  }
-  for (int a = 0; a < 2; ++a) {
-    const std::array<double, 2> faces = cell_faces(spec, area.cells, a);
-    area.min[std::size_t(a)] = faces[0];
-    area.max[std::size_t(a)] = faces[1];
+// The area `name` of `spec`'s cells `cells`, with the box those whole cells fill (m).
+StatisticsArea area_of(const fluid::GridSpec& spec, std::string name, const PlaneRegion& cells) {
+  StatisticsArea area{std::move(name), cells, {}, {}};
+  for (std::size_t a = 0; a < 2; ++a) {
+    const int end = cells.end[a] > 0 ? cells.end[a] : spec.cells_along(int(a));
+    area.min[a] = spec.origin[a] + cells.first[a] * spec.h;
+    area.max[a] = spec.origin[a] + end * spec.h;
   }
   return area;
+}
+
+// The area `name` of the cells whose centres lie in the box min .. max (m).
+StatisticsArea area_in(const fluid::GridSpec& spec, std::string name, const std::array<double, 2>& min,
+                       const std::array<double, 2>& max) {
+  PlaneRegion cells;
+  for (std::size_t a = 0; a < 2; ++a) {
+    const std::array<int, 2> span =
+        io::statistics_cells(min[a], max[a], spec.origin[a], spec.h, spec.cells_along(int(a)));
+    cells.first[a] = span[0];
+    cells.end[a] = span[1];
+  }
+  return area_of(spec, std::move(name), cells);
 }
 
 }  // namespace
@@ -84,21 +81,14 @@ std::vector<io::StatsVariable> series_columns() {
 
 std::vector<StatisticsArea> statistics_areas(const SimulationPlan& plan) {
   const fluid::GridSpec& spec = plan.wind.spec;
-  std::vector<StatisticsArea> areas;
-  StatisticsArea domain;
-  for (int a = 0; a < 2; ++a) {
-    const std::array<double, 2> faces = cell_faces(spec, domain.cells, a);
-    domain.min[std::size_t(a)] = faces[0];
-    domain.max[std::size_t(a)] = faces[1];
-  }
-  areas.push_back(domain);
+  std::vector<StatisticsArea> areas{area_of(spec, "", PlaneRegion{})};
   if (!plan.output.statistics) return areas;
   for (const io::StatisticsRegion& region : plan.output.statistics->regions)
-    areas.push_back(area_of(spec, region.name, region.min, region.max));
+    areas.push_back(area_in(spec, region.name, region.min, region.max));
   if (plan.output.statistics->stands)
     for (std::size_t n = 0; n < plan.stands.size(); ++n) {
       const StandPlan& stand = plan.stands[n];
-      StatisticsArea area = area_of(spec, fmt::format("{}{}", io::kStandRegionPrefix, n + 1),
+      StatisticsArea area = area_in(spec, fmt::format("{}{}", io::kStandRegionPrefix, n + 1),
                                     {stand.min.x(), stand.min.y()}, {stand.max.x(), stand.max.y()});
       // A stand outside the domain, or narrower than a cell, averages nothing: left out.
       if (area.cells.end[0] > area.cells.first[0] && area.cells.end[1] > area.cells.first[1])

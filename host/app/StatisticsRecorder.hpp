@@ -15,7 +15,6 @@
 // lies past the checkpoint and goes on (resume()), so that its file is the uninterrupted run's.
 #pragma once
 
-#include <chrono>
 #include <filesystem>
 #include <optional>
 #include <string>

@@ -4,7 +4,6 @@
 
 #include <unistd.h>
 
-#include <chrono>
 #include <cmath>
 #include <filesystem>
 #include <numbers>
@@ -12,6 +11,7 @@
 #include <stdexcept>
 #include <system_error>
 
+#include "base/WallClock.hpp"
 #include "host/app/CoupledStep.hpp"
 #include "host/app/SimulationPlan.hpp"
 #include "host/bench/BenchTurbulence.hpp"
@@ -31,7 +31,8 @@ namespace fw::bench {
 
 namespace {
 
-using Clock = std::chrono::steady_clock;
+using Clock = base::WallClock;
+using base::ms_since;
 
 // The bench forest's foliage: a leaf area index of 3, a broadleaf stand in leaf (the branches' and the
 // leaves' drag coefficients are the species defaults).
@@ -54,10 +55,6 @@ struct ScratchCache {
     std::filesystem::remove_all(folder, ignored);
   }
 };
-
-double ms_since(Clock::time_point start) {
-  return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
-}
 
 // One case of the bench: the converged laminar case, or it with turbulence, or with leaves, or with
 // Oliapuram's fixed Jacobi sweeps (jacobi > 0) instead of CG to 1e-3.

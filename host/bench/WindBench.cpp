@@ -2,10 +2,10 @@
 
 #include <fmt/format.h>
 
-#include <chrono>
 #include <cmath>
 #include <optional>
 
+#include "base/WallClock.hpp"
 #include "fluid/ReferenceStages.hpp"
 #include "fluid/SolidMap.hpp"
 #include "host/bench/BenchTurbulence.hpp"
@@ -22,10 +22,8 @@ constexpr int kStartupSteps = 5;
 // The CFL number of dt: auto that scenarios default to (io: time.cfl), for the semi-Lagrangian schemes.
 constexpr double kDefaultCfl = 0.8;
 
-using Clock = std::chrono::steady_clock;
-double ms_since(Clock::time_point t) {
-  return std::chrono::duration<double, std::milli>(Clock::now() - t).count();
-}
+using Clock = base::WallClock;
+using base::ms_since;
 
 // What a timed run adds to the laminar wind tunnel: the cost of turbulence is the difference.
 enum class Turbulence {

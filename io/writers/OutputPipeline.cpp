@@ -2,19 +2,17 @@
 
 #include <fmt/format.h>
 
-#include <chrono>
 #include <stdexcept>
 #include <utility>
+
+#include "base/WallClock.hpp"
 
 namespace fw::io {
 
 namespace {
 
-using Clock = std::chrono::steady_clock;
-
-double ms_since(Clock::time_point start) {
-  return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
-}
+using Clock = base::WallClock;
+using base::ms_since;
 
 }  // namespace
 

@@ -79,9 +79,10 @@ int read_vdb(const fs::path& folder) {
 std::size_t read_statistics(const fs::path& folder, double interval) {
   // Sums of float dt land within this fraction of an interval of its multiples (host/app/Schedule.hpp).
   constexpr double kTolerance = 1e-6;
-  const double last_frame = fs::exists(folder / "wind.pvd") && !fw::io::read_pvd(folder / "wind.pvd").empty()
-                                ? fw::io::read_pvd(folder / "wind.pvd").back().time
-                                : 0.0;
+  double last_frame = 0.0;
+  if (fs::exists(folder / "wind.pvd"))
+    if (const auto listed = fw::io::read_pvd(folder / "wind.pvd"); !listed.empty())
+      last_frame = listed.back().time;
   const auto due = std::size_t(std::floor(last_frame / interval + kTolerance));
   if (!fs::exists(folder / "stats.nc")) {
     if (due > 0)

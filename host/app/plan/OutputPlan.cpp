@@ -1,10 +1,12 @@
 // The outputs' part of the plan: the folder, the frame interval, the writers and fields, the probes and
-// their interval, and the record of where the run came from (run.json and the scenario's copy).
+// their interval, the statistics' device memory, and the record of where the run came from (run.json and the
+// scenario's copy).
 #include <algorithm>
 #include <string>
 #include <vector>
 
 #include "host/app/plan/PlanBuilders.hpp"
+#include "host/stages/PlaneStatistics.hpp"
 #include "host/stages/PointWindReadback.hpp"
 #include "io/Scenario.hpp"
 
@@ -22,6 +24,9 @@ void plan_outputs(const io::Scenario& scenario, SimulationPlan& plan) {
   plan.probe_interval = scenario.resolved_probe_interval().value_or(0.0);
   if (!plan.output.probes.empty())
     plan.memory.add("probes", PointWindReadback::estimate_device_bytes(plan.output.probes.size()));
+  // The statistics' row partials (host/app/StatisticsRecorder), over the whole grid in one process.
+  if (plan.output.statistics)
+    plan.memory.add("statistics", PlaneStatistics::estimate_device_bytes(plan.wind.spec));
 }
 
 }  // namespace fw::host

@@ -240,3 +240,12 @@ TEST_CASE("PlaneStatistics: a region averages its own cells alone", "[statistics
     CHECK(p.at(Profile::v, k) == Approx(expected).margin(tolerance(Profile::v, A, 0)));
   }
 }
+
+TEST_CASE("PlaneStatistics: allocates on the device exactly the bytes it estimates", "[statistics]") {
+  auto* cc = test::device_or_skip();
+  if (!cc) return;
+  const auto grid = analytic_grid(*cc);
+  const std::size_t before = cc->allocated_bytes();
+  const host::PlaneStatistics statistics = statistics_of(*cc, *grid);
+  CHECK(cc->allocated_bytes() - before == host::PlaneStatistics::estimate_device_bytes(grid->local_spec()));
+}
