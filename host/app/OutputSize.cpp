@@ -271,8 +271,9 @@ constexpr double kSeriesChunkRows = 512.0;  // NetCDF-4's default chunk along an
 
 OutputSizeRow statistics_row(const SimulationPlan& plan, double end_time) {
   const io::StatisticsSettings& s = *plan.output.statistics;
-  const double records = std::floor(end_time / s.interval + kScheduleTolerance);
   const double steps = std::ceil(end_time / planned_dt(plan));
+  // A record at each multiple of the interval, but at most one a step (an interval under dt).
+  const double records = std::min(std::floor(end_time / s.interval + kScheduleTolerance), steps);
   // The time series grow by chunks of kSeriesChunkRows rows, allocated whole.
   const double rows = std::ceil(std::floor(steps / s.series_every) / kSeriesChunkRows) * kSeriesChunkRows;
   const double areas = double(statistics_areas(plan).size());

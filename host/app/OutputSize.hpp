@@ -23,7 +23,8 @@
 //   the bound where every leaf is written, which the disk check uses.
 // - probes.csv: one row per sample, numbers of {:.9g} (12.5 characters each on average, measured); with
 //   samples every step the step count of planned_dt, a bound for a steady wind.
-// - stats.nc: its doubles (each area's records, the time series' rows at planned_dt, as probes.csv's) and
+// - stats.nc: its doubles (each area's records, at most one a step; the time series' rows at planned_dt, as
+//   probes.csv's) and
 //   NetCDF-4's own bytes, measured on files of every size a run writes (within 2%). The canopy's 600 s wrote
 //   556 kB for a prediction of 487 kB: its turbulence took 4,298 steps where planned_dt gives 3,610.
 // - Checkpoints (host/app/RunCheckpoint): every state buffer whole, from the grid, the modes and the leaves
